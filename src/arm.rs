@@ -1,0 +1,174 @@
+//! The planar redundant arm: a fixed vertical base post and `n` revolute links.
+//!
+//! Conventions (SPEC.md, "Arm and coordinates"): the absolute angle of link `i`
+//! is `phi_i = theta_1 + ... + theta_i`, measured from the vertical axis towards
+//! `+X1`, so joint `k` sits at `P(k) = P(k-1) + L_k (sin phi_k, cos phi_k)` with
+//! `P(0) = (0, L0)` the top of the post. The end effector is `X = P(n)`.
+
+use nalgebra::{DVector, Matrix2xX, Vector2};
+use serde::{Deserialize, Serialize};
+
+use crate::error::{finite, positive, Error, Result};
+
+/// A planar arm on a vertical base post of length `post`, with revolute links of
+/// lengths `links[0..n]` (the paper's `L0` and `L1..L3`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Arm {
+    post: f64,
+    links: Vec<f64>,
+}
+
+impl Arm {
+    /// An arm with the given post height and link lengths (metres).
+    ///
+    /// The post may be zero (base joint on the ground); every link must be a
+    /// positive finite length, and there must be at least two links so that the
+    /// end effector can reach a planar neighbourhood.
+    pub fn new(post: f64, links: Vec<f64>) -> Result<Self> {
+        finite("post length L0", post)?;
+        if post < 0.0 {
+            return Err(Error::InvalidValue(format!(
+                "post length L0 must not be negative (got {post})"
+            )));
+        }
+        if links.len() < 2 {
+            return Err(Error::InvalidValue(format!(
+                "an arm needs at least 2 links to position a planar end effector (got {})",
+                links.len()
+            )));
+        }
+        for (i, &l) in links.iter().enumerate() {
+            positive(&format!("link length L{}", i + 1), l)?;
+        }
+        Ok(Self { post, links })
+    }
+
+    /// The paper's arm (section VI): `L0 = 0.5`, `L1 = 0.6`, `L2 = 0.85`, `L3 = 0.6` m.
+    pub fn paper() -> Self {
+        Self {
+            post: 0.5,
+            links: vec![0.6, 0.85, 0.6],
+        }
+    }
+
+    /// Number of joints `n`.
+    pub fn dof(&self) -> usize {
+        self.links.len()
+    }
+
+    /// Height of the fixed base post, `L0`.
+    pub fn post(&self) -> f64 {
+        self.post
+    }
+
+    /// Link lengths `L1..Ln`.
+    pub fn links(&self) -> &[f64] {
+        &self.links
+    }
+
+    /// Top of the post, `P(0) = (0, L0)`: the first revolute joint.
+    pub fn base(&self) -> Vector2<f64> {
+        Vector2::new(0.0, self.post)
+    }
+
+    /// Largest distance from `P(0)` that the end effector can reach.
+    pub fn max_reach(&self) -> f64 {
+        self.links.iter().sum()
+    }
+
+    /// Smallest distance from `P(0)` that the end effector can reach
+    /// (zero unless one link is longer than all others together).
+    pub fn min_reach(&self) -> f64 {
+        let longest = self.links.iter().cloned().fold(0.0, f64::max);
+        (2.0 * longest - self.max_reach()).max(0.0)
+    }
+
+    /// Whether the point lies in the reachable annulus around `P(0)`.
+    pub fn can_reach(&self, point: &Vector2<f64>) -> bool {
+        let r = (point - self.base()).norm();
+        r <= self.max_reach() && r >= self.min_reach()
+    }
+
+    /// Checks that `theta` has `n` finite entries.
+    pub fn check_theta(&self, theta: &DVector<f64>) -> Result<()> {
+        if theta.len() != self.dof() {
+            return Err(Error::DimensionMismatch {
+                what: "theta".into(),
+                expected: self.dof(),
+                found: theta.len(),
+            });
+        }
+        for (i, &t) in theta.iter().enumerate() {
+            finite(&format!("theta_{}", i + 1), t)?;
+        }
+        Ok(())
+    }
+
+    /// Absolute link angles `phi_i = theta_1 + ... + theta_i`.
+    pub fn absolute_angles(&self, theta: &DVector<f64>) -> Vec<f64> {
+        theta
+            .iter()
+            .scan(0.0, |acc, &t| {
+                *acc += t;
+                Some(*acc)
+            })
+            .collect()
+    }
+
+    /// All joint positions `P(0), P(1), ..., P(n)`; the last is the end effector.
+    pub fn joints(&self, theta: &DVector<f64>) -> Vec<Vector2<f64>> {
+        let mut p = self.base();
+        let mut out = Vec::with_capacity(self.dof() + 1);
+        out.push(p);
+        for (l, phi) in self.links.iter().zip(self.absolute_angles(theta)) {
+            p += *l * Vector2::new(phi.sin(), phi.cos());
+            out.push(p);
+        }
+        out
+    }
+
+    /// Forward kinematics `X = f(theta)`, eq. (1): the end effector `P(n)`.
+    ///
+    /// # Examples
+    /// ```
+    /// use redundant_ik::{Arm, nalgebra::DVector};
+    /// use std::f64::consts::PI;
+    /// let x = Arm::paper().forward(&DVector::from_vec(vec![PI / 12.0, PI / 2.0, -PI / 6.0]));
+    /// assert!((x[0] - 1.555884).abs() < 1e-6 && (x[1] - 1.014851).abs() < 1e-6);
+    /// ```
+    pub fn forward(&self, theta: &DVector<f64>) -> Vector2<f64> {
+        let mut x = self.base();
+        for (l, phi) in self.links.iter().zip(self.absolute_angles(theta)) {
+            x += *l * Vector2::new(phi.sin(), phi.cos());
+        }
+        x
+    }
+
+    /// Analytic Jacobian `J = dX/dtheta`, eq. (3), a `2 x n` matrix:
+    /// `J[0][i] = sum_{k>=i} L_k cos phi_k`, `J[1][i] = -sum_{k>=i} L_k sin phi_k`.
+    pub fn jacobian(&self, theta: &DVector<f64>) -> Matrix2xX<f64> {
+        let n = self.dof();
+        let phi = self.absolute_angles(theta);
+        let mut j = Matrix2xX::zeros(n);
+        let (mut c, mut s) = (0.0, 0.0);
+        for i in (0..n).rev() {
+            c += self.links[i] * phi[i].cos();
+            s += self.links[i] * phi[i].sin();
+            j[(0, i)] = c;
+            j[(1, i)] = -s;
+        }
+        j
+    }
+}
+
+/// Euclidean distance from point `p` to the segment `a`-`b`.
+pub fn point_segment_distance(p: &Vector2<f64>, a: &Vector2<f64>, b: &Vector2<f64>) -> f64 {
+    let ab = b - a;
+    let len2 = ab.norm_squared();
+    let s = if len2 > 0.0 {
+        ((p - a).dot(&ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p - (a + s * ab)).norm()
+}

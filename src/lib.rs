@@ -1,0 +1,20 @@
+#![doc = include_str!("../README.md")]
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod arm;
+pub mod error;
+pub mod ik;
+pub mod obstacle;
+pub mod planner;
+pub mod scene;
+
+pub use arm::Arm;
+pub use error::{Error, Result};
+pub use ik::DampingSchedule;
+pub use obstacle::Obstacle;
+pub use planner::{Line, Mode, Planner, Sample, Summary, Surrogate, Trajectory};
+pub use scene::Scene;
+
+/// Re-export of the linear-algebra crate used in the public API.
+pub use nalgebra;
