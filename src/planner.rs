@@ -203,6 +203,10 @@ pub struct Summary {
     pub out_of_range_steps: usize,
     /// Largest damping `delta` used.
     pub max_delta: f64,
+    /// Whether the damping schedule was switched on automatically because the
+    /// target lies outside the workspace (with `delta = 0` a stretched arm has
+    /// unbounded joint rates).
+    pub auto_damping: bool,
 }
 
 /// A whole run: every sample from `t = 0` to `tf`, and the summary.
@@ -262,6 +266,7 @@ pub struct Planner {
     t: f64,
     line: Line,
     stats: Stats,
+    auto_damping: bool,
 }
 
 impl fmt::Debug for Planner {
@@ -277,9 +282,17 @@ impl fmt::Debug for Planner {
 
 impl Planner {
     /// A planner at the scene's start. Network modes need `networks`.
-    pub fn new(scene: Scene, mode: Mode, networks: Option<Arc<dyn Surrogate>>) -> Result<Self> {
+    ///
+    /// A target outside the workspace is legal: the damping schedule is then
+    /// switched on (and the summary says so), so the arm stretches towards it
+    /// with bounded joint rates instead of blowing up.
+    pub fn new(mut scene: Scene, mode: Mode, networks: Option<Arc<dyn Surrogate>>) -> Result<Self> {
         scene.validate()?;
         check_networks(mode, &networks)?;
+        let auto_damping = needs_auto_damping(&scene);
+        if auto_damping {
+            scene.damping = Some(DampingSchedule::default());
+        }
         let theta = scene.theta0_vector();
         let start = scene.arm.forward(&theta);
         let line = Line {
@@ -297,6 +310,7 @@ impl Planner {
             t: 0.0,
             line,
             stats: Stats::new(),
+            auto_damping,
         };
         let s = p.sample();
         p.stats.record(&s);
@@ -328,7 +342,8 @@ impl Planner {
         let scene = self.scene.clone();
         let networks = self.networks.clone();
         // The scene was validated when it entered the planner.
-        if let Ok(p) = Self::new(scene, self.mode, networks) {
+        if let Ok(mut p) = Self::new(scene, self.mode, networks) {
+            p.auto_damping |= self.auto_damping;
             *self = p;
         }
     }
@@ -386,6 +401,10 @@ impl Planner {
         let steps = (duration / self.scene.dt - 1e-9).ceil().max(1.0);
         let x = self.scene.arm.forward(&self.theta);
         self.scene.target = target;
+        if needs_auto_damping(&self.scene) {
+            self.scene.damping = Some(DampingSchedule::default());
+            self.auto_damping = true;
+        }
         self.line = Line {
             start: [x[0], x[1]],
             end: target,
@@ -599,8 +618,13 @@ impl Planner {
             target_reachable: self.scene.arm.can_reach(&target),
             out_of_range_steps: self.stats.out_of_range_steps,
             max_delta: self.stats.max_delta,
+            auto_damping: self.auto_damping,
         }
     }
+}
+
+fn needs_auto_damping(scene: &Scene) -> bool {
+    scene.damping.is_none() && !scene.arm.can_reach(&scene.target_vector())
 }
 
 fn check_networks(mode: Mode, networks: &Option<Arc<dyn Surrogate>>) -> Result<()> {

@@ -1,0 +1,223 @@
+//! `redundant-ik figure`: the paper's stroboscopic figures (Figs. 2-11) as SVG,
+//! drawn with plotters: the arm every few steps, the obstacle disc, the
+//! straight-line path, start and end poses highlighted, axes in metres.
+
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+use plotters::prelude::*;
+use redundant_ik::{Mode, Planner, Scene, Trajectory};
+
+use super::networks_for;
+use super::simulate::SceneArgs;
+
+/// Options of `redundant-ik figure`.
+#[derive(Args, Debug)]
+pub struct FigureArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Output SVG file, or with --all a directory.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Write the whole set: both tasks in every available mode.
+    #[arg(long)]
+    pub all: bool,
+    /// Draw the arm every this many steps.
+    #[arg(long, default_value_t = 5)]
+    pub every: usize,
+}
+
+/// The paper's figure number for a task and mode (Figs. 2-11).
+pub fn paper_figure(task: u32, mode: Mode) -> Option<u32> {
+    let base = match task {
+        1 => 2,
+        2 => 7,
+        _ => return None,
+    };
+    Some(base + Mode::ALL.iter().position(|m| *m == mode)? as u32)
+}
+
+/// Runs `redundant-ik figure`.
+pub fn run(args: &FigureArgs) -> Result<(), String> {
+    if args.every == 0 {
+        return Err("--every must be at least 1".into());
+    }
+    if !args.all {
+        let (scene, traj) = args.scene.run()?;
+        draw(&args.out, args.scene.task, &scene, &traj, args.every)?;
+        println!("wrote {}", args.out.display());
+        return Ok(());
+    }
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| format!("cannot create directory {}: {e}", args.out.display()))?;
+    for task in [1, 2] {
+        let mut sa = args.scene.clone();
+        sa.task = task;
+        let scene = sa.scene()?;
+        for mode in Mode::ALL {
+            let nets = match networks_for(mode) {
+                Ok(n) => n,
+                Err(e) => {
+                    eprintln!("skipping task {task} {mode}: {e}");
+                    continue;
+                }
+            };
+            let traj = Planner::run(scene.clone(), mode, nets).map_err(|e| e.to_string())?;
+            let path = args.out.join(format!("task{task}_{mode}.svg"));
+            draw(&path, task, &scene, &traj, args.every)?;
+            println!("wrote {}", path.display());
+        }
+    }
+    Ok(())
+}
+
+fn draw(path: &Path, task: u32, scene: &Scene, traj: &Trajectory, every: usize) -> Result<(), String> {
+    // World bounds: every joint of every drawn pose, the obstacles and the post.
+    let (mut x0, mut x1, mut y0, mut y1) = (-0.2f64, 0.2f64, 0.0f64, 0.6f64);
+    for s in &traj.steps {
+        for p in &s.joints {
+            x0 = x0.min(p[0]);
+            x1 = x1.max(p[0]);
+            y0 = y0.min(p[1]);
+            y1 = y1.max(p[1]);
+        }
+    }
+    for o in &scene.obstacles {
+        x0 = x0.min(o.centre[0] - o.radius);
+        x1 = x1.max(o.centre[0] + o.radius);
+        y0 = y0.min(o.centre[1] - o.radius);
+        y1 = y1.max(o.centre[1] + o.radius);
+    }
+    let pad = 0.1;
+    let (x0, x1, y0, y1) = (x0 - pad, x1 + pad, y0 - pad, y1 + pad);
+    // Equal scale on both axes: size the plot area in proportion.
+    let plot_w = 720.0;
+    let plot_h = plot_w * (y1 - y0) / (x1 - x0);
+    let (ml, mr, mt, mb) = (70u32, 20u32, 50u32, 60u32);
+    let w = plot_w as u32 + ml + mr;
+    let h = plot_h as u32 + mt + mb;
+
+    let root = SVGBackend::new(path, (w, h)).into_drawing_area();
+    let e = |err: &dyn std::fmt::Display| format!("cannot draw {}: {err}", path.display());
+    root.fill(&WHITE).map_err(|x| e(&x))?;
+    let s = &traj.summary;
+    let fig = paper_figure(task, traj.mode)
+        .map(|n| format!(" (paper Fig. {n})"))
+        .unwrap_or_default();
+    let verdict = match s.min_distance {
+        Some(d) if s.collided => format!("collides, min distance {d:.4} m"),
+        Some(d) => format!("min distance {d:.4} m"),
+        None => "no obstacle".into(),
+    };
+    let title = format!(
+        "Task {task}, {}{fig}: {verdict}, final error {:.1e} m",
+        mode_title(traj.mode),
+        s.final_error
+    );
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 17))
+        .margin_top(10)
+        .margin_right(mr)
+        .x_label_area_size(mb - 10)
+        .y_label_area_size(ml - 10)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(|x| e(&x))?;
+    chart
+        .configure_mesh()
+        .x_desc("X1 (m)")
+        .y_desc("X2 (m)")
+        .light_line_style(RGBColor(240, 240, 240))
+        .bold_line_style(RGBColor(215, 215, 215))
+        .draw()
+        .map_err(|x| e(&x))?;
+
+    // Obstacle discs, filled, with the centre point O.
+    for o in &scene.obstacles {
+        let c = (o.centre[0], o.centre[1]);
+        let pts: Vec<(f64, f64)> = (0..=72)
+            .map(|i| {
+                let a = i as f64 / 72.0 * std::f64::consts::TAU;
+                (c.0 + o.radius * a.cos(), c.1 + o.radius * a.sin())
+            })
+            .collect();
+        chart
+            .draw_series(std::iter::once(Polygon::new(pts, RGBColor(214, 39, 40).mix(0.35).filled())))
+            .map_err(|x| e(&x))?;
+        chart
+            .draw_series(std::iter::once(Circle::new(c, 2, RGBColor(214, 39, 40).filled())))
+            .map_err(|x| e(&x))?;
+    }
+    // The post.
+    chart
+        .draw_series(LineSeries::new(
+            vec![(0.0, 0.0), (0.0, scene.arm.post())],
+            ShapeStyle::from(&BLACK).stroke_width(5),
+        ))
+        .map_err(|x| e(&x))?;
+    // Intermediate poses, faint.
+    let n = traj.steps.len();
+    let grey = RGBColor(90, 110, 160);
+    for (i, st) in traj.steps.iter().enumerate() {
+        if i == 0 || i + 1 == n || i % every != 0 {
+            continue;
+        }
+        let pts: Vec<(f64, f64)> = st.joints.iter().map(|p| (p[0], p[1])).collect();
+        chart
+            .draw_series(LineSeries::new(pts, ShapeStyle::from(&grey.mix(0.45)).stroke_width(1)))
+            .map_err(|x| e(&x))?;
+    }
+    // Straight-line path and the end-effector trace.
+    let first = &traj.steps[0];
+    chart
+        .draw_series(LineSeries::new(
+            vec![(first.ee[0], first.ee[1]), (scene.target[0], scene.target[1])],
+            ShapeStyle::from(&RGBColor(44, 160, 44)).stroke_width(1),
+        ))
+        .map_err(|x| e(&x))?
+        .label("straight-line task")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RGBColor(44, 160, 44)));
+    chart
+        .draw_series(LineSeries::new(
+            traj.steps.iter().map(|s| (s.ee[0], s.ee[1])),
+            ShapeStyle::from(&RGBColor(255, 127, 14)).stroke_width(2),
+        ))
+        .map_err(|x| e(&x))?
+        .label("end effector")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RGBColor(255, 127, 14)));
+    // Start and end poses, highlighted, with joints.
+    for (st, color, label) in [
+        (first, RGBColor(31, 119, 180), "start pose"),
+        (&traj.steps[n - 1], RGBColor(0, 0, 0), "final pose"),
+    ] {
+        let pts: Vec<(f64, f64)> = st.joints.iter().map(|p| (p[0], p[1])).collect();
+        chart
+            .draw_series(LineSeries::new(pts.clone(), ShapeStyle::from(&color).stroke_width(3)))
+            .map_err(|x| e(&x))?
+            .label(label)
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], ShapeStyle::from(&color).stroke_width(3))
+            });
+        chart
+            .draw_series(pts.iter().map(|p| Circle::new(*p, 4, color.filled())))
+            .map_err(|x| e(&x))?;
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperLeft)
+        .background_style(WHITE.mix(0.85))
+        .border_style(RGBColor(200, 200, 200))
+        .draw()
+        .map_err(|x| e(&x))?;
+    root.present().map_err(|x| e(&x))?;
+    Ok(())
+}
+
+fn mode_title(mode: Mode) -> &'static str {
+    match mode {
+        Mode::None => "no obstacle avoidance",
+        Mode::Numerical => "numerical (eqs. 14, 17-18)",
+        Mode::Case1 => "Case 1: Phi by network, v numerical",
+        Mode::Case2 => "Case 2: Phi numerical, v by network",
+        Mode::Case3 => "Case 3: Phi and v by networks",
+    }
+}

@@ -1,0 +1,94 @@
+//! Argument parsing and dispatch. Each subcommand lives in its own file and
+//! returns `Err(message)` on bad input; `main` prints it on one line and exits
+//! with status 2.
+
+use std::sync::Arc;
+
+use clap::{Parser, Subcommand};
+use redundant_ik::{Mode, Surrogate};
+
+pub mod eval;
+pub mod figure;
+pub mod simulate;
+pub mod train;
+
+/// Motion planning for a redundant planar 3-link arm: damped-least-squares
+/// inverse kinematics with a null-space obstacle-avoidance vector, and the
+/// neural networks that replace them (Cases 1-3 of the paper).
+#[derive(Parser, Debug)]
+#[command(name = "redundant-ik", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Run one planning task and print a summary (or JSON).
+    Simulate(simulate::SimulateArgs),
+    /// Draw the paper-style stroboscopic figure(s) as SVG.
+    Figure(figure::FigureArgs),
+    /// Train a network by Levenberg-Marquardt and write a weights file.
+    Train(train::TrainArgs),
+    /// Evaluate the embedded networks: accuracy and task outcomes.
+    Eval(eval::EvalArgs),
+}
+
+/// Parses the command line, runs it, and returns the exit status.
+pub fn main() -> i32 {
+    let cli = Cli::parse();
+    let result = match &cli.command {
+        Command::Simulate(a) => simulate::run(a),
+        Command::Figure(a) => figure::run(a),
+        Command::Train(a) => train::run(a),
+        Command::Eval(a) => eval::run(a),
+    };
+    match result {
+        Ok(()) => 0,
+        Err(msg) => {
+            eprintln!("error: {msg}");
+            2
+        }
+    }
+}
+
+/// Parses `X,Y` into two numbers (finiteness is checked by the core).
+pub fn parse_pair(s: &str) -> Result<[f64; 2], String> {
+    let v = parse_list(s)?;
+    match v.as_slice() {
+        [x, y] => Ok([*x, *y]),
+        _ => Err(format!("expected two numbers X,Y, got '{s}'")),
+    }
+}
+
+/// Parses a comma-separated list of numbers.
+pub fn parse_list(s: &str) -> Result<Vec<f64>, String> {
+    s.split(',')
+        .map(|p| {
+            p.trim()
+                .parse::<f64>()
+                .map_err(|_| format!("'{}' is not a number (in '{s}')", p.trim()))
+        })
+        .collect()
+}
+
+/// Writes `text` to standard output; a closed pipe (`| head`) is not an error.
+pub fn emit(text: &str) -> Result<(), String> {
+    use std::io::Write;
+    match std::io::stdout().lock().write_all(text.as_bytes()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+            Err(format!("cannot write output: {e}"))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// The networks a mode needs, or `None` for the numerical modes.
+pub fn networks_for(mode: Mode) -> Result<Option<Arc<dyn Surrogate>>, String> {
+    if !(mode.learned_phi() || mode.learned_v()) {
+        return Ok(None);
+    }
+    Err(format!(
+        "networks not available: mode {mode} needs trained networks, which this build does not have yet"
+    ))
+}

@@ -1,0 +1,218 @@
+//! `redundant-ik simulate`: one planning run, as a readable summary or JSON.
+
+use clap::Args;
+use redundant_ik::{DampingSchedule, Mode, Obstacle, Planner, Scene, Trajectory};
+
+use std::fmt::Write as _;
+
+use super::{emit, networks_for, parse_list, parse_pair};
+
+/// Scene options shared by `simulate` and `figure`.
+#[derive(Args, Debug, Clone)]
+pub struct SceneArgs {
+    /// Paper task (1 or 2) that provides the defaults.
+    #[arg(long, default_value_t = 1)]
+    pub task: u32,
+    /// none, numerical, case1, case2 or case3.
+    #[arg(long, default_value = "numerical")]
+    pub mode: String,
+    /// Obstacle centre X,Y in metres (repeat for several obstacles).
+    #[arg(long, value_parser = parse_pair, allow_hyphen_values = true)]
+    pub obstacle: Vec<[f64; 2]>,
+    /// Obstacle radius in metres.
+    #[arg(long, allow_hyphen_values = true)]
+    pub radius: Option<f64>,
+    /// Gain lambda of the obstacle vector, eq. (14).
+    #[arg(long, allow_hyphen_values = true)]
+    pub lambda: Option<f64>,
+    /// Constant damping factor delta, eqs. (6), (17).
+    #[arg(long, allow_hyphen_values = true)]
+    pub delta: Option<f64>,
+    /// Switch on the damping schedule near singular poses.
+    #[arg(long)]
+    pub damping: bool,
+    /// Runge-Kutta step (s).
+    #[arg(long, allow_hyphen_values = true)]
+    pub dt: Option<f64>,
+    /// Final time (s), a whole number of steps.
+    #[arg(long, allow_hyphen_values = true)]
+    pub tf: Option<f64>,
+    /// End of the straight line X,Y in metres.
+    #[arg(long, value_parser = parse_pair, allow_hyphen_values = true)]
+    pub target: Option<[f64; 2]>,
+    /// Initial joint angles A,B,C in radians.
+    #[arg(long, allow_hyphen_values = true)]
+    pub theta0: Option<String>,
+    /// Closed-loop gain K in Xdot + K (X_ref - X); 0 is the paper's open loop.
+    #[arg(long, allow_hyphen_values = true)]
+    pub feedback: Option<f64>,
+}
+
+impl SceneArgs {
+    /// The scene these options describe, validated.
+    pub fn scene(&self) -> Result<Scene, String> {
+        let mut s = Scene::task(self.task).map_err(|e| e.to_string())?;
+        let radius = self.radius.unwrap_or(s.obstacles[0].radius);
+        if !self.obstacle.is_empty() {
+            s.obstacles = self
+                .obstacle
+                .iter()
+                .map(|o| Obstacle::new(o[0], o[1], radius))
+                .collect();
+        } else {
+            for o in &mut s.obstacles {
+                o.radius = radius;
+            }
+        }
+        if let Some(v) = self.lambda {
+            s.lambda = v;
+        }
+        if let Some(v) = self.delta {
+            s.delta = v;
+        }
+        if self.damping {
+            s.damping = Some(DampingSchedule::default());
+        }
+        if let Some(v) = self.dt {
+            s.dt = v;
+        }
+        if let Some(v) = self.tf {
+            s.tf = v;
+        }
+        if let Some(v) = self.target {
+            s.target = v;
+        }
+        if let Some(v) = &self.theta0 {
+            s.theta0 = parse_list(v).map_err(|e| format!("--theta0: {e}"))?;
+        }
+        if let Some(v) = self.feedback {
+            s.feedback_gain = v;
+        }
+        s.validate().map_err(|e| e.to_string())?;
+        Ok(s)
+    }
+
+    /// The selected mode.
+    pub fn mode(&self) -> Result<Mode, String> {
+        self.mode.parse::<Mode>().map_err(|e| e.to_string())
+    }
+
+    /// Runs the scene in the selected mode.
+    pub fn run(&self) -> Result<(Scene, Trajectory), String> {
+        let scene = self.scene()?;
+        let mode = self.mode()?;
+        let nets = networks_for(mode)?;
+        let traj = Planner::run(scene.clone(), mode, nets).map_err(|e| e.to_string())?;
+        Ok((scene, traj))
+    }
+}
+
+/// Options of `redundant-ik simulate`.
+#[derive(Args, Debug)]
+pub struct SimulateArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Print one JSON object (every step and the summary) instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Runs `redundant-ik simulate`.
+pub fn run(args: &SimulateArgs) -> Result<(), String> {
+    let (scene, traj) = args.scene.run()?;
+    let mut out = String::new();
+    macro_rules! w {
+        ($o:ident, $($arg:tt)*) => {{
+            let _ = writeln!($o, $($arg)*);
+        }};
+    }
+    if args.json {
+        let json = serde_json::json!({
+            "task": args.scene.task,
+            "mode": traj.mode,
+            "scene": scene,
+            "steps": traj.steps,
+            "summary": traj.summary,
+        });
+        return emit(&format!("{json}\n"));
+    }
+    let s = &traj.summary;
+    let first = &traj.steps[0];
+    w!(out, 
+        "Task {} | mode {} | lambda {} | delta {}{} | dt {} s | tf {} s{}",
+        args.scene.task,
+        traj.mode,
+        scene.lambda,
+        scene.delta,
+        if scene.damping.is_some() { " + schedule" } else { "" },
+        scene.dt,
+        scene.tf,
+        if scene.feedback_gain > 0.0 {
+            format!(" | feedback K = {}", scene.feedback_gain)
+        } else {
+            String::new()
+        }
+    );
+    w!(out, 
+        "start  theta = [{}]  X = ({:.6}, {:.6})",
+        fmt_list(&first.theta),
+        first.ee[0],
+        first.ee[1]
+    );
+    let last = traj.steps.last().unwrap_or(first);
+    w!(out, 
+        "end    theta = [{}]  X = ({:.6}, {:.6})  target ({}, {})",
+        fmt_list(&last.theta),
+        last.ee[0],
+        last.ee[1],
+        scene.target[0],
+        scene.target[1]
+    );
+    for ob in &scene.obstacles {
+        w!(out, 
+            "obstacle at ({}, {}), radius {} m",
+            ob.centre[0], ob.centre[1], ob.radius
+        );
+    }
+    match s.min_distance {
+        Some(d) => w!(out, 
+            "smallest link-to-obstacle distance  {d:.4} m  -> {}",
+            if s.collided { "COLLISION" } else { "no collision" }
+        ),
+        None => w!(out, "no obstacles"),
+    }
+    w!(out, "final end-effector error            {:.3e} m", s.final_error);
+    w!(out, 
+        "largest tracking error              {:.3e} m",
+        s.max_tracking_error
+    );
+    if !s.target_reachable {
+        w!(out, 
+            "target is out of the arm's reach: not reached{}",
+            if s.auto_damping {
+                " (damping schedule switched on automatically)"
+            } else {
+                ""
+            }
+        );
+    } else if !s.reached {
+        w!(out, "target not reached (error above 5 mm)");
+    }
+    if s.max_delta > 0.0 {
+        w!(out, "largest damping delta used          {:.3e}", s.max_delta);
+    }
+    if s.out_of_range_steps > 0 {
+        w!(out, 
+            "warning: {} steps left the networks' trained range",
+            s.out_of_range_steps
+        );
+    }
+    emit(&out)
+}
+
+fn fmt_list(v: &[f64]) -> String {
+    v.iter()
+        .map(|x| format!("{x:.4}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
