@@ -1,1 +1,31 @@
-fn main() {}
+//! Cost of the numerical route: one `theta_dot` evaluation and one whole
+//! Task 1 run (100 RK4 steps, 400 evaluations).
+//!
+//! `cargo bench --bench core`
+
+use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use redundant_ik::nalgebra::Vector2;
+use redundant_ik::{Mode, Planner, Scene};
+
+fn theta_dot(c: &mut Criterion) {
+    let scene = Scene::task1();
+    let xdot = Vector2::new(-0.0955884, -0.0814851);
+    for mode in [Mode::None, Mode::Numerical] {
+        let p = Planner::new(scene.clone(), mode, None).unwrap();
+        let th = scene.theta0_vector();
+        c.bench_function(&format!("theta_dot/{mode}"), |b| {
+            b.iter(|| p.theta_dot(black_box(&th), black_box(&xdot)).unwrap())
+        });
+    }
+}
+
+fn task1_run(c: &mut Criterion) {
+    for mode in [Mode::None, Mode::Numerical] {
+        c.bench_function(&format!("task1_run/{mode}"), |b| {
+            b.iter(|| Planner::run(black_box(Scene::task1()), mode, None).unwrap())
+        });
+    }
+}
+
+criterion_group!(benches, theta_dot, task1_run);
+criterion_main!(benches);

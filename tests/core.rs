@@ -1,0 +1,421 @@
+//! The core, as a specification: kinematics, the pseudoinverse identities,
+//! the obstacle vector, the integrator and the paper's reference runs.
+//!
+//! One file serves both targets: `cargo test` runs it natively and
+//! `wasm-pack test --headless --chrome` runs the same tests in a browser.
+
+#[cfg(target_family = "wasm")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
+#[cfg(target_family = "wasm")]
+wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
+
+use std::f64::consts::PI;
+
+use redundant_ik::ik::{self, DampingSchedule};
+use redundant_ik::nalgebra::{DMatrix, DVector, Vector2};
+use redundant_ik::obstacle::{self, Obstacle};
+use redundant_ik::{Arm, Error, Mode, Planner, Scene};
+
+/// Small deterministic generator so that the same "random" poses are checked
+/// on every target (no OS entropy in the browser).
+struct Lcg(u64);
+impl Lcg {
+    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        lo + (hi - lo) * ((self.0 >> 11) as f64 / (1u64 << 53) as f64)
+    }
+    fn theta(&mut self, n: usize) -> DVector<f64> {
+        DVector::from_fn(n, |_, _| self.uniform(-PI, PI))
+    }
+    fn spd(&mut self, n: usize) -> DMatrix<f64> {
+        let a = DMatrix::from_fn(n, n, |_, _| self.uniform(-1.0, 1.0));
+        &a * a.transpose() + DMatrix::identity(n, n) * 0.5
+    }
+}
+
+fn theta(v: &[f64]) -> DVector<f64> {
+    DVector::from_column_slice(v)
+}
+
+fn jacobian_dyn(arm: &Arm, th: &DVector<f64>) -> DMatrix<f64> {
+    let j = arm.jacobian(th);
+    DMatrix::from_fn(2, arm.dof(), |r, c| j[(r, c)])
+}
+
+#[test]
+fn forward_kinematics_reproduces_the_papers_start_points() {
+    let arm = Arm::paper();
+    let x1 = arm.forward(&theta(&[PI / 12.0, PI / 2.0, -PI / 6.0]));
+    assert!((x1 - Vector2::new(1.555884, 1.014851)).norm() < 1e-6, "{x1}");
+    let x2 = arm.forward(&Scene::task2().theta0_vector());
+    assert!((x2 - Vector2::new(1.495943, 0.559559)).norm() < 1e-6, "{x2}");
+    // The theta0 printed for Task 2 does not give the printed start (SPEC.md).
+    let printed = arm.forward(&theta(&[PI / 12.0, PI / 2.0, PI / 6.0]));
+    assert!((printed - Vector2::new(1.400592, 0.435295)).norm() < 1e-6);
+}
+
+#[test]
+fn joints_start_at_the_post_top_and_end_at_the_end_effector() {
+    let arm = Arm::paper();
+    let th = Scene::task1().theta0_vector();
+    let p = arm.joints(&th);
+    assert_eq!(p.len(), 4);
+    assert_eq!(p[0], Vector2::new(0.0, 0.5));
+    assert!((p[3] - arm.forward(&th)).norm() < 1e-15);
+    for (k, l) in arm.links().iter().enumerate() {
+        assert!(((p[k + 1] - p[k]).norm() - l).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn analytic_jacobian_matches_central_differences() {
+    let mut rng = Lcg(1);
+    for arm in [Arm::paper(), Arm::new(0.3, vec![0.4, 0.7, 0.2, 0.5]).unwrap()] {
+        for _ in 0..20 {
+            let th = rng.theta(arm.dof());
+            let j = arm.jacobian(&th);
+            let h = 1e-6;
+            for i in 0..arm.dof() {
+                let mut tp = th.clone();
+                let mut tm = th.clone();
+                tp[i] += h;
+                tm[i] -= h;
+                let fd = (arm.forward(&tp) - arm.forward(&tm)) / (2.0 * h);
+                assert!((fd - j.column(i)).norm() < 1e-8, "column {i}: {fd} vs {}", j.column(i));
+            }
+        }
+    }
+}
+
+#[test]
+fn eq6_equals_eq7_for_random_spd_weights() {
+    let mut rng = Lcg(2);
+    let arm = Arm::paper();
+    for _ in 0..20 {
+        let j = jacobian_dyn(&arm, &rng.theta(3));
+        let (w, z) = (rng.spd(3), rng.spd(2));
+        let delta = rng.uniform(1e-3, 1.0);
+        let a = ik::pseudoinverse_eq6(&j, &w, &z, delta).unwrap();
+        let b = ik::pseudoinverse_eq7(&j, &w, &z, delta).unwrap();
+        assert!((&a - &b).amax() < 1e-9 * a.amax().max(1.0), "{a} vs {b}");
+    }
+}
+
+#[test]
+fn undamped_pseudoinverse_is_a_right_inverse() {
+    let mut rng = Lcg(3);
+    let arm = Arm::paper();
+    for _ in 0..20 {
+        let j = jacobian_dyn(&arm, &rng.theta(3));
+        let pinv = ik::pseudoinverse_eq6(&j, &rng.spd(3), &rng.spd(2), 0.0).unwrap();
+        let jj = &j * &pinv;
+        assert!((jj - DMatrix::identity(2, 2)).amax() < 1e-9);
+    }
+}
+
+#[test]
+fn null_space_term_moves_no_end_effector() {
+    let mut rng = Lcg(4);
+    let arm = Arm::paper();
+    for _ in 0..20 {
+        let j = jacobian_dyn(&arm, &rng.theta(3));
+        let pinv = ik::pseudoinverse_eq6(&j, &rng.spd(3), &rng.spd(2), 0.0).unwrap();
+        let v = DVector::from_fn(3, |_, _| rng.uniform(-5.0, 5.0));
+        let projected = (DMatrix::identity(3, 3) - &pinv * &j) * &v;
+        assert!((&j * projected).amax() < 1e-9);
+    }
+}
+
+#[test]
+fn symmetric_route_and_network_route_equal_eq5() {
+    // Eqs. (17)-(18) and eq. (21) with the exact Phi are eq. (5) with W = Z = I.
+    let mut rng = Lcg(5);
+    let arm = Arm::paper();
+    let (w, z) = (DMatrix::identity(3, 3), DMatrix::identity(2, 2));
+    for delta in [0.0, 0.01, 0.3] {
+        for _ in 0..10 {
+            let th = rng.theta(3);
+            let j = arm.jacobian(&th);
+            let xdot = Vector2::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0));
+            let v = DVector::from_fn(3, |_, _| rng.uniform(-1.0, 1.0));
+            let pinv = ik::pseudoinverse_eq6(&jacobian_dyn(&arm, &th), &w, &z, delta).unwrap();
+            let xd = DVector::from_column_slice(xdot.as_slice());
+            let eq5 = ik::theta_dot_eq5(&jacobian_dyn(&arm, &th), &pinv, &xd, &v);
+            let eq18 = ik::theta_dot_symmetric(&j, &xdot, &v, delta).unwrap();
+            let eq21 = ik::theta_dot_network(&ik::phi(&j, delta).unwrap(), &j, &xdot, &v);
+            assert!((&eq5 - &eq18).amax() < 1e-9, "{eq5} vs {eq18}");
+            assert!((&eq5 - &eq21).amax() < 1e-9, "{eq5} vs {eq21}");
+        }
+    }
+}
+
+#[test]
+fn determinant_gradient_matches_finite_differences_and_is_lower_triangular() {
+    let mut rng = Lcg(6);
+    let arm = Arm::paper();
+    for _ in 0..30 {
+        let th = rng.theta(3);
+        let o = Vector2::new(rng.uniform(-1.0, 2.0), rng.uniform(-0.5, 2.0));
+        let g = obstacle::determinant_gradient(&arm, &th, &o);
+        let h = 1e-6;
+        for i in 0..3 {
+            let mut tp = th.clone();
+            let mut tm = th.clone();
+            tp[i] += h;
+            tm[i] -= h;
+            let dp = obstacle::triangle_determinants(&arm.joints(&tp), &o);
+            let dm = obstacle::triangle_determinants(&arm.joints(&tm), &o);
+            for k in 0..3 {
+                let fd = (dp[k] - dm[k]) / (2.0 * h);
+                assert!((fd - g[(k, i)]).abs() < 1e-7, "dD_{k}/dtheta_{i}: {fd} vs {}", g[(k, i)]);
+                if i > k {
+                    assert_eq!(g[(k, i)], 0.0, "D_{k} must not depend on theta_{i}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn triangle_determinant_is_twice_the_signed_area() {
+    let joints = [Vector2::new(0.0, 0.0), Vector2::new(1.0, 0.0)];
+    // O above the link: det[(0, 1), (1, 0)] = -1, area of the triangle 1/2.
+    let d = obstacle::triangle_determinants(&joints, &Vector2::new(0.0, 1.0));
+    assert_eq!(d, vec![-1.0]);
+}
+
+#[test]
+fn obstacle_vector_is_the_area_gradient_scaled_by_lambda_over_four() {
+    let arm = Arm::paper();
+    let th = Scene::task1().theta0_vector();
+    let ob = Obstacle::new(0.5, 0.5, 0.05);
+    let g = obstacle::area_gradient(&arm, &th, &ob.point());
+    let v4 = obstacle::null_space_vector(&arm, &th, &[ob], 4.0);
+    let v2 = obstacle::null_space_vector(&arm, &th, &[ob], 2.0);
+    assert!((&v4 - &g).amax() < 1e-15);
+    assert!((&v2 * 2.0 - &v4).amax() < 1e-15);
+    // Ascent direction: a small step along g increases the total area sum V_k.
+    let area = |t: &DVector<f64>| -> f64 {
+        obstacle::triangle_determinants(&arm.joints(t), &ob.point())
+            .iter()
+            .map(|d| d.abs())
+            .sum()
+    };
+    assert!(area(&(&th + 1e-4 * &g)) > area(&th));
+    // Two obstacles sum.
+    let ob2 = Obstacle::new(1.0, 1.5, 0.05);
+    let both = obstacle::null_space_vector(&arm, &th, &[ob, ob2], 4.0);
+    let sum = &g + obstacle::area_gradient(&arm, &th, &ob2.point());
+    assert!((both - sum).amax() < 1e-14);
+}
+
+#[test]
+fn clearance_is_the_distance_to_the_nearest_moving_link() {
+    let joints = [
+        Vector2::new(0.0, 0.5),
+        Vector2::new(1.0, 0.5),
+        Vector2::new(1.0, 1.5),
+    ];
+    let d = obstacle::clearance(&joints, &Vector2::new(0.5, 0.8));
+    assert!((d - 0.3).abs() < 1e-15);
+    let d = obstacle::clearance(&joints, &Vector2::new(2.0, 2.5));
+    assert!((d - 2f64.sqrt()).abs() < 1e-15);
+}
+
+fn final_theta(dt: f64) -> DVector<f64> {
+    let mut s = Scene::task1();
+    s.dt = dt;
+    let mut p = Planner::new(s, Mode::None, None).unwrap();
+    while p.time() < 10.0 - 1e-9 {
+        p.step().unwrap();
+    }
+    p.theta().clone()
+}
+
+#[test]
+fn rk4_error_falls_about_sixteen_times_when_dt_halves() {
+    let reference = final_theta(0.4 / 64.0);
+    let e1 = (final_theta(0.4) - &reference).norm();
+    let e2 = (final_theta(0.2) - &reference).norm();
+    let ratio = e1 / e2;
+    assert!((12.0..=20.0).contains(&ratio), "errors {e1:e} {e2:e}, ratio {ratio}");
+    assert!(e2 > 1e-12, "errors must be above round-off for the ratio to mean anything");
+}
+
+struct Reference {
+    task: Scene,
+    mode: Mode,
+    min_distance: f64,
+    collides: bool,
+}
+
+#[test]
+fn numerical_runs_match_the_reference_rows_of_the_spec() {
+    let rows = [
+        Reference { task: Scene::task1(), mode: Mode::None, min_distance: 0.0019, collides: true },
+        Reference { task: Scene::task1(), mode: Mode::Numerical, min_distance: 0.2345, collides: false },
+        Reference { task: Scene::task2(), mode: Mode::None, min_distance: 0.0016, collides: true },
+        Reference { task: Scene::task2(), mode: Mode::Numerical, min_distance: 0.2193, collides: false },
+    ];
+    for r in rows {
+        let t = Planner::run(r.task, r.mode, None).unwrap();
+        let s = &t.summary;
+        assert_eq!(t.steps.len(), 101);
+        let d = s.min_distance.unwrap();
+        assert!((d - r.min_distance).abs() < 1e-3, "{}: min distance {d}", r.mode);
+        assert_eq!(s.collided, r.collides, "{}", r.mode);
+        assert!(s.final_error < 1e-6, "{}: final error {}", r.mode, s.final_error);
+        assert!(s.reached && s.target_reachable && !s.auto_damping);
+        let last = t.steps.last().unwrap();
+        assert!((last.t - 10.0).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn damping_keeps_joint_rates_finite_at_a_fully_stretched_pose() {
+    let arm = Arm::paper();
+    let stretched = theta(&[0.3, 0.0, 0.0]);
+    let j = arm.jacobian(&stretched);
+    // Pull outwards along the arm: impossible, exactly at the singularity.
+    let out = Vector2::new(0.3f64.sin(), 0.3f64.cos());
+    let v = DVector::zeros(3);
+    assert!(matches!(
+        ik::theta_dot_symmetric(&j, &out, &v, 0.0),
+        Err(Error::Singular(_))
+    ));
+    let schedule = DampingSchedule::default();
+    let delta = schedule.delta(&j);
+    assert!((delta - schedule.delta_max).abs() < 1e-12);
+    let rates = ik::theta_dot_symmetric(&j, &(0.5 * out), &v, delta).unwrap();
+    assert!(rates.iter().all(|r| r.is_finite()));
+    // |Phi| <= 1 / (2 sqrt(delta)).
+    assert!(rates.norm() <= 0.5 / (2.0 * delta.sqrt()) + 1e-12);
+    // Far from singularities the schedule adds nothing: the paper's runs are unchanged.
+    assert_eq!(schedule.delta(&arm.jacobian(&Scene::task1().theta0_vector())), 0.0);
+}
+
+#[test]
+fn an_out_of_reach_target_completes_with_finite_numbers_and_is_not_reached() {
+    let mut s = Scene::task1();
+    s.target = [3.0, 2.0];
+    for mode in [Mode::None, Mode::Numerical] {
+        let t = Planner::run(s.clone(), mode, None).unwrap();
+        assert!(t.steps.iter().all(|st| st.theta.iter().all(|x| x.is_finite())));
+        let sum = &t.summary;
+        assert!(!sum.target_reachable && !sum.reached && sum.auto_damping);
+        assert!(sum.final_error.is_finite() && sum.final_error > 0.5);
+    }
+}
+
+#[test]
+fn a_failed_step_reports_an_error_and_leaves_the_state_unchanged() {
+    let mut s = Scene::task1();
+    s.theta0 = vec![0.0, 0.0, 0.0]; // straight up: J J^T is singular
+    s.target = [0.5, 1.5];
+    let mut p = Planner::new(s, Mode::None, None).unwrap();
+    let before = p.sample();
+    assert!(matches!(p.step(), Err(Error::Singular(_))));
+    assert_eq!(p.sample(), before);
+    p.set_damping(Some(DampingSchedule::default())).unwrap();
+    assert!(p.step().is_ok());
+}
+
+#[test]
+fn retargeting_plans_a_new_line_from_the_current_end_effector() {
+    let mut p = Planner::new(Scene::task1(), Mode::Numerical, None).unwrap();
+    for _ in 0..30 {
+        p.step().unwrap();
+    }
+    let here = p.sample().ee;
+    p.set_target([1.0, 1.2], 2.05).unwrap();
+    let line = p.line();
+    assert_eq!(line.start, here);
+    assert!((line.t0 - 3.0).abs() < 1e-12);
+    assert!((line.duration - 2.1).abs() < 1e-12, "rounded up to whole steps");
+    for _ in 0..21 {
+        p.step().unwrap();
+    }
+    let s = p.summary();
+    assert!(s.final_error < 1e-6, "{}", s.final_error);
+    // After the line ends the end effector holds still.
+    for _ in 0..10 {
+        p.step().unwrap();
+    }
+    assert!(p.summary().final_error < 1e-6);
+}
+
+#[test]
+fn moving_the_obstacle_takes_effect_at_the_next_step() {
+    let mut p = Planner::new(Scene::task1(), Mode::Numerical, None).unwrap();
+    let v_before = p.null_space(p.theta()).unwrap();
+    p.set_obstacles(vec![Obstacle::new(1.2, 1.3, 0.05)]).unwrap();
+    let v_after = p.null_space(p.theta()).unwrap();
+    assert!((v_before - v_after).amax() > 1e-3);
+    let d = p.sample().distance.unwrap();
+    let expected = obstacle::clearance(&Arm::paper().joints(p.theta()), &Vector2::new(1.2, 1.3));
+    assert_eq!(d, expected);
+}
+
+#[test]
+fn network_modes_without_networks_fail_clearly() {
+    for mode in [Mode::Case1, Mode::Case2, Mode::Case3] {
+        let err = Planner::new(Scene::task1(), mode, None).unwrap_err();
+        assert!(matches!(err, Error::NetworksUnavailable(_)));
+        assert!(err.to_string().contains("networks not available"));
+    }
+    let mut p = Planner::new(Scene::task1(), Mode::Numerical, None).unwrap();
+    assert!(p.set_mode(Mode::Case3).is_err());
+    assert_eq!(p.mode(), Mode::Numerical);
+}
+
+#[test]
+fn bad_input_is_rejected_with_a_message_naming_the_problem() {
+    let cases: Vec<(Box<dyn Fn(&mut Scene)>, &str)> = vec![
+        (Box::new(|s| s.theta0[1] = f64::NAN), "theta_2"),
+        (Box::new(|s| s.theta0 = vec![0.1, 0.2]), "theta has 2 entries"),
+        (Box::new(|s| s.target[0] = f64::INFINITY), "target x"),
+        (Box::new(|s| s.obstacles[0].centre[1] = f64::NAN), "obstacle y"),
+        (Box::new(|s| s.obstacles[0].radius = 0.0), "radius must be positive"),
+        (Box::new(|s| s.obstacles[0].centre = [0.02, 0.3]), "overlaps the fixed base post"),
+        (Box::new(|s| s.dt = 0.0), "dt must be positive"),
+        (Box::new(|s| s.dt = -0.1), "dt must be positive"),
+        (Box::new(|s| s.tf = 10.05), "not a whole number of steps"),
+        (Box::new(|s| s.lambda = f64::NAN), "lambda"),
+        (Box::new(|s| s.delta = -1.0), "delta must not be negative"),
+        (Box::new(|s| s.feedback_gain = -1.0), "feedback gain"),
+    ];
+    for (mutate, expected) in cases {
+        let mut s = Scene::task1();
+        mutate(&mut s);
+        let err = Planner::new(s, Mode::Numerical, None).unwrap_err();
+        assert!(err.to_string().contains(expected), "'{err}' should mention '{expected}'");
+    }
+    assert!(Arm::new(0.5, vec![0.6, -0.85, 0.6]).unwrap_err().to_string().contains("L2"));
+    assert!(Arm::new(0.5, vec![0.6, 0.0, 0.6]).is_err());
+    assert!(Arm::new(f64::NAN, vec![0.6, 0.6]).is_err());
+    assert!("case4".parse::<Mode>().is_err());
+    assert!(Scene::task(3).is_err());
+    let mut p = Planner::new(Scene::task1(), Mode::Numerical, None).unwrap();
+    assert!(p.set_target([f64::NAN, 0.0], 1.0).is_err());
+    assert!(p.set_target([0.5, 0.5], 0.0).is_err());
+    assert!(p.set_obstacles(vec![Obstacle::new(0.0, 0.25, 0.05)]).is_err());
+    assert!(p.set_lambda(f64::INFINITY).is_err());
+    assert_eq!(p.scene().obstacles[0].centre, [0.5, 0.5], "rejected input changes nothing");
+}
+
+#[test]
+fn an_obstacle_exactly_on_a_joint_is_handled() {
+    // D_k = 0 for the links meeting at that joint: eq. (15) gives 0, not NaN.
+    let arm = Arm::paper();
+    let th = Scene::task1().theta0_vector();
+    let p = arm.joints(&th);
+    let v = obstacle::null_space_vector(&arm, &th, &[Obstacle::new(p[2][0], p[2][1], 0.05)], 4.0);
+    assert!(v.iter().all(|x| x.is_finite()));
+    let mut s = Scene::task1();
+    s.obstacles = vec![Obstacle::new(p[2][0], p[2][1], 0.05)];
+    let t = Planner::run(s, Mode::Numerical, None).unwrap();
+    assert!(t.summary.collided, "starting inside the obstacle is a collision");
+}
