@@ -20,14 +20,14 @@ use crate::error::{finite, positive, Error, Result};
 pub fn solve_symmetric_2x2(a: &Matrix2<f64>, b: &Vector2<f64>) -> Result<Vector2<f64>> {
     let (a11, a12, a22) = (a[(0, 0)], 0.5 * (a[(0, 1)] + a[(1, 0)]), a[(1, 1)]);
     let scale = a11.abs().max(a22.abs());
-    if !(a11 > 0.0) || !scale.is_finite() {
+    if a11.is_nan() || a11 <= 0.0 || !scale.is_finite() {
         return Err(Error::Singular(
             "J J^T + delta I is not positive definite".into(),
         ));
     }
     let l21 = a12 / a11;
     let d2 = a22 - l21 * a12;
-    if !(d2 > 1e-13 * scale) {
+    if d2.is_nan() || d2 <= 1e-13 * scale {
         return Err(Error::Singular(
             "J J^T + delta I is (numerically) singular: the arm is stretched or folded; switch damping on".into(),
         ));
