@@ -71,7 +71,13 @@ pub fn run(args: &FigureArgs) -> Result<(), String> {
     Ok(())
 }
 
-fn draw(path: &Path, task: u32, scene: &Scene, traj: &Trajectory, every: usize) -> Result<(), String> {
+fn draw(
+    path: &Path,
+    task: u32,
+    scene: &Scene,
+    traj: &Trajectory,
+    every: usize,
+) -> Result<(), String> {
     // World bounds: every joint of every drawn pose, the obstacles and the post.
     let (mut x0, mut x1, mut y0, mut y1) = (-0.2f64, 0.2f64, 0.0f64, 0.6f64);
     for s in &traj.steps {
@@ -126,7 +132,7 @@ fn draw(path: &Path, task: u32, scene: &Scene, traj: &Trajectory, every: usize) 
         .configure_mesh()
         .x_desc("X1 (m)")
         .y_desc("X2 (m)")
-        .light_line_style(RGBColor(240, 240, 240))
+        .light_line_style(RGBColor(246, 246, 246))
         .bold_line_style(RGBColor(215, 215, 215))
         .draw()
         .map_err(|x| e(&x))?;
@@ -141,10 +147,17 @@ fn draw(path: &Path, task: u32, scene: &Scene, traj: &Trajectory, every: usize) 
             })
             .collect();
         chart
-            .draw_series(std::iter::once(Polygon::new(pts, RGBColor(214, 39, 40).mix(0.35).filled())))
+            .draw_series(std::iter::once(Polygon::new(
+                pts,
+                RGBColor(214, 39, 40).mix(0.35).filled(),
+            )))
             .map_err(|x| e(&x))?;
         chart
-            .draw_series(std::iter::once(Circle::new(c, 2, RGBColor(214, 39, 40).filled())))
+            .draw_series(std::iter::once(Circle::new(
+                c,
+                2,
+                RGBColor(214, 39, 40).filled(),
+            )))
             .map_err(|x| e(&x))?;
     }
     // The post.
@@ -163,14 +176,20 @@ fn draw(path: &Path, task: u32, scene: &Scene, traj: &Trajectory, every: usize) 
         }
         let pts: Vec<(f64, f64)> = st.joints.iter().map(|p| (p[0], p[1])).collect();
         chart
-            .draw_series(LineSeries::new(pts, ShapeStyle::from(&grey.mix(0.45)).stroke_width(1)))
+            .draw_series(LineSeries::new(
+                pts,
+                ShapeStyle::from(&grey.mix(0.45)).stroke_width(1),
+            ))
             .map_err(|x| e(&x))?;
     }
     // Straight-line path and the end-effector trace.
     let first = &traj.steps[0];
     chart
         .draw_series(LineSeries::new(
-            vec![(first.ee[0], first.ee[1]), (scene.target[0], scene.target[1])],
+            vec![
+                (first.ee[0], first.ee[1]),
+                (scene.target[0], scene.target[1]),
+            ],
             ShapeStyle::from(&RGBColor(44, 160, 44)).stroke_width(1),
         ))
         .map_err(|x| e(&x))?
@@ -191,11 +210,17 @@ fn draw(path: &Path, task: u32, scene: &Scene, traj: &Trajectory, every: usize) 
     ] {
         let pts: Vec<(f64, f64)> = st.joints.iter().map(|p| (p[0], p[1])).collect();
         chart
-            .draw_series(LineSeries::new(pts.clone(), ShapeStyle::from(&color).stroke_width(3)))
+            .draw_series(LineSeries::new(
+                pts.clone(),
+                ShapeStyle::from(&color).stroke_width(3),
+            ))
             .map_err(|x| e(&x))?
             .label(label)
             .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], ShapeStyle::from(&color).stroke_width(3))
+                PathElement::new(
+                    vec![(x, y), (x + 20, y)],
+                    ShapeStyle::from(&color).stroke_width(3),
+                )
             });
         chart
             .draw_series(pts.iter().map(|p| Circle::new(*p, 4, color.filled())))
@@ -203,7 +228,7 @@ fn draw(path: &Path, task: u32, scene: &Scene, traj: &Trajectory, every: usize) 
     }
     chart
         .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
+        .position(SeriesLabelPosition::LowerRight)
         .background_style(WHITE.mix(0.85))
         .border_style(RGBColor(200, 200, 200))
         .draw()
