@@ -7,6 +7,8 @@
 # standard library for Debian's rustc-web (1.96) and link it into rustup as
 # the `debian-web` toolchain.
 #
+# SETUP_WASM_FORCE_DEBIAN=1 skips the rustup route (to test the fallback).
+#
 # Writes the toolchain to use for wasm builds to target/wasm-toolchain, so:
 #   RUSTUP_TOOLCHAIN=$(cat target/wasm-toolchain) wasm-pack build --target web --release
 #   CHROMEDRIVER=/usr/bin/chromedriver RUSTUP_TOOLCHAIN=$(cat target/wasm-toolchain) \
@@ -152,7 +154,12 @@ command -v rustup >/dev/null || die "rustup not found (expected rustup with the 
 ACTIVE="$(active_toolchain)"
 [ -n "$ACTIVE" ] || die "cannot determine rustup's active toolchain"
 WASM_TC=""
-if toolchain_has_wasm_std ""; then
+if [ "${SETUP_WASM_FORCE_DEBIAN:-0}" = 1 ]; then
+    # For testing the fallback on a machine where rustup's route works.
+    log "SETUP_WASM_FORCE_DEBIAN=1: using Debian's rustc-web"
+    setup_debian_toolchain
+    WASM_TC="$DEBIAN_TOOLCHAIN"
+elif toolchain_has_wasm_std ""; then
     log "rustup toolchain $ACTIVE already has $TARGET"
     WASM_TC="$ACTIVE"
 elif debian_rustc_ok && debian_linked && toolchain_has_wasm_std "$DEBIAN_TOOLCHAIN"; then
