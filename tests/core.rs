@@ -49,9 +49,15 @@ fn jacobian_dyn(arm: &Arm, th: &DVector<f64>) -> DMatrix<f64> {
 fn forward_kinematics_reproduces_the_papers_start_points() {
     let arm = Arm::paper();
     let x1 = arm.forward(&theta(&[PI / 12.0, PI / 2.0, -PI / 6.0]));
-    assert!((x1 - Vector2::new(1.555884, 1.014851)).norm() < 1e-6, "{x1}");
+    assert!(
+        (x1 - Vector2::new(1.555884, 1.014851)).norm() < 1e-6,
+        "{x1}"
+    );
     let x2 = arm.forward(&Scene::task2().theta0_vector());
-    assert!((x2 - Vector2::new(1.495943, 0.559559)).norm() < 1e-6, "{x2}");
+    assert!(
+        (x2 - Vector2::new(1.495943, 0.559559)).norm() < 1e-6,
+        "{x2}"
+    );
     // The theta0 printed for Task 2 does not give the printed start (SPEC.md).
     let printed = arm.forward(&theta(&[PI / 12.0, PI / 2.0, PI / 6.0]));
     assert!((printed - Vector2::new(1.400592, 0.435295)).norm() < 1e-6);
@@ -73,7 +79,10 @@ fn joints_start_at_the_post_top_and_end_at_the_end_effector() {
 #[test]
 fn analytic_jacobian_matches_central_differences() {
     let mut rng = Lcg(1);
-    for arm in [Arm::paper(), Arm::new(0.3, vec![0.4, 0.7, 0.2, 0.5]).unwrap()] {
+    for arm in [
+        Arm::paper(),
+        Arm::new(0.3, vec![0.4, 0.7, 0.2, 0.5]).unwrap(),
+    ] {
         for _ in 0..20 {
             let th = rng.theta(arm.dof());
             let j = arm.jacobian(&th);
@@ -84,7 +93,11 @@ fn analytic_jacobian_matches_central_differences() {
                 tp[i] += h;
                 tm[i] -= h;
                 let fd = (arm.forward(&tp) - arm.forward(&tm)) / (2.0 * h);
-                assert!((fd - j.column(i)).norm() < 1e-8, "column {i}: {fd} vs {}", j.column(i));
+                assert!(
+                    (fd - j.column(i)).norm() < 1e-8,
+                    "column {i}: {fd} vs {}",
+                    j.column(i)
+                );
             }
         }
     }
@@ -170,7 +183,11 @@ fn determinant_gradient_matches_finite_differences_and_is_lower_triangular() {
             let dm = obstacle::triangle_determinants(&arm.joints(&tm), &o);
             for k in 0..3 {
                 let fd = (dp[k] - dm[k]) / (2.0 * h);
-                assert!((fd - g[(k, i)]).abs() < 1e-7, "dD_{k}/dtheta_{i}: {fd} vs {}", g[(k, i)]);
+                assert!(
+                    (fd - g[(k, i)]).abs() < 1e-7,
+                    "dD_{k}/dtheta_{i}: {fd} vs {}",
+                    g[(k, i)]
+                );
                 if i > k {
                     assert_eq!(g[(k, i)], 0.0, "D_{k} must not depend on theta_{i}");
                 }
@@ -241,8 +258,14 @@ fn rk4_error_falls_about_sixteen_times_when_dt_halves() {
     let e1 = (final_theta(0.4) - &reference).norm();
     let e2 = (final_theta(0.2) - &reference).norm();
     let ratio = e1 / e2;
-    assert!((12.0..=20.0).contains(&ratio), "errors {e1:e} {e2:e}, ratio {ratio}");
-    assert!(e2 > 1e-12, "errors must be above round-off for the ratio to mean anything");
+    assert!(
+        (12.0..=20.0).contains(&ratio),
+        "errors {e1:e} {e2:e}, ratio {ratio}"
+    );
+    assert!(
+        e2 > 1e-12,
+        "errors must be above round-off for the ratio to mean anything"
+    );
 }
 
 struct Reference {
@@ -255,19 +278,48 @@ struct Reference {
 #[test]
 fn numerical_runs_match_the_reference_rows_of_the_spec() {
     let rows = [
-        Reference { task: Scene::task1(), mode: Mode::None, min_distance: 0.0019, collides: true },
-        Reference { task: Scene::task1(), mode: Mode::Numerical, min_distance: 0.2345, collides: false },
-        Reference { task: Scene::task2(), mode: Mode::None, min_distance: 0.0016, collides: true },
-        Reference { task: Scene::task2(), mode: Mode::Numerical, min_distance: 0.2193, collides: false },
+        Reference {
+            task: Scene::task1(),
+            mode: Mode::None,
+            min_distance: 0.0019,
+            collides: true,
+        },
+        Reference {
+            task: Scene::task1(),
+            mode: Mode::Numerical,
+            min_distance: 0.2345,
+            collides: false,
+        },
+        Reference {
+            task: Scene::task2(),
+            mode: Mode::None,
+            min_distance: 0.0016,
+            collides: true,
+        },
+        Reference {
+            task: Scene::task2(),
+            mode: Mode::Numerical,
+            min_distance: 0.2193,
+            collides: false,
+        },
     ];
     for r in rows {
         let t = Planner::run(r.task, r.mode, None).unwrap();
         let s = &t.summary;
         assert_eq!(t.steps.len(), 101);
         let d = s.min_distance.unwrap();
-        assert!((d - r.min_distance).abs() < 1e-3, "{}: min distance {d}", r.mode);
+        assert!(
+            (d - r.min_distance).abs() < 1e-3,
+            "{}: min distance {d}",
+            r.mode
+        );
         assert_eq!(s.collided, r.collides, "{}", r.mode);
-        assert!(s.final_error < 1e-6, "{}: final error {}", r.mode, s.final_error);
+        assert!(
+            s.final_error < 1e-6,
+            "{}: final error {}",
+            r.mode,
+            s.final_error
+        );
         assert!(s.reached && s.target_reachable && !s.auto_damping);
         let last = t.steps.last().unwrap();
         assert!((last.t - 10.0).abs() < 1e-12);
@@ -294,7 +346,10 @@ fn damping_keeps_joint_rates_finite_at_a_fully_stretched_pose() {
     // |Phi| <= 1 / (2 sqrt(delta)).
     assert!(rates.norm() <= 0.5 / (2.0 * delta.sqrt()) + 1e-12);
     // Far from singularities the schedule adds nothing: the paper's runs are unchanged.
-    assert_eq!(schedule.delta(&arm.jacobian(&Scene::task1().theta0_vector())), 0.0);
+    assert_eq!(
+        schedule.delta(&arm.jacobian(&Scene::task1().theta0_vector())),
+        0.0
+    );
 }
 
 #[test]
@@ -303,7 +358,10 @@ fn an_out_of_reach_target_completes_with_finite_numbers_and_is_not_reached() {
     s.target = [3.0, 2.0];
     for mode in [Mode::None, Mode::Numerical] {
         let t = Planner::run(s.clone(), mode, None).unwrap();
-        assert!(t.steps.iter().all(|st| st.theta.iter().all(|x| x.is_finite())));
+        assert!(t
+            .steps
+            .iter()
+            .all(|st| st.theta.iter().all(|x| x.is_finite())));
         let sum = &t.summary;
         assert!(!sum.target_reachable && !sum.reached && sum.auto_damping);
         assert!(sum.final_error.is_finite() && sum.final_error > 0.5);
@@ -334,7 +392,10 @@ fn retargeting_plans_a_new_line_from_the_current_end_effector() {
     let line = p.line();
     assert_eq!(line.start, here);
     assert!((line.t0 - 3.0).abs() < 1e-12);
-    assert!((line.duration - 2.1).abs() < 1e-12, "rounded up to whole steps");
+    assert!(
+        (line.duration - 2.1).abs() < 1e-12,
+        "rounded up to whole steps"
+    );
     for _ in 0..21 {
         p.step().unwrap();
     }
@@ -351,7 +412,8 @@ fn retargeting_plans_a_new_line_from_the_current_end_effector() {
 fn moving_the_obstacle_takes_effect_at_the_next_step() {
     let mut p = Planner::new(Scene::task1(), Mode::Numerical, None).unwrap();
     let v_before = p.null_space(p.theta()).unwrap();
-    p.set_obstacles(vec![Obstacle::new(1.2, 1.3, 0.05)]).unwrap();
+    p.set_obstacles(vec![Obstacle::new(1.2, 1.3, 0.05)])
+        .unwrap();
     let v_after = p.null_space(p.theta()).unwrap();
     assert!((v_before - v_after).amax() > 1e-3);
     let d = p.sample().distance.unwrap();
@@ -375,11 +437,23 @@ fn network_modes_without_networks_fail_clearly() {
 fn bad_input_is_rejected_with_a_message_naming_the_problem() {
     let cases: Vec<(Box<dyn Fn(&mut Scene)>, &str)> = vec![
         (Box::new(|s| s.theta0[1] = f64::NAN), "theta_2"),
-        (Box::new(|s| s.theta0 = vec![0.1, 0.2]), "theta has 2 entries"),
+        (
+            Box::new(|s| s.theta0 = vec![0.1, 0.2]),
+            "theta has 2 entries",
+        ),
         (Box::new(|s| s.target[0] = f64::INFINITY), "target x"),
-        (Box::new(|s| s.obstacles[0].centre[1] = f64::NAN), "obstacle y"),
-        (Box::new(|s| s.obstacles[0].radius = 0.0), "radius must be positive"),
-        (Box::new(|s| s.obstacles[0].centre = [0.02, 0.3]), "overlaps the fixed base post"),
+        (
+            Box::new(|s| s.obstacles[0].centre[1] = f64::NAN),
+            "obstacle y",
+        ),
+        (
+            Box::new(|s| s.obstacles[0].radius = 0.0),
+            "radius must be positive",
+        ),
+        (
+            Box::new(|s| s.obstacles[0].centre = [0.02, 0.3]),
+            "overlaps the fixed base post",
+        ),
         (Box::new(|s| s.dt = 0.0), "dt must be positive"),
         (Box::new(|s| s.dt = -0.1), "dt must be positive"),
         (Box::new(|s| s.tf = 10.05), "not a whole number of steps"),
@@ -391,9 +465,15 @@ fn bad_input_is_rejected_with_a_message_naming_the_problem() {
         let mut s = Scene::task1();
         mutate(&mut s);
         let err = Planner::new(s, Mode::Numerical, None).unwrap_err();
-        assert!(err.to_string().contains(expected), "'{err}' should mention '{expected}'");
+        assert!(
+            err.to_string().contains(expected),
+            "'{err}' should mention '{expected}'"
+        );
     }
-    assert!(Arm::new(0.5, vec![0.6, -0.85, 0.6]).unwrap_err().to_string().contains("L2"));
+    assert!(Arm::new(0.5, vec![0.6, -0.85, 0.6])
+        .unwrap_err()
+        .to_string()
+        .contains("L2"));
     assert!(Arm::new(0.5, vec![0.6, 0.0, 0.6]).is_err());
     assert!(Arm::new(f64::NAN, vec![0.6, 0.6]).is_err());
     assert!("case4".parse::<Mode>().is_err());
@@ -401,9 +481,15 @@ fn bad_input_is_rejected_with_a_message_naming_the_problem() {
     let mut p = Planner::new(Scene::task1(), Mode::Numerical, None).unwrap();
     assert!(p.set_target([f64::NAN, 0.0], 1.0).is_err());
     assert!(p.set_target([0.5, 0.5], 0.0).is_err());
-    assert!(p.set_obstacles(vec![Obstacle::new(0.0, 0.25, 0.05)]).is_err());
+    assert!(p
+        .set_obstacles(vec![Obstacle::new(0.0, 0.25, 0.05)])
+        .is_err());
     assert!(p.set_lambda(f64::INFINITY).is_err());
-    assert_eq!(p.scene().obstacles[0].centre, [0.5, 0.5], "rejected input changes nothing");
+    assert_eq!(
+        p.scene().obstacles[0].centre,
+        [0.5, 0.5],
+        "rejected input changes nothing"
+    );
 }
 
 #[test]
@@ -417,5 +503,8 @@ fn an_obstacle_exactly_on_a_joint_is_handled() {
     let mut s = Scene::task1();
     s.obstacles = vec![Obstacle::new(p[2][0], p[2][1], 0.05)];
     let t = Planner::run(s, Mode::Numerical, None).unwrap();
-    assert!(t.summary.collided, "starting inside the obstacle is a collision");
+    assert!(
+        t.summary.collided,
+        "starting inside the obstacle is a collision"
+    );
 }

@@ -138,13 +138,18 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     }
     let s = &traj.summary;
     let first = &traj.steps[0];
-    w!(out, 
+    w!(
+        out,
         "Task {} | mode {} | lambda {} | delta {}{} | dt {} s | tf {} s{}",
         args.scene.task,
         traj.mode,
         scene.lambda,
         scene.delta,
-        if scene.damping.is_some() { " + schedule" } else { "" },
+        if scene.damping.is_some() {
+            " + schedule"
+        } else {
+            ""
+        },
         scene.dt,
         scene.tf,
         if scene.feedback_gain > 0.0 {
@@ -153,14 +158,16 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             String::new()
         }
     );
-    w!(out, 
+    w!(
+        out,
         "start  theta = [{}]  X = ({:.6}, {:.6})",
         fmt_list(&first.theta),
         first.ee[0],
         first.ee[1]
     );
     let last = traj.steps.last().unwrap_or(first);
-    w!(out, 
+    w!(
+        out,
         "end    theta = [{}]  X = ({:.6}, {:.6})  target ({}, {})",
         fmt_list(&last.theta),
         last.ee[0],
@@ -169,25 +176,39 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         scene.target[1]
     );
     for ob in &scene.obstacles {
-        w!(out, 
+        w!(
+            out,
             "obstacle at ({}, {}), radius {} m",
-            ob.centre[0], ob.centre[1], ob.radius
+            ob.centre[0],
+            ob.centre[1],
+            ob.radius
         );
     }
     match s.min_distance {
-        Some(d) => w!(out, 
+        Some(d) => w!(
+            out,
             "smallest link-to-obstacle distance  {d:.4} m  -> {}",
-            if s.collided { "COLLISION" } else { "no collision" }
+            if s.collided {
+                "COLLISION"
+            } else {
+                "no collision"
+            }
         ),
         None => w!(out, "no obstacles"),
     }
-    w!(out, "final end-effector error            {:.3e} m", s.final_error);
-    w!(out, 
+    w!(
+        out,
+        "final end-effector error            {:.3e} m",
+        s.final_error
+    );
+    w!(
+        out,
         "largest tracking error              {:.3e} m",
         s.max_tracking_error
     );
     if !s.target_reachable {
-        w!(out, 
+        w!(
+            out,
             "target is out of the arm's reach: not reached{}",
             if s.auto_damping {
                 " (damping schedule switched on automatically)"
@@ -199,10 +220,15 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         w!(out, "target not reached (error above 5 mm)");
     }
     if s.max_delta > 0.0 {
-        w!(out, "largest damping delta used          {:.3e}", s.max_delta);
+        w!(
+            out,
+            "largest damping delta used          {:.3e}",
+            s.max_delta
+        );
     }
     if s.out_of_range_steps > 0 {
-        w!(out, 
+        w!(
+            out,
             "warning: {} steps left the networks' trained range",
             s.out_of_range_steps
         );
