@@ -29,8 +29,7 @@ lint:
 	cargo clippy --all-targets -- -D warnings
 
 test-native:
-	cargo test --all-targets
-	cargo test --doc
+	cargo test
 
 test-wasm: setup
 	CHROMEDRIVER=/usr/bin/chromedriver $(WASM_ENV) wasm-pack test --headless --chrome
