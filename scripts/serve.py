@@ -1,0 +1,72 @@
+#!/usr/bin/env python3
+"""Serve the demo (www/) on 127.0.0.1 with .wasm as application/wasm.
+
+    python3 scripts/serve.py [--port 8000] [--dir www]
+
+Standard library only. --port 0 picks a free port; the URL is printed as
+the first line (`Serving http://127.0.0.1:PORT/`), so scripts can read it.
+"""
+
+import argparse
+import functools
+import http.server
+import os
+import sys
+
+
+class Handler(http.server.SimpleHTTPRequestHandler):
+    extensions_map = {
+        **http.server.SimpleHTTPRequestHandler.extensions_map,
+        ".wasm": "application/wasm",
+        ".js": "text/javascript",
+        ".mjs": "text/javascript",
+        ".css": "text/css",
+        ".html": "text/html; charset=utf-8",
+        ".json": "application/json",
+        ".svg": "image/svg+xml",
+    }
+
+    def end_headers(self):
+        # A development server: always fetch the freshly built module.
+        self.send_header("Cache-Control", "no-store")
+        super().end_headers()
+
+    def log_message(self, fmt, *args):
+        if not self.server.quiet:
+            super().log_message(fmt, *args)
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--port", type=int, default=8000, help="port (0: any free port)")
+    parser.add_argument("--dir", default="www", help="directory to serve (default: www)")
+    parser.add_argument("--quiet", action="store_true", help="do not log requests")
+    args = parser.parse_args()
+
+    root = os.path.abspath(args.dir)
+    if not os.path.isdir(root):
+        print(f"serve.py: no such directory: {root}", file=sys.stderr)
+        return 2
+    if not os.path.exists(os.path.join(root, "pkg", "redundant_ik_bg.wasm")):
+        print(f"serve.py: warning: {root}/pkg is not built yet (run `make web`)", file=sys.stderr)
+
+    handler = functools.partial(Handler, directory=root)
+    try:
+        server = http.server.ThreadingHTTPServer(("127.0.0.1", args.port), handler)
+    except OSError as e:
+        print(f"serve.py: cannot listen on 127.0.0.1:{args.port}: {e.strerror}", file=sys.stderr)
+        return 1
+    server.quiet = args.quiet
+    port = server.server_address[1]
+    print(f"Serving http://127.0.0.1:{port}/ (directory {root}); Ctrl-C stops.", flush=True)
+    try:
+        server.serve_forever()
+    except KeyboardInterrupt:
+        pass
+    finally:
+        server.server_close()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,425 @@
+// End-to-end test of the demo in headless Chromium (Debian's), driven by
+// playwright-core. Run by scripts/e2e.sh, which serves www/ and passes its URL:
+//
+//   BASE_URL=http://127.0.0.1:8000/ node tests/e2e/e2e.mjs
+//
+// Every test fails on any console error or page exception. Screenshots go to
+// tests/e2e/screenshots/ (ignored by git). Measurements (time to data-ready,
+// Case 3 solver time) are printed as lines starting with "measure:".
+
+import { chromium } from 'playwright-core';
+import { mkdirSync } from 'node:fs';
+import { dirname, join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import assert from 'node:assert/strict';
+
+const here = dirname(fileURLToPath(import.meta.url));
+const shots = join(here, 'screenshots');
+mkdirSync(shots, { recursive: true });
+
+const BASE = process.env.BASE_URL ?? 'http://127.0.0.1:8000/';
+const CHROMIUM = process.env.CHROMIUM ?? '/usr/bin/chromium';
+const ARGS = [
+  '--headless',
+  '--no-sandbox',
+  '--disable-gpu',
+  '--disable-dev-shm-usage',
+  '--disable-background-networking',
+  '--disable-component-update',
+  '--disable-sync',
+  '--no-first-run',
+];
+
+const browser = await chromium.launch({ executablePath: CHROMIUM, args: ARGS, headless: true });
+const tests = [];
+const test = (name, fn) => tests.push({ name, fn });
+
+/** A fresh page that records console errors and page exceptions. */
+async function open(path = '', contextOptions = {}) {
+  const context = await browser.newContext({ viewport: { width: 1280, height: 900 }, ...contextOptions });
+  const page = await context.newPage();
+  const problems = [];
+  page.on('console', (msg) => {
+    if (msg.type() === 'error') problems.push(`console error: ${msg.text()}`);
+  });
+  page.on('pageerror', (err) => problems.push(`page exception: ${err.message}`));
+  page.problems = problems;
+  page.on('close', () => context.close().catch(() => {}));
+  await page.goto(BASE + path);
+  await page.waitForSelector('body[data-ready="true"]', { timeout: 15000 });
+  return page;
+}
+
+function clean(page) {
+  assert.deepEqual(page.problems, [], 'no console errors or page exceptions');
+}
+
+const state = (page) => page.evaluate(() => window.demo.state());
+const near = (a, b, tol) => Math.hypot(a[0] - b[0], a[1] - b[1]) <= tol;
+
+async function pause(page) {
+  await page.evaluate(() => window.demo.controller.demo.setRunning(false));
+}
+
+/** Drags with real mouse events from world point `from` to world point `to`. */
+async function mouseDrag(page, from, to, steps = 12) {
+  const a = await page.evaluate(([x, y]) => window.demo.worldToClient(x, y), from);
+  const b = await page.evaluate(([x, y]) => window.demo.worldToClient(x, y), to);
+  await page.mouse.move(a.x, a.y);
+  await page.mouse.down();
+  await page.mouse.move(b.x, b.y, { steps });
+  await page.mouse.up();
+}
+
+/** A one-finger touch drag through the Chrome DevTools protocol. */
+async function touchDrag(page, from, to, steps = 10) {
+  const a = await page.evaluate(([x, y]) => window.demo.worldToClient(x, y), from);
+  const b = await page.evaluate(([x, y]) => window.demo.worldToClient(x, y), to);
+  const cdp = await page.context().newCDPSession(page);
+  const point = (x, y) => [{ x, y, id: 1, radiusX: 4, radiusY: 4, force: 1 }];
+  await cdp.send('Input.dispatchTouchEvent', { type: 'touchStart', touchPoints: point(a.x, a.y) });
+  for (let i = 1; i <= steps; i++) {
+    const f = i / steps;
+    await cdp.send('Input.dispatchTouchEvent', {
+      type: 'touchMove',
+      touchPoints: point(a.x + f * (b.x - a.x), a.y + f * (b.y - a.y)),
+    });
+  }
+  await cdp.send('Input.dispatchTouchEvent', { type: 'touchEnd', touchPoints: [] });
+  await cdp.detach();
+}
+
+async function selectMode(page, mode) {
+  await page.selectOption('#mode', mode);
+}
+
+// ---------------------------------------------------------------------------
+
+test('page loads, draws and exposes window.demo', async () => {
+  const page = await open();
+  const s = await state(page);
+  for (const key of ['t', 'mode', 'theta', 'ee', 'target', 'obstacle', 'radius', 'distance', 'min_distance', 'collided', 'running', 'solver_ms']) {
+    assert.ok(key in s, `state() has ${key}`);
+  }
+  assert.equal(s.theta.length, 3);
+  assert.ok(await page.isHidden('#loading'), 'loading indicator hidden');
+  // The canvas has been drawn on: not a blank white backing store.
+  const inked = await page.evaluate(() => {
+    const c = document.getElementById('stage');
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    let n = 0;
+    for (let i = 0; i < d.length; i += 4 * 97) if (d[i] < 200) n++;
+    return n;
+  });
+  assert.ok(inked > 50, `stage has drawing (${inked} dark samples)`);
+  await page.evaluate(() => window.demo.runUntil(10));
+  await page.screenshot({ path: join(shots, 'index.png'), fullPage: true });
+  clean(page);
+  await page.close();
+});
+
+test('time to data-ready (5 loads)', async () => {
+  const times = [];
+  for (let i = 0; i < 5; i++) {
+    const page = await open(`?task=1&mode=numerical`);
+    const t = await page.evaluate(() => {
+      const nav = performance.getEntriesByType('navigation')[0];
+      return { ready: window.demo.readyMs, dcl: nav.domContentLoadedEventEnd, load: nav.loadEventEnd };
+    });
+    times.push(t);
+    clean(page);
+    await page.close();
+  }
+  const ready = times.map((t) => t.ready).sort((a, b) => a - b);
+  const median = ready[Math.floor(ready.length / 2)];
+  console.log(
+    `measure: navigation -> data-ready: median ${median.toFixed(0)} ms, min ${ready[0].toFixed(0)}, max ${ready.at(-1).toFixed(0)} ms (5 loads; DOMContentLoaded median ${times.map((t) => t.dcl).sort((a, b) => a - b)[2].toFixed(0)} ms)`,
+  );
+  assert.ok(median < 2000, 'ready within 2 s');
+});
+
+test('play runs the clock; space pauses; r resets', async () => {
+  const page = await open('?task=1&mode=numerical');
+  await page.waitForFunction(() => window.demo.state().t > 0.3);
+  await page.keyboard.press('Space');
+  const paused = await state(page);
+  assert.equal(paused.running, false);
+  await page.waitForTimeout(200);
+  assert.equal((await state(page)).t, paused.t, 'clock stopped');
+  await page.click('#play');
+  await page.waitForFunction((t) => window.demo.state().t > t + 0.2, paused.t);
+  assert.equal((await state(page)).running, true);
+  await page.keyboard.press('r');
+  const reset = await state(page);
+  assert.equal(reset.t, 0);
+  assert.equal(reset.running, false);
+  await page.click('#step');
+  assert.ok(Math.abs((await state(page)).t - 0.1) < 1e-9, 'one step of 0.1 s');
+  clean(page);
+  await page.close();
+});
+
+test('drag the target with the mouse: new line, the arm follows', async () => {
+  const page = await open('?task=1&mode=numerical');
+  await page.evaluate(() => window.demo.runUntil(3));
+  await pause(page);
+  const before = await state(page);
+  const goal = [1.1, 0.5];
+  await mouseDrag(page, before.target, goal);
+  const after = await state(page);
+  assert.ok(near(after.target, goal, 0.02), `target moved to ${after.target}`);
+  assert.ok(near(after.line.start, before.ee, 1e-9), 'new line starts at the end effector');
+  assert.ok(Math.abs(after.line.t0 - before.t) < 1e-9, 'new line starts now');
+  assert.equal(after.running, true, 'releasing the target starts the clock');
+  await page.evaluate((t) => window.demo.runUntil(t), after.t + after.line.duration + 0.5);
+  const end = await state(page);
+  assert.ok(near(end.ee, goal, 0.02), `end effector reached the new target (${end.ee})`);
+  await page.screenshot({ path: join(shots, 'drag-target.png') });
+  clean(page);
+  await page.close();
+});
+
+test('drag the obstacle with the mouse: takes effect at once', async () => {
+  const page = await open('?task=1&mode=numerical');
+  await pause(page);
+  const before = await state(page);
+  const goal = [1.0, 1.25];
+  await mouseDrag(page, before.obstacle, goal);
+  const after = await state(page);
+  assert.ok(near(after.obstacle, goal, 0.02), `obstacle moved to ${after.obstacle}`);
+  assert.notEqual(after.distance, before.distance, 'distance follows the obstacle without a step');
+  // The avoidance vector now pushes the links away from the new obstacle.
+  await page.evaluate(() => window.demo.runUntil(10));
+  const end = await state(page);
+  assert.ok(end.min_distance > end.radius, 'no collision with the moved obstacle');
+  clean(page);
+  await page.close();
+});
+
+test('the obstacle cannot be dropped onto the post', async () => {
+  const page = await open('?task=1&mode=numerical');
+  await pause(page);
+  const before = await state(page);
+  await mouseDrag(page, before.obstacle, [0.0, 0.25]);
+  const after = await state(page);
+  assert.ok(Math.hypot(after.obstacle[0], 0) > after.radius, `obstacle stayed off the post (${after.obstacle})`);
+  assert.ok(await page.isVisible('#message'), 'a message says why');
+  assert.match(await page.textContent('#message'), /post/);
+  await page.screenshot({ path: join(shots, 'obstacle-on-post.png') });
+  clean(page);
+  await page.close();
+});
+
+test('touch drag moves the target', async () => {
+  const page = await open('?task=1&mode=numerical', { hasTouch: true });
+  await pause(page);
+  const before = await state(page);
+  const goal = [0.9, 0.3];
+  await touchDrag(page, before.target, goal);
+  const after = await state(page);
+  assert.ok(near(after.target, goal, 0.03), `target moved by touch to ${after.target}`);
+  clean(page);
+  await page.close();
+});
+
+test('every mode is selectable', async () => {
+  const page = await open('?task=1&mode=numerical');
+  const networks = (await state(page)).networks;
+  for (const mode of ['none', 'numerical', 'case1', 'case2', 'case3']) {
+    await selectMode(page, mode);
+    const s = await state(page);
+    if (mode.startsWith('case') && !networks) {
+      assert.ok(await page.isVisible('#message'), `${mode}: a message is shown`);
+      assert.match(await page.textContent('#message'), /networks not available/);
+      assert.notEqual(s.mode, mode);
+      assert.equal(await page.inputValue('#mode'), s.mode, 'the select shows the mode in force');
+    } else {
+      assert.equal(s.mode, mode);
+      assert.equal(await page.inputValue('#mode'), mode);
+      await page.evaluate(() => window.demo.runUntil(window.demo.state().t + 1));
+      assert.equal((await state(page)).error, null, `${mode}: steps without error`);
+      if (mode.startsWith('case')) assert.ok((await state(page)).ghost, `${mode}: ghost arm present`);
+    }
+  }
+  console.log(`note: trained networks ${networks ? 'available' : 'NOT available (case modes show the message)'}`);
+  clean(page);
+  await page.close();
+});
+
+for (const task of [1, 2]) {
+  test(`#task${task}: collides without avoidance, not with it`, async () => {
+    const page = await open('?task=1&mode=numerical');
+    await selectMode(page, 'none');
+    await page.click(`#task${task}`);
+    await page.evaluate(() => window.demo.runUntil(10));
+    const none = await state(page);
+    assert.equal(none.task, task);
+    assert.ok(Math.abs(none.t - 10) < 1e-9, `ran to t = 10 (t = ${none.t})`);
+    assert.equal(none.collided, true, `mode none collides (min distance ${none.min_distance})`);
+    assert.equal(none.running, false, 'the task run stops at t = 10');
+    await page.screenshot({ path: join(shots, `task${task}-none.png`) });
+
+    await selectMode(page, 'numerical');
+    await page.click(`#task${task}`);
+    const fresh = await state(page);
+    assert.equal(fresh.t, 0);
+    assert.equal(fresh.collided, false, 'loading the task clears the collision flag');
+    assert.equal(fresh.mode, 'numerical', 'the task keeps the mode');
+    await page.evaluate(() => window.demo.runUntil(10));
+    const num = await state(page);
+    assert.equal(num.collided, false, `numerical avoids (min distance ${num.min_distance})`);
+    const paper = task === 1 ? 0.2345 : 0.2193;
+    assert.ok(Math.abs(num.min_distance - paper) < 2e-3, `min distance ${num.min_distance} matches ${paper}`);
+    assert.ok(num.final_error < 1e-4, `reaches the target (${num.final_error})`);
+    await page.screenshot({ path: join(shots, `task${task}-numerical.png`) });
+    clean(page);
+    await page.close();
+  });
+}
+
+test('the state lives in the URL', async () => {
+  const page = await open('?task=1&mode=numerical');
+  await pause(page);
+  await page.click('#task2');
+  await pause(page);
+  await page.fill('#lambda', '6');
+  await page.dispatchEvent('#lambda', 'input');
+  const s0 = await state(page);
+  await mouseDrag(page, s0.obstacle, [0.9, 1.0]);
+  const s = await state(page);
+  const url = page.url();
+  assert.match(url, /task=2/);
+  assert.match(url, /mode=numerical/);
+  assert.match(url, /lambda=6/);
+  const copy = await open(url.slice(BASE.length));
+  const c = await state(copy);
+  assert.equal(c.task, 2);
+  assert.equal(c.mode, 'numerical');
+  assert.equal(c.lambda, 6);
+  assert.ok(near(c.obstacle, s.obstacle, 2e-3), 'obstacle restored');
+  assert.ok(near(c.target, s.target, 2e-3), 'target restored');
+  clean(page);
+  clean(copy);
+  await page.close();
+  await copy.close();
+});
+
+test('sharp on high-DPI screens', async () => {
+  const page = await open('?task=1&mode=numerical', { deviceScaleFactor: 2 });
+  const size = await page.evaluate(() => {
+    const c = document.getElementById('stage');
+    const r = c.getBoundingClientRect();
+    return { w: c.width, cssW: r.width };
+  });
+  assert.ok(Math.abs(size.w - 2 * size.cssW) <= 1, `backing store ${size.w} px for ${size.cssW} CSS px`);
+  clean(page);
+  await page.close();
+});
+
+test('narrow screen layout', async () => {
+  const page = await open('?task=2&mode=numerical', { viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true, deviceScaleFactor: 2 });
+  await page.evaluate(() => window.demo.runUntil(10));
+  await page.screenshot({ path: join(shots, 'mobile.png'), fullPage: true });
+  clean(page);
+  await page.close();
+});
+
+test('Case 3 solver time per frame', async () => {
+  const page = await open('?task=1&mode=numerical');
+  if (!(await state(page)).networks) {
+    console.log('measure: Case 3 solver time: skipped (networks not available)');
+    await page.close();
+    return;
+  }
+  await selectMode(page, 'case3');
+  await page.selectOption('#speed', '8');
+  await page.click('#task1');
+  // Per animation frame, as the page runs it (8x speed: about 1-2 steps a frame).
+  const frames = await page.evaluate(
+    () =>
+      new Promise((resolve) => {
+        const out = [];
+        let lastSteps = -1;
+        const tick = () => {
+          const s = window.demo.state();
+          if (s.steps !== lastSteps && s.frame_steps > 0) out.push([s.frame_steps, s.solver_ms]);
+          lastSteps = s.steps;
+          if (s.running) requestAnimationFrame(tick);
+          else resolve(out);
+        };
+        requestAnimationFrame(tick);
+      }),
+  );
+  const perFrame = frames.map((f) => f[1]).sort((a, b) => a - b);
+  const steps = frames.reduce((a, f) => a + f[0], 0) / Math.max(frames.length, 1);
+  // Many steps in a row, timed around the whole batch.
+  const batch = await page.evaluate(() => {
+    const d = window.demo.controller.demo;
+    d.reset();
+    d.setRunning(false);
+    const t0 = performance.now();
+    d.runUntil(100);
+    return (performance.now() - t0) / 1000;
+  });
+  const s = await state(page);
+  assert.equal(s.mode, 'case3');
+  console.log(
+    `measure: Case 3 solver per animation frame (8x speed, ${steps.toFixed(2)} RK4 steps/frame, ${frames.length} frames): median ${perFrame[Math.floor(perFrame.length / 2)]?.toFixed(3)} ms, max ${perFrame.at(-1)?.toFixed(3)} ms; batch of 1000 steps (incl. ghost): ${batch.toFixed(3)} ms/step`,
+  );
+  await page.screenshot({ path: join(shots, 'case3.png') });
+  clean(page);
+  await page.close();
+});
+
+test('embed page: two independent demos', async () => {
+  const context = await browser.newContext({ viewport: { width: 1280, height: 900 } });
+  const page = await context.newPage();
+  const problems = [];
+  page.on('console', (m) => m.type() === 'error' && problems.push(m.text()));
+  page.on('pageerror', (e) => problems.push(e.message));
+  await page.goto(BASE + 'embed.html');
+  await page.waitForSelector('#left[data-ready="true"]', { timeout: 15000 });
+  await page.waitForSelector('#right[data-ready="true"]', { timeout: 15000 });
+  const run = (id) =>
+    page.evaluate((id) => {
+      const c = document.getElementById(id).controller;
+      return c.runUntil(10);
+    }, id);
+  const left = await run('left');
+  const right = await run('right');
+  assert.equal(left.mode, 'none');
+  assert.equal(right.mode, 'numerical');
+  assert.equal(left.collided, true, 'left (no avoidance) collides');
+  assert.equal(right.collided, false, 'right (numerical) does not');
+  // Changing one leaves the other alone.
+  await page.locator('#left').locator('#mode').selectOption('numerical');
+  const l2 = await page.evaluate(() => document.getElementById('left').controller.state());
+  const r2 = await page.evaluate(() => document.getElementById('right').controller.state());
+  assert.equal(l2.mode, 'numerical');
+  assert.equal(r2.t, right.t);
+  await page.locator('#right').locator('#reset').click();
+  const l3 = await page.evaluate(() => document.getElementById('left').controller.state());
+  assert.equal(l3.t, l2.t, 'reset of one demo leaves the other');
+  await page.screenshot({ path: join(shots, 'embed.png'), fullPage: true });
+  assert.deepEqual(problems, []);
+  await context.close();
+});
+
+// ---------------------------------------------------------------------------
+
+let passed = 0;
+let failed = 0;
+for (const { name, fn } of tests) {
+  const t0 = Date.now();
+  try {
+    await fn();
+    passed++;
+    console.log(`ok   ${name} (${Date.now() - t0} ms)`);
+  } catch (e) {
+    failed++;
+    console.log(`FAIL ${name}\n     ${String(e && e.stack ? e.stack : e).split('\n').slice(0, 6).join('\n     ')}`);
+  }
+}
+await browser.close();
+console.log(`e2e: ${passed} passed, ${failed} failed`);
+process.exit(failed ? 1 : 0);

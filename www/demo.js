@@ -1,0 +1,317 @@
+// Glue between the page and the WebAssembly module: it wires the controls,
+// pointer events and the animation loop to a `Demo` (src/wasm.rs), which owns
+// the planner and draws the canvas. No kinematics here.
+//
+// `mount(root, options)` works on any root that holds the expected ids
+// (`#stage` and, all optional, `#plots`, `#mode`, `#play`, `#step`, `#reset`,
+// `#task1`, `#task2`, `#lambda`, `#damping`, `#speed`, `#message`,
+// `#range-warning`, `#loading` and `[data-readout]` elements): the page's
+// document, or the shadow root of a <redundant-ik-demo> element, so several
+// demos on one page stay independent.
+
+import init, { Demo, lastPanic, networksError } from './pkg/redundant_ik.js';
+
+let module = null;
+
+/** Loads and starts the WebAssembly module once per page. */
+export function loadModule() {
+  if (!module) module = init();
+  return module;
+}
+
+export const MODES = ['none', 'numerical', 'case1', 'case2', 'case3'];
+
+/** A readable message for an exception thrown by the module. */
+export function describe(err) {
+  let panic = null;
+  try {
+    panic = lastPanic();
+  } catch (_) {
+    /* the module itself failed to load */
+  }
+  if (panic) return `Internal error in the simulation (please report it): ${panic}`;
+  return err && err.message ? err.message : String(err);
+}
+
+/** Whether the trained networks are built in; if not, the reason. */
+export function networksProblem() {
+  return networksError() ?? null;
+}
+
+function fmt(v, digits = 3) {
+  if (v === null || v === undefined || !Number.isFinite(v)) return '–';
+  return v.toFixed(digits);
+}
+
+function fmtSmall(v) {
+  if (v === null || v === undefined || !Number.isFinite(v)) return '–';
+  if (v === 0) return '0';
+  if (Math.abs(v) < 1e-3) return v.toExponential(1).replace('e', '×10^');
+  return v.toFixed(4);
+}
+
+const READOUTS = {
+  t: (s) => fmt(s.t, 1),
+  error: (s) => fmtSmall(s.tracking_error),
+  distance: (s) => fmt(s.distance, 3),
+  min_distance: (s) => fmt(s.min_distance, 3),
+  collision: (s) => (s.collision ? 'now' : s.collided ? 'earlier' : 'none'),
+  manipulability: (s) => fmt(s.manipulability, 3),
+  delta: (s) => (s.delta > 0 ? s.delta.toExponential(1) : '0'),
+  solver: (s) => fmt(s.solver_ms_per_step, 3),
+};
+
+/**
+ * Starts a demo on `root`. Options: task (1|2), mode, lambda, target [x, y],
+ * obstacle [x, y], damping (bool), speed, autoplay (default true),
+ * keyboard (element that receives key presses; default none),
+ * onChange(state) (after user changes, e.g. to update the URL).
+ * Returns a controller with state(), worldToClient(x, y), runUntil(t), demo.
+ */
+export async function mount(root, options = {}) {
+  const $ = (id) => root.querySelector('#' + id);
+  const stage = $('stage');
+  const plots = $('plots');
+  const el = {
+    mode: $('mode'),
+    play: $('play'),
+    step: $('step'),
+    reset: $('reset'),
+    task1: $('task1'),
+    task2: $('task2'),
+    lambda: $('lambda'),
+    lambdaValue: $('lambda-value'),
+    damping: $('damping'),
+    speed: $('speed'),
+    message: $('message'),
+    warning: $('range-warning'),
+    loading: $('loading'),
+  };
+  const readouts = [...root.querySelectorAll('[data-readout]')];
+
+  await loadModule();
+  const demo = new Demo(stage, plots ?? undefined, options.task === 2 ? 2 : 1);
+
+  // ---- messages -------------------------------------------------------
+  let messageTimer = 0;
+  function show(text, kind = 'error', sticky = false) {
+    if (!el.message) return;
+    el.message.textContent = text;
+    el.message.dataset.kind = kind;
+    el.message.hidden = false;
+    clearTimeout(messageTimer);
+    if (!sticky) messageTimer = setTimeout(() => (el.message.hidden = true), 6000);
+  }
+  function clearMessage() {
+    if (el.message) el.message.hidden = true;
+  }
+  function attempt(fn, kind = 'error') {
+    try {
+      fn();
+      return true;
+    } catch (e) {
+      show(describe(e), kind);
+      return false;
+    }
+  }
+
+  const changed = () => options.onChange && options.onChange(controller.state());
+
+  // ---- initial settings (URL or attributes) ---------------------------
+  if (options.damping === false) attempt(() => demo.setDamping(false));
+  if (options.speed) attempt(() => demo.setSpeed(options.speed));
+  if (options.mode && options.mode !== 'numerical') {
+    attempt(() => demo.setMode(options.mode));
+  }
+  if (options.lambda !== undefined && options.lambda !== null) {
+    attempt(() => demo.setLambda(options.lambda));
+  }
+  if (options.obstacle) attempt(() => demo.setObstacle(options.obstacle[0], options.obstacle[1]));
+  if (options.target) attempt(() => demo.setTarget(options.target[0], options.target[1], 10));
+  if (options.autoplay !== false) demo.runTask();
+
+  // ---- controls -------------------------------------------------------
+  function syncControls(s) {
+    if (el.mode && el.mode.value !== s.mode) el.mode.value = s.mode;
+    if (el.play) {
+      el.play.textContent = s.running ? 'Pause' : 'Play';
+      el.play.setAttribute('aria-pressed', String(s.running));
+    }
+    if (el.lambda && document.activeElement !== el.lambda && Number(el.lambda.value) !== s.lambda) {
+      el.lambda.value = String(s.lambda);
+    }
+    if (el.lambdaValue) el.lambdaValue.textContent = s.lambda.toFixed(1);
+    if (el.damping) el.damping.checked = s.damping;
+  }
+
+  if (el.mode) {
+    el.mode.addEventListener('change', () => {
+      const wanted = el.mode.value;
+      if (attempt(() => demo.setMode(wanted))) {
+        clearMessage();
+        changed();
+      } else {
+        el.mode.value = controller.state().mode;
+      }
+    });
+  }
+  const togglePlay = () => {
+    demo.setRunning(!demo.running);
+    clearMessage();
+  };
+  el.play?.addEventListener('click', togglePlay);
+  el.step?.addEventListener('click', () => attempt(() => demo.step()));
+  el.reset?.addEventListener('click', () => {
+    demo.reset();
+    clearMessage();
+  });
+  for (const [button, task] of [
+    [el.task1, 1],
+    [el.task2, 2],
+  ]) {
+    button?.addEventListener('click', () => {
+      if (attempt(() => demo.loadTask(task))) {
+        clearMessage();
+        changed();
+      }
+    });
+  }
+  el.lambda?.addEventListener('input', () => {
+    if (attempt(() => demo.setLambda(Number(el.lambda.value)))) changed();
+  });
+  el.damping?.addEventListener('change', () => attempt(() => demo.setDamping(el.damping.checked)));
+  el.speed?.addEventListener('change', () => attempt(() => demo.setSpeed(Number(el.speed.value))));
+  if (el.speed) attempt(() => demo.setSpeed(Number(el.speed.value)));
+
+  if (options.keyboard) {
+    options.keyboard.addEventListener('keydown', (e) => {
+      if (e.ctrlKey || e.metaKey || e.altKey) return;
+      const t = e.composedPath()[0];
+      const typing = t && t.matches && t.matches('input[type=text], input[type=number], textarea, select');
+      if (typing) return;
+      if (e.key === ' ' || e.code === 'Space') {
+        e.preventDefault();
+        togglePlay();
+      } else if (e.key === 'r' || e.key === 'R') {
+        e.preventDefault();
+        demo.reset();
+        clearMessage();
+      }
+    });
+  }
+
+  // ---- pointer: drag target and obstacle -------------------------------
+  let held = null; // pointerId while dragging
+  const local = (e) => {
+    const r = stage.getBoundingClientRect();
+    return [e.clientX - r.left, e.clientY - r.top];
+  };
+  const slopFor = (e) => (e.pointerType === 'mouse' ? 4 : 18);
+  stage.addEventListener('pointerdown', (e) => {
+    if (held !== null || (e.pointerType === 'mouse' && e.button !== 0)) return;
+    const [x, y] = local(e);
+    const what = demo.pointerDown(x, y, slopFor(e));
+    if (!what) return;
+    held = e.pointerId;
+    stage.setPointerCapture(e.pointerId);
+    stage.style.cursor = 'grabbing';
+    e.preventDefault();
+  });
+  stage.addEventListener('pointermove', (e) => {
+    const [x, y] = local(e);
+    if (held === e.pointerId) {
+      attempt(() => demo.pointerMove(x, y), 'warn');
+    } else if (held === null && e.pointerType === 'mouse') {
+      stage.style.cursor = demo.hover(x, y, slopFor(e)) ? 'grab' : 'default';
+    }
+  });
+  const release = (e) => {
+    if (held !== e.pointerId) return;
+    const [x, y] = local(e);
+    held = null;
+    stage.style.cursor = 'default';
+    if (stage.hasPointerCapture(e.pointerId)) stage.releasePointerCapture(e.pointerId);
+    attempt(() => demo.pointerUp(x, y), 'warn');
+    changed();
+  };
+  stage.addEventListener('pointerup', release);
+  stage.addEventListener('pointercancel', (e) => {
+    if (held !== e.pointerId) return;
+    held = null;
+    demo.pointerCancel();
+  });
+
+  // ---- size: sharp on high-DPI screens, follows the layout -------------
+  const fit = (canvas, resize) => {
+    const apply = () => {
+      const r = canvas.getBoundingClientRect();
+      if (r.width > 0 && r.height > 0) attempt(() => resize(r.width, r.height, window.devicePixelRatio || 1));
+    };
+    new ResizeObserver(apply).observe(canvas);
+    apply();
+  };
+  fit(stage, (w, h, d) => demo.resize(w, h, d));
+  if (plots) fit(plots, (w, h, d) => demo.resizePlots(w, h, d));
+
+  // ---- readouts and the loop -------------------------------------------
+  function update() {
+    const s = demo.state();
+    for (const r of readouts) {
+      const f = READOUTS[r.dataset.readout];
+      if (f) {
+        const text = f(s);
+        if (r.textContent !== text) r.textContent = text;
+      }
+      if (r.dataset.readout === 'collision') r.dataset.level = s.collision ? 'bad' : s.collided ? 'warn' : 'ok';
+    }
+    if (el.warning) el.warning.hidden = s.in_range || !s.mode.startsWith('case');
+    syncControls(s);
+    return s;
+  }
+
+  let last = performance.now();
+  let stopped = false;
+  function tick(now) {
+    if (stopped) return;
+    const elapsed = now - last;
+    last = now;
+    try {
+      demo.frame(elapsed);
+    } catch (e) {
+      show(describe(e), 'error', true);
+    }
+    update();
+    requestAnimationFrame(tick);
+  }
+
+  const controller = {
+    demo,
+    state() {
+      return demo.state();
+    },
+    worldToClient(x, y) {
+      const [cx, cy] = demo.worldToCanvas(x, y);
+      const r = stage.getBoundingClientRect();
+      return { x: r.left + cx, y: r.top + cy };
+    },
+    runUntil(t) {
+      demo.runUntil(t);
+      demo.draw();
+      return update();
+    },
+    show,
+    stop() {
+      stopped = true;
+    },
+  };
+
+  // First frame now, synchronously; then the animation loop.
+  demo.frame(0);
+  update();
+  if (el.loading) el.loading.hidden = true;
+  requestAnimationFrame((now) => {
+    last = now;
+    requestAnimationFrame(tick);
+  });
+  return controller;
+}
