@@ -5,6 +5,8 @@
 pub mod arm;
 pub mod error;
 pub mod ik;
+pub mod networks;
+pub mod nn;
 pub mod obstacle;
 pub mod planner;
 pub mod scene;
@@ -12,6 +14,7 @@ pub mod scene;
 pub use arm::Arm;
 pub use error::{Error, Result};
 pub use ik::DampingSchedule;
+pub use networks::{Networks, TrainedRange};
 pub use obstacle::Obstacle;
 pub use planner::{Line, Mode, Planner, Sample, Summary, Surrogate, Trajectory};
 pub use scene::Scene;

@@ -1,10 +1,186 @@
-//! `redundant-ik eval` (stub until the networks land).
+//! `redundant-ik eval`: accuracy of the embedded (or given) networks on a
+//! fresh test set from their trained range, and the outcome of all five
+//! modes on both paper tasks.
+
+use clap::Args;
+use serde::Serialize;
+
+use redundant_ik::networks::{self, ErrorStats, Networks, TaskOutcome};
+use redundant_ik::nn::Variant;
 
 /// Options of `redundant-ik eval`.
-#[derive(clap::Args, Debug)]
-pub struct EvalArgs {}
+#[derive(Args, Debug)]
+pub struct EvalArgs {
+    /// Machine-readable JSON instead of tables.
+    #[arg(long)]
+    pub json: bool,
+    /// Test samples drawn afresh from the trained range.
+    #[arg(long, default_value_t = 2000)]
+    pub samples: usize,
+    /// Seed of the fresh test set (differs from the training seeds).
+    #[arg(long, default_value_t = 20240601)]
+    pub seed: u64,
+    /// Phi variant for the task runs: plain, rows or equivariant (default: the shipped default).
+    #[arg(long)]
+    pub variant: Option<String>,
+    /// Closed-loop gain K for the task runs (0 = the paper's open loop).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub feedback: f64,
+    /// A Phi weights file to evaluate instead of the embedded one (needs --v).
+    #[arg(long, requires = "v")]
+    pub phi: Option<String>,
+    /// A v weights file to evaluate instead of the embedded one (needs --phi).
+    #[arg(long, requires = "phi")]
+    pub v: Option<String>,
+}
+
+#[derive(Serialize)]
+struct PhiAccuracy {
+    variant: Variant,
+    sizes: Vec<Vec<usize>>,
+    relative_error: ErrorStats,
+}
+
+#[derive(Serialize)]
+struct Report {
+    samples: usize,
+    seed: u64,
+    phi: Vec<PhiAccuracy>,
+    v: ErrorStats,
+    task_variant: Variant,
+    feedback_gain: f64,
+    outcomes: Vec<TaskOutcome>,
+}
+
+fn read(path: &str) -> Result<String, String> {
+    std::fs::read_to_string(path).map_err(|e| format!("cannot read {path}: {e}"))
+}
 
 /// Runs `redundant-ik eval`.
-pub fn run(_args: &EvalArgs) -> Result<(), String> {
-    Err("evaluation is not available yet".into())
+pub fn run(args: &EvalArgs) -> Result<(), String> {
+    if args.samples == 0 || args.samples > 1_000_000 {
+        return Err("--samples must be between 1 and 1000000".into());
+    }
+    let e = |e: redundant_ik::Error| e.to_string();
+    let (candidates, task_nets) = match (&args.phi, &args.v) {
+        (Some(p), Some(v)) => {
+            let nets = Networks::from_json(&read(p)?, &read(v)?).map_err(e)?;
+            (vec![nets.clone()], nets)
+        }
+        _ => {
+            let variant = match &args.variant {
+                Some(s) => s.parse::<Variant>().map_err(e)?,
+                None => networks::DEFAULT_PHI_VARIANT,
+            };
+            let all = [Variant::Plain, Variant::Rows, Variant::Equivariant]
+                .into_iter()
+                .map(Networks::embedded_with)
+                .collect::<Result<Vec<_>, _>>()
+                .map_err(e)?;
+            let chosen = Networks::embedded_with(variant).map_err(e)?;
+            (all, chosen)
+        }
+    };
+    let test = task_nets
+        .fresh_samples(args.samples, args.seed)
+        .map_err(e)?;
+    let mut phi = Vec::new();
+    for nets in &candidates {
+        phi.push(PhiAccuracy {
+            variant: nets.phi_file().variant,
+            sizes: nets
+                .phi_file()
+                .nets
+                .iter()
+                .map(|n| n.mlp.sizes.clone())
+                .collect(),
+            relative_error: ErrorStats::of(nets.phi_relative_errors(&test).map_err(e)?),
+        });
+    }
+    let v = ErrorStats::of(task_nets.v_relative_errors(&test).map_err(e)?);
+    let outcomes = networks::task_outcomes(&task_nets, args.feedback).map_err(e)?;
+    let report = Report {
+        samples: args.samples,
+        seed: args.seed,
+        phi,
+        v,
+        task_variant: task_nets.phi_file().variant,
+        feedback_gain: args.feedback,
+        outcomes,
+    };
+    if args.json {
+        let s = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
+        return super::emit(&(s + "\n"));
+    }
+    super::emit(&render(&report))
+}
+
+fn sizes(s: &[Vec<usize>]) -> String {
+    let one = |v: &Vec<usize>| {
+        v.iter()
+            .map(|x| x.to_string())
+            .collect::<Vec<_>>()
+            .join("-")
+    };
+    if s.len() > 1 && s.iter().all(|v| v == &s[0]) {
+        format!("{} x {}", s.len(), one(&s[0]))
+    } else {
+        s.iter().map(one).collect::<Vec<_>>().join(", ")
+    }
+}
+
+fn render(r: &Report) -> String {
+    let mut t = format!(
+        "Accuracy on {} fresh samples from the trained range (seed {})\n\n",
+        r.samples, r.seed
+    );
+    t.push_str("| network | variant | layers | relative error median | p99 | max |\n");
+    t.push_str("|---|---|---|---|---|---|\n");
+    for p in &r.phi {
+        t.push_str(&format!(
+            "| Phi | {} | {} | {:.2e} | {:.2e} | {:.2e} |\n",
+            p.variant.name(),
+            sizes(&p.sizes),
+            p.relative_error.median,
+            p.relative_error.p99,
+            p.relative_error.max
+        ));
+    }
+    t.push_str(&format!(
+        "| v | plain | 5-25-14-3 | {:.2e} | {:.2e} | {:.2e} |\n\n",
+        r.v.median, r.v.p99, r.v.max
+    ));
+    t.push_str(&format!(
+        "Task outcomes (Phi variant {}, feedback K = {}, delta = 0)\n\n",
+        r.task_variant.name(),
+        r.feedback_gain
+    ));
+    t.push_str("| task | mode | min distance (m) | collided | final error (m) | out-of-range steps | ok |\n");
+    t.push_str("|---|---|---|---|---|---|---|\n");
+    for o in &r.outcomes {
+        if let Some(err) = &o.error {
+            t.push_str(&format!(
+                "| {} | {} | failed: {err} | | | | no |\n",
+                o.task, o.mode
+            ));
+            continue;
+        }
+        let ok = if o.mode == redundant_ik::Mode::None {
+            "-"
+        } else if o.success() {
+            "yes"
+        } else {
+            "no"
+        };
+        t.push_str(&format!(
+            "| {} | {} | {:.4} | {} | {:.2e} | {} | {ok} |\n",
+            o.task,
+            o.mode,
+            o.min_distance,
+            if o.collided { "yes" } else { "no" },
+            o.final_error,
+            o.out_of_range_steps
+        ));
+    }
+    t
 }

@@ -1,10 +1,147 @@
-//! `redundant-ik train` (stub until the networks land).
+//! `redundant-ik train`: draws a training set from the numerical route,
+//! trains a network by Levenberg-Marquardt (Matlab `trainlm` semantics) with a
+//! progress bar, and writes a weights file.
+
+use std::time::Instant;
+
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use redundant_ik::networks::{self, TrainSpec};
+use redundant_ik::nn::{NetKind, Variant};
 
 /// Options of `redundant-ik train`.
-#[derive(clap::Args, Debug)]
-pub struct TrainArgs {}
+#[derive(Args, Debug)]
+pub struct TrainArgs {
+    /// Which network: `phi` (eq. 19) or `v` (the obstacle vector, eqs. 14-15).
+    #[arg(long)]
+    pub net: String,
+    /// plain (paper), rows (phi only: one 2-output net per row of Phi) or
+    /// equivariant (rotation-equivariant inputs).
+    #[arg(long, default_value = "plain")]
+    pub variant: String,
+    /// Seed for sampling, the train/validation/test split and initial weights.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Samples to draw (split 70/15/15).
+    #[arg(long, default_value_t = 3000)]
+    pub samples: usize,
+    /// Maximum Levenberg-Marquardt epochs.
+    #[arg(long, default_value_t = 400)]
+    pub epochs: usize,
+    /// Hidden layer widths, e.g. 35,14 (default: 35,14 for phi, 25,14 for v).
+    #[arg(long)]
+    pub hidden: Option<String>,
+    /// Smallest singular value of J below which poses are left out (m).
+    #[arg(long)]
+    pub sigma_floor: Option<f64>,
+    /// Noise added to visited joint angles (rad).
+    #[arg(long)]
+    pub noise: Option<f64>,
+    /// Weights file to write.
+    #[arg(long)]
+    pub out: String,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+fn parse_hidden(s: &str) -> Result<Vec<usize>, String> {
+    let v: Vec<usize> = s
+        .split(',')
+        .map(|p| {
+            p.trim()
+                .parse::<usize>()
+                .map_err(|_| format!("hidden layer width '{}' is not a whole number", p.trim()))
+        })
+        .collect::<Result<_, _>>()?;
+    if v.is_empty() || v.contains(&0) || v.iter().any(|&w| w > 1000) {
+        return Err(format!(
+            "hidden layers '{s}': give one or more widths between 1 and 1000"
+        ));
+    }
+    Ok(v)
+}
 
 /// Runs `redundant-ik train`.
-pub fn run(_args: &TrainArgs) -> Result<(), String> {
-    Err("training is not available yet".into())
+pub fn run(args: &TrainArgs) -> Result<(), String> {
+    let net = match args.net.as_str() {
+        "phi" => NetKind::Phi,
+        "v" => NetKind::V,
+        other => return Err(format!("unknown network '{other}': use phi or v")),
+    };
+    let variant: Variant = args.variant.parse().map_err(|e| format!("{e}"))?;
+    let mut spec = TrainSpec::paper(net, variant, args.seed);
+    spec.samples = args.samples;
+    spec.options.max_epochs = args.epochs;
+    if args.epochs == 0 {
+        return Err("--epochs must be at least 1".into());
+    }
+    if let Some(h) = &args.hidden {
+        spec.hidden = parse_hidden(h)?;
+    }
+    if let Some(f) = args.sigma_floor {
+        spec.sampling.sigma_floor = f;
+    }
+    if let Some(n) = args.noise {
+        spec.sampling.theta_noise = n;
+    }
+    spec.sampling.validate().map_err(|e| e.to_string())?;
+    let nets = redundant_ik::nn::weights::shape(net, variant, 3)
+        .map_err(|e| e.to_string())?
+        .0;
+
+    let bar = if args.quiet {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::new((nets * args.epochs) as u64)
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} epochs  {msg}")
+            .map_err(|e| e.to_string())?
+            .progress_chars("=> "),
+    );
+    let start = Instant::now();
+    let mut file = networks::train_weights(&spec, |k, r| {
+        bar.set_position((k * args.epochs + r.epoch) as u64);
+        bar.set_message(format!(
+            "net {}/{nets}  train {:.3e}  val {:.3e}  mu {:.0e}  grad {:.2e}",
+            k + 1,
+            r.train_mse,
+            r.val_mse,
+            r.mu,
+            r.gradient
+        ));
+        true
+    })
+    .map_err(|e| e.to_string())?;
+    bar.finish_and_clear();
+    let seconds = start.elapsed().as_secs_f64();
+    file.training.seconds = Some((seconds * 10.0).round() / 10.0);
+    let json = file.to_json().map_err(|e| e.to_string())?;
+    std::fs::write(&args.out, json + "\n")
+        .map_err(|e| format!("cannot write {}: {e}", args.out))?;
+
+    let mut text = format!(
+        "{} network(s), variant {}, {} samples, seed {}, trained in {seconds:.1} s -> {}\n",
+        args.net,
+        variant.name(),
+        spec.samples,
+        spec.seed,
+        args.out
+    );
+    for (k, e) in file.nets.iter().enumerate() {
+        let r = &e.report;
+        text.push_str(&format!(
+            "  net {} {:?}: {} epochs (best {}), stop: {:?}; MSE (mapminmax units) train {:.3e}, val {:.3e}, test {:.3e}\n",
+            k + 1,
+            e.mlp.sizes,
+            r.epochs,
+            r.best_epoch,
+            r.stop,
+            r.train_mse,
+            r.val_mse,
+            r.test_mse
+        ));
+    }
+    super::emit(&text)
 }

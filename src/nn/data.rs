@@ -1,0 +1,231 @@
+//! Training data from the numerical route (SPEC.md, "The networks").
+//!
+//! A box over theta that spans the tasks contains singular poses where `Phi`
+//! is unbounded, so the data is drawn around the configurations the tasks
+//! actually visit: the numerical route and the no-avoidance route are run
+//! on Task 1 and Task 2 with many obstacle positions drawn uniformly from a
+//! region around and between both canonical obstacles, every visited pose is
+//! kept, and samples are visited poses plus Gaussian noise. Poses whose
+//! Jacobian's smallest singular value is below a floor are rejected.
+
+use nalgebra::{DVector, Vector2};
+use serde::{Deserialize, Serialize};
+
+use crate::arm::Arm;
+use crate::error::{Error, Result};
+use crate::ik;
+use crate::nn::rng::Rng;
+use crate::obstacle::{self, Obstacle};
+use crate::planner::{Mode, Planner};
+use crate::scene::Scene;
+
+/// How training poses and obstacle points are drawn; stored in the weights file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Sampling {
+    /// Paper tasks whose trajectories seed the pose pool.
+    pub tasks: Vec<u32>,
+    /// Modes run on each task and obstacle (`none`, `numerical`).
+    pub modes: Vec<Mode>,
+    /// Obstacle positions drawn per task.
+    pub obstacles_per_task: usize,
+    /// Lower corner of the obstacle region (also the canonical obstacles are run).
+    pub obstacle_min: [f64; 2],
+    /// Upper corner of the obstacle region.
+    pub obstacle_max: [f64; 2],
+    /// Standard deviation of the Gaussian noise added to visited joint angles (rad).
+    pub theta_noise: f64,
+    /// Poses whose smallest singular value of `J` is below this are rejected (m).
+    pub sigma_floor: f64,
+    /// Share of `v` samples whose obstacle point is the one of the run the pose
+    /// came from (plus `obstacle_noise`); the rest are uniform in the region.
+    pub paired_obstacle_share: f64,
+    /// Standard deviation of the noise on paired obstacle points (m).
+    pub obstacle_noise: f64,
+}
+
+impl Default for Sampling {
+    fn default() -> Self {
+        Self {
+            tasks: vec![1, 2],
+            modes: vec![Mode::None, Mode::Numerical],
+            obstacles_per_task: 60,
+            obstacle_min: [0.3, 0.3],
+            obstacle_max: [0.8, 0.8],
+            theta_noise: 0.08,
+            sigma_floor: 0.2,
+            paired_obstacle_share: 0.5,
+            obstacle_noise: 0.03,
+        }
+    }
+}
+
+/// A pose visited by a planner run, with that run's obstacle point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Visited {
+    /// Joint angles.
+    pub theta: [f64; 3],
+    /// Obstacle centre of the run.
+    pub obstacle: [f64; 2],
+}
+
+impl Sampling {
+    /// Checks the numbers make sense.
+    pub fn validate(&self) -> Result<()> {
+        let ok = |x: f64| x.is_finite() && x >= 0.0;
+        if !(ok(self.theta_noise)
+            && ok(self.sigma_floor)
+            && ok(self.obstacle_noise)
+            && (0.0..=1.0).contains(&self.paired_obstacle_share))
+        {
+            return Err(Error::InvalidValue(
+                "sampling: noise, sigma floor and shares must be finite and non-negative".into(),
+            ));
+        }
+        for i in 0..2 {
+            if !(self.obstacle_min[i].is_finite()
+                && self.obstacle_max[i].is_finite()
+                && self.obstacle_min[i] <= self.obstacle_max[i])
+            {
+                return Err(Error::InvalidValue(
+                    "sampling: obstacle region must be finite with min <= max".into(),
+                ));
+            }
+        }
+        if self.tasks.is_empty() || self.modes.is_empty() {
+            return Err(Error::InvalidValue(
+                "sampling: need at least one task and one mode".into(),
+            ));
+        }
+        if self.modes.iter().any(|m| m.learned_phi() || m.learned_v()) {
+            return Err(Error::InvalidValue(
+                "sampling: only the numerical modes (none, numerical) can seed training data"
+                    .into(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Every pose visited by the numerical runs: each task with its canonical
+    /// obstacle and with `obstacles_per_task` obstacles uniform in the region,
+    /// in every mode listed. Runs that fail (obstacle on the post, a
+    /// singular pose) are skipped.
+    pub fn visited(&self, rng: &mut Rng) -> Result<Vec<Visited>> {
+        self.validate()?;
+        let mut out = Vec::new();
+        for &task in &self.tasks {
+            let base = Scene::task(task)?;
+            let canonical = base.obstacles.first().map(|o| o.centre);
+            let mut obstacles: Vec<[f64; 2]> = canonical.into_iter().collect();
+            for _ in 0..self.obstacles_per_task {
+                obstacles.push([
+                    rng.range(self.obstacle_min[0], self.obstacle_max[0]),
+                    rng.range(self.obstacle_min[1], self.obstacle_max[1]),
+                ]);
+            }
+            for o in obstacles {
+                let radius = base.obstacles.first().map_or(0.05, |ob| ob.radius);
+                let mut scene = base.clone();
+                scene.obstacles = vec![Obstacle::new(o[0], o[1], radius)];
+                for &mode in &self.modes {
+                    let Ok(run) = Planner::run(scene.clone(), mode, None) else {
+                        continue;
+                    };
+                    for s in &run.steps {
+                        if s.theta.len() == 3 {
+                            out.push(Visited {
+                                theta: [s.theta[0], s.theta[1], s.theta[2]],
+                                obstacle: o,
+                            });
+                        }
+                    }
+                }
+            }
+        }
+        if out.is_empty() {
+            return Err(Error::InvalidValue(
+                "sampling: no planner run succeeded, so there are no poses to learn from".into(),
+            ));
+        }
+        Ok(out)
+    }
+
+    /// `n` training points: a visited pose picked at random plus noise,
+    /// rejected while `J`'s smallest singular value is below the floor; the
+    /// obstacle point paired with the run or uniform in the region.
+    pub fn draw(
+        &self,
+        arm: &Arm,
+        pool: &[Visited],
+        n: usize,
+        rng: &mut Rng,
+    ) -> Result<Vec<Visited>> {
+        if pool.is_empty() {
+            return Err(Error::InvalidValue("sampling: empty pose pool".into()));
+        }
+        if arm.dof() != 3 {
+            return Err(Error::InvalidValue(
+                "sampling: the task pools are for the paper's 3-link arm".into(),
+            ));
+        }
+        let mut out = Vec::with_capacity(n);
+        let mut tries = 0usize;
+        while out.len() < n {
+            tries += 1;
+            if tries > 100 * n + 1000 {
+                return Err(Error::InvalidValue(format!(
+                    "sampling: sigma floor {} rejects nearly every pose",
+                    self.sigma_floor
+                )));
+            }
+            let v = pool[rng.below(pool.len())];
+            let theta = [
+                v.theta[0] + self.theta_noise * rng.normal(),
+                v.theta[1] + self.theta_noise * rng.normal(),
+                v.theta[2] + self.theta_noise * rng.normal(),
+            ];
+            let j = arm.jacobian(&DVector::from_column_slice(&theta));
+            if ik::smallest_singular_value(&j) < self.sigma_floor {
+                continue;
+            }
+            let obstacle = if rng.uniform() < self.paired_obstacle_share {
+                [
+                    (v.obstacle[0] + self.obstacle_noise * rng.normal())
+                        .clamp(self.obstacle_min[0], self.obstacle_max[0]),
+                    (v.obstacle[1] + self.obstacle_noise * rng.normal())
+                        .clamp(self.obstacle_min[1], self.obstacle_max[1]),
+                ]
+            } else {
+                [
+                    rng.range(self.obstacle_min[0], self.obstacle_max[0]),
+                    rng.range(self.obstacle_min[1], self.obstacle_max[1]),
+                ]
+            };
+            out.push(Visited { theta, obstacle });
+        }
+        Ok(out)
+    }
+}
+
+/// `Phi(theta)` at `delta = 0` as a row-major `n x 2` array (eq. 19).
+pub fn phi_target(arm: &Arm, theta: &[f64]) -> Result<Vec<f64>> {
+    let p = ik::phi(&arm.jacobian(&DVector::from_column_slice(theta)), 0.0)?;
+    let mut out = Vec::with_capacity(2 * p.nrows());
+    for i in 0..p.nrows() {
+        out.push(p[(i, 0)]);
+        out.push(p[(i, 1)]);
+    }
+    Ok(out)
+}
+
+/// The area gradient `g(theta, O)` (`v = lambda / 4 g`, eqs. 14-15).
+pub fn v_target(arm: &Arm, theta: &[f64], o: [f64; 2]) -> Vec<f64> {
+    obstacle::area_gradient(
+        arm,
+        &DVector::from_column_slice(theta),
+        &Vector2::new(o[0], o[1]),
+    )
+    .iter()
+    .copied()
+    .collect()
+}

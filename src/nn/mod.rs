@@ -1,0 +1,18 @@
+//! Small feed-forward networks and their training, as in the paper's
+//! section V: a Matlab-`newff`-style [`Mlp`], a `trainlm`-style
+//! Levenberg-Marquardt trainer ([`lm`]), a seeded PRNG ([`Rng`]), the
+//! training data drawn from the numerical route ([`data`]) and the weights
+//! file ([`weights`]). Everything here is single-threaded and free of OS
+//! entropy and clocks, so it runs unchanged in the browser.
+
+pub mod data;
+pub mod lm;
+pub mod mlp;
+pub mod rng;
+pub mod weights;
+
+pub use data::Sampling;
+pub use lm::{Dataset, EpochReport, LmOptions, LmTrainer, StopReason, TrainReport};
+pub use mlp::{MapMinMax, Mlp};
+pub use rng::Rng;
+pub use weights::{NetKind, Variant, WeightsFile};
