@@ -8,7 +8,6 @@ use clap::Args;
 use plotters::prelude::*;
 use redundant_ik::{Mode, Planner, Scene, Trajectory};
 
-use super::networks_for;
 use super::simulate::SceneArgs;
 
 /// Options of `redundant-ik figure`.
@@ -55,7 +54,7 @@ pub fn run(args: &FigureArgs) -> Result<(), String> {
         sa.task = task;
         let scene = sa.scene()?;
         for mode in Mode::ALL {
-            let nets = match networks_for(mode) {
+            let nets = match sa.networks.for_mode(mode, &scene.arm) {
                 Ok(n) => n,
                 Err(e) => {
                     eprintln!("skipping task {task} {mode}: {e}");

@@ -5,7 +5,9 @@
 use std::sync::Arc;
 
 use clap::{Parser, Subcommand};
-use redundant_ik::{Mode, Surrogate};
+use redundant_ik::networks::Networks;
+use redundant_ik::nn::weights::Variant;
+use redundant_ik::{Arm, Mode, Surrogate};
 
 pub mod eval;
 pub mod figure;
@@ -83,12 +85,58 @@ pub fn emit(text: &str) -> Result<(), String> {
     }
 }
 
-/// The networks a mode needs, or `None` for the numerical modes.
-pub fn networks_for(mode: Mode) -> Result<Option<Arc<dyn Surrogate>>, String> {
-    if !(mode.learned_phi() || mode.learned_v()) {
-        return Ok(None);
+/// Which networks the network modes use: the embedded ones (with a choice of
+/// `Phi` variant) or a user's pair of weights files.
+#[derive(clap::Args, Debug, Clone)]
+pub struct NetworkArgs {
+    /// Embedded Phi network: equivariant (default, most accurate), plain
+    /// (the paper's 3-35-14-6) or rows (the paper's three 3-35-14-2 nets).
+    #[arg(long, default_value = "equivariant")]
+    pub phi_variant: String,
+    /// Your own Phi weights file (JSON, see docs/networks.md); needs --v-weights.
+    #[arg(long, requires = "v_weights")]
+    pub phi_weights: Option<std::path::PathBuf>,
+    /// Your own v weights file (JSON); needs --phi-weights.
+    #[arg(long, requires = "phi_weights")]
+    pub v_weights: Option<std::path::PathBuf>,
+}
+
+impl NetworkArgs {
+    /// Loads the selected networks.
+    pub fn load(&self) -> Result<Networks, String> {
+        if let (Some(p), Some(v)) = (&self.phi_weights, &self.v_weights) {
+            let read = |f: &std::path::Path| {
+                std::fs::read_to_string(f).map_err(|e| format!("cannot read {}: {e}", f.display()))
+            };
+            return Networks::from_json(&read(p)?, &read(v)?).map_err(|e| e.to_string());
+        }
+        let variant = match self.phi_variant.as_str() {
+            "plain" => Variant::Plain,
+            "rows" => Variant::Rows,
+            "equivariant" => Variant::Equivariant,
+            other => {
+                return Err(format!(
+                    "unknown --phi-variant '{other}': use equivariant, plain or rows"
+                ))
+            }
+        };
+        Networks::embedded_with(variant).map_err(|e| e.to_string())
     }
-    Err(format!(
-        "networks not available: mode {mode} needs trained networks, which this build does not have yet"
-    ))
+
+    /// The networks a mode needs (loaded and checked against the arm), or
+    /// `None` for the numerical modes.
+    pub fn for_mode(&self, mode: Mode, arm: &Arm) -> Result<Option<Arc<dyn Surrogate>>, String> {
+        if !(mode.learned_phi() || mode.learned_v()) {
+            return Ok(None);
+        }
+        let nets = self.load()?;
+        if !nets.fits_arm(arm) {
+            return Err(format!(
+                "the networks were trained for an arm with post {} and links {:?}, not this one",
+                nets.arm().post(),
+                nets.arm().links()
+            ));
+        }
+        Ok(Some(Arc::new(nets)))
+    }
 }

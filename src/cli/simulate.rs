@@ -5,7 +5,7 @@ use redundant_ik::{DampingSchedule, Mode, Obstacle, Planner, Scene, Trajectory};
 
 use std::fmt::Write as _;
 
-use super::{emit, networks_for, parse_list, parse_pair};
+use super::{emit, parse_list, parse_pair, NetworkArgs};
 
 /// Scene options shared by `simulate` and `figure`.
 #[derive(Args, Debug, Clone)]
@@ -46,6 +46,8 @@ pub struct SceneArgs {
     /// Closed-loop gain K in Xdot + K (X_ref - X); 0 is the paper's open loop.
     #[arg(long, allow_hyphen_values = true)]
     pub feedback: Option<f64>,
+    #[command(flatten)]
+    pub networks: NetworkArgs,
 }
 
 impl SceneArgs {
@@ -101,7 +103,7 @@ impl SceneArgs {
     pub fn run(&self) -> Result<(Scene, Trajectory), String> {
         let scene = self.scene()?;
         let mode = self.mode()?;
-        let nets = networks_for(mode)?;
+        let nets = self.networks.for_mode(mode, &scene.arm)?;
         let traj = Planner::run(scene.clone(), mode, nets).map_err(|e| e.to_string())?;
         Ok((scene, traj))
     }
