@@ -10,6 +10,8 @@ pub mod nn;
 pub mod obstacle;
 pub mod planner;
 pub mod scene;
+#[cfg(target_family = "wasm")]
+pub mod wasm;
 
 pub use arm::Arm;
 pub use error::{Error, Result};
