@@ -35,8 +35,8 @@ const MAX_HISTORY: usize = 600;
 /// Largest canvas side accepted from the page (device pixels).
 const MAX_CANVAS_PX: f64 = 8192.0;
 /// World rectangle (metres) the stage always shows: x range, then y range.
-const VIEW_X: [f64; 2] = [-1.0, 2.2];
-const VIEW_Y: [f64; 2] = [-0.3, 2.3];
+const VIEW_X: [f64; 2] = [-0.6, 2.2];
+const VIEW_Y: [f64; 2] = [-0.25, 1.95];
 
 const FONT: &str = "system-ui, -apple-system, 'Segoe UI', Roboto, sans-serif";
 const INK: &str = "#1f2933";
@@ -47,6 +47,7 @@ const ARM: &str = "#1d4e89";
 const ACCENT: &str = "#d9731a";
 const DANGER: &str = "#c0392b";
 const TEAL: &str = "#2a9d8f";
+const GHOST: &str = "#5f6b78";
 
 thread_local! {
     /// The trained networks built into the module, loaded once (or why not).
@@ -840,9 +841,12 @@ impl Demo {
         let Some(handle) = self.drag else {
             return Ok(());
         };
+        // Keep handles on the canvas, so they can always be picked up again.
+        let (x, y) = (finite("pointer x", x)?, finite("pointer y", y)?);
+        let (w, h) = (self.stage.width, self.stage.height);
         let p = self
             .view()
-            .to_world(finite("pointer x", x)?, finite("pointer y", y)?);
+            .to_world(x.clamp(8.0, w - 8.0), y.clamp(8.0, h - 8.0));
         match handle {
             Handle::Target => {
                 self.drag_point = Some(p);
@@ -1019,20 +1023,6 @@ impl Demo {
             ctx.fill();
         }
 
-        // Ghost: where the numerical route would have the arm.
-        if let Some(g) = &self.ghost {
-            let th: Vec<f64> = g.planner.theta().iter().cloned().collect();
-            let pose = arm.joints(&self.display_theta(&g.prev, &th));
-            let pts: Vec<[f64; 2]> = pose.iter().map(|p| [p[0], p[1]]).collect();
-            ctx.set_global_alpha(0.45);
-            ctx.set_stroke_style_str(MUTED);
-            ctx.set_line_width(5.0);
-            dash(ctx, &[8.0, 6.0]);
-            polyline(ctx, view, &pts);
-            dash(ctx, &[]);
-            ctx.set_global_alpha(1.0);
-        }
-
         // Base post and ground.
         let (gx, gy) = view.to_px([0.0, 0.0]);
         ctx.set_fill_style_str("#dfe4ea");
@@ -1057,6 +1047,25 @@ impl Demo {
             ctx.fill();
             ctx.set_line_width(2.0);
             ctx.stroke();
+        }
+
+        // Ghost, on top: where the numerical route would have the arm.
+        if let Some(g) = &self.ghost {
+            let th: Vec<f64> = g.planner.theta().iter().cloned().collect();
+            let pose = arm.joints(&self.display_theta(&g.prev, &th));
+            let pts: Vec<[f64; 2]> = pose.iter().map(|p| [p[0], p[1]]).collect();
+            ctx.set_global_alpha(0.8);
+            ctx.set_stroke_style_str(GHOST);
+            ctx.set_line_width(2.0);
+            dash(ctx, &[7.0, 5.0]);
+            polyline(ctx, view, &pts);
+            dash(ctx, &[]);
+            for p in &pts[1..] {
+                let (x, y) = view.to_px(*p);
+                disc(ctx, x, y, 3.0);
+                ctx.stroke();
+            }
+            ctx.set_global_alpha(1.0);
         }
 
         // Reference point on the line.
@@ -1211,8 +1220,12 @@ impl Demo {
             (t0, t1),
             (lo - pad, hi + pad),
         );
-        frame.axes(ctx, "joint angles θ₁ θ₂ θ₃ (rad)");
-        for (i, colour) in [ARM, TEAL, ACCENT].into_iter().enumerate() {
+        frame.axes(ctx, "joint angles (rad)");
+        for (i, (colour, name)) in [(ARM, "θ₁"), (TEAL, "θ₂"), (ACCENT, "θ₃")]
+            .into_iter()
+            .enumerate()
+        {
+            frame.key(ctx, i, name, colour);
             let series: Vec<(f64, f64)> = self.history.iter().map(|p| (p.t, p.theta[i])).collect();
             ctx.set_stroke_style_str(colour);
             ctx.set_line_width(1.5);
@@ -1294,7 +1307,9 @@ impl PlotFrame {
         ctx.set_text_baseline("top");
         while t <= self.tx.1 + 1e-9 {
             let (x, _) = self.px(t, self.vy.0);
-            let _ = ctx.fill_text(&fmt_tick(t, step), x, self.bottom + 3.0);
+            if x < self.right - 34.0 {
+                let _ = ctx.fill_text(&fmt_tick(t, step), x, self.bottom + 3.0);
+            }
             t += step;
         }
         ctx.set_text_align("right");
@@ -1318,6 +1333,23 @@ impl PlotFrame {
             }
         }
         ctx.stroke();
+    }
+
+    /// A coloured entry of the panel's legend, right-aligned in the title row.
+    fn key(&self, ctx: &CanvasRenderingContext2d, index: usize, text: &str, colour: &str) {
+        let x = self.right - 40.0 * (2 - index.min(2)) as f64 - 18.0;
+        let y = self.top - 12.0;
+        ctx.set_stroke_style_str(colour);
+        ctx.set_line_width(2.0);
+        ctx.begin_path();
+        ctx.move_to(x - 16.0, y);
+        ctx.line_to(x - 4.0, y);
+        ctx.stroke();
+        ctx.set_font(&format!("11px {FONT}"));
+        ctx.set_fill_style_str(INK);
+        ctx.set_text_align("left");
+        ctx.set_text_baseline("middle");
+        let _ = ctx.fill_text(text, x, y);
     }
 
     fn label_right(&self, ctx: &CanvasRenderingContext2d, text: &str, v: f64, colour: &str) {

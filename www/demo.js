@@ -43,16 +43,17 @@ function fmt(v, digits = 3) {
   return v.toFixed(digits);
 }
 
-function fmtSmall(v) {
+/** A length that may be tiny (tracking error), with its unit. */
+function fmtLength(v) {
   if (v === null || v === undefined || !Number.isFinite(v)) return '–';
-  if (v === 0) return '0';
-  if (Math.abs(v) < 1e-3) return v.toExponential(1).replace('e', '×10^');
-  return v.toFixed(4);
+  if (v >= 0.01) return `${v.toFixed(3)} m`;
+  if (v >= 1e-5) return `${(v * 1000).toFixed(2)} mm`;
+  return '< 0.01 mm';
 }
 
 const READOUTS = {
   t: (s) => fmt(s.t, 1),
-  error: (s) => fmtSmall(s.tracking_error),
+  error: (s) => fmtLength(s.tracking_error),
   distance: (s) => fmt(s.distance, 3),
   min_distance: (s) => fmt(s.min_distance, 3),
   collision: (s) => (s.collision ? 'now' : s.collided ? 'earlier' : 'none'),

@@ -24,7 +24,7 @@ const STYLE = `
 }
 :host(:focus-visible) { outline: 2px solid #6ea0dc; outline-offset: 2px; }
 .wrap { position: relative; }
-#stage { display: block; width: 100%; aspect-ratio: 32 / 26; touch-action: none; user-select: none; }
+#stage { display: block; width: 100%; aspect-ratio: 14 / 11; touch-action: none; user-select: none; }
 #plots { display: block; width: 100%; height: 300px; margin-top: 6px; }
 #loading { position: absolute; inset: 0; display: flex; align-items: center; justify-content: center;
   background: rgba(255,255,255,.92); color: #5f6b78; text-align: center; padding: 16px; }
