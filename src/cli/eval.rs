@@ -7,6 +7,7 @@ use serde::Serialize;
 
 use redundant_ik::networks::{self, ErrorStats, Networks, TaskOutcome};
 use redundant_ik::nn::Variant;
+use redundant_ik::Mode;
 
 /// Options of `redundant-ik eval`.
 #[derive(Args, Debug)]
@@ -47,9 +48,23 @@ struct Report {
     seed: u64,
     phi: Vec<PhiAccuracy>,
     v: ErrorStats,
+    v_variant: Variant,
+    v_sizes: Vec<Vec<usize>>,
     task_variant: Variant,
     feedback_gain: f64,
     outcomes: Vec<TaskOutcome>,
+    generalisation: Vec<Generalisation>,
+    case3_avoided: usize,
+}
+
+/// One generalisation scene: the obstacle moved off the canonical position.
+#[derive(Serialize)]
+struct Generalisation {
+    task: u32,
+    obstacle: [f64; 2],
+    none_collided: bool,
+    numerical_collided: bool,
+    case3: TaskOutcome,
 }
 
 fn read(path: &str) -> Result<String, String> {
@@ -99,14 +114,38 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
     }
     let v = ErrorStats::of(task_nets.v_relative_errors(&test).map_err(e)?);
     let outcomes = networks::task_outcomes(&task_nets, args.feedback).map_err(e)?;
+    let mut generalisation = Vec::new();
+    for (task, o) in networks::GENERALISATION_SCENES {
+        let run = |mode| networks::run_task(&task_nets, task, mode, Some(o), args.feedback);
+        generalisation.push(Generalisation {
+            task,
+            obstacle: o,
+            none_collided: run(Mode::None).map_err(e)?.collided,
+            numerical_collided: run(Mode::Numerical).map_err(e)?.collided,
+            case3: run(Mode::Case3).map_err(e)?,
+        });
+    }
+    let case3_avoided = generalisation
+        .iter()
+        .filter(|g| g.case3.error.is_none() && !g.case3.collided)
+        .count();
     let report = Report {
         samples: args.samples,
         seed: args.seed,
         phi,
         v,
+        v_variant: task_nets.v_file().variant,
+        v_sizes: task_nets
+            .v_file()
+            .nets
+            .iter()
+            .map(|n| n.mlp.sizes.clone())
+            .collect(),
         task_variant: task_nets.phi_file().variant,
         feedback_gain: args.feedback,
         outcomes,
+        generalisation,
+        case3_avoided,
     };
     if args.json {
         let s = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
@@ -147,8 +186,12 @@ fn render(r: &Report) -> String {
         ));
     }
     t.push_str(&format!(
-        "| v | plain | 5-25-14-3 | {:.2e} | {:.2e} | {:.2e} |\n\n",
-        r.v.median, r.v.p99, r.v.max
+        "| v | {} | {} | {:.2e} | {:.2e} | {:.2e} |\n\n",
+        r.v_variant.name(),
+        sizes(&r.v_sizes),
+        r.v.median,
+        r.v.p99,
+        r.v.max
     ));
     t.push_str(&format!(
         "Task outcomes (Phi variant {}, feedback K = {}, delta = 0)\n\n",
@@ -165,7 +208,7 @@ fn render(r: &Report) -> String {
             ));
             continue;
         }
-        let ok = if o.mode == redundant_ik::Mode::None {
+        let ok = if o.mode == Mode::None {
             "-"
         } else if o.success() {
             "yes"
@@ -180,6 +223,26 @@ fn render(r: &Report) -> String {
             if o.collided { "yes" } else { "no" },
             o.final_error,
             o.out_of_range_steps
+        ));
+    }
+    t.push_str(&format!(
+        "\nGeneralisation: obstacle moved to 10 other positions in the trained region; Case 3 avoided it in {} of 10\n\n",
+        r.case3_avoided
+    ));
+    t.push_str("| task | obstacle | none collides | numerical collides | Case 3 min distance (m) | Case 3 final error (m) | Case 3 avoids |\n");
+    t.push_str("|---|---|---|---|---|---|---|\n");
+    let yn = |b: bool| if b { "yes" } else { "no" };
+    for g in &r.generalisation {
+        t.push_str(&format!(
+            "| {} | ({}, {}) | {} | {} | {:.4} | {:.2e} | {} |\n",
+            g.task,
+            g.obstacle[0],
+            g.obstacle[1],
+            yn(g.none_collided),
+            yn(g.numerical_collided),
+            g.case3.min_distance,
+            g.case3.final_error,
+            yn(g.case3.error.is_none() && !g.case3.collided)
         ));
     }
     t
