@@ -18,7 +18,10 @@ use wasm_bindgen::JsCast;
 use web_sys::{CanvasRenderingContext2d, HtmlCanvasElement};
 
 use crate::error::{Error, Result};
-use crate::{DampingSchedule, Line, Mode, Obstacle, Planner, Sample, Scene, Surrogate};
+use crate::{
+    DampingSchedule, Line, Mode, Networks, Obstacle, Planner, Sample, Scene, Surrogate,
+    TrainedRange,
+};
 
 /// Speed (m/s) of the straight line planned when the user drops the target.
 const DRAG_LINE_SPEED: f64 = 0.25;
@@ -51,23 +54,39 @@ const GHOST: &str = "#5f6b78";
 
 thread_local! {
     /// The trained networks built into the module, loaded once (or why not).
-    static NETWORKS: RefCell<Option<std::result::Result<Arc<dyn Surrogate>, String>>> =
+    static NETWORKS: RefCell<Option<std::result::Result<Loaded, String>>> =
         const { RefCell::new(None) };
     /// Message of the last panic, for the page to show.
     static LAST_PANIC: RefCell<Option<String>> = const { RefCell::new(None) };
 }
 
+/// Trained networks as the planner uses them, with what they were trained on.
+#[derive(Clone)]
+struct Loaded {
+    surrogate: Arc<dyn Surrogate>,
+    range: TrainedRange,
+}
+
+impl Loaded {
+    fn new(nets: Networks) -> Self {
+        Self {
+            range: nets.trained_range(),
+            surrogate: Arc::new(nets),
+        }
+    }
+}
+
 /// The one place the network modes are wired in: the trained networks
 /// shipped with the module.
-fn embedded_networks() -> Result<Arc<dyn Surrogate>> {
-    let nets = crate::Networks::embedded().map_err(|e| {
+fn embedded_networks() -> Result<Loaded> {
+    let nets = Networks::embedded().map_err(|e| {
         Error::NetworksUnavailable(format!("the built-in weights could not be loaded ({e})"))
     })?;
-    Ok(Arc::new(nets))
+    Ok(Loaded::new(nets))
 }
 
 /// The shared networks, loading them on first use.
-fn shared_networks() -> std::result::Result<Arc<dyn Surrogate>, String> {
+fn shared_networks() -> std::result::Result<Loaded, String> {
     NETWORKS.with(|cell| {
         cell.borrow_mut()
             .get_or_insert_with(|| embedded_networks().map_err(|e| e.to_string()))
@@ -277,6 +296,7 @@ struct State<'a> {
     delta: f64,
     in_range: bool,
     networks: bool,
+    trained_range: Option<&'a TrainedRange>,
     ghost: Option<GhostState>,
     steps: usize,
     frame_steps: usize,
@@ -296,6 +316,7 @@ struct GhostState {
 #[wasm_bindgen]
 pub struct Demo {
     planner: Planner,
+    networks: Option<Loaded>,
     ghost: Option<Ghost>,
     task: u32,
     damping: bool,
@@ -337,6 +358,7 @@ impl Demo {
             prev_theta: sample.theta.clone(),
             sample,
             planner,
+            networks: None,
             ghost: None,
             task,
             damping: true,
@@ -373,7 +395,7 @@ impl Demo {
     #[wasm_bindgen(js_name = loadTask)]
     pub fn load_task(&mut self, task: u32) -> std::result::Result<(), JsError> {
         let scene = Self::scene(task, self.damping)?;
-        let networks = shared_networks().ok();
+        let networks = self.networks.as_ref().map(|n| n.surrogate.clone());
         let planner = Planner::new(scene, self.planner.mode(), networks).map_err(js_err)?;
         self.planner = planner;
         self.task = task;
@@ -447,14 +469,45 @@ impl Demo {
     #[wasm_bindgen(js_name = setMode)]
     pub fn set_mode(&mut self, mode: &str) -> std::result::Result<(), JsError> {
         let mode: Mode = mode.parse().map_err(js_err)?;
-        if mode.learned_phi() || mode.learned_v() {
+        if (mode.learned_phi() || mode.learned_v()) && self.networks.is_none() {
             let nets = shared_networks().map_err(|e| JsError::new(&e))?;
-            if self.planner.networks().is_none() {
-                self.planner.set_networks(Some(nets)).map_err(js_err)?;
-            }
+            self.planner
+                .set_networks(Some(nets.surrogate.clone()))
+                .map_err(js_err)?;
+            self.networks = Some(nets);
         }
         self.planner.set_mode(mode).map_err(js_err)?;
         self.sync_ghost(false);
+        self.sample = self.planner.sample();
+        Ok(())
+    }
+
+    /// Loads user-trained networks for this demo from the JSON text of a `Phi`
+    /// weights file and a `v` weights file (the format `redundant-ik train`
+    /// writes). Throws with the reason if they are corrupt or do not fit the
+    /// arm; the networks in use stay then.
+    #[wasm_bindgen(js_name = loadNetworks)]
+    pub fn load_networks(
+        &mut self,
+        phi_json: &str,
+        v_json: &str,
+    ) -> std::result::Result<(), JsError> {
+        let nets = Networks::from_json(phi_json, v_json).map_err(js_err)?;
+        if !nets.fits_arm(&self.planner.scene().arm) {
+            return Err(JsError::new(
+                "bad network weights: they were trained for a different arm",
+            ));
+        }
+        let loaded = Loaded::new(nets);
+        self.planner
+            .set_networks(Some(loaded.surrogate.clone()))
+            .map_err(js_err)?;
+        if let Some(g) = &mut self.ghost {
+            g.planner
+                .set_networks(Some(loaded.surrogate.clone()))
+                .map_err(js_err)?;
+        }
+        self.networks = Some(loaded);
         self.sample = self.planner.sample();
         Ok(())
     }
@@ -725,7 +778,8 @@ impl Demo {
             manipulability: s.manipulability,
             delta: s.delta,
             in_range: s.in_range,
-            networks: shared_networks().is_ok(),
+            networks: self.networks.is_some() || shared_networks().is_ok(),
+            trained_range: self.networks.as_ref().map(|n| &n.range),
             ghost: self.ghost.as_ref().map(|g| GhostState {
                 theta: g.planner.theta().iter().cloned().collect(),
                 ee: {
@@ -977,6 +1031,26 @@ impl Demo {
         disc(ctx, bx, by, arm.max_reach() * view.scale);
         ctx.stroke();
         dash(ctx, &[]);
+
+        // Where the v network saw obstacles in training (network v modes).
+        if let (true, Some(n)) = (self.planner.mode().learned_v(), &self.networks) {
+            let (x0, y0) = view.to_px(n.range.obstacle_min);
+            let (x1, y1) = view.to_px(n.range.obstacle_max);
+            ctx.set_stroke_style_str("#b9c7d6");
+            ctx.set_line_width(1.0);
+            dash(ctx, &[3.0, 4.0]);
+            ctx.stroke_rect(x0.min(x1), y0.min(y1), (x1 - x0).abs(), (y1 - y0).abs());
+            dash(ctx, &[]);
+            ctx.set_font(&format!("10px {FONT}"));
+            ctx.set_fill_style_str(MUTED);
+            ctx.set_text_align("left");
+            ctx.set_text_baseline("bottom");
+            let _ = ctx.fill_text(
+                "obstacle positions the v network was trained on",
+                x0.min(x1) + 3.0,
+                y0.min(y1) - 3.0,
+            );
+        }
 
         // Stroboscopic trace: every fifth pose, faint (as in Figs. 2-11).
         ctx.set_stroke_style_str(ARM);

@@ -221,3 +221,24 @@ fn the_clock_runs_only_while_playing() {
     assert_eq!(state(&d)["t"], 0.0);
     assert!(!d.running());
 }
+
+#[wasm_bindgen_test]
+fn user_weights_load_or_say_what_is_wrong() {
+    use redundant_ik::networks::{PHI_EQUIVARIANT_JSON, V_PLAIN_JSON};
+    let mut d = demo(1);
+    let err = d.load_networks("{}", V_PLAIN_JSON).err().unwrap();
+    assert!(message(err).contains("bad network weights"));
+    let err = d
+        .load_networks(V_PLAIN_JSON, PHI_EQUIVARIANT_JSON)
+        .err()
+        .unwrap();
+    assert!(message(err).contains("bad network weights"));
+    d.load_networks(PHI_EQUIVARIANT_JSON, V_PLAIN_JSON).unwrap();
+    d.set_mode("case3").unwrap();
+    d.load_task(1).unwrap();
+    d.run_until(10.0).unwrap();
+    let s = state(&d);
+    assert_eq!(s["collided"], false);
+    assert!(!s["trained_range"].is_null());
+    assert!(s["final_error"].as_f64().unwrap() < 5e-3);
+}

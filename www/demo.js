@@ -184,6 +184,20 @@ export async function mount(root, options = {}) {
   el.speed?.addEventListener('change', () => attempt(() => demo.setSpeed(Number(el.speed.value))));
   if (el.speed) attempt(() => demo.setSpeed(Number(el.speed.value)));
 
+  const weightButton = $('load-weights');
+  weightButton?.addEventListener('click', async () => {
+    const phi = $('phi-file')?.files?.[0];
+    const v = $('v-file')?.files?.[0];
+    if (!phi || !v) {
+      show('Choose both files: the Φ weights and the v weights.', 'warn');
+      return;
+    }
+    const [phiText, vText] = await Promise.all([phi.text(), v.text()]);
+    if (attempt(() => demo.loadNetworks(phiText, vText))) {
+      show(`Loaded ${phi.name} and ${v.name}; Cases 1-3 now use them.`, 'info');
+    }
+  });
+
   if (options.keyboard) {
     options.keyboard.addEventListener('keydown', (e) => {
       if (e.ctrlKey || e.metaKey || e.altKey) return;

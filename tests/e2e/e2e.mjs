@@ -324,6 +324,42 @@ test('narrow screen layout', async () => {
   await page.close();
 });
 
+test('network cases warn outside the trained range', async () => {
+  const page = await open('?task=1&mode=numerical');
+  if (!(await state(page)).networks) {
+    console.log('note: trained-range warning skipped (networks not available)');
+    await page.close();
+    return;
+  }
+  await selectMode(page, 'case3');
+  await pause(page);
+  assert.ok(await page.isHidden('#range-warning'), 'no warning on the paper task');
+  const s = await state(page);
+  assert.ok(s.trained_range, 'state() describes the trained range');
+  await mouseDrag(page, s.obstacle, [2.0, 1.75]);
+  await page.click('#step');
+  await page.waitForSelector('#range-warning', { state: 'visible' });
+  assert.equal((await state(page)).in_range, false);
+  await page.screenshot({ path: join(shots, 'out-of-range.png') });
+  clean(page);
+  await page.close();
+});
+
+test('bad weights files give a readable message', async () => {
+  const page = await open('?task=1&mode=numerical');
+  const msg = await page.evaluate(() => {
+    try {
+      window.demo.controller.demo.loadNetworks('{"not": "weights"}', 'nonsense');
+      return null;
+    } catch (e) {
+      return e.message;
+    }
+  });
+  assert.match(msg ?? '', /bad network weights/);
+  clean(page);
+  await page.close();
+});
+
 test('Case 3 solver time per frame', async () => {
   const page = await open('?task=1&mode=numerical');
   if (!(await state(page)).networks) {
