@@ -11,9 +11,12 @@ WASM_ENV = RUSTUP_TOOLCHAIN=$$(cat target/wasm-toolchain)
 setup:
 	bash scripts/setup-wasm.sh
 
-## Build the release wasm package into www/pkg.
+## Build the release wasm package into www/pkg: optimised for size for this
+## build only (opt-level s; z came out larger), then the debug `name` section
+## stripped (cargo's strip also drops a section wasm-bindgen needs).
 web: setup
-	$(WASM_ENV) wasm-pack build --release --target web --no-typescript --out-dir www/pkg
+	CARGO_PROFILE_RELEASE_OPT_LEVEL=s $(WASM_ENV) wasm-pack build --release --target web --no-typescript --out-dir www/pkg
+	python3 scripts/strip-wasm-names.py www/pkg/redundant_ik_bg.wasm
 	@ls -l www/pkg/*.wasm
 
 ## Build, then serve www/ on http://127.0.0.1:$(PORT)/.

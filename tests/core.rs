@@ -433,9 +433,12 @@ fn network_modes_without_networks_fail_clearly() {
     assert_eq!(p.mode(), Mode::Numerical);
 }
 
+/// A way to spoil a scene, and the words its error message must contain.
+type BadInput = (Box<dyn Fn(&mut Scene)>, &'static str);
+
 #[test]
 fn bad_input_is_rejected_with_a_message_naming_the_problem() {
-    let cases: Vec<(Box<dyn Fn(&mut Scene)>, &str)> = vec![
+    let cases: Vec<BadInput> = vec![
         (Box::new(|s| s.theta0[1] = f64::NAN), "theta_2"),
         (
             Box::new(|s| s.theta0 = vec![0.1, 0.2]),
