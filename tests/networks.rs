@@ -293,7 +293,7 @@ fn shipped_networks_meet_the_documented_accuracy() {
     let bounds = [
         (Variant::Equivariant, 2.0e-4, 2.0e-3),
         (Variant::Plain, 1.0e-3, 1.0e-2),
-        (Variant::Rows, 3.0e-3, 3.0e-2),
+        (Variant::Rows, 1.0e-3, 1.0e-2),
     ];
     for (variant, median, p99) in bounds {
         let n = Networks::embedded_with(variant).unwrap();
@@ -329,27 +329,31 @@ fn cases_1_to_3_avoid_the_obstacle_and_reach_the_target_on_both_tasks() {
 }
 
 #[test]
-fn paper_form_networks_succeed_open_loop_or_with_feedback() {
-    // One 3-35-14-6 net: open loop, as in the paper.
-    let plain = Networks::embedded_with(Variant::Plain).unwrap();
-    // Three 3-35-14-2 nets: the third stopped early on validation failures and
-    // misses 5 mm open loop (7-9 mm, no collision); with K = 1 it succeeds.
-    let rows = Networks::embedded_with(Variant::Rows).unwrap();
-    for task in [1, 2] {
-        for mode in [Mode::Case1, Mode::Case3] {
-            let o = networks::run_task(&plain, task, mode, None, 0.0).unwrap();
-            assert!(o.success(), "plain task {task} {mode}: {o:?}");
-            let open = networks::run_task(&rows, task, mode, None, 0.0).unwrap();
-            assert!(
-                !open.collided && open.final_error < 0.015,
-                "rows open loop: {open:?}"
-            );
-            let closed = networks::run_task(&rows, task, mode, None, 1.0).unwrap();
-            assert!(
-                closed.success(),
-                "rows K = 1 task {task} {mode}: {closed:?}"
-            );
+fn paper_form_networks_also_succeed_on_both_tasks() {
+    // One 3-35-14-6 net, and three 3-35-14-2 nets (one per row of Phi); open
+    // loop, as in the paper.
+    for variant in [Variant::Plain, Variant::Rows] {
+        let nets = Networks::embedded_with(variant).unwrap();
+        for task in [1, 2] {
+            for mode in [Mode::Case1, Mode::Case3] {
+                let o = networks::run_task(&nets, task, mode, None, 0.0).unwrap();
+                assert!(o.success(), "{variant:?} task {task} {mode}: {o:?}");
+            }
         }
+    }
+}
+
+#[test]
+fn closed_loop_feedback_shrinks_the_network_cases_final_error() {
+    let nets = Networks::embedded_with(Variant::Plain).unwrap();
+    for task in [1, 2] {
+        let open = networks::run_task(&nets, task, Mode::Case3, None, 0.0).unwrap();
+        let closed = networks::run_task(&nets, task, Mode::Case3, None, 1.0).unwrap();
+        assert!(closed.success());
+        assert!(
+            closed.final_error < 0.5 * open.final_error,
+            "{open:?} {closed:?}"
+        );
     }
 }
 
