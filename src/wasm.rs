@@ -278,6 +278,7 @@ struct State<'a> {
     lambda: f64,
     damping: bool,
     auto_damping: bool,
+    feedback: f64,
     theta: &'a [f64],
     joints: &'a [[f64; 2]],
     ee: [f64; 2],
@@ -320,6 +321,7 @@ pub struct Demo {
     ghost: Option<Ghost>,
     task: u32,
     damping: bool,
+    feedback: f64,
     stage: Surface,
     plots: Option<Surface>,
     running: bool,
@@ -352,7 +354,7 @@ impl Demo {
     ) -> std::result::Result<Demo, JsError> {
         install_panic_hook();
         let planner =
-            Planner::new(Self::scene(task, true)?, Mode::Numerical, None).map_err(js_err)?;
+            Planner::new(Self::scene(task, true, 0.0)?, Mode::Numerical, None).map_err(js_err)?;
         let sample = planner.sample();
         let mut demo = Demo {
             prev_theta: sample.theta.clone(),
@@ -362,6 +364,7 @@ impl Demo {
             ghost: None,
             task,
             damping: true,
+            feedback: 0.0,
             stage: Surface::new(stage)?,
             plots: plots.map(Surface::new).transpose()?,
             running: false,
@@ -383,18 +386,20 @@ impl Demo {
         Ok(demo)
     }
 
-    fn scene(task: u32, damping: bool) -> std::result::Result<Scene, JsError> {
+    fn scene(task: u32, damping: bool, feedback: f64) -> std::result::Result<Scene, JsError> {
         let mut scene = Scene::task(task).map_err(js_err)?;
         scene.damping = damping.then(DampingSchedule::default);
+        scene.feedback_gain = feedback;
         Ok(scene)
     }
 
     /// Loads the paper's scene `task` (1 or 2; obstacle, start pose, target and
-    /// `lambda = 4`), keeping the mode and the damping switch, and runs it from
+    /// `lambda = 4`), keeping the mode, the damping switch and the feedback
+    /// gain, and runs it from
     /// `t = 0` to `tf = 10 s`.
     #[wasm_bindgen(js_name = loadTask)]
     pub fn load_task(&mut self, task: u32) -> std::result::Result<(), JsError> {
-        let scene = Self::scene(task, self.damping)?;
+        let scene = Self::scene(task, self.damping, self.feedback)?;
         let networks = self.networks.as_ref().map(|n| n.surrogate.clone());
         let planner = Planner::new(scene, self.planner.mode(), networks).map_err(js_err)?;
         self.planner = planner;
@@ -533,6 +538,20 @@ impl Demo {
         }
         self.damping = on;
         self.sample = self.planner.sample();
+        Ok(())
+    }
+
+    /// Closed-loop gain `K` (1/s): the planner then commands
+    /// `Xdot + K (X_ref - X)`, which pulls the end effector back onto the line
+    /// and keeps the networks' small errors from accumulating. `0` is the
+    /// paper's open loop (the default). The ghost arm gets the same gain.
+    #[wasm_bindgen(js_name = setFeedback)]
+    pub fn set_feedback(&mut self, gain: f64) -> std::result::Result<(), JsError> {
+        self.planner.set_feedback_gain(gain).map_err(js_err)?;
+        if let Some(g) = &mut self.ghost {
+            g.planner.set_feedback_gain(gain).map_err(js_err)?;
+        }
+        self.feedback = gain;
         Ok(())
     }
 
@@ -761,6 +780,7 @@ impl Demo {
             lambda: scene.lambda,
             damping: scene.damping.is_some(),
             auto_damping: summary.auto_damping,
+            feedback: scene.feedback_gain,
             theta: &s.theta,
             joints: &s.joints,
             ee: s.ee,

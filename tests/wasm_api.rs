@@ -242,3 +242,36 @@ fn user_weights_load_or_say_what_is_wrong() {
     assert!(!s["trained_range"].is_null());
     assert!(s["final_error"].as_f64().unwrap() < 5e-3);
 }
+
+#[wasm_bindgen_test]
+fn closed_loop_feedback_shrinks_the_networks_drift_and_survives_a_task_load() {
+    let final_error = |d: &Demo| state(d)["final_error"].as_f64().unwrap();
+    let mut d = demo(1);
+    d.set_damping(false).unwrap();
+    d.set_mode("case3").unwrap();
+    d.load_task(1).unwrap();
+    d.run_until(10.0).unwrap();
+    let open = final_error(&d);
+    assert_eq!(
+        state(&d)["feedback"],
+        0.0,
+        "the paper's open loop by default"
+    );
+
+    d.set_feedback(1.0).unwrap();
+    d.load_task(1).unwrap();
+    assert_eq!(state(&d)["feedback"], 1.0, "a task load keeps the gain");
+    d.run_until(10.0).unwrap();
+    let closed = final_error(&d);
+    assert_eq!(state(&d)["collided"], false);
+    assert!(
+        closed < 1e-4 && closed < open / 5.0,
+        "open loop {open:.2e} m, closed loop {closed:.2e} m"
+    );
+
+    for bad in [-1.0, f64::NAN, f64::INFINITY] {
+        let err = d.set_feedback(bad).err().unwrap();
+        assert!(message(err).contains("feedback gain"));
+    }
+    assert_eq!(state(&d)["feedback"], 1.0, "a refused gain changes nothing");
+}

@@ -4,7 +4,7 @@
 //
 // `mount(root, options)` works on any root that holds the expected ids
 // (`#stage` and, all optional, `#plots`, `#mode`, `#play`, `#step`, `#reset`,
-// `#task1`, `#task2`, `#lambda`, `#damping`, `#speed`, `#message`,
+// `#task1`, `#task2`, `#lambda`, `#damping`, `#feedback`, `#speed`, `#message`,
 // `#range-warning`, `#loading` and `[data-readout]` elements): the page's
 // document, or the shadow root of a <redundant-ik-demo> element, so several
 // demos on one page stay independent.
@@ -20,6 +20,9 @@ export function loadModule() {
 }
 
 export const MODES = ['none', 'numerical', 'case1', 'case2', 'case3'];
+
+/** Gain K (1/s) of the "correct drift" switch: Xdot + K (X_ref - X). */
+export const FEEDBACK_GAIN = 1;
 
 /** A readable message for an exception thrown by the module. */
 export function describe(err) {
@@ -64,7 +67,8 @@ const READOUTS = {
 
 /**
  * Starts a demo on `root`. Options: task (1|2), mode, lambda, target [x, y],
- * obstacle [x, y], damping (bool), speed, autoplay (default true),
+ * obstacle [x, y], damping (bool), feedback (closed-loop gain K, 1/s; default 0,
+ * the paper's open loop), speed, autoplay (default true),
  * keyboard (element that receives key presses; default none),
  * onChange(state) (after user changes, e.g. to update the URL).
  * Returns a controller with state(), worldToClient(x, y), runUntil(t), demo.
@@ -83,6 +87,7 @@ export async function mount(root, options = {}) {
     lambda: $('lambda'),
     lambdaValue: $('lambda-value'),
     damping: $('damping'),
+    feedback: $('feedback'),
     speed: $('speed'),
     message: $('message'),
     warning: $('range-warning'),
@@ -120,6 +125,7 @@ export async function mount(root, options = {}) {
 
   // ---- initial settings (URL or attributes) ---------------------------
   if (options.damping === false) attempt(() => demo.setDamping(false));
+  if (options.feedback) attempt(() => demo.setFeedback(options.feedback));
   if (options.speed) attempt(() => demo.setSpeed(options.speed));
   if (options.mode && options.mode !== 'numerical') {
     attempt(() => demo.setMode(options.mode));
@@ -143,6 +149,7 @@ export async function mount(root, options = {}) {
     }
     if (el.lambdaValue) el.lambdaValue.textContent = s.lambda.toFixed(1);
     if (el.damping) el.damping.checked = s.damping;
+    if (el.feedback) el.feedback.checked = s.feedback > 0;
   }
 
   if (el.mode) {
@@ -181,6 +188,9 @@ export async function mount(root, options = {}) {
     if (attempt(() => demo.setLambda(Number(el.lambda.value)))) changed();
   });
   el.damping?.addEventListener('change', () => attempt(() => demo.setDamping(el.damping.checked)));
+  el.feedback?.addEventListener('change', () => {
+    if (attempt(() => demo.setFeedback(el.feedback.checked ? FEEDBACK_GAIN : 0))) changed();
+  });
   el.speed?.addEventListener('change', () => attempt(() => demo.setSpeed(Number(el.speed.value))));
   if (el.speed) attempt(() => demo.setSpeed(Number(el.speed.value)));
 

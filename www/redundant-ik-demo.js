@@ -4,7 +4,8 @@
 //   <redundant-ik-demo task="2" mode="numerical"></redundant-ik-demo>
 //
 // Attributes: task (1 or 2), mode (none, numerical, case1, case2, case3),
-// lambda, autoplay ("false" to start paused), plots (present: show the time
+// lambda, feedback (closed-loop gain K in 1/s; 0 = the paper's open loop),
+// autoplay ("false" to start paused), plots (present: show the time
 // series). Each element has its own simulation in its own shadow root; the
 // WebAssembly module is loaded once per page. After its first frame an element
 // sets data-ready="true" and exposes .controller (state(), worldToClient()).
@@ -94,6 +95,7 @@ class RedundantIkDemo extends HTMLElement {
         task,
         mode,
         lambda: lambda !== null && Number.isFinite(Number(lambda)) ? Number(lambda) : undefined,
+        feedback: Number.isFinite(Number(this.getAttribute('feedback'))) ? Number(this.getAttribute('feedback')) : 0,
         autoplay: this.getAttribute('autoplay') !== 'false',
         keyboard: this,
       });

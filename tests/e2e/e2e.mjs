@@ -304,6 +304,32 @@ test('the state lives in the URL', async () => {
   await copy.close();
 });
 
+test('the drift switch closes the loop in Case 3, and the URL keeps it', async () => {
+  const page = await open('?task=1&mode=case3');
+  await page.evaluate(() => window.demo.runUntil(10));
+  const open_ = await state(page);
+  assert.equal(open_.feedback, 0, "the paper's open loop by default");
+  await page.click('label[for="feedback"]');
+  assert.equal(await page.isChecked('#feedback'), true);
+  await page.click('#task1');
+  await page.evaluate(() => window.demo.runUntil(10));
+  const closed = await state(page);
+  assert.equal(closed.feedback, 1);
+  assert.equal(closed.collided, false);
+  assert.ok(
+    closed.final_error < open_.final_error / 5,
+    `closed loop ${closed.final_error} m against open loop ${open_.final_error} m`,
+  );
+  assert.match(page.url(), /feedback=1/);
+  const copy = await open(page.url().slice(BASE.length));
+  assert.equal((await state(copy)).feedback, 1);
+  assert.equal(await copy.isChecked('#feedback'), true);
+  clean(page);
+  clean(copy);
+  await page.close();
+  await copy.close();
+});
+
 test('sharp on high-DPI screens', async () => {
   const page = await open('?task=1&mode=numerical', { deviceScaleFactor: 2 });
   const size = await page.evaluate(() => {
