@@ -5,7 +5,7 @@
 use std::sync::Arc;
 
 use clap::{Parser, Subcommand};
-use redundant_ik::networks::Networks;
+use redundant_ik::networks::{self, Networks};
 use redundant_ik::nn::weights::Variant;
 use redundant_ik::{Arm, Mode, Surrogate};
 
@@ -93,34 +93,51 @@ pub struct NetworkArgs {
     /// (the paper's 3-35-14-6) or rows (the paper's three 3-35-14-2 nets).
     #[arg(long, default_value = "equivariant")]
     pub phi_variant: String,
-    /// Your own Phi weights file (JSON, see docs/networks.md); needs --v-weights.
-    #[arg(long, requires = "v_weights")]
+    /// Your own Phi weights file (JSON written by `train`, see docs/networks.md);
+    /// replaces the embedded Phi network.
+    #[arg(long)]
     pub phi_weights: Option<std::path::PathBuf>,
-    /// Your own v weights file (JSON); needs --phi-weights.
-    #[arg(long, requires = "phi_weights")]
+    /// Your own v weights file (JSON written by `train`); replaces the embedded
+    /// v network.
+    #[arg(long)]
     pub v_weights: Option<std::path::PathBuf>,
 }
 
 impl NetworkArgs {
-    /// Loads the selected networks.
+    /// Loads the selected networks: each of the two from the user's file if
+    /// given, else the embedded one.
     pub fn load(&self) -> Result<Networks, String> {
-        if let (Some(p), Some(v)) = (&self.phi_weights, &self.v_weights) {
-            let read = |f: &std::path::Path| {
-                std::fs::read_to_string(f).map_err(|e| format!("cannot read {}: {e}", f.display()))
-            };
-            return Networks::from_json(&read(p)?, &read(v)?).map_err(|e| e.to_string());
+        if self.phi_weights.is_none() && self.v_weights.is_none() {
+            return Networks::embedded_with(self.variant()?).map_err(|e| e.to_string());
         }
-        let variant = match self.phi_variant.as_str() {
-            "plain" => Variant::Plain,
-            "rows" => Variant::Rows,
-            "equivariant" => Variant::Equivariant,
-            other => {
-                return Err(format!(
-                    "unknown --phi-variant '{other}': use equivariant, plain or rows"
-                ))
-            }
+        let read = |f: &std::path::Path| {
+            std::fs::read_to_string(f).map_err(|e| format!("cannot read {}: {e}", f.display()))
         };
-        Networks::embedded_with(variant).map_err(|e| e.to_string())
+        let phi = match &self.phi_weights {
+            Some(f) => read(f)?,
+            None => match self.variant()? {
+                Variant::Plain => networks::PHI_PLAIN_JSON,
+                Variant::Rows => networks::PHI_ROWS_JSON,
+                Variant::Equivariant => networks::PHI_EQUIVARIANT_JSON,
+            }
+            .to_owned(),
+        };
+        let v = match &self.v_weights {
+            Some(f) => read(f)?,
+            None => networks::V_PLAIN_JSON.to_owned(),
+        };
+        Networks::from_json(&phi, &v).map_err(|e| e.to_string())
+    }
+
+    fn variant(&self) -> Result<Variant, String> {
+        match self.phi_variant.as_str() {
+            "plain" => Ok(Variant::Plain),
+            "rows" => Ok(Variant::Rows),
+            "equivariant" => Ok(Variant::Equivariant),
+            other => Err(format!(
+                "unknown --phi-variant '{other}': use equivariant, plain or rows"
+            )),
+        }
     }
 
     /// The networks a mode needs (loaded and checked against the arm), or

@@ -1,0 +1,262 @@
+//! The command-line tool as a user meets it: `simulate`, `figure`, `train`
+//! and `eval`, their outputs, and one-line errors with exit status 2 for bad
+//! input. Native only (the binary is not built for wasm32).
+#![cfg(not(target_family = "wasm"))]
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+fn cli(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_redundant-ik"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn stdout(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// Runs and expects success; returns stdout.
+fn ok(args: &[&str]) -> String {
+    let out = cli(args);
+    assert!(
+        out.status.success(),
+        "{args:?} failed: {}",
+        stderr(&out).trim()
+    );
+    stdout(&out)
+}
+
+/// Runs and expects a one-line `error:` naming `what`, exit status 2 and no
+/// panic.
+fn refused(args: &[&str], what: &str) {
+    let out = cli(args);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+    assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
+    let first = err.lines().next().unwrap_or_default();
+    assert!(first.starts_with("error:"), "{args:?}: {err}");
+    assert!(
+        first.to_lowercase().contains(what),
+        "{args:?}: '{first}' should mention '{what}'"
+    );
+}
+
+fn json(args: &[&str]) -> Value {
+    serde_json::from_str(&ok(args)).expect("valid JSON")
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("redundant-ik-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+#[test]
+fn simulate_prints_a_readable_summary_of_the_papers_task_1() {
+    let text = ok(&["simulate", "--task", "1", "--mode", "numerical"]);
+    assert!(text.contains("Task 1"), "{text}");
+    assert!(
+        text.contains("0.2345 m"),
+        "smallest distance of Fig. 3: {text}"
+    );
+    assert!(text.contains("no collision"), "{text}");
+
+    let text = ok(&["simulate", "--task", "1", "--mode", "none"]);
+    assert!(text.to_lowercase().contains("collision"), "{text}");
+    assert!(!text.contains("no collision"), "Fig. 2 collides: {text}");
+}
+
+#[test]
+fn simulate_json_has_every_step_and_a_consistent_summary() {
+    let run = json(&["simulate", "--task", "2", "--mode", "numerical", "--json"]);
+    let steps = run["steps"].as_array().unwrap();
+    assert_eq!(steps.len(), 101, "t = 0 plus 100 RK4 steps");
+    let last = &steps[100];
+    assert!((last["t"].as_f64().unwrap() - 10.0).abs() < 1e-9);
+    assert_eq!(last["theta"].as_array().unwrap().len(), 3);
+    let joints = last["joints"].as_array().unwrap();
+    assert_eq!(joints.len(), 4, "P(0) (the top of the post) .. P(3)");
+    assert_eq!(joints[0], serde_json::json!([0.0, 0.5]));
+    assert_eq!(joints[3], last["ee"], "P(3) is the end effector");
+    assert_eq!(last["reference"], serde_json::json!([0.6, 0.2]));
+
+    let min = steps
+        .iter()
+        .map(|s| s["distance"].as_f64().unwrap())
+        .fold(f64::INFINITY, f64::min);
+    let summary = &run["summary"];
+    assert_eq!(summary["min_distance"].as_f64().unwrap(), min);
+    assert!((min - 0.2193).abs() < 1e-3);
+    assert_eq!(summary["collided"], false);
+    assert!(summary["final_error"].as_f64().unwrap() < 1e-6);
+    assert!(summary["max_tracking_error"].as_f64().unwrap() < 1e-6);
+}
+
+#[test]
+fn the_network_cases_run_from_the_embedded_weights() {
+    for mode in ["case1", "case2", "case3"] {
+        let run = json(&["simulate", "--task", "1", "--mode", mode, "--json"]);
+        let s = &run["summary"];
+        assert_eq!(s["collided"], false, "{mode}");
+        assert!(s["final_error"].as_f64().unwrap() < 5e-3, "{mode}: {s}");
+    }
+    let closed = json(&["simulate", "--mode", "case3", "--feedback", "1", "--json"]);
+    assert!(closed["summary"]["final_error"].as_f64().unwrap() < 1e-4);
+}
+
+#[test]
+fn an_out_of_reach_target_completes_with_finite_numbers_and_says_so() {
+    let run = json(&["simulate", "--target", "5,5", "--json"]);
+    let s = &run["summary"];
+    assert_eq!(s["reached"], false);
+    assert_eq!(s["target_reachable"], false);
+    assert_eq!(s["auto_damping"], true);
+    for step in run["steps"].as_array().unwrap() {
+        for q in step["theta"].as_array().unwrap() {
+            assert!(q.as_f64().is_some_and(f64::is_finite), "{step}");
+        }
+    }
+    let text = ok(&["simulate", "--target", "5,5"]);
+    assert!(text.contains("not reached"), "{text}");
+}
+
+#[test]
+fn bad_input_is_one_error_line_and_exit_status_2() {
+    let table: &[(&[&str], &str)] = &[
+        (&["simulate", "--theta0", "nan,0,0"], "finite"),
+        (&["simulate", "--lambda", "inf"], "lambda"),
+        (&["simulate", "--dt", "0"], "dt"),
+        (&["simulate", "--dt", "-0.1"], "dt"),
+        (&["simulate", "--tf", "1.05"], "whole number"),
+        (&["simulate", "--obstacle", "1"], "two numbers"),
+        (&["simulate", "--obstacle", "a,b"], "obstacle"),
+        (&["simulate", "--obstacle", "0,0.3"], "post"),
+        (&["simulate", "--radius", "-1"], "radius"),
+        (&["simulate", "--feedback", "-1"], "feedback"),
+        (&["simulate", "--task", "3"], "task 3"),
+        (&["simulate", "--mode", "case4"], "mode"),
+        (&["simulate", "--theta0", "0,1"], "3"),
+        (&["figure", "--task", "1"], "required"),
+    ];
+    for (args, what) in table {
+        refused(args, what);
+    }
+}
+
+#[test]
+fn a_corrupt_or_mismatched_weights_file_is_refused_with_the_reason() {
+    let bad = scratch("bad.json");
+    std::fs::write(&bad, "{\"format\": 12").unwrap();
+    let bad = bad.to_str().unwrap();
+    refused(
+        &["simulate", "--mode", "case1", "--phi-weights", bad],
+        "weights",
+    );
+    refused(
+        &[
+            "simulate",
+            "--mode",
+            "case1",
+            "--phi-weights",
+            "weights/v-plain.json",
+        ],
+        "phi",
+    );
+    refused(
+        &[
+            "simulate",
+            "--mode",
+            "case2",
+            "--v-weights",
+            "no/such/file.json",
+        ],
+        "cannot read",
+    );
+}
+
+#[test]
+fn figure_writes_an_svg_and_all_writes_every_task_and_mode() {
+    let one = scratch("task1.svg");
+    ok(&["figure", "--task", "1", "--out", one.to_str().unwrap()]);
+    let svg = std::fs::read_to_string(&one).unwrap();
+    assert!(svg.starts_with("<svg") || svg.contains("<svg"), "an SVG");
+    assert!(
+        svg.contains("<circle") || svg.contains("<path"),
+        "with shapes"
+    );
+
+    let dir = scratch("all");
+    ok(&["figure", "--all", "--out", dir.to_str().unwrap()]);
+    let count = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter(|e| {
+            e.as_ref()
+                .is_ok_and(|e| e.path().extension().is_some_and(|x| x == "svg"))
+        })
+        .count();
+    assert_eq!(count, 10, "2 tasks x 5 modes");
+}
+
+#[test]
+fn train_writes_a_weights_file_that_simulate_accepts() {
+    let out = scratch("tiny-phi.json");
+    let path = out.to_str().unwrap();
+    let text = ok(&[
+        "train",
+        "--net",
+        "phi",
+        "--variant",
+        "equivariant",
+        "--samples",
+        "200",
+        "--epochs",
+        "5",
+        "--hidden",
+        "8",
+        "--quiet",
+        "--out",
+        path,
+    ]);
+    assert!(
+        text.to_lowercase().contains("test"),
+        "reports its test error: {text}"
+    );
+    let file: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(file["net"], "phi");
+    // A barely trained net still runs to the end without a panic or NaN; the
+    // summary reports what it did.
+    let run = json(&[
+        "simulate",
+        "--mode",
+        "case1",
+        "--phi-weights",
+        path,
+        "--json",
+    ]);
+    assert!(run["summary"]["final_error"]
+        .as_f64()
+        .is_some_and(f64::is_finite));
+}
+
+#[test]
+fn eval_reports_accuracy_and_all_five_modes_on_both_tasks() {
+    let report = json(&["eval", "--samples", "100", "--json"]);
+    let outcomes = report["outcomes"].as_array().unwrap();
+    assert_eq!(outcomes.len(), 10, "2 tasks x 5 modes");
+    assert!(report["v"]["median"].as_f64().unwrap() < 0.1);
+    assert!(
+        report["phi"][0]["relative_error"]["median"]
+            .as_f64()
+            .unwrap()
+            < 1e-3
+    );
+    assert_eq!(report["case3_avoided"], 10);
+}
