@@ -125,6 +125,46 @@ pub fn networks_error() -> Option<String> {
     shared_networks().err()
 }
 
+/// Measures the planner in this browser: the cost of one RK4 step of Task 1
+/// in `mode` (`none`, `numerical`, `case1`, `case2`, `case3`), in
+/// microseconds. Runs one warm-up batch (so the engine has compiled the hot
+/// code with its optimising tier), then five batches of `steps` steps
+/// (100 to 100 000; the task restarts every 100 steps), each timed with
+/// `performance.now()`, and returns the median. Nothing is drawn.
+#[wasm_bindgen(js_name = benchmarkSteps)]
+pub fn benchmark_steps(mode: &str, steps: u32) -> std::result::Result<f64, JsError> {
+    let mode: Mode = mode.parse().map_err(js_err)?;
+    if !(100..=100_000).contains(&steps) {
+        return Err(JsError::new(&format!(
+            "steps must lie between 100 and 100000 (got {steps})"
+        )));
+    }
+    let networks = if mode.learned_phi() || mode.learned_v() {
+        Some(shared_networks().map_err(|e| JsError::new(&e))?.surrogate)
+    } else {
+        None
+    };
+    let mut planner = Planner::new(Scene::task1(), mode, networks).map_err(js_err)?;
+    let tf = planner.scene().tf;
+    let mut batch = || -> Result<f64> {
+        let t0 = now_ms();
+        for _ in 0..steps {
+            if planner.time() >= tf - 1e-9 {
+                planner.reset();
+            }
+            planner.step()?;
+        }
+        Ok((now_ms() - t0) * 1000.0 / f64::from(steps))
+    };
+    batch().map_err(js_err)?;
+    let mut times = Vec::with_capacity(5);
+    for _ in 0..5 {
+        times.push(batch().map_err(js_err)?);
+    }
+    times.sort_by(f64::total_cmp);
+    Ok(times[2])
+}
+
 fn js_err(e: Error) -> JsError {
     JsError::new(&e.to_string())
 }

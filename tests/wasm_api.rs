@@ -275,3 +275,14 @@ fn closed_loop_feedback_shrinks_the_networks_drift_and_survives_a_task_load() {
     }
     assert_eq!(state(&d)["feedback"], 1.0, "a refused gain changes nothing");
 }
+
+#[wasm_bindgen_test]
+fn the_in_browser_benchmark_returns_a_cost_per_step_or_refuses_bad_input() {
+    use redundant_ik::wasm::benchmark_steps;
+    for mode in ["numerical", "case3"] {
+        let us = benchmark_steps(mode, 100).unwrap();
+        assert!(us.is_finite() && us >= 0.0, "{mode}: {us}");
+    }
+    assert!(message(benchmark_steps("case9", 100).err().unwrap()).contains("unknown mode"));
+    assert!(message(benchmark_steps("case3", 10).err().unwrap()).contains("steps"));
+}

@@ -9,7 +9,7 @@
 // document, or the shadow root of a <redundant-ik-demo> element, so several
 // demos on one page stay independent.
 
-import init, { Demo, lastPanic, networksError } from './pkg/redundant_ik.js';
+import init, { Demo, benchmarkSteps, lastPanic, networksError } from './pkg/redundant_ik.js';
 
 let module = null;
 
@@ -23,6 +23,21 @@ export const MODES = ['none', 'numerical', 'case1', 'case2', 'case3'];
 
 /** Gain K (1/s) of the "correct drift" switch: Xdot + K (X_ref - X). */
 export const FEEDBACK_GAIN = 1;
+
+/**
+ * Times one RK4 step of Task 1 in this browser for each of `modes`
+ * (microseconds; median of five batches of `steps` after a warm-up). Yields to
+ * the browser between modes so the page stays responsive.
+ */
+export async function benchmark(modes = ['numerical', 'case3'], steps = 2000) {
+  await loadModule();
+  const out = {};
+  for (const mode of modes) {
+    await new Promise((r) => setTimeout(r, 0));
+    out[mode] = benchmarkSteps(mode, steps);
+  }
+  return out;
+}
 
 /** A readable message for an exception thrown by the module. */
 export function describe(err) {

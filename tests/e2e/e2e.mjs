@@ -438,6 +438,30 @@ test('Case 3 solver time per frame', async () => {
   await page.close();
 });
 
+test('in-page benchmark: numerical against Case 3 per RK4 step', async () => {
+  const page = await open('?task=1&mode=numerical');
+  await page.click('#bench-panel summary');
+  await page.click('#bench');
+  await page.waitForFunction(() => document.getElementById('bench-result').dataset.numerical, null, {
+    timeout: 60000,
+  });
+  const r = await page.evaluate(() => ({ ...document.getElementById('bench-result').dataset }));
+  const numerical = Number(r.numerical);
+  assert.ok(numerical > 0 && Number.isFinite(numerical), `numerical ${r.numerical} us/step`);
+  const text = await page.textContent('#bench-result');
+  if (r.case3) {
+    const case3 = Number(r.case3);
+    assert.ok(case3 > 0 && Number.isFinite(case3));
+    assert.match(text, /Case 3/);
+    console.log(
+      `measure: in-page benchmark (Task 1, median of 5 x 2000 RK4 steps after warm-up): numerical ${numerical.toFixed(1)} us/step, Case 3 ${case3.toFixed(1)} us/step (${(case3 / numerical).toFixed(2)}x)`,
+    );
+  }
+  await page.locator('#bench-panel').screenshot({ path: join(shots, 'benchmark.png') });
+  clean(page);
+  await page.close();
+});
+
 test('embed page: two independent demos', async () => {
   const context = await browser.newContext({ viewport: { width: 1280, height: 900 } });
   const page = await context.newPage();
