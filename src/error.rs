@@ -75,6 +75,23 @@ pub(crate) fn finite(what: &str, value: f64) -> Result<f64> {
     }
 }
 
+/// Largest coordinate (m) accepted for a target or an obstacle: far beyond
+/// any arm's reach, small enough that squared distances cannot overflow.
+pub const MAX_COORDINATE: f64 = 1.0e4;
+
+/// Checks that a coordinate or length in metres is finite and within
+/// [`MAX_COORDINATE`] of zero.
+pub(crate) fn coordinate(what: &str, value: f64) -> Result<f64> {
+    finite(what, value)?;
+    if value.abs() <= MAX_COORDINATE {
+        Ok(value)
+    } else {
+        Err(Error::InvalidValue(format!(
+            "{what} must lie within ±{MAX_COORDINATE} m (got {value})"
+        )))
+    }
+}
+
 /// Checks that `value` is finite and strictly positive.
 pub(crate) fn positive(what: &str, value: f64) -> Result<f64> {
     finite(what, value)?;

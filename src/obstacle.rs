@@ -6,7 +6,7 @@ use nalgebra::{DMatrix, DVector, Vector2};
 use serde::{Deserialize, Serialize};
 
 use crate::arm::{point_segment_distance, Arm};
-use crate::error::{finite, positive, Error, Result};
+use crate::error::{coordinate, positive, Error, Result};
 
 /// A disc obstacle. Its centre is the point `O` of eq. (16); the radius only
 /// decides what counts as a collision.
@@ -36,9 +36,10 @@ impl Obstacle {
     /// the base post (the segment from `(0, 0)` to `P(0)`), which cannot move
     /// out of its way.
     pub fn validate(&self, arm: &Arm) -> Result<()> {
-        finite("obstacle x", self.centre[0])?;
-        finite("obstacle y", self.centre[1])?;
+        coordinate("obstacle x", self.centre[0])?;
+        coordinate("obstacle y", self.centre[1])?;
         positive("obstacle radius", self.radius)?;
+        coordinate("obstacle radius", self.radius)?;
         let d = point_segment_distance(&self.point(), &Vector2::zeros(), &arm.base());
         if d <= self.radius {
             return Err(Error::ObstacleOnPost {

@@ -395,8 +395,8 @@ impl Planner {
     /// Re-plans: a new straight line from the current end effector to `target`,
     /// starting now and lasting `duration` seconds (rounded up to whole steps).
     pub fn set_target(&mut self, target: [f64; 2], duration: f64) -> Result<()> {
-        crate::error::finite("target x", target[0])?;
-        crate::error::finite("target y", target[1])?;
+        crate::error::coordinate("target x", target[0])?;
+        crate::error::coordinate("target y", target[1])?;
         positive("line duration", duration)?;
         let steps = (duration / self.scene.dt - 1e-9).ceil().max(1.0);
         let x = self.scene.arm.forward(&self.theta);
@@ -448,7 +448,7 @@ impl Planner {
 
     /// Sets the closed-loop gain `K` (0 = open loop, as in the paper).
     pub fn set_feedback_gain(&mut self, gain: f64) -> Result<()> {
-        scene::validate_gain(gain)?;
+        scene::validate_gain(gain, self.scene.dt)?;
         self.scene.feedback_gain = gain;
         Ok(())
     }

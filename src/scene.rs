@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
 use crate::arm::Arm;
-use crate::error::{finite, positive, Error, Result};
+use crate::error::{coordinate, finite, positive, Error, Result};
 use crate::ik::DampingSchedule;
 use crate::obstacle::Obstacle;
 
@@ -105,8 +105,8 @@ impl Scene {
         // Re-check the arm: a deserialised scene bypasses `Arm::new`.
         Arm::new(self.arm.post(), self.arm.links().to_vec())?;
         self.arm.check_theta(&self.theta0_vector())?;
-        finite("target x", self.target[0])?;
-        finite("target y", self.target[1])?;
+        coordinate("target x", self.target[0])?;
+        coordinate("target y", self.target[1])?;
         for ob in &self.obstacles {
             ob.validate(&self.arm)?;
         }
@@ -115,8 +115,8 @@ impl Scene {
         if let Some(d) = &self.damping {
             d.validate()?;
         }
-        validate_gain(self.feedback_gain)?;
         positive("time step dt", self.dt)?;
+        validate_gain(self.feedback_gain, self.dt)?;
         positive("final time tf", self.tf)?;
         let ratio = self.tf / self.dt;
         if (ratio - ratio.round()).abs() > 1e-9 * ratio.max(1.0) {
@@ -154,11 +154,23 @@ pub(crate) fn validate_delta(delta: f64) -> Result<()> {
     Ok(())
 }
 
-pub(crate) fn validate_gain(gain: f64) -> Result<()> {
+/// Largest `K dt` accepted for the closed-loop gain. The tracking error then
+/// obeys `e' = -K e`, which classical RK4 integrates stably only for
+/// `K dt < 2.785`; 2.5 leaves a margin for the arm's nonlinearity.
+pub const MAX_GAIN_STEP: f64 = 2.5;
+
+pub(crate) fn validate_gain(gain: f64, dt: f64) -> Result<()> {
     finite("feedback gain", gain)?;
     if gain < 0.0 {
         return Err(Error::InvalidValue(format!(
             "feedback gain must not be negative (got {gain})"
+        )));
+    }
+    if gain * dt > MAX_GAIN_STEP {
+        return Err(Error::InvalidValue(format!(
+            "feedback gain K = {gain} with dt = {dt} s makes the RK4 step unstable: \
+             K dt must not exceed {MAX_GAIN_STEP} (K <= {:.4} here)",
+            MAX_GAIN_STEP / dt
         )));
     }
     Ok(())

@@ -141,6 +141,8 @@ fn bad_input_is_one_error_line_and_exit_status_2() {
         (&["simulate", "--obstacle", "0,0.3"], "post"),
         (&["simulate", "--radius", "-1"], "radius"),
         (&["simulate", "--feedback", "-1"], "feedback"),
+        (&["simulate", "--feedback", "100"], "unstable"),
+        (&["simulate", "--target", "1e9,0"], "within"),
         (&["simulate", "--task", "3"], "task 3"),
         (&["simulate", "--mode", "case4"], "mode"),
         (&["simulate", "--theta0", "0,1"], "3"),

@@ -463,6 +463,20 @@ fn bad_input_is_rejected_with_a_message_naming_the_problem() {
         (Box::new(|s| s.lambda = f64::NAN), "lambda"),
         (Box::new(|s| s.delta = -1.0), "delta must not be negative"),
         (Box::new(|s| s.feedback_gain = -1.0), "feedback gain"),
+        // Numbers so large that squared distances overflow.
+        (
+            Box::new(|s| s.target = [1e300, 0.0]),
+            "target x must lie within",
+        ),
+        (
+            Box::new(|s| s.obstacles[0].centre = [0.5, -1e200]),
+            "obstacle y must lie within",
+        ),
+        // RK4 integrates the closed-loop error e' = -K e stably only for K dt < 2.785.
+        (
+            Box::new(|s| s.feedback_gain = 30.0),
+            "makes the RK4 step unstable",
+        ),
     ];
     for (mutate, expected) in cases {
         let mut s = Scene::task1();

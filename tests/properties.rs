@@ -57,3 +57,73 @@ proptest! {
         prop_assert!((0.0..=s.delta_max).contains(&d));
     }
 }
+
+/// A number as a user might type it: ordinary, extreme, zero or not a number.
+fn user_number() -> impl Strategy<Value = f64> {
+    // Mostly ordinary, so that most scenes are legal and get integrated.
+    prop_oneof![
+        40 => -3.0f64..3.0,
+        2 => Just(0.0),
+        1 => Just(f64::NAN),
+        1 => Just(f64::INFINITY),
+        1 => Just(f64::NEG_INFINITY),
+        1 => Just(1e300),
+        1 => Just(-1e300),
+    ]
+}
+
+fn networks() -> std::sync::Arc<dyn redundant_ik::Surrogate> {
+    static NETS: std::sync::OnceLock<redundant_ik::networks::Networks> = std::sync::OnceLock::new();
+    std::sync::Arc::new(
+        NETS.get_or_init(|| redundant_ik::networks::Networks::embedded().unwrap())
+            .clone(),
+    )
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1000))]
+
+    /// Whatever a user sets (target, obstacle, start pose, gains, in any mode,
+    /// damped or not, and changes between steps), the planner answers with an
+    /// error or with finite numbers: it never panics and never returns NaN.
+    #[test]
+    fn the_planner_never_panics_and_never_returns_nan(
+        target in (user_number(), user_number()),
+        obstacle in (user_number(), user_number(), prop_oneof![9 => 0.01f64..0.3, 1 => user_number()]),
+        theta0 in prop::collection::vec(user_number(), 3),
+        lambda in prop_oneof![9 => 0.0f64..12.0, 1 => user_number()],
+        gain in prop_oneof![9 => 0.0f64..20.0, 1 => user_number()],
+        mode in 0usize..5,
+        damping in any::<bool>(),
+        later in (user_number(), user_number()),
+    ) {
+        use redundant_ik::{DampingSchedule, Mode, Obstacle, Planner, Scene};
+        let mode = [Mode::None, Mode::Numerical, Mode::Case1, Mode::Case2, Mode::Case3][mode];
+        let mut scene = Scene::task1();
+        scene.target = [target.0, target.1];
+        scene.obstacles = vec![Obstacle::new(obstacle.0, obstacle.1, obstacle.2.abs())];
+        scene.theta0 = theta0;
+        scene.lambda = lambda;
+        scene.feedback_gain = gain;
+        scene.damping = damping.then(DampingSchedule::default);
+        scene.tf = 1.0;
+        let Ok(mut planner) = Planner::new(scene, mode, Some(networks())) else {
+            return Ok(());
+        };
+        for k in 0..10 {
+            if k == 5 {
+                // Changes between steps are checked too; a refused one changes nothing.
+                let _ = planner.set_target([later.0, later.1], 1.0);
+                let _ = planner.set_obstacles(vec![Obstacle::new(later.1, later.0, 0.05)]);
+            }
+            match planner.step() {
+                Ok(s) => {
+                    prop_assert!(s.theta.iter().all(|q| q.is_finite()), "{s:?}");
+                    prop_assert!(s.ee.iter().all(|x| x.is_finite()), "{s:?}");
+                    prop_assert!(s.tracking_error.is_finite());
+                }
+                Err(_) => break,
+            }
+        }
+    }
+}
