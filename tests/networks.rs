@@ -1,6 +1,15 @@
 //! The networks as a specification: the forward pass, the trainer, the
 //! weights file, and what the shipped networks achieve (the figures stated
 //! in docs/networks.md).
+//!
+//! One file serves both targets, like tests/core.rs: `cargo test` runs it
+//! natively and `wasm-pack test --headless --chrome` runs the same tests in
+//! a browser (the trainer has no threads, clock or OS entropy).
+
+#[cfg(target_family = "wasm")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
+#[cfg(target_family = "wasm")]
+wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 
 use std::f64::consts::PI;
 use std::sync::Arc;
