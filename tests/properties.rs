@@ -127,3 +127,41 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// A damaged weights file (bytes overwritten, or cut short) is refused with
+    /// an error, or, if it still parses and fits, gives finite outputs or an
+    /// error: never a panic.
+    #[test]
+    fn a_damaged_weights_file_never_panics(
+        edits in prop::collection::vec((any::<prop::sample::Index>(), prop::sample::select(
+            vec!["0", "-", "1e999", "NaN", "null", "]", "[", ",", "\"", "}", " "])), 1..4),
+        cut in prop::option::weighted(0.2, any::<prop::sample::Index>()),
+    ) {
+        use redundant_ik::networks::{Networks, PHI_EQUIVARIANT_JSON, V_PLAIN_JSON};
+        use redundant_ik::Surrogate;
+        let mut text = PHI_EQUIVARIANT_JSON.to_string();
+        for (at, with) in &edits {
+            let mut i = at.index(text.len());
+            while !text.is_char_boundary(i) {
+                i -= 1;
+            }
+            text.replace_range(i..(i + 1).min(text.len()), with);
+        }
+        if let Some(cut) = cut {
+            let mut i = cut.index(text.len());
+            while !text.is_char_boundary(i) {
+                i -= 1;
+            }
+            text.truncate(i);
+        }
+        if let Ok(nets) = Networks::from_json(&text, V_PLAIN_JSON) {
+            let theta = DVector::from_vec(vec![0.3, 1.2, -0.4]);
+            if let Ok(phi) = nets.phi(&theta) {
+                prop_assert!(phi.iter().all(|x| x.is_finite()));
+            }
+        }
+    }
+}
