@@ -462,6 +462,24 @@ test('in-page benchmark: numerical against Case 3 per RK4 step', async () => {
   await page.close();
 });
 
+test('a module that cannot load gives a readable message, not a blank page', async () => {
+  const context = await browser.newContext({ viewport: { width: 1280, height: 900 } });
+  const page = await context.newPage();
+  const exceptions = [];
+  page.on('pageerror', (err) => exceptions.push(err.message));
+  await page.route('**/*.wasm', (route) => route.abort());
+  await page.goto(BASE + '?task=1&mode=numerical');
+  const loading = page.locator('#loading.failed');
+  await loading.waitFor({ state: 'visible', timeout: 15000 });
+  const text = await loading.textContent();
+  assert.match(text, /could not start/, text);
+  assert.equal(await page.getAttribute('body', 'data-ready'), null, 'never claims to be ready');
+  assert.equal(await page.isDisabled('#play'), true, 'dead controls are disabled');
+  assert.deepEqual(exceptions, [], 'the failure is handled, not thrown');
+  await page.screenshot({ path: join(shots, 'load-failed.png') });
+  await context.close();
+});
+
 test('embed page: two independent demos', async () => {
   const context = await browser.newContext({ viewport: { width: 1280, height: 900 } });
   const page = await context.newPage();
