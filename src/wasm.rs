@@ -1106,7 +1106,7 @@ impl Demo {
             ctx.set_text_align("left");
             ctx.set_text_baseline("bottom");
             let _ = ctx.fill_text(
-                "obstacle positions the v network was trained on",
+                "v net: trained obstacle region",
                 x0.min(x1) + 3.0,
                 y0.min(y1) - 3.0,
             );
