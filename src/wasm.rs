@@ -801,6 +801,47 @@ impl Demo {
         });
     }
 
+    /// Runs the current scene (start pose, target, obstacle, `lambda`,
+    /// damping and feedback as they are now) from `t = 0` to `tf` in each of
+    /// the five modes, without touching the simulation on screen. Returns an
+    /// array of `{ mode, summary, error }`: `summary` as the CLI's JSON
+    /// (`min_distance`, `collided`, `final_error`, `reached`,
+    /// `out_of_range_steps`, ...) or `null` with `error` saying why the mode
+    /// could not run (e.g. no networks, or a singular pose without damping).
+    #[wasm_bindgen(js_name = compareModes)]
+    pub fn compare_modes(&self) -> std::result::Result<JsValue, JsError> {
+        #[derive(Serialize)]
+        struct Row {
+            mode: &'static str,
+            summary: Option<crate::Summary>,
+            error: Option<String>,
+        }
+        let scene = self.planner.scene().clone();
+        let networks = match &self.networks {
+            Some(n) => Some(n.surrogate.clone()),
+            None => shared_networks().ok().map(|n| n.surrogate),
+        };
+        let rows: Vec<Row> = Mode::ALL
+            .iter()
+            .map(
+                |&mode| match Planner::run(scene.clone(), mode, networks.clone()) {
+                    Ok(run) => Row {
+                        mode: mode.name(),
+                        summary: Some(run.summary),
+                        error: None,
+                    },
+                    Err(e) => Row {
+                        mode: mode.name(),
+                        summary: None,
+                        error: Some(e.to_string()),
+                    },
+                },
+            )
+            .collect();
+        let json = serde_json::to_string(&rows).map_err(|e| JsError::new(&e.to_string()))?;
+        js_sys::JSON::parse(&json).map_err(|_| JsError::new("could not build the comparison"))
+    }
+
     /// A snapshot of the state as a plain object: `t`, `mode`, `theta`,
     /// `joints`, `ee`, `target`, `obstacle`, `radius`, `distance`,
     /// `min_distance` and `collided` (since the last reset or task load),

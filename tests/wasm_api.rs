@@ -286,3 +286,25 @@ fn the_in_browser_benchmark_returns_a_cost_per_step_or_refuses_bad_input() {
     assert!(message(benchmark_steps("case9", 100).err().unwrap()).contains("unknown mode"));
     assert!(message(benchmark_steps("case3", 10).err().unwrap()).contains("steps"));
 }
+
+#[wasm_bindgen_test]
+fn compare_modes_runs_the_current_scene_in_all_five_modes_off_screen() {
+    let mut d = demo(1);
+    d.set_damping(false).unwrap();
+    d.set_obstacle(0.55, 0.45).unwrap();
+    let before = state(&d);
+    let js = d.compare_modes().unwrap();
+    let text: String = js_sys::JSON::stringify(&js).unwrap().into();
+    let rows: Value = serde_json::from_str(&text).unwrap();
+    let rows = rows.as_array().unwrap();
+    let modes: Vec<&str> = rows.iter().map(|r| r["mode"].as_str().unwrap()).collect();
+    assert_eq!(modes, ["none", "numerical", "case1", "case2", "case3"]);
+    let collided = |i: usize| rows[i]["summary"]["collided"].as_bool().unwrap();
+    assert!(collided(0), "no avoidance hits the moved obstacle");
+    for i in 1..5 {
+        assert!(!collided(i), "{} avoids it", modes[i]);
+        assert!(rows[i]["summary"]["final_error"].as_f64().unwrap() < 5e-3);
+    }
+    assert!(rows.iter().all(|r| r["error"].is_null()));
+    assert_eq!(state(&d), before, "the simulation on screen is untouched");
+}

@@ -21,6 +21,14 @@ export function loadModule() {
 
 export const MODES = ['none', 'numerical', 'case1', 'case2', 'case3'];
 
+const MODE_LABELS = {
+  none: 'No avoidance',
+  numerical: 'Numerical',
+  case1: 'Case 1',
+  case2: 'Case 2',
+  case3: 'Case 3',
+};
+
 /** Gain K (1/s) of the "correct drift" switch: Xdot + K (X_ref - X). */
 export const FEEDBACK_GAIN = 1;
 
@@ -208,6 +216,41 @@ export async function mount(root, options = {}) {
   });
   el.speed?.addEventListener('change', () => attempt(() => demo.setSpeed(Number(el.speed.value))));
   if (el.speed) attempt(() => demo.setSpeed(Number(el.speed.value)));
+
+  // ---- compare the five methods on the current scene -----------------
+  const compareButton = $('compare');
+  const compareBody = $('compare-body');
+  compareButton?.addEventListener('click', () => {
+    let rows = null;
+    if (!attempt(() => (rows = demo.compareModes()))) return;
+    compareBody?.replaceChildren(
+      ...rows.map((r) => {
+        const tr = document.createElement('tr');
+        tr.dataset.mode = r.mode;
+        const cell = (text, cls) => {
+          const td = document.createElement('td');
+          td.textContent = text;
+          if (cls) td.className = cls;
+          tr.append(td);
+          return td;
+        };
+        cell(MODE_LABELS[r.mode] ?? r.mode);
+        if (r.summary) {
+          const s = r.summary;
+          tr.dataset.collided = String(s.collided);
+          tr.dataset.minDistance = String(s.min_distance);
+          tr.dataset.finalError = String(s.final_error);
+          cell(s.min_distance === null ? '–' : `${s.min_distance.toFixed(3)} m`, 'num');
+          cell(s.collided ? 'yes' : 'no', s.collided ? 'bad' : 'ok');
+          cell(fmtLength(s.final_error), s.reached ? 'num' : 'num warn');
+        } else {
+          tr.dataset.error = r.error;
+          cell(r.error, 'warn').colSpan = 3;
+        }
+        return tr;
+      }),
+    );
+  });
 
   const weightButton = $('load-weights');
   weightButton?.addEventListener('click', async () => {

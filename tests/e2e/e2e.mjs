@@ -438,6 +438,30 @@ test('Case 3 solver time per frame', async () => {
   await page.close();
 });
 
+test('compare panel: all five methods on a moved obstacle', async () => {
+  const page = await open('?task=2&mode=numerical');
+  await pause(page);
+  const s0 = await state(page);
+  await mouseDrag(page, s0.obstacle, [0.65, 0.55]);
+  await page.click('#compare-panel summary');
+  await page.click('#compare');
+  await page.waitForSelector('#compare-body tr[data-mode="case3"]');
+  const rows = await page.$$eval('#compare-body tr', (trs) => trs.map((tr) => ({ ...tr.dataset })));
+  assert.deepEqual(rows.map((r) => r.mode), ['none', 'numerical', 'case1', 'case2', 'case3']);
+  const by = Object.fromEntries(rows.map((r) => [r.mode, r]));
+  if (by.numerical.collided === 'false') {
+    assert.equal(by.case3.collided, 'false', `Case 3 avoids where numerical does: ${JSON.stringify(by.case3)}`);
+  }
+  assert.equal(by.none.collided, 'true', 'no avoidance hits the obstacle moved next to the path');
+  console.log(
+    'measure: compare at obstacle (0.65, 0.55), Task 2: ' +
+      rows.map((r) => `${r.mode} ${Number(r.minDistance).toFixed(3)} m`).join(', '),
+  );
+  await page.locator('#compare-panel').screenshot({ path: join(shots, 'compare.png') });
+  clean(page);
+  await page.close();
+});
+
 test('in-page benchmark: numerical against Case 3 per RK4 step', async () => {
   const page = await open('?task=1&mode=numerical');
   await page.click('#bench-panel summary');
