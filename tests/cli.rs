@@ -204,7 +204,25 @@ fn figure_writes_an_svg_and_all_writes_every_task_and_mode() {
                 .is_ok_and(|e| e.path().extension().is_some_and(|x| x == "svg"))
         })
         .count();
-    assert_eq!(count, 10, "2 tasks x 5 modes");
+    assert_eq!(count, 12, "2 tasks x 5 modes, and a comparison per task");
+
+    let cmp = scratch("compare.svg");
+    ok(&[
+        "figure",
+        "--compare",
+        "--task",
+        "2",
+        "--out",
+        cmp.to_str().unwrap(),
+    ]);
+    let svg = std::fs::read_to_string(&cmp).unwrap();
+    for mode in ["none", "numerical", "case1", "case2", "case3"] {
+        assert!(
+            svg.contains(&format!("\n{mode}, min ")),
+            "{mode} in the legend"
+        );
+    }
+    assert!(svg.contains("min 0.2193 m"), "Task 2's numerical clearance");
 }
 
 #[test]

@@ -18,9 +18,14 @@ pub struct FigureArgs {
     /// Output SVG file, or with --all a directory.
     #[arg(long)]
     pub out: PathBuf,
-    /// Write the whole set: both tasks in every available mode.
+    /// Write the whole set: both tasks in every available mode, plus the
+    /// comparison figure of each task.
     #[arg(long)]
     pub all: bool,
+    /// Instead of the arm: clearance and tracking error over time for all
+    /// five modes on one figure.
+    #[arg(long, conflicts_with = "all")]
+    pub compare: bool,
     /// Draw the arm every this many steps.
     #[arg(long, default_value_t = 5)]
     pub every: usize,
@@ -41,6 +46,13 @@ pub fn run(args: &FigureArgs) -> Result<(), String> {
     if args.every == 0 {
         return Err("--every must be at least 1".into());
     }
+    if args.compare {
+        let scene = args.scene.scene()?;
+        let runs = run_all_modes(&args.scene, &scene)?;
+        draw_compare(&args.out, args.scene.task, &scene, &runs)?;
+        println!("wrote {}", args.out.display());
+        return Ok(());
+    }
     if !args.all {
         let (scene, traj) = args.scene.run()?;
         draw(&args.out, args.scene.task, &scene, &traj, args.every)?;
@@ -53,20 +65,174 @@ pub fn run(args: &FigureArgs) -> Result<(), String> {
         let mut sa = args.scene.clone();
         sa.task = task;
         let scene = sa.scene()?;
-        for mode in Mode::ALL {
-            let nets = match sa.networks.for_mode(mode, &scene.arm) {
-                Ok(n) => n,
-                Err(e) => {
-                    eprintln!("skipping task {task} {mode}: {e}");
-                    continue;
-                }
-            };
-            let traj = Planner::run(scene.clone(), mode, nets).map_err(|e| e.to_string())?;
-            let path = args.out.join(format!("task{task}_{mode}.svg"));
-            draw(&path, task, &scene, &traj, args.every)?;
+        let runs = run_all_modes(&sa, &scene)?;
+        for traj in &runs {
+            let path = args.out.join(format!("task{task}_{}.svg", traj.mode));
+            draw(&path, task, &scene, traj, args.every)?;
             println!("wrote {}", path.display());
         }
+        let path = args.out.join(format!("task{task}_compare.svg"));
+        draw_compare(&path, task, &scene, &runs)?;
+        println!("wrote {}", path.display());
     }
+    Ok(())
+}
+
+/// Runs `scene` in every mode whose networks are available (the others are
+/// skipped with a note on stderr).
+fn run_all_modes(sa: &SceneArgs, scene: &Scene) -> Result<Vec<Trajectory>, String> {
+    let mut runs = Vec::new();
+    for mode in Mode::ALL {
+        let nets = match sa.networks.for_mode(mode, &scene.arm) {
+            Ok(n) => n,
+            Err(e) => {
+                eprintln!("skipping {mode}: {e}");
+                continue;
+            }
+        };
+        runs.push(Planner::run(scene.clone(), mode, nets).map_err(|e| e.to_string())?);
+    }
+    Ok(runs)
+}
+
+/// Colour of a mode in the comparison figure (matplotlib's tab10).
+fn mode_colour(mode: Mode) -> RGBColor {
+    match mode {
+        Mode::None => RGBColor(214, 39, 40),
+        Mode::Numerical => RGBColor(0, 0, 0),
+        Mode::Case1 => RGBColor(31, 119, 180),
+        Mode::Case2 => RGBColor(44, 160, 44),
+        Mode::Case3 => RGBColor(255, 127, 14),
+    }
+}
+
+/// Two stacked panels over time for every run: the clearance between the
+/// obstacle centre and the nearest link (with the radius as a dashed line),
+/// and the tracking error on a log scale.
+fn draw_compare(path: &Path, task: u32, scene: &Scene, runs: &[Trajectory]) -> Result<(), String> {
+    let e = |err: &dyn std::fmt::Display| format!("cannot draw {}: {err}", path.display());
+    let root = SVGBackend::new(path, (820, 720)).into_drawing_area();
+    root.fill(&WHITE).map_err(|x| e(&x))?;
+    let root = root
+        .titled(
+            &format!("Task {task}: the five methods over time"),
+            ("sans-serif", 18),
+        )
+        .map_err(|x| e(&x))?;
+    let (top, bottom) = root.split_vertically(330);
+    let tf = runs
+        .iter()
+        .filter_map(|r| r.steps.last().map(|s| s.t))
+        .fold(0.0, f64::max)
+        .max(1e-9);
+    let radius = scene.obstacles.iter().map(|o| o.radius).fold(0.0, f64::max);
+
+    // Clearance.
+    let dmax = runs
+        .iter()
+        .flat_map(|r| r.steps.iter().filter_map(|s| s.distance))
+        .fold(radius, f64::max)
+        * 1.1;
+    let mut chart = ChartBuilder::on(&top)
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(70)
+        .build_cartesian_2d(0.0..tf, 0.0..dmax)
+        .map_err(|x| e(&x))?;
+    chart
+        .configure_mesh()
+        .x_desc("t (s)")
+        .y_desc("clearance to O (m)")
+        .light_line_style(RGBColor(246, 246, 246))
+        .bold_line_style(RGBColor(215, 215, 215))
+        .draw()
+        .map_err(|x| e(&x))?;
+    if radius > 0.0 {
+        chart
+            .draw_series(DashedLineSeries::new(
+                vec![(0.0, radius), (tf, radius)],
+                6,
+                4,
+                ShapeStyle::from(&RGBColor(214, 39, 40)).stroke_width(1),
+            ))
+            .map_err(|x| e(&x))?
+            .label(format!("obstacle radius {radius} m"))
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RGBColor(214, 39, 40)));
+    }
+    for r in runs {
+        let c = mode_colour(r.mode);
+        let min = r
+            .summary
+            .min_distance
+            .map_or(String::new(), |d| format!(", min {d:.4} m"));
+        chart
+            .draw_series(LineSeries::new(
+                r.steps.iter().filter_map(|s| s.distance.map(|d| (s.t, d))),
+                ShapeStyle::from(&c).stroke_width(2),
+            ))
+            .map_err(|x| e(&x))?
+            .label(format!("{}{min}", r.mode))
+            .legend(move |(x, y)| {
+                PathElement::new(
+                    vec![(x, y), (x + 20, y)],
+                    ShapeStyle::from(&c).stroke_width(2),
+                )
+            });
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .background_style(WHITE.mix(0.85))
+        .border_style(RGBColor(200, 200, 200))
+        .draw()
+        .map_err(|x| e(&x))?;
+
+    // Tracking error, log scale (exact zeros drawn at the floor).
+    const FLOOR: f64 = 1e-12;
+    let emax = runs
+        .iter()
+        .flat_map(|r| r.steps.iter().map(|s| s.tracking_error))
+        .fold(1e-6, f64::max)
+        * 3.0;
+    let mut chart = ChartBuilder::on(&bottom)
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(70)
+        .build_cartesian_2d(0.0..tf, (FLOOR..emax).log_scale())
+        .map_err(|x| e(&x))?;
+    chart
+        .configure_mesh()
+        .x_desc("t (s)")
+        .y_desc("tracking error (m)")
+        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .light_line_style(RGBColor(246, 246, 246))
+        .bold_line_style(RGBColor(215, 215, 215))
+        .draw()
+        .map_err(|x| e(&x))?;
+    for r in runs {
+        let c = mode_colour(r.mode);
+        chart
+            .draw_series(LineSeries::new(
+                r.steps.iter().map(|s| (s.t, s.tracking_error.max(FLOOR))),
+                ShapeStyle::from(&c).stroke_width(2),
+            ))
+            .map_err(|x| e(&x))?
+            .label(format!("{}, final {:.1e} m", r.mode, r.summary.final_error))
+            .legend(move |(x, y)| {
+                PathElement::new(
+                    vec![(x, y), (x + 20, y)],
+                    ShapeStyle::from(&c).stroke_width(2),
+                )
+            });
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::LowerRight)
+        .background_style(WHITE.mix(0.85))
+        .border_style(RGBColor(200, 200, 200))
+        .draw()
+        .map_err(|x| e(&x))?;
+    root.present().map_err(|x| e(&x))?;
     Ok(())
 }
 
