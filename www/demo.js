@@ -337,6 +337,7 @@ export async function mount(root, options = {}) {
   if (plots) fit(plots, (w, h, d) => demo.resizePlots(w, h, d));
 
   // ---- readouts and the loop -------------------------------------------
+  let autoDampingShown = false;
   function update() {
     const s = demo.state();
     for (const r of readouts) {
@@ -348,6 +349,10 @@ export async function mount(root, options = {}) {
       if (r.dataset.readout === 'collision') r.dataset.level = s.collision ? 'bad' : s.collided ? 'warn' : 'ok';
     }
     if (el.warning) el.warning.hidden = s.in_range || !s.mode.startsWith('case');
+    if (s.auto_damping && !autoDampingShown) {
+      show('The target is out of reach: damping switched on so the joint rates stay finite.', 'warn');
+    }
+    autoDampingShown = s.auto_damping;
     syncControls(s);
     return s;
   }

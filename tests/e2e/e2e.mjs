@@ -179,6 +179,27 @@ test('drag the target with the mouse: new line, the arm follows', async () => {
   await page.close();
 });
 
+test('a target out of reach: damping switches on, the arm stretches, nothing breaks', async () => {
+  const page = await open('?task=1&mode=numerical');
+  await pause(page);
+  await page.click('label[for="damping"]');
+  assert.equal((await state(page)).damping, false);
+  const before = await state(page);
+  const goal = [2.0, 1.6]; // 2.4 m from the post top; the reach is 2.05 m
+  await mouseDrag(page, before.target, goal);
+  await page.evaluate(() => window.demo.runUntil(window.demo.state().t + 15));
+  const s = await state(page);
+  assert.equal(s.auto_damping, true, 'the planner switched damping on');
+  assert.equal(s.damping, true);
+  assert.equal(await page.isChecked('#damping'), true, 'the switch shows it');
+  assert.match(await page.textContent('#message'), /out of reach/);
+  assert.ok(s.theta.every(Number.isFinite), `finite joint angles ${s.theta}`);
+  const reach = Math.hypot(s.ee[0], s.ee[1] - 0.5);
+  assert.ok(reach > 2.0, `the arm stretches towards the target (${reach.toFixed(3)} m from the post top)`);
+  clean(page);
+  await page.close();
+});
+
 test('drag the obstacle with the mouse: takes effect at once', async () => {
   const page = await open('?task=1&mode=numerical');
   await pause(page);
