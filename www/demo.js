@@ -283,6 +283,31 @@ export async function mount(root, options = {}) {
     });
   }
 
+  // ---- keyboard on the drawing: arrows move the target, Shift+arrows the obstacle
+  const NUDGE = 0.05; // metres per key press
+  if (!stage.hasAttribute('tabindex')) stage.tabIndex = 0;
+  stage.addEventListener('keydown', (e) => {
+    const dir = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1] }[e.key];
+    if (!dir || e.ctrlKey || e.metaKey || e.altKey) return;
+    e.preventDefault();
+    const s = demo.state();
+    if (e.shiftKey) {
+      if (!s.obstacle) return;
+      const [x, y] = [s.obstacle[0] + dir[0] * NUDGE, s.obstacle[1] + dir[1] * NUDGE];
+      if (attempt(() => demo.setObstacle(x, y))) changed();
+    } else {
+      const [x, y] = [s.target[0] + dir[0] * NUDGE, s.target[1] + dir[1] * NUDGE];
+      if (
+        attempt(() => {
+          demo.setTarget(x, y);
+          demo.setRunning(true);
+        })
+      ) {
+        changed();
+      }
+    }
+  });
+
   // ---- pointer: drag target and obstacle -------------------------------
   let held = null; // pointerId while dragging
   const local = (e) => {

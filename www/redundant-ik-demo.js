@@ -26,6 +26,8 @@ const STYLE = `
 :host(:focus-visible) { outline: 2px solid #6ea0dc; outline-offset: 2px; }
 .wrap { position: relative; }
 #stage { display: block; width: 100%; aspect-ratio: 14 / 11; touch-action: none; user-select: none; }
+#stage:focus { outline: none; }
+#stage:focus-visible { outline: 2px solid #6ea0dc; outline-offset: 2px; }
 #plots { display: block; width: 100%; height: 300px; margin-top: 6px; }
 #loading { position: absolute; inset: 0; display: flex; align-items: center; justify-content: center;
   background: rgba(255,255,255,.92); color: #5f6b78; text-align: center; padding: 16px; }

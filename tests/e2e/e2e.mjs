@@ -200,6 +200,24 @@ test('a target out of reach: damping switches on, the arm stretches, nothing bre
   await page.close();
 });
 
+test('keyboard on the drawing: arrows move the target, Shift+arrows the obstacle', async () => {
+  const page = await open('?task=1&mode=numerical');
+  await pause(page);
+  const before = await state(page);
+  await page.focus('#stage');
+  await page.keyboard.press('ArrowRight');
+  await page.keyboard.press('ArrowUp');
+  const moved = await state(page);
+  assert.ok(near(moved.target, [before.target[0] + 0.05, before.target[1] + 0.05], 1e-9), `target ${moved.target}`);
+  assert.equal(moved.running, true, 'a keyboard move starts the clock like a drag');
+  await page.keyboard.press('Shift+ArrowLeft');
+  const ob = (await state(page)).obstacle;
+  assert.ok(near(ob, [before.obstacle[0] - 0.05, before.obstacle[1]], 1e-9), `obstacle ${ob}`);
+  assert.match(decodeURIComponent(page.url()), /target=0\.650,0\.250/);
+  clean(page);
+  await page.close();
+});
+
 test('drag the obstacle with the mouse: takes effect at once', async () => {
   const page = await open('?task=1&mode=numerical');
   await pause(page);
