@@ -35,6 +35,15 @@ pub const DEFAULT_PHI_VARIANT: Variant = Variant::Equivariant;
 /// The `v` variant [`Networks::embedded`] uses.
 pub const DEFAULT_V_VARIANT: Variant = Variant::Plain;
 
+/// The shipped `Phi` weights file of a variant (JSON text).
+pub fn embedded_phi_json(variant: Variant) -> &'static str {
+    match variant {
+        Variant::Plain => PHI_PLAIN_JSON,
+        Variant::Rows => PHI_ROWS_JSON,
+        Variant::Equivariant => PHI_EQUIVARIANT_JSON,
+    }
+}
+
 /// A `Phi` network family and a `v` network for the same arm.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Networks {
@@ -109,12 +118,7 @@ impl Networks {
     /// The shipped networks with the chosen `Phi` variant (`plain` and `rows`
     /// are the paper's form, `equivariant` the measured improvement).
     pub fn embedded_with(phi_variant: Variant) -> Result<Self> {
-        let phi = match phi_variant {
-            Variant::Plain => PHI_PLAIN_JSON,
-            Variant::Rows => PHI_ROWS_JSON,
-            Variant::Equivariant => PHI_EQUIVARIANT_JSON,
-        };
-        Self::from_json(phi, V_PLAIN_JSON)
+        Self::from_json(embedded_phi_json(phi_variant), V_PLAIN_JSON)
     }
 
     /// The `Phi` weights file.

@@ -107,37 +107,24 @@ impl NetworkArgs {
     /// Loads the selected networks: each of the two from the user's file if
     /// given, else the embedded one.
     pub fn load(&self) -> Result<Networks, String> {
-        if self.phi_weights.is_none() && self.v_weights.is_none() {
-            return Networks::embedded_with(self.variant()?).map_err(|e| e.to_string());
-        }
+        let variant: Variant = self.phi_variant.parse().map_err(|_| {
+            format!(
+                "unknown --phi-variant '{}': use equivariant, plain or rows",
+                self.phi_variant
+            )
+        })?;
         let read = |f: &std::path::Path| {
             std::fs::read_to_string(f).map_err(|e| format!("cannot read {}: {e}", f.display()))
         };
         let phi = match &self.phi_weights {
             Some(f) => read(f)?,
-            None => match self.variant()? {
-                Variant::Plain => networks::PHI_PLAIN_JSON,
-                Variant::Rows => networks::PHI_ROWS_JSON,
-                Variant::Equivariant => networks::PHI_EQUIVARIANT_JSON,
-            }
-            .to_owned(),
+            None => networks::embedded_phi_json(variant).to_owned(),
         };
         let v = match &self.v_weights {
             Some(f) => read(f)?,
             None => networks::V_PLAIN_JSON.to_owned(),
         };
         Networks::from_json(&phi, &v).map_err(|e| e.to_string())
-    }
-
-    fn variant(&self) -> Result<Variant, String> {
-        match self.phi_variant.as_str() {
-            "plain" => Ok(Variant::Plain),
-            "rows" => Ok(Variant::Rows),
-            "equivariant" => Ok(Variant::Equivariant),
-            other => Err(format!(
-                "unknown --phi-variant '{other}': use equivariant, plain or rows"
-            )),
-        }
     }
 
     /// The networks a mode needs (loaded and checked against the arm), or
