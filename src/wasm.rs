@@ -361,7 +361,6 @@ pub struct Demo {
     ghost: Option<Ghost>,
     task: u32,
     damping: bool,
-    feedback: f64,
     stage: Surface,
     plots: Option<Surface>,
     running: bool,
@@ -404,7 +403,6 @@ impl Demo {
             ghost: None,
             task,
             damping: true,
-            feedback: 0.0,
             stage: Surface::new(stage)?,
             plots: plots.map(Surface::new).transpose()?,
             running: false,
@@ -439,7 +437,7 @@ impl Demo {
     /// `t = 0` to `tf = 10 s`.
     #[wasm_bindgen(js_name = loadTask)]
     pub fn load_task(&mut self, task: u32) -> std::result::Result<(), JsError> {
-        let scene = Self::scene(task, self.damping, self.feedback)?;
+        let scene = Self::scene(task, self.damping, self.planner.scene().feedback_gain)?;
         let networks = self.networks.as_ref().map(|n| n.surrogate.clone());
         let planner = Planner::new(scene, self.planner.mode(), networks).map_err(js_err)?;
         self.planner = planner;
@@ -591,7 +589,6 @@ impl Demo {
         if let Some(g) = &mut self.ghost {
             g.planner.set_feedback_gain(gain).map_err(js_err)?;
         }
-        self.feedback = gain;
         Ok(())
     }
 
