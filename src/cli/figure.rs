@@ -95,6 +95,24 @@ fn run_all_modes(sa: &SceneArgs, scene: &Scene) -> Result<Vec<Trajectory>, Strin
     Ok(runs)
 }
 
+/// A legend swatch: a short line drawn in `style`.
+fn swatch(style: ShapeStyle) -> impl Fn((i32, i32)) -> PathElement<(i32, i32)> {
+    move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style)
+}
+
+/// Draws the series legend of `chart` at `position`, on a light box.
+fn draw_legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    position: SeriesLabelPosition,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    chart
+        .configure_series_labels()
+        .position(position)
+        .background_style(WHITE.mix(0.85))
+        .border_style(RGBColor(200, 200, 200))
+        .draw()
+}
+
 /// Colour of a mode in the comparison figure (matplotlib's tab10).
 fn mode_colour(mode: Mode) -> RGBColor {
     match mode {
@@ -172,20 +190,9 @@ fn draw_compare(path: &Path, task: u32, scene: &Scene, runs: &[Trajectory]) -> R
             ))
             .map_err(|x| e(&x))?
             .label(format!("{}{min}", r.mode))
-            .legend(move |(x, y)| {
-                PathElement::new(
-                    vec![(x, y), (x + 20, y)],
-                    ShapeStyle::from(&c).stroke_width(2),
-                )
-            });
+            .legend(swatch(ShapeStyle::from(&c).stroke_width(2)));
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .background_style(WHITE.mix(0.85))
-        .border_style(RGBColor(200, 200, 200))
-        .draw()
-        .map_err(|x| e(&x))?;
+    draw_legend(&mut chart, SeriesLabelPosition::UpperRight).map_err(|x| e(&x))?;
 
     // Tracking error, log scale (exact zeros drawn at the floor).
     const FLOOR: f64 = 1e-12;
@@ -218,20 +225,9 @@ fn draw_compare(path: &Path, task: u32, scene: &Scene, runs: &[Trajectory]) -> R
             ))
             .map_err(|x| e(&x))?
             .label(format!("{}, final {:.1e} m", r.mode, r.summary.final_error))
-            .legend(move |(x, y)| {
-                PathElement::new(
-                    vec![(x, y), (x + 20, y)],
-                    ShapeStyle::from(&c).stroke_width(2),
-                )
-            });
+            .legend(swatch(ShapeStyle::from(&c).stroke_width(2)));
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::LowerRight)
-        .background_style(WHITE.mix(0.85))
-        .border_style(RGBColor(200, 200, 200))
-        .draw()
-        .map_err(|x| e(&x))?;
+    draw_legend(&mut chart, SeriesLabelPosition::LowerRight).map_err(|x| e(&x))?;
     root.present().map_err(|x| e(&x))?;
     Ok(())
 }
@@ -381,23 +377,12 @@ fn draw(
             ))
             .map_err(|x| e(&x))?
             .label(label)
-            .legend(move |(x, y)| {
-                PathElement::new(
-                    vec![(x, y), (x + 20, y)],
-                    ShapeStyle::from(&color).stroke_width(3),
-                )
-            });
+            .legend(swatch(ShapeStyle::from(&color).stroke_width(3)));
         chart
             .draw_series(pts.iter().map(|p| Circle::new(*p, 4, color.filled())))
             .map_err(|x| e(&x))?;
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::LowerRight)
-        .background_style(WHITE.mix(0.85))
-        .border_style(RGBColor(200, 200, 200))
-        .draw()
-        .map_err(|x| e(&x))?;
+    draw_legend(&mut chart, SeriesLabelPosition::LowerRight).map_err(|x| e(&x))?;
     root.present().map_err(|x| e(&x))?;
     Ok(())
 }
