@@ -24,6 +24,7 @@ DEBIAN_TOOLCHAIN=debian-web
 DEBIAN_RUSTC_VERSION=1.96
 DEBIAN_SYSROOT=/usr
 DEBIAN_PKGS=(rustc-web cargo-web rust-web-src lld-22)
+WASM_PACK_VERSION=0.15.1
 # Rust tooling needs ~/.cargo/bin (rustup, cargo installs) on PATH.
 export PATH="${CARGO_HOME:-$HOME/.cargo}/bin:$PATH"
 
@@ -222,8 +223,10 @@ fi
 if command -v wasm-pack >/dev/null; then
     log "$(wasm-pack --version) already installed"
 else
-    log "cargo install wasm-pack (about 5 min)"
-    (cd / && rustup run stable cargo install wasm-pack) >&2
+    # The version this project is tested with, with its own lock file, so a new
+    # machine gets the same tool whatever crates.io has published since.
+    log "cargo install wasm-pack $WASM_PACK_VERSION (about 5 min)"
+    (cd / && rustup run stable cargo install wasm-pack --version "$WASM_PACK_VERSION" --locked) >&2
 fi
 
 # ------------------------------------------------------- 5. chromium + driver
