@@ -3,6 +3,7 @@
 #![warn(missing_docs)]
 
 pub mod arm;
+pub mod bench;
 pub mod error;
 pub mod ik;
 pub mod networks;

@@ -9,6 +9,7 @@ use redundant_ik::networks::{self, Networks};
 use redundant_ik::nn::weights::Variant;
 use redundant_ik::{Arm, Mode, Surrogate};
 
+pub mod bench;
 pub mod eval;
 pub mod figure;
 pub mod simulate;
@@ -34,6 +35,8 @@ enum Command {
     Train(train::TrainArgs),
     /// Evaluate the embedded networks: accuracy and task outcomes.
     Eval(eval::EvalArgs),
+    /// Measure theta_dot, RK4 steps, forward passes, an LM epoch and allocations per step.
+    Bench(bench::BenchArgs),
 }
 
 /// Parses the command line, runs it, and returns the exit status.
@@ -44,6 +47,7 @@ pub fn main() -> i32 {
         Command::Figure(a) => figure::run(a),
         Command::Train(a) => train::run(a),
         Command::Eval(a) => eval::run(a),
+        Command::Bench(a) => bench::run(a),
     };
     match result {
         Ok(()) => 0,

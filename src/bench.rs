@@ -1,0 +1,293 @@
+//! In-process benchmarks of the planner, the networks and the trainer, the
+//! same code natively (`redundant-ik bench`) and in the browser
+//! (`window.demo.bench()`).
+//!
+//! The core knows no clock: the caller passes one (`std::time::Instant`
+//! natively, `performance.now()` in a page), and optionally a counter of heap
+//! allocations. Every figure is the median of at least five timed batches
+//! after one warm-up batch; a batch repeats the measured operation until it
+//! has run for at least [`Options::batch_ms`], so coarse browser clocks still
+//! give exact-enough means.
+
+use std::sync::Arc;
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::nalgebra::Vector2;
+use crate::networks::{self, Networks};
+use crate::nn::lm::{LmOptions, LmTrainer};
+use crate::nn::mlp::{MapMinMax, Mlp};
+use crate::nn::{Rng, Variant};
+use crate::planner::{Mode, Planner, Surrogate};
+use crate::scene::Scene;
+use crate::Arm;
+
+/// What to measure and how long.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Options {
+    /// Shortest timed batch (ms).
+    pub batch_ms: f64,
+    /// Timed batches per figure (the median is reported); at least 5.
+    pub batches: usize,
+    /// Whether to time one Levenberg-Marquardt epoch (about 0.1 s each).
+    pub lm_epoch: bool,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Self {
+            batch_ms: 20.0,
+            batches: 7,
+            lm_epoch: true,
+        }
+    }
+}
+
+/// One figure per mode, in the paper's order.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PerMode {
+    /// Mode `none`.
+    pub none: f64,
+    /// Mode `numerical`.
+    pub numerical: f64,
+    /// Case 1.
+    pub case1: f64,
+    /// Case 2.
+    pub case2: f64,
+    /// Case 3.
+    pub case3: f64,
+}
+
+impl PerMode {
+    fn from_fn(mut f: impl FnMut(Mode) -> Result<f64>) -> Result<Self> {
+        Ok(Self {
+            none: f(Mode::None)?,
+            numerical: f(Mode::Numerical)?,
+            case1: f(Mode::Case1)?,
+            case2: f(Mode::Case2)?,
+            case3: f(Mode::Case3)?,
+        })
+    }
+
+    /// The figure of `mode`.
+    pub fn get(&self, mode: Mode) -> f64 {
+        match mode {
+            Mode::None => self.none,
+            Mode::Numerical => self.numerical,
+            Mode::Case1 => self.case1,
+            Mode::Case2 => self.case2,
+            Mode::Case3 => self.case3,
+        }
+    }
+}
+
+/// Forward-pass times of the shipped networks (ns).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Forward {
+    /// The default `Phi` network (rotation-equivariant 2-35-14-6).
+    pub phi: f64,
+    /// The `v` network (5-25-14-3).
+    pub v: f64,
+    /// The paper's single `Phi` net (3-35-14-6).
+    pub phi_plain: f64,
+    /// The paper's three row nets (3 x 3-35-14-2).
+    pub phi_rows: f64,
+}
+
+/// Everything `redundant-ik bench` reports.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Report {
+    /// One `theta_dot` at Task 1's start pose (ns).
+    pub theta_dot_ns: PerMode,
+    /// One RK4 step of Task 1, with the sample bookkeeping (ns).
+    pub step_ns: PerMode,
+    /// One forward pass of each shipped network (ns).
+    pub forward_ns: Forward,
+    /// One `trainlm` epoch of the 2-35-14-6 `Phi` net on 3,000 samples (2,100
+    /// in the training split), in ms; `None` when not measured.
+    pub lm_epoch_ms: Option<f64>,
+    /// Heap allocations per RK4 step; `None` when no counter was given.
+    pub allocs_per_step: Option<PerMode>,
+}
+
+/// A clock in milliseconds (any origin) and an optional allocation counter.
+pub struct Probes<'a> {
+    /// Current time in milliseconds.
+    pub now_ms: &'a dyn Fn() -> f64,
+    /// Heap allocations so far, if the caller can count them.
+    pub allocations: Option<&'a dyn Fn() -> u64>,
+}
+
+/// Median of the per-iteration time (ns) of `f` over `opts.batches` batches,
+/// after one warm-up batch. Each batch runs `f` until `opts.batch_ms` passed.
+fn time_ns(opts: &Options, probes: &Probes, mut f: impl FnMut() -> Result<()>) -> Result<f64> {
+    let now = probes.now_ms;
+    // Warm-up, and the batch size: double until a batch lasts batch_ms.
+    let mut iters: u64 = 1;
+    loop {
+        let t0 = now();
+        for _ in 0..iters {
+            f()?;
+        }
+        let dt = now() - t0;
+        if dt >= opts.batch_ms || iters >= 1 << 30 {
+            break;
+        }
+        iters *= if dt < opts.batch_ms / 8.0 { 8 } else { 2 };
+    }
+    let mut times = Vec::with_capacity(opts.batches.max(5));
+    for _ in 0..opts.batches.max(5) {
+        let t0 = now();
+        for _ in 0..iters {
+            f()?;
+        }
+        times.push((now() - t0) * 1e6 / iters as f64);
+    }
+    Ok(median(&mut times))
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+fn shipped() -> Result<Arc<dyn Surrogate>> {
+    Ok(Arc::new(Networks::embedded()?))
+}
+
+/// Task 1's line velocity, the `Xdot` of every `theta_dot` measured.
+fn task1_xdot() -> Vector2<f64> {
+    let scene = Scene::task1();
+    let x0 = scene.arm.forward(&scene.theta0_vector());
+    (scene.target_vector() - x0) / scene.tf
+}
+
+/// One `theta_dot` of `mode` at Task 1's start pose (ns).
+pub fn theta_dot_ns(mode: Mode, opts: &Options, probes: &Probes) -> Result<f64> {
+    let p = Planner::new(Scene::task1(), mode, Some(shipped()?))?;
+    let th = p.theta().clone();
+    let xdot = task1_xdot();
+    time_ns(opts, probes, || {
+        std::hint::black_box(p.theta_dot(std::hint::black_box(&th), &xdot)?);
+        Ok(())
+    })
+}
+
+/// One RK4 step of Task 1 in `mode`, sample included (ns); the task restarts
+/// every 100 steps.
+pub fn step_ns(mode: Mode, opts: &Options, probes: &Probes) -> Result<f64> {
+    let mut p = Planner::new(Scene::task1(), mode, Some(shipped()?))?;
+    let n = p.scene().steps();
+    let mut k = 0;
+    time_ns(opts, probes, || {
+        if k == n {
+            p.reset();
+            k = 0;
+        }
+        k += 1;
+        std::hint::black_box(p.step()?);
+        Ok(())
+    })
+}
+
+/// Heap allocations per RK4 step of Task 1 in `mode`, over one whole run,
+/// once the planner exists.
+pub fn allocs_per_step(mode: Mode, count: &dyn Fn() -> u64) -> Result<f64> {
+    let mut p = Planner::new(Scene::task1(), mode, Some(shipped()?))?;
+    let n = p.scene().steps();
+    let before = count();
+    for _ in 0..n {
+        std::hint::black_box(p.step()?);
+    }
+    Ok((count() - before) as f64 / n as f64)
+}
+
+/// Forward passes of the shipped networks (ns).
+pub fn forward_ns(opts: &Options, probes: &Probes) -> Result<Forward> {
+    let theta = Scene::task1().theta0;
+    let mut out = [0.0; 6];
+    let mut phi = |variant| -> Result<f64> {
+        let nets = Networks::embedded_with(variant)?;
+        time_ns(opts, probes, || {
+            nets.phi_into(std::hint::black_box(&theta), &mut out)
+        })
+    };
+    let (phi_eq, phi_plain, phi_rows) = (
+        phi(Variant::Equivariant)?,
+        phi(Variant::Plain)?,
+        phi(Variant::Rows)?,
+    );
+    let nets = Networks::embedded()?;
+    let mut g = [0.0; 3];
+    let v = time_ns(opts, probes, || {
+        nets.area_gradient_into(std::hint::black_box(&theta), [0.5, 0.5], &mut g)
+    })?;
+    Ok(Forward {
+        phi: phi_eq,
+        v,
+        phi_plain,
+        phi_rows,
+    })
+}
+
+/// One `trainlm` epoch (ms) of a fresh 2-35-14-6 `Phi` network on 3,000
+/// samples drawn as the shipped file's were (seed 1), 2,100 of them in the
+/// training split. Each timed epoch starts from the same trainer state.
+pub fn lm_epoch_ms(opts: &Options, probes: &Probes) -> Result<f64> {
+    let arm = Arm::paper();
+    let sampling = crate::nn::Sampling::default();
+    let samples = networks::draw_samples(&arm, &sampling, 3000, 1)?;
+    let sets = networks::phi_datasets(&arm, Variant::Equivariant, &samples)?;
+    let data = sets
+        .first()
+        .ok_or_else(|| Error::InvalidValue("no training set".into()))?;
+    let mut rng = Rng::new(1);
+    let mlp = Mlp::nguyen_widrow(
+        &[data.n_in, 35, 14, data.n_out],
+        MapMinMax::fit(&data.inputs, data.n_in),
+        MapMinMax::fit(&data.targets, data.n_out),
+        &mut rng,
+    )?;
+    let trainer = LmTrainer::new(mlp, data, LmOptions::default(), &mut rng)?;
+    let now = probes.now_ms;
+    let mut times = Vec::new();
+    for i in 0..=opts.batches.max(5) {
+        let mut t = trainer.clone();
+        let t0 = now();
+        std::hint::black_box(t.epoch());
+        let dt = now() - t0;
+        if i > 0 {
+            times.push(dt);
+        }
+    }
+    Ok(median(&mut times))
+}
+
+/// Runs every measurement.
+pub fn run(opts: &Options, probes: &Probes) -> Result<Report> {
+    let theta_dot = PerMode::from_fn(|m| theta_dot_ns(m, opts, probes))?;
+    let step = PerMode::from_fn(|m| step_ns(m, opts, probes))?;
+    let forward = forward_ns(opts, probes)?;
+    let lm = if opts.lm_epoch {
+        Some(lm_epoch_ms(opts, probes)?)
+    } else {
+        None
+    };
+    let allocs = match probes.allocations {
+        Some(count) => Some(PerMode::from_fn(|m| allocs_per_step(m, count))?),
+        None => None,
+    };
+    Ok(Report {
+        theta_dot_ns: theta_dot,
+        step_ns: step,
+        forward_ns: forward,
+        lm_epoch_ms: lm,
+        allocs_per_step: allocs,
+    })
+}

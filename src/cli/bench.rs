@@ -1,0 +1,89 @@
+//! `redundant-ik bench`: the library's in-process benchmarks
+//! ([`redundant_ik::bench`]) timed with `std::time::Instant`, with heap
+//! allocations counted by the binary's global allocator.
+
+use std::time::Instant;
+
+use clap::Args;
+use redundant_ik::bench::{self, Options, PerMode, Report};
+use redundant_ik::Mode;
+
+use super::emit;
+
+/// Options of `redundant-ik bench`.
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// Print one JSON object instead of a table.
+    #[arg(long)]
+    pub json: bool,
+    /// Timed batches per figure (the median is reported; at least 5).
+    #[arg(long, default_value_t = 7)]
+    pub batches: usize,
+    /// Shortest batch in milliseconds.
+    #[arg(long, default_value_t = 20.0)]
+    pub batch_ms: f64,
+    /// Skip the Levenberg-Marquardt epoch (about a second in all).
+    #[arg(long)]
+    pub no_lm: bool,
+}
+
+/// Runs `redundant-ik bench`.
+pub fn run(args: &BenchArgs) -> Result<(), String> {
+    if !(args.batch_ms.is_finite() && args.batch_ms > 0.0 && args.batch_ms <= 10_000.0) {
+        return Err("--batch-ms must lie between 0 and 10000".into());
+    }
+    if !(5..=1000).contains(&args.batches) {
+        return Err("--batches must lie between 5 and 1000".into());
+    }
+    let opts = Options {
+        batch_ms: args.batch_ms,
+        batches: args.batches,
+        lm_epoch: !args.no_lm,
+    };
+    let origin = Instant::now();
+    let now = move || origin.elapsed().as_secs_f64() * 1e3;
+    let count = crate::allocations;
+    let probes = bench::Probes {
+        now_ms: &now,
+        allocations: Some(&count),
+    };
+    let report = bench::run(&opts, &probes).map_err(|e| e.to_string())?;
+    if args.json {
+        let json = serde_json::to_string(&report).map_err(|e| e.to_string())?;
+        return emit(&format!("{json}\n"));
+    }
+    emit(&table(&report))
+}
+
+fn table(r: &Report) -> String {
+    let mut s = String::from(
+        "median of timed batches after a warm-up; Task 1, start pose; release build\n\n\
+         mode        theta_dot      RK4 step   allocs/step\n",
+    );
+    let allocs = |m: Mode| {
+        r.allocs_per_step
+            .as_ref()
+            .map_or("-".to_string(), |a: &PerMode| format!("{}", a.get(m)))
+    };
+    for m in Mode::ALL {
+        s.push_str(&format!(
+            "{:<10} {:>10.1} ns {:>10.1} ns {:>12}\n",
+            m.name(),
+            r.theta_dot_ns.get(m),
+            r.step_ns.get(m),
+            allocs(m)
+        ));
+    }
+    let f = &r.forward_ns;
+    s.push_str(&format!(
+        "\nforward pass: Phi equivariant 2-35-14-6 {:.1} ns, v 5-25-14-3 {:.1} ns,\n\
+         \x20             Phi plain 3-35-14-6 {:.1} ns, Phi rows 3 x 3-35-14-2 {:.1} ns\n",
+        f.phi, f.v, f.phi_plain, f.phi_rows
+    ));
+    if let Some(ms) = r.lm_epoch_ms {
+        s.push_str(&format!(
+            "one LM epoch, Phi 2-35-14-6, 3,000 samples (2,100 training): {ms:.1} ms\n"
+        ));
+    }
+    s
+}
