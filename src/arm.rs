@@ -9,6 +9,11 @@ use nalgebra::{DVector, Matrix2xX, Vector2};
 use serde::{Deserialize, Serialize};
 
 use crate::error::{finite, positive, Error, Result};
+use crate::kinematics::{segment_distance_squared, Pose};
+
+/// Most links an [`Arm`] may have. The page offers 2 to 6; the limit keeps
+/// the networks' fixed-size input buffers sufficient and refuses absurd input.
+pub const MAX_LINKS: usize = 32;
 
 /// A planar arm on a vertical base post of length `post`, with revolute links of
 /// lengths `links[0..n]` (the paper's `L0` and `L1..L3`).
@@ -34,6 +39,12 @@ impl Arm {
         if links.len() < 2 {
             return Err(Error::InvalidValue(format!(
                 "an arm needs at least 2 links to position a planar end effector (got {})",
+                links.len()
+            )));
+        }
+        if links.len() > MAX_LINKS {
+            return Err(Error::InvalidValue(format!(
+                "an arm may have at most {MAX_LINKS} links (got {})",
                 links.len()
             )));
         }
@@ -91,6 +102,12 @@ impl Arm {
 
     /// Checks that `theta` has `n` finite entries.
     pub fn check_theta(&self, theta: &DVector<f64>) -> Result<()> {
+        self.check_angles(theta.as_slice())
+    }
+
+    /// Checks that `theta` has `n` finite entries (the message is only
+    /// formatted when there is a problem).
+    pub fn check_angles(&self, theta: &[f64]) -> Result<()> {
         if theta.len() != self.dof() {
             return Err(Error::DimensionMismatch {
                 what: "theta".into(),
@@ -98,10 +115,10 @@ impl Arm {
                 found: theta.len(),
             });
         }
-        for (i, &t) in theta.iter().enumerate() {
-            finite(&format!("theta_{}", i + 1), t)?;
+        match theta.iter().position(|t| !t.is_finite()) {
+            Some(i) => Err(Error::NonFinite(format!("theta_{}", i + 1))),
+            None => Ok(()),
         }
-        Ok(())
     }
 
     /// Absolute link angles `phi_i = theta_1 + ... + theta_i`.
@@ -117,14 +134,11 @@ impl Arm {
 
     /// All joint positions `P(0), P(1), ..., P(n)`; the last is the end effector.
     pub fn joints(&self, theta: &DVector<f64>) -> Vec<Vector2<f64>> {
-        let mut p = self.base();
-        let mut out = Vec::with_capacity(self.dof() + 1);
-        out.push(p);
-        for (l, phi) in self.links.iter().zip(self.absolute_angles(theta)) {
-            p += *l * Vector2::new(phi.sin(), phi.cos());
-            out.push(p);
-        }
-        out
+        Pose::lenient(self, theta.as_slice())
+            .joints()
+            .iter()
+            .map(|p| Vector2::new(p[0], p[1]))
+            .collect()
     }
 
     /// Forward kinematics `X = f(theta)`, eq. (1): the end effector `P(n)`.
@@ -137,38 +151,18 @@ impl Arm {
     /// assert!((x[0] - 1.555884).abs() < 1e-6 && (x[1] - 1.014851).abs() < 1e-6);
     /// ```
     pub fn forward(&self, theta: &DVector<f64>) -> Vector2<f64> {
-        let mut x = self.base();
-        for (l, phi) in self.links.iter().zip(self.absolute_angles(theta)) {
-            x += *l * Vector2::new(phi.sin(), phi.cos());
-        }
-        x
+        let x = Pose::lenient(self, theta.as_slice()).end_effector();
+        Vector2::new(x[0], x[1])
     }
 
     /// Analytic Jacobian `J = dX/dtheta`, eq. (3), a `2 x n` matrix:
     /// `J[0][i] = sum_{k>=i} L_k cos phi_k`, `J[1][i] = -sum_{k>=i} L_k sin phi_k`.
     pub fn jacobian(&self, theta: &DVector<f64>) -> Matrix2xX<f64> {
-        let n = self.dof();
-        let phi = self.absolute_angles(theta);
-        let mut j = Matrix2xX::zeros(n);
-        let (mut c, mut s) = (0.0, 0.0);
-        for i in (0..n).rev() {
-            c += self.links[i] * phi[i].cos();
-            s += self.links[i] * phi[i].sin();
-            j[(0, i)] = c;
-            j[(1, i)] = -s;
-        }
-        j
+        Matrix2xX::from_column_slice(Pose::lenient(self, theta.as_slice()).jacobian())
     }
 }
 
 /// Euclidean distance from point `p` to the segment `a`-`b`.
 pub fn point_segment_distance(p: &Vector2<f64>, a: &Vector2<f64>, b: &Vector2<f64>) -> f64 {
-    let ab = b - a;
-    let len2 = ab.norm_squared();
-    let s = if len2 > 0.0 {
-        ((p - a).dot(&ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p - (a + s * ab)).norm()
+    segment_distance_squared([p[0], p[1]], [a[0], a[1]], [b[0], b[1]]).sqrt()
 }

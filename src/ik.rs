@@ -13,35 +13,81 @@ use nalgebra::{DMatrix, DVector, Matrix2, Matrix2xX, MatrixXx2, Vector2};
 use serde::{Deserialize, Serialize};
 
 use crate::error::{finite, positive, Error, Result};
+use crate::kinematics::jjt;
 
 /// Solves the symmetric positive definite 2x2 system `A x = b` by an
 /// `L D L^T` elimination (what eq. 17 asks for). Fails when `A` is numerically
 /// singular or not positive definite.
 pub fn solve_symmetric_2x2(a: &Matrix2<f64>, b: &Vector2<f64>) -> Result<Vector2<f64>> {
-    let (a11, a12, a22) = (a[(0, 0)], 0.5 * (a[(0, 1)] + a[(1, 0)]), a[(1, 1)]);
+    let a = [a[(0, 0)], 0.5 * (a[(0, 1)] + a[(1, 0)]), a[(1, 1)]];
+    let [x1, x2] = solve_spd2(a, [b[0], b[1]])?;
+    Ok(Vector2::new(x1, x2))
+}
+
+/// [`solve_symmetric_2x2`] on `A = (a11, a12, a22)`: the allocation-free
+/// form the planner uses.
+#[inline]
+pub fn solve_spd2([a11, a12, a22]: [f64; 3], b: [f64; 2]) -> Result<[f64; 2]> {
     let scale = a11.abs().max(a22.abs());
     if a11.is_nan() || a11 <= 0.0 || !scale.is_finite() {
-        return Err(Error::Singular(
-            "J J^T + delta I is not positive definite".into(),
-        ));
+        return Err(not_positive_definite());
     }
     let l21 = a12 / a11;
     let d2 = a22 - l21 * a12;
     if d2.is_nan() || d2 <= 1e-13 * scale {
-        return Err(Error::Singular(
-            "J J^T + delta I is (numerically) singular: the arm is stretched or folded; switch damping on".into(),
-        ));
+        return Err(numerically_singular());
     }
     let y2 = b[1] - l21 * b[0];
     let x2 = y2 / d2;
     let x1 = (b[0] - a12 * x2) / a11;
-    Ok(Vector2::new(x1, x2))
+    Ok([x1, x2])
 }
 
-fn inverse_symmetric_2x2(a: &Matrix2<f64>) -> Result<Matrix2<f64>> {
-    let c0 = solve_symmetric_2x2(a, &Vector2::new(1.0, 0.0))?;
-    let c1 = solve_symmetric_2x2(a, &Vector2::new(0.0, 1.0))?;
-    Ok(Matrix2::from_columns(&[c0, c1]))
+#[cold]
+fn not_positive_definite() -> Error {
+    Error::Singular("J J^T + delta I is not positive definite".into())
+}
+
+#[cold]
+fn numerically_singular() -> Error {
+    Error::Singular(
+        "J J^T + delta I is (numerically) singular: the arm is stretched or folded; switch damping on"
+            .into(),
+    )
+}
+
+/// The inverse of `A = (a11, a12, a22)` as its two columns, by two solves.
+fn inverse_spd2(a: [f64; 3]) -> Result<[[f64; 2]; 2]> {
+    Ok([solve_spd2(a, [1.0, 0.0])?, solve_spd2(a, [0.0, 1.0])?])
+}
+
+#[cold]
+fn size_error(what: &str, expected: usize, found: usize) -> Error {
+    Error::DimensionMismatch {
+        what: what.into(),
+        expected,
+        found,
+    }
+}
+
+/// Checks the slice lengths of the allocation-free routines: `jac` is
+/// `2 x n` column-major, and each of `rest` has `n` entries.
+#[inline]
+fn check_lengths(jac: &[f64], rest: &[(&str, usize)]) -> Result<usize> {
+    if !jac.len().is_multiple_of(2) {
+        return Err(size_error(
+            "J (2 x n, column-major)",
+            jac.len() + 1,
+            jac.len(),
+        ));
+    }
+    let n = jac.len() / 2;
+    for &(what, len) in rest {
+        if len != n {
+            return Err(size_error(what, n, len));
+        }
+    }
+    Ok(n)
 }
 
 fn check_delta(delta: f64) -> Result<()> {
@@ -143,17 +189,97 @@ pub fn theta_dot_symmetric(
     v: &DVector<f64>,
     delta: f64,
 ) -> Result<DVector<f64>> {
-    let a = j * j.transpose() + delta * Matrix2::identity();
-    let rhs = xdot - j * v;
-    let varphi = solve_symmetric_2x2(&a, &rhs)?;
-    Ok(j.transpose() * varphi + v)
+    let mut out = DVector::zeros(j.ncols());
+    theta_dot_symmetric_into(
+        j.as_slice(),
+        [xdot[0], xdot[1]],
+        v.as_slice(),
+        delta,
+        out.as_mut_slice(),
+    )?;
+    Ok(out)
+}
+
+/// [`theta_dot_symmetric`] on slices, allocation-free: `jac` is `J`
+/// column-major (`[J_00, J_10, J_01, J_11, ...]`, as [`crate::kinematics::Pose`]
+/// and nalgebra store it), `v` and `out` have `n` entries.
+#[inline]
+pub fn theta_dot_symmetric_into(
+    jac: &[f64],
+    xdot: [f64; 2],
+    v: &[f64],
+    delta: f64,
+    out: &mut [f64],
+) -> Result<()> {
+    check_lengths(jac, &[("v", v.len()), ("theta_dot", out.len())])?;
+    let [a11, a12, a22] = jjt(jac);
+    let rhs = task_residual(jac, xdot, v);
+    let varphi = solve_spd2([a11 + delta, a12, a22 + delta], rhs)?;
+    for ((o, col), vi) in out.iter_mut().zip(jac.chunks_exact(2)).zip(v) {
+        *o = (col[0] * varphi[0] + col[1] * varphi[1]) + vi;
+    }
+    Ok(())
+}
+
+/// `Xdot - J v`, the task velocity left for the pseudoinverse (eqs. 17, 21).
+#[inline]
+fn task_residual(jac: &[f64], xdot: [f64; 2], v: &[f64]) -> [f64; 2] {
+    let (mut jv0, mut jv1) = (0.0, 0.0);
+    for (col, vi) in jac.chunks_exact(2).zip(v) {
+        jv0 += col[0] * vi;
+        jv1 += col[1] * vi;
+    }
+    [xdot[0] - jv0, xdot[1] - jv1]
 }
 
 /// `Phi(theta) = J^T (J J^T + delta I)^-1`, eqs. (19)-(20): the `n x 2` matrix
 /// that the paper's first network learns.
 pub fn phi(j: &Matrix2xX<f64>, delta: f64) -> Result<MatrixXx2<f64>> {
-    let a = j * j.transpose() + delta * Matrix2::identity();
-    Ok(j.transpose() * inverse_symmetric_2x2(&a)?)
+    let mut out = vec![0.0; 2 * j.ncols()];
+    phi_into(j.as_slice(), delta, &mut out)?;
+    Ok(MatrixXx2::from_row_slice(&out))
+}
+
+/// [`phi`] on slices, allocation-free: `Phi` row-major into `out` (`2n`
+/// entries), `jac` column-major as in [`theta_dot_symmetric_into`].
+#[inline]
+pub fn phi_into(jac: &[f64], delta: f64, out: &mut [f64]) -> Result<()> {
+    check_lengths(jac, &[("Phi (n x 2)", out.len() / 2)])?;
+    if out.len() != jac.len() {
+        return Err(size_error("Phi (n x 2)", jac.len(), out.len()));
+    }
+    let [a11, a12, a22] = jjt(jac);
+    let [c0, c1] = inverse_spd2([a11 + delta, a12, a22 + delta])?;
+    for (row, col) in out.chunks_exact_mut(2).zip(jac.chunks_exact(2)) {
+        row[0] = col[0] * c0[0] + col[1] * c0[1];
+        row[1] = col[0] * c1[0] + col[1] * c1[1];
+    }
+    Ok(())
+}
+
+/// Applies a constant damping `delta` to an undamped `Phi_0` in place:
+/// `Phi_delta = Phi_0 (I + delta Phi_0^T Phi_0)^-1`.
+///
+/// This is how a learned `Phi` (trained at `delta = 0`, as in the paper) takes
+/// a constant `delta` in Cases 1 and 3 without the inverse of `J J^T` that the
+/// network replaces: with `A = J J^T` and `Phi_0 = J^T A^-1`,
+/// `Phi_0^T Phi_0 = A^-1`, so `Phi_0 (I + delta A^-1)^-1 = J^T (A + delta I)^-1`,
+/// which is eq. (20) exactly when `Phi_0` is exact. The 2x2 matrix
+/// `I + delta Phi_0^T Phi_0` is at least `I`, so the solve never fails for
+/// finite input.
+pub fn damp_phi(phi: &mut [f64], delta: f64) -> Result<()> {
+    check_delta(delta)?;
+    if delta == 0.0 {
+        return Ok(());
+    }
+    let [p, q, r] = jjt(phi);
+    let [c0, c1] = inverse_spd2([1.0 + delta * p, delta * q, 1.0 + delta * r])?;
+    for row in phi.chunks_exact_mut(2) {
+        let (x, y) = (row[0], row[1]);
+        row[0] = x * c0[0] + y * c0[1];
+        row[1] = x * c1[0] + y * c1[1];
+    }
+    Ok(())
 }
 
 /// Network route, eq. (21): `theta_dot = Phi (Xdot - J v) + v`, with `Phi` from
@@ -167,19 +293,41 @@ pub fn theta_dot_network(
     phi * (xdot - j * v) + v
 }
 
+/// [`theta_dot_network`] on slices, allocation-free: `phi` row-major
+/// (`2n`), `jac` column-major, `v` and `out` with `n` entries.
+#[inline]
+pub fn theta_dot_network_into(
+    phi: &[f64],
+    jac: &[f64],
+    xdot: [f64; 2],
+    v: &[f64],
+    out: &mut [f64],
+) -> Result<()> {
+    check_lengths(
+        jac,
+        &[
+            ("Phi (n x 2)", phi.len() / 2),
+            ("v", v.len()),
+            ("theta_dot", out.len()),
+        ],
+    )?;
+    let e = task_residual(jac, xdot, v);
+    for ((o, row), vi) in out.iter_mut().zip(phi.chunks_exact(2)).zip(v) {
+        *o = (row[0] * e[0] + row[1] * e[1]) + vi;
+    }
+    Ok(())
+}
+
 /// Smallest singular value of a `2 x n` Jacobian, from the eigenvalues of the
 /// 2x2 matrix `J J^T` in closed form.
 pub fn smallest_singular_value(j: &Matrix2xX<f64>) -> f64 {
-    let a = j * j.transpose();
-    let (p, q, r) = (a[(0, 0)], a[(0, 1)], a[(1, 1)]);
-    let mean = 0.5 * (p + r);
-    let radius = (0.25 * (p - r) * (p - r) + q * q).sqrt();
-    (mean - radius).max(0.0).sqrt()
+    crate::kinematics::smallest_singular_value(jjt(j.as_slice()))
 }
 
 /// Square root of `det(J J^T)`: Yoshikawa's manipulability measure.
 pub fn manipulability(j: &Matrix2xX<f64>) -> f64 {
-    (j * j.transpose()).determinant().max(0.0).sqrt()
+    let [a, b, c] = jjt(j.as_slice());
+    (a * c - b * b).max(0.0).sqrt()
 }
 
 /// A damping schedule in the spirit of Nakamura and Hanafusa: no damping while
@@ -216,7 +364,12 @@ impl DampingSchedule {
 
     /// The extra damping this schedule adds at Jacobian `j`.
     pub fn delta(&self, j: &Matrix2xX<f64>) -> f64 {
-        let sigma = smallest_singular_value(j);
+        self.delta_at_sigma(smallest_singular_value(j))
+    }
+
+    /// The extra damping at a pose whose smallest singular value is `sigma`.
+    #[inline]
+    pub fn delta_at_sigma(&self, sigma: f64) -> f64 {
         if sigma >= self.threshold {
             0.0
         } else {

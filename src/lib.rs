@@ -1,11 +1,13 @@
 #![doc = include_str!("../README.md")]
-#![forbid(unsafe_code)]
+// One audited exception: the run-time AVX2/FMA dispatch in `nn::kernel`.
+#![deny(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod arm;
 pub mod bench;
 pub mod error;
 pub mod ik;
+pub mod kinematics;
 pub mod networks;
 pub mod nn;
 pub mod obstacle;
@@ -17,6 +19,7 @@ pub mod wasm;
 pub use arm::Arm;
 pub use error::{Error, Result};
 pub use ik::DampingSchedule;
+pub use kinematics::Pose;
 pub use networks::{Networks, TrainedRange};
 pub use obstacle::Obstacle;
 pub use planner::{Line, Mode, Planner, Sample, Summary, Surrogate, Trajectory};

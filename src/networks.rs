@@ -8,17 +8,16 @@
 //! [`Networks::from_json`]. How they were trained, the schema and the
 //! measured accuracy are in `docs/networks.md`.
 
-use nalgebra::{DVector, MatrixXx2, Vector2};
 use serde::{Deserialize, Serialize};
 
 use crate::arm::Arm;
 use crate::error::{Error, Result};
-use crate::ik;
+use crate::kinematics::Pose;
 use crate::nn::data::{self, Sampling, Visited};
 use crate::nn::lm::{self, Dataset, EpochReport, LmOptions};
 use crate::nn::rng::Rng;
 use crate::nn::weights::{self, ArmSpec, InputRange, NetEntry, NetKind, Training, Variant};
-use crate::nn::WeightsFile;
+use crate::nn::{Kernel, WeightsFile};
 use crate::planner::Surrogate;
 
 /// Shipped `Phi` networks, paper form: one 3-35-14-6 net over `theta`.
@@ -50,6 +49,10 @@ pub struct Networks {
     phi: WeightsFile,
     v: WeightsFile,
     arm: Arm,
+    /// The run-time form of each `Phi` network and of the `v` network
+    /// (`mapminmax` folded in, padded, vectorised), built at load.
+    phi_kernels: Vec<Kernel>,
+    v_kernel: Kernel,
 }
 
 /// What the networks were trained on, for the page to show and to warn when a
@@ -96,7 +99,15 @@ impl Networks {
             ));
         }
         let arm = phi.arm()?;
-        Ok(Self { phi, v, arm })
+        let phi_kernels = phi.nets.iter().map(|e| Kernel::new(&e.mlp)).collect();
+        let v_kernel = Kernel::new(&v.nets[0].mlp);
+        Ok(Self {
+            phi,
+            v,
+            arm,
+            phi_kernels,
+            v_kernel,
+        })
     }
 
     /// Networks from the JSON text of a `Phi` weights file and a `v` weights
@@ -156,41 +167,38 @@ impl Networks {
         }
     }
 
-    fn check_theta(&self, theta: &[f64]) -> Result<()> {
-        self.arm.check_theta(&DVector::from_column_slice(theta))
+    /// Learned `Phi(theta)` row-major into `out` (`2n` entries),
+    /// allocation-free. `theta` is checked (length, finiteness).
+    pub fn phi_into(&self, theta: &[f64], out: &mut [f64]) -> Result<()> {
+        self.arm.check_angles(theta)?;
+        let (s, c) = theta[0].sin_cos();
+        self.phi_raw(theta, s, c, out)
     }
 
-    /// Learned `Phi(theta)` row-major into `out` (`2n` entries). Allocation-free
-    /// for the shipped sizes.
-    pub fn phi_into(&self, theta: &[f64], out: &mut [f64]) -> Result<()> {
+    /// The `Phi` networks at `theta` (length checked by the caller), with
+    /// `(sin, cos)` of `theta_1` for the equivariant variant's rotation.
+    #[inline]
+    fn phi_raw(&self, theta: &[f64], s1: f64, c1: f64, out: &mut [f64]) -> Result<()> {
         let n = self.arm.dof();
-        if theta.len() != n || out.len() != 2 * n {
-            return Err(Error::DimensionMismatch {
-                what: "theta for the Phi network".into(),
-                expected: n,
-                found: theta.len(),
-            });
+        if out.len() != 2 * n {
+            return Err(dimension("Phi (n x 2) output", 2 * n, out.len()));
         }
-        if theta.iter().any(|t| !t.is_finite()) {
-            return Err(Error::NonFinite("theta".into()));
-        }
-        let nets = &self.phi.nets;
+        let k = &self.phi_kernels;
         match self.phi.variant {
-            Variant::Plain => nets[0].mlp.forward_into(theta, out),
+            Variant::Plain => k[0].forward(theta, out),
             Variant::Rows => {
-                for (i, e) in nets.iter().enumerate() {
-                    e.mlp.forward_into(theta, &mut out[2 * i..2 * i + 2]);
+                for (kernel, row) in k.iter().zip(out.chunks_exact_mut(2)) {
+                    kernel.forward(theta, row);
                 }
             }
             Variant::Equivariant => {
-                nets[0].mlp.forward_into(&theta[1..], out);
+                k[0].forward(&theta[1..], out);
                 // Phi(theta) = Phi(0, theta_2, ..) R(theta_1)^T,
                 // R(a) = [[cos a, sin a], [-sin a, cos a]].
-                let (s, c) = theta[0].sin_cos();
                 for row in out.chunks_exact_mut(2) {
                     let (p0, p1) = (row[0], row[1]);
-                    row[0] = p0 * c + p1 * s;
-                    row[1] = -p0 * s + p1 * c;
+                    row[0] = p0 * c1 + p1 * s1;
+                    row[1] = -p0 * s1 + p1 * c1;
                 }
             }
         }
@@ -200,22 +208,40 @@ impl Networks {
         Ok(())
     }
 
-    /// Learned area gradient `g(theta, O)` into `out` (`n` entries).
+    /// Learned area gradient `g(theta, O)` into `out` (`n` entries),
+    /// allocation-free. `theta` and `O` are checked.
     pub fn area_gradient_into(&self, theta: &[f64], o: [f64; 2], out: &mut [f64]) -> Result<()> {
+        self.arm.check_angles(theta)?;
+        if !(o[0].is_finite() && o[1].is_finite()) {
+            return Err(Error::NonFinite("obstacle point".into()));
+        }
+        let (s, c) = theta[0].sin_cos();
+        self.area_gradient_raw(theta, s, c, o, out)
+    }
+
+    #[inline]
+    fn area_gradient_raw(
+        &self,
+        theta: &[f64],
+        s1: f64,
+        c1: f64,
+        o: [f64; 2],
+        out: &mut [f64],
+    ) -> Result<()> {
         let n = self.arm.dof();
-        if theta.len() != n || out.len() != n {
-            return Err(Error::DimensionMismatch {
-                what: "theta for the v network".into(),
-                expected: n,
-                found: theta.len(),
-            });
+        if out.len() != n {
+            return Err(dimension("v network output", n, out.len()));
         }
-        if theta.iter().chain(&o).any(|t| !t.is_finite()) {
-            return Err(Error::NonFinite("theta or obstacle point".into()));
-        }
-        let mut input = [0.0; 16];
-        let x = v_inputs(self.v.variant, &self.arm, theta, o, &mut input);
-        self.v.nets[0].mlp.forward_into(x, out);
+        let mut input = [0.0; MAX_V_INPUTS];
+        let x = v_inputs(
+            self.v.variant,
+            self.arm.post(),
+            theta,
+            (s1, c1),
+            o,
+            &mut input,
+        );
+        self.v_kernel.forward(x, out);
         if out.iter().any(|x| !x.is_finite()) {
             return Err(Error::NonFinite("v network output".into()));
         }
@@ -225,26 +251,59 @@ impl Networks {
     /// Whether `theta` is inside the `Phi` networks' trained box and away from
     /// singular poses (`sigma_min(J) >=` the floor).
     pub fn phi_in_range_slice(&self, theta: &[f64]) -> bool {
-        if theta.len() != self.arm.dof() || theta.iter().any(|t| !t.is_finite()) {
-            return false;
-        }
-        let x = match self.phi.variant {
-            Variant::Equivariant => &theta[1..],
-            _ => theta,
-        };
-        self.phi.range.contains(x)
-            && ik::smallest_singular_value(&self.arm.jacobian(&DVector::from_column_slice(theta)))
-                >= self.phi.range.sigma_floor
+        self.arm.check_angles(theta).is_ok()
+            && self.phi_in_range_at(&Pose::lenient(&self.arm, theta))
+    }
+
+    fn phi_in_range_at(&self, pose: &Pose) -> bool {
+        let theta = pose.theta();
+        self.phi.range.contains(phi_inputs(self.phi.variant, theta))
+            && pose.sigma_min() >= self.phi.range.sigma_floor
     }
 
     /// Whether `(theta, O)` is inside the `v` network's trained box.
     pub fn v_in_range_slice(&self, theta: &[f64], o: [f64; 2]) -> bool {
-        if theta.len() != self.arm.dof() || theta.iter().chain(&o).any(|t| !t.is_finite()) {
+        if self.arm.check_angles(theta).is_err() || !(o[0].is_finite() && o[1].is_finite()) {
             return false;
         }
-        let mut input = [0.0; 16];
-        let x = v_inputs(self.v.variant, &self.arm, theta, o, &mut input);
+        let (s, c) = theta[0].sin_cos();
+        self.v_in_range_raw(theta, s, c, o)
+    }
+
+    fn v_in_range_raw(&self, theta: &[f64], s1: f64, c1: f64, o: [f64; 2]) -> bool {
+        let mut input = [0.0; MAX_V_INPUTS];
+        let x = v_inputs(
+            self.v.variant,
+            self.arm.post(),
+            theta,
+            (s1, c1),
+            o,
+            &mut input,
+        );
         self.v.range.contains(x)
+    }
+
+    /// Whether `pose` is a pose of an arm with as many joints as the networks'.
+    #[inline]
+    fn check_pose(&self, pose: &Pose) -> Result<()> {
+        if pose.dof() == self.arm.dof() {
+            Ok(())
+        } else {
+            Err(dimension(
+                "pose for the networks",
+                self.arm.dof(),
+                pose.dof(),
+            ))
+        }
+    }
+}
+
+#[cold]
+fn dimension(what: &str, expected: usize, found: usize) -> Error {
+    Error::DimensionMismatch {
+        what: what.into(),
+        expected,
+        found,
     }
 }
 
@@ -263,24 +322,29 @@ fn phi_inputs(variant: Variant, theta: &[f64]) -> &[f64] {
     }
 }
 
-/// The `v` network's inputs for a pose and obstacle point, written into `buf`.
+/// Most links the `v` network's input buffer holds (`n + 2` inputs); weights
+/// files for longer arms are refused when they load.
+pub const MAX_V_INPUTS: usize = 64;
+
+/// The `v` network's inputs for a pose and obstacle point, written into `buf`
+/// (`sc` = sine and cosine of `theta_1`).
 fn v_inputs<'a>(
     variant: Variant,
-    arm: &Arm,
+    post: f64,
     theta: &[f64],
+    (s, c): (f64, f64),
     o: [f64; 2],
-    buf: &'a mut [f64; 16],
+    buf: &'a mut [f64; MAX_V_INPUTS],
 ) -> &'a [f64] {
-    let n = theta.len().min(13);
+    let n = theta.len().min(MAX_V_INPUTS - 2);
     match variant {
         Variant::Equivariant => {
             // Rotate O by -theta_1 about P(0): the arm at theta_1 is the arm at
             // theta_1 = 0 turned by R(theta_1), so O' = R(theta_1)^T (O - P(0)) + P(0).
-            let (s, c) = theta[0].sin_cos();
-            let (dx, dy) = (o[0], o[1] - arm.post());
+            let (dx, dy) = (o[0], o[1] - post);
             buf[..n - 1].copy_from_slice(&theta[1..n]);
             buf[n - 1] = c * dx - s * dy;
-            buf[n] = s * dx + c * dy + arm.post();
+            buf[n] = s * dx + c * dy + post;
             &buf[..n + 1]
         }
         _ => {
@@ -293,32 +357,25 @@ fn v_inputs<'a>(
 }
 
 impl Surrogate for Networks {
-    fn phi(&self, theta: &DVector<f64>) -> Result<MatrixXx2<f64>> {
-        self.check_theta(theta.as_slice())?;
-        let n = self.arm.dof();
-        let mut buf = [0.0; 32];
-        let out: &mut [f64] = if 2 * n <= 32 {
-            &mut buf[..2 * n]
-        } else {
-            return Err(Error::InvalidValue("arms with more than 16 links".into()));
-        };
-        self.phi_into(theta.as_slice(), out)?;
-        Ok(MatrixXx2::from_row_slice(out))
+    fn phi(&self, pose: &Pose, out: &mut [f64]) -> Result<()> {
+        self.check_pose(pose)?;
+        self.phi_raw(pose.theta(), pose.sin()[0], pose.cos()[0], out)
     }
 
-    fn area_gradient(&self, theta: &DVector<f64>, o: &Vector2<f64>) -> Result<DVector<f64>> {
-        self.check_theta(theta.as_slice())?;
-        let mut g = DVector::zeros(self.arm.dof());
-        self.area_gradient_into(theta.as_slice(), [o[0], o[1]], g.as_mut_slice())?;
-        Ok(g)
+    fn area_gradient(&self, pose: &Pose, o: [f64; 2], out: &mut [f64]) -> Result<()> {
+        self.check_pose(pose)?;
+        self.area_gradient_raw(pose.theta(), pose.sin()[0], pose.cos()[0], o, out)
     }
 
-    fn phi_in_range(&self, theta: &DVector<f64>) -> bool {
-        self.phi_in_range_slice(theta.as_slice())
+    fn phi_in_range(&self, pose: &Pose) -> bool {
+        self.check_pose(pose).is_ok() && self.phi_in_range_at(pose)
     }
 
-    fn v_in_range(&self, theta: &DVector<f64>, o: &Vector2<f64>) -> bool {
-        self.v_in_range_slice(theta.as_slice(), [o[0], o[1]])
+    fn v_in_range(&self, pose: &Pose, o: [f64; 2]) -> bool {
+        self.check_pose(pose).is_ok()
+            && o[0].is_finite()
+            && o[1].is_finite()
+            && self.v_in_range_raw(pose.theta(), pose.sin()[0], pose.cos()[0], o)
     }
 }
 
@@ -400,9 +457,16 @@ pub fn phi_datasets(arm: &Arm, variant: Variant, samples: &[Visited]) -> Result<
 pub fn v_dataset(arm: &Arm, variant: Variant, samples: &[Visited]) -> Result<Dataset> {
     let (_, n_in, n_out) = weights::shape(NetKind::V, variant, arm.dof())?;
     let mut set = Dataset::new(n_in, n_out);
-    let mut buf = [0.0; 16];
+    let mut buf = [0.0; MAX_V_INPUTS];
     for s in samples {
-        let x = v_inputs(variant, arm, &s.theta, s.obstacle, &mut buf);
+        let x = v_inputs(
+            variant,
+            arm.post(),
+            &s.theta,
+            s.theta[0].sin_cos(),
+            s.obstacle,
+            &mut buf,
+        );
         set.push(x, &data::v_target(arm, &s.theta, s.obstacle));
     }
     Ok(set)

@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::arm::{point_segment_distance, Arm};
 use crate::error::{coordinate, positive, Error, Result};
+use crate::kinematics::Pose;
 
 /// A disc obstacle. Its centre is the point `O` of eq. (16); the radius only
 /// decides what counts as a collision.
@@ -68,34 +69,60 @@ pub fn triangle_determinants(joints: &[Vector2<f64>], o: &Vector2<f64>) -> Vec<f
 
 /// Analytic `dD_k / dtheta_i` as an `n x n` matrix (row `k`, column `i`).
 ///
-/// With `a = O - P(k-1)` and `b = P(k) - P(k-1) = L_k (sin phi_k, cos phi_k)`,
-/// `D_k = det[a, b]` and `dD_k/dtheta_i = det[da, b] + det[a, db]`, where
-/// `db/dtheta_i = L_k (cos phi_k, -sin phi_k)` for `i <= k` and
-/// `da/dtheta_i = -dP(k-1)/dtheta_i = -sum_{i<=m<k} L_m (cos phi_m, -sin phi_m)`.
+/// With `a_k = O - P(k-1)` and `b_k = P(k) - P(k-1) = L_k (sin phi_k, cos phi_k)`,
+/// `D_k = det[a_k, b_k]` and `dD_k/dtheta_i = det[da_k, b_k] + det[a_k, db_k]`
+/// for `i <= k`, where `db_k/dtheta_i = t_k = L_k (cos phi_k, -sin phi_k)` and
+/// `da_k/dtheta_i = -dP(k-1)/dtheta_i = -(J_i - J_k)` (`J_i` is column `i` of
+/// the Jacobian, `J_i = sum_{m>=i} t_m`). Hence
+/// `dD_k/dtheta_i = c_k - det[J_i, b_k]` with `c_k = det[a_k, t_k] + det[J_k, b_k]`.
 /// `D_k` depends only on `theta_1..theta_k`, so the matrix is lower triangular.
 pub fn determinant_gradient(arm: &Arm, theta: &DVector<f64>, o: &Vector2<f64>) -> DMatrix<f64> {
     let n = arm.dof();
-    let phi = arm.absolute_angles(theta);
-    let joints = arm.joints(theta);
-    // t[m] = d(link vector m)/d(phi_m)
-    let t: Vec<Vector2<f64>> = (0..n)
-        .map(|m| arm.links()[m] * Vector2::new(phi[m].cos(), -phi[m].sin()))
-        .collect();
-    let det = |a: &Vector2<f64>, b: &Vector2<f64>| a[0] * b[1] - a[1] * b[0];
+    let pose = Pose::lenient(arm, theta.as_slice());
+    let o = [o[0], o[1]];
     let mut g = DMatrix::zeros(n, n);
     for k in 0..n {
-        let a = o - joints[k];
-        let b = joints[k + 1] - joints[k];
-        // dP(k-1)/dtheta_i for i = k down to 0: suffix sums of t[i..k].
-        let mut dp_prev = Vector2::zeros();
-        for i in (0..=k).rev() {
-            if i < k {
-                dp_prev += t[i];
-            }
-            g[(k, i)] = det(&(-dp_prev), &b) + det(&a, &t[k]);
+        let link = Link::at(arm, &pose, k, o);
+        for i in 0..=k {
+            g[(k, i)] = link.c - det(column(&pose, i), link.b);
         }
     }
     g
+}
+
+#[inline]
+fn det(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+
+#[inline]
+fn column(pose: &Pose, i: usize) -> [f64; 2] {
+    let j = pose.jacobian();
+    [j[2 * i], j[2 * i + 1]]
+}
+
+/// What link `k` contributes: `D_k` (eq. 16), `b_k` and `c_k` (see
+/// [`determinant_gradient`]).
+struct Link {
+    d: f64,
+    b: [f64; 2],
+    c: f64,
+}
+
+impl Link {
+    #[inline]
+    fn at(arm: &Arm, pose: &Pose, k: usize, o: [f64; 2]) -> Self {
+        let (p0, p1) = (pose.joints()[k], pose.joints()[k + 1]);
+        let a = [o[0] - p0[0], o[1] - p0[1]];
+        let b = [p1[0] - p0[0], p1[1] - p0[1]];
+        let l = arm.links()[k];
+        let t = [l * pose.cos()[k], -l * pose.sin()[k]];
+        Self {
+            d: det(a, b),
+            b,
+            c: det(a, t) + det(column(pose, k), b),
+        }
+    }
 }
 
 /// The obstacle-avoidance gradient for one obstacle point with `lambda = 4`:
@@ -103,25 +130,35 @@ pub fn determinant_gradient(arm: &Arm, theta: &DVector<f64>, o: &Vector2<f64>) -
 /// that `v = (lambda / 4) g`. This is the quantity the paper's second network
 /// learns; it does not depend on `lambda`.
 pub fn area_gradient(arm: &Arm, theta: &DVector<f64>, o: &Vector2<f64>) -> DVector<f64> {
-    let d = triangle_determinants(&arm.joints(theta), o);
-    let g = determinant_gradient(arm, theta, o);
-    let n = arm.dof();
-    let mut out = DVector::zeros(n);
-    for (k, dk) in d.iter().enumerate() {
-        let s = if *dk > 0.0 {
+    let pose = Pose::lenient(arm, theta.as_slice());
+    let mut g = DVector::zeros(arm.dof());
+    area_gradient_into(arm, &pose, [o[0], o[1]], g.as_mut_slice());
+    g
+}
+
+/// [`area_gradient`] from a [`Pose`], allocation-free and in `O(n)`: with
+/// `s_k = sign(D_k)` and [`determinant_gradient`]'s `dD_k/dtheta_i = c_k - det[J_i, b_k]`,
+/// `g_i = sum_{k>=i} s_k c_k - det[J_i, sum_{k>=i} s_k b_k]`: two suffix sums.
+/// Writes `min(n, out.len())` entries; `pose` must be a pose of `arm`.
+#[inline]
+pub fn area_gradient_into(arm: &Arm, pose: &Pose, o: [f64; 2], out: &mut [f64]) {
+    let n = pose.dof().min(arm.dof());
+    let (mut sc, mut sb) = (0.0, [0.0, 0.0]);
+    for k in (0..n).rev() {
+        let link = Link::at(arm, pose, k, o);
+        let s = if link.d > 0.0 {
             1.0
-        } else if *dk < 0.0 {
+        } else if link.d < 0.0 {
             -1.0
         } else {
             0.0
         };
-        if s != 0.0 {
-            for i in 0..n {
-                out[i] += s * g[(k, i)];
-            }
+        sc += s * link.c;
+        sb = [sb[0] + s * link.b[0], sb[1] + s * link.b[1]];
+        if let Some(g) = out.get_mut(k) {
+            *g = sc - det(column(pose, k), sb);
         }
     }
-    out
 }
 
 /// Null-space vector for obstacle avoidance, eqs. (14)-(15), summed over all
@@ -132,11 +169,32 @@ pub fn null_space_vector(
     obstacles: &[Obstacle],
     lambda: f64,
 ) -> DVector<f64> {
+    let pose = Pose::lenient(arm, theta.as_slice());
     let mut v = DVector::zeros(arm.dof());
+    let mut g = vec![0.0; arm.dof()];
+    null_space_vector_into(arm, &pose, obstacles, lambda, &mut g, v.as_mut_slice());
+    v
+}
+
+/// [`null_space_vector`] from a [`Pose`], allocation-free: `scratch` and `v`
+/// have `n` entries each.
+pub fn null_space_vector_into(
+    arm: &Arm,
+    pose: &Pose,
+    obstacles: &[Obstacle],
+    lambda: f64,
+    scratch: &mut [f64],
+    v: &mut [f64],
+) {
+    v.iter_mut().for_each(|x| *x = 0.0);
     for ob in obstacles {
-        v += area_gradient(arm, theta, &ob.point());
+        area_gradient_into(arm, pose, ob.centre, scratch);
+        for (vi, gi) in v.iter_mut().zip(scratch.iter()) {
+            *vi += gi;
+        }
     }
-    v * (lambda / 4.0)
+    let scale = lambda / 4.0;
+    v.iter_mut().for_each(|x| *x *= scale);
 }
 
 /// Clearance: the smallest distance from `o` to the moving link segments

@@ -11,11 +11,12 @@ use std::fmt;
 use std::str::FromStr;
 use std::sync::Arc;
 
-use nalgebra::{DVector, Matrix2xX, MatrixXx2, Vector2};
+use nalgebra::{DVector, Matrix2xX, Vector2};
 use serde::{Deserialize, Serialize};
 
 use crate::error::{positive, Error, Result};
 use crate::ik::{self, DampingSchedule};
+use crate::kinematics::Pose;
 use crate::obstacle::{self, Obstacle};
 use crate::scene::{self, Scene};
 
@@ -98,16 +99,21 @@ impl FromStr for Mode {
 
 /// Learned replacements for `Phi(theta)` (eq. 19) and for the obstacle
 /// gradient of eqs. (14)-(15). Implemented by the trained networks.
+///
+/// Every method reads a [`Pose`] (the planner's one kinematics pass, whose
+/// `theta` was validated when it entered the planner) and fills a slice, so
+/// the planner's step allocates nothing.
 pub trait Surrogate: Send + Sync {
-    /// Learned `Phi(theta)`, an `n x 2` matrix.
-    fn phi(&self, theta: &DVector<f64>) -> Result<MatrixXx2<f64>>;
-    /// Learned area gradient `g(theta, O)` with `v = (lambda / 4) g`
-    /// (see [`obstacle::area_gradient`]).
-    fn area_gradient(&self, theta: &DVector<f64>, o: &Vector2<f64>) -> Result<DVector<f64>>;
-    /// Whether `theta` lies in the range the `Phi` network was trained on.
-    fn phi_in_range(&self, theta: &DVector<f64>) -> bool;
+    /// Learned `Phi(theta)` at `delta = 0`, row-major `n x 2` into `out`
+    /// (`2n` entries).
+    fn phi(&self, pose: &Pose, out: &mut [f64]) -> Result<()>;
+    /// Learned area gradient `g(theta, O)` into `out` (`n` entries), with
+    /// `v = (lambda / 4) g` (see [`obstacle::area_gradient`]).
+    fn area_gradient(&self, pose: &Pose, o: [f64; 2], out: &mut [f64]) -> Result<()>;
+    /// Whether the pose lies in the range the `Phi` network was trained on.
+    fn phi_in_range(&self, pose: &Pose) -> bool;
     /// Whether `(theta, O)` lies in the range the `v` network was trained on.
-    fn v_in_range(&self, theta: &DVector<f64>, o: &Vector2<f64>) -> bool;
+    fn v_in_range(&self, pose: &Pose, o: [f64; 2]) -> bool;
 }
 
 /// The straight line being tracked: from `start` at time `t0` to `end` at
@@ -176,6 +182,11 @@ pub struct Sample {
     /// Whether the state is inside the trained range of the networks this mode uses
     /// (always true for numerical modes).
     pub in_range: bool,
+    /// Whether, in the step that led here, the damping schedule switched on
+    /// near a singular pose and the exact damped `Phi` (eq. 20) stood in for
+    /// the `Phi` network (Cases 1 and 3 only: no network can fit `Phi` where
+    /// it is unbounded).
+    pub phi_handover: bool,
 }
 
 /// What a run achieved, over every step since the last reset.
@@ -207,6 +218,9 @@ pub struct Summary {
     /// target lies outside the workspace (with `delta = 0` a stretched arm has
     /// unbounded joint rates).
     pub auto_damping: bool,
+    /// Steps in which the exact damped `Phi` stood in for the `Phi` network
+    /// near a singular pose (see [`Sample::phi_handover`]).
+    pub handover_steps: usize,
 }
 
 /// A whole run: every sample from `t = 0` to `tf`, and the summary.
@@ -228,6 +242,7 @@ struct Stats {
     max_tracking_error: f64,
     out_of_range_steps: usize,
     max_delta: f64,
+    handover_steps: usize,
 }
 
 impl Stats {
@@ -239,6 +254,7 @@ impl Stats {
             max_tracking_error: 0.0,
             out_of_range_steps: 0,
             max_delta: 0.0,
+            handover_steps: 0,
         }
     }
 
@@ -252,6 +268,148 @@ impl Stats {
             self.out_of_range_steps += 1;
         }
         self.max_delta = self.max_delta.max(s.delta);
+        if s.phi_handover {
+            self.handover_steps += 1;
+        }
+    }
+}
+
+/// Scratch space the planner owns and reuses at every step (as rapier keeps
+/// a solver workspace), so that [`Planner::step`] allocates nothing once the
+/// planner exists, in every mode and for any arm.
+#[derive(Debug, Clone)]
+struct Workspace {
+    /// The kinematics of the current state; always up to date. A step's first
+    /// RK4 stage reads it, and so does the sample.
+    pose: Pose,
+    /// The kinematics at an RK4 stage (and for [`Planner::theta_dot_into`]).
+    stage: Pose,
+    /// `theta` at a stage.
+    theta_stage: Vec<f64>,
+    /// The state after the step, before it is accepted.
+    next: Vec<f64>,
+    /// The stage rates `k1..k4`.
+    k: [Vec<f64>; 4],
+    /// What one rate evaluation needs.
+    scratch: Scratch,
+}
+
+/// Buffers of one rate evaluation: `v`, one obstacle's gradient and `Phi`.
+#[derive(Debug, Clone)]
+struct Scratch {
+    v: Vec<f64>,
+    g: Vec<f64>,
+    phi: Vec<f64>,
+}
+
+impl Scratch {
+    fn new(n: usize) -> Self {
+        Self {
+            v: vec![0.0; n],
+            g: vec![0.0; n],
+            phi: vec![0.0; 2 * n],
+        }
+    }
+}
+
+impl Workspace {
+    fn new(n: usize) -> Self {
+        Self {
+            pose: Pose::zeros(n),
+            stage: Pose::zeros(n),
+            theta_stage: vec![0.0; n],
+            next: vec![0.0; n],
+            k: [vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]],
+            scratch: Scratch::new(n),
+        }
+    }
+}
+
+/// What a rate evaluation reads: the scene, the mode and the networks.
+#[derive(Clone, Copy)]
+struct Rates<'a> {
+    scene: &'a Scene,
+    mode: Mode,
+    networks: Option<&'a dyn Surrogate>,
+}
+
+impl Rates<'_> {
+    fn nets(&self) -> Result<&dyn Surrogate> {
+        self.networks.ok_or_else(|| {
+            Error::NetworksUnavailable(format!("mode {} needs trained networks", self.mode))
+        })
+    }
+
+    /// Null-space vector `v` at `pose` into `s.v` (zero in mode `none`),
+    /// eqs. (14)-(15) summed over the obstacles, numerically or by the network.
+    fn null_space(&self, pose: &Pose, s: &mut Scratch) -> Result<()> {
+        let scene = self.scene;
+        match self.mode {
+            Mode::None => s.v.iter_mut().for_each(|x| *x = 0.0),
+            Mode::Numerical | Mode::Case1 => obstacle::null_space_vector_into(
+                &scene.arm,
+                pose,
+                &scene.obstacles,
+                scene.lambda,
+                &mut s.g,
+                &mut s.v,
+            ),
+            Mode::Case2 | Mode::Case3 => {
+                let nets = self.nets()?;
+                s.v.iter_mut().for_each(|x| *x = 0.0);
+                for ob in &scene.obstacles {
+                    nets.area_gradient(pose, ob.centre, &mut s.g)?;
+                    for (vi, gi) in s.v.iter_mut().zip(&s.g) {
+                        *vi += gi;
+                    }
+                }
+                let scale = scene.lambda / 4.0;
+                s.v.iter_mut().for_each(|x| *x *= scale);
+            }
+        }
+        Ok(())
+    }
+
+    /// The damping schedule's share of `delta` at `pose` (zero when off).
+    #[inline]
+    fn scheduled_delta(&self, pose: &Pose) -> f64 {
+        self.scene
+            .damping
+            .map_or(0.0, |d| d.delta_at_sigma(pose.sigma_min()))
+    }
+
+    /// Joint rates at `pose` for the commanded task velocity `xdot` into
+    /// `out`: eq. (18) in modes `none`, `numerical` and Case 2, eq. (21) in
+    /// Cases 1 and 3. Returns whether the exact damped `Phi` stood in for the
+    /// network (the damping schedule is active: the pose is near-singular,
+    /// where `Phi` is unbounded and no network fits it).
+    ///
+    /// A constant `delta` is applied in every mode; in Cases 1 and 3 to the
+    /// network's `Phi` by [`ik::damp_phi`].
+    fn theta_dot(
+        &self,
+        pose: &Pose,
+        xdot: [f64; 2],
+        s: &mut Scratch,
+        out: &mut [f64],
+    ) -> Result<bool> {
+        self.null_space(pose, s)?;
+        let scheduled = self.scheduled_delta(pose);
+        let delta = self.scene.delta + scheduled;
+        let jac = pose.jacobian();
+        if !self.mode.learned_phi() {
+            ik::theta_dot_symmetric_into(jac, xdot, &s.v, delta, out)?;
+            return Ok(false);
+        }
+        let handover = scheduled > 0.0;
+        if handover {
+            ik::phi_into(jac, delta, &mut s.phi)?;
+        } else {
+            self.nets()?.phi(pose, &mut s.phi)?;
+            ik::damp_phi(&mut s.phi, self.scene.delta)?;
+        }
+        ik::theta_dot_network_into(&s.phi, jac, xdot, &s.v, out)?;
+        Ok(handover)
     }
 }
 
@@ -267,6 +425,9 @@ pub struct Planner {
     line: Line,
     stats: Stats,
     auto_damping: bool,
+    /// The state as the page and the CLI see it, refreshed in place.
+    sample: Sample,
+    ws: Workspace,
 }
 
 impl fmt::Debug for Planner {
@@ -293,13 +454,30 @@ impl Planner {
         if auto_damping {
             scene.damping = Some(DampingSchedule::default());
         }
+        let n = scene.arm.dof();
         let theta = scene.theta0_vector();
-        let start = scene.arm.forward(&theta);
+        let mut ws = Workspace::new(n);
+        ws.pose.update(&scene.arm, theta.as_slice())?;
+        let start = ws.pose.end_effector();
         let line = Line {
-            start: [start[0], start[1]],
+            start,
             end: scene.target,
             t0: 0.0,
             duration: scene.tf,
+        };
+        let sample = Sample {
+            t: 0.0,
+            theta: vec![0.0; n],
+            joints: vec![[0.0; 2]; n + 1],
+            ee: start,
+            reference: start,
+            tracking_error: 0.0,
+            distance: None,
+            collision: false,
+            delta: 0.0,
+            manipulability: 0.0,
+            in_range: true,
+            phi_handover: false,
         };
         let mut p = Self {
             scene,
@@ -311,9 +489,11 @@ impl Planner {
             line,
             stats: Stats::new(),
             auto_damping,
+            sample,
+            ws,
         };
-        let s = p.sample();
-        p.stats.record(&s);
+        p.refresh_sample(false);
+        p.stats.record(&p.sample);
         Ok(p)
     }
 
@@ -326,9 +506,9 @@ impl Planner {
         let mut p = Self::new(scene, mode, networks)?;
         let n = p.scene.steps();
         let mut steps = Vec::with_capacity(n + 1);
-        steps.push(p.sample());
+        steps.push(p.sample.clone());
         for _ in 0..n {
-            steps.push(p.step()?);
+            steps.push(p.step()?.clone());
         }
         Ok(Trajectory {
             mode,
@@ -337,15 +517,38 @@ impl Planner {
         })
     }
 
-    /// Back to the scene's start pose at `t = 0`, with a fresh summary.
-    pub fn reset(&mut self) {
-        let scene = self.scene.clone();
-        let networks = self.networks.clone();
-        // The scene was validated when it entered the planner.
-        if let Ok(mut p) = Self::new(scene, self.mode, networks) {
-            p.auto_damping |= self.auto_damping;
-            *self = p;
+    /// Integrates the scene from `t = 0` to `tf` keeping only the summary:
+    /// no sample is stored, so nothing is allocated after the planner is
+    /// built (what an atlas of thousands of runs needs).
+    pub fn run_summary(
+        scene: Scene,
+        mode: Mode,
+        networks: Option<Arc<dyn Surrogate>>,
+    ) -> Result<Summary> {
+        let mut p = Self::new(scene, mode, networks)?;
+        for _ in 0..p.scene.steps() {
+            p.step()?;
         }
+        Ok(p.summary())
+    }
+
+    /// Back to the scene's start pose at `t = 0`, with a fresh summary.
+    /// Allocation-free.
+    pub fn reset(&mut self) {
+        self.theta.copy_from_slice(&self.scene.theta0);
+        // theta0 was validated (length and finiteness) when the scene entered.
+        let _ = self.ws.pose.update(&self.scene.arm, self.theta.as_slice());
+        self.step_index = 0;
+        self.t = 0.0;
+        self.line = Line {
+            start: self.ws.pose.end_effector(),
+            end: self.scene.target,
+            t0: 0.0,
+            duration: self.scene.tf,
+        };
+        self.stats = Stats::new();
+        self.refresh_sample(false);
+        self.stats.record(&self.sample);
     }
 
     /// The scene (with any target, obstacle or gain changes applied).
@@ -368,6 +571,11 @@ impl Planner {
         &self.theta
     }
 
+    /// The kinematics of the current state (joints, Jacobian, ...).
+    pub fn pose(&self) -> &Pose {
+        &self.ws.pose
+    }
+
     /// The line being tracked.
     pub fn line(&self) -> Line {
         self.line
@@ -382,6 +590,7 @@ impl Planner {
     pub fn set_mode(&mut self, mode: Mode) -> Result<()> {
         check_networks(mode, &self.networks)?;
         self.mode = mode;
+        self.resample();
         Ok(())
     }
 
@@ -389,6 +598,7 @@ impl Planner {
     pub fn set_networks(&mut self, networks: Option<Arc<dyn Surrogate>>) -> Result<()> {
         check_networks(self.mode, &networks)?;
         self.networks = networks;
+        self.resample();
         Ok(())
     }
 
@@ -399,18 +609,18 @@ impl Planner {
         crate::error::coordinate("target y", target[1])?;
         positive("line duration", duration)?;
         let steps = (duration / self.scene.dt - 1e-9).ceil().max(1.0);
-        let x = self.scene.arm.forward(&self.theta);
         self.scene.target = target;
         if needs_auto_damping(&self.scene) {
             self.scene.damping = Some(DampingSchedule::default());
             self.auto_damping = true;
         }
         self.line = Line {
-            start: [x[0], x[1]],
+            start: self.ws.pose.end_effector(),
             end: target,
             t0: self.t,
             duration: steps * self.scene.dt,
         };
+        self.resample();
         Ok(())
     }
 
@@ -420,6 +630,7 @@ impl Planner {
             ob.validate(&self.scene.arm)?;
         }
         self.scene.obstacles = obstacles;
+        self.resample();
         Ok(())
     }
 
@@ -430,10 +641,12 @@ impl Planner {
         Ok(())
     }
 
-    /// Sets the constant damping `delta`.
+    /// Sets the constant damping `delta` (eqs. 6, 17, 20). In Cases 1 and 3
+    /// it damps the network's `Phi` through [`ik::damp_phi`].
     pub fn set_delta(&mut self, delta: f64) -> Result<()> {
         scene::validate_delta(delta)?;
         self.scene.delta = delta;
+        self.resample();
         Ok(())
     }
 
@@ -443,6 +656,7 @@ impl Planner {
             d.validate()?;
         }
         self.scene.damping = damping;
+        self.resample();
         Ok(())
     }
 
@@ -459,153 +673,191 @@ impl Planner {
         self.scene.delta + self.scene.damping.map_or(0.0, |d| d.delta(j))
     }
 
-    /// Null-space vector `v` at `theta` in the current mode (zero in mode `none`).
-    pub fn null_space(&self, theta: &DVector<f64>) -> Result<DVector<f64>> {
-        let arm = &self.scene.arm;
-        match self.mode {
-            Mode::None => Ok(DVector::zeros(arm.dof())),
-            Mode::Numerical | Mode::Case1 => Ok(obstacle::null_space_vector(
-                arm,
-                theta,
-                &self.scene.obstacles,
-                self.scene.lambda,
-            )),
-            Mode::Case2 | Mode::Case3 => {
-                let nets = self.nets()?;
-                let mut g = DVector::zeros(arm.dof());
-                for ob in &self.scene.obstacles {
-                    g += nets.area_gradient(theta, &ob.point())?;
-                }
-                Ok(g * (self.scene.lambda / 4.0))
-            }
+    fn rates(&self) -> Rates<'_> {
+        Rates {
+            scene: &self.scene,
+            mode: self.mode,
+            networks: self.networks.as_deref(),
         }
+    }
+
+    /// Null-space vector `v` at `theta` in the current mode (zero in mode
+    /// `none`). A convenience that allocates; the step uses a workspace.
+    pub fn null_space(&self, theta: &DVector<f64>) -> Result<DVector<f64>> {
+        let n = self.scene.arm.dof();
+        let pose = Pose::new(&self.scene.arm, theta.as_slice())?;
+        let mut s = Scratch::new(n);
+        self.rates().null_space(&pose, &mut s)?;
+        Ok(DVector::from_vec(s.v))
     }
 
     /// Joint rates `theta_dot(theta)` for task velocity `xdot`: eq. (18) in
-    /// modes `none`, `numerical` and Case 2, eq. (21) in Cases 1 and 3.
+    /// modes `none`, `numerical` and Case 2, eq. (21) in Cases 1 and 3. A
+    /// convenience that allocates; see [`Planner::theta_dot_into`].
     pub fn theta_dot(&self, theta: &DVector<f64>, xdot: &Vector2<f64>) -> Result<DVector<f64>> {
-        let arm = &self.scene.arm;
-        let j = arm.jacobian(theta);
-        let delta = self.delta_at(&j);
-        let v = self.null_space(theta)?;
-        if self.mode.learned_phi() {
-            let nets = self.nets()?;
-            // The network learnt Phi at delta = 0 (as in the paper). Where the
-            // damping schedule is active the pose is near-singular, outside any
-            // range a network can fit, so the damped numerical Phi takes over.
-            let phi = if delta > 0.0 {
-                ik::phi(&j, delta)?
-            } else {
-                nets.phi(theta)?
-            };
-            Ok(ik::theta_dot_network(&phi, &j, xdot, &v))
-        } else {
-            ik::theta_dot_symmetric(&j, xdot, &v, delta)
-        }
+        let n = self.scene.arm.dof();
+        let pose = Pose::new(&self.scene.arm, theta.as_slice())?;
+        let mut s = Scratch::new(n);
+        let mut out = DVector::zeros(n);
+        self.rates()
+            .theta_dot(&pose, [xdot[0], xdot[1]], &mut s, out.as_mut_slice())?;
+        Ok(out)
     }
 
-    fn nets(&self) -> Result<&Arc<dyn Surrogate>> {
-        self.networks.as_ref().ok_or_else(|| {
-            Error::NetworksUnavailable(format!("mode {} needs trained networks", self.mode))
-        })
+    /// [`Planner::theta_dot`] into `out` (`n` entries) through the planner's
+    /// workspace: one kinematics pass and no allocation. `theta` must have
+    /// `n` entries; it is not checked for finiteness (NaN gives NaN rates).
+    pub fn theta_dot_into(&mut self, theta: &[f64], xdot: [f64; 2], out: &mut [f64]) -> Result<()> {
+        let Self {
+            scene,
+            mode,
+            networks,
+            ws,
+            ..
+        } = self;
+        ws.stage.update(&scene.arm, theta)?;
+        let rates = Rates {
+            scene,
+            mode: *mode,
+            networks: networks.as_deref(),
+        };
+        rates.theta_dot(&ws.stage, xdot, &mut ws.scratch, out)?;
+        Ok(())
     }
 
-    /// Commanded task velocity at time `t` and pose `theta`: the line's `Xdot`
-    /// plus, when `feedback_gain > 0`, `K (X_ref(t) - X(theta))`.
-    fn task_velocity(
-        &self,
-        line_xdot: &Vector2<f64>,
-        t: f64,
-        theta: &DVector<f64>,
-    ) -> Vector2<f64> {
-        let k = self.scene.feedback_gain;
-        if k > 0.0 {
-            line_xdot + k * (self.line.reference(t) - self.scene.arm.forward(theta))
-        } else {
-            *line_xdot
-        }
-    }
-
-    /// One classical RK4 step of size `dt` (section V, step e). On error the
-    /// state is left unchanged.
-    pub fn step(&mut self) -> Result<Sample> {
+    /// One classical RK4 step of size `dt` (section V, step e), then the new
+    /// sample, which the planner keeps (see [`Planner::sample`]). On error
+    /// the state is left unchanged. Allocation-free.
+    pub fn step(&mut self) -> Result<&Sample> {
         let h = self.scene.dt;
         let t = self.t;
-        let xdot = self.line.velocity_at(t + 0.5 * h);
-        let th = &self.theta;
-        let f = |tt: f64, theta: &DVector<f64>| -> Result<DVector<f64>> {
-            let xd = self.task_velocity(&xdot, tt, theta);
-            self.theta_dot(theta, &xd)
+        let line_xdot = self.line.velocity_at(t + 0.5 * h);
+        let Self {
+            scene,
+            mode,
+            networks,
+            theta,
+            line,
+            ws,
+            ..
+        } = self;
+        let rates = Rates {
+            scene,
+            mode: *mode,
+            networks: networks.as_deref(),
         };
-        let k1 = f(t, th)?;
-        let k2 = f(t + 0.5 * h, &(th + 0.5 * h * &k1))?;
-        let k3 = f(t + 0.5 * h, &(th + 0.5 * h * &k2))?;
-        let k4 = f(t + h, &(th + h * &k3))?;
-        let next = th + (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-        if next.iter().any(|x| !x.is_finite()) {
+        let theta = theta.as_slice();
+        let gain = scene.feedback_gain;
+        // The commanded task velocity at a stage: the line's Xdot plus, when
+        // K > 0, K (X_ref(t) - X(theta)).
+        let xdot = |tt: f64, pose: &Pose| -> [f64; 2] {
+            if gain > 0.0 {
+                let r = line.reference(tt);
+                let x = pose.end_effector();
+                [
+                    line_xdot[0] + gain * (r[0] - x[0]),
+                    line_xdot[1] + gain * (r[1] - x[1]),
+                ]
+            } else {
+                [line_xdot[0], line_xdot[1]]
+            }
+        };
+        let [k1, k2, k3, k4] = &mut ws.k;
+        // Stage 1 reads the kinematics of the current state, computed when
+        // the previous step ended.
+        let mut handover = rates.theta_dot(&ws.pose, xdot(t, &ws.pose), &mut ws.scratch, k1)?;
+        for (stage, (c, tt)) in [(0.5 * h, t + 0.5 * h), (0.5 * h, t + 0.5 * h), (h, t + h)]
+            .into_iter()
+            .enumerate()
+        {
+            let (prev, out): (&[f64], &mut [f64]) = match stage {
+                0 => (&k1[..], &mut k2[..]),
+                1 => (&k2[..], &mut k3[..]),
+                _ => (&k3[..], &mut k4[..]),
+            };
+            for ((s, th), k) in ws.theta_stage.iter_mut().zip(theta).zip(prev) {
+                *s = th + c * k;
+            }
+            ws.stage.update(&scene.arm, &ws.theta_stage)?;
+            handover |= rates.theta_dot(&ws.stage, xdot(tt, &ws.stage), &mut ws.scratch, out)?;
+        }
+        let w = h / 6.0;
+        let mut finite = true;
+        for (i, next) in ws.next.iter_mut().enumerate() {
+            *next = theta[i] + w * (((k1[i] + 2.0 * k2[i]) + 2.0 * k3[i]) + k4[i]);
+            finite &= next.is_finite();
+        }
+        if !finite {
             return Err(Error::Diverged(format!(
                 "non-finite joint angles after the step at t = {t:.3} s; switch damping on"
             )));
         }
-        self.theta = next;
+        self.theta.copy_from_slice(&self.ws.next);
+        self.ws.pose.update(&self.scene.arm, &self.ws.next)?;
         self.step_index += 1;
         self.t = self.step_index as f64 * h;
-        let s = self.sample();
-        self.stats.record(&s);
+        self.refresh_sample(handover);
+        self.stats.record(&self.sample);
         self.stats.steps += 1;
-        Ok(s)
+        Ok(&self.sample)
     }
 
-    /// A snapshot of the current state.
-    pub fn sample(&self) -> Sample {
-        let arm = &self.scene.arm;
-        let joints = arm.joints(&self.theta);
-        let ee = joints[joints.len() - 1];
+    /// The current state: the start, or the result of the last step. Kept up
+    /// to date by the planner (no copy, no allocation).
+    pub fn sample(&self) -> &Sample {
+        &self.sample
+    }
+
+    /// Refreshes the sample after a change of setting (same state, same step).
+    fn resample(&mut self) {
+        self.refresh_sample(self.sample.phi_handover);
+    }
+
+    /// Rewrites the sample in place from the current pose.
+    fn refresh_sample(&mut self, phi_handover: bool) {
+        let pose = &self.ws.pose;
+        let s = &mut self.sample;
+        let ee = pose.end_effector();
         let reference = self.line.reference(self.t);
-        let mut distance: Option<f64> = None;
-        let mut collision = false;
+        s.t = self.t;
+        s.theta.copy_from_slice(pose.theta());
+        s.joints.copy_from_slice(pose.joints());
+        s.ee = ee;
+        s.reference = [reference[0], reference[1]];
+        s.tracking_error = distance(ee, [reference[0], reference[1]]);
+        s.distance = None;
+        s.collision = false;
         for ob in &self.scene.obstacles {
-            let d = obstacle::clearance(&joints, &ob.point());
-            collision |= d < ob.radius;
-            distance = Some(distance.map_or(d, |m| m.min(d)));
+            let d = pose.clearance(ob.centre);
+            s.collision |= d < ob.radius;
+            s.distance = Some(s.distance.map_or(d, |m| m.min(d)));
         }
-        let j = arm.jacobian(&self.theta);
-        Sample {
-            t: self.t,
-            theta: self.theta.iter().cloned().collect(),
-            joints: joints.iter().map(|p| [p[0], p[1]]).collect(),
-            ee: [ee[0], ee[1]],
-            reference: [reference[0], reference[1]],
-            tracking_error: (ee - reference).norm(),
-            distance,
-            collision,
-            delta: self.delta_at(&j),
-            manipulability: ik::manipulability(&j),
-            in_range: self.in_range(),
-        }
+        s.delta = self.scene.delta
+            + self
+                .scene
+                .damping
+                .map_or(0.0, |d| d.delta_at_sigma(pose.sigma_min()));
+        s.manipulability = pose.manipulability();
+        s.in_range = in_range(
+            self.mode,
+            self.networks.as_deref(),
+            pose,
+            &self.scene.obstacles,
+        );
+        s.phi_handover = phi_handover;
     }
 
     /// Whether the networks the current mode uses see inputs inside their
     /// trained range (true for numerical modes).
     pub fn in_range(&self) -> bool {
-        let Some(nets) = &self.networks else {
-            return true;
-        };
-        let phi_ok = !self.mode.learned_phi() || nets.phi_in_range(&self.theta);
-        let v_ok = !self.mode.learned_v()
-            || self
-                .scene
-                .obstacles
-                .iter()
-                .all(|ob| nets.v_in_range(&self.theta, &ob.point()));
-        phi_ok && v_ok
+        self.sample.in_range
     }
 
     /// Outcome since the last reset.
     pub fn summary(&self) -> Summary {
-        let x = self.scene.arm.forward(&self.theta);
-        let target = self.scene.target_vector();
-        let final_error = (x - target).norm();
+        let x = self.ws.pose.end_effector();
+        let target = self.scene.target;
+        let final_error = distance(x, target);
         Summary {
             mode: self.mode,
             steps: self.stats.steps,
@@ -615,12 +867,36 @@ impl Planner {
             final_error,
             max_tracking_error: self.stats.max_tracking_error,
             reached: final_error <= REACH_TOLERANCE,
-            target_reachable: self.scene.arm.can_reach(&target),
+            target_reachable: self.scene.arm.can_reach(&self.scene.target_vector()),
             out_of_range_steps: self.stats.out_of_range_steps,
             max_delta: self.stats.max_delta,
             auto_damping: self.auto_damping,
+            handover_steps: self.stats.handover_steps,
         }
     }
+}
+
+/// Euclidean distance between two points.
+#[inline]
+fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (dx, dy) = (a[0] - b[0], a[1] - b[1]);
+    (dx * dx + dy * dy).sqrt()
+}
+
+/// Whether the networks `mode` uses see `pose` (and every obstacle) inside
+/// their trained range.
+fn in_range(
+    mode: Mode,
+    networks: Option<&dyn Surrogate>,
+    pose: &Pose,
+    obstacles: &[Obstacle],
+) -> bool {
+    let Some(nets) = networks else {
+        return true;
+    };
+    let phi_ok = !mode.learned_phi() || nets.phi_in_range(pose);
+    let v_ok = !mode.learned_v() || obstacles.iter().all(|ob| nets.v_in_range(pose, ob.centre));
+    phi_ok && v_ok
 }
 
 fn needs_auto_damping(scene: &Scene) -> bool {

@@ -19,8 +19,7 @@ use web_sys::{CanvasRenderingContext2d, HtmlCanvasElement};
 
 use crate::error::{Error, Result};
 use crate::{
-    DampingSchedule, Line, Mode, Networks, Obstacle, Planner, Sample, Scene, Surrogate,
-    TrainedRange,
+    DampingSchedule, Line, Mode, Networks, Obstacle, Planner, Scene, Surrogate, TrainedRange,
 };
 
 /// Speed (m/s) of the straight line planned when the user drops the target.
@@ -368,7 +367,6 @@ pub struct Demo {
     speed: f64,
     backlog: f64,
     prev_theta: Vec<f64>,
-    sample: Sample,
     trail: Vec<[f64; 2]>,
     strobe: Vec<Vec<[f64; 2]>>,
     strobe_count: usize,
@@ -394,10 +392,8 @@ impl Demo {
         install_panic_hook();
         let planner =
             Planner::new(Self::scene(task, true, 0.0)?, Mode::Numerical, None).map_err(js_err)?;
-        let sample = planner.sample();
         let mut demo = Demo {
-            prev_theta: sample.theta.clone(),
-            sample,
+            prev_theta: planner.sample().theta.clone(),
             planner,
             networks: None,
             ghost: None,
@@ -478,14 +474,12 @@ impl Demo {
     }
 
     fn clear_histories(&mut self) {
-        self.sample = self.planner.sample();
-        self.prev_theta = self.sample.theta.clone();
+        self.prev_theta.clone_from(&self.planner.sample().theta);
         self.trail.clear();
         self.strobe.clear();
         self.history.clear();
         self.strobe_count = 0;
-        let s = self.sample.clone();
-        self.record(&s);
+        self.record();
     }
 
     /// Keeps the ghost planner in step with the mode: present in the network
@@ -521,7 +515,6 @@ impl Demo {
         }
         self.planner.set_mode(mode).map_err(js_err)?;
         self.sync_ghost(false);
-        self.sample = self.planner.sample();
         Ok(())
     }
 
@@ -551,7 +544,6 @@ impl Demo {
                 .map_err(js_err)?;
         }
         self.networks = Some(loaded);
-        self.sample = self.planner.sample();
         Ok(())
     }
 
@@ -575,7 +567,6 @@ impl Demo {
             g.planner.set_damping(d).map_err(js_err)?;
         }
         self.damping = on;
-        self.sample = self.planner.sample();
         Ok(())
     }
 
@@ -618,7 +609,7 @@ impl Demo {
         let duration = match duration {
             Some(d) => finite("line duration", d)?,
             None => {
-                let ee = self.sample.ee;
+                let ee = self.planner.sample().ee;
                 let dist = (target[0] - ee[0]).hypot(target[1] - ee[1]);
                 (dist / DRAG_LINE_SPEED).max(MIN_LINE_DURATION)
             }
@@ -627,7 +618,6 @@ impl Demo {
         if let Some(g) = &mut self.ghost {
             g.planner.set_target(target, duration).map_err(js_err)?;
         }
-        self.sample = self.planner.sample();
         self.strobe.clear();
         self.strobe_count = 0;
         Ok(())
@@ -651,7 +641,6 @@ impl Demo {
         if let Some(g) = &mut self.ghost {
             g.planner.set_obstacles(obstacles).map_err(js_err)?;
         }
-        self.sample = self.planner.sample();
         Ok(())
     }
 
@@ -682,7 +671,7 @@ impl Demo {
         self.running = false;
         self.backlog = 0.0;
         self.advance(1).map_err(js_err)?;
-        self.prev_theta = self.sample.theta.clone();
+        self.prev_theta.clone_from(&self.planner.sample().theta);
         Ok(())
     }
 
@@ -697,7 +686,7 @@ impl Demo {
             .ceil()
             .clamp(0.0, 100_000.0) as usize;
         self.advance(n).map_err(js_err)?;
-        self.prev_theta = self.sample.theta.clone();
+        self.prev_theta.clone_from(&self.planner.sample().theta);
         self.check_stop();
         Ok(())
     }
@@ -740,32 +729,32 @@ impl Demo {
         let mut solver = 0.0;
         let mut taken = 0;
         for _ in 0..n {
-            let prev: Vec<f64> = self.planner.theta().iter().cloned().collect();
+            // The pose before the step, for smooth drawing (after a failed
+            // step, the unchanged pose itself).
+            self.prev_theta.clear();
+            self.prev_theta
+                .extend_from_slice(self.planner.theta().as_slice());
             let t0 = now_ms();
-            let stepped = self.planner.step();
+            let stepped = self.planner.step().map(|_| ());
             solver += now_ms() - t0;
-            let sample = match stepped {
-                Ok(s) => s,
-                Err(e) => {
-                    self.running = false;
-                    self.backlog = 0.0;
-                    self.error = Some(e.to_string());
-                    self.frame_steps = taken;
-                    return Err(e);
-                }
-            };
+            if let Err(e) = stepped {
+                self.running = false;
+                self.backlog = 0.0;
+                self.error = Some(e.to_string());
+                self.frame_steps = taken;
+                return Err(e);
+            }
             taken += 1;
-            self.prev_theta = prev;
             if let Some(g) = &mut self.ghost {
-                g.prev = g.planner.theta().iter().cloned().collect();
+                g.prev.clear();
+                g.prev.extend_from_slice(g.planner.theta().as_slice());
                 if g.planner.step().is_err() {
                     // The numerical comparison failed where the networks did not;
                     // the ghost is only an illustration, so it bows out.
                     self.ghost = None;
                 }
             }
-            self.record(&sample);
-            self.sample = sample;
+            self.record();
         }
         self.error = None;
         self.frame_steps = taken;
@@ -774,12 +763,14 @@ impl Demo {
         Ok(())
     }
 
-    fn record(&mut self, s: &Sample) {
+    /// Appends the planner's current sample to the histories the page draws.
+    fn record(&mut self) {
+        let s = self.planner.sample();
         if self.trail.len() >= MAX_TRAIL {
             self.trail.drain(..MAX_TRAIL / 4);
         }
         self.trail.push(s.ee);
-        if self.strobe_count % STROBE_EVERY == 0 {
+        if self.strobe_count.is_multiple_of(STROBE_EVERY) {
             if self.strobe.len() >= MAX_STROBE {
                 self.strobe.remove(0);
             }
@@ -845,7 +836,7 @@ impl Demo {
     /// `running`, `solver_ms` (planner step time in the last frame that
     /// stepped) and more.
     pub fn state(&self) -> std::result::Result<JsValue, JsError> {
-        let s = &self.sample;
+        let s = self.planner.sample();
         let summary = self.planner.summary();
         let scene = self.planner.scene();
         let obstacle = scene.obstacles.first();
@@ -1175,7 +1166,7 @@ impl Demo {
         // Obstacle disc, with its point O.
         for ob in &scene.obstacles {
             let (ox, oy) = view.to_px(ob.centre);
-            let hit = self.sample.collision;
+            let hit = self.planner.sample().collision;
             disc(ctx, ox, oy, ob.radius * view.scale);
             ctx.set_fill_style_str(if hit {
                 "rgba(192,57,43,0.55)"
@@ -1206,7 +1197,7 @@ impl Demo {
         ctx.set_line_cap("round");
 
         // The arm.
-        let pose = arm.joints(&self.display_theta(&self.prev_theta, &self.sample.theta));
+        let pose = arm.joints(&self.display_theta(&self.prev_theta, &self.planner.sample().theta));
         let pts: Vec<[f64; 2]> = pose.iter().map(|p| [p[0], p[1]]).collect();
         ctx.set_stroke_style_str(ARM);
         ctx.set_line_width(7.0);
@@ -1241,7 +1232,7 @@ impl Demo {
         }
 
         // Reference point on the line.
-        let (rx, ry) = view.to_px(self.sample.reference);
+        let (rx, ry) = view.to_px(self.planner.sample().reference);
         disc(ctx, rx, ry, 3.0);
         ctx.set_fill_style_str(MUTED);
         ctx.fill();
@@ -1279,7 +1270,7 @@ impl Demo {
         let _ = ctx.fill_text(
             &format!(
                 "t = {:.1} s   ·   {}",
-                self.sample.t,
+                self.planner.sample().t,
                 mode_label(self.planner.mode())
             ),
             12.0,

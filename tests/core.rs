@@ -374,9 +374,9 @@ fn a_failed_step_reports_an_error_and_leaves_the_state_unchanged() {
     s.theta0 = vec![0.0, 0.0, 0.0]; // straight up: J J^T is singular
     s.target = [0.5, 1.5];
     let mut p = Planner::new(s, Mode::None, None).unwrap();
-    let before = p.sample();
+    let before = p.sample().clone();
     assert!(matches!(p.step(), Err(Error::Singular(_))));
-    assert_eq!(p.sample(), before);
+    assert_eq!(p.sample(), &before);
     p.set_damping(Some(DampingSchedule::default())).unwrap();
     assert!(p.step().is_ok());
 }

@@ -19,7 +19,7 @@ use redundant_ik::networks::{self, ErrorStats, Networks, GENERALISATION_SCENES};
 use redundant_ik::nn::lm::{self, Dataset, LmOptions};
 use redundant_ik::nn::mlp::{Activations, Layer, MapMinMax, Mlp};
 use redundant_ik::nn::{NetKind, Rng, Variant, WeightsFile};
-use redundant_ik::{ik, Arm, Error, Mode, Planner, Scene, Surrogate};
+use redundant_ik::{ik, Arm, Error, Mode, Planner, Pose, Scene, Surrogate};
 
 fn tiny() -> Mlp {
     Mlp {
@@ -249,19 +249,34 @@ fn bad_weights_files_are_rejected_with_a_clear_error() {
 }
 
 #[test]
-fn surrogate_rejects_bad_input_without_panicking() {
+fn networks_reject_bad_input_without_panicking() {
     let nets = Networks::embedded().unwrap();
-    let short = DVector::from_vec(vec![0.1, 0.2]);
-    assert!(nets.phi(&short).is_err());
-    assert!(nets.area_gradient(&short, &Vector2::new(0.5, 0.5)).is_err());
-    let nan = DVector::from_vec(vec![0.1, f64::NAN, 0.2]);
-    assert!(nets.phi(&nan).is_err());
-    assert!(!nets.phi_in_range(&nan));
-    let ok = DVector::from_vec(vec![0.3, 2.0, -0.5]);
+    let (mut phi, mut g) = ([0.0; 6], [0.0; 3]);
+    // The slice API checks theta and the obstacle point.
+    assert!(nets.phi_into(&[0.1, 0.2], &mut phi).is_err());
     assert!(nets
-        .area_gradient(&ok, &Vector2::new(f64::INFINITY, 0.5))
+        .area_gradient_into(&[0.1, 0.2], [0.5, 0.5], &mut g)
         .is_err());
-    assert!(!nets.v_in_range(&ok, &Vector2::new(f64::INFINITY, 0.5)));
+    let nan = [0.1, f64::NAN, 0.2];
+    assert!(nets.phi_into(&nan, &mut phi).is_err());
+    assert!(!nets.phi_in_range_slice(&nan));
+    let ok = [0.3, 2.0, -0.5];
+    assert!(nets
+        .area_gradient_into(&ok, [f64::INFINITY, 0.5], &mut g)
+        .is_err());
+    assert!(!nets.v_in_range_slice(&ok, [f64::INFINITY, 0.5]));
+    assert!(nets.phi_into(&ok, &mut phi[..4]).is_err());
+    // The planner's interface takes a pose: one of another arm, or a wrong
+    // output buffer, is an error too.
+    let two_links = Arm::new(0.5, vec![1.0, 1.0]).unwrap();
+    let alien = Pose::new(&two_links, &[0.1, 0.2]).unwrap();
+    assert!(Surrogate::phi(&nets, &alien, &mut phi[..4]).is_err());
+    assert!(Surrogate::area_gradient(&nets, &alien, [0.5, 0.5], &mut g[..2]).is_err());
+    assert!(!Surrogate::phi_in_range(&nets, &alien));
+    let pose = Pose::new(&Arm::paper(), &ok).unwrap();
+    assert!(Surrogate::phi(&nets, &pose, &mut phi[..5]).is_err());
+    assert!(Surrogate::area_gradient(&nets, &pose, [0.5, 0.5], &mut g).is_ok());
+    assert!(!Surrogate::v_in_range(&nets, &pose, [f64::NAN, 0.5]));
 }
 
 #[test]
@@ -286,11 +301,11 @@ fn trained_range_is_reported_and_leaving_it_is_flagged() {
     assert!(json.contains("obstacle_min"));
     assert_eq!(r.obstacle_min, [0.3, 0.3]);
     // The tasks' start poses are inside; a stretched arm (singular) is not.
-    let start = Scene::task1().theta0_vector();
-    assert!(nets.phi_in_range(&start));
-    assert!(nets.v_in_range(&start, &Vector2::new(0.5, 0.5)));
-    assert!(!nets.phi_in_range(&DVector::from_vec(vec![0.3, 0.0, 0.0])));
-    assert!(!nets.v_in_range(&start, &Vector2::new(1.5, -0.4)));
+    let start = Scene::task1().theta0;
+    assert!(nets.phi_in_range_slice(&start));
+    assert!(nets.v_in_range_slice(&start, [0.5, 0.5]));
+    assert!(!nets.phi_in_range_slice(&[0.3, 0.0, 0.0]));
+    assert!(!nets.v_in_range_slice(&start, [1.5, -0.4]));
 }
 
 /// Accuracy stated in docs/networks.md (fresh samples, seed 7; bounds with

@@ -5,11 +5,8 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
+pub use crate::nn::kernel::tansig;
 use crate::nn::rng::Rng;
-
-/// Widest layer the forward pass handles without allocating; wider layers
-/// still work, through a heap buffer.
-pub const STACK_WIDTH: usize = 64;
 
 /// Matlab's `mapminmax` with the default `[-1, 1]` target range:
 /// `y = 2 (x - min) / (max - min) - 1` per entry. An entry with
@@ -238,56 +235,35 @@ impl Mlp {
         Ok(())
     }
 
-    /// Forward pass on raw values: scales `x` with `mapminmax`, runs the
-    /// layers and scales back. `x.len()` must be `inputs()` and `y.len()`
-    /// `outputs()` (checked by the caller; shorter slices are read/written
-    /// only as far as they go). Allocation-free for layers up to
-    /// [`STACK_WIDTH`] wide.
-    pub fn forward_into(&self, x: &[f64], y: &mut [f64]) {
-        let widest = self.sizes.iter().copied().max().unwrap_or(0);
-        if widest <= STACK_WIDTH {
-            let mut a = [0.0; STACK_WIDTH];
-            let mut b = [0.0; STACK_WIDTH];
-            self.forward_buffers(x, y, &mut a, &mut b);
-        } else {
-            let mut a = vec![0.0; widest];
-            let mut b = vec![0.0; widest];
-            self.forward_buffers(x, y, &mut a, &mut b);
-        }
-    }
-
-    fn forward_buffers(&self, x: &[f64], y: &mut [f64], a: &mut [f64], b: &mut [f64]) {
-        let n_in = self.inputs();
-        for (i, (ai, xi)) in a.iter_mut().zip(x).take(n_in).enumerate() {
-            *ai = self.input_map.apply(i, *xi);
-        }
-        let (mut cur, mut next) = (a, b);
+    /// Forward pass on raw values, as Matlab computes it: scale `x` with
+    /// `mapminmax`, run the layers, scale back. The reference form (the
+    /// trainer's view); the planner uses the folded, vectorised
+    /// [`Kernel`](crate::nn::kernel::Kernel) built from it. Missing inputs
+    /// count as zero.
+    pub fn forward(&self, x: &[f64]) -> Vec<f64> {
+        let mut a: Vec<f64> = (0..self.inputs())
+            .map(|i| self.input_map.apply(i, x.get(i).copied().unwrap_or(0.0)))
+            .collect();
         let last = self.layers.len() - 1;
         for (l, layer) in self.layers.iter().enumerate() {
-            let (r, s) = (self.sizes[l], self.sizes[l + 1]);
-            let input = &cur[..r];
-            for (j, (row, bias)) in layer
+            a = layer
                 .weights
-                .chunks_exact(r)
+                .chunks_exact(self.sizes[l])
                 .zip(&layer.biases)
-                .enumerate()
-                .take(s)
-            {
-                let z = bias + dot(row, input);
-                next[j] = if l < last { tansig(z) } else { z };
-            }
-            std::mem::swap(&mut cur, &mut next);
+                .map(|(row, bias)| {
+                    let z = bias + dot(row, &a);
+                    if l < last {
+                        tansig(z)
+                    } else {
+                        z
+                    }
+                })
+                .collect();
         }
-        for (i, yi) in y.iter_mut().enumerate().take(self.outputs()) {
-            *yi = self.output_map.reverse(i, cur[i]);
-        }
-    }
-
-    /// Forward pass returning a new vector (convenience; see [`Mlp::forward_into`]).
-    pub fn forward(&self, x: &[f64]) -> Vec<f64> {
-        let mut y = vec![0.0; self.outputs()];
-        self.forward_into(x, &mut y);
-        y
+        a.iter()
+            .enumerate()
+            .map(|(i, y)| self.output_map.reverse(i, *y))
+            .collect()
     }
 
     /// All weights and biases, layer by layer, each layer's weights row-major
@@ -413,16 +389,6 @@ impl Activations {
     pub fn output(&self) -> &[f64] {
         &self.a[self.a.len() - 1]
     }
-}
-
-/// Matlab's `tansig`, `2 / (1 + exp(-2 z)) - 1 = tanh z`, written through one
-/// `exp` of a non-positive argument: as accurate as `tanh` to a few units in
-/// the last place, and about twice as fast as the C library's `tanh` (it
-/// dominates the forward pass of these small networks).
-#[inline]
-pub fn tansig(z: f64) -> f64 {
-    let t = (-2.0 * z.abs()).exp();
-    ((1.0 - t) / (1.0 + t)).copysign(z)
 }
 
 #[inline]

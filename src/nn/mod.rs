@@ -6,12 +6,14 @@
 //! entropy and clocks, so it runs unchanged in the browser.
 
 pub mod data;
+pub mod kernel;
 pub mod lm;
 pub mod mlp;
 pub mod rng;
 pub mod weights;
 
 pub use data::Sampling;
+pub use kernel::Kernel;
 pub use lm::{Dataset, EpochReport, LmOptions, LmTrainer, StopReason, TrainReport};
 pub use mlp::{MapMinMax, Mlp};
 pub use rng::Rng;

@@ -1,0 +1,366 @@
+//! The run-time form of a trained [`Mlp`]: the forward pass the planner calls
+//! four times per RK4 step, built once when the weights load.
+//!
+//! What is done at load time so that the hot loop does only multiply-adds
+//! and one vectorisable `tansig` per neuron:
+//! - `mapminmax` is folded into the first layer (input scaling) and the last
+//!   layer (output scaling), so the kernel maps raw inputs to raw outputs;
+//! - every layer is stored input-major (`w[j][o]`: the weights leaving input
+//!   `j`) with its width padded with zero neurons to a multiple of [`LANES`],
+//!   so a layer is a sum of `inputs` scaled weight rows (axpy), which
+//!   vectorises over neurons with no horizontal sums;
+//! - the hidden activations live in two stack buffers for layers up to
+//!   [`STACK_WIDTH`] (padded) wide: no allocation per call.
+//!
+//! On x86-64 the same code is also compiled for AVX2 + FMA and chosen at run
+//! time when the CPU has them ([`Kernel::forward`]); elsewhere (and on
+//! wasm32, with or without `simd128`) the portable build runs.
+
+use crate::nn::mlp::{MapMinMax, Mlp};
+
+/// Widths are padded to a multiple of this many neurons (four `f64` = one
+/// AVX2 register, two SSE2 or wasm `simd128` registers).
+pub const LANES: usize = 4;
+
+/// Widest padded layer handled with stack buffers; wider networks work
+/// through a heap buffer per call.
+pub const STACK_WIDTH: usize = 64;
+
+#[derive(Debug, Clone, PartialEq)]
+struct Layer {
+    /// Real inputs.
+    inputs: usize,
+    /// Neurons, padded to a multiple of [`LANES`].
+    width: usize,
+    /// The weights in blocks of 16, 8 or 4 neurons: block `c` of `B` neurons
+    /// starting at neuron `o0` holds `w[j][o0..o0 + B]` for `j = 0..inputs`,
+    /// contiguous, zero in the padding.
+    w: Vec<f64>,
+    /// `width` biases, zero in the padding.
+    b: Vec<f64>,
+    /// `tansig` (hidden) or `purelin` (output).
+    tansig: bool,
+}
+
+/// A network ready to evaluate: raw inputs to raw outputs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Kernel {
+    n_in: usize,
+    n_out: usize,
+    layers: Vec<Layer>,
+    widest: usize,
+}
+
+fn pad(n: usize) -> usize {
+    n.div_ceil(LANES) * LANES
+}
+
+/// Block sizes covering a padded width: as many 16s as fit, then 8, then 4.
+fn blocks(width: usize) -> impl Iterator<Item = usize> {
+    let mut left = width;
+    std::iter::from_fn(move || {
+        let b = [16, 8, 4].into_iter().find(|&b| b <= left)?;
+        left -= b;
+        Some(b)
+    })
+}
+
+/// `mapminmax` as an affine map per entry, `scaled = g x + c`.
+fn affine(map: &MapMinMax, i: usize) -> (f64, f64) {
+    let (lo, hi) = (map.min[i], map.max[i]);
+    if hi > lo {
+        let g = 2.0 / (hi - lo);
+        (g, -g * lo - 1.0)
+    } else {
+        (1.0, -lo)
+    }
+}
+
+impl Kernel {
+    /// Builds the kernel of a validated network.
+    ///
+    /// Folding: with the input map `x_s = g x + c`, the first layer
+    /// `W x_s + b` becomes `(W diag g) x + (W c + b)`; with the output map
+    /// `y = (z - c') / g'`, the last layer becomes `(W / g') a + (b - c') / g'`.
+    /// Outputs move by rounding only (tested against [`Mlp::forward`]).
+    pub fn new(mlp: &Mlp) -> Self {
+        let sizes = &mlp.sizes;
+        let last = mlp.layers.len() - 1;
+        let mut layers = Vec::with_capacity(mlp.layers.len());
+        for (l, layer) in mlp.layers.iter().enumerate() {
+            let (r, s) = (sizes[l], sizes[l + 1]);
+            // Folded weights and biases, output-major as in the file.
+            let mut w = layer.weights.clone();
+            let mut b = layer.biases.clone();
+            if l == 0 {
+                for o in 0..s {
+                    for j in 0..r {
+                        let (g, c) = affine(&mlp.input_map, j);
+                        b[o] += w[o * r + j] * c;
+                        w[o * r + j] *= g;
+                    }
+                }
+            }
+            if l == last {
+                for o in 0..s {
+                    let (g, c) = affine(&mlp.output_map, o);
+                    for j in 0..r {
+                        w[o * r + j] /= g;
+                    }
+                    b[o] = (b[o] - c) / g;
+                }
+            }
+            let width = pad(s);
+            let mut blocked = Vec::with_capacity(r * width);
+            let mut o0 = 0;
+            for bs in blocks(width) {
+                for j in 0..r {
+                    for o in o0..o0 + bs {
+                        blocked.push(if o < s { w[o * r + j] } else { 0.0 });
+                    }
+                }
+                o0 += bs;
+            }
+            b.resize(width, 0.0);
+            layers.push(Layer {
+                inputs: r,
+                width,
+                w: blocked,
+                b,
+                tansig: l < last,
+            });
+        }
+        let widest = layers
+            .iter()
+            .map(|l| l.width)
+            .chain([pad(mlp.inputs())])
+            .max()
+            .unwrap_or(0);
+        Self {
+            n_in: mlp.inputs(),
+            n_out: mlp.outputs(),
+            layers,
+            widest,
+        }
+    }
+
+    /// Number of inputs.
+    pub fn inputs(&self) -> usize {
+        self.n_in
+    }
+
+    /// Number of outputs.
+    pub fn outputs(&self) -> usize {
+        self.n_out
+    }
+
+    /// Forward pass on raw values. Reads `min(x.len(), inputs)` inputs (the
+    /// rest count as zero) and writes `min(y.len(), outputs)` outputs.
+    /// Allocation-free for layers up to [`STACK_WIDTH`] wide.
+    #[inline]
+    pub fn forward(&self, x: &[f64], y: &mut [f64]) {
+        if self.widest <= STACK_WIDTH {
+            let mut a = [0.0; STACK_WIDTH];
+            let mut b = [0.0; STACK_WIDTH];
+            self.dispatch(x, y, &mut a, &mut b);
+        } else {
+            let mut a = vec![0.0; self.widest];
+            let mut b = vec![0.0; self.widest];
+            self.dispatch(x, y, &mut a, &mut b);
+        }
+    }
+
+    #[inline]
+    fn dispatch(&self, x: &[f64], y: &mut [f64], a: &mut [f64], b: &mut [f64]) {
+        #[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
+        if x86::has_avx2_fma() {
+            return x86::forward_avx2_fma(self, x, y, a, b);
+        }
+        forward_portable(self, x, y, a, b);
+    }
+}
+
+fn forward_portable(k: &Kernel, x: &[f64], y: &mut [f64], a: &mut [f64], b: &mut [f64]) {
+    // Where FMA is part of the compile-time target (e.g. -C target-cpu=native)
+    // use it; otherwise a separate multiply and add (a software fma would be slow).
+    forward_body::<{ cfg!(target_feature = "fma") }>(k, x, y, a, b)
+}
+
+/// `a b + c`, fused when the build has FMA.
+#[inline(always)]
+fn madd<const FMA: bool>(a: f64, b: f64, c: f64) -> f64 {
+    if FMA {
+        a.mul_add(b, c)
+    } else {
+        a * b + c
+    }
+}
+
+/// The forward pass proper, inlined into each instruction-set build.
+#[inline(always)]
+fn forward_body<const FMA: bool>(
+    k: &Kernel,
+    x: &[f64],
+    y: &mut [f64],
+    a: &mut [f64],
+    b: &mut [f64],
+) {
+    let n_in = k.n_in.min(x.len());
+    a[..n_in].copy_from_slice(&x[..n_in]);
+    let (mut cur, mut next) = (a, b);
+    for layer in &k.layers {
+        let input = &cur[..layer.inputs];
+        let z = &mut next[..layer.width];
+        let (mut o0, mut w0) = (0, 0);
+        for bs in blocks(layer.width) {
+            let w = &layer.w[w0..w0 + bs * layer.inputs];
+            let (zb, bias) = (&mut z[o0..o0 + bs], &layer.b[o0..o0 + bs]);
+            match bs {
+                16 => block::<16, FMA>(input, w, bias, zb),
+                8 => block::<8, FMA>(input, w, bias, zb),
+                _ => block::<4, FMA>(input, w, bias, zb),
+            }
+            o0 += bs;
+            w0 += bs * layer.inputs;
+        }
+        if layer.tansig {
+            let (chunks, rest) = z.as_chunks_mut::<LANES>();
+            for c in chunks {
+                for v in c.iter_mut() {
+                    *v = tansig_with::<FMA>(*v);
+                }
+            }
+            for v in rest {
+                *v = tansig_with::<FMA>(*v);
+            }
+        }
+        std::mem::swap(&mut cur, &mut next);
+    }
+    for (yi, ci) in y.iter_mut().zip(&cur[..k.n_out]) {
+        *yi = *ci;
+    }
+}
+
+/// `B` neurons: `z[o] = b[o] + sum_j x_j w[j][o]`, the sums kept in
+/// registers while the inputs stream by. Even and odd inputs go to two sets
+/// of accumulators, so twice as many independent add chains overlap.
+#[inline(always)]
+fn block<const B: usize, const FMA: bool>(input: &[f64], w: &[f64], bias: &[f64], z: &mut [f64]) {
+    let mut even = [0.0; B];
+    let mut odd = [0.0; B];
+    even.copy_from_slice(&bias[..B]);
+    let (rows, _) = w.as_chunks::<B>();
+    let (pairs, _) = rows.as_chunks::<2>();
+    let (xs, _) = input.as_chunks::<2>();
+    for (x, [r0, r1]) in xs.iter().zip(pairs) {
+        for l in 0..B {
+            even[l] = madd::<FMA>(x[0], r0[l], even[l]);
+            odd[l] = madd::<FMA>(x[1], r1[l], odd[l]);
+        }
+    }
+    if input.len() % 2 == 1 {
+        if let (Some(x), Some(r)) = (input.last(), rows.get(input.len() - 1)) {
+            for l in 0..B {
+                even[l] = madd::<FMA>(*x, r[l], even[l]);
+            }
+        }
+    }
+    for (zl, (e, o)) in z[..B].iter_mut().zip(even.iter().zip(&odd)) {
+        *zl = e + o;
+    }
+}
+
+/// Largest `|z|` that `tansig` evaluates; beyond it `tanh z = ±1` in `f64`
+/// (`1 - tanh 19.06 < 2^-53`).
+const TANSIG_CLAMP: f64 = 20.0;
+
+/// Matlab's `tansig` (`tanh z`) written so that a loop over neurons
+/// vectorises: no branches, no calls, one division.
+///
+/// `tanh z = sign(z) (1 - t) / (1 + t)` with `t = exp(-2 |z|)`. The
+/// exponential is reduced as `-2 |z| = k ln 2 + r`, `|r| <= ln(2) / 2`, and
+/// `e^r = (Q + rP) / (Q - rP)` with Cephes' rational `P(r^2)`, `Q(r^2)`
+/// (relative error below 1e-17 on that interval); `2^k` is assembled from
+/// the exponent bits. With `N = Q + rP`, `D = Q - rP`:
+/// `tanh |z| = (D - 2^k N) / (D + 2^k N)`. `|z|` is clamped at 20 (where
+/// `tanh` is 1 in `f64`) with a compare-and-select, not `f64::min`, whose NaN
+/// rule is slow in wasm SIMD. NaN in gives NaN out.
+///
+/// Largest error against the C library's `tanh`, measured on 4 million
+/// points of `[-25, 25]` and near zero: below `5e-16` absolute (tested in
+/// `tests/networks.rs`).
+#[inline]
+pub fn tansig(z: f64) -> f64 {
+    tansig_with::<false>(z)
+}
+
+/// [`tansig`], with fused multiply-adds when `FMA`.
+#[inline(always)]
+#[allow(clippy::excessive_precision)] // Cephes' and fdlibm's published digits
+fn tansig_with<const FMA: bool>(z: f64) -> f64 {
+    const LOG2E: f64 = std::f64::consts::LOG2_E;
+    const LN2_HI: f64 = 6.931_471_803_691_238_164_90e-1;
+    const LN2_LO: f64 = 1.908_214_929_270_587_700_02e-10;
+    // 1.5 * 2^52: adding it rounds to an integer held in the low mantissa bits.
+    const SHIFT: f64 = 6_755_399_441_055_744.0;
+    const P: [f64; 3] = [
+        1.261_771_930_748_105_908_78e-4,
+        3.029_944_077_074_419_613_00e-2,
+        9.999_999_999_999_999_999_10e-1,
+    ];
+    const Q: [f64; 4] = [
+        3.001_985_051_386_644_550_42e-6,
+        2.524_483_403_496_841_041_92e-3,
+        2.272_655_482_081_550_287_66e-1,
+        2.000_000_000_000_000_000_09e0,
+    ];
+    let a = z.abs();
+    let a = if a > TANSIG_CLAMP { TANSIG_CLAMP } else { a };
+    let x = -2.0 * a;
+    let kd = madd::<FMA>(x, LOG2E, SHIFT);
+    let bits = kd.to_bits();
+    let k = kd - SHIFT;
+    let r = madd::<FMA>(-k, LN2_LO, madd::<FMA>(-k, LN2_HI, x));
+    let rr = r * r;
+    let p = r * madd::<FMA>(madd::<FMA>(P[0], rr, P[1]), rr, P[2]);
+    let q = madd::<FMA>(madd::<FMA>(madd::<FMA>(Q[0], rr, Q[1]), rr, Q[2]), rr, Q[3]);
+    // 2^k for k in [-58, 0]: the low bits of `bits` hold k (two's complement).
+    let scale = f64::from_bits(bits.wrapping_add(1023) << 52);
+    let (n, d) = (q + p, q - p);
+    let sn = scale * n;
+    ((d - sn) / (d + sn)).copysign(z)
+}
+
+#[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
+#[allow(unsafe_code)]
+mod x86 {
+    //! The AVX2 + FMA build of the forward pass, chosen at run time.
+    use super::{forward_body, Kernel};
+
+    /// Whether this CPU has AVX2 and FMA (the detection is cached by std).
+    #[inline]
+    pub(super) fn has_avx2_fma() -> bool {
+        std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma")
+    }
+
+    #[target_feature(enable = "avx2,fma")]
+    unsafe fn forward_avx2(k: &Kernel, x: &[f64], y: &mut [f64], a: &mut [f64], b: &mut [f64]) {
+        forward_body::<true>(k, x, y, a, b)
+    }
+
+    /// Runs the AVX2 + FMA build. Call only when [`has_avx2_fma`] is true.
+    #[inline]
+    pub(super) fn forward_avx2_fma(
+        k: &Kernel,
+        x: &[f64],
+        y: &mut [f64],
+        a: &mut [f64],
+        b: &mut [f64],
+    ) {
+        debug_assert!(has_avx2_fma());
+        // SAFETY: the only requirement of a `target_feature` function is that
+        // the CPU supports the features, which the caller checked at run time
+        // with `is_x86_feature_detected!`; the body is safe Rust.
+        unsafe { forward_avx2(k, x, y, a, b) }
+    }
+}
