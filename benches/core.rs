@@ -11,10 +11,14 @@ fn theta_dot(c: &mut Criterion) {
     let scene = Scene::task1();
     let xdot = Vector2::new(-0.0955884, -0.0814851);
     for mode in [Mode::None, Mode::Numerical] {
-        let p = Planner::new(scene.clone(), mode, None).unwrap();
-        let th = scene.theta0_vector();
+        let mut p = Planner::new(scene.clone(), mode, None).unwrap();
+        let th = scene.theta0.clone();
+        let mut out = [0.0; 3];
         c.bench_function(&format!("theta_dot/{mode}"), |b| {
-            b.iter(|| p.theta_dot(black_box(&th), black_box(&xdot)).unwrap())
+            b.iter(|| {
+                p.theta_dot_into(black_box(&th), black_box([xdot[0], xdot[1]]), &mut out)
+                    .unwrap()
+            })
         });
     }
 }

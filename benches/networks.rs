@@ -50,10 +50,14 @@ fn theta_dot(c: &mut Criterion) {
     let xdot = Vector2::new(-0.1, -0.08);
     let mut g = c.benchmark_group("theta_dot");
     for mode in Mode::ALL {
-        let p = Planner::new(Scene::task1(), mode, Some(nets.clone())).unwrap();
-        let th = p.theta().clone();
+        let mut p = Planner::new(Scene::task1(), mode, Some(nets.clone())).unwrap();
+        let th = Scene::task1().theta0;
+        let mut out = [0.0; 3];
         g.bench_function(mode.name(), |b| {
-            b.iter(|| p.theta_dot(black_box(&th), &xdot).unwrap())
+            b.iter(|| {
+                p.theta_dot_into(black_box(&th), [xdot[0], xdot[1]], &mut out)
+                    .unwrap()
+            })
         });
     }
     g.finish();

@@ -280,3 +280,54 @@ fn eval_reports_accuracy_and_all_five_modes_on_both_tasks() {
     );
     assert_eq!(report["case3_avoided"], 10);
 }
+
+#[test]
+fn a_constant_delta_in_a_network_case_damps_the_network_phi() {
+    // It used to swap in the exact Phi silently and print the numerical
+    // route's numbers.
+    let run = |mode: &str| {
+        json(&[
+            "simulate", "--task", "1", "--mode", mode, "--delta", "0.001", "--json",
+        ])["summary"]
+            .clone()
+    };
+    let (numerical, case1) = (run("numerical"), run("case1"));
+    assert_ne!(numerical["final_error"], case1["final_error"]);
+    assert_ne!(numerical["min_distance"], case1["min_distance"]);
+    assert_eq!(case1["handover_steps"], 0);
+    // Where the schedule takes over, the text says so.
+    let text = ok(&[
+        "simulate", "--task", "1", "--mode", "case1", "--target", "2.5,0.8",
+    ]);
+    assert!(text.contains("exact damped Phi stood in"), "{text}");
+}
+
+#[test]
+fn bench_reports_every_figure_and_no_allocation_per_step() {
+    let v = json(&[
+        "bench",
+        "--json",
+        "--batch-ms",
+        "1",
+        "--batches",
+        "5",
+        "--no-lm",
+    ]);
+    for key in ["theta_dot_ns", "step_ns", "allocs_per_step"] {
+        for mode in ["none", "numerical", "case1", "case2", "case3"] {
+            let x = v[key][mode].as_f64().unwrap_or(f64::NAN);
+            assert!(x.is_finite() && x >= 0.0, "{key}.{mode} = {}", v[key][mode]);
+            if key == "allocs_per_step" {
+                assert_eq!(x, 0.0, "{mode} allocates");
+            } else {
+                assert!(x > 0.0);
+            }
+        }
+    }
+    for net in ["phi", "v"] {
+        assert!(v["forward_ns"][net].as_f64().is_some_and(|x| x > 0.0));
+    }
+    assert!(v["lm_epoch_ms"].is_null(), "--no-lm skips the epoch");
+    refused(&["bench", "--batches", "2"], "batches");
+    refused(&["bench", "--batch-ms", "nan"], "batch-ms");
+}

@@ -16,9 +16,10 @@ use std::sync::Arc;
 
 use redundant_ik::nalgebra::{DVector, Vector2};
 use redundant_ik::networks::{self, ErrorStats, Networks, GENERALISATION_SCENES};
+use redundant_ik::nn::kernel::tansig;
 use redundant_ik::nn::lm::{self, Dataset, LmOptions};
 use redundant_ik::nn::mlp::{Activations, Layer, MapMinMax, Mlp};
-use redundant_ik::nn::{NetKind, Rng, Variant, WeightsFile};
+use redundant_ik::nn::{Kernel, NetKind, Rng, Variant, WeightsFile};
 use redundant_ik::{ik, Arm, Error, Mode, Planner, Pose, Scene, Surrogate};
 
 fn tiny() -> Mlp {
@@ -427,4 +428,182 @@ fn a_kind_mismatch_is_named() {
     assert_eq!(v.net, NetKind::V);
     let m = rejected(&v, &v);
     assert!(m.contains("Phi"), "{m}");
+}
+
+/// Matlab's forward pass written out with the C library's `tanh`: the
+/// reference the run-time kernel must reproduce.
+fn reference_forward(mlp: &Mlp, x: &[f64]) -> Vec<f64> {
+    let scale = |m: &MapMinMax, i: usize, v: f64| {
+        if m.max[i] > m.min[i] {
+            2.0 * (v - m.min[i]) / (m.max[i] - m.min[i]) - 1.0
+        } else {
+            v - m.min[i]
+        }
+    };
+    let mut a: Vec<f64> = (0..mlp.inputs())
+        .map(|i| scale(&mlp.input_map, i, x[i]))
+        .collect();
+    let last = mlp.layers.len() - 1;
+    for (l, layer) in mlp.layers.iter().enumerate() {
+        a = layer
+            .weights
+            .chunks(mlp.sizes[l])
+            .zip(&layer.biases)
+            .map(|(row, b)| {
+                let z = b + row.iter().zip(&a).map(|(w, v)| w * v).sum::<f64>();
+                if l < last {
+                    z.tanh()
+                } else {
+                    z
+                }
+            })
+            .collect();
+    }
+    a.iter()
+        .enumerate()
+        .map(|(i, y)| {
+            let m = &mlp.output_map;
+            if m.max[i] > m.min[i] {
+                (y + 1.0) * (m.max[i] - m.min[i]) / 2.0 + m.min[i]
+            } else {
+                y + m.min[i]
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn the_run_time_kernels_move_the_shipped_networks_outputs_by_less_than_1e_9() {
+    // mapminmax folded into the weights, padded blocks, the vectorised
+    // tansig (and FMA where the CPU has it) against Matlab's formulas.
+    let mut rng = Rng::new(5);
+    let mut worst = 0.0f64;
+    for variant in [Variant::Plain, Variant::Rows, Variant::Equivariant] {
+        let nets = Networks::embedded_with(variant).unwrap();
+        let files = [nets.phi_file(), nets.v_file()];
+        for file in files {
+            for entry in &file.nets {
+                let kernel = Kernel::new(&entry.mlp);
+                let (lo, hi) = (&entry.mlp.input_map.min, &entry.mlp.input_map.max);
+                let mut y = vec![0.0; kernel.outputs()];
+                for _ in 0..2000 {
+                    // Inside the trained box and 20% beyond it.
+                    let x: Vec<f64> = lo
+                        .iter()
+                        .zip(hi)
+                        .map(|(a, b)| a + (b - a) * rng.range(-0.2, 1.2))
+                        .collect();
+                    kernel.forward(&x, &mut y);
+                    let r = reference_forward(&entry.mlp, &x);
+                    for (a, b) in y.iter().zip(&r) {
+                        worst = worst.max((a - b).abs() / (1.0 + b.abs()));
+                    }
+                }
+            }
+        }
+    }
+    assert!(worst < 1e-9, "largest change {worst:e}");
+    assert!(worst > 0.0, "the kernel must be its own computation");
+}
+
+#[test]
+fn tansig_is_within_5e_16_of_tanh() {
+    let mut worst = 0.0f64;
+    let n = 400_000;
+    for i in 0..=n {
+        for x in [
+            -25.0 + 50.0 * i as f64 / n as f64,
+            (i as f64 / n as f64 - 0.5) * 1e-3,
+        ] {
+            worst = worst.max((tansig(x) - x.tanh()).abs());
+        }
+    }
+    assert!(worst < 5e-16, "{worst:e}");
+    assert_eq!(tansig(0.0), 0.0);
+    assert_eq!(tansig(1e300), 1.0);
+    assert_eq!(tansig(f64::NEG_INFINITY), -1.0);
+    assert!(tansig(f64::NAN).is_nan());
+    assert!(tansig(-1e-300) <= 0.0);
+}
+
+/// The exact `Phi` dressed as a network: Case 1 with it must be the
+/// numerical route.
+struct ExactPhi(Networks);
+
+impl Surrogate for ExactPhi {
+    fn phi(&self, pose: &Pose, out: &mut [f64]) -> redundant_ik::Result<()> {
+        ik::phi_into(pose.jacobian(), 0.0, out)
+    }
+    fn area_gradient(&self, pose: &Pose, o: [f64; 2], out: &mut [f64]) -> redundant_ik::Result<()> {
+        self.0.area_gradient(pose, o, out)
+    }
+    fn phi_in_range(&self, _: &Pose) -> bool {
+        true
+    }
+    fn v_in_range(&self, _: &Pose, _: [f64; 2]) -> bool {
+        true
+    }
+}
+
+#[test]
+fn a_constant_delta_damps_the_network_phi_instead_of_replacing_it() {
+    let exact: Arc<dyn Surrogate> = Arc::new(ExactPhi(Networks::embedded().unwrap()));
+    let nets: Arc<dyn Surrogate> = Arc::new(Networks::embedded().unwrap());
+    let mut scene = Scene::task1();
+    scene.delta = 0.001;
+    let numerical = Planner::run(scene.clone(), Mode::Numerical, None).unwrap();
+    // With an exact Phi, Case 1 with delta is the damped numerical route ...
+    let case1_exact = Planner::run(scene.clone(), Mode::Case1, Some(exact)).unwrap();
+    for (a, b) in numerical.steps.iter().zip(&case1_exact.steps) {
+        for (x, y) in a.theta.iter().zip(&b.theta) {
+            assert!((x - y).abs() < 1e-10);
+        }
+    }
+    // ... and with the trained network it is the network's route, damped:
+    // not the numerical route's numbers (the old silent swap), and within
+    // the network's accuracy of them.
+    let case1 = Planner::run(scene.clone(), Mode::Case1, Some(nets.clone())).unwrap();
+    let (s, n) = (&case1.summary, &numerical.summary);
+    assert_ne!(s.final_error, n.final_error);
+    // Damping trades tracking for bounded rates: about 7 mm here on both.
+    assert!(
+        (s.final_error - n.final_error).abs() < 1e-3,
+        "{s:?} vs {n:?}"
+    );
+    assert!(!s.collided);
+    assert_eq!(s.handover_steps, 0, "a constant delta is no hand-over");
+    // delta = 0 gives the undamped network route.
+    scene.delta = 0.0;
+    let undamped = Planner::run(scene, Mode::Case1, Some(nets)).unwrap();
+    assert_ne!(undamped.summary.final_error, s.final_error);
+}
+
+#[test]
+fn near_a_singular_pose_the_damping_schedule_hands_phi_over_and_says_so() {
+    // An out-of-reach target stretches the arm; the schedule switches on
+    // automatically and, in Cases 1 and 3, the exact damped Phi stands in.
+    let nets: Arc<dyn Surrogate> = Arc::new(Networks::embedded().unwrap());
+    let mut scene = Scene::task1();
+    scene.target = [2.5, 0.8];
+    for mode in Mode::ALL {
+        let run = Planner::run(scene.clone(), mode, Some(nets.clone())).unwrap();
+        let s = &run.summary;
+        assert!(s.auto_damping, "{mode}");
+        let flagged = run.steps.iter().filter(|x| x.phi_handover).count();
+        assert_eq!(flagged, s.handover_steps, "{mode}");
+        match mode {
+            // Phi by the network, v exact: the arm stretches and the exact
+            // damped Phi takes over.
+            Mode::Case1 => assert!(s.handover_steps > 10, "{}", s.handover_steps),
+            // (Case 3's v network, far outside its trained range here, folds
+            // the arm instead: it never comes near the singular pose.)
+            Mode::Case3 => {}
+            _ => assert_eq!(s.handover_steps, 0, "{mode}"),
+        }
+    }
+    // In the paper's scenes the networks work alone.
+    for mode in [Mode::Case1, Mode::Case3] {
+        let run = Planner::run(Scene::task2(), mode, Some(nets.clone())).unwrap();
+        assert_eq!(run.summary.handover_steps, 0);
+    }
 }

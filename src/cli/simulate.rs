@@ -228,6 +228,13 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
             s.max_delta
         );
     }
+    if s.handover_steps > 0 {
+        w!(
+            out,
+            "near a singular pose the exact damped Phi stood in for the network in {} steps",
+            s.handover_steps
+        );
+    }
     if s.out_of_range_steps > 0 {
         w!(
             out,

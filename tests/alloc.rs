@@ -1,0 +1,131 @@
+//! A step allocates nothing: with a global allocator that counts, once a
+//! planner exists its RK4 steps (and resets) make no heap allocation, in
+//! every mode, for arms of 2 to 6 links, with several obstacles, damping and
+//! closed-loop feedback. Runs natively and in the browser.
+
+#[cfg(target_family = "wasm")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
+#[cfg(target_family = "wasm")]
+wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+use std::sync::Arc;
+
+use redundant_ik::networks::Networks;
+use redundant_ik::{Arm, DampingSchedule, Mode, Obstacle, Planner, Scene, Surrogate};
+
+thread_local! {
+    /// Allocations made by this thread (tests run on several threads).
+    static ALLOCATIONS: Cell<u64> = const { Cell::new(0) };
+}
+
+fn count() {
+    // `try_with`: the slot may be gone while a thread shuts down.
+    let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
+}
+
+fn allocations() -> u64 {
+    ALLOCATIONS.with(Cell::get)
+}
+
+struct Counting;
+
+// SAFETY: every call is forwarded unchanged to the system allocator.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        count();
+        System.alloc(layout)
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        System.dealloc(ptr, layout)
+    }
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        count();
+        System.alloc_zeroed(layout)
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        count();
+        System.realloc(ptr, layout, new_size)
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+/// Allocations made by `f` on this thread.
+fn allocations_in(f: impl FnOnce()) -> u64 {
+    let before = allocations();
+    f();
+    allocations() - before
+}
+
+/// Task 1's scene with two obstacles, the damping schedule and feedback.
+fn busy_scene() -> Scene {
+    let mut s = Scene::task1();
+    s.obstacles.push(Obstacle::new(1.1, 1.2, 0.05));
+    s.damping = Some(DampingSchedule::default());
+    s.feedback_gain = 1.0;
+    s
+}
+
+#[test]
+fn a_step_allocates_nothing_in_any_mode() {
+    let nets: Arc<dyn Surrogate> = Arc::new(Networks::embedded().unwrap());
+    for scene in [Scene::task1(), Scene::task2(), busy_scene()] {
+        for mode in Mode::ALL {
+            let mut p = Planner::new(scene.clone(), mode, Some(nets.clone())).unwrap();
+            let n = allocations_in(|| {
+                for _ in 0..20 {
+                    p.step().unwrap();
+                }
+            });
+            assert_eq!(n, 0, "{mode}: {n} allocations in 20 steps");
+            let n = allocations_in(|| p.reset());
+            assert_eq!(n, 0, "{mode}: reset allocated {n} times");
+        }
+    }
+}
+
+#[test]
+fn a_step_allocates_nothing_for_arms_of_two_to_six_links() {
+    for links in 2..=6 {
+        let arm = Arm::new(0.5, vec![2.0 / links as f64; links]).unwrap();
+        let mut s = Scene::task1();
+        s.theta0 = (0..links).map(|i| 0.3 + 0.2 * i as f64).collect();
+        s.arm = arm;
+        s.target = [0.8, 0.9];
+        s.obstacles = vec![Obstacle::new(1.2, 0.2, 0.05), Obstacle::new(-0.8, 1.0, 0.1)];
+        s.damping = Some(DampingSchedule::default());
+        for mode in [Mode::None, Mode::Numerical] {
+            let mut p = Planner::new(s.clone(), mode, None).unwrap();
+            let n = allocations_in(|| {
+                for _ in 0..20 {
+                    p.step().unwrap();
+                }
+            });
+            assert_eq!(n, 0, "{links} links, {mode}: {n} allocations");
+        }
+    }
+}
+
+#[test]
+fn theta_dot_into_allocates_nothing() {
+    let nets: Arc<dyn Surrogate> = Arc::new(Networks::embedded().unwrap());
+    for mode in Mode::ALL {
+        let mut p = Planner::new(Scene::task1(), mode, Some(nets.clone())).unwrap();
+        let theta = Scene::task1().theta0;
+        let mut out = [0.0; 3];
+        let n = allocations_in(|| p.theta_dot_into(&theta, [-0.1, -0.08], &mut out).unwrap());
+        assert_eq!(n, 0, "{mode}");
+    }
+}
+
+#[test]
+fn the_counter_does_count() {
+    // The tests above could not fail if the counter saw nothing.
+    let n = allocations_in(|| {
+        std::hint::black_box(vec![1.0; 3]);
+    });
+    assert!(n >= 1);
+}
