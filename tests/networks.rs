@@ -607,3 +607,87 @@ fn near_a_singular_pose_the_damping_schedule_hands_phi_over_and_says_so() {
         assert_eq!(run.summary.handover_steps, 0);
     }
 }
+
+#[test]
+fn normal_equations_from_the_layer_structure_equal_those_from_the_jacobian_rows() {
+    // J^T J = sum_s D^s (x) (a~ a~'^T) per layer pair (nn::kronecker) must be
+    // the sum over J's rows of g g^T, and J^T e the sum of e g.
+    let mut rng = Rng::new(9);
+    for sizes in [vec![3, 5, 4, 2], vec![2, 7, 3], vec![4, 6, 5, 3, 2]] {
+        let (n_in, n_out) = (sizes[0], *sizes.last().unwrap());
+        let mlp = Mlp::nguyen_widrow(
+            &sizes,
+            MapMinMax::fit(&[-1.0, 1.0].repeat(n_in), n_in),
+            MapMinMax::fit(&[-1.0, 1.0].repeat(n_out), n_out),
+            &mut rng,
+        )
+        .unwrap();
+        let samples = 37;
+        let x: Vec<f64> = (0..samples * n_in).map(|_| rng.range(-1.0, 1.0)).collect();
+        let t: Vec<f64> = (0..samples * n_out).map(|_| rng.range(-1.0, 1.0)).collect();
+        let idx: Vec<usize> = (0..samples).collect();
+        let mut acts = Activations::new(&sizes);
+        // Blocks of 5 samples, so partial last blocks are exercised.
+        let mut normal = redundant_ik::nn::kronecker::Normal::new(&sizes, 5);
+        let (jtj, jte) = normal.accumulate(&mlp, &x, &t, &idx, &mut acts);
+        let p = mlp.n_params();
+        let (mut ref_jtj, mut ref_jte) = (vec![0.0; p * p], vec![0.0; p]);
+        let mut jac = vec![0.0; n_out * p];
+        for s in 0..samples {
+            mlp.forward_scaled(&x[s * n_in..(s + 1) * n_in], &mut acts);
+            let y = acts.output().to_vec();
+            mlp.output_jacobian(&mut acts, &mut jac);
+            for m in 0..n_out {
+                let g = &jac[m * p..(m + 1) * p];
+                let e = t[s * n_out + m] - y[m];
+                for a in 0..p {
+                    ref_jte[a] += e * g[a];
+                    for b in 0..p {
+                        ref_jtj[a * p + b] += g[a] * g[b];
+                    }
+                }
+            }
+        }
+        let scale = ref_jtj.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for a in 0..p {
+            assert!(
+                (jte[a] - ref_jte[a]).abs() < 1e-12 * scale,
+                "{sizes:?} J^T e [{a}]"
+            );
+            for b in 0..p {
+                let (got, want) = (jtj[(a, b)], ref_jtj[a * p + b]);
+                assert!(
+                    (got - want).abs() < 1e-12 * scale,
+                    "{sizes:?} J^T J [{a}, {b}]: {got} vs {want}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn the_blocked_cholesky_solves_like_nalgebras_and_refuses_what_is_not_positive_definite() {
+    use redundant_ik::nalgebra::DMatrix;
+    use redundant_ik::nn::cholesky;
+    let mut rng = Rng::new(3);
+    // Sizes around the block width (64), and the trainer's 699.
+    for n in [1, 2, 63, 64, 65, 130, 200, 699] {
+        let m = DMatrix::from_fn(n, n / 2 + 1, |_, _| rng.range(-1.0, 1.0));
+        let a = &m * m.transpose() + DMatrix::identity(n, n) * 1e-3;
+        let b = DVector::from_fn(n, |_, _| rng.range(-1.0, 1.0));
+        let x = cholesky::solve_spd(a.clone(), &b).unwrap();
+        let reference = a.clone().cholesky().unwrap().solve(&b);
+        let rel = (&x - &reference).norm() / reference.norm();
+        assert!(rel < 1e-8, "n = {n}: {rel:e}");
+        assert!(
+            (&a * &x - &b).norm() < 1e-8 * b.norm() * a.norm(),
+            "n = {n}"
+        );
+    }
+    let mut indefinite = DMatrix::identity(70, 70);
+    indefinite[(66, 66)] = -1.0;
+    assert!(cholesky::solve_spd(indefinite, &DVector::zeros(70)).is_none());
+    let mut nan = DMatrix::identity(3, 3);
+    nan[(2, 2)] = f64::NAN;
+    assert!(cholesky::solve_spd(nan, &DVector::zeros(3)).is_none());
+}

@@ -310,62 +310,99 @@ impl Mlp {
         }
     }
 
-    /// Derivative of every scaled output with respect to every parameter at
-    /// the activations of the last [`Mlp::forward_scaled`] call: output `j`'s
-    /// gradient goes to `jac[j * n_params .. (j + 1) * n_params]`, in
-    /// [`Mlp::params`] order (back-propagation, once per output).
-    pub fn output_jacobian(&self, acts: &mut Activations, jac: &mut [f64]) {
-        let p = self.n_params();
+    /// Offset of each layer's block (weights row-major, then biases) in the
+    /// parameter vector of [`Mlp::params`].
+    pub fn param_offsets(&self) -> Vec<usize> {
+        self.sizes
+            .windows(2)
+            .scan(0, |k, w| {
+                let off = *k;
+                *k += (w[0] + 1) * w[1];
+                Some(off)
+            })
+            .collect()
+    }
+
+    /// Back-propagated sensitivities at the activations of the last
+    /// [`Mlp::forward_scaled`] call: `delta_l^m = d y_m / d z_l`, the
+    /// derivative of scaled output `m` with respect to the pre-activations
+    /// `z_l` of layer `l`. Written to `out` as `[m][l][o]`: for each output,
+    /// every layer's `sizes[l + 1]` values in turn (`outputs() x` the sum of
+    /// the layer widths). The top layer is `purelin`, so `delta_top^m = e_m`;
+    /// below, `delta_{l-1} = (W_l^T delta_l) (1 - a_{l-1}^2)` (`tansig`).
+    pub fn sensitivities(&self, acts: &Activations, out: &mut [f64]) {
         let n_layers = self.layers.len();
-        // Offset of each layer's block in the parameter vector.
-        let mut offsets = Vec::with_capacity(n_layers);
-        let mut k = 0;
-        for w in self.sizes.windows(2) {
-            offsets.push(k);
-            k += (w[0] + 1) * w[1];
-        }
-        for j in 0..self.outputs() {
-            let row = &mut jac[j * p..(j + 1) * p];
-            // Sensitivity of output j to the pre-activations of the top layer.
-            let top = &mut acts.delta[n_layers - 1];
+        let widths = &self.sizes[1..];
+        let total: usize = widths.iter().sum();
+        let offsets: Vec<usize> = widths
+            .iter()
+            .scan(0, |k, s| {
+                let off = *k;
+                *k += s;
+                Some(off)
+            })
+            .collect();
+        for (m, block) in out.chunks_exact_mut(total).take(self.outputs()).enumerate() {
+            let top = &mut block[offsets[n_layers - 1]..];
             top.iter_mut().for_each(|d| *d = 0.0);
-            top[j] = 1.0;
-            for l in (0..n_layers).rev() {
+            top[m] = 1.0;
+            for l in (1..n_layers).rev() {
                 let (r, s) = (self.sizes[l], self.sizes[l + 1]);
-                let off = offsets[l];
-                let input = &acts.a[l];
-                let (lower, upper) = acts.delta.split_at_mut(l);
-                let delta = &upper[0];
-                for o in 0..s {
-                    let d = delta[o];
-                    let wrow = &mut row[off + o * r..off + (o + 1) * r];
-                    if d == 0.0 {
-                        wrow.iter_mut().for_each(|x| *x = 0.0);
-                    } else {
-                        for (x, a) in wrow.iter_mut().zip(input) {
-                            *x = d * a;
+                let (lower, upper) = block.split_at_mut(offsets[l]);
+                let delta = &upper[..s];
+                let prev = &mut lower[offsets[l - 1]..offsets[l - 1] + r];
+                prev.iter_mut().for_each(|x| *x = 0.0);
+                let weights = &self.layers[l].weights;
+                for (o, &d) in delta.iter().enumerate() {
+                    if d != 0.0 {
+                        for (pv, w) in prev.iter_mut().zip(&weights[o * r..(o + 1) * r]) {
+                            *pv += w * d;
                         }
                     }
-                    row[off + r * s + o] = d;
                 }
-                if l > 0 {
-                    let prev = &mut lower[l - 1];
-                    let weights = &self.layers[l].weights;
-                    prev.iter_mut().for_each(|x| *x = 0.0);
-                    for o in 0..s {
-                        let d = delta[o];
-                        if d != 0.0 {
-                            for (pv, w) in prev.iter_mut().zip(&weights[o * r..(o + 1) * r]) {
-                                *pv += w * d;
-                            }
-                        }
-                    }
-                    for (pv, a) in prev.iter_mut().zip(input) {
-                        *pv *= 1.0 - a * a;
-                    }
+                for (pv, a) in prev.iter_mut().zip(&acts.a[l]) {
+                    *pv *= 1.0 - a * a;
                 }
             }
         }
+    }
+
+    /// Derivative of every scaled output with respect to every parameter at
+    /// the activations of the last [`Mlp::forward_scaled`] call: output `j`'s
+    /// gradient goes to `jac[j * n_params .. (j + 1) * n_params]`, in
+    /// [`Mlp::params`] order: `dy_j / dW_l[o][i] = delta_l^j[o] a_{l-1}[i]`,
+    /// `dy_j / db_l[o] = delta_l^j[o]` (see [`Mlp::sensitivities`]).
+    pub fn output_jacobian(&self, acts: &mut Activations, jac: &mut [f64]) {
+        let p = self.n_params();
+        let offsets = self.param_offsets();
+        let total: usize = self.sizes[1..].iter().sum();
+        let mut sens = std::mem::take(&mut acts.sens);
+        sens.resize(self.outputs() * total, 0.0);
+        self.sensitivities(acts, &mut sens);
+        for (row, block) in jac.chunks_exact_mut(p).zip(sens.chunks_exact(total)) {
+            let mut d0 = 0;
+            for (l, &off) in offsets.iter().enumerate() {
+                let (r, s) = (self.sizes[l], self.sizes[l + 1]);
+                let delta = &block[d0..d0 + s];
+                for (o, &d) in delta.iter().enumerate() {
+                    for (x, a) in row[off + o * r..off + (o + 1) * r]
+                        .iter_mut()
+                        .zip(&acts.a[l])
+                    {
+                        *x = d * a;
+                    }
+                    row[off + r * s + o] = d;
+                }
+                d0 += s;
+            }
+        }
+        acts.sens = sens;
+    }
+
+    /// Layer `l`'s input in the last [`Mlp::forward_scaled`] call (`l = 0`:
+    /// the scaled network input).
+    pub fn layer_input<'a>(&self, acts: &'a Activations, l: usize) -> &'a [f64] {
+        &acts.a[l]
     }
 }
 
@@ -373,7 +410,8 @@ impl Mlp {
 #[derive(Debug, Clone)]
 pub struct Activations {
     a: Vec<Vec<f64>>,
-    delta: Vec<Vec<f64>>,
+    /// Sensitivities for [`Mlp::output_jacobian`].
+    sens: Vec<f64>,
 }
 
 impl Activations {
@@ -381,7 +419,7 @@ impl Activations {
     pub fn new(sizes: &[usize]) -> Self {
         Self {
             a: sizes.iter().map(|&s| vec![0.0; s]).collect(),
-            delta: sizes[1..].iter().map(|&s| vec![0.0; s]).collect(),
+            sens: Vec::new(),
         }
     }
 

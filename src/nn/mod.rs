@@ -5,8 +5,10 @@
 //! file ([`weights`]). Everything here is single-threaded and free of OS
 //! entropy and clocks, so it runs unchanged in the browser.
 
+pub mod cholesky;
 pub mod data;
 pub mod kernel;
+pub mod kronecker;
 pub mod lm;
 pub mod mlp;
 pub mod rng;
