@@ -4,20 +4,31 @@ SHELL := /bin/bash
 .SHELLFLAGS := -eu -o pipefail -c
 PORT ?= 8000
 WASM_ENV = RUSTUP_TOOLCHAIN=$$(cat target/wasm-toolchain)
+# The SIMD build has its own target directory, so neither build evicts the other.
+WASM_SIMD_ENV = $(WASM_ENV) CARGO_TARGET_DIR=target/wasm-simd RUSTFLAGS="-C target-feature=+simd128"
+WASM_BUILD = CARGO_PROFILE_RELEASE_OPT_LEVEL=s wasm-pack build --release --target web --no-typescript
 
-.PHONY: setup web demo test lint test-native test-wasm test-e2e bench figures weights clean-web
+.PHONY: setup web demo test lint test-native test-wasm test-e2e bench bench-native bench-web figures weights clean-web
 
 ## Make this machine able to build and test for wasm32 (idempotent).
 setup:
 	bash scripts/setup-wasm.sh
 
-## Build the release wasm package into www/pkg: optimised for size for this
-## build only (opt-level s; z came out larger), then the debug `name` section
-## stripped (cargo's strip also drops a section wasm-bindgen needs).
+## Build the release wasm package into www/pkg, twice: a baseline module and
+## one with wasm SIMD (+simd128) for the networks' kernels; the page loads the
+## SIMD one where the browser validates SIMD, else the baseline (some hardened
+## browser modes switch SIMD off). Both share the JS glue (checked). Optimised
+## for size (opt-level s: 3 is 13 KB gzipped larger, z came out larger), then
+## the debug `name` section stripped (cargo's strip also drops a section
+## wasm-bindgen needs).
 web: setup
-	CARGO_PROFILE_RELEASE_OPT_LEVEL=s $(WASM_ENV) wasm-pack build --release --target web --no-typescript --out-dir www/pkg
+	$(WASM_ENV) $(WASM_BUILD) --out-dir www/pkg
+	$(WASM_SIMD_ENV) $(WASM_BUILD) --out-dir target/pkg-simd
+	cmp www/pkg/redundant_ik.js target/pkg-simd/redundant_ik.js
+	cp target/pkg-simd/redundant_ik_bg.wasm www/pkg/redundant_ik_simd_bg.wasm
 	python3 scripts/strip-wasm-names.py www/pkg/redundant_ik_bg.wasm
-	@ls -l www/pkg/*.wasm
+	python3 scripts/strip-wasm-names.py www/pkg/redundant_ik_simd_bg.wasm
+	@for f in www/pkg/*.wasm; do echo "$$f: $$(stat -c %s $$f) B, gzip -9 $$(gzip -9 -c $$f | wc -c) B"; done
 
 ## Build, then serve www/ on http://127.0.0.1:$(PORT)/.
 demo: web
@@ -27,22 +38,36 @@ demo: web
 ## headless Chromium, and the end-to-end browser test of the page.
 test: lint test-native test-wasm test-e2e
 
-lint:
+lint: setup
 	cargo fmt --check
 	cargo clippy --all-targets -- -D warnings
+	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --tests -- -D warnings
+	$(WASM_SIMD_ENV) cargo clippy --target wasm32-unknown-unknown --lib --tests -- -D warnings
 
 test-native:
 	cargo test
 
 test-wasm: setup
 	CHROMEDRIVER=/usr/bin/chromedriver $(WASM_ENV) wasm-pack test --headless --chrome
+	CHROMEDRIVER=/usr/bin/chromedriver $(WASM_SIMD_ENV) wasm-pack test --headless --chrome -- --test core --test networks --test alloc
 
 test-e2e: web
 	bash scripts/e2e.sh
 
-## Criterion benchmarks (numbers in the README).
+## Criterion benchmarks (for developers; the README quotes `redundant-ik bench`).
 bench:
 	cargo bench
+
+## `redundant-ik bench`, five runs, the median of each figure into
+## www/bench-native.json (shown by the page's benchmark panel; in the README).
+bench-native:
+	cargo build --release
+	python3 scripts/bench-native.py target/release/redundant-ik 5 www/bench-native.json
+
+## The page's benchmark (window.demo.bench(), in a worker) in headless
+## Chromium, three runs and their median.
+bench-web: web
+	bash scripts/bench-web.sh
 
 ## The paper's figures for both tasks and every mode, as SVG.
 figures:

@@ -32,6 +32,9 @@ pub struct Options {
     pub batches: usize,
     /// Whether to time one Levenberg-Marquardt epoch (about 0.1 s each).
     pub lm_epoch: bool,
+    /// Whether to time the paper's `Phi` variants too (their weights are
+    /// not in the page's build).
+    pub paper_variants: bool,
 }
 
 impl Default for Options {
@@ -40,6 +43,7 @@ impl Default for Options {
             batch_ms: 20.0,
             batches: 7,
             lm_epoch: true,
+            paper_variants: true,
         }
     }
 }
@@ -89,15 +93,20 @@ pub struct Forward {
     pub phi: f64,
     /// The `v` network (5-25-14-3).
     pub v: f64,
-    /// The paper's single `Phi` net (3-35-14-6).
-    pub phi_plain: f64,
-    /// The paper's three row nets (3 x 3-35-14-2).
-    pub phi_rows: f64,
+    /// The paper's single `Phi` net (3-35-14-6), when measured.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub phi_plain: Option<f64>,
+    /// The paper's three row nets (3 x 3-35-14-2), when measured.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub phi_rows: Option<f64>,
 }
 
 /// Everything `redundant-ik bench` reports.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Report {
+    /// The network kernels measured: `avx2+fma`, `simd128`, `fma` or
+    /// `portable` ([`crate::nn::kernel::kernel_isa`]).
+    pub kernels: String,
     /// One `theta_dot` at Task 1's start pose (ns).
     pub theta_dot_ns: PerMode,
     /// One RK4 step of Task 1, with the sample bookkeeping (ns).
@@ -211,32 +220,40 @@ pub fn allocs_per_step(mode: Mode, count: &dyn Fn() -> u64) -> Result<f64> {
     Ok((count() - before) as f64 / n as f64)
 }
 
-/// Forward passes of the shipped networks (ns).
+/// Forward passes of the default `Phi` network and the `v` network (ns).
 pub fn forward_ns(opts: &Options, probes: &Probes) -> Result<Forward> {
     let theta = Scene::task1().theta0;
-    let mut out = [0.0; 6];
-    let mut phi = |variant| -> Result<f64> {
-        let nets = Networks::embedded_with(variant)?;
-        time_ns(opts, probes, || {
-            nets.phi_into(std::hint::black_box(&theta), &mut out)
-        })
-    };
-    let (phi_eq, phi_plain, phi_rows) = (
-        phi(Variant::Equivariant)?,
-        phi(Variant::Plain)?,
-        phi(Variant::Rows)?,
-    );
     let nets = Networks::embedded()?;
+    let mut out = [0.0; 6];
+    let phi = time_ns(opts, probes, || {
+        nets.phi_into(std::hint::black_box(&theta), &mut out)
+    })?;
     let mut g = [0.0; 3];
     let v = time_ns(opts, probes, || {
         nets.area_gradient_into(std::hint::black_box(&theta), [0.5, 0.5], &mut g)
     })?;
     Ok(Forward {
-        phi: phi_eq,
+        phi,
         v,
-        phi_plain,
-        phi_rows,
+        phi_plain: None,
+        phi_rows: None,
     })
+}
+
+/// Forward passes of the paper's two `Phi` forms, the single 3-35-14-6 net
+/// and the three 3-35-14-2 row nets (ns). Separate from [`forward_ns`] so
+/// that the page, which ships only the default networks, does not embed
+/// their weights.
+pub fn forward_paper_ns(opts: &Options, probes: &Probes) -> Result<(f64, f64)> {
+    let theta = Scene::task1().theta0;
+    let mut out = [0.0; 6];
+    let mut time = |variant| -> Result<f64> {
+        let nets = Networks::embedded_with(variant)?;
+        time_ns(opts, probes, || {
+            nets.phi_into(std::hint::black_box(&theta), &mut out)
+        })
+    };
+    Ok((time(Variant::Plain)?, time(Variant::Rows)?))
 }
 
 /// One `trainlm` epoch (ms) of a fresh 2-35-14-6 `Phi` network on 3,000
@@ -276,7 +293,12 @@ pub fn lm_epoch_ms(opts: &Options, probes: &Probes) -> Result<f64> {
 pub fn run(opts: &Options, probes: &Probes) -> Result<Report> {
     let theta_dot = PerMode::from_fn(|m| theta_dot_ns(m, opts, probes))?;
     let step = PerMode::from_fn(|m| step_ns(m, opts, probes))?;
-    let forward = forward_ns(opts, probes)?;
+    let mut forward = forward_ns(opts, probes)?;
+    if opts.paper_variants {
+        let (plain, rows) = forward_paper_ns(opts, probes)?;
+        forward.phi_plain = Some(plain);
+        forward.phi_rows = Some(rows);
+    }
     let lm = if opts.lm_epoch {
         Some(lm_epoch_ms(opts, probes)?)
     } else {
@@ -287,6 +309,7 @@ pub fn run(opts: &Options, probes: &Probes) -> Result<Report> {
         None => None,
     };
     Ok(Report {
+        kernels: crate::nn::kernel::kernel_isa().to_string(),
         theta_dot_ns: theta_dot,
         step_ns: step,
         forward_ns: forward,

@@ -17,6 +17,7 @@ use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 use web_sys::{CanvasRenderingContext2d, HtmlCanvasElement};
 
+use crate::bench;
 use crate::error::{Error, Result};
 use crate::{
     DampingSchedule, Line, Mode, Networks, Obstacle, Planner, Scene, Surrogate, TrainedRange,
@@ -124,44 +125,60 @@ pub fn networks_error() -> Option<String> {
     shared_networks().err()
 }
 
-/// Measures the planner in this browser: the cost of one RK4 step of Task 1
-/// in `mode` (`none`, `numerical`, `case1`, `case2`, `case3`), in
-/// microseconds. Runs one warm-up batch (so the engine has compiled the hot
-/// code with its optimising tier), then five batches of `steps` steps
-/// (100 to 100 000; the task restarts every 100 steps), each timed with
-/// `performance.now()`, and returns the median. Nothing is drawn.
-#[wasm_bindgen(js_name = benchmarkSteps)]
-pub fn benchmark_steps(mode: &str, steps: u32) -> std::result::Result<f64, JsError> {
-    let mode: Mode = mode.parse().map_err(js_err)?;
-    if !(100..=100_000).contains(&steps) {
+/// The in-browser benchmark, one figure per call so that a Web Worker can
+/// report progress between them (`www/bench-worker.js`); the same code as
+/// `redundant-ik bench` ([`crate::bench`]), timed with `performance.now()`.
+/// `batch_ms` is the shortest timed batch (1 to 1000 ms); each figure is the
+/// median of seven batches after a warm-up.
+fn bench_options(batch_ms: f64) -> std::result::Result<bench::Options, JsError> {
+    finite("batch length", batch_ms)?;
+    if !(1.0..=1000.0).contains(&batch_ms) {
         return Err(JsError::new(&format!(
-            "steps must lie between 100 and 100000 (got {steps})"
+            "the batch length must lie between 1 and 1000 ms (got {batch_ms})"
         )));
     }
-    let networks = if mode.learned_phi() || mode.learned_v() {
-        Some(shared_networks().map_err(|e| JsError::new(&e))?.surrogate)
-    } else {
-        None
-    };
-    let mut planner = Planner::new(Scene::task1(), mode, networks).map_err(js_err)?;
-    let tf = planner.scene().tf;
-    let mut batch = || -> Result<f64> {
-        let t0 = now_ms();
-        for _ in 0..steps {
-            if planner.time() >= tf - 1e-9 {
-                planner.reset();
-            }
-            planner.step()?;
-        }
-        Ok((now_ms() - t0) * 1000.0 / f64::from(steps))
-    };
-    batch().map_err(js_err)?;
-    let mut times = Vec::with_capacity(5);
-    for _ in 0..5 {
-        times.push(batch().map_err(js_err)?);
+    Ok(bench::Options {
+        batch_ms,
+        ..bench::Options::default()
+    })
+}
+
+fn bench_probes(clock: &dyn Fn() -> f64) -> bench::Probes<'_> {
+    bench::Probes {
+        now_ms: clock,
+        allocations: None,
     }
-    times.sort_by(f64::total_cmp);
-    Ok(times[2])
+}
+
+/// One `theta_dot` of `mode` at Task 1's start pose, in nanoseconds.
+#[wasm_bindgen(js_name = benchThetaDot)]
+pub fn bench_theta_dot(mode: &str, batch_ms: f64) -> std::result::Result<f64, JsError> {
+    let mode: Mode = mode.parse().map_err(js_err)?;
+    let opts = bench_options(batch_ms)?;
+    bench::theta_dot_ns(mode, &opts, &bench_probes(&now_ms)).map_err(js_err)
+}
+
+/// One RK4 step of Task 1 in `mode`, sample included, in nanoseconds.
+#[wasm_bindgen(js_name = benchStep)]
+pub fn bench_step(mode: &str, batch_ms: f64) -> std::result::Result<f64, JsError> {
+    let mode: Mode = mode.parse().map_err(js_err)?;
+    let opts = bench_options(batch_ms)?;
+    bench::step_ns(mode, &opts, &bench_probes(&now_ms)).map_err(js_err)
+}
+
+/// Forward passes of the shipped networks in nanoseconds:
+/// `{ phi, v, phi_plain, phi_rows }`.
+#[wasm_bindgen(js_name = benchForward)]
+pub fn bench_forward(batch_ms: f64) -> std::result::Result<JsValue, JsError> {
+    let opts = bench_options(batch_ms)?;
+    let f = bench::forward_ns(&opts, &bench_probes(&now_ms)).map_err(js_err)?;
+    to_js(&f)
+}
+
+/// A serialisable value as a plain JavaScript object.
+fn to_js<T: Serialize>(value: &T) -> std::result::Result<JsValue, JsError> {
+    let json = serde_json::to_string(value).map_err(|e| JsError::new(&e.to_string()))?;
+    js_sys::JSON::parse(&json).map_err(|_| JsError::new("could not build the result object"))
 }
 
 fn js_err(e: Error) -> JsError {
@@ -172,10 +189,17 @@ fn finite(what: &str, value: f64) -> std::result::Result<f64, JsError> {
     crate::error::finite(what, value).map_err(js_err)
 }
 
+thread_local! {
+    /// The global `performance` object: the window's, or the worker's.
+    static PERFORMANCE: Option<web_sys::Performance> =
+        js_sys::Reflect::get(&js_sys::global(), &JsValue::from_str("performance"))
+            .ok()
+            .and_then(|p| p.dyn_into::<web_sys::Performance>().ok());
+}
+
+/// `performance.now()` in a page or a worker (0 where there is none).
 fn now_ms() -> f64 {
-    web_sys::window()
-        .and_then(|w| w.performance())
-        .map_or(0.0, |p| p.now())
+    PERFORMANCE.with(|p| p.as_ref().map_or(0.0, |p| p.now()))
 }
 
 /// A canvas and its 2-D context, with its size in CSS pixels.
@@ -335,6 +359,8 @@ struct State<'a> {
     manipulability: f64,
     delta: f64,
     in_range: bool,
+    phi_handover: bool,
+    handover_steps: usize,
     networks: bool,
     trained_range: Option<&'a TrainedRange>,
     ghost: Option<GhostState>,
@@ -867,6 +893,8 @@ impl Demo {
             manipulability: s.manipulability,
             delta: s.delta,
             in_range: s.in_range,
+            phi_handover: s.phi_handover,
+            handover_steps: summary.handover_steps,
             networks: self.networks.is_some() || shared_networks().is_ok(),
             trained_range: self.networks.as_ref().map(|n| &n.range),
             ghost: self.ghost.as_ref().map(|g| GhostState {

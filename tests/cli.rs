@@ -328,6 +328,27 @@ fn bench_reports_every_figure_and_no_allocation_per_step() {
         assert!(v["forward_ns"][net].as_f64().is_some_and(|x| x > 0.0));
     }
     assert!(v["lm_epoch_ms"].is_null(), "--no-lm skips the epoch");
+    let kernels = v["kernels"].as_str().unwrap_or_default().to_string();
+    assert!(
+        ["avx2+fma", "fma", "portable"].contains(&kernels.as_str()),
+        "{kernels}"
+    );
+    let base = json(&[
+        "bench",
+        "--json",
+        "--batch-ms",
+        "1",
+        "--batches",
+        "5",
+        "--no-lm",
+        "--baseline-kernels",
+    ]);
+    if kernels == "avx2+fma" {
+        assert_eq!(
+            base["kernels"], "portable",
+            "the run-time choice can be switched off"
+        );
+    }
     refused(&["bench", "--batches", "2"], "batches");
     refused(&["bench", "--batch-ms", "nan"], "batch-ms");
 }

@@ -30,7 +30,11 @@ fn demo(task: u32) -> Demo {
 }
 
 fn state(d: &Demo) -> Value {
-    let js = d.state().unwrap();
+    json_of(d.state().unwrap())
+}
+
+/// A JavaScript value as JSON.
+fn json_of(js: JsValue) -> Value {
     let text: String = js_sys::JSON::stringify(&js).unwrap().into();
     serde_json::from_str(&text).unwrap()
 }
@@ -277,14 +281,21 @@ fn closed_loop_feedback_shrinks_the_networks_drift_and_survives_a_task_load() {
 }
 
 #[wasm_bindgen_test]
-fn the_in_browser_benchmark_returns_a_cost_per_step_or_refuses_bad_input() {
-    use redundant_ik::wasm::benchmark_steps;
+fn the_in_browser_benchmark_returns_costs_or_refuses_bad_input() {
+    use redundant_ik::wasm::{bench_forward, bench_step, bench_theta_dot};
     for mode in ["numerical", "case3"] {
-        let us = benchmark_steps(mode, 100).unwrap();
-        assert!(us.is_finite() && us >= 0.0, "{mode}: {us}");
+        let ns = bench_step(mode, 1.0).unwrap();
+        assert!(ns.is_finite() && ns > 0.0, "{mode}: {ns}");
+        let ns = bench_theta_dot(mode, 1.0).unwrap();
+        assert!(ns.is_finite() && ns > 0.0, "{mode}: {ns}");
     }
-    assert!(message(benchmark_steps("case9", 100).err().unwrap()).contains("unknown mode"));
-    assert!(message(benchmark_steps("case3", 10).err().unwrap()).contains("steps"));
+    let f = json_of(bench_forward(1.0).unwrap());
+    assert!(f["phi"].as_f64().is_some_and(|x| x > 0.0), "{f}");
+    assert!(f["v"].as_f64().is_some_and(|x| x > 0.0), "{f}");
+    assert!(message(bench_step("case9", 1.0).err().unwrap()).contains("unknown mode"));
+    for bad in [0.0, f64::NAN, 1e9] {
+        assert!(message(bench_theta_dot("numerical", bad).err().unwrap()).contains("batch"));
+    }
 }
 
 #[wasm_bindgen_test]
@@ -307,4 +318,18 @@ fn compare_modes_runs_the_current_scene_in_all_five_modes_off_screen() {
     }
     assert!(rows.iter().all(|r| r["error"].is_null()));
     assert_eq!(state(&d), before, "the simulation on screen is untouched");
+}
+
+#[wasm_bindgen_test]
+fn the_state_says_when_the_exact_phi_stood_in_for_the_network() {
+    let mut d = demo(1);
+    d.set_mode("case1").unwrap();
+    let s = state(&d);
+    assert_eq!(s["handover_steps"], 0);
+    assert_eq!(s["phi_handover"], false);
+    // Out of reach: the arm stretches, the damping schedule hands Phi over.
+    d.set_target(2.5, 0.8, Some(10.0)).unwrap();
+    d.run_until(10.0).unwrap();
+    let s = state(&d);
+    assert!(s["handover_steps"].as_u64().unwrap() > 10, "{s}");
 }

@@ -5,17 +5,67 @@
 // `mount(root, options)` works on any root that holds the expected ids
 // (`#stage` and, all optional, `#plots`, `#mode`, `#play`, `#step`, `#reset`,
 // `#task1`, `#task2`, `#lambda`, `#damping`, `#feedback`, `#speed`, `#message`,
-// `#range-warning`, `#loading` and `[data-readout]` elements): the page's
+// `#range-warning`, `#handover-note`, `#loading` and `[data-readout]` elements): the page's
 // document, or the shadow root of a <redundant-ik-demo> element, so several
 // demos on one page stay independent.
 
-import init, { Demo, benchmarkSteps, lastPanic, networksError } from './pkg/redundant_ik.js';
+import init, { Demo, lastPanic, networksError } from './pkg/redundant_ik.js';
 
 let module = null;
+let wasmUrl = null;
 
-/** Loads and starts the WebAssembly module once per page. */
+/** The .wasm this page runs (see loadModule). */
+export function moduleUrl() {
+  return wasmUrl;
+}
+
+/** The two builds of the module (make web): with wasm SIMD, and without. */
+const BUILDS = {
+  simd: new URL('./pkg/redundant_ik_simd_bg.wasm', import.meta.url).href,
+  baseline: new URL('./pkg/redundant_ik_bg.wasm', import.meta.url).href,
+};
+
+/** Whether this browser validates wasm SIMD (v128, as wasm-feature-detect checks it). */
+function simdSupported() {
+  try {
+    return WebAssembly.validate(
+      new Uint8Array([0, 97, 115, 109, 1, 0, 0, 0, 1, 5, 1, 96, 0, 1, 123, 3, 2, 1, 0, 10, 10, 1, 8, 0, 65, 0, 253, 15, 253, 98, 11]),
+    );
+  } catch (_) {
+    return false;
+  }
+}
+
+let build = null;
+
+/** Which build the page runs: 'simd' or 'baseline' (null before loading). */
+export function moduleBuild() {
+  return build;
+}
+
+/**
+ * Loads and starts the WebAssembly module once per page: the SIMD build
+ * where the browser supports SIMD (the networks run about twice as fast),
+ * else, or if it fails to start, the baseline build.
+ */
 export function loadModule() {
-  if (!module) module = init();
+  if (!module) {
+    const start = async (which) => {
+      await init({ module_or_path: BUILDS[which] });
+      build = which;
+      wasmUrl = BUILDS[which];
+    };
+    module = (async () => {
+      if (simdSupported()) {
+        try {
+          return await start('simd');
+        } catch (e) {
+          console.warn(`the SIMD build did not start (${e && e.message ? e.message : e}); using the baseline build`);
+        }
+      }
+      return start('baseline');
+    })();
+  }
   return module;
 }
 
@@ -33,18 +83,47 @@ const MODE_LABELS = {
 export const FEEDBACK_GAIN = 1;
 
 /**
- * Times one RK4 step of Task 1 in this browser for each of `modes`
- * (microseconds; median of five batches of `steps` after a warm-up). Yields to
- * the browser between modes so the page stays responsive.
+ * Measures this browser as `redundant-ik bench` measures the machine: one
+ * theta_dot and one RK4 step of Task 1 in every mode and the forward passes of
+ * both networks (ns); each figure the median of seven batches after a
+ * warm-up. Runs in a Web Worker, so the page keeps drawing;
+ * `onProgress({ done, total, label })` follows it and `signal` (an
+ * AbortSignal) cancels it. Resolves to
+ * `{ theta_dot_ns: {mode: ns}, step_ns: {mode: ns}, forward_ns: {phi, v} }`.
  */
-export async function benchmark(modes = ['numerical', 'case3'], steps = 2000) {
+export async function bench({ onProgress, signal, batchMs = 20 } = {}) {
   await loadModule();
-  const out = {};
-  for (const mode of modes) {
-    await new Promise((r) => setTimeout(r, 0));
-    out[mode] = benchmarkSteps(mode, steps);
-  }
-  return out;
+  return new Promise((resolve, reject) => {
+    const worker = new Worker(new URL('./bench-worker.js', import.meta.url), { type: 'module' });
+    const finish = () => {
+      worker.terminate();
+      if (signal) signal.removeEventListener('abort', abort);
+    };
+    const abort = () => {
+      finish();
+      reject(new DOMException('The benchmark was cancelled.', 'AbortError'));
+    };
+    if (signal) {
+      if (signal.aborted) return abort();
+      signal.addEventListener('abort', abort);
+    }
+    worker.onmessage = ({ data }) => {
+      if (data.type === 'progress') {
+        if (onProgress) onProgress(data);
+      } else if (data.type === 'done') {
+        finish();
+        resolve(data.result);
+      } else {
+        finish();
+        reject(new Error(data.message));
+      }
+    };
+    worker.onerror = (e) => {
+      finish();
+      reject(new Error(e.message || 'the benchmark worker failed to start'));
+    };
+    worker.postMessage({ wasm: wasmUrl, batchMs });
+  });
 }
 
 /** A readable message for an exception thrown by the module. */
@@ -114,6 +193,7 @@ export async function mount(root, options = {}) {
     speed: $('speed'),
     message: $('message'),
     warning: $('range-warning'),
+    handover: $('handover-note'),
     loading: $('loading'),
   };
   const readouts = [...root.querySelectorAll('[data-readout]')];
@@ -374,6 +454,14 @@ export async function mount(root, options = {}) {
       if (r.dataset.readout === 'collision') r.dataset.level = s.collision ? 'bad' : s.collided ? 'warn' : 'ok';
     }
     if (el.warning) el.warning.hidden = s.in_range || !s.mode.startsWith('case');
+    if (el.handover) {
+      const on = s.handover_steps > 0 && (s.mode === 'case1' || s.mode === 'case3');
+      if (on) {
+        const text = `Near a singular pose the exact damped Φ stood in for the Φ network (${s.handover_steps} step${s.handover_steps === 1 ? '' : 's'} so far${s.phi_handover ? ', now too' : ''}).`;
+        if (el.handover.textContent !== text) el.handover.textContent = text;
+      }
+      el.handover.hidden = !on;
+    }
     if (s.auto_damping && !autoDampingShown) {
       show('The target is out of reach: damping switched on so the joint rates stay finite.', 'warn');
     }

@@ -25,6 +25,10 @@ pub struct BenchArgs {
     /// Skip the Levenberg-Marquardt epoch (about a second in all).
     #[arg(long)]
     pub no_lm: bool,
+    /// Run the networks on the portable x86-64 baseline kernels instead of
+    /// the AVX2 + FMA ones chosen at run time (to measure what that choice buys).
+    #[arg(long)]
+    pub baseline_kernels: bool,
 }
 
 /// Runs `redundant-ik bench`.
@@ -39,7 +43,9 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         batch_ms: args.batch_ms,
         batches: args.batches,
         lm_epoch: !args.no_lm,
+        paper_variants: true,
     };
+    redundant_ik::nn::kernel::set_runtime_dispatch(!args.baseline_kernels);
     let origin = Instant::now();
     let now = move || origin.elapsed().as_secs_f64() * 1e3;
     let count = crate::allocations;
@@ -56,9 +62,10 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
 }
 
 fn table(r: &Report) -> String {
-    let mut s = String::from(
-        "median of timed batches after a warm-up; Task 1, start pose; release build\n\n\
+    let mut s = format!(
+        "median of timed batches after a warm-up; Task 1, start pose; network kernels: {}\n\n\
          mode        theta_dot      RK4 step   allocs/step\n",
+        r.kernels
     );
     let allocs = |m: Mode| {
         r.allocs_per_step
@@ -76,10 +83,14 @@ fn table(r: &Report) -> String {
     }
     let f = &r.forward_ns;
     s.push_str(&format!(
-        "\nforward pass: Phi equivariant 2-35-14-6 {:.1} ns, v 5-25-14-3 {:.1} ns,\n\
-         \x20             Phi plain 3-35-14-6 {:.1} ns, Phi rows 3 x 3-35-14-2 {:.1} ns\n",
-        f.phi, f.v, f.phi_plain, f.phi_rows
+        "\nforward pass: Phi equivariant 2-35-14-6 {:.1} ns, v 5-25-14-3 {:.1} ns\n",
+        f.phi, f.v
     ));
+    if let (Some(plain), Some(rows)) = (f.phi_plain, f.phi_rows) {
+        s.push_str(&format!(
+            "              Phi plain 3-35-14-6 {plain:.1} ns, Phi rows 3 x 3-35-14-2 {rows:.1} ns\n"
+        ));
+    }
     if let Some(ms) = r.lm_epoch_ms {
         s.push_str(&format!(
             "one LM epoch, Phi 2-35-14-6, 3,000 samples (2,100 training): {ms:.1} ms\n"

@@ -1,0 +1,56 @@
+// Runs the page's benchmark (window.demo.bench(), a Web Worker) in headless
+// Chromium and prints one JSON object per run, then the median of each figure:
+//
+//   BASE_URL=http://127.0.0.1:8000/ RUNS=3 [BUILD=baseline] node scripts/bench-web.mjs
+//
+// BUILD=baseline makes the page believe wasm SIMD is missing, so it loads the
+// baseline module (as a browser with SIMD switched off would).
+//
+// `make bench-web` serves www/ and calls it. Needs playwright-core (installed
+// under tests/e2e by scripts/e2e.sh) and Debian's Chromium.
+
+import { createRequire } from 'node:module';
+import { dirname, join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const here = dirname(fileURLToPath(import.meta.url));
+const require = createRequire(join(here, '..', 'tests', 'e2e', 'package.json'));
+const { chromium } = require('playwright-core');
+
+const BASE = process.env.BASE_URL ?? 'http://127.0.0.1:8000/';
+const RUNS = Number(process.env.RUNS ?? 3);
+const browser = await chromium.launch({
+  executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
+  headless: true,
+  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-dev-shm-usage',
+    '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run'],
+});
+const context = await browser.newContext();
+if (process.env.BUILD === 'baseline') {
+  await context.addInitScript(() => {
+    const validate = WebAssembly.validate;
+    WebAssembly.validate = (bytes) => (new Uint8Array(bytes).includes(0xfd) ? false : validate(bytes));
+  });
+}
+const page = await context.newPage();
+page.on('pageerror', (e) => console.error(`page exception: ${e.message}`));
+await page.goto(`${BASE}?task=1&mode=numerical`);
+await page.waitForSelector('body[data-ready="true"]', { timeout: 15000 });
+await page.evaluate(() => window.demo.controller.demo.setRunning(false));
+const runs = [];
+for (let i = 0; i < RUNS; i++) {
+  const r = await page.evaluate(() => window.demo.bench());
+  runs.push(r);
+  console.log(JSON.stringify(r));
+}
+const median = (xs) => {
+  const s = [...xs].sort((a, b) => a - b);
+  return s.length % 2 ? s[(s.length - 1) / 2] : (s[s.length / 2 - 1] + s[s.length / 2]) / 2;
+};
+const out = { theta_dot_ns: {}, step_ns: {}, forward_ns: {} };
+for (const key of ['theta_dot_ns', 'step_ns', 'forward_ns']) {
+  for (const k of Object.keys(runs[0][key])) out[key][k] = median(runs.map((r) => r[key][k]));
+}
+const build = await page.evaluate(() => window.demo.build);
+console.log(`median of ${RUNS} (${build} build): ${JSON.stringify(out)}`);
+await browser.close();
