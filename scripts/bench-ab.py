@@ -11,6 +11,7 @@ For example, against the commit before the speed work:
     cargo build --release
     python3 scripts/bench-ab.py 5 /tmp/before/target/release/redundant-ik target/release/redundant-ik
 
+A or B may carry bench arguments of its own, quoted: 'BIN --baseline-kernels'.
 Figures missing from one build (older builds report fewer) print as '-'.
 """
 
@@ -41,8 +42,9 @@ def main() -> int:
     results = {a: [], b: []}
     for i in range(runs):
         for binary in (a, b):
+            path, *own = binary.split()
             text = subprocess.run(
-                [binary, "bench", "--json", *extra], check=True, capture_output=True, text=True
+                [path, "bench", "--json", *own, *extra], check=True, capture_output=True, text=True
             ).stdout
             results[binary].append(flatten(json.loads(text)))
         print(f"bench-ab: round {i + 1}/{runs}", file=sys.stderr)

@@ -5,16 +5,18 @@
 //! and one vectorisable `tansig` per neuron:
 //! - `mapminmax` is folded into the first layer (input scaling) and the last
 //!   layer (output scaling), so the kernel maps raw inputs to raw outputs;
-//! - every layer is stored input-major (`w[j][o]`: the weights leaving input
-//!   `j`) with its width padded with zero neurons to a multiple of [`LANES`],
-//!   so a layer is a sum of `inputs` scaled weight rows (axpy), which
-//!   vectorises over neurons with no horizontal sums;
+//! - every layer is stored input-major in blocks of 16, 8 or 4 neurons
+//!   (`w[j][o0..o0 + B]` contiguous for each input `j`), its width padded with
+//!   zero neurons to a multiple of [`LANES`]; a block's sums stay in
+//!   registers while the inputs stream by, which vectorises over neurons
+//!   with no horizontal sums;
 //! - the hidden activations live in two stack buffers for layers up to
 //!   [`STACK_WIDTH`] (padded) wide: no allocation per call.
 //!
 //! On x86-64 the same code is also compiled for AVX2 + FMA and chosen at run
-//! time when the CPU has them ([`Kernel::forward`]); elsewhere (and on
-//! wasm32, with or without `simd128`) the portable build runs.
+//! time when the CPU has them ([`Kernel::forward`], [`set_runtime_dispatch`]);
+//! the page's SIMD build (wasm32 with `simd128`) runs a kernel written with
+//! wasm SIMD intrinsics; everything else runs the portable build.
 
 use crate::nn::mlp::{MapMinMax, Mlp};
 
@@ -164,6 +166,10 @@ impl Kernel {
     /// Allocation-free for layers up to [`STACK_WIDTH`] wide.
     #[inline]
     pub fn forward(&self, x: &[f64], y: &mut [f64]) {
+        #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+        if self.widest <= STACK_WIDTH {
+            return wasm_simd::forward(self, x, y);
+        }
         if self.widest <= STACK_WIDTH {
             let mut a = [0.0; STACK_WIDTH];
             let mut b = [0.0; STACK_WIDTH];
@@ -180,10 +186,6 @@ impl Kernel {
         #[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
         if x86::use_avx2_fma() {
             return x86::forward_avx2_fma(self, x, y, a, b);
-        }
-        #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-        if self.widest <= STACK_WIDTH {
-            return wasm_simd::forward(self, x, y);
         }
         forward_portable(self, x, y, a, b);
     }
