@@ -494,6 +494,11 @@ fn bad_input_is_rejected_with_a_message_naming_the_problem() {
         .contains("L2"));
     assert!(Arm::new(0.5, vec![0.6, 0.0, 0.6]).is_err());
     assert!(Arm::new(f64::NAN, vec![0.6, 0.6]).is_err());
+    assert!(Arm::new(0.5, vec![0.1; 32]).is_ok());
+    assert!(Arm::new(0.5, vec![0.1; 33])
+        .unwrap_err()
+        .to_string()
+        .contains("at most 32 links"));
     assert!("case4".parse::<Mode>().is_err());
     assert!(Scene::task(3).is_err());
     let mut p = Planner::new(Scene::task1(), Mode::Numerical, None).unwrap();
