@@ -233,15 +233,8 @@ impl Networks {
             return Err(dimension("v network output", n, out.len()));
         }
         let mut input = [0.0; MAX_V_INPUTS];
-        let x = v_inputs(
-            self.v.variant,
-            self.arm.post(),
-            theta,
-            (s1, c1),
-            o,
-            &mut input,
-        );
-        self.v_kernel.forward(x, out);
+        self.v_kernel
+            .forward(self.v_input(theta, (s1, c1), o, &mut input), out);
         if out.iter().any(|x| !x.is_finite()) {
             return Err(Error::NonFinite("v network output".into()));
         }
@@ -272,15 +265,20 @@ impl Networks {
 
     fn v_in_range_raw(&self, theta: &[f64], s1: f64, c1: f64, o: [f64; 2]) -> bool {
         let mut input = [0.0; MAX_V_INPUTS];
-        let x = v_inputs(
-            self.v.variant,
-            self.arm.post(),
-            theta,
-            (s1, c1),
-            o,
-            &mut input,
-        );
-        self.v.range.contains(x)
+        self.v
+            .range
+            .contains(self.v_input(theta, (s1, c1), o, &mut input))
+    }
+
+    /// The `v` network's inputs for this arm and variant (see [`v_inputs`]).
+    fn v_input<'a>(
+        &self,
+        theta: &[f64],
+        sc: (f64, f64),
+        o: [f64; 2],
+        buf: &'a mut [f64; MAX_V_INPUTS],
+    ) -> &'a [f64] {
+        v_inputs(self.v.variant, self.arm.post(), theta, sc, o, buf)
     }
 
     /// Whether `pose` is a pose of an arm with as many joints as the networks'.
