@@ -8,8 +8,11 @@
 use nalgebra::{DVector, Matrix2xX, Vector2};
 use serde::{Deserialize, Serialize};
 
-use crate::error::{finite, positive, Error, Result};
+use crate::error::{non_negative, positive, Error, Result};
 use crate::kinematics::{segment_distance_squared, Pose};
+
+/// Fewest links an [`Arm`] may have: two, to position a planar end effector.
+pub const MIN_LINKS: usize = 2;
 
 /// Most links an [`Arm`] may have. The page offers 2 to 6; the limit keeps
 /// the networks' fixed-size input buffers sufficient and refuses absurd input.
@@ -30,23 +33,13 @@ impl Arm {
     /// positive finite length, and there must be at least two links so that the
     /// end effector can reach a planar neighbourhood.
     pub fn new(post: f64, links: Vec<f64>) -> Result<Self> {
-        finite("post length L0", post)?;
-        if post < 0.0 {
-            return Err(Error::InvalidValue(format!(
-                "post length L0 must not be negative (got {post})"
-            )));
-        }
-        if links.len() < 2 {
-            return Err(Error::InvalidValue(format!(
-                "an arm needs at least 2 links to position a planar end effector (got {})",
-                links.len()
-            )));
-        }
-        if links.len() > MAX_LINKS {
-            return Err(Error::InvalidValue(format!(
-                "an arm may have at most {MAX_LINKS} links (got {})",
-                links.len()
-            )));
+        non_negative("post length L0", post)?;
+        if !(MIN_LINKS..=MAX_LINKS).contains(&links.len()) {
+            return Err(Error::LinkCount {
+                found: links.len(),
+                min: MIN_LINKS,
+                max: MAX_LINKS,
+            });
         }
         for (i, &l) in links.iter().enumerate() {
             positive(&format!("link length L{}", i + 1), l)?;
@@ -116,7 +109,9 @@ impl Arm {
             });
         }
         match theta.iter().position(|t| !t.is_finite()) {
-            Some(i) => Err(Error::NonFinite(format!("theta_{}", i + 1))),
+            Some(i) => Err(Error::NonFinite {
+                what: format!("theta_{}", i + 1),
+            }),
             None => Ok(()),
         }
     }

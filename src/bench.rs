@@ -266,7 +266,7 @@ pub fn lm_epoch_ms(opts: &Options, probes: &Probes) -> Result<f64> {
     let sets = networks::phi_datasets(&arm, Variant::Equivariant, &samples)?;
     let data = sets
         .first()
-        .ok_or_else(|| Error::InvalidValue("no training set".into()))?;
+        .ok_or_else(|| Error::Training("no training set".into()))?;
     let mut rng = Rng::new(1);
     let mlp = Mlp::nguyen_widrow(
         &[data.n_in, 35, 14, data.n_out],

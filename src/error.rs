@@ -1,5 +1,7 @@
 //! Errors as values. Every message names the problem so that a user can act
-//! on it; nothing in the core panics on user input.
+//! on it; nothing in the core panics on user input. The variants carry the
+//! facts a caller may branch on (which number, its value, the bound it
+//! broke), so code and tests match variants, not prose.
 
 use std::fmt;
 
@@ -7,9 +9,86 @@ use std::fmt;
 #[derive(Debug, Clone, PartialEq)]
 pub enum Error {
     /// A number that must be finite was NaN or infinite.
-    NonFinite(String),
-    /// A value outside its legal range (non-positive length or step, ...).
-    InvalidValue(String),
+    NonFinite {
+        /// What was checked, e.g. `"theta_2"`, `"target x"`.
+        what: String,
+    },
+    /// A number that must be positive was zero or negative.
+    NotPositive {
+        /// What was checked, e.g. `"time step dt"`.
+        what: String,
+        /// The value given.
+        value: f64,
+    },
+    /// A number that must not be negative was negative.
+    Negative {
+        /// What was checked, e.g. `"lambda"`.
+        what: String,
+        /// The value given.
+        value: f64,
+    },
+    /// A coordinate (m) beyond the largest accepted, [`MAX_COORDINATE`].
+    TooLarge {
+        /// What was checked, e.g. `"target x"`.
+        what: String,
+        /// The value given.
+        value: f64,
+        /// The largest accepted magnitude.
+        max: f64,
+    },
+    /// A closed-loop gain `K` with `K dt` beyond what RK4 integrates stably.
+    UnstableGain {
+        /// The gain `K` (1/s).
+        gain: f64,
+        /// The time step (s).
+        dt: f64,
+        /// The largest gain accepted with this `dt`.
+        max_gain: f64,
+    },
+    /// The final time is not a whole number of time steps.
+    NotWholeSteps {
+        /// Final time (s).
+        tf: f64,
+        /// Time step (s).
+        dt: f64,
+    },
+    /// More integration steps than a run may take.
+    TooManySteps {
+        /// `tf / dt`.
+        steps: f64,
+        /// The limit.
+        max: f64,
+    },
+    /// An arm with too few or too many links.
+    LinkCount {
+        /// Links given.
+        found: usize,
+        /// Fewest accepted.
+        min: usize,
+        /// Most accepted.
+        max: usize,
+    },
+    /// A name that is not one of the choices (a mode, a variant, ...).
+    UnknownName {
+        /// What kind of name, e.g. `"mode"`.
+        kind: &'static str,
+        /// The name given.
+        name: String,
+        /// The names accepted, for the message.
+        choices: &'static str,
+    },
+    /// The paper has tasks 1 and 2 only.
+    UnknownTask {
+        /// The task asked for.
+        task: u32,
+    },
+    /// A weight matrix of eqs. (6)-(7) that is not symmetric positive definite.
+    NotSpd {
+        /// `"W"` or `"Z"`.
+        what: String,
+        /// `"symmetric"` or `"positive definite"`.
+        property: &'static str,
+    },
     /// Vector or matrix of the wrong size (e.g. `theta` with 2 entries for a 3-link arm).
     DimensionMismatch {
         /// What was checked.
@@ -32,11 +111,24 @@ pub enum Error {
     /// damping is on.
     Singular(String),
     /// An integration step produced non-finite joint angles; the state was left unchanged.
-    Diverged(String),
+    Diverged {
+        /// Time at the start of the step (s).
+        t: f64,
+    },
     /// A network mode was requested but no trained networks are loaded.
     NetworksUnavailable(String),
+    /// The networks were trained for another arm than the planner's.
+    NetworksForAnotherArm {
+        /// Post and links the networks were trained for.
+        trained: (f64, Vec<f64>),
+        /// Post and links of the planner's arm.
+        arm: (f64, Vec<f64>),
+    },
     /// A network weights file is corrupt or does not fit.
     Weights(String),
+    /// Training options or data that cannot work (too few samples, a split
+    /// that leaves nothing to train on, a sampling region that yields no pose).
+    Training(String),
 }
 
 /// Result alias used throughout the crate.
@@ -45,8 +137,48 @@ pub type Result<T> = std::result::Result<T, Error>;
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Error::NonFinite(what) => write!(f, "{what} must be a finite number (got NaN or infinity)"),
-            Error::InvalidValue(msg) => write!(f, "{msg}"),
+            Error::NonFinite { what } => {
+                write!(f, "{what} must be a finite number (got NaN or infinity)")
+            }
+            Error::NotPositive { what, value } => {
+                write!(f, "{what} must be positive (got {value})")
+            }
+            Error::Negative { what, value } => {
+                write!(f, "{what} must not be negative (got {value})")?;
+                if what == "lambda" {
+                    write!(f, "; a negative gain pulls links towards the obstacle")?;
+                }
+                Ok(())
+            }
+            Error::TooLarge { what, value, max } => {
+                write!(f, "{what} must lie within ±{max} m (got {value})")
+            }
+            Error::UnstableGain { gain, dt, max_gain } => write!(
+                f,
+                "feedback gain K = {gain} with dt = {dt} s makes the RK4 step unstable: \
+                 K dt must not exceed {} (K <= {max_gain:.4} here)",
+                crate::scene::MAX_GAIN_STEP
+            ),
+            Error::NotWholeSteps { tf, dt } => write!(
+                f,
+                "final time tf = {tf} is not a whole number of steps dt = {dt}"
+            ),
+            Error::TooManySteps { steps, max } => {
+                write!(f, "tf / dt = {steps:.0} steps is too many (at most {max})")
+            }
+            Error::LinkCount { found, min, max } => write!(
+                f,
+                "an arm needs {min} to {max} links to position a planar end effector (got {found})"
+            ),
+            Error::UnknownName {
+                kind,
+                name,
+                choices,
+            } => write!(f, "unknown {kind} '{name}': use {choices}"),
+            Error::UnknownTask { task } => {
+                write!(f, "unknown task {task}: the paper has tasks 1 and 2")
+            }
+            Error::NotSpd { what, property } => write!(f, "{what} must be {property}"),
             Error::DimensionMismatch {
                 what,
                 expected,
@@ -57,9 +189,18 @@ impl fmt::Display for Error {
                 "obstacle at ({x}, {y}) with radius {radius} overlaps the fixed base post; move it away from the post"
             ),
             Error::Singular(msg) => write!(f, "singular pose: {msg}"),
-            Error::Diverged(msg) => write!(f, "integration diverged: {msg}"),
+            Error::Diverged { t } => write!(
+                f,
+                "integration diverged: non-finite joint angles after the step at t = {t:.3} s; switch damping on"
+            ),
             Error::NetworksUnavailable(msg) => write!(f, "networks not available: {msg}"),
+            Error::NetworksForAnotherArm { trained, arm } => write!(
+                f,
+                "the networks were trained for an arm with post {} and links {:?}, not for this one (post {}, links {:?}); train networks for this arm",
+                trained.0, trained.1, arm.0, arm.1
+            ),
             Error::Weights(msg) => write!(f, "bad network weights: {msg}"),
+            Error::Training(msg) => write!(f, "cannot train: {msg}"),
         }
     }
 }
@@ -71,7 +212,7 @@ pub(crate) fn finite(what: &str, value: f64) -> Result<f64> {
     if value.is_finite() {
         Ok(value)
     } else {
-        Err(Error::NonFinite(what.to_string()))
+        Err(Error::NonFinite { what: what.into() })
     }
 }
 
@@ -86,9 +227,11 @@ pub(crate) fn coordinate(what: &str, value: f64) -> Result<f64> {
     if value.abs() <= MAX_COORDINATE {
         Ok(value)
     } else {
-        Err(Error::InvalidValue(format!(
-            "{what} must lie within ±{MAX_COORDINATE} m (got {value})"
-        )))
+        Err(Error::TooLarge {
+            what: what.into(),
+            value,
+            max: MAX_COORDINATE,
+        })
     }
 }
 
@@ -98,8 +241,22 @@ pub(crate) fn positive(what: &str, value: f64) -> Result<f64> {
     if value > 0.0 {
         Ok(value)
     } else {
-        Err(Error::InvalidValue(format!(
-            "{what} must be positive (got {value})"
-        )))
+        Err(Error::NotPositive {
+            what: what.into(),
+            value,
+        })
+    }
+}
+
+/// Checks that `value` is finite and not negative.
+pub(crate) fn non_negative(what: &str, value: f64) -> Result<f64> {
+    finite(what, value)?;
+    if value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::Negative {
+            what: what.into(),
+            value,
+        })
     }
 }

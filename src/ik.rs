@@ -12,7 +12,7 @@
 use nalgebra::{DMatrix, DVector, Matrix2, Matrix2xX, MatrixXx2, Vector2};
 use serde::{Deserialize, Serialize};
 
-use crate::error::{finite, positive, Error, Result};
+use crate::error::{non_negative, positive, Error, Result};
 use crate::kinematics::jjt;
 
 /// Solves the symmetric positive definite 2x2 system `A x = b` (what eq. 17
@@ -108,13 +108,7 @@ fn check_lengths(jac: &[f64], rest: &[(&str, usize)]) -> Result<usize> {
 }
 
 fn check_delta(delta: f64) -> Result<()> {
-    finite("delta", delta)?;
-    if delta < 0.0 {
-        return Err(Error::InvalidValue(format!(
-            "damping factor delta must not be negative (got {delta})"
-        )));
-    }
-    Ok(())
+    non_negative("damping factor delta", delta).map(|_| ())
 }
 
 fn check_spd(
@@ -130,14 +124,16 @@ fn check_spd(
         });
     }
     if m.iter().any(|x| !x.is_finite()) {
-        return Err(Error::NonFinite(what.into()));
+        return Err(Error::NonFinite { what: what.into() });
     }
+    let not = |property| Error::NotSpd {
+        what: what.into(),
+        property,
+    };
     if (m - m.transpose()).amax() > 1e-12 * m.amax().max(1.0) {
-        return Err(Error::InvalidValue(format!("{what} must be symmetric")));
+        return Err(not("symmetric"));
     }
-    m.clone()
-        .cholesky()
-        .ok_or_else(|| Error::InvalidValue(format!("{what} must be positive definite")))
+    m.clone().cholesky().ok_or_else(|| not("positive definite"))
 }
 
 /// Weighted-perturbed pseudoinverse, eq. (6):

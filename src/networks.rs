@@ -142,15 +142,10 @@ impl Networks {
         &self.v
     }
 
-    /// The arm the networks were trained for. Using them on another arm gives
-    /// meaningless rates; [`Networks::fits_arm`] checks.
+    /// The arm the networks were trained for (the planner refuses them for
+    /// another arm).
     pub fn arm(&self) -> &Arm {
         &self.arm
-    }
-
-    /// Whether the networks were trained for `arm` (same post and links).
-    pub fn fits_arm(&self, arm: &Arm) -> bool {
-        self.arm == *arm
     }
 
     /// The trained range, for the page.
@@ -203,7 +198,9 @@ impl Networks {
             }
         }
         if out.iter().any(|x| !x.is_finite()) {
-            return Err(Error::NonFinite("Phi network output".into()));
+            return Err(Error::NonFinite {
+                what: "Phi network output".into(),
+            });
         }
         Ok(())
     }
@@ -213,7 +210,9 @@ impl Networks {
     pub fn area_gradient_into(&self, theta: &[f64], o: [f64; 2], out: &mut [f64]) -> Result<()> {
         self.arm.check_angles(theta)?;
         if !(o[0].is_finite() && o[1].is_finite()) {
-            return Err(Error::NonFinite("obstacle point".into()));
+            return Err(Error::NonFinite {
+                what: "obstacle point".into(),
+            });
         }
         let (s, c) = theta[0].sin_cos();
         self.area_gradient_raw(theta, s, c, o, out)
@@ -236,7 +235,9 @@ impl Networks {
         self.v_kernel
             .forward(self.v_input(theta, (s1, c1), o, &mut input), out);
         if out.iter().any(|x| !x.is_finite()) {
-            return Err(Error::NonFinite("v network output".into()));
+            return Err(Error::NonFinite {
+                what: "v network output".into(),
+            });
         }
         Ok(())
     }
@@ -355,6 +356,10 @@ fn v_inputs<'a>(
 }
 
 impl Surrogate for Networks {
+    fn arm(&self) -> &Arm {
+        &self.arm
+    }
+
     fn phi(&self, pose: &Pose, out: &mut [f64]) -> Result<()> {
         self.check_pose(pose)?;
         self.phi_raw(pose.theta(), pose.sin()[0], pose.cos()[0], out)
@@ -493,7 +498,7 @@ pub fn train_weights(
     mut on_epoch: impl FnMut(usize, &EpochReport) -> bool,
 ) -> Result<WeightsFile> {
     if spec.samples < 20 {
-        return Err(Error::InvalidValue(format!(
+        return Err(Error::Training(format!(
             "{} samples are too few to train on (at least 20)",
             spec.samples
         )));

@@ -14,6 +14,7 @@ use std::sync::Arc;
 use nalgebra::{DVector, Matrix2xX, Vector2};
 use serde::{Deserialize, Serialize};
 
+use crate::arm::Arm;
 use crate::error::{positive, Error, Result};
 use crate::ik::{self, DampingSchedule};
 use crate::kinematics::Pose;
@@ -61,6 +62,34 @@ impl Mode {
         }
     }
 
+    /// The name people read in menus and legends: "No avoidance",
+    /// "Numerical", "Case 1", "Case 2", "Case 3" (the paper's terms).
+    pub fn label(self) -> &'static str {
+        match self {
+            Mode::None => "No avoidance",
+            Mode::Numerical => "Numerical",
+            Mode::Case1 => "Case 1",
+            Mode::Case2 => "Case 2",
+            Mode::Case3 => "Case 3",
+        }
+    }
+
+    /// What the mode computes, in one line.
+    pub fn description(self) -> &'static str {
+        match self {
+            Mode::None => "v = 0, no obstacle avoidance",
+            Mode::Numerical => "Φ and v computed exactly",
+            Mode::Case1 => "Φ by a network, v exact",
+            Mode::Case2 => "Φ exact, v by a network",
+            Mode::Case3 => "Φ and v by networks",
+        }
+    }
+
+    /// `label: description`, for titles and captions.
+    pub fn title(self) -> String {
+        format!("{}: {}", self.label(), self.description())
+    }
+
     /// Whether `Phi` comes from a network (Cases 1 and 3).
     pub fn learned_phi(self) -> bool {
         matches!(self, Mode::Case1 | Mode::Case3)
@@ -89,10 +118,10 @@ impl FromStr for Mode {
         Mode::ALL
             .into_iter()
             .find(|m| m.name() == s)
-            .ok_or_else(|| {
-                Error::InvalidValue(format!(
-                    "unknown mode '{s}': use none, numerical, case1, case2 or case3"
-                ))
+            .ok_or_else(|| Error::UnknownName {
+                kind: "mode",
+                name: s.into(),
+                choices: "none, numerical, case1, case2 or case3",
             })
     }
 }
@@ -104,6 +133,9 @@ impl FromStr for Mode {
 /// `theta` was validated when it entered the planner) and fills a slice, so
 /// the planner's step allocates nothing.
 pub trait Surrogate: Send + Sync {
+    /// The arm the networks were trained for; the planner refuses them for
+    /// any other.
+    fn arm(&self) -> &Arm;
     /// Learned `Phi(theta)` at `delta = 0`, row-major `n x 2` into `out`
     /// (`2n` entries).
     fn phi(&self, pose: &Pose, out: &mut [f64]) -> Result<()>;
@@ -449,7 +481,7 @@ impl Planner {
     /// with bounded joint rates instead of blowing up.
     pub fn new(mut scene: Scene, mode: Mode, networks: Option<Arc<dyn Surrogate>>) -> Result<Self> {
         scene.validate()?;
-        check_networks(mode, &networks)?;
+        check_networks(mode, &networks, &scene.arm)?;
         let auto_damping = needs_auto_damping(&scene);
         if auto_damping {
             scene.damping = Some(DampingSchedule::default());
@@ -588,15 +620,16 @@ impl Planner {
 
     /// Switches mode; network modes need networks.
     pub fn set_mode(&mut self, mode: Mode) -> Result<()> {
-        check_networks(mode, &self.networks)?;
+        check_networks(mode, &self.networks, &self.scene.arm)?;
         self.mode = mode;
         self.resample();
         Ok(())
     }
 
-    /// Installs (or removes) the trained networks.
+    /// Installs (or removes) the trained networks. Networks trained for
+    /// another arm are refused ([`Error::NetworksForAnotherArm`]).
     pub fn set_networks(&mut self, networks: Option<Arc<dyn Surrogate>>) -> Result<()> {
-        check_networks(self.mode, &networks)?;
+        check_networks(self.mode, &networks, &self.scene.arm)?;
         self.networks = networks;
         self.resample();
         Ok(())
@@ -788,9 +821,7 @@ impl Planner {
             finite &= next.is_finite();
         }
         if !finite {
-            return Err(Error::Diverged(format!(
-                "non-finite joint angles after the step at t = {t:.3} s; switch damping on"
-            )));
+            return Err(Error::Diverged { t });
         }
         self.theta.copy_from_slice(&self.ws.next);
         self.ws.pose.update(&self.scene.arm, &self.ws.next)?;
@@ -903,11 +934,19 @@ fn needs_auto_damping(scene: &Scene) -> bool {
     scene.damping.is_none() && !scene.arm.can_reach(&scene.target_vector())
 }
 
-fn check_networks(mode: Mode, networks: &Option<Arc<dyn Surrogate>>) -> Result<()> {
-    if (mode.learned_phi() || mode.learned_v()) && networks.is_none() {
-        return Err(Error::NetworksUnavailable(format!(
+/// Network modes need networks, and networks must be trained for `arm`.
+fn check_networks(mode: Mode, networks: &Option<Arc<dyn Surrogate>>, arm: &Arm) -> Result<()> {
+    match networks {
+        None if mode.learned_phi() || mode.learned_v() => Err(Error::NetworksUnavailable(format!(
             "mode {mode} needs trained networks and none are loaded"
-        )));
+        ))),
+        Some(n) if n.arm() != arm => {
+            let spec = |a: &Arm| (a.post(), a.links().to_vec());
+            Err(Error::NetworksForAnotherArm {
+                trained: spec(n.arm()),
+                arm: spec(arm),
+            })
+        }
+        _ => Ok(()),
     }
-    Ok(())
 }

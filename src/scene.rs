@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
 use crate::arm::Arm;
-use crate::error::{coordinate, finite, positive, Error, Result};
+use crate::error::{coordinate, non_negative, positive, Error, Result};
 use crate::ik::DampingSchedule;
 use crate::obstacle::Obstacle;
 
@@ -64,9 +64,7 @@ impl Scene {
         match number {
             1 => Ok(Self::task1()),
             2 => Ok(Self::task2()),
-            other => Err(Error::InvalidValue(format!(
-                "unknown task {other}: the paper has tasks 1 and 2"
-            ))),
+            task => Err(Error::UnknownTask { task }),
         }
     }
 
@@ -120,38 +118,30 @@ impl Scene {
         positive("final time tf", self.tf)?;
         let ratio = self.tf / self.dt;
         if (ratio - ratio.round()).abs() > 1e-9 * ratio.max(1.0) {
-            return Err(Error::InvalidValue(format!(
-                "final time tf = {} is not a whole number of steps dt = {}",
-                self.tf, self.dt
-            )));
+            return Err(Error::NotWholeSteps {
+                tf: self.tf,
+                dt: self.dt,
+            });
         }
-        if ratio.round() > 10_000_000.0 {
-            return Err(Error::InvalidValue(format!(
-                "tf / dt = {ratio:.0} steps is too many (at most 10 000 000)"
-            )));
+        if ratio.round() > MAX_STEPS {
+            return Err(Error::TooManySteps {
+                steps: ratio,
+                max: MAX_STEPS,
+            });
         }
         Ok(())
     }
 }
 
+/// Most RK4 steps a run may take.
+pub const MAX_STEPS: f64 = 1.0e7;
+
 pub(crate) fn validate_lambda(lambda: f64) -> Result<()> {
-    finite("lambda", lambda)?;
-    if lambda < 0.0 {
-        return Err(Error::InvalidValue(format!(
-            "lambda must not be negative (got {lambda}); a negative gain pulls links towards the obstacle"
-        )));
-    }
-    Ok(())
+    non_negative("lambda", lambda).map(|_| ())
 }
 
 pub(crate) fn validate_delta(delta: f64) -> Result<()> {
-    finite("delta", delta)?;
-    if delta < 0.0 {
-        return Err(Error::InvalidValue(format!(
-            "damping factor delta must not be negative (got {delta})"
-        )));
-    }
-    Ok(())
+    non_negative("damping factor delta", delta).map(|_| ())
 }
 
 /// Largest `K dt` accepted for the closed-loop gain. The tracking error then
@@ -160,18 +150,13 @@ pub(crate) fn validate_delta(delta: f64) -> Result<()> {
 pub const MAX_GAIN_STEP: f64 = 2.5;
 
 pub(crate) fn validate_gain(gain: f64, dt: f64) -> Result<()> {
-    finite("feedback gain", gain)?;
-    if gain < 0.0 {
-        return Err(Error::InvalidValue(format!(
-            "feedback gain must not be negative (got {gain})"
-        )));
-    }
+    non_negative("feedback gain", gain)?;
     if gain * dt > MAX_GAIN_STEP {
-        return Err(Error::InvalidValue(format!(
-            "feedback gain K = {gain} with dt = {dt} s makes the RK4 step unstable: \
-             K dt must not exceed {MAX_GAIN_STEP} (K <= {:.4} here)",
-            MAX_GAIN_STEP / dt
-        )));
+        return Err(Error::UnstableGain {
+            gain,
+            dt,
+            max_gain: MAX_GAIN_STEP / dt,
+        });
     }
     Ok(())
 }

@@ -555,11 +555,6 @@ impl Demo {
         v_json: &str,
     ) -> std::result::Result<(), JsError> {
         let nets = Networks::from_json(phi_json, v_json).map_err(js_err)?;
-        if !nets.fits_arm(&self.planner.scene().arm) {
-            return Err(JsError::new(
-                "bad network weights: they were trained for a different arm",
-            ));
-        }
         let loaded = Loaded::new(nets);
         self.planner
             .set_networks(Some(loaded.surrogate.clone()))

@@ -216,10 +216,11 @@ fn figure_writes_an_svg_and_all_writes_every_task_and_mode() {
         cmp.to_str().unwrap(),
     ]);
     let svg = std::fs::read_to_string(&cmp).unwrap();
-    for mode in ["none", "numerical", "case1", "case2", "case3"] {
+    // The legends use the modes' labels (Mode::label, as the page does).
+    for label in ["No avoidance", "Numerical", "Case 1", "Case 2", "Case 3"] {
         assert!(
-            svg.contains(&format!("\n{mode}, min ")),
-            "{mode} in the legend"
+            svg.contains(&format!("\n{label}, min ")),
+            "{label} in the legend"
         );
     }
     assert!(svg.contains("min 0.2193 m"), "Task 2's numerical clearance");

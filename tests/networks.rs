@@ -539,6 +539,9 @@ fn tansig_is_within_5e_16_of_tanh() {
 struct ExactPhi(Networks);
 
 impl Surrogate for ExactPhi {
+    fn arm(&self) -> &Arm {
+        Surrogate::arm(&self.0)
+    }
     fn phi(&self, pose: &Pose, out: &mut [f64]) -> redundant_ik::Result<()> {
         ik::phi_into(pose.jacobian(), 0.0, out)
     }
@@ -698,4 +701,34 @@ fn the_blocked_cholesky_solves_like_nalgebras_and_refuses_what_is_not_positive_d
     let mut nan = DMatrix::identity(3, 3);
     nan[(2, 2)] = f64::NAN;
     assert!(cholesky::solve_spd(nan, &DVector::zeros(3)).is_none());
+}
+
+#[test]
+fn the_planner_refuses_networks_trained_for_another_arm() {
+    let nets: Arc<dyn Surrogate> = Arc::new(Networks::embedded().unwrap());
+    assert_eq!(nets.arm(), &Arm::paper());
+    for arm in [
+        Arm::new(0.5, vec![0.6, 0.85, 0.7]).unwrap(),
+        Arm::new(0.4, vec![0.6, 0.85, 0.6]).unwrap(),
+        Arm::new(0.5, vec![0.6, 0.85, 0.6, 0.4]).unwrap(),
+    ] {
+        let mut scene = Scene::task1();
+        scene.theta0 = vec![0.2; arm.dof()];
+        scene.arm = arm.clone();
+        // In any mode: networks for another arm are never installed.
+        for mode in [Mode::Numerical, Mode::Case3] {
+            let err = Planner::new(scene.clone(), mode, Some(nets.clone())).unwrap_err();
+            assert!(
+                matches!(&err, Error::NetworksForAnotherArm { trained, arm: mine }
+                    if trained.1 == [0.6, 0.85, 0.6] && mine.1 == arm.links()),
+                "{err:?}"
+            );
+        }
+        let mut p = Planner::new(scene, Mode::Numerical, None).unwrap();
+        assert!(matches!(
+            p.set_networks(Some(nets.clone())),
+            Err(Error::NetworksForAnotherArm { .. })
+        ));
+        assert!(p.networks().is_none(), "a refused change changes nothing");
+    }
 }

@@ -83,7 +83,7 @@ pub fn run(args: &FigureArgs) -> Result<(), String> {
 fn run_all_modes(sa: &SceneArgs, scene: &Scene) -> Result<Vec<Trajectory>, String> {
     let mut runs = Vec::new();
     for mode in Mode::ALL {
-        let nets = match sa.networks.for_mode(mode, &scene.arm) {
+        let nets = match sa.networks.for_mode(mode) {
             Ok(n) => n,
             Err(e) => {
                 eprintln!("skipping {mode}: {e}");
@@ -189,7 +189,7 @@ fn draw_compare(path: &Path, task: u32, scene: &Scene, runs: &[Trajectory]) -> R
                 ShapeStyle::from(&c).stroke_width(2),
             ))
             .map_err(|x| e(&x))?
-            .label(format!("{}{min}", r.mode))
+            .label(format!("{}{min}", r.mode.label()))
             .legend(swatch(ShapeStyle::from(&c).stroke_width(2)));
     }
     draw_legend(&mut chart, SeriesLabelPosition::UpperRight).map_err(|x| e(&x))?;
@@ -224,7 +224,11 @@ fn draw_compare(path: &Path, task: u32, scene: &Scene, runs: &[Trajectory]) -> R
                 ShapeStyle::from(&c).stroke_width(2),
             ))
             .map_err(|x| e(&x))?
-            .label(format!("{}, final {:.1e} m", r.mode, r.summary.final_error))
+            .label(format!(
+                "{}, final {:.1e} m",
+                r.mode.label(),
+                r.summary.final_error
+            ))
             .legend(swatch(ShapeStyle::from(&c).stroke_width(2)));
     }
     draw_legend(&mut chart, SeriesLabelPosition::LowerRight).map_err(|x| e(&x))?;
@@ -278,7 +282,7 @@ fn draw(
     };
     let title = format!(
         "Task {task}, {}{fig}: {verdict}, final error {:.1e} m",
-        mode_title(traj.mode),
+        traj.mode.title(),
         s.final_error
     );
     let mut chart = ChartBuilder::on(&root)
@@ -385,14 +389,4 @@ fn draw(
     draw_legend(&mut chart, SeriesLabelPosition::LowerRight).map_err(|x| e(&x))?;
     root.present().map_err(|x| e(&x))?;
     Ok(())
-}
-
-fn mode_title(mode: Mode) -> &'static str {
-    match mode {
-        Mode::None => "no obstacle avoidance",
-        Mode::Numerical => "numerical (eqs. 14, 17-18)",
-        Mode::Case1 => "Case 1: Phi by network, v numerical",
-        Mode::Case2 => "Case 2: Phi numerical, v by network",
-        Mode::Case3 => "Case 3: Phi and v by networks",
-    }
 }

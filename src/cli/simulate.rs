@@ -103,7 +103,7 @@ impl SceneArgs {
     pub fn run(&self) -> Result<(Scene, Trajectory), String> {
         let scene = self.scene()?;
         let mode = self.mode()?;
-        let nets = self.networks.for_mode(mode, &scene.arm)?;
+        let nets = self.networks.for_mode(mode)?;
         let traj = Planner::run(scene.clone(), mode, nets).map_err(|e| e.to_string())?;
         Ok((scene, traj))
     }

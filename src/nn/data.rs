@@ -78,7 +78,7 @@ impl Sampling {
             && ok(self.obstacle_noise)
             && (0.0..=1.0).contains(&self.paired_obstacle_share))
         {
-            return Err(Error::InvalidValue(
+            return Err(Error::Training(
                 "sampling: noise, sigma floor and shares must be finite and non-negative".into(),
             ));
         }
@@ -87,18 +87,18 @@ impl Sampling {
                 && self.obstacle_max[i].is_finite()
                 && self.obstacle_min[i] <= self.obstacle_max[i])
             {
-                return Err(Error::InvalidValue(
+                return Err(Error::Training(
                     "sampling: obstacle region must be finite with min <= max".into(),
                 ));
             }
         }
         if self.tasks.is_empty() || self.modes.is_empty() {
-            return Err(Error::InvalidValue(
+            return Err(Error::Training(
                 "sampling: need at least one task and one mode".into(),
             ));
         }
         if self.modes.iter().any(|m| m.learned_phi() || m.learned_v()) {
-            return Err(Error::InvalidValue(
+            return Err(Error::Training(
                 "sampling: only the numerical modes (none, numerical) can seed training data"
                     .into(),
             ));
@@ -143,7 +143,7 @@ impl Sampling {
             }
         }
         if out.is_empty() {
-            return Err(Error::InvalidValue(
+            return Err(Error::Training(
                 "sampling: no planner run succeeded, so there are no poses to learn from".into(),
             ));
         }
@@ -161,10 +161,10 @@ impl Sampling {
         rng: &mut Rng,
     ) -> Result<Vec<Visited>> {
         if pool.is_empty() {
-            return Err(Error::InvalidValue("sampling: empty pose pool".into()));
+            return Err(Error::Training("sampling: empty pose pool".into()));
         }
         if arm.dof() != 3 {
-            return Err(Error::InvalidValue(
+            return Err(Error::Training(
                 "sampling: the task pools are for the paper's 3-link arm".into(),
             ));
         }
@@ -173,7 +173,7 @@ impl Sampling {
         while out.len() < n {
             tries += 1;
             if tries > 100 * n + 1000 {
-                return Err(Error::InvalidValue(format!(
+                return Err(Error::Training(format!(
                     "sampling: sigma floor {} rejects nearly every pose",
                     self.sigma_floor
                 )));

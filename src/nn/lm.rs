@@ -204,7 +204,7 @@ impl LmTrainer {
     pub fn new(mlp: Mlp, data: &Dataset, opts: LmOptions, rng: &mut Rng) -> Result<Self> {
         mlp.validate()?;
         if data.n_in != mlp.inputs() || data.n_out != mlp.outputs() {
-            return Err(Error::InvalidValue(format!(
+            return Err(Error::Training(format!(
                 "data has {} inputs and {} targets, the network {} and {}",
                 data.n_in,
                 data.n_out,
@@ -218,25 +218,27 @@ impl LmTrainer {
             .chain(&data.targets)
             .any(|v| !v.is_finite())
         {
-            return Err(Error::NonFinite("training data".into()));
+            return Err(Error::NonFinite {
+                what: "training data".into(),
+            });
         }
         let n = data.len();
         let [ftrain, fval] = opts.split;
         let ok = ftrain > 0.0 && fval >= 0.0 && ftrain + fval <= 1.0;
         if !ok {
-            return Err(Error::InvalidValue(format!(
+            return Err(Error::Training(format!(
                 "split fractions {ftrain} / {fval} must be positive and sum to at most 1"
             )));
         }
         let n_train = ((n as f64) * ftrain).round() as usize;
         let n_val = ((n as f64) * fval).round() as usize;
         if n_train == 0 || n_train + n_val > n {
-            return Err(Error::InvalidValue(format!(
+            return Err(Error::Training(format!(
                 "{n} samples are too few to split {ftrain} / {fval}"
             )));
         }
         if opts.chunk == 0 || opts.mu.is_nan() || opts.mu <= 0.0 || !opts.mu_max.is_finite() {
-            return Err(Error::InvalidValue(
+            return Err(Error::Training(
                 "LM options: chunk and mu must be positive, mu_max finite".into(),
             ));
         }
@@ -450,7 +452,7 @@ pub fn train(
     mut on_epoch: impl FnMut(&EpochReport) -> bool,
 ) -> Result<(Mlp, TrainReport)> {
     if sizes.first() != Some(&data.n_in) || sizes.last() != Some(&data.n_out) {
-        return Err(Error::InvalidValue(format!(
+        return Err(Error::Training(format!(
             "layer sizes {sizes:?} do not fit data with {} inputs and {} targets",
             data.n_in, data.n_out
         )));

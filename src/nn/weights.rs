@@ -58,9 +58,11 @@ impl std::str::FromStr for Variant {
             "plain" => Ok(Variant::Plain),
             "rows" => Ok(Variant::Rows),
             "equivariant" => Ok(Variant::Equivariant),
-            other => Err(Error::InvalidValue(format!(
-                "unknown variant '{other}': use plain, rows or equivariant"
-            ))),
+            other => Err(Error::UnknownName {
+                kind: "variant",
+                name: other.into(),
+                choices: "plain, rows or equivariant",
+            }),
         }
     }
 }
