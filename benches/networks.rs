@@ -7,10 +7,11 @@ use std::sync::Arc;
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
 use redundant_ik::nalgebra::Vector2;
-use redundant_ik::networks::{self, Networks, TrainSpec};
+use redundant_ik::networks::Networks;
 use redundant_ik::nn::lm::{LmOptions, LmTrainer};
 use redundant_ik::nn::mlp::{MapMinMax, Mlp};
 use redundant_ik::nn::{Dataset, NetKind, Rng, Variant};
+use redundant_ik::training::{self, TrainSpec};
 use redundant_ik::{Arm, Mode, Planner, Scene, Surrogate};
 
 fn forward(c: &mut Criterion) {
@@ -72,12 +73,12 @@ fn theta_dot(c: &mut Criterion) {
 
 fn lm_epoch(c: &mut Criterion) {
     let arm = Arm::paper();
-    let sampling = redundant_ik::nn::Sampling::default();
-    let samples = networks::draw_samples(&arm, &sampling, 3000, 1).unwrap();
-    let phi_plain = networks::phi_datasets(&arm, Variant::Plain, &samples).unwrap();
-    let phi_rows = networks::phi_datasets(&arm, Variant::Rows, &samples).unwrap();
-    let phi_eq = networks::phi_datasets(&arm, Variant::Equivariant, &samples).unwrap();
-    let v = networks::v_dataset(&arm, Variant::Plain, &samples).unwrap();
+    let sampling = training::Sampling::default();
+    let samples = training::draw_samples(&arm, &sampling, 3000, 1).unwrap();
+    let phi_plain = training::phi_datasets(&arm, Variant::Plain, &samples).unwrap();
+    let phi_rows = training::phi_datasets(&arm, Variant::Rows, &samples).unwrap();
+    let phi_eq = training::phi_datasets(&arm, Variant::Equivariant, &samples).unwrap();
+    let v = training::v_dataset(&arm, Variant::Plain, &samples).unwrap();
     let cases: [(&str, &Dataset, Vec<usize>); 4] = [
         ("phi_plain_3-35-14-6", &phi_plain[0], vec![3, 35, 14, 6]),
         ("phi_rows_3-35-14-2", &phi_rows[0], vec![3, 35, 14, 2]),
@@ -119,7 +120,7 @@ fn training_run(c: &mut Criterion) {
         spec.options.max_epochs = 20;
         g.bench_function(
             format!("{:?}_{}_1000_samples_20_epochs", net, variant.name()).to_lowercase(),
-            |b| b.iter(|| networks::train_weights(&spec, |_, _| true).unwrap()),
+            |b| b.iter(|| training::train_weights(&spec, |_, _| true).unwrap()),
         );
     }
     g.finish();

@@ -15,12 +15,13 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::nalgebra::Vector2;
-use crate::networks::{self, Networks};
+use crate::networks::Networks;
 use crate::nn::lm::{LmOptions, LmTrainer};
 use crate::nn::mlp::{MapMinMax, Mlp};
 use crate::nn::{Rng, Variant};
 use crate::planner::{Mode, Planner, Surrogate};
 use crate::scene::Scene;
+use crate::training;
 use crate::Arm;
 
 /// What to measure and how long.
@@ -261,9 +262,9 @@ pub fn forward_paper_ns(opts: &Options, probes: &Probes) -> Result<(f64, f64)> {
 /// training split. Each timed epoch starts from the same trainer state.
 pub fn lm_epoch_ms(opts: &Options, probes: &Probes) -> Result<f64> {
     let arm = Arm::paper();
-    let sampling = crate::nn::Sampling::default();
-    let samples = networks::draw_samples(&arm, &sampling, 3000, 1)?;
-    let sets = networks::phi_datasets(&arm, Variant::Equivariant, &samples)?;
+    let sampling = training::Sampling::default();
+    let samples = training::draw_samples(&arm, &sampling, 3000, 1)?;
+    let sets = training::phi_datasets(&arm, Variant::Equivariant, &samples)?;
     let data = sets
         .first()
         .ok_or_else(|| Error::Training("no training set".into()))?;

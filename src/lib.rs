@@ -6,6 +6,8 @@
 pub mod arm;
 pub mod bench;
 pub mod error;
+#[cfg(feature = "eval")]
+pub mod evaluation;
 pub mod ik;
 pub mod kinematics;
 pub mod networks;
@@ -13,6 +15,7 @@ pub mod nn;
 pub mod obstacle;
 pub mod planner;
 pub mod scene;
+pub mod training;
 #[cfg(target_family = "wasm")]
 pub mod wasm;
 

@@ -14,8 +14,9 @@ wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 use std::f64::consts::PI;
 use std::sync::Arc;
 
+use redundant_ik::evaluation::{self, ErrorStats, GENERALISATION_SCENES};
 use redundant_ik::nalgebra::{DVector, Vector2};
-use redundant_ik::networks::{self, ErrorStats, Networks, GENERALISATION_SCENES};
+use redundant_ik::networks::{self, Networks};
 use redundant_ik::nn::kernel::tansig;
 use redundant_ik::nn::lm::{self, Dataset, LmOptions};
 use redundant_ik::nn::mlp::{Activations, Layer, MapMinMax, Mlp};
@@ -314,7 +315,7 @@ fn trained_range_is_reported_and_leaving_it_is_flagged() {
 #[test]
 fn shipped_networks_meet_the_documented_accuracy() {
     let nets = Networks::embedded().unwrap();
-    let test = nets.fresh_samples(400, 7).unwrap();
+    let test = evaluation::fresh_samples(&nets, 400, 7).unwrap();
     let bounds = [
         (Variant::Equivariant, 2.0e-4, 2.0e-3),
         (Variant::Plain, 1.0e-3, 1.0e-2),
@@ -322,7 +323,7 @@ fn shipped_networks_meet_the_documented_accuracy() {
     ];
     for (variant, median, p99) in bounds {
         let n = Networks::embedded_with(variant).unwrap();
-        let s = ErrorStats::of(n.phi_relative_errors(&test).unwrap());
+        let s = ErrorStats::of(evaluation::phi_relative_errors(&n, &test).unwrap());
         assert!(
             s.median < median && s.p99 < p99,
             "Phi {variant:?}: median {:.2e}, p99 {:.2e}",
@@ -330,7 +331,7 @@ fn shipped_networks_meet_the_documented_accuracy() {
             s.p99
         );
     }
-    let v = ErrorStats::of(nets.v_relative_errors(&test).unwrap());
+    let v = ErrorStats::of(evaluation::v_relative_errors(&nets, &test).unwrap());
     assert!(v.median < 0.06, "v median relative error {:.3}", v.median);
 }
 
@@ -339,7 +340,7 @@ fn cases_1_to_3_avoid_the_obstacle_and_reach_the_target_on_both_tasks() {
     let nets = Networks::embedded().unwrap();
     for task in [1, 2] {
         for mode in [Mode::Case1, Mode::Case2, Mode::Case3] {
-            let o = networks::run_task(&nets, task, mode, None, 0.0).unwrap();
+            let o = evaluation::run_task(&nets, task, mode, None, 0.0).unwrap();
             assert!(
                 o.success(),
                 "task {task} {mode}: min distance {:.4}, collided {}, final error {:.2e}, {:?}",
@@ -361,7 +362,7 @@ fn paper_form_networks_also_succeed_on_both_tasks() {
         let nets = Networks::embedded_with(variant).unwrap();
         for task in [1, 2] {
             for mode in [Mode::Case1, Mode::Case3] {
-                let o = networks::run_task(&nets, task, mode, None, 0.0).unwrap();
+                let o = evaluation::run_task(&nets, task, mode, None, 0.0).unwrap();
                 assert!(o.success(), "{variant:?} task {task} {mode}: {o:?}");
             }
         }
@@ -372,8 +373,8 @@ fn paper_form_networks_also_succeed_on_both_tasks() {
 fn closed_loop_feedback_shrinks_the_network_cases_final_error() {
     let nets = Networks::embedded_with(Variant::Plain).unwrap();
     for task in [1, 2] {
-        let open = networks::run_task(&nets, task, Mode::Case3, None, 0.0).unwrap();
-        let closed = networks::run_task(&nets, task, Mode::Case3, None, 1.0).unwrap();
+        let open = evaluation::run_task(&nets, task, Mode::Case3, None, 0.0).unwrap();
+        let closed = evaluation::run_task(&nets, task, Mode::Case3, None, 1.0).unwrap();
         assert!(closed.success());
         assert!(
             closed.final_error < 0.5 * open.final_error,
@@ -388,8 +389,8 @@ fn case_3_avoids_wherever_the_numerical_route_does_in_9_of_10_scenes() {
     let mut counted = 0;
     let mut avoided = 0;
     for (task, o) in GENERALISATION_SCENES {
-        let numerical = networks::run_task(&nets, task, Mode::Numerical, Some(o), 0.0).unwrap();
-        let none = networks::run_task(&nets, task, Mode::None, Some(o), 0.0).unwrap();
+        let numerical = evaluation::run_task(&nets, task, Mode::Numerical, Some(o), 0.0).unwrap();
+        let none = evaluation::run_task(&nets, task, Mode::None, Some(o), 0.0).unwrap();
         // A scene counts when the obstacle is in the way and the numerical route avoids it.
         assert!(
             none.collided,
@@ -397,7 +398,7 @@ fn case_3_avoids_wherever_the_numerical_route_does_in_9_of_10_scenes() {
         );
         assert!(!numerical.collided, "numerical collides at {o:?}");
         counted += 1;
-        let case3 = networks::run_task(&nets, task, Mode::Case3, Some(o), 0.0).unwrap();
+        let case3 = evaluation::run_task(&nets, task, Mode::Case3, Some(o), 0.0).unwrap();
         if case3.error.is_none() && !case3.collided {
             avoided += 1;
         }

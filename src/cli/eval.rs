@@ -5,7 +5,8 @@
 use clap::Args;
 use serde::Serialize;
 
-use redundant_ik::networks::{self, ErrorStats, Networks, TaskOutcome};
+use redundant_ik::evaluation::{self, ErrorStats, TaskOutcome};
+use redundant_ik::networks::{self, Networks};
 use redundant_ik::nn::Variant;
 use redundant_ik::Mode;
 
@@ -96,9 +97,7 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
             (all, chosen)
         }
     };
-    let test = task_nets
-        .fresh_samples(args.samples, args.seed)
-        .map_err(e)?;
+    let test = evaluation::fresh_samples(&task_nets, args.samples, args.seed).map_err(e)?;
     let mut phi = Vec::new();
     for nets in &candidates {
         phi.push(PhiAccuracy {
@@ -109,14 +108,16 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
                 .iter()
                 .map(|n| n.mlp.sizes.clone())
                 .collect(),
-            relative_error: ErrorStats::of(nets.phi_relative_errors(&test).map_err(e)?),
+            relative_error: ErrorStats::of(
+                evaluation::phi_relative_errors(nets, &test).map_err(e)?,
+            ),
         });
     }
-    let v = ErrorStats::of(task_nets.v_relative_errors(&test).map_err(e)?);
-    let outcomes = networks::task_outcomes(&task_nets, args.feedback).map_err(e)?;
+    let v = ErrorStats::of(evaluation::v_relative_errors(&task_nets, &test).map_err(e)?);
+    let outcomes = evaluation::task_outcomes(&task_nets, args.feedback).map_err(e)?;
     let mut generalisation = Vec::new();
-    for (task, o) in networks::GENERALISATION_SCENES {
-        let run = |mode| networks::run_task(&task_nets, task, mode, Some(o), args.feedback);
+    for (task, o) in evaluation::GENERALISATION_SCENES {
+        let run = |mode| evaluation::run_task(&task_nets, task, mode, Some(o), args.feedback);
         generalisation.push(Generalisation {
             task,
             obstacle: o,

@@ -6,8 +6,8 @@ use std::time::Instant;
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use redundant_ik::networks::{self, TrainSpec};
 use redundant_ik::nn::{NetKind, Variant};
+use redundant_ik::training::{self, TrainSpec};
 
 /// Options of `redundant-ik train`.
 #[derive(Args, Debug)]
@@ -101,7 +101,7 @@ pub fn run(args: &TrainArgs) -> Result<(), String> {
             .progress_chars("=> "),
     );
     let start = Instant::now();
-    let mut file = networks::train_weights(&spec, |k, r| {
+    let mut file = training::train_weights(&spec, |k, r| {
         bar.set_position((k * args.epochs + r.epoch) as u64);
         bar.set_message(format!(
             "net {}/{nets}  train {:.3e}  val {:.3e}  mu {:.0e}  grad {:.2e}",

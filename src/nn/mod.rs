@@ -1,12 +1,12 @@
 //! Small feed-forward networks and their training, as in the paper's
 //! section V: a Matlab-`newff`-style [`Mlp`], a `trainlm`-style
-//! Levenberg-Marquardt trainer ([`lm`]), a seeded PRNG ([`Rng`]), the
-//! training data drawn from the numerical route ([`data`]) and the weights
-//! file ([`weights`]). Everything here is single-threaded and free of OS
-//! entropy and clocks, so it runs unchanged in the browser.
+//! Levenberg-Marquardt trainer ([`lm`], with [`kronecker`] and [`cholesky`]),
+//! the run-time [`kernel`], a seeded PRNG ([`Rng`]) and the weights file
+//! ([`weights`]). Nothing here runs the planner (the training data are drawn
+//! in [`crate::training`]). Everything here is single-threaded and free of
+//! OS entropy and clocks, so it runs unchanged in the browser.
 
 pub mod cholesky;
-pub mod data;
 pub mod kernel;
 pub mod kronecker;
 pub mod lm;
@@ -14,7 +14,6 @@ pub mod mlp;
 pub mod rng;
 pub mod weights;
 
-pub use data::Sampling;
 pub use kernel::Kernel;
 pub use lm::{Dataset, EpochReport, LmOptions, LmTrainer, StopReason, TrainReport};
 pub use mlp::{MapMinMax, Mlp};

@@ -6,9 +6,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::arm::Arm;
 use crate::error::{Error, Result};
-use crate::nn::data::Sampling;
 use crate::nn::lm::{LmOptions, TrainReport};
 use crate::nn::mlp::Mlp;
+use crate::training::Sampling;
 
 /// Value of the `format` field this version reads and writes.
 pub const FORMAT: &str = "redundant-ik-weights/1";

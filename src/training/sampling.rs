@@ -61,10 +61,10 @@ impl Default for Sampling {
 }
 
 /// A pose visited by a planner run, with that run's obstacle point.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Visited {
     /// Joint angles.
-    pub theta: [f64; 3],
+    pub theta: Vec<f64>,
     /// Obstacle centre of the run.
     pub obstacle: [f64; 2],
 }
@@ -106,15 +106,24 @@ impl Sampling {
         Ok(())
     }
 
-    /// Every pose visited by the numerical runs: each task with its canonical
-    /// obstacle and with `obstacles_per_task` obstacles uniform in the region,
-    /// in every mode listed. Runs that fail (obstacle on the post, a
-    /// singular pose) are skipped.
-    pub fn visited(&self, rng: &mut Rng) -> Result<Vec<Visited>> {
+    /// Every pose `arm` visits in the numerical runs: each task with its
+    /// canonical obstacle and with `obstacles_per_task` obstacles uniform in
+    /// the region, in every mode listed. Runs that fail (obstacle on the
+    /// post, a singular pose) are skipped. The paper's tasks start from three
+    /// joint angles, so `arm` needs three links.
+    pub fn visited(&self, arm: &Arm, rng: &mut Rng) -> Result<Vec<Visited>> {
         self.validate()?;
         let mut out = Vec::new();
         for &task in &self.tasks {
-            let base = Scene::task(task)?;
+            let mut base = Scene::task(task)?;
+            if arm.dof() != base.theta0.len() {
+                return Err(Error::Training(format!(
+                    "sampling: the paper's tasks start from {} joint angles; a {}-link arm needs tasks of its own",
+                    base.theta0.len(),
+                    arm.dof()
+                )));
+            }
+            base.arm = arm.clone();
             let canonical = base.obstacles.first().map(|o| o.centre);
             let mut obstacles: Vec<[f64; 2]> = canonical.into_iter().collect();
             for _ in 0..self.obstacles_per_task {
@@ -131,14 +140,10 @@ impl Sampling {
                     let Ok(run) = Planner::run(scene.clone(), mode, None) else {
                         continue;
                     };
-                    for s in &run.steps {
-                        if s.theta.len() == 3 {
-                            out.push(Visited {
-                                theta: [s.theta[0], s.theta[1], s.theta[2]],
-                                obstacle: o,
-                            });
-                        }
-                    }
+                    out.extend(run.steps.into_iter().map(|s| Visited {
+                        theta: s.theta,
+                        obstacle: o,
+                    }));
                 }
             }
         }
@@ -163,10 +168,11 @@ impl Sampling {
         if pool.is_empty() {
             return Err(Error::Training("sampling: empty pose pool".into()));
         }
-        if arm.dof() != 3 {
-            return Err(Error::Training(
-                "sampling: the task pools are for the paper's 3-link arm".into(),
-            ));
+        if pool.iter().any(|v| v.theta.len() != arm.dof()) {
+            return Err(Error::Training(format!(
+                "sampling: the pose pool is not for a {}-link arm",
+                arm.dof()
+            )));
         }
         let mut out = Vec::with_capacity(n);
         let mut tries = 0usize;
@@ -178,12 +184,12 @@ impl Sampling {
                     self.sigma_floor
                 )));
             }
-            let v = pool[rng.below(pool.len())];
-            let theta = [
-                v.theta[0] + self.theta_noise * rng.normal(),
-                v.theta[1] + self.theta_noise * rng.normal(),
-                v.theta[2] + self.theta_noise * rng.normal(),
-            ];
+            let v = &pool[rng.below(pool.len())];
+            let theta: Vec<f64> = v
+                .theta
+                .iter()
+                .map(|t| t + self.theta_noise * rng.normal())
+                .collect();
             let j = arm.jacobian(&DVector::from_column_slice(&theta));
             if ik::smallest_singular_value(&j) < self.sigma_floor {
                 continue;

@@ -1,0 +1,199 @@
+//! Training the networks (paper section V) for an arm: the data drawn from
+//! the numerical route ([`sampling`]), the datasets of each network variant,
+//! and [`train_weights`], which runs the Levenberg-Marquardt trainer of
+//! [`crate::nn::lm`] and writes a weights file. Kept apart from the run-time
+//! networks ([`crate::networks`]): the page's simulation needs none of it.
+
+pub mod sampling;
+
+use serde::{Deserialize, Serialize};
+
+use crate::arm::Arm;
+use crate::error::{Error, Result};
+use crate::networks::{phi_inputs, v_inputs, MAX_V_INPUTS};
+use crate::nn::lm::{self, Dataset, EpochReport, LmOptions};
+use crate::nn::rng::Rng;
+use crate::nn::weights::{self, ArmSpec, InputRange, NetEntry, NetKind, Training, Variant};
+use crate::nn::WeightsFile;
+
+pub use sampling::{Sampling, Visited};
+
+/// What to train: the arm, the quantity, the variant, the data and the
+/// optimiser.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TrainSpec {
+    /// The arm the networks are for.
+    pub arm: Arm,
+    /// `phi` or `v`.
+    pub net: NetKind,
+    /// Input/output mapping.
+    pub variant: Variant,
+    /// Seed for sampling, split and initial weights.
+    pub seed: u64,
+    /// Samples to draw.
+    pub samples: usize,
+    /// Hidden layer widths, e.g. `[35, 14]`.
+    pub hidden: Vec<usize>,
+    /// Levenberg-Marquardt options.
+    pub options: LmOptions,
+    /// How samples are drawn.
+    pub sampling: Sampling,
+}
+
+impl TrainSpec {
+    /// The paper's arm and architecture for `net` (hidden 35-14 for `Phi`,
+    /// 25-14 for `v`) with 3000 samples and 400 epochs.
+    pub fn paper(net: NetKind, variant: Variant, seed: u64) -> Self {
+        Self {
+            arm: Arm::paper(),
+            net,
+            variant,
+            seed,
+            samples: 3000,
+            hidden: match net {
+                NetKind::Phi => vec![35, 14],
+                NetKind::V => vec![25, 14],
+            },
+            options: LmOptions::default(),
+            sampling: Sampling::default(),
+        }
+    }
+}
+
+/// Draws `n` samples (poses and obstacle points) as `sampling` describes, from
+/// a generator seeded with `seed`.
+pub fn draw_samples(arm: &Arm, sampling: &Sampling, n: usize, seed: u64) -> Result<Vec<Visited>> {
+    let mut rng = Rng::new(seed);
+    let pool = sampling.visited(arm, &mut rng)?;
+    sampling.draw(arm, &pool, n, &mut rng)
+}
+
+/// Training sets for `Phi` networks of `variant`: one per network.
+pub fn phi_datasets(arm: &Arm, variant: Variant, samples: &[Visited]) -> Result<Vec<Dataset>> {
+    let n = arm.dof();
+    let (count, n_in, n_out) = weights::shape(NetKind::Phi, variant, n)?;
+    let mut sets = vec![Dataset::new(n_in, n_out); count];
+    for s in samples {
+        let theta = &s.theta[..];
+        let target = match variant {
+            Variant::Equivariant => {
+                let mut t0 = theta.to_vec();
+                t0[0] = 0.0;
+                sampling::phi_target(arm, &t0)?
+            }
+            _ => sampling::phi_target(arm, theta)?,
+        };
+        let x = phi_inputs(variant, theta);
+        match variant {
+            Variant::Rows => {
+                for (i, set) in sets.iter_mut().enumerate() {
+                    set.push(x, &target[2 * i..2 * i + 2]);
+                }
+            }
+            _ => sets[0].push(x, &target),
+        }
+    }
+    Ok(sets)
+}
+
+/// Training set for the `v` network of `variant`.
+pub fn v_dataset(arm: &Arm, variant: Variant, samples: &[Visited]) -> Result<Dataset> {
+    let (_, n_in, n_out) = weights::shape(NetKind::V, variant, arm.dof())?;
+    let mut set = Dataset::new(n_in, n_out);
+    let mut buf = [0.0; MAX_V_INPUTS];
+    for s in samples {
+        let x = v_inputs(
+            variant,
+            arm.post(),
+            &s.theta,
+            s.theta[0].sin_cos(),
+            s.obstacle,
+            &mut buf,
+        );
+        set.push(x, &sampling::v_target(arm, &s.theta, s.obstacle));
+    }
+    Ok(set)
+}
+
+fn input_names(net: NetKind, variant: Variant, n: usize) -> Vec<String> {
+    let thetas = |from: usize| (from..=n).map(|i| format!("theta{i}"));
+    match (net, variant) {
+        (NetKind::Phi, Variant::Equivariant) => thetas(2).collect(),
+        (NetKind::Phi, _) => thetas(1).collect(),
+        (NetKind::V, Variant::Equivariant) => thetas(2)
+            .chain(["o1_rotated".to_string(), "o2_rotated".to_string()])
+            .collect(),
+        (NetKind::V, _) => thetas(1)
+            .chain(["o1".to_string(), "o2".to_string()])
+            .collect(),
+    }
+}
+
+/// Trains the networks `spec` describes for its arm and returns the
+/// weights file (with `training.seconds` unset: the caller may time it).
+/// `on_epoch(net_index, report)` sees every epoch of every network;
+/// returning `false` stops that network's training.
+pub fn train_weights(
+    spec: &TrainSpec,
+    mut on_epoch: impl FnMut(usize, &EpochReport) -> bool,
+) -> Result<WeightsFile> {
+    if spec.samples < 20 {
+        return Err(Error::Training(format!(
+            "{} samples are too few to train on (at least 20)",
+            spec.samples
+        )));
+    }
+    let arm = &spec.arm;
+    let samples = draw_samples(arm, &spec.sampling, spec.samples, spec.seed)?;
+    let sets = match spec.net {
+        NetKind::Phi => phi_datasets(arm, spec.variant, &samples)?,
+        NetKind::V => vec![v_dataset(arm, spec.variant, &samples)?],
+    };
+    let n_in = sets[0].n_in;
+    let mut min = vec![f64::INFINITY; n_in];
+    let mut max = vec![f64::NEG_INFINITY; n_in];
+    for row in sets[0].inputs.chunks_exact(n_in) {
+        for i in 0..n_in {
+            min[i] = min[i].min(row[i]);
+            max[i] = max[i].max(row[i]);
+        }
+    }
+    let mut nets = Vec::with_capacity(sets.len());
+    for (k, set) in sets.iter().enumerate() {
+        let mut sizes = vec![set.n_in];
+        sizes.extend_from_slice(&spec.hidden);
+        sizes.push(set.n_out);
+        let seed = spec
+            .seed
+            .wrapping_add(0x9E37_79B9_7F4A_7C15u64.wrapping_mul(k as u64 + 1));
+        let (mlp, report) = lm::train(&sizes, set, spec.options, seed, |r| on_epoch(k, r))?;
+        nets.push(NetEntry { mlp, report });
+    }
+    let file = WeightsFile {
+        format: weights::FORMAT.to_string(),
+        net: spec.net,
+        variant: spec.variant,
+        tool_version: env!("CARGO_PKG_VERSION").to_string(),
+        arm: ArmSpec {
+            post: arm.post(),
+            links: arm.links().to_vec(),
+        },
+        range: InputRange {
+            names: input_names(spec.net, spec.variant, arm.dof()),
+            min,
+            max,
+            sigma_floor: spec.sampling.sigma_floor,
+        },
+        training: Training {
+            seed: spec.seed,
+            samples: spec.samples,
+            hidden: spec.hidden.clone(),
+            options: spec.options,
+            sampling: spec.sampling.clone(),
+            seconds: None,
+        },
+        nets,
+    };
+    file.validate()?;
+    Ok(file)
+}
