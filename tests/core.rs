@@ -577,8 +577,17 @@ fn an_obstacle_exactly_on_a_joint_is_handled() {
     let arm = Arm::paper();
     let th = Scene::task1().theta0_vector();
     let p = arm.joints(&th);
-    let v = obstacle::null_space_vector(&arm, &th, &[Obstacle::new(p[2][0], p[2][1], 0.05)], 4.0);
-    assert!(v.iter().all(|x| x.is_finite()));
+    let o = Vector2::new(p[2][0], p[2][1]);
+    let v = obstacle::null_space_vector(&arm, &th, &[Obstacle::new(o[0], o[1], 0.05)], 4.0);
+    // O lies on links 2 and 3 (D_2 = D_3 = 0 exactly), so only link 1 pushes:
+    // v = (sign(D_1) dD_1/dtheta_1, 0, 0) with lambda = 4.
+    let d = obstacle::triangle_determinants(&arm.joints(&th), &o);
+    assert_eq!((d[1], d[2]), (0.0, 0.0));
+    let dd = obstacle::determinant_gradient(&arm, &th, &o);
+    assert_eq!(v[1], 0.0);
+    assert_eq!(v[2], 0.0);
+    assert!((v[0] - d[0].signum() * dd[(0, 0)]).abs() < 1e-12, "{v}");
+    assert!(v[0] != 0.0);
     let mut s = Scene::task1();
     s.obstacles = vec![Obstacle::new(p[2][0], p[2][1], 0.05)];
     let t = Planner::run(s, Mode::Numerical, None).unwrap();

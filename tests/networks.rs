@@ -386,7 +386,6 @@ fn closed_loop_feedback_shrinks_the_network_cases_final_error() {
 #[test]
 fn case_3_avoids_wherever_the_numerical_route_does_in_9_of_10_scenes() {
     let nets = Networks::embedded().unwrap();
-    let mut counted = 0;
     let mut avoided = 0;
     for (task, o) in GENERALISATION_SCENES {
         let numerical = evaluation::run_task(&nets, task, Mode::Numerical, Some(o), 0.0).unwrap();
@@ -397,13 +396,11 @@ fn case_3_avoids_wherever_the_numerical_route_does_in_9_of_10_scenes() {
             "scene {o:?} on task {task} is not in the way"
         );
         assert!(!numerical.collided, "numerical collides at {o:?}");
-        counted += 1;
         let case3 = evaluation::run_task(&nets, task, Mode::Case3, Some(o), 0.0).unwrap();
         if case3.error.is_none() && !case3.collided {
             avoided += 1;
         }
     }
-    assert_eq!(counted, 10);
     assert!(avoided >= 9, "Case 3 avoided in {avoided} of 10 scenes");
 }
 

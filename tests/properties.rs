@@ -51,10 +51,24 @@ proptest! {
     #[test]
     fn damping_schedule_is_continuous_and_bounded(
         (arm, th) in arm_and_theta(),
+        joint in 0usize..5,
+        eps in prop_oneof![Just(1e-9), Just(1e-6), Just(1e-3)],
     ) {
         let s = ik::DampingSchedule::default();
         let d = s.delta(&arm.jacobian(&th));
         prop_assert!((0.0..=s.delta_max).contains(&d));
+        // Continuity with an explicit Lipschitz bound: delta = dmax (1 - (sigma/eps)^2)
+        // changes by at most 2 dmax / eps per unit of sigma; sigma_min is
+        // 1-Lipschitz in J (Frobenius norm); each entry of J moves by at most
+        // the total link length per radian, so |J(th + h) - J(th)|_F <=
+        // sqrt(2n) reach |h|. A jump in the schedule (at sigma = eps, say)
+        // breaks this.
+        let n = arm.dof();
+        let mut moved = th.clone();
+        moved[joint % n] += eps;
+        let d2 = s.delta(&arm.jacobian(&moved));
+        let bound = 2.0 * s.delta_max / s.threshold * (2.0 * n as f64).sqrt() * arm.max_reach() * eps;
+        prop_assert!((d2 - d).abs() <= bound * (1.0 + 1e-9) + 1e-15, "{d} -> {d2}, bound {bound}");
     }
 }
 

@@ -46,6 +46,7 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         paper_variants: true,
     };
     redundant_ik::nn::kernel::set_runtime_dispatch(!args.baseline_kernels);
+    #[allow(clippy::disallowed_methods)] // the native CLI has a clock
     let origin = Instant::now();
     let now = move || origin.elapsed().as_secs_f64() * 1e3;
     let count = crate::allocations;

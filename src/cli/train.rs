@@ -100,6 +100,7 @@ pub fn run(args: &TrainArgs) -> Result<(), String> {
             .map_err(|e| e.to_string())?
             .progress_chars("=> "),
     );
+    #[allow(clippy::disallowed_methods)] // the native CLI has a clock
     let start = Instant::now();
     let mut file = training::train_weights(&spec, |k, r| {
         bar.set_position((k * args.epochs + r.epoch) as u64);

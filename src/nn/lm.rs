@@ -62,16 +62,6 @@ impl Dataset {
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }
-
-    /// Input row `i`.
-    pub fn input(&self, i: usize) -> &[f64] {
-        &self.inputs[i * self.n_in..(i + 1) * self.n_in]
-    }
-
-    /// Target row `i`.
-    pub fn target(&self, i: usize) -> &[f64] {
-        &self.targets[i * self.n_out..(i + 1) * self.n_out]
-    }
 }
 
 /// `trainlm`'s parameters; the defaults are Matlab's except `max_epochs`.
@@ -427,16 +417,6 @@ impl LmTrainer {
             split: [self.train.len(), self.val.len(), self.test.len()],
         };
         (self.mlp, report)
-    }
-
-    /// Epochs run so far.
-    pub fn epochs(&self) -> usize {
-        self.epoch
-    }
-
-    /// Number of weights and biases being trained.
-    pub fn n_params(&self) -> usize {
-        self.params.len()
     }
 }
 

@@ -79,12 +79,6 @@ impl MapMinMax {
             y + self.min[i]
         }
     }
-
-    /// `d raw / d scaled` for entry `i`.
-    #[inline]
-    pub fn reverse_gain(&self, i: usize) -> f64 {
-        1.0 / self.gain(i)
-    }
 }
 
 /// One fully connected layer: `a_out = f(W a_in + b)`.

@@ -91,15 +91,42 @@ mod tests {
     use super::*;
 
     #[test]
-    fn splitmix_seeded_xoshiro_matches_reference_stream() {
-        // SplitMix64 from state 0: first output is 0xE220A8397B1DCDAF (Vigna's reference).
+    fn splitmix64_matches_the_reference_stream() {
+        // Vigna's splitmix64.c from state 0.
         let mut s = 0u64;
-        assert_eq!(splitmix64(&mut s), 0xE220_A839_7B1D_CDAF);
-        let mut a = Rng::new(7);
-        let mut b = Rng::new(7);
-        for _ in 0..100 {
-            assert_eq!(a.next_u64(), b.next_u64());
-        }
+        let got: Vec<u64> = (0..4).map(|_| splitmix64(&mut s)).collect();
+        assert_eq!(
+            got,
+            [
+                0xE220_A839_7B1D_CDAF,
+                0x6E78_9E6A_A1B9_65F4,
+                0x06C4_5D18_8009_454F,
+                0xF88B_B8A8_724C_81EC
+            ]
+        );
+    }
+
+    #[test]
+    fn xoshiro256_star_star_matches_the_reference_stream() {
+        // The reference xoshiro256starstar.c from state {1, 2, 3, 4}, as
+        // published with rand_xoshiro's test suite.
+        let mut r = Rng { s: [1, 2, 3, 4] };
+        let got: Vec<u64> = (0..10).map(|_| r.next_u64()).collect();
+        assert_eq!(
+            got,
+            [
+                11520,
+                0,
+                1509978240,
+                1215971899390074240,
+                1216172134540287360,
+                607988272756665600,
+                16172922978634559625,
+                8476171486693032832,
+                10595114339597558777,
+                2904607092377533576
+            ]
+        );
     }
 
     #[test]
