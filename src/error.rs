@@ -27,6 +27,17 @@ pub enum Error {
         /// The value given.
         value: f64,
     },
+    /// A number outside the interval it must lie in.
+    OutOfRange {
+        /// What was checked, e.g. `"speed"`.
+        what: String,
+        /// The value given.
+        value: f64,
+        /// Smallest accepted.
+        min: f64,
+        /// Largest accepted.
+        max: f64,
+    },
     /// A coordinate (m) beyond the largest accepted, [`MAX_COORDINATE`].
     TooLarge {
         /// What was checked, e.g. `"target x"`.
@@ -150,6 +161,12 @@ impl fmt::Display for Error {
                 }
                 Ok(())
             }
+            Error::OutOfRange {
+                what,
+                value,
+                min,
+                max,
+            } => write!(f, "{what} must lie between {min} and {max} (got {value})"),
             Error::TooLarge { what, value, max } => {
                 write!(f, "{what} must lie within ±{max} m (got {value})")
             }
@@ -244,6 +261,21 @@ pub(crate) fn positive(what: &str, value: f64) -> Result<f64> {
         Err(Error::NotPositive {
             what: what.into(),
             value,
+        })
+    }
+}
+
+/// Checks that `value` is finite and in `[min, max]`.
+pub(crate) fn within(what: &str, value: f64, min: f64, max: f64) -> Result<f64> {
+    finite(what, value)?;
+    if (min..=max).contains(&value) {
+        Ok(value)
+    } else {
+        Err(Error::OutOfRange {
+            what: what.into(),
+            value,
+            min,
+            max,
         })
     }
 }

@@ -136,51 +136,56 @@ fn check_spd(
     m.clone().cholesky().ok_or_else(|| not("positive definite"))
 }
 
+/// The inverse of a symmetric positive definite matrix, or
+/// [`Error::Singular`] saying which one is not.
+fn spd_inverse(m: DMatrix<f64>, which: &str) -> Result<DMatrix<f64>> {
+    m.cholesky()
+        .map(|c| c.inverse())
+        .ok_or_else(|| Error::Singular(which.into()))
+}
+
+/// The weights of eqs. (6)-(7): `W` (`n x n`, joint space) and `Z`
+/// (`m x m`, task space), both symmetric positive definite.
+#[derive(Debug, Clone, Copy)]
+pub struct Weights<'a> {
+    /// `W`.
+    pub w: &'a DMatrix<f64>,
+    /// `Z`.
+    pub z: &'a DMatrix<f64>,
+}
+
+impl Weights<'_> {
+    /// Checks `delta` and both weights against `J`'s shape; returns the
+    /// Cholesky factors of `W` and `Z`.
+    fn check(
+        &self,
+        j: &DMatrix<f64>,
+        delta: f64,
+    ) -> Result<[nalgebra::Cholesky<f64, nalgebra::Dyn>; 2]> {
+        check_delta(delta)?;
+        let (m, n) = j.shape();
+        Ok([check_spd("W", self.w, n)?, check_spd("Z", self.z, m)?])
+    }
+}
+
 /// Weighted-perturbed pseudoinverse, eq. (6):
 /// `J+ = W^-1 J^T (J W^-1 J^T + delta Z^-1)^-1`, an `n x m` matrix.
-///
-/// `W` (`n x n`) and `Z` (`m x m`) must be symmetric positive definite.
-pub fn pseudoinverse_eq6(
-    j: &DMatrix<f64>,
-    w: &DMatrix<f64>,
-    z: &DMatrix<f64>,
-    delta: f64,
-) -> Result<DMatrix<f64>> {
-    check_delta(delta)?;
-    let (m, n) = j.shape();
-    let w_inv = check_spd("W", w, n)?.inverse();
-    let z_inv = check_spd("Z", z, m)?.inverse();
-    let inner = j * &w_inv * j.transpose() + delta * z_inv;
-    let inner_inv = inner
-        .cholesky()
-        .ok_or_else(|| Error::Singular("J W^-1 J^T + delta Z^-1 is singular".into()))?
-        .inverse();
+pub fn pseudoinverse_eq6(j: &DMatrix<f64>, weights: Weights, delta: f64) -> Result<DMatrix<f64>> {
+    let [w, z] = weights.check(j, delta)?;
+    let w_inv = w.inverse();
+    let inner = j * &w_inv * j.transpose() + delta * z.inverse();
+    let inner_inv = spd_inverse(inner, "J W^-1 J^T + delta Z^-1 is singular")?;
     Ok(w_inv * j.transpose() * inner_inv)
 }
 
 /// Weighted-perturbed pseudoinverse, eq. (7):
 /// `J+ = (J^T Z J + delta W)^-1 J^T Z`. Equal to eq. (6) whenever `delta > 0`
 /// (for `delta = 0` the `n x n` matrix `J^T Z J` is singular when `m < n`).
-pub fn pseudoinverse_eq7(
-    j: &DMatrix<f64>,
-    w: &DMatrix<f64>,
-    z: &DMatrix<f64>,
-    delta: f64,
-) -> Result<DMatrix<f64>> {
-    check_delta(delta)?;
-    let (m, n) = j.shape();
-    check_spd("W", w, n)?;
-    check_spd("Z", z, m)?;
-    let outer = j.transpose() * z * j + delta * w;
-    let outer_inv = outer
-        .cholesky()
-        .ok_or_else(|| {
-            Error::Singular(
-                "J^T Z J + delta W is singular (eq. 7 needs delta > 0 for a redundant arm)".into(),
-            )
-        })?
-        .inverse();
-    Ok(outer_inv * j.transpose() * z)
+pub fn pseudoinverse_eq7(j: &DMatrix<f64>, weights: Weights, delta: f64) -> Result<DMatrix<f64>> {
+    weights.check(j, delta)?;
+    let outer = j.transpose() * weights.z * j + delta * weights.w;
+    let why = "J^T Z J + delta W is singular (eq. 7 needs delta > 0 for a redundant arm)";
+    Ok(spd_inverse(outer, why)? * j.transpose() * weights.z)
 }
 
 /// Joint rates of eq. (5): `theta_dot = J+ Xdot + (I - J+ J) v`.

@@ -15,9 +15,11 @@ pub mod nn;
 pub mod obstacle;
 pub mod planner;
 pub mod scene;
+pub mod session;
 pub mod training;
+pub mod twin;
 #[cfg(target_family = "wasm")]
-pub mod wasm;
+pub mod web;
 
 pub use arm::Arm;
 pub use error::{Error, Result};

@@ -11,7 +11,7 @@ wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 
 use std::f64::consts::PI;
 
-use redundant_ik::ik::{self, DampingSchedule};
+use redundant_ik::ik::{self, DampingSchedule, Weights};
 use redundant_ik::kinematics;
 use redundant_ik::nalgebra::{DMatrix, DVector, Vector2};
 use redundant_ik::obstacle::{self, Obstacle};
@@ -112,8 +112,8 @@ fn eq6_equals_eq7_for_random_spd_weights() {
         let j = jacobian_dyn(&arm, &rng.theta(3));
         let (w, z) = (rng.spd(3), rng.spd(2));
         let delta = rng.uniform(1e-3, 1.0);
-        let a = ik::pseudoinverse_eq6(&j, &w, &z, delta).unwrap();
-        let b = ik::pseudoinverse_eq7(&j, &w, &z, delta).unwrap();
+        let a = ik::pseudoinverse_eq6(&j, Weights { w: &w, z: &z }, delta).unwrap();
+        let b = ik::pseudoinverse_eq7(&j, Weights { w: &w, z: &z }, delta).unwrap();
         assert!((&a - &b).amax() < 1e-9 * a.amax().max(1.0), "{a} vs {b}");
     }
 }
@@ -124,7 +124,15 @@ fn undamped_pseudoinverse_is_a_right_inverse() {
     let arm = Arm::paper();
     for _ in 0..20 {
         let j = jacobian_dyn(&arm, &rng.theta(3));
-        let pinv = ik::pseudoinverse_eq6(&j, &rng.spd(3), &rng.spd(2), 0.0).unwrap();
+        let pinv = ik::pseudoinverse_eq6(
+            &j,
+            Weights {
+                w: &rng.spd(3),
+                z: &rng.spd(2),
+            },
+            0.0,
+        )
+        .unwrap();
         let jj = &j * &pinv;
         assert!((jj - DMatrix::identity(2, 2)).amax() < 1e-9);
     }
@@ -136,7 +144,15 @@ fn null_space_term_moves_no_end_effector() {
     let arm = Arm::paper();
     for _ in 0..20 {
         let j = jacobian_dyn(&arm, &rng.theta(3));
-        let pinv = ik::pseudoinverse_eq6(&j, &rng.spd(3), &rng.spd(2), 0.0).unwrap();
+        let pinv = ik::pseudoinverse_eq6(
+            &j,
+            Weights {
+                w: &rng.spd(3),
+                z: &rng.spd(2),
+            },
+            0.0,
+        )
+        .unwrap();
         let v = DVector::from_fn(3, |_, _| rng.uniform(-5.0, 5.0));
         let projected = (DMatrix::identity(3, 3) - &pinv * &j) * &v;
         assert!((&j * projected).amax() < 1e-9);
@@ -155,7 +171,9 @@ fn symmetric_route_and_network_route_equal_eq5() {
             let j = arm.jacobian(&th);
             let xdot = Vector2::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0));
             let v = DVector::from_fn(3, |_, _| rng.uniform(-1.0, 1.0));
-            let pinv = ik::pseudoinverse_eq6(&jacobian_dyn(&arm, &th), &w, &z, delta).unwrap();
+            let pinv =
+                ik::pseudoinverse_eq6(&jacobian_dyn(&arm, &th), Weights { w: &w, z: &z }, delta)
+                    .unwrap();
             let xd = DVector::from_column_slice(xdot.as_slice());
             let eq5 = ik::theta_dot_eq5(&jacobian_dyn(&arm, &th), &pinv, &xd, &v);
             let eq18 = ik::theta_dot_symmetric(&j, &xdot, &v, delta).unwrap();

@@ -2,7 +2,7 @@
 //! `wasm-pack test --headless --chrome`. Native `cargo test` skips this file.
 #![cfg(target_family = "wasm")]
 
-use redundant_ik::wasm::{networks_error, Demo};
+use redundant_ik::web::{networks_error, Demo};
 use serde_json::Value;
 use wasm_bindgen::prelude::*;
 use wasm_bindgen_test::*;
@@ -133,8 +133,8 @@ fn non_finite_input_from_javascript_is_refused_not_a_panic() {
     assert!(d.resize(100.0, -1.0, 1.0).is_err());
     assert!(d.world_to_canvas(f64::NAN, 0.0).is_err());
     assert!(d.run_until(f64::NAN).is_err());
-    assert_eq!(d.hover(f64::NAN, 1.0, 4.0), "");
-    assert_eq!(d.pointer_down(f64::NAN, 1.0, 4.0), "");
+    assert_eq!(d.hover(f64::NAN, 1.0, 4.0), None);
+    assert_eq!(d.pointer_down(f64::NAN, 1.0, 4.0), None);
     d.frame(f64::NAN).unwrap();
     d.frame(-5.0).unwrap();
     let s = state(&d);
@@ -173,7 +173,7 @@ fn dragging_the_target_plans_a_new_line_from_the_end_effector() {
     d.step().unwrap();
     let before = state(&d);
     let t = d.world_to_canvas(0.6, 0.2).unwrap();
-    assert_eq!(d.pointer_down(t[0], t[1], 4.0), "target");
+    assert_eq!(d.pointer_down(t[0], t[1], 4.0).as_deref(), Some("target"));
     let goal = d.world_to_canvas(1.0, 0.4).unwrap();
     d.pointer_move(goal[0], goal[1]).unwrap();
     assert_eq!(
@@ -193,7 +193,7 @@ fn dragging_the_target_plans_a_new_line_from_the_end_effector() {
 fn dragging_the_obstacle_moves_it_at_once_and_refuses_the_post() {
     let mut d = demo(1);
     let o = d.world_to_canvas(0.5, 0.5).unwrap();
-    assert_eq!(d.pointer_down(o[0], o[1], 4.0), "obstacle");
+    assert_eq!(d.pointer_down(o[0], o[1], 4.0).as_deref(), Some("obstacle"));
     let p = d.world_to_canvas(0.8, 1.3).unwrap();
     d.pointer_move(p[0], p[1]).unwrap();
     let at = pair(&state(&d)["obstacle"]);
@@ -282,7 +282,7 @@ fn closed_loop_feedback_shrinks_the_networks_drift_and_survives_a_task_load() {
 
 #[wasm_bindgen_test]
 fn the_in_browser_benchmark_returns_costs_or_refuses_bad_input() {
-    use redundant_ik::wasm::{bench_forward, bench_step, bench_theta_dot};
+    use redundant_ik::web::{bench_forward, bench_step, bench_theta_dot};
     for mode in ["numerical", "case3"] {
         let ns = bench_step(mode, 1.0).unwrap();
         assert!(ns.is_finite() && ns > 0.0, "{mode}: {ns}");
@@ -332,4 +332,48 @@ fn the_state_says_when_the_exact_phi_stood_in_for_the_network() {
     d.run_until(10.0).unwrap();
     let s = state(&d);
     assert!(s["handover_steps"].as_u64().unwrap() > 10, "{s}");
+}
+
+#[wasm_bindgen_test]
+fn names_colours_and_the_legend_come_from_the_module() {
+    use redundant_ik::web::{legend, modes, palette};
+    let m = json_of(modes().unwrap());
+    let names: Vec<&str> = m
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["none", "numerical", "case1", "case2", "case3"]);
+    assert_eq!(m[3]["label"], "Case 2");
+    assert!(m[3]["description"]
+        .as_str()
+        .unwrap()
+        .contains("v by a network"));
+    let p = json_of(palette().unwrap());
+    assert_eq!(p["arm"], "#1d4e89");
+    let l = json_of(legend().unwrap());
+    let arm = &l[0];
+    assert_eq!(arm["key"], "arm");
+    assert_eq!(
+        arm["swatch"], "rgba(29, 78, 137, 1)",
+        "the palette's arm colour"
+    );
+    assert!(l[1]["label"].as_str().unwrap().contains("every 5th pose"));
+}
+
+#[wasm_bindgen_test]
+fn arrow_keys_move_the_target_and_with_shift_the_obstacle() {
+    let mut d = demo(1);
+    let before = state(&d);
+    assert!(d.key("ArrowRight", false).unwrap());
+    let after = state(&d);
+    assert!((pair(&after["target"])[0] - pair(&before["target"])[0] - 0.05).abs() < 1e-12);
+    assert!(d.key("ArrowDown", true).unwrap());
+    assert!((pair(&state(&d)["obstacle"])[1] - 0.45).abs() < 1e-12);
+    assert!(!d.key("a", false).unwrap(), "other keys are not used");
+    // Onto the post: refused, and the obstacle stays.
+    d.set_obstacle(0.09, 0.3).unwrap();
+    assert!(d.key("ArrowLeft", true).is_err());
+    assert_eq!(pair(&state(&d)["obstacle"]), [0.09, 0.3]);
 }

@@ -9,14 +9,13 @@
 //               { type: 'done', result: { theta_dot_ns, step_ns, forward_ns } }
 //               { type: 'error', message }
 
-import init, { benchThetaDot, benchStep, benchForward } from './pkg/redundant_ik.js';
-
-const MODES = ['none', 'numerical', 'case1', 'case2', 'case3'];
+import init, { benchThetaDot, benchStep, benchForward, modes } from './pkg/redundant_ik.js';
 
 self.onmessage = async ({ data }) => {
   try {
     await init({ module_or_path: data.wasm });
     const batchMs = data.batchMs ?? 20;
+    const MODES = modes().map((m) => m.name);
     const result = { theta_dot_ns: {}, step_ns: {}, forward_ns: null };
     const jobs = [
       ...MODES.map((m) => [`θ̇ ${m}`, () => (result.theta_dot_ns[m] = benchThetaDot(m, batchMs))]),

@@ -1,15 +1,17 @@
 // Glue between the page and the WebAssembly module: it wires the controls,
-// pointer events and the animation loop to a `Demo` (src/wasm.rs), which owns
-// the planner and draws the canvas. No kinematics here.
+// pointer events and the animation loop to a `Demo` (src/web/), which owns
+// the session and draws the canvas. No kinematics here, and no names or
+// colours of its own: the methods' names and labels, the palette and the
+// legend come from the module.
 //
 // `mount(root, options)` works on any root that holds the expected ids
-// (`#stage` and, all optional, `#plots`, `#mode`, `#play`, `#step`, `#reset`,
-// `#task1`, `#task2`, `#lambda`, `#damping`, `#feedback`, `#speed`, `#message`,
-// `#range-warning`, `#handover-note`, `#loading` and `[data-readout]` elements): the page's
-// document, or the shadow root of a <redundant-ik-demo> element, so several
-// demos on one page stay independent.
+// (`#stage` and, all optional, `#plots`, `#mode`, `#legend`, `#play`, `#step`,
+// `#reset`, `#task1`, `#task2`, `#lambda`, `#damping`, `#feedback`, `#speed`,
+// `#message`, `#range-warning`, `#handover-note`, `#loading` and
+// `[data-readout]` elements): the page's document, or the shadow root of a
+// <redundant-ik-demo> element, so several demos on one page stay independent.
 
-import init, { Demo, lastPanic, networksError } from './pkg/redundant_ik.js';
+import init, { Demo, lastPanic, networksError, modes, palette, legend } from './pkg/redundant_ik.js';
 
 let module = null;
 let wasmUrl = null;
@@ -54,6 +56,10 @@ export function loadModule() {
       await init({ module_or_path: BUILDS[which] });
       build = which;
       wasmUrl = BUILDS[which];
+      // The drawing's colours, for the stylesheet (var(--arm), ...).
+      for (const [name, value] of Object.entries(palette())) {
+        document.documentElement.style.setProperty(`--${name}`, value);
+      }
     };
     module = (async () => {
       if (simdSupported()) {
@@ -69,15 +75,30 @@ export function loadModule() {
   return module;
 }
 
-export const MODES = ['none', 'numerical', 'case1', 'case2', 'case3'];
+/** The five methods, `[{ name, label, description }]` (after loadModule). */
+export function methods() {
+  return modes();
+}
 
-const MODE_LABELS = {
-  none: 'No avoidance',
-  numerical: 'Numerical',
-  case1: 'Case 1',
-  case2: 'Case 2',
-  case3: 'Case 3',
-};
+/** Fills a `<select>` with the methods: "Case 1: Φ by a network, v exact". */
+function fillModes(select) {
+  if (!select || select.options.length) return;
+  for (const m of modes()) select.add(new Option(`${m.label}: ${m.description}`, m.name));
+}
+
+/** Fills a legend list from the module's legend (the renderer's colours). */
+function fillLegend(list) {
+  if (!list || list.children.length) return;
+  for (const e of legend()) {
+    const li = document.createElement('li');
+    li.dataset.key = e.key;
+    const key = document.createElement('span');
+    key.className = `key key-${e.kind}`;
+    key.style.setProperty('--swatch', e.swatch);
+    li.append(key, e.label);
+    list.append(li);
+  }
+}
 
 /** Gain K (1/s) of the "correct drift" switch: Xdot + K (X_ref - X). */
 export const FEEDBACK_GAIN = 1;
@@ -181,6 +202,7 @@ export async function mount(root, options = {}) {
   const plots = $('plots');
   const el = {
     mode: $('mode'),
+    legend: $('legend'),
     play: $('play'),
     step: $('step'),
     reset: $('reset'),
@@ -199,6 +221,8 @@ export async function mount(root, options = {}) {
   const readouts = [...root.querySelectorAll('[data-readout]')];
 
   await loadModule();
+  fillModes(el.mode);
+  fillLegend(el.legend);
   const demo = new Demo(stage, plots ?? undefined, options.task === 2 ? 2 : 1);
 
   // ---- messages -------------------------------------------------------
@@ -314,7 +338,7 @@ export async function mount(root, options = {}) {
           tr.append(td);
           return td;
         };
-        cell(MODE_LABELS[r.mode] ?? r.mode);
+        cell(r.label);
         if (r.summary) {
           const s = r.summary;
           tr.dataset.collided = String(s.collided);
@@ -363,29 +387,15 @@ export async function mount(root, options = {}) {
     });
   }
 
-  // ---- keyboard on the drawing: arrows move the target, Shift+arrows the obstacle
-  const NUDGE = 0.05; // metres per key press
+  // ---- keyboard on the drawing: arrows move the target, Shift+arrows the
+  // obstacle (src/web/input.rs decides)
   if (!stage.hasAttribute('tabindex')) stage.tabIndex = 0;
   stage.addEventListener('keydown', (e) => {
-    const dir = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1] }[e.key];
-    if (!dir || e.ctrlKey || e.metaKey || e.altKey) return;
-    e.preventDefault();
-    const s = demo.state();
-    if (e.shiftKey) {
-      if (!s.obstacle) return;
-      const [x, y] = [s.obstacle[0] + dir[0] * NUDGE, s.obstacle[1] + dir[1] * NUDGE];
-      if (attempt(() => demo.setObstacle(x, y))) changed();
-    } else {
-      const [x, y] = [s.target[0] + dir[0] * NUDGE, s.target[1] + dir[1] * NUDGE];
-      if (
-        attempt(() => {
-          demo.setTarget(x, y);
-          demo.setRunning(true);
-        })
-      ) {
-        changed();
-      }
-    }
+    if (e.ctrlKey || e.metaKey || e.altKey) return;
+    let used = false;
+    const ok = attempt(() => (used = demo.key(e.key, e.shiftKey)));
+    if (!ok || used) e.preventDefault();
+    if (ok && used) changed();
   });
 
   // ---- pointer: drag target and obstacle -------------------------------

@@ -16,7 +16,7 @@ const STYLE = `
 :host {
   display: block;
   font: 14px/1.45 system-ui, -apple-system, "Segoe UI", Roboto, sans-serif;
-  color: #1f2933;
+  color: var(--ink);
   border: 1px solid #dde3ea;
   border-radius: 10px;
   background: #fff;
@@ -30,17 +30,17 @@ const STYLE = `
 #stage:focus-visible { outline: 2px solid #6ea0dc; outline-offset: 2px; }
 #plots { display: block; width: 100%; height: 300px; margin-top: 6px; }
 #loading { position: absolute; inset: 0; display: flex; align-items: center; justify-content: center;
-  background: rgba(255,255,255,.92); color: #5f6b78; text-align: center; padding: 16px; }
+  background: rgba(255,255,255,.92); color: var(--muted); text-align: center; padding: 16px; }
 #loading[hidden] { display: none; }
-#loading.failed { color: #c0392b; }
+#loading.failed { color: var(--danger); }
 .bar { display: flex; flex-wrap: wrap; gap: 6px; align-items: center; margin-top: 6px; }
-select, button { font: inherit; font-size: 13px; color: #1f2933; border: 1px solid #cdd5de;
+select, button { font: inherit; font-size: 13px; color: var(--ink); border: 1px solid #cdd5de;
   border-radius: 6px; background: #fff; padding: 4px 9px; min-height: 30px; cursor: pointer; }
 button:hover, select:hover { background: #f8fafc; border-color: #aab5c2; }
-#play { background: #1d4e89; border-color: #1d4e89; color: #fff; min-width: 64px; }
-.read { margin-left: auto; font-size: 12.5px; color: #5f6b78; font-variant-numeric: tabular-nums; }
-.read b { color: #1f2933; font-weight: 600; }
-[data-level="bad"] { color: #c0392b; }
+#play { background: var(--arm); border-color: var(--arm); color: #fff; min-width: 64px; }
+.read { margin-left: auto; font-size: 12.5px; color: var(--muted); font-variant-numeric: tabular-nums; }
+.read b { color: var(--ink); font-weight: 600; }
+[data-level="bad"] { color: var(--danger); }
 [data-level="warn"] { color: #8a5a00; }
 [data-level="ok"] { color: #2a7d4f; }
 .notice { margin: 6px 0 0; padding: 6px 9px; border-radius: 6px; font-size: 12.5px;
@@ -56,13 +56,7 @@ const TEMPLATE = `
   <div id="loading" role="status">Loading the simulation…</div>
 </div>
 <div class="bar">
-  <select id="mode" aria-label="Method">
-    <option value="none">No avoidance</option>
-    <option value="numerical">Numerical</option>
-    <option value="case1">Case 1 (Φ net)</option>
-    <option value="case2">Case 2 (v net)</option>
-    <option value="case3">Case 3 (both nets)</option>
-  </select>
+  <select id="mode" aria-label="Method"></select>
   <button id="play" type="button">Play</button>
   <button id="reset" type="button">Reset</button>
   <span class="read">t <b data-readout="t">0.0</b> s · distance <b data-readout="distance">–</b> m ·

@@ -176,24 +176,21 @@ fn render(r: &Report) -> String {
     );
     t.push_str("| network | variant | layers | relative error median | p99 | max |\n");
     t.push_str("|---|---|---|---|---|---|\n");
+    let row = |net: &str, variant: Variant, layers: &[Vec<usize>], e: &ErrorStats| {
+        format!(
+            "| {net} | {} | {} | {:.2e} | {:.2e} | {:.2e} |\n",
+            variant.name(),
+            sizes(layers),
+            e.median,
+            e.p99,
+            e.max
+        )
+    };
     for p in &r.phi {
-        t.push_str(&format!(
-            "| Phi | {} | {} | {:.2e} | {:.2e} | {:.2e} |\n",
-            p.variant.name(),
-            sizes(&p.sizes),
-            p.relative_error.median,
-            p.relative_error.p99,
-            p.relative_error.max
-        ));
+        t.push_str(&row("Phi", p.variant, &p.sizes, &p.relative_error));
     }
-    t.push_str(&format!(
-        "| v | {} | {} | {:.2e} | {:.2e} | {:.2e} |\n\n",
-        r.v_variant.name(),
-        sizes(&r.v_sizes),
-        r.v.median,
-        r.v.p99,
-        r.v.max
-    ));
+    t.push_str(&row("v", r.v_variant, &r.v_sizes, &r.v));
+    t.push('\n');
     t.push_str(&format!(
         "Task outcomes (Phi variant {}, feedback K = {}, delta = 0)\n\n",
         r.task_variant.name(),

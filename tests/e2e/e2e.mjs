@@ -624,6 +624,68 @@ test('the SIMD build runs where SIMD is available, the baseline build where it i
   await c3.close();
 });
 
+test('names and colours come from the module: the method menu, and legend swatches that match the drawing', async () => {
+  const page = await open('?task=1&mode=numerical');
+  await pause(page);
+  // The menu is built from the module's modes(): none is written in the page.
+  const options = await page.$$eval('#mode option', (os) => os.map((o) => [o.value, o.textContent]));
+  assert.deepEqual(
+    options.map((o) => o[0]),
+    ['none', 'numerical', 'case1', 'case2', 'case3'],
+  );
+  assert.match(options[2][1], /^Case 1: /);
+  // Each legend swatch has the colour the renderer draws its element with,
+  // read back from the canvas where that element is.
+  const probe = await page.evaluate(() => {
+    const swatch = (key) => {
+      const el = document.querySelector(`#legend li[data-key="${key}"] .key`);
+      const cs = getComputedStyle(el);
+      return key === 'obstacle' ? cs.backgroundColor : cs.borderTopColor;
+    };
+    const canvas = document.getElementById('stage');
+    const dpr = canvas.width / canvas.getBoundingClientRect().width;
+    const ctx = canvas.getContext('2d');
+    const pixel = ([x, y]) => {
+      const [cx, cy] = window.demo.controller.demo.worldToCanvas(x, y);
+      return [...ctx.getImageData(Math.round(cx * dpr), Math.round(cy * dpr), 1, 1).data];
+    };
+    const s = window.demo.state();
+    const [a, b] = [s.joints[1], s.joints[2]];
+    const mid = [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2];
+    const o = s.obstacle;
+    // Inside the disc, off its centre dot and off the grid lines through it.
+    const inside = [o[0] + 0.55 * s.radius, o[1] + 0.3 * s.radius];
+    return {
+      keys: [...document.querySelectorAll('#legend li')].map((li) => li.dataset.key),
+      arm: { swatch: swatch('arm'), pixel: pixel(mid) },
+      obstacle: { swatch: swatch('obstacle'), pixel: pixel(inside) },
+      ghost: swatch('ghost'),
+      strobe: swatch('strobe'),
+      cssArm: getComputedStyle(document.documentElement).getPropertyValue('--arm').trim(),
+    };
+  });
+  assert.deepEqual(probe.keys, ['arm', 'strobe', 'ghost', 'path', 'trail', 'obstacle', 'region']);
+  const rgba = (css) => {
+    const m = css.match(/rgba?\(([^)]+)\)/);
+    const v = m[1].split(',').map(Number);
+    return [v[0], v[1], v[2], v.length > 3 ? v[3] : 1];
+  };
+  const close = (x, y, tol, what) =>
+    assert.ok(x.every((v, i) => Math.abs(v - y[i]) <= tol), `${what}: ${x} vs ${y}`);
+  // The arm is opaque: the pixel is the swatch.
+  const arm = rgba(probe.arm.swatch);
+  close(probe.arm.pixel.slice(0, 3), arm.slice(0, 3), 2, 'arm pixel against its swatch');
+  // The obstacle disc is translucent over white: blend the swatch likewise.
+  const ob = rgba(probe.obstacle.swatch);
+  const blended = ob.slice(0, 3).map((c) => c * ob[3] + 255 * (1 - ob[3]));
+  close(probe.obstacle.pixel.slice(0, 3), blended, 3, 'obstacle pixel against its swatch');
+  // The page's CSS custom properties are the module's palette.
+  assert.equal(probe.cssArm, '#1d4e89');
+  assert.ok(rgba(probe.ghost)[3] < 1 && rgba(probe.strobe)[3] < 0.5, 'translucent swatches for translucent strokes');
+  clean(page);
+  await page.close();
+});
+
 test('embed page: two independent demos', async () => {
   const context = await browser.newContext({ viewport: { width: 1280, height: 900 } });
   const page = await context.newPage();

@@ -1,0 +1,165 @@
+//! What the planner tracks and reports: the straight line, the sample after
+//! each step, the summary of a run and the whole trajectory.
+
+use nalgebra::Vector2;
+use serde::{Deserialize, Serialize};
+
+use super::Mode;
+
+/// The straight line being tracked: from `start` at time `t0` to `end` at
+/// `t0 + duration`, at constant speed, then holding still at `end`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Line {
+    /// End-effector position where the line starts.
+    pub start: [f64; 2],
+    /// End of the line (the target).
+    pub end: [f64; 2],
+    /// Time at which the line starts (s).
+    pub t0: f64,
+    /// Time the line takes (s); a whole number of RK4 steps.
+    pub duration: f64,
+}
+
+impl Line {
+    fn start_v(&self) -> Vector2<f64> {
+        Vector2::new(self.start[0], self.start[1])
+    }
+    fn end_v(&self) -> Vector2<f64> {
+        Vector2::new(self.end[0], self.end[1])
+    }
+
+    /// Reference point `X_ref(t)` on the line.
+    pub fn reference(&self, t: f64) -> Vector2<f64> {
+        let s = ((t - self.t0) / self.duration).clamp(0.0, 1.0);
+        self.start_v() + s * (self.end_v() - self.start_v())
+    }
+
+    /// Constant task velocity `Xdot` while the line runs, zero before and after.
+    /// Evaluated at a step's midpoint so that every RK4 stage of a step sees the
+    /// same `Xdot`.
+    pub(super) fn velocity_at(&self, t_mid: f64) -> Vector2<f64> {
+        if t_mid > self.t0 && t_mid < self.t0 + self.duration {
+            (self.end_v() - self.start_v()) / self.duration
+        } else {
+            Vector2::zeros()
+        }
+    }
+}
+
+/// The state after one integration step (or at the start).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Sample {
+    /// Time (s).
+    pub t: f64,
+    /// Joint angles (rad).
+    pub theta: Vec<f64>,
+    /// Joint positions `P(0)..P(n)`, `P(0)` first.
+    pub joints: Vec<[f64; 2]>,
+    /// End effector `X = P(n)`.
+    pub ee: [f64; 2],
+    /// Straight-line reference point at `t`.
+    pub reference: [f64; 2],
+    /// Distance from the end effector to the reference.
+    pub tracking_error: f64,
+    /// Smallest distance from an obstacle centre to a moving link (none without obstacles).
+    pub distance: Option<f64>,
+    /// Whether a link is inside an obstacle disc now.
+    pub collision: bool,
+    /// Damping `delta` in force at this pose.
+    pub delta: f64,
+    /// Manipulability `sqrt(det(J J^T))`.
+    pub manipulability: f64,
+    /// Whether the state is inside the trained range of the networks this mode uses
+    /// (always true for numerical modes).
+    pub in_range: bool,
+    /// Whether, in the step that led here, the damping schedule switched on
+    /// near a singular pose and the exact damped `Phi` (eq. 20) stood in for
+    /// the `Phi` network (Cases 1 and 3 only: no network can fit `Phi` where
+    /// it is unbounded).
+    pub phi_handover: bool,
+}
+
+/// What a run achieved, over every step since the last reset.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Summary {
+    /// Mode of the last step.
+    pub mode: Mode,
+    /// RK4 steps taken.
+    pub steps: usize,
+    /// Time reached (s).
+    pub t: f64,
+    /// Smallest obstacle-centre-to-link distance over all steps (none without obstacles).
+    pub min_distance: Option<f64>,
+    /// Whether a link entered an obstacle disc at any step.
+    pub collided: bool,
+    /// Distance from the end effector to the target now.
+    pub final_error: f64,
+    /// Largest distance from the end effector to the reference.
+    pub max_tracking_error: f64,
+    /// `final_error <= REACH_TOLERANCE`.
+    pub reached: bool,
+    /// Whether the target lies in the arm's workspace at all.
+    pub target_reachable: bool,
+    /// Steps at which a network's input left its trained range.
+    pub out_of_range_steps: usize,
+    /// Largest damping `delta` used.
+    pub max_delta: f64,
+    /// Whether the damping schedule was switched on automatically because the
+    /// target lies outside the workspace (with `delta = 0` a stretched arm has
+    /// unbounded joint rates).
+    pub auto_damping: bool,
+    /// Steps in which the exact damped `Phi` stood in for the `Phi` network
+    /// near a singular pose (see [`Sample::phi_handover`]).
+    pub handover_steps: usize,
+}
+
+/// A whole run: every sample from `t = 0` to `tf`, and the summary.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Trajectory {
+    /// Mode used.
+    pub mode: Mode,
+    /// One sample per RK4 step, the initial state first.
+    pub steps: Vec<Sample>,
+    /// Outcome.
+    pub summary: Summary,
+}
+
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Stats {
+    pub(super) steps: usize,
+    pub(super) min_distance: Option<f64>,
+    pub(super) collided: bool,
+    pub(super) max_tracking_error: f64,
+    pub(super) out_of_range_steps: usize,
+    pub(super) max_delta: f64,
+    pub(super) handover_steps: usize,
+}
+
+impl Stats {
+    pub(super) fn new() -> Self {
+        Self {
+            steps: 0,
+            min_distance: None,
+            collided: false,
+            max_tracking_error: 0.0,
+            out_of_range_steps: 0,
+            max_delta: 0.0,
+            handover_steps: 0,
+        }
+    }
+
+    pub(super) fn record(&mut self, s: &Sample) {
+        if let Some(d) = s.distance {
+            self.min_distance = Some(self.min_distance.map_or(d, |m| m.min(d)));
+        }
+        self.collided |= s.collision;
+        self.max_tracking_error = self.max_tracking_error.max(s.tracking_error);
+        if !s.in_range {
+            self.out_of_range_steps += 1;
+        }
+        self.max_delta = self.max_delta.max(s.delta);
+        if s.phi_handover {
+            self.handover_steps += 1;
+        }
+    }
+}

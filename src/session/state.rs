@@ -1,0 +1,149 @@
+//! The snapshot of a session the page reads every frame.
+
+use serde::Serialize;
+
+use super::{Handle, Session};
+use crate::networks::TrainedRange;
+use crate::planner::Line;
+
+/// The snapshot the page reads every frame.
+#[derive(Debug, Serialize)]
+pub struct State<'a> {
+    /// Time (s).
+    pub t: f64,
+    /// The paper's task last loaded (1 or 2).
+    pub task: u32,
+    /// Mode name.
+    pub mode: &'static str,
+    /// Whether the clock runs.
+    pub running: bool,
+    /// Simulated seconds per real second.
+    pub speed: f64,
+    /// Gain of the obstacle vector.
+    pub lambda: f64,
+    /// Whether the damping schedule is on.
+    pub damping: bool,
+    /// Whether it was switched on for an out-of-reach target.
+    pub auto_damping: bool,
+    /// Closed-loop gain `K`.
+    pub feedback: f64,
+    /// Joint angles.
+    pub theta: &'a [f64],
+    /// Joints `P(0)..P(n)`.
+    pub joints: &'a [[f64; 2]],
+    /// End effector.
+    pub ee: [f64; 2],
+    /// Reference point on the line.
+    pub reference: [f64; 2],
+    /// Target.
+    pub target: [f64; 2],
+    /// The line being tracked.
+    pub line: Line,
+    /// Centre of the first obstacle.
+    pub obstacle: Option<[f64; 2]>,
+    /// Its radius.
+    pub radius: Option<f64>,
+    /// Distance from the nearest obstacle centre to a link now.
+    pub distance: Option<f64>,
+    /// Smallest such distance since the last reset.
+    pub min_distance: Option<f64>,
+    /// Whether a link is inside an obstacle now.
+    pub collision: bool,
+    /// Whether one was since the last reset.
+    pub collided: bool,
+    /// Distance from the end effector to the reference.
+    pub tracking_error: f64,
+    /// Distance from the end effector to the target.
+    pub final_error: f64,
+    /// `sqrt(det(J J^T))`.
+    pub manipulability: f64,
+    /// Damping in force.
+    pub delta: f64,
+    /// Whether the networks in use see inputs inside their trained range.
+    pub in_range: bool,
+    /// Whether the exact damped `Phi` stood in for the network in the last step.
+    pub phi_handover: bool,
+    /// Steps in which it did, since the last reset.
+    pub handover_steps: usize,
+    /// Whether networks are installed (the page also counts networks it can
+    /// install on demand).
+    pub networks: bool,
+    /// What they were trained on.
+    pub trained_range: Option<&'a TrainedRange>,
+    /// The numerical ghost, in the network cases.
+    pub ghost: Option<GhostState>,
+    /// Steps since the last reset.
+    pub steps: usize,
+    /// Steps taken by the last frame that stepped.
+    pub frame_steps: usize,
+    /// Time in the planner's steps in that frame (ms), by the session's clock.
+    pub solver_ms: f64,
+    /// The same per step.
+    pub solver_ms_per_step: f64,
+    /// What the pointer holds.
+    pub dragging: Option<Handle>,
+    /// The last step's error, if it failed.
+    pub error: Option<&'a str>,
+}
+
+/// Where the ghost is.
+#[derive(Debug, Serialize)]
+pub struct GhostState {
+    /// Its joint angles.
+    pub theta: Vec<f64>,
+    /// Its end effector.
+    pub ee: [f64; 2],
+}
+
+impl Session {
+    /// The snapshot the page reads.
+    pub fn state(&self) -> State<'_> {
+        let p = self.planner();
+        let s = p.sample();
+        let summary = p.summary();
+        let scene = p.scene();
+        let obstacle = scene.obstacles.first();
+        State {
+            t: s.t,
+            task: self.task,
+            mode: p.mode().name(),
+            running: self.running,
+            speed: self.speed,
+            lambda: scene.lambda,
+            damping: scene.damping.is_some(),
+            auto_damping: summary.auto_damping,
+            feedback: scene.feedback_gain,
+            theta: &s.theta,
+            joints: &s.joints,
+            ee: s.ee,
+            reference: s.reference,
+            target: scene.target,
+            line: p.line(),
+            obstacle: obstacle.map(|o| o.centre),
+            radius: obstacle.map(|o| o.radius),
+            distance: s.distance,
+            min_distance: summary.min_distance,
+            collision: s.collision,
+            collided: summary.collided,
+            tracking_error: s.tracking_error,
+            final_error: summary.final_error,
+            manipulability: s.manipulability,
+            delta: s.delta,
+            in_range: s.in_range,
+            phi_handover: s.phi_handover,
+            handover_steps: summary.handover_steps,
+            networks: self.networks.is_some(),
+            trained_range: self.trained_range(),
+            ghost: self.ghost().map(|g| GhostState {
+                theta: g.theta().iter().copied().collect(),
+                ee: g.sample().ee,
+            }),
+            steps: summary.steps,
+            frame_steps: self.frame_steps,
+            solver_ms: self.solver_ms,
+            solver_ms_per_step: self.solver_ms_per_step,
+            dragging: self.drag,
+            error: self.error.as_deref(),
+        }
+    }
+}

@@ -1,0 +1,273 @@
+//! `Demo`: one interactive simulation on one canvas, bound to JavaScript.
+//! Each method forwards to the [`Session`] and maps the core's errors to
+//! exceptions; drawing goes to [`super::stage`] and [`super::plots`].
+
+use wasm_bindgen::prelude::*;
+use web_sys::HtmlCanvasElement;
+
+use super::surface::Surface;
+use super::{input, js_err, now_ms, plots, shared_networks, stage, to_js};
+use crate::networks::Networks;
+use crate::planner::{Mode, Surrogate};
+use crate::session::Session;
+
+/// One interactive simulation drawn on one canvas. Several can live on a page.
+#[wasm_bindgen]
+pub struct Demo {
+    session: Session,
+    stage: Surface,
+    plots: Option<Surface>,
+}
+
+type JsResult<T = ()> = Result<T, JsError>;
+
+fn finite(what: &str, value: f64) -> JsResult<f64> {
+    crate::error::finite(what, value).map_err(js_err)
+}
+
+#[wasm_bindgen]
+impl Demo {
+    /// A demo of the paper's task `task` (1 or 2) in mode `numerical`, drawn on
+    /// `stage`, with the time-series plots on `plots` if given. Paused at `t = 0`.
+    #[wasm_bindgen(constructor)]
+    pub fn new(
+        stage: HtmlCanvasElement,
+        plots: Option<HtmlCanvasElement>,
+        task: u32,
+    ) -> JsResult<Demo> {
+        super::install_panic_hook();
+        let mut session = Session::new(task).map_err(js_err)?;
+        session.set_clock(now_ms);
+        Ok(Demo {
+            session,
+            stage: Surface::new(stage)?,
+            plots: plots.map(Surface::new).transpose()?,
+        })
+    }
+
+    /// Loads the paper's scene `task` (1 or 2; obstacle, start pose, target and
+    /// `lambda = 4`), keeping the mode, the damping switch and the feedback
+    /// gain, and runs it from `t = 0` to `tf = 10 s`.
+    #[wasm_bindgen(js_name = loadTask)]
+    pub fn load_task(&mut self, task: u32) -> JsResult {
+        self.session.load_task(task).map_err(js_err)
+    }
+
+    /// Back to `t = 0` of the current scene (with the current target and
+    /// obstacle), paused, histories cleared.
+    pub fn reset(&mut self) {
+        self.session.reset();
+    }
+
+    /// Resets and runs the current scene from `t = 0` to its final time.
+    #[wasm_bindgen(js_name = runTask)]
+    pub fn run_task(&mut self) {
+        self.session.run_task();
+    }
+
+    /// Sets the mode: `none`, `numerical`, `case1`, `case2` or `case3`. The
+    /// network cases use the built-in networks unless others were loaded;
+    /// without them this throws "networks not available: ..." and the mode
+    /// stays as it was.
+    #[wasm_bindgen(js_name = setMode)]
+    pub fn set_mode(&mut self, mode: &str) -> JsResult {
+        let mode: Mode = mode.parse().map_err(js_err)?;
+        if (mode.learned_phi() || mode.learned_v()) && self.session.networks().is_none() {
+            let nets = shared_networks().map_err(|e| JsError::new(&e))?;
+            self.session.set_networks(nets).map_err(js_err)?;
+        }
+        self.session.set_mode(mode).map_err(js_err)
+    }
+
+    /// Loads user-trained networks for this demo from the JSON text of a `Phi`
+    /// weights file and a `v` weights file (the format `redundant-ik train`
+    /// writes). Throws with the reason if they are corrupt or were trained
+    /// for another arm; the networks in use stay then.
+    #[wasm_bindgen(js_name = loadNetworks)]
+    pub fn load_networks(&mut self, phi_json: &str, v_json: &str) -> JsResult {
+        let nets = Networks::from_json(phi_json, v_json).map_err(js_err)?;
+        self.session.set_networks(nets).map_err(js_err)
+    }
+
+    /// Sets `lambda`, the gain of the obstacle vector (eq. 14); at least 0.
+    #[wasm_bindgen(js_name = setLambda)]
+    pub fn set_lambda(&mut self, lambda: f64) -> JsResult {
+        self.session.set_lambda(lambda).map_err(js_err)
+    }
+
+    /// Switches the damping schedule (damped least squares near singular
+    /// poses) on or off.
+    #[wasm_bindgen(js_name = setDamping)]
+    pub fn set_damping(&mut self, on: bool) -> JsResult {
+        self.session.set_damping(on).map_err(js_err)
+    }
+
+    /// Closed-loop gain `K` (1/s): the planner then commands
+    /// `Xdot + K (X_ref - X)`; `0` is the paper's open loop (the default).
+    #[wasm_bindgen(js_name = setFeedback)]
+    pub fn set_feedback(&mut self, gain: f64) -> JsResult {
+        self.session.set_feedback(gain).map_err(js_err)
+    }
+
+    /// Simulated seconds per real second (0.05 to 50).
+    #[wasm_bindgen(js_name = setSpeed)]
+    pub fn set_speed(&mut self, speed: f64) -> JsResult {
+        self.session.set_speed(speed).map_err(js_err)
+    }
+
+    /// Plans a new straight line from the current end effector to `(x, y)`,
+    /// lasting `duration` seconds (default: at 0.25 m/s, at least 1 s).
+    #[wasm_bindgen(js_name = setTarget)]
+    pub fn set_target(&mut self, x: f64, y: f64, duration: Option<f64>) -> JsResult {
+        self.session.set_target([x, y], duration).map_err(js_err)
+    }
+
+    /// Moves the obstacle centre to `(x, y)` (takes effect at the next step).
+    /// Throws, leaving it where it was, if the disc would overlap the base post.
+    #[wasm_bindgen(js_name = setObstacle)]
+    pub fn set_obstacle(&mut self, x: f64, y: f64) -> JsResult {
+        self.session.set_obstacle([x, y]).map_err(js_err)
+    }
+
+    /// Starts or pauses the clock.
+    #[wasm_bindgen(js_name = setRunning)]
+    pub fn set_running(&mut self, running: bool) {
+        self.session.set_running(running);
+    }
+
+    /// Whether the clock runs.
+    #[wasm_bindgen(getter)]
+    pub fn running(&self) -> bool {
+        self.session.running()
+    }
+
+    /// One RK4 step (the page's "step" button); pauses the clock.
+    pub fn step(&mut self) -> JsResult {
+        self.session.step().map_err(js_err)
+    }
+
+    /// Steps without drawing until `t >= time` (a fast path for tests and
+    /// scripts), honouring a task's stop time. At most 100 000 steps.
+    #[wasm_bindgen(js_name = runUntil)]
+    pub fn run_until(&mut self, time: f64) -> JsResult {
+        self.session.run_until(time).map_err(js_err)
+    }
+
+    /// Advances the clock by `elapsed_ms` of real time (scaled by the speed)
+    /// and draws the frame. Throws if a step fails; the clock is then paused
+    /// and the state is the last good one.
+    pub fn frame(&mut self, elapsed_ms: f64) -> JsResult {
+        let stepped = self.session.tick(elapsed_ms);
+        self.draw();
+        stepped.map_err(js_err)
+    }
+
+    /// Runs the current scene from `t = 0` to `tf` in each of the five modes,
+    /// off screen: `[{ mode, label, summary, error }]`, `summary` as the CLI's
+    /// JSON or `null` with `error` saying why the mode could not run.
+    #[wasm_bindgen(js_name = compareModes)]
+    pub fn compare_modes(&self) -> JsResult<JsValue> {
+        let fallback = shared_networks()
+            .ok()
+            .map(|n| std::sync::Arc::new(n) as std::sync::Arc<dyn Surrogate>);
+        to_js(&self.session.compare_modes(fallback))
+    }
+
+    /// A snapshot of the state as a plain object (see `docs/web.md`);
+    /// `networks` says whether the network cases can run (networks loaded,
+    /// or the built-in ones available).
+    pub fn state(&self) -> JsResult<JsValue> {
+        let mut state = self.session.state();
+        state.networks |= shared_networks().is_ok();
+        to_js(&state)
+    }
+
+    /// Sets the stage size in CSS pixels and the device-pixel ratio, then redraws.
+    pub fn resize(&mut self, width: f64, height: f64, dpr: f64) -> JsResult {
+        self.stage.resize(width, height, dpr)?;
+        self.draw();
+        Ok(())
+    }
+
+    /// Sets the plot canvas size in CSS pixels and the device-pixel ratio.
+    #[wasm_bindgen(js_name = resizePlots)]
+    pub fn resize_plots(&mut self, width: f64, height: f64, dpr: f64) -> JsResult {
+        if let Some(p) = &mut self.plots {
+            p.resize(width, height, dpr)?;
+        }
+        self.draw();
+        Ok(())
+    }
+
+    /// Canvas CSS-pixel position `[x, y]` of the world point `(x, y)` (metres).
+    #[wasm_bindgen(js_name = worldToCanvas)]
+    pub fn world_to_canvas(&self, x: f64, y: f64) -> JsResult<Vec<f64>> {
+        let (px, py) = self.stage.view().to_px([finite("x", x)?, finite("y", y)?]);
+        Ok(vec![px, py])
+    }
+
+    /// World position `[x, y]` (metres) of the canvas CSS-pixel point `(x, y)`.
+    #[wasm_bindgen(js_name = canvasToWorld)]
+    pub fn canvas_to_world(&self, x: f64, y: f64) -> JsResult<Vec<f64>> {
+        let view = self.stage.view();
+        Ok(view.to_world(finite("x", x)?, finite("y", y)?).to_vec())
+    }
+
+    /// What a pointer at canvas CSS pixel `(x, y)` would grab, with `slop`
+    /// extra pixels of tolerance: `"target"`, `"obstacle"` or `undefined`.
+    pub fn hover(&self, x: f64, y: f64, slop: f64) -> Option<String> {
+        input::hit(&self.session, &self.stage, x, y, slop).map(|h| h.name().into())
+    }
+
+    /// Starts a drag at canvas CSS pixel `(x, y)`; returns what was grabbed
+    /// (`"target"`, `"obstacle"` or `undefined`).
+    #[wasm_bindgen(js_name = pointerDown)]
+    pub fn pointer_down(&mut self, x: f64, y: f64, slop: f64) -> Option<String> {
+        let grabbed = input::hit(&self.session, &self.stage, x, y, slop);
+        self.session.drag_start(grabbed);
+        grabbed.map(|h| h.name().into())
+    }
+
+    /// Moves the held handle. The obstacle moves at once; throws (and stays
+    /// put) if it would overlap the base post. The target only moves its
+    /// marker until [`Demo::pointer_up`].
+    #[wasm_bindgen(js_name = pointerMove)]
+    pub fn pointer_move(&mut self, x: f64, y: f64) -> JsResult {
+        let p = input::drag_point(&self.stage, x, y);
+        self.session.drag_to(p).map_err(js_err)
+    }
+
+    /// Ends a drag at `(x, y)`. Releasing the target plans a new straight line
+    /// from the current end effector and starts the clock.
+    #[wasm_bindgen(js_name = pointerUp)]
+    pub fn pointer_up(&mut self, x: f64, y: f64) -> JsResult {
+        let p = input::drag_point(&self.stage, x, y);
+        self.session.drag_end(p).map_err(js_err)
+    }
+
+    /// Abandons a drag (pointer cancelled): the target stays where it was.
+    #[wasm_bindgen(js_name = pointerCancel)]
+    pub fn pointer_cancel(&mut self) {
+        self.session.drag_cancel();
+    }
+
+    /// A key pressed on the drawing: the arrows move the target by 5 cm
+    /// (planning a new line and starting the clock), with Shift the
+    /// obstacle. Returns whether the key was used; throws if the move was
+    /// refused (the obstacle onto the post).
+    pub fn key(&mut self, key: &str, shift: bool) -> JsResult<bool> {
+        let Some((handle, dx, dy)) = input::arrow(key, shift) else {
+            return Ok(false);
+        };
+        self.session.nudge(handle, dx, dy).map_err(js_err)?;
+        Ok(true)
+    }
+
+    /// Redraws the stage and the plots.
+    pub fn draw(&self) {
+        stage::draw(&self.session, &self.stage);
+        if let Some(p) = &self.plots {
+            plots::draw(&self.session, p);
+        }
+    }
+}

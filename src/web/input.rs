@@ -1,0 +1,61 @@
+//! Pointer and keyboard input on the stage: which handle a pointer would
+//! grab, where a drag may go, and what the arrow keys do.
+
+use super::surface::Surface;
+use crate::session::{Handle, Session};
+
+/// Radius (CSS px) of the target marker a pointer grabs.
+const TARGET_GRAB_PX: f64 = 10.0;
+/// Handles stay this far (CSS px) inside the canvas, so they can always be
+/// picked up again.
+const EDGE_PX: f64 = 8.0;
+
+/// What a pointer at canvas CSS pixel `(x, y)` would grab, with `slop`
+/// extra pixels of tolerance (0 to 64): the target before the obstacle.
+pub fn hit(s: &Session, surface: &Surface, x: f64, y: f64, slop: f64) -> Option<Handle> {
+    if !(x.is_finite() && y.is_finite() && slop.is_finite()) {
+        return None;
+    }
+    let slop = slop.clamp(0.0, 64.0);
+    let view = surface.view();
+    let near = |p: [f64; 2], r: f64| {
+        let (px, py) = view.to_px(p);
+        (px - x).hypot(py - y) <= r
+    };
+    if near(s.target_marker(), TARGET_GRAB_PX + slop) {
+        return Some(Handle::Target);
+    }
+    let ob = s.planner().scene().obstacles.first()?;
+    near(ob.centre, ob.radius * view.scale + slop).then_some(Handle::Obstacle)
+}
+
+/// The world point of canvas CSS pixel `(x, y)`, kept inside the canvas.
+pub fn drag_point(surface: &Surface, x: f64, y: f64) -> [f64; 2] {
+    let (w, h) = (surface.width, surface.height);
+    let clamp = |v: f64, hi: f64| {
+        if v.is_finite() {
+            v.clamp(EDGE_PX, (hi - EDGE_PX).max(EDGE_PX))
+        } else {
+            v
+        }
+    };
+    surface.view().to_world(clamp(x, w), clamp(y, h))
+}
+
+/// What an arrow key does on the drawing: `(handle, dx, dy)` in steps of
+/// [`crate::session::NUDGE`]; Shift moves the obstacle instead of the target.
+pub fn arrow(key: &str, shift: bool) -> Option<(Handle, f64, f64)> {
+    let (dx, dy) = match key {
+        "ArrowLeft" => (-1.0, 0.0),
+        "ArrowRight" => (1.0, 0.0),
+        "ArrowUp" => (0.0, 1.0),
+        "ArrowDown" => (0.0, -1.0),
+        _ => return None,
+    };
+    let handle = if shift {
+        Handle::Obstacle
+    } else {
+        Handle::Target
+    };
+    Some((handle, dx, dy))
+}

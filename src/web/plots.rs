@@ -1,0 +1,248 @@
+//! The time-series plots under the stage: distance to the obstacle (with
+//! its radius), tracking error and joint angles, each in a small panel.
+
+use std::f64::consts::PI;
+
+use web_sys::CanvasRenderingContext2d;
+
+use super::style::*;
+use super::surface::{dash, polyline, text, Surface};
+use crate::session::Session;
+
+/// Colours of the joint-angle series, `theta_1, theta_2, ...` in turn.
+const SERIES: [&str; 3] = [ARM, TEAL, ACCENT];
+
+/// Tick spacing giving about `target` ticks over `span`.
+pub fn nice_step(span: f64, target: f64) -> f64 {
+    let raw = (span / target).max(1e-12);
+    let mag = 10f64.powf(raw.log10().floor());
+    let f = raw / mag;
+    let nice = if f < 1.5 {
+        1.0
+    } else if f < 3.5 {
+        2.0
+    } else if f < 7.5 {
+        5.0
+    } else {
+        10.0
+    };
+    nice * mag
+}
+
+/// A tick label with as many decimals as the spacing needs.
+pub fn fmt_tick(v: f64, step: f64) -> String {
+    let decimals = (-step.log10().floor()).clamp(0.0, 6.0) as usize;
+    let v = if v.abs() < step * 1e-6 { 0.0 } else { v };
+    format!("{v:.decimals$}")
+}
+
+/// Draws the session's time series on `surface`.
+pub fn draw(s: &Session, surface: &Surface) {
+    surface.begin();
+    let ctx = &surface.ctx;
+    let history = s.history();
+    let (t0, t1) = match (history.first(), history.last()) {
+        (Some(a), Some(b)) => (a.t, b.t.max(a.t + 10.0)),
+        _ => (0.0, 10.0),
+    };
+    let h = surface.height / 3.0;
+    let radius = s.planner().scene().obstacles.first().map(|o| o.radius);
+
+    let distance: Vec<[f64; 2]> = history
+        .iter()
+        .filter_map(|p| p.distance.map(|d| [p.t, d]))
+        .collect();
+    let dmax = distance
+        .iter()
+        .map(|p| p[1])
+        .fold(radius.unwrap_or(0.0) * 2.0, f64::max);
+    let frame = Frame::new(surface.width, 0.0, h, (t0, t1), (0.0, dmax * 1.1));
+    frame.axes(ctx, "distance to obstacle (m)");
+    if let Some(r) = radius {
+        ctx.set_stroke_style_str(DANGER);
+        ctx.set_line_width(1.0);
+        dash(ctx, &[4.0, 3.0]);
+        frame.line(ctx, &[[t0, r], [t1, r]]);
+        dash(ctx, &[]);
+        let (_, y) = frame.px(t1, r);
+        let font = format!("10px {FONT}");
+        text(
+            ctx,
+            &font,
+            DANGER,
+            ("right", "bottom"),
+            (frame.right, y - 2.0),
+            "radius",
+        );
+    }
+    frame.series(ctx, ARM, 1.75, &distance);
+
+    let error: Vec<[f64; 2]> = history.iter().map(|p| [p.t, p.error]).collect();
+    let emax = error.iter().map(|p| p[1]).fold(1e-3, f64::max);
+    let frame = Frame::new(surface.width, h, h, (t0, t1), (0.0, emax * 1.1));
+    frame.axes(ctx, "tracking error (m)");
+    frame.series(ctx, ACCENT, 1.75, &error);
+
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for v in history.iter().flat_map(|p| &p.theta) {
+        lo = lo.min(*v);
+        hi = hi.max(*v);
+    }
+    if !(lo.is_finite() && hi.is_finite()) {
+        (lo, hi) = (-PI, PI);
+    }
+    let pad = ((hi - lo) * 0.1).max(0.1);
+    let frame = Frame::new(surface.width, 2.0 * h, h, (t0, t1), (lo - pad, hi + pad));
+    frame.axes(ctx, "joint angles (rad)");
+    let joints = history.first().map_or(0, |p| p.theta.len());
+    for i in 0..joints {
+        let colour = SERIES[i % SERIES.len()];
+        frame.key(ctx, i, joints, &format!("θ{}", subscript(i + 1)), colour);
+        let series: Vec<[f64; 2]> = history
+            .iter()
+            .filter_map(|p| p.theta.get(i).map(|v| [p.t, *v]))
+            .collect();
+        frame.series(ctx, colour, 1.5, &series);
+    }
+}
+
+/// `n` in Unicode subscript digits.
+fn subscript(n: usize) -> String {
+    n.to_string()
+        .chars()
+        .map(|c| char::from_u32(0x2080 + c.to_digit(10).unwrap_or(0)).unwrap_or(c))
+        .collect()
+}
+
+/// One small time-series panel.
+struct Frame {
+    left: f64,
+    right: f64,
+    top: f64,
+    bottom: f64,
+    tx: (f64, f64),
+    vy: (f64, f64),
+}
+
+impl Frame {
+    fn new(width: f64, y0: f64, height: f64, tx: (f64, f64), vy: (f64, f64)) -> Self {
+        let span = (vy.1 - vy.0).abs().max(1e-12);
+        Self {
+            left: 44.0,
+            right: width - 10.0,
+            top: y0 + 22.0,
+            bottom: y0 + height - 18.0,
+            tx,
+            vy: (vy.0, vy.0 + span),
+        }
+    }
+
+    fn px(&self, t: f64, v: f64) -> (f64, f64) {
+        let fx = (t - self.tx.0) / (self.tx.1 - self.tx.0).max(1e-12);
+        let fy = (v - self.vy.0) / (self.vy.1 - self.vy.0);
+        (
+            self.left + fx * (self.right - self.left),
+            self.bottom - fy.clamp(-0.05, 1.05) * (self.bottom - self.top),
+        )
+    }
+
+    fn axes(&self, ctx: &CanvasRenderingContext2d, title: &str) {
+        let bold = format!("600 11px {FONT}");
+        let small = format!("10px {FONT}");
+        text(
+            ctx,
+            &bold,
+            INK,
+            ("left", "bottom"),
+            (self.left, self.top - 6.0),
+            title,
+        );
+        ctx.set_line_width(1.0);
+        ctx.set_stroke_style_str(GRID);
+        let step = nice_step(self.vy.1 - self.vy.0, 3.0);
+        let mut v = (self.vy.0 / step).ceil() * step;
+        while v <= self.vy.1 + 1e-12 {
+            let (_, y) = self.px(self.tx.0, v);
+            let y = y.round() + 0.5;
+            polyline(ctx, None, &[[self.left, y], [self.right, y]]);
+            let at = (self.left - 5.0, y);
+            text(
+                ctx,
+                &small,
+                MUTED,
+                ("right", "middle"),
+                at,
+                &fmt_tick(v, step),
+            );
+            v += step;
+        }
+        let step = nice_step(self.tx.1 - self.tx.0, 5.0);
+        let mut t = (self.tx.0 / step).ceil() * step;
+        while t <= self.tx.1 + 1e-9 {
+            let (x, _) = self.px(t, self.vy.0);
+            if x < self.right - 34.0 {
+                let at = (x, self.bottom + 3.0);
+                text(
+                    ctx,
+                    &small,
+                    MUTED,
+                    ("center", "top"),
+                    at,
+                    &fmt_tick(t, step),
+                );
+            }
+            t += step;
+        }
+        let at = (self.right, self.bottom + 3.0);
+        text(ctx, &small, MUTED, ("right", "top"), at, "t (s)");
+        ctx.set_stroke_style_str(AXIS);
+        let corner = [
+            [self.left + 0.5, self.top],
+            [self.left + 0.5, self.bottom + 0.5],
+            [self.right, self.bottom + 0.5],
+        ];
+        polyline(ctx, None, &corner);
+    }
+
+    fn line(&self, ctx: &CanvasRenderingContext2d, pts: &[[f64; 2]]) {
+        let px: Vec<[f64; 2]> = pts
+            .iter()
+            .map(|p| {
+                let (x, y) = self.px(p[0], p[1]);
+                [x, y]
+            })
+            .collect();
+        polyline(ctx, None, &px);
+    }
+
+    fn series(&self, ctx: &CanvasRenderingContext2d, colour: &str, width: f64, pts: &[[f64; 2]]) {
+        ctx.set_stroke_style_str(colour);
+        ctx.set_line_width(width);
+        self.line(ctx, pts);
+    }
+
+    /// Entry `index` of `count` of the panel's legend, right-aligned in the
+    /// title row.
+    fn key(
+        &self,
+        ctx: &CanvasRenderingContext2d,
+        index: usize,
+        count: usize,
+        label: &str,
+        colour: &str,
+    ) {
+        let x = self.right - 40.0 * (count - 1 - index.min(count - 1)) as f64 - 18.0;
+        let y = self.top - 12.0;
+        ctx.set_stroke_style_str(colour);
+        ctx.set_line_width(2.0);
+        polyline(ctx, None, &[[x - 16.0, y], [x - 4.0, y]]);
+        text(
+            ctx,
+            &format!("11px {FONT}"),
+            INK,
+            ("left", "middle"),
+            (x, y),
+            label,
+        );
+    }
+}

@@ -1,0 +1,229 @@
+//! The stage: the arm, its ghost, the obstacle, the line, the target and the
+//! traces, over a metric grid.
+
+use web_sys::CanvasRenderingContext2d;
+
+use super::plots::{fmt_tick, nice_step};
+use super::style::*;
+use super::surface::{dash, disc, polyline, text, Surface, View};
+use crate::session::{Handle, Session};
+
+/// Draws the session on the stage.
+pub fn draw(s: &Session, surface: &Surface) {
+    let ctx = &surface.ctx;
+    let view = surface.view();
+    surface.begin();
+    grid(ctx, view, surface.width, surface.height);
+
+    let planner = s.planner();
+    let scene = planner.scene();
+    let arm = &scene.arm;
+    let base = [0.0, arm.post()];
+
+    // Workspace boundary: what the end effector can reach.
+    ctx.set_stroke_style_str(AXIS);
+    ctx.set_line_width(1.0);
+    dash(ctx, &[2.0, 5.0]);
+    let (bx, by) = view.to_px(base);
+    disc(ctx, bx, by, arm.max_reach() * view.scale);
+    ctx.stroke();
+    dash(ctx, &[]);
+
+    // Where the v network saw obstacles in training (network v modes).
+    if let (true, Some(r)) = (planner.mode().learned_v(), s.trained_range()) {
+        let (x0, y0) = view.to_px(r.obstacle_min);
+        let (x1, y1) = view.to_px(r.obstacle_max);
+        ctx.set_stroke_style_str(REGION);
+        ctx.set_line_width(1.0);
+        dash(ctx, &[3.0, 4.0]);
+        ctx.stroke_rect(x0.min(x1), y0.min(y1), (x1 - x0).abs(), (y1 - y0).abs());
+        dash(ctx, &[]);
+        let at = (x0.min(x1) + 3.0, y0.min(y1) - 3.0);
+        let label = "v net: trained obstacle region";
+        text(
+            ctx,
+            &format!("10px {FONT}"),
+            MUTED,
+            ("left", "bottom"),
+            at,
+            label,
+        );
+    }
+
+    // Stroboscopic trace: every few poses, faint (as in Figs. 2-11).
+    ctx.set_stroke_style_str(ARM);
+    ctx.set_global_alpha(STROBE_ALPHA);
+    ctx.set_line_width(1.5);
+    for pose in s.strobe() {
+        polyline(ctx, Some(view), pose);
+    }
+    ctx.set_global_alpha(1.0);
+
+    // The straight line being tracked.
+    let line = planner.line();
+    ctx.set_stroke_style_str(MUTED);
+    ctx.set_line_width(1.25);
+    dash(ctx, &[6.0, 5.0]);
+    polyline(ctx, Some(view), &[line.start, line.end]);
+    dash(ctx, &[]);
+
+    // End-effector trail.
+    ctx.set_stroke_style_str(ACCENT);
+    ctx.set_line_width(2.0);
+    polyline(ctx, Some(view), s.trail());
+
+    // Obstacle discs, with their points O.
+    let hit = planner.sample().collision;
+    for (i, ob) in scene.obstacles.iter().enumerate() {
+        let (ox, oy) = view.to_px(ob.centre);
+        disc(ctx, ox, oy, ob.radius * view.scale);
+        let alpha = if hit { HIT_ALPHA } else { OBSTACLE_ALPHA };
+        ctx.set_fill_style_str(&rgba(DANGER, alpha));
+        ctx.fill();
+        ctx.set_stroke_style_str(DANGER);
+        let held = i == 0 && s.dragging() == Some(Handle::Obstacle);
+        ctx.set_line_width(if held { 2.5 } else { 1.5 });
+        ctx.stroke();
+        disc(ctx, ox, oy, 2.0);
+        ctx.set_fill_style_str(DANGER);
+        ctx.fill();
+    }
+
+    // Base post and ground.
+    let (gx, gy) = view.to_px([0.0, 0.0]);
+    ctx.set_fill_style_str(GROUND);
+    ctx.fill_rect(gx - 18.0, gy, 36.0, 6.0);
+    ctx.set_stroke_style_str(POST);
+    ctx.set_line_width(8.0);
+    ctx.set_line_cap("butt");
+    polyline(ctx, Some(view), &[[0.0, 0.0], base]);
+    ctx.set_line_cap("round");
+
+    // The arm.
+    if let Some(pts) = s.display_joints(false) {
+        ctx.set_stroke_style_str(ARM);
+        ctx.set_line_width(7.0);
+        polyline(ctx, Some(view), &pts);
+        for (i, p) in pts.iter().enumerate() {
+            let (x, y) = view.to_px(*p);
+            let last = i + 1 == pts.len();
+            disc(ctx, x, y, if last { 3.5 } else { 5.0 });
+            ctx.set_fill_style_str(if last { ARM } else { PAPER });
+            ctx.fill();
+            ctx.set_line_width(2.0);
+            ctx.stroke();
+        }
+    }
+
+    // Ghost, on top: where the numerical route would have the arm.
+    if let Some(pts) = s.display_joints(true) {
+        ctx.set_global_alpha(GHOST_ALPHA);
+        ctx.set_stroke_style_str(GHOST);
+        ctx.set_line_width(2.0);
+        dash(ctx, &[7.0, 5.0]);
+        polyline(ctx, Some(view), &pts);
+        dash(ctx, &[]);
+        for p in &pts[1..] {
+            let (x, y) = view.to_px(*p);
+            disc(ctx, x, y, 3.0);
+            ctx.stroke();
+        }
+        ctx.set_global_alpha(1.0);
+    }
+
+    // Reference point on the line.
+    let (rx, ry) = view.to_px(planner.sample().reference);
+    disc(ctx, rx, ry, 3.0);
+    ctx.set_fill_style_str(MUTED);
+    ctx.fill();
+
+    target(ctx, view, s);
+
+    let caption = format!(
+        "t = {:.1} s   ·   {}",
+        planner.sample().t,
+        planner.mode().title()
+    );
+    text(
+        ctx,
+        &format!("600 12px {FONT}"),
+        INK,
+        ("left", "top"),
+        (12.0, 10.0),
+        &caption,
+    );
+}
+
+/// The target marker (at the pointer while it is dragged): a ring and a cross.
+fn target(ctx: &CanvasRenderingContext2d, view: View, s: &Session) {
+    let (tx, ty) = view.to_px(s.target_marker());
+    ctx.set_stroke_style_str(ACCENT);
+    let held = s.dragging() == Some(Handle::Target);
+    ctx.set_line_width(if held { 2.5 } else { 2.0 });
+    disc(ctx, tx, ty, 9.0);
+    ctx.stroke();
+    ctx.begin_path();
+    for (dx, dy) in [(1.0, 0.0), (-1.0, 0.0), (0.0, 1.0), (0.0, -1.0)] {
+        ctx.move_to(tx + 4.0 * dx, ty + 4.0 * dy);
+        ctx.line_to(tx + 14.0 * dx, ty + 14.0 * dy);
+    }
+    ctx.stroke();
+}
+
+/// A metric grid with labelled axes through the origin.
+fn grid(ctx: &CanvasRenderingContext2d, view: View, w: f64, h: f64) {
+    let lo = view.to_world(0.0, h);
+    let hi = view.to_world(w, 0.0);
+    let step = nice_step((hi[0] - lo[0]).min(hi[1] - lo[1]), 6.0);
+    let font = format!("11px {FONT}");
+    ctx.set_line_width(1.0);
+    let (ax, ay) = view.to_px([0.0, 0.0]);
+    let lines = |lo: f64, hi: f64| {
+        let first = (lo / step).ceil() as i64;
+        let last = (hi / step).floor() as i64;
+        (first..=last).map(move |k| k as f64 * step)
+    };
+    for x in lines(lo[0], hi[0]) {
+        let (px, _) = view.to_px([x, 0.0]);
+        ctx.set_stroke_style_str(if x.abs() < 1e-9 { AXIS } else { GRID });
+        let px = px.round() + 0.5;
+        polyline(ctx, None, &[[px, 0.0], [px, h]]);
+        if x.abs() > 1e-9 {
+            let at = (px, (ay + 8.0).min(h - 14.0));
+            text(ctx, &font, MUTED, ("center", "top"), at, &fmt_tick(x, step));
+        }
+    }
+    for y in lines(lo[1], hi[1]) {
+        let (_, py) = view.to_px([0.0, y]);
+        ctx.set_stroke_style_str(if y.abs() < 1e-9 { AXIS } else { GRID });
+        let py = py.round() + 0.5;
+        polyline(ctx, None, &[[0.0, py], [w, py]]);
+        if y.abs() > 1e-9 {
+            let at = ((ax - 6.0).max(28.0), py);
+            text(
+                ctx,
+                &font,
+                MUTED,
+                ("right", "middle"),
+                at,
+                &fmt_tick(y, step),
+            );
+        }
+    }
+    text(
+        ctx,
+        &font,
+        MUTED,
+        ("right", "bottom"),
+        (w - 8.0, ay - 4.0),
+        "X₁ (m)",
+    );
+    text(
+        ctx,
+        &font,
+        MUTED,
+        ("left", "top"),
+        (ax + 6.0, 30.0),
+        "X₂ (m)",
+    );
+}
