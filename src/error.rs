@@ -137,6 +137,13 @@ pub enum Error {
     },
     /// A network weights file is corrupt or does not fit.
     Weights(String),
+    /// A scene without obstacles where one is needed (the atlas moves the first).
+    NoObstacle,
+    /// A region `[x0, x1, y0, y1]` with `x0 >= x1` or `y0 >= y1`.
+    EmptyRegion {
+        /// The region given.
+        region: [f64; 4],
+    },
     /// Training options or data that cannot work (too few samples, a split
     /// that leaves nothing to train on, a sampling region that yields no pose).
     Training(String),
@@ -217,6 +224,14 @@ impl fmt::Display for Error {
                 trained.0, trained.1, arm.0, arm.1
             ),
             Error::Weights(msg) => write!(f, "bad network weights: {msg}"),
+            Error::NoObstacle => write!(
+                f,
+                "the scene has no obstacle; the atlas moves the first one over the grid"
+            ),
+            Error::EmptyRegion { region: [x0, x1, y0, y1] } => write!(
+                f,
+                "region x {x0}..{x1}, y {y0}..{y1} is empty: it needs x0 < x1 and y0 < y1"
+            ),
             Error::Training(msg) => write!(f, "cannot train: {msg}"),
         }
     }

@@ -4,6 +4,7 @@
 #![warn(missing_docs)]
 
 pub mod arm;
+pub mod atlas;
 pub mod bench;
 pub mod error;
 #[cfg(feature = "eval")]

@@ -256,6 +256,30 @@ impl Planner {
         Ok(())
     }
 
+    /// Moves obstacle `index` to `centre`, keeping its radius; takes effect
+    /// at the next step. Allocation-free (what an atlas of thousands of runs
+    /// needs). Refused, leaving everything as it was, if the disc would
+    /// overlap the base post or `index` names no obstacle.
+    pub fn move_obstacle(&mut self, index: usize, centre: [f64; 2]) -> Result<()> {
+        let count = self.scene.obstacles.len();
+        let Some(ob) = self.scene.obstacles.get(index) else {
+            return Err(Error::OutOfRange {
+                what: "obstacle index".into(),
+                value: index as f64,
+                min: 0.0,
+                max: count as f64 - 1.0,
+            });
+        };
+        let moved = crate::obstacle::Obstacle {
+            centre,
+            radius: ob.radius,
+        };
+        moved.validate(&self.scene.arm)?;
+        self.scene.obstacles[index] = moved;
+        self.resample();
+        Ok(())
+    }
+
     /// Sets `lambda`, the gain of the obstacle vector.
     pub fn set_lambda(&mut self, lambda: f64) -> Result<()> {
         scene::validate_lambda(lambda)?;

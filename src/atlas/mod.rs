@@ -1,0 +1,453 @@
+//! The robustness atlas: the paper's task run with its (first) obstacle
+//! centred on every point of a grid over the workspace, in every chosen
+//! mode, each outcome classified. The paper shows two obstacle positions and
+//! calls the approach robust; the atlas maps where the networks, and the
+//! triangle-area criterion of eqs. (12)-(16) itself, keep the arm clear.
+//!
+//! A run is never cut short at its first collision, so `min_distance` is the
+//! run's true minimum over its samples. Each mode keeps one planner and
+//! moves the obstacle with [`Planner::move_obstacle`], so the runs allocate
+//! nothing. The work is done in chunks ([`Job::advance`]) so that a caller
+//! can report progress and cancel between them: a progress bar in the
+//! command-line tool, a Web Worker's messages in the page.
+
+mod grid;
+mod summary;
+
+use std::sync::Arc;
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::kinematics::{segment_distance_squared, Pose};
+use crate::networks::Networks;
+use crate::planner::{Mode, Planner, Surrogate};
+use crate::scene::Scene;
+
+pub use grid::{Grid, DEFAULT_GRID, MAX_GRID};
+pub use summary::{Agreement, ModeSummary, Rate};
+
+/// What happened with the obstacle centred on one cell, in one mode.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Class {
+    /// The disc touches the arm at `t = 0`, or the base post: nothing is run.
+    StartOverlap,
+    /// The disc covers a point of the straight line the end effector must
+    /// follow, so no method can avoid it (still run and recorded).
+    PathBlocked,
+    /// No collision, and the target reached within 5 mm.
+    Success,
+    /// A link entered the disc.
+    Collision,
+    /// No collision, but the end effector ended more than 5 mm from the target.
+    Missed,
+    /// The run stopped with an error (e.g. diverging at a singular pose).
+    Failed,
+}
+
+impl Class {
+    /// Every class, in the order of the legends.
+    pub const ALL: [Class; 6] = [
+        Class::Success,
+        Class::Collision,
+        Class::Missed,
+        Class::Failed,
+        Class::PathBlocked,
+        Class::StartOverlap,
+    ];
+
+    /// The name used in JSON and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Class::StartOverlap => "start_overlap",
+            Class::PathBlocked => "path_blocked",
+            Class::Success => "success",
+            Class::Collision => "collision",
+            Class::Missed => "missed",
+            Class::Failed => "failed",
+        }
+    }
+
+    /// What the class means, for legends.
+    pub fn label(self) -> &'static str {
+        match self {
+            Class::StartOverlap => "overlaps the arm at t = 0 (not run)",
+            Class::PathBlocked => "covers the path: unavoidable",
+            Class::Success => "clear, target reached",
+            Class::Collision => "collision",
+            Class::Missed => "clear, target missed (> 5 mm)",
+            Class::Failed => "run failed",
+        }
+    }
+
+    /// The colour of the class in the maps (the command-line tool's SVG and
+    /// the page's layer use the same), `#rrggbb`.
+    pub fn colour(self) -> &'static str {
+        match self {
+            Class::Success => "#5fb89a",
+            Class::Collision => "#c0392b",
+            Class::Missed => "#e9a23b",
+            Class::Failed => "#7d4e9e",
+            Class::PathBlocked => "#8f9aa6",
+            Class::StartOverlap => "#3d4650",
+        }
+    }
+
+    /// Whether an avoiding method could have succeeded here: the disc is
+    /// clear of the start pose and of the path.
+    pub fn avoidable(self) -> bool {
+        !matches!(self, Class::StartOverlap | Class::PathBlocked)
+    }
+}
+
+/// The record of one run (one cell, one mode).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Outcome {
+    /// The class.
+    pub class: Class,
+    /// Smallest obstacle-centre-to-link distance over the run's samples
+    /// (`None` when nothing was run).
+    pub min_distance: Option<f64>,
+    /// Distance from the end effector to the target at the end (or where
+    /// the run failed).
+    pub final_error: Option<f64>,
+    /// Steps at which a network's input left its trained range.
+    pub out_of_range_steps: usize,
+    /// Why the run stopped, for `failed` (and a `path_blocked` run that failed).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub error: Option<String>,
+}
+
+impl Outcome {
+    fn not_run() -> Self {
+        Self {
+            class: Class::StartOverlap,
+            min_distance: None,
+            final_error: None,
+            out_of_range_steps: 0,
+            error: None,
+        }
+    }
+}
+
+/// One grid point and its outcome in each mode (in the order of
+/// [`Atlas::modes`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cell {
+    /// Obstacle centre x (m).
+    pub x: f64,
+    /// Obstacle centre y (m).
+    pub y: f64,
+    /// One outcome per mode.
+    pub outcomes: Vec<Outcome>,
+}
+
+/// What to map: a scene (whose first obstacle is moved), a grid and modes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Spec {
+    /// The scene; its first obstacle is centred on each cell in turn (its
+    /// radius is kept, any other obstacles stay where they are).
+    pub scene: Scene,
+    /// The obstacle centres.
+    pub grid: Grid,
+    /// The modes to run (duplicates are dropped).
+    pub modes: Vec<Mode>,
+    /// The paper task the scene came from, for the report.
+    pub task: Option<u32>,
+}
+
+impl Spec {
+    /// The paper's task `task` on the default grid ([`Grid::around_reach`],
+    /// [`DEFAULT_GRID`] points per side) in all five modes.
+    pub fn task(task: u32) -> Result<Self> {
+        let scene = Scene::task(task)?;
+        let grid = Grid::around_reach(&scene.arm, DEFAULT_GRID);
+        Ok(Self {
+            scene,
+            grid,
+            modes: Mode::ALL.to_vec(),
+            task: Some(task),
+        })
+    }
+}
+
+/// A finished atlas.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Atlas {
+    /// The paper task, if the scene is one.
+    pub task: Option<u32>,
+    /// The grid.
+    pub grid: Grid,
+    /// Radius of the moved obstacle (m).
+    pub radius: f64,
+    /// Gain `lambda` of the obstacle vector.
+    pub lambda: f64,
+    /// The modes, in the order of each cell's outcomes.
+    pub modes: Vec<Mode>,
+    /// Row by row from `y0`, each row from `x0`: cell `(i, j)` is `cells[j * n + i]`.
+    pub cells: Vec<Cell>,
+    /// Where the `v` network saw obstacle centres in training,
+    /// `[x0, x1, y0, y1]` (when networks were given).
+    pub trained_region: Option<[f64; 4]>,
+    /// One summary per mode.
+    pub summary: Vec<ModeSummary>,
+}
+
+impl Atlas {
+    /// Runs a whole atlas on this thread. `networks` are needed for the
+    /// network modes (and give the trained obstacle region of the summary).
+    pub fn run(spec: Spec, networks: Option<Arc<Networks>>) -> Result<Self> {
+        let mut job = Job::new(spec, networks)?;
+        while !job.is_done() {
+            job.advance(usize::MAX);
+        }
+        job.finish()
+    }
+
+    /// The outcome of cell `index` in `mode`, if the atlas ran that mode.
+    pub fn outcome(&self, index: usize, mode: Mode) -> Option<&Outcome> {
+        let m = self.modes.iter().position(|&x| x == mode)?;
+        self.cells.get(index)?.outcomes.get(m)
+    }
+
+    /// The summary of `mode`.
+    pub fn summary_of(&self, mode: Mode) -> Option<&ModeSummary> {
+        self.summary.iter().find(|s| s.mode == mode)
+    }
+}
+
+/// The start pose and the path, which decide `start_overlap` and
+/// `path_blocked` for every mode at once.
+#[derive(Debug, Clone)]
+struct Geometry {
+    start: Pose,
+    post_top: [f64; 2],
+    path: [[f64; 2]; 2],
+    radius: f64,
+}
+
+impl Geometry {
+    fn new(scene: &Scene, radius: f64) -> Result<Self> {
+        let start = Pose::new(&scene.arm, &scene.theta0)?;
+        let path = [start.end_effector(), scene.target];
+        Ok(Self {
+            post_top: [0.0, scene.arm.post()],
+            start,
+            path,
+            radius,
+        })
+    }
+
+    /// `start_overlap`, `path_blocked` or neither (`None`) for a centre.
+    /// "Touches" and "covers" use the planner's collision test, distance
+    /// below the radius; the post as [`crate::Obstacle::validate`] does.
+    fn classify(&self, o: [f64; 2]) -> Option<Class> {
+        let r2 = self.radius * self.radius;
+        let post = segment_distance_squared(o, [0.0, 0.0], self.post_top);
+        if post <= r2 || self.start.clearance(o) < self.radius {
+            Some(Class::StartOverlap)
+        } else if segment_distance_squared(o, self.path[0], self.path[1]) < r2 {
+            Some(Class::PathBlocked)
+        } else {
+            None
+        }
+    }
+}
+
+/// An atlas being computed, a chunk of cells at a time.
+#[derive(Debug, Clone)]
+pub struct Job {
+    spec: Spec,
+    geometry: Geometry,
+    steps: usize,
+    networks: Option<Arc<Networks>>,
+    /// One planner per mode, reused for every cell.
+    planners: Vec<Planner>,
+    cells: Vec<Cell>,
+}
+
+impl Job {
+    /// Checks the spec and builds one planner per mode. Network modes
+    /// without networks, or networks for another arm, are refused here.
+    pub fn new(mut spec: Spec, networks: Option<Arc<Networks>>) -> Result<Self> {
+        spec.scene.validate()?;
+        spec.grid.validate()?;
+        let mut modes = Vec::new();
+        for m in spec.modes.iter().copied() {
+            if !modes.contains(&m) {
+                modes.push(m);
+            }
+        }
+        if modes.is_empty() {
+            return Err(Error::OutOfRange {
+                what: "number of modes".into(),
+                value: 0.0,
+                min: 1.0,
+                max: Mode::ALL.len() as f64,
+            });
+        }
+        spec.modes = modes;
+        let radius = spec
+            .scene
+            .obstacles
+            .first()
+            .ok_or(Error::NoObstacle)?
+            .radius;
+        let geometry = Geometry::new(&spec.scene, radius)?;
+        let surrogate = networks.clone().map(|n| n as Arc<dyn Surrogate>);
+        let planners = spec
+            .modes
+            .iter()
+            .map(|&m| {
+                let nets = (m.learned_phi() || m.learned_v()).then(|| surrogate.clone());
+                Planner::new(spec.scene.clone(), m, nets.flatten())
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let steps = spec.scene.steps();
+        let cells = Vec::with_capacity(spec.grid.cells());
+        Ok(Self {
+            spec,
+            geometry,
+            steps,
+            networks,
+            planners,
+            cells,
+        })
+    }
+
+    /// Cells in the grid.
+    pub fn total(&self) -> usize {
+        self.spec.grid.cells()
+    }
+
+    /// Cells computed so far.
+    pub fn done(&self) -> usize {
+        self.cells.len()
+    }
+
+    /// Whether every cell is computed.
+    pub fn is_done(&self) -> bool {
+        self.done() == self.total()
+    }
+
+    /// Computes up to `cells` more cells on this thread; returns how many
+    /// are done in all.
+    pub fn advance(&mut self, cells: usize) -> usize {
+        let end = self.done().saturating_add(cells).min(self.total());
+        for index in self.done()..end {
+            let cell = run_cell(
+                &mut self.planners,
+                &self.geometry,
+                self.steps,
+                self.spec.grid.point(index),
+            );
+            self.cells.push(cell);
+        }
+        self.done()
+    }
+
+    /// [`Job::advance`] across the machine's cores (rayon): each thread
+    /// runs its cells with its own copy of the planners. The cells equal
+    /// those of the one-thread path (each run is deterministic).
+    #[cfg(all(feature = "parallel", not(target_family = "wasm")))]
+    pub fn advance_parallel(&mut self, cells: usize) -> usize {
+        use rayon::prelude::*;
+        let end = self.done().saturating_add(cells).min(self.total());
+        let (planners, geometry, steps, grid) =
+            (&self.planners, &self.geometry, self.steps, &self.spec.grid);
+        let new: Vec<Cell> = (self.done()..end)
+            .into_par_iter()
+            .map_init(
+                || planners.clone(),
+                |p, index| run_cell(p, geometry, steps, grid.point(index)),
+            )
+            .collect();
+        self.cells.extend(new);
+        self.done()
+    }
+
+    /// The atlas with its summaries; refused while cells are missing.
+    pub fn finish(self) -> Result<Atlas> {
+        if !self.is_done() {
+            return Err(Error::OutOfRange {
+                what: "atlas cells computed".into(),
+                value: self.done() as f64,
+                min: self.total() as f64,
+                max: self.total() as f64,
+            });
+        }
+        let trained_region = self.networks.as_ref().map(|n| {
+            let r = n.trained_range();
+            [
+                r.obstacle_min[0],
+                r.obstacle_max[0],
+                r.obstacle_min[1],
+                r.obstacle_max[1],
+            ]
+        });
+        let summary = summary::summarise(&self.spec.modes, &self.cells, trained_region);
+        Ok(Atlas {
+            task: self.spec.task,
+            grid: self.spec.grid,
+            radius: self.geometry.radius,
+            lambda: self.spec.scene.lambda,
+            modes: self.spec.modes,
+            cells: self.cells,
+            trained_region,
+            summary,
+        })
+    }
+}
+
+/// Runs every mode with the obstacle centred on `o`.
+fn run_cell(planners: &mut [Planner], geometry: &Geometry, steps: usize, o: [f64; 2]) -> Cell {
+    let outcomes = match geometry.classify(o) {
+        Some(Class::StartOverlap) => planners.iter().map(|_| Outcome::not_run()).collect(),
+        blocked => planners
+            .iter_mut()
+            .map(|p| run_one(p, steps, o, blocked.is_some()))
+            .collect(),
+    };
+    Cell {
+        x: o[0],
+        y: o[1],
+        outcomes,
+    }
+}
+
+/// One run from `t = 0` with the obstacle at `o`, to the end or to the first
+/// error; the planner is left at the end of the run.
+fn run_one(p: &mut Planner, steps: usize, o: [f64; 2], path_blocked: bool) -> Outcome {
+    if p.move_obstacle(0, o).is_err() {
+        // Only the post can refuse it, and classify() caught that already.
+        return Outcome::not_run();
+    }
+    p.reset();
+    let mut error = None;
+    for _ in 0..steps {
+        if let Err(e) = p.step() {
+            error = Some(e.to_string());
+            break;
+        }
+    }
+    let s = p.summary();
+    let class = if path_blocked {
+        Class::PathBlocked
+    } else if error.is_some() {
+        Class::Failed
+    } else if s.collided {
+        Class::Collision
+    } else if !s.reached {
+        Class::Missed
+    } else {
+        Class::Success
+    };
+    Outcome {
+        class,
+        min_distance: s.min_distance,
+        final_error: Some(s.final_error),
+        out_of_range_steps: s.out_of_range_steps,
+        error,
+    }
+}

@@ -1,0 +1,225 @@
+//! What an atlas says per mode, and its JSON form.
+
+use serde::ser::{SerializeMap, SerializeStruct};
+use serde::{Serialize, Serializer};
+
+use super::{Atlas, Cell, Class, Outcome};
+use crate::planner::Mode;
+
+/// Successes among some cells.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Rate {
+    /// Cells counted (where avoidance is possible).
+    pub cells: usize,
+    /// Of which `success`.
+    pub successes: usize,
+    /// `successes / cells` (`None` without cells).
+    pub rate: Option<f64>,
+}
+
+impl Rate {
+    fn of(cells: usize, successes: usize) -> Self {
+        Self {
+            cells,
+            successes,
+            rate: (cells > 0).then(|| successes as f64 / cells as f64),
+        }
+    }
+}
+
+/// A network mode against the numerical route, cell by cell.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct Agreement {
+    /// Cells where both succeed.
+    pub both: usize,
+    /// Cells where the numerical route succeeds and this mode does not.
+    pub numerical_only: usize,
+    /// Cells where this mode succeeds and the numerical route does not.
+    pub mode_only: usize,
+    /// Cells where neither succeeds.
+    pub neither: usize,
+}
+
+/// One mode over the whole grid.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModeSummary {
+    /// The mode.
+    pub mode: Mode,
+    /// Cells of each class, in the order of [`Class::ALL`].
+    pub counts: [usize; 6],
+    /// Success over the cells where avoidance is possible (neither
+    /// `start_overlap` nor `path_blocked`).
+    pub avoidable: Rate,
+    /// The same inside the `v` network's trained obstacle region.
+    pub inside_trained_region: Option<Rate>,
+    /// The same outside it.
+    pub outside_trained_region: Option<Rate>,
+    /// For the network modes, when the numerical route was mapped too.
+    pub agreement: Option<Agreement>,
+}
+
+impl ModeSummary {
+    /// Cells of class `class`.
+    pub fn count(&self, class: Class) -> usize {
+        Class::ALL
+            .iter()
+            .position(|&c| c == class)
+            .map_or(0, |k| self.counts[k])
+    }
+
+    /// Success rate over the cells where avoidance is possible.
+    pub fn success_rate(&self) -> Option<f64> {
+        self.avoidable.rate
+    }
+}
+
+fn inside(region: [f64; 4], c: &Cell) -> bool {
+    (region[0]..=region[1]).contains(&c.x) && (region[2]..=region[3]).contains(&c.y)
+}
+
+pub(super) fn summarise(
+    modes: &[Mode],
+    cells: &[Cell],
+    region: Option<[f64; 4]>,
+) -> Vec<ModeSummary> {
+    let numerical = modes.iter().position(|&m| m == Mode::Numerical);
+    let success = |o: &Outcome| o.class == Class::Success;
+    modes
+        .iter()
+        .enumerate()
+        .map(|(k, &mode)| {
+            let mut counts = [0; 6];
+            let (mut all, mut ins, mut outs) = ((0, 0), (0, 0), (0, 0));
+            let mut agree = Agreement {
+                both: 0,
+                numerical_only: 0,
+                mode_only: 0,
+                neither: 0,
+            };
+            for cell in cells {
+                let o = &cell.outcomes[k];
+                let class_index = Class::ALL.iter().position(|&c| c == o.class).unwrap_or(0);
+                counts[class_index] += 1;
+                if o.class.avoidable() {
+                    let won = usize::from(success(o));
+                    all = (all.0 + 1, all.1 + won);
+                    if let Some(r) = region {
+                        let bucket = if inside(r, cell) { &mut ins } else { &mut outs };
+                        *bucket = (bucket.0 + 1, bucket.1 + won);
+                    }
+                }
+                if let Some(n) = numerical {
+                    match (success(&cell.outcomes[n]), success(o)) {
+                        (true, true) => agree.both += 1,
+                        (true, false) => agree.numerical_only += 1,
+                        (false, true) => agree.mode_only += 1,
+                        (false, false) => agree.neither += 1,
+                    }
+                }
+            }
+            let learned = mode.learned_phi() || mode.learned_v();
+            ModeSummary {
+                mode,
+                counts,
+                avoidable: Rate::of(all.0, all.1),
+                inside_trained_region: region.map(|_| Rate::of(ins.0, ins.1)),
+                outside_trained_region: region.map(|_| Rate::of(outs.0, outs.1)),
+                agreement: (learned && numerical.is_some()).then_some(agree),
+            }
+        })
+        .collect()
+}
+
+// ---- JSON ----------------------------------------------------------------
+//
+// {"task", "grid": {"region", "n"}, "radius", "lambda", "modes",
+//  "trained_region", "cells": [{"x", "y", "outcomes": {"<mode>": outcome}}],
+//  "summary": {"<mode>": {"success_rate", "counts": {"<class>": n}, ...}}}
+
+impl Serialize for Atlas {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut st = s.serialize_struct("Atlas", 8)?;
+        st.serialize_field("task", &self.task)?;
+        st.serialize_field("grid", &self.grid)?;
+        st.serialize_field("radius", &self.radius)?;
+        st.serialize_field("lambda", &self.lambda)?;
+        st.serialize_field("modes", &self.modes)?;
+        st.serialize_field("trained_region", &self.trained_region)?;
+        let cells: Vec<CellJson<'_>> = self
+            .cells
+            .iter()
+            .map(|cell| CellJson {
+                modes: &self.modes,
+                cell,
+            })
+            .collect();
+        st.serialize_field("cells", &cells)?;
+        st.serialize_field("summary", &SummaryJson(&self.summary))?;
+        st.end()
+    }
+}
+
+struct CellJson<'a> {
+    modes: &'a [Mode],
+    cell: &'a Cell,
+}
+
+impl Serialize for CellJson<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut st = s.serialize_struct("Cell", 3)?;
+        st.serialize_field("x", &self.cell.x)?;
+        st.serialize_field("y", &self.cell.y)?;
+        st.serialize_field("outcomes", &ByMode(self.modes, &self.cell.outcomes))?;
+        st.end()
+    }
+}
+
+/// `{"<mode>": value}` in the modes' order.
+struct ByMode<'a, T>(&'a [Mode], &'a [T]);
+
+impl<T: Serialize> Serialize for ByMode<'_, T> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut map = s.serialize_map(Some(self.0.len()))?;
+        for (m, v) in self.0.iter().zip(self.1) {
+            map.serialize_entry(m.name(), v)?;
+        }
+        map.end()
+    }
+}
+
+struct SummaryJson<'a>(&'a [ModeSummary]);
+
+impl Serialize for SummaryJson<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut map = s.serialize_map(Some(self.0.len()))?;
+        for m in self.0 {
+            map.serialize_entry(m.mode.name(), m)?;
+        }
+        map.end()
+    }
+}
+
+impl Serialize for ModeSummary {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut st = s.serialize_struct("ModeSummary", 6)?;
+        st.serialize_field("success_rate", &self.success_rate())?;
+        st.serialize_field("counts", &Counts(&self.counts))?;
+        st.serialize_field("avoidable", &self.avoidable)?;
+        st.serialize_field("inside_trained_region", &self.inside_trained_region)?;
+        st.serialize_field("outside_trained_region", &self.outside_trained_region)?;
+        st.serialize_field("agreement", &self.agreement)?;
+        st.end()
+    }
+}
+
+struct Counts<'a>(&'a [usize; 6]);
+
+impl Serialize for Counts<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut map = s.serialize_map(Some(6))?;
+        for (c, n) in Class::ALL.iter().zip(self.0) {
+            map.serialize_entry(c.name(), n)?;
+        }
+        map.end()
+    }
+}
