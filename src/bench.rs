@@ -13,6 +13,7 @@ use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
 
+use crate::atlas;
 use crate::error::{Error, Result};
 use crate::nalgebra::Vector2;
 use crate::networks::Networks;
@@ -36,6 +37,8 @@ pub struct Options {
     /// Whether to time the paper's `Phi` variants too (their weights are
     /// not in the page's build).
     pub paper_variants: bool,
+    /// Whether to time the default atlas (about 0.6 s natively per run).
+    pub atlas: bool,
 }
 
 impl Default for Options {
@@ -45,6 +48,7 @@ impl Default for Options {
             batches: 7,
             lm_epoch: true,
             paper_variants: true,
+            atlas: true,
         }
     }
 }
@@ -119,6 +123,10 @@ pub struct Report {
     pub lm_epoch_ms: Option<f64>,
     /// Heap allocations per RK4 step; `None` when no counter was given.
     pub allocs_per_step: Option<PerMode>,
+    /// One 41 x 41 atlas of Task 1 in all five modes (8,405 runs) on one
+    /// thread, in ms ([`atlas_ms`]); `None` when not measured.
+    #[serde(default)]
+    pub atlas_ms: Option<f64>,
 }
 
 /// A clock in milliseconds (any origin) and an optional allocation counter.
@@ -290,6 +298,25 @@ pub fn lm_epoch_ms(opts: &Options, probes: &Probes) -> Result<f64> {
     Ok(median(&mut times))
 }
 
+/// Runs of the atlas timed by [`atlas_ms`] (the median is reported).
+pub const ATLAS_RUNS: usize = 3;
+
+/// One default atlas ([`atlas::Spec::task`]: Task 1, 41 x 41 cells, all five
+/// modes, 8,405 runs of 100 RK4 steps) computed on this thread, in ms: the
+/// median of [`ATLAS_RUNS`] runs.
+pub fn atlas_ms(probes: &Probes) -> Result<f64> {
+    let nets = Arc::new(Networks::embedded()?);
+    let now = probes.now_ms;
+    let mut times = Vec::with_capacity(ATLAS_RUNS);
+    for _ in 0..ATLAS_RUNS {
+        let spec = atlas::Spec::task(1)?;
+        let t0 = now();
+        std::hint::black_box(atlas::Atlas::run(spec, Some(nets.clone()))?);
+        times.push(now() - t0);
+    }
+    Ok(median(&mut times))
+}
+
 /// Runs every measurement.
 pub fn run(opts: &Options, probes: &Probes) -> Result<Report> {
     let theta_dot = PerMode::from_fn(|m| theta_dot_ns(m, opts, probes))?;
@@ -305,6 +332,11 @@ pub fn run(opts: &Options, probes: &Probes) -> Result<Report> {
     } else {
         None
     };
+    let atlas = if opts.atlas {
+        Some(atlas_ms(probes)?)
+    } else {
+        None
+    };
     let allocs = match probes.allocations {
         Some(count) => Some(PerMode::from_fn(|m| allocs_per_step(m, count))?),
         None => None,
@@ -316,5 +348,6 @@ pub fn run(opts: &Options, probes: &Probes) -> Result<Report> {
         forward_ns: forward,
         lm_epoch_ms: lm,
         allocs_per_step: allocs,
+        atlas_ms: atlas,
     })
 }

@@ -315,6 +315,7 @@ fn bench_reports_every_figure_and_no_allocation_per_step() {
             "--batches",
             "5",
             "--no-lm",
+            "--no-atlas",
         ];
         args.extend_from_slice(extra);
         json(&args)
@@ -335,6 +336,7 @@ fn bench_reports_every_figure_and_no_allocation_per_step() {
         assert!(v["forward_ns"][net].as_f64().is_some_and(|x| x > 0.0));
     }
     assert!(v["lm_epoch_ms"].is_null(), "--no-lm skips the epoch");
+    assert!(v["atlas_ms"].is_null(), "--no-atlas skips the atlas");
     let kernels = v["kernels"].as_str().unwrap_or_default().to_string();
     assert!(
         ["avx2+fma", "fma", "portable"].contains(&kernels.as_str()),
@@ -349,4 +351,96 @@ fn bench_reports_every_figure_and_no_allocation_per_step() {
     }
     refused(&["bench", "--batches", "2"], "batches");
     refused(&["bench", "--batch-ms", "nan"], "batch-ms");
+}
+
+#[test]
+fn atlas_prints_the_success_table_and_writes_json_and_an_svg() {
+    let table = ok(&[
+        "atlas",
+        "--task",
+        "2",
+        "--grid",
+        "5",
+        "--modes",
+        "none,numerical",
+    ]);
+    assert!(table.contains("Atlas of Task 2: 5 x 5"), "{table}");
+    assert!(
+        table.contains("No avoidance") && table.contains("Numerical"),
+        "{table}"
+    );
+    assert!(!table.contains("Case 1"), "{table}");
+
+    // The JSON: a small grid over the obstacle's neighbourhood, every mode.
+    let svg = scratch("atlas.svg");
+    let v = json(&[
+        "atlas",
+        "--task",
+        "1",
+        "--grid",
+        "4",
+        "--region",
+        "0.2,0.8,0.2,0.8",
+        "--json",
+        "--threads",
+        "1",
+        "--out",
+        svg.to_str().unwrap(),
+    ]);
+    assert_eq!(v["task"], 1);
+    assert_eq!(v["grid"]["n"], 4);
+    assert_eq!(v["grid"]["region"], serde_json::json!([0.2, 0.8, 0.2, 0.8]));
+    assert_eq!(v["radius"], 0.05);
+    assert_eq!(v["lambda"], 4.0);
+    assert_eq!(v["modes"].as_array().unwrap().len(), 5);
+    let cells = v["cells"].as_array().unwrap();
+    assert_eq!(cells.len(), 16);
+    assert_eq!(
+        (cells[1]["x"].as_f64(), cells[1]["y"].as_f64()),
+        (Some(0.4), Some(0.2))
+    );
+    for m in ["none", "numerical", "case1", "case2", "case3"] {
+        assert!(cells[5]["outcomes"][m]["class"].is_string(), "{m}");
+        assert!(v["summary"][m]["counts"]["success"].is_u64(), "{m}");
+    }
+    // The same cells on two threads.
+    let two = json(&[
+        "atlas",
+        "--task",
+        "1",
+        "--grid",
+        "4",
+        "--region",
+        "0.2,0.8,0.2,0.8",
+        "--json",
+        "--threads",
+        "2",
+    ]);
+    assert_eq!(two["cells"], v["cells"]);
+
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.starts_with("<svg"));
+    for label in [
+        "No avoidance",
+        "Numerical",
+        "Case 1",
+        "Case 2",
+        "Case 3",
+        "collision",
+    ] {
+        assert!(text.contains(label), "the SVG names {label}");
+    }
+}
+
+#[test]
+fn atlas_refuses_bad_grids_regions_modes_and_threads() {
+    refused(&["atlas", "--grid", "1"], "grid points per side");
+    refused(&["atlas", "--grid", "500"], "grid points per side");
+    refused(&["atlas", "--region", "0,1,0"], "four numbers");
+    refused(&["atlas", "--region", "1,0,0,1"], "empty");
+    refused(&["atlas", "--region", "0,1,nan,1"], "finite");
+    refused(&["atlas", "--region", "0,x,0,1"], "not a number");
+    refused(&["atlas", "--modes", "numerical,fast"], "unknown mode");
+    refused(&["atlas", "--threads", "0"], "threads");
+    refused(&["atlas", "--radius", "-1"], "radius");
 }

@@ -72,11 +72,11 @@ impl Class {
     /// What the class means, for legends.
     pub fn label(self) -> &'static str {
         match self {
-            Class::StartOverlap => "overlaps the arm at t = 0 (not run)",
-            Class::PathBlocked => "covers the path: unavoidable",
+            Class::StartOverlap => "on the arm at t = 0: not run",
+            Class::PathBlocked => "on the path: unavoidable",
             Class::Success => "clear, target reached",
             Class::Collision => "collision",
-            Class::Missed => "clear, target missed (> 5 mm)",
+            Class::Missed => "clear, target missed by > 5 mm",
             Class::Failed => "run failed",
         }
     }
@@ -90,7 +90,7 @@ impl Class {
             Class::Missed => "#e9a23b",
             Class::Failed => "#7d4e9e",
             Class::PathBlocked => "#8f9aa6",
-            Class::StartOverlap => "#3d4650",
+            Class::StartOverlap => "#d3d9e0",
         }
     }
 

@@ -25,6 +25,9 @@ pub struct BenchArgs {
     /// Skip the Levenberg-Marquardt epoch (about a second in all).
     #[arg(long)]
     pub no_lm: bool,
+    /// Skip the atlas (three runs of 8,405 tasks, about two seconds in all).
+    #[arg(long)]
+    pub no_atlas: bool,
     /// Run the networks on the portable x86-64 baseline kernels instead of
     /// the AVX2 + FMA ones chosen at run time (to measure what that choice buys).
     #[arg(long)]
@@ -44,6 +47,7 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         batches: args.batches,
         lm_epoch: !args.no_lm,
         paper_variants: true,
+        atlas: !args.no_atlas,
     };
     redundant_ik::nn::kernel::set_runtime_dispatch(!args.baseline_kernels);
     #[allow(clippy::disallowed_methods)] // the native CLI has a clock
@@ -90,6 +94,12 @@ fn table(r: &Report) -> String {
     if let (Some(plain), Some(rows)) = (f.phi_plain, f.phi_rows) {
         s.push_str(&format!(
             "              Phi plain 3-35-14-6 {plain:.1} ns, Phi rows 3 x 3-35-14-2 {rows:.1} ns\n"
+        ));
+    }
+    if let Some(ms) = r.atlas_ms {
+        s.push_str(&format!(
+            "atlas of Task 1, 41 x 41 cells, five modes (8,405 runs), one thread: {:.2} s\n",
+            ms / 1e3
         ));
     }
     if let Some(ms) = r.lm_epoch_ms {

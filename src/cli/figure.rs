@@ -8,13 +8,15 @@ use clap::Args;
 use plotters::prelude::*;
 use redundant_ik::{Mode, Planner, Scene, Trajectory};
 
-use super::simulate::SceneArgs;
+use super::simulate::{ModeArg, SceneArgs};
 
 /// Options of `redundant-ik figure`.
 #[derive(Args, Debug)]
 pub struct FigureArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
+    #[command(flatten)]
+    pub mode: ModeArg,
     /// Output SVG file, or with --all a directory.
     #[arg(long)]
     pub out: PathBuf,
@@ -54,7 +56,7 @@ pub fn run(args: &FigureArgs) -> Result<(), String> {
         return Ok(());
     }
     if !args.all {
-        let (scene, traj) = args.scene.run()?;
+        let (scene, traj) = args.scene.run(args.mode.mode()?)?;
         draw(&args.out, args.scene.task, &scene, &traj, args.every)?;
         println!("wrote {}", args.out.display());
         return Ok(());

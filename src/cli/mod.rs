@@ -9,6 +9,8 @@ use redundant_ik::networks::{self, Networks};
 use redundant_ik::nn::weights::Variant;
 use redundant_ik::{Mode, Surrogate};
 
+pub mod atlas;
+pub mod atlas_figure;
 pub mod bench;
 pub mod eval;
 pub mod figure;
@@ -35,6 +37,8 @@ enum Command {
     Train(train::TrainArgs),
     /// Evaluate the embedded networks: accuracy and task outcomes.
     Eval(eval::EvalArgs),
+    /// Map where each mode keeps the arm clear: the obstacle on every cell of a grid.
+    Atlas(atlas::AtlasArgs),
     /// Measure theta_dot, RK4 steps, forward passes, an LM epoch and allocations per step.
     Bench(bench::BenchArgs),
 }
@@ -47,6 +51,7 @@ pub fn main() -> i32 {
         Command::Figure(a) => figure::run(a),
         Command::Train(a) => train::run(a),
         Command::Eval(a) => eval::run(a),
+        Command::Atlas(a) => atlas::run(a),
         Command::Bench(a) => bench::run(a),
     };
     match result {

@@ -7,15 +7,12 @@ use std::fmt::Write as _;
 
 use super::{emit, parse_list, parse_pair, NetworkArgs};
 
-/// Scene options shared by `simulate` and `figure`.
+/// Scene options shared by `simulate`, `figure` and `atlas`.
 #[derive(Args, Debug, Clone)]
 pub struct SceneArgs {
     /// Paper task (1 or 2) that provides the defaults.
     #[arg(long, default_value_t = 1)]
     pub task: u32,
-    /// none, numerical, case1, case2 or case3.
-    #[arg(long, default_value = "numerical")]
-    pub mode: String,
     /// Obstacle centre X,Y in metres (repeat for several obstacles).
     #[arg(long, value_parser = parse_pair, allow_hyphen_values = true)]
     pub obstacle: Vec<[f64; 2]>,
@@ -94,18 +91,27 @@ impl SceneArgs {
         Ok(s)
     }
 
-    /// The selected mode.
-    pub fn mode(&self) -> Result<Mode, String> {
-        self.mode.parse::<Mode>().map_err(|e| e.to_string())
-    }
-
-    /// Runs the scene in the selected mode.
-    pub fn run(&self) -> Result<(Scene, Trajectory), String> {
+    /// Runs the scene in `mode`.
+    pub fn run(&self, mode: Mode) -> Result<(Scene, Trajectory), String> {
         let scene = self.scene()?;
-        let mode = self.mode()?;
         let nets = self.networks.for_mode(mode)?;
         let traj = Planner::run(scene.clone(), mode, nets).map_err(|e| e.to_string())?;
         Ok((scene, traj))
+    }
+}
+
+/// The `--mode` option of `simulate` and `figure`.
+#[derive(Args, Debug, Clone)]
+pub struct ModeArg {
+    /// none, numerical, case1, case2 or case3.
+    #[arg(long, default_value = "numerical")]
+    pub mode: String,
+}
+
+impl ModeArg {
+    /// The selected mode.
+    pub fn mode(&self) -> Result<Mode, String> {
+        self.mode.parse::<Mode>().map_err(|e| e.to_string())
     }
 }
 
@@ -114,6 +120,8 @@ impl SceneArgs {
 pub struct SimulateArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
+    #[command(flatten)]
+    pub mode: ModeArg,
     /// Print one JSON object (every step and the summary) instead of text.
     #[arg(long)]
     pub json: bool,
@@ -121,7 +129,7 @@ pub struct SimulateArgs {
 
 /// Runs `redundant-ik simulate`.
 pub fn run(args: &SimulateArgs) -> Result<(), String> {
-    let (scene, traj) = args.scene.run()?;
+    let (scene, traj) = args.scene.run(args.mode.mode()?)?;
     let mut out = String::new();
     macro_rules! w {
         ($o:ident, $($arg:tt)*) => {{

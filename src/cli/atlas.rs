@@ -1,0 +1,203 @@
+//! `redundant-ik atlas`: the task run with its obstacle on every cell of a
+//! grid, in every mode ([`redundant_ik::atlas`]); a table of success rates,
+//! the whole map as JSON, and the heat maps as SVG.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Instant;
+
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use redundant_ik::atlas::{Atlas, Class, Grid, Job, Spec, DEFAULT_GRID};
+use redundant_ik::Mode;
+
+use super::simulate::SceneArgs;
+use super::{emit, parse_list};
+
+/// Options of `redundant-ik atlas`.
+#[derive(Args, Debug)]
+pub struct AtlasArgs {
+    /// The scene (its first obstacle is moved over the grid; --obstacle
+    /// places the canonical one that the map marks).
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Grid points per side (2 to 201).
+    #[arg(long, default_value_t = DEFAULT_GRID)]
+    pub grid: usize,
+    /// Region x0,x1,y0,y1 in metres (default: the box of the arm's reach
+    /// above the floor).
+    #[arg(long, allow_hyphen_values = true)]
+    pub region: Option<String>,
+    /// Modes to map, comma-separated, or all.
+    #[arg(long, default_value = "all")]
+    pub modes: String,
+    /// Print the whole atlas as one JSON object instead of the table.
+    #[arg(long)]
+    pub json: bool,
+    /// Write the heat maps, one per mode, as SVG.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Threads to use (default: every core; 1 runs on this thread only).
+    #[arg(long)]
+    pub threads: Option<usize>,
+}
+
+/// Parses `--modes`: `all` or a comma-separated list of mode names.
+pub fn parse_modes(s: &str) -> Result<Vec<Mode>, String> {
+    if s.trim() == "all" {
+        return Ok(Mode::ALL.to_vec());
+    }
+    s.split(',')
+        .map(|m| m.trim().parse::<Mode>().map_err(|e| e.to_string()))
+        .collect()
+}
+
+/// Runs `redundant-ik atlas`.
+pub fn run(args: &AtlasArgs) -> Result<(), String> {
+    let scene = args.scene.scene()?;
+    let modes = parse_modes(&args.modes)?;
+    let grid = match &args.region {
+        Some(r) => match parse_list(r).map_err(|e| format!("--region: {e}"))?[..] {
+            [x0, x1, y0, y1] => Grid::new([x0, x1, y0, y1], args.grid),
+            _ => {
+                return Err(format!(
+                    "--region needs four numbers x0,x1,y0,y1, got '{r}'"
+                ))
+            }
+        },
+        None => Grid::new(Grid::around_reach(&scene.arm, args.grid).region, args.grid),
+    }
+    .map_err(|e| e.to_string())?;
+    let networks = if modes.iter().any(|m| m.learned_phi() || m.learned_v()) {
+        Some(Arc::new(args.scene.networks.load()?))
+    } else {
+        None
+    };
+    let spec = Spec {
+        scene: scene.clone(),
+        grid,
+        modes,
+        task: Some(args.scene.task),
+    };
+    let threads = match args.threads {
+        Some(0) => return Err("--threads must be at least 1".into()),
+        Some(t) => t,
+        None => std::thread::available_parallelism().map_or(1, |n| n.get()),
+    };
+
+    #[allow(clippy::disallowed_methods)] // the native CLI has a clock
+    let start = Instant::now();
+    let atlas = compute(spec, networks, threads)?;
+    let seconds = start.elapsed().as_secs_f64();
+
+    if let Some(path) = &args.out {
+        super::atlas_figure::draw(path, &atlas, &scene)?;
+        eprintln!("wrote {}", path.display());
+    }
+    if args.json {
+        let json = serde_json::to_string(&atlas).map_err(|e| e.to_string())?;
+        return emit(&format!("{json}\n"));
+    }
+    emit(&report(&atlas, seconds, threads))
+}
+
+/// Computes the atlas a row at a time, with a progress bar on a terminal.
+fn compute(
+    spec: Spec,
+    networks: Option<Arc<redundant_ik::networks::Networks>>,
+    threads: usize,
+) -> Result<Atlas, String> {
+    let row = spec.grid.n;
+    let mut job = Job::new(spec, networks).map_err(|e| e.to_string())?;
+    let bar = ProgressBar::new(job.total() as u64).with_style(
+        ProgressStyle::with_template("atlas {bar:40} {pos}/{len} cells, {eta} left")
+            .map_err(|e| e.to_string())?,
+    );
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| format!("cannot start {threads} threads: {e}"))?;
+    while !job.is_done() {
+        let done = if threads == 1 {
+            job.advance(row)
+        } else {
+            pool.install(|| job.advance_parallel(row * threads))
+        };
+        bar.set_position(done as u64);
+    }
+    bar.finish_and_clear();
+    job.finish().map_err(|e| e.to_string())
+}
+
+fn percent(rate: Option<f64>) -> String {
+    rate.map_or("–".into(), |r| format!("{:.1}%", 100.0 * r))
+}
+
+/// The summary table.
+fn report(a: &Atlas, seconds: f64, threads: usize) -> String {
+    let mut out = String::new();
+    macro_rules! w {
+        ($($arg:tt)*) => {{
+            let _ = writeln!(out, $($arg)*);
+        }};
+    }
+    let [x0, x1, y0, y1] = a.grid.region;
+    let runs = a.cells.len() * a.modes.len();
+    w!(
+        "Atlas of Task {}: {n} x {n} obstacle centres over x {x0}..{x1} m, y {y0}..{y1} m \
+         (radius {} m, lambda {})",
+        a.task.map_or("?".into(), |t| t.to_string()),
+        a.radius,
+        a.lambda,
+        n = a.grid.n
+    );
+    w!(
+        "{runs} runs in {seconds:.2} s on {threads} thread{}",
+        if threads == 1 { "" } else { "s" }
+    );
+    w!();
+    let region = a
+        .trained_region
+        .map(|r| format!("v net region x {}..{}, y {}..{}", r[0], r[1], r[2], r[3]));
+    w!(
+        "{:<13} {:>8} {:>8} {:>8}   {}",
+        "mode",
+        "success",
+        "inside",
+        "outside",
+        "cells: success / collision / missed / failed / path_blocked / start_overlap"
+    );
+    for s in &a.summary {
+        let counts: Vec<String> = Class::ALL.iter().map(|&c| s.count(c).to_string()).collect();
+        w!(
+            "{:<13} {:>8} {:>8} {:>8}   {}",
+            s.mode.label(),
+            percent(s.success_rate()),
+            percent(s.inside_trained_region.and_then(|r| r.rate)),
+            percent(s.outside_trained_region.and_then(|r| r.rate)),
+            counts.join(" / ")
+        );
+    }
+    w!();
+    w!(
+        "success: no collision and within 5 mm of the target, over the {} cells where \
+         avoidance is possible (not path_blocked or start_overlap)",
+        a.summary.first().map_or(0, |s| s.avoidable.cells)
+    );
+    if let Some(r) = region {
+        w!("inside / outside: the same, for obstacle centres inside / outside the {r}");
+    }
+    for s in &a.summary {
+        if let Some(g) = s.agreement {
+            w!(
+                "{} vs numerical: numerical succeeds and {} does not in {} cells; the reverse in {}",
+                s.mode.label(),
+                s.mode.label(),
+                g.numerical_only,
+                g.mode_only
+            );
+        }
+    }
+    out
+}

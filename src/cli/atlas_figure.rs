@@ -1,0 +1,201 @@
+//! The atlas as SVG (plotters): one heat map per mode, side by side, the
+//! cells coloured by class; on top the arm's start pose, the straight line,
+//! the target, the canonical obstacle and the v network's trained region;
+//! below, the legend of the classes. Each panel's title gives its success
+//! rate.
+
+use std::path::Path;
+
+use plotters::prelude::*;
+use redundant_ik::atlas::{Atlas, Class};
+use redundant_ik::{Pose, Scene};
+
+/// `#rrggbb` as a plotters colour.
+fn hex(s: &str) -> RGBColor {
+    let channel = |i: usize| u8::from_str_radix(s.get(i..i + 2).unwrap_or("00"), 16).unwrap_or(0);
+    RGBColor(channel(1), channel(3), channel(5))
+}
+
+const INK: RGBColor = RGBColor(31, 41, 51);
+const ARM: RGBColor = RGBColor(29, 78, 137);
+const ACCENT: RGBColor = RGBColor(217, 115, 26);
+const REGION: RGBColor = RGBColor(255, 255, 255);
+
+/// Plot width of one panel in pixels (the height follows the region's aspect).
+const PANEL_W: f64 = 330.0;
+
+/// Draws `atlas` (computed on `scene`) to `path`.
+pub fn draw(path: &Path, atlas: &Atlas, scene: &Scene) -> Result<(), String> {
+    let e = |err: &dyn std::fmt::Display| format!("cannot draw {}: {err}", path.display());
+    let [x0, x1, y0, y1] = atlas.grid.region;
+    let n = atlas.grid.n;
+    let (dx, dy) = ((x1 - x0) / (n - 1) as f64, (y1 - y0) / (n - 1) as f64);
+    // The map covers each cell centre's cell.
+    let (wx0, wx1, wy0, wy1) = (x0 - dx / 2.0, x1 + dx / 2.0, y0 - dy / 2.0, y1 + dy / 2.0);
+    let plot_h = (PANEL_W * (wy1 - wy0) / (wx1 - wx0)).clamp(80.0, 900.0);
+    let (ml, mr, mt, mb) = (52u32, 14u32, 44u32, 40u32);
+    let panel_w = PANEL_W as u32 + ml + mr;
+    let panel_h = plot_h as u32 + mt + mb;
+    let k = atlas.modes.len() as u32;
+    let (title_h, legend_h) = (36u32, 56u32);
+    let size = (panel_w * k, title_h + panel_h + legend_h);
+
+    let root = SVGBackend::new(path, size).into_drawing_area();
+    root.fill(&WHITE).map_err(|x| e(&x))?;
+    let task = atlas.task.map_or(String::new(), |t| format!("Task {t}: "));
+    let title = format!(
+        "{task}where the arm stays clear, obstacle (r = {} m) centred on each of {n} x {n} cells, λ = {}",
+        atlas.radius, atlas.lambda
+    );
+    let (head, rest) = root.split_vertically(title_h);
+    head.draw(&Text::new(
+        title,
+        (12, 10),
+        ("sans-serif", 17).into_font().color(&INK),
+    ))
+    .map_err(|x| e(&x))?;
+    let (maps, legend) = rest.split_vertically(panel_h);
+    let panels = maps.split_evenly((1, k as usize));
+
+    let start = Pose::new(&scene.arm, &scene.theta0).map_err(|x| e(&x))?;
+    let joints: Vec<(f64, f64)> = start.joints().iter().map(|p| (p[0], p[1])).collect();
+    let ee = start.end_effector();
+
+    for (m, (area, summary)) in panels.iter().zip(&atlas.summary).enumerate() {
+        let rate = summary
+            .success_rate()
+            .map_or("–".into(), |r| format!("{:.0}%", 100.0 * r));
+        let caption = format!(
+            "{}: {rate} clear and reached ({}/{})",
+            summary.mode.label(),
+            summary.avoidable.successes,
+            summary.avoidable.cells
+        );
+        let mut chart = ChartBuilder::on(area)
+            .caption(caption, ("sans-serif", 14).into_font().color(&INK))
+            .margin_top(6)
+            .margin_right(mr)
+            .x_label_area_size(mb - 8)
+            .y_label_area_size(ml - 8)
+            .build_cartesian_2d(wx0..wx1, wy0..wy1)
+            .map_err(|x| e(&x))?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_labels(5)
+            .y_labels(5)
+            .x_desc("obstacle X1 (m)")
+            .y_desc("X2 (m)")
+            .label_style(("sans-serif", 11))
+            .draw()
+            .map_err(|x| e(&x))?;
+
+        // Cells, as runs of one class along each row (fewer SVG elements).
+        let mut rects = Vec::new();
+        for j in 0..n {
+            let mut i = 0;
+            while i < n {
+                let class = atlas.cells[j * n + i].outcomes[m].class;
+                let mut end = i + 1;
+                while end < n && atlas.cells[j * n + end].outcomes[m].class == class {
+                    end += 1;
+                }
+                let (cx0, cx1) = (atlas.grid.x(i) - dx / 2.0, atlas.grid.x(end - 1) + dx / 2.0);
+                let cy = atlas.grid.y(j);
+                rects.push(Rectangle::new(
+                    [(cx0, cy - dy / 2.0), (cx1, cy + dy / 2.0)],
+                    hex(class.colour()).filled(),
+                ));
+                i = end;
+            }
+        }
+        chart.draw_series(rects).map_err(|x| e(&x))?;
+
+        // Where the v network saw obstacle centres in training.
+        if let Some([rx0, rx1, ry0, ry1]) = atlas.trained_region {
+            chart
+                .draw_series(DashedLineSeries::new(
+                    vec![(rx0, ry0), (rx1, ry0), (rx1, ry1), (rx0, ry1), (rx0, ry0)],
+                    4,
+                    3,
+                    ShapeStyle::from(&REGION).stroke_width(1),
+                ))
+                .map_err(|x| e(&x))?;
+        }
+        // The straight line and the target.
+        chart
+            .draw_series(DashedLineSeries::new(
+                vec![(ee[0], ee[1]), (scene.target[0], scene.target[1])],
+                5,
+                4,
+                ShapeStyle::from(&ACCENT).stroke_width(2),
+            ))
+            .map_err(|x| e(&x))?;
+        chart
+            .draw_series(std::iter::once(Cross::new(
+                (scene.target[0], scene.target[1]),
+                5,
+                ShapeStyle::from(&ACCENT).stroke_width(2),
+            )))
+            .map_err(|x| e(&x))?;
+        // The post and the start pose.
+        chart
+            .draw_series(LineSeries::new(
+                vec![(0.0, 0.0), (0.0, scene.arm.post())],
+                ShapeStyle::from(&INK).stroke_width(4),
+            ))
+            .map_err(|x| e(&x))?;
+        chart
+            .draw_series(LineSeries::new(
+                joints.clone(),
+                ShapeStyle::from(&ARM).stroke_width(3),
+            ))
+            .map_err(|x| e(&x))?;
+        chart
+            .draw_series(joints.iter().map(|p| Circle::new(*p, 2, WHITE.filled())))
+            .map_err(|x| e(&x))?;
+        // The canonical obstacle, outlined at its true size.
+        for ob in scene.obstacles.iter().take(1) {
+            let ring: Vec<(f64, f64)> = (0..=48)
+                .map(|t| {
+                    let a = t as f64 / 48.0 * std::f64::consts::TAU;
+                    (
+                        ob.centre[0] + ob.radius * a.cos(),
+                        ob.centre[1] + ob.radius * a.sin(),
+                    )
+                })
+                .collect();
+            chart
+                .draw_series(LineSeries::new(
+                    ring,
+                    ShapeStyle::from(&INK).stroke_width(2),
+                ))
+                .map_err(|x| e(&x))?;
+        }
+    }
+
+    // Legend of the classes, and of the marks.
+    let mut x = 14;
+    let font = ("sans-serif", 13).into_font().color(&INK);
+    for class in Class::ALL {
+        legend
+            .draw(&Rectangle::new(
+                [(x, 10), (x + 16, 26)],
+                hex(class.colour()).filled(),
+            ))
+            .map_err(|x| e(&x))?;
+        let label = class.label().to_string();
+        legend
+            .draw(&Text::new(label.clone(), (x + 22, 12), font.clone()))
+            .map_err(|x| e(&x))?;
+        x += 36 + 7 * label.chars().count() as i32;
+    }
+    let marks = "blue: the arm at t = 0 · orange: the straight line to the target (+) · \
+                 black ring: the task's own obstacle · white dashes: where the v network \
+                 saw obstacles in training";
+    legend
+        .draw(&Text::new(marks, (14, 36), font))
+        .map_err(|x| e(&x))?;
+    root.present().map_err(|x| e(&x))?;
+    Ok(())
+}
