@@ -14,20 +14,29 @@ WASM_BUILD = CARGO_PROFILE_RELEASE_OPT_LEVEL=s wasm-pack build --release --targe
 setup:
 	bash scripts/setup-wasm.sh
 
-## Build the release wasm package into www/pkg, twice: a baseline module and
-## one with wasm SIMD (+simd128) for the networks' kernels; the page loads the
-## SIMD one where the browser validates SIMD, else the baseline (some hardened
-## browser modes switch SIMD off). Both share the JS glue (checked). Optimised
-## for size (opt-level s: 3 is 13 KB gzipped larger, z came out larger), then
-## the debug `name` section stripped (cargo's strip also drops a section
+## Build the release wasm packages into www/pkg: the page's module
+## (feature page: the demo and its drawing) and the workers' module (feature
+## worker: the atlas and the benchmark, which run in Web Workers), each
+## twice: a baseline build and one with wasm SIMD (+simd128) for the
+## networks' kernels; the page loads the SIMD ones where the browser
+## validates SIMD, else the baseline (some hardened browser modes switch SIMD
+## off). Each pair shares its JS glue (checked). Optimised for size
+## (opt-level s: 3 is 13 KB gzipped larger, z came out larger), then the
+## debug `name` section stripped (cargo's strip also drops a section
 ## wasm-bindgen needs).
+PAGE = -- --no-default-features --features page
+WORKER = --out-name redundant_ik_worker -- --no-default-features --features worker
 web: setup
-	$(WASM_ENV) $(WASM_BUILD) --out-dir www/pkg
-	$(WASM_SIMD_ENV) $(WASM_BUILD) --out-dir target/pkg-simd
+	$(WASM_ENV) $(WASM_BUILD) --out-dir www/pkg $(PAGE)
+	$(WASM_SIMD_ENV) $(WASM_BUILD) --out-dir target/pkg-simd $(PAGE)
 	cmp www/pkg/redundant_ik.js target/pkg-simd/redundant_ik.js
 	cp target/pkg-simd/redundant_ik_bg.wasm www/pkg/redundant_ik_simd_bg.wasm
-	python3 scripts/strip-wasm-names.py www/pkg/redundant_ik_bg.wasm
-	python3 scripts/strip-wasm-names.py www/pkg/redundant_ik_simd_bg.wasm
+	$(WASM_ENV) $(WASM_BUILD) --out-dir target/pkg-worker $(WORKER)
+	$(WASM_SIMD_ENV) $(WASM_BUILD) --out-dir target/pkg-worker-simd $(WORKER)
+	cmp target/pkg-worker/redundant_ik_worker.js target/pkg-worker-simd/redundant_ik_worker.js
+	cp target/pkg-worker/redundant_ik_worker.js target/pkg-worker/redundant_ik_worker_bg.wasm www/pkg/
+	cp target/pkg-worker-simd/redundant_ik_worker_bg.wasm www/pkg/redundant_ik_worker_simd_bg.wasm
+	for f in www/pkg/*.wasm; do python3 scripts/strip-wasm-names.py $$f; done
 	@for f in www/pkg/*.wasm; do echo "$$f: $$(stat -c %s $$f) B, gzip -9 $$(gzip -9 -c $$f | wc -c) B"; done
 
 ## Build, then serve www/ on http://127.0.0.1:$(PORT)/.
@@ -43,13 +52,15 @@ lint: setup
 	cargo clippy --all-targets -- -D warnings
 	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --tests -- -D warnings
 	$(WASM_SIMD_ENV) cargo clippy --target wasm32-unknown-unknown --lib --tests -- -D warnings
+	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features page -- -D warnings
+	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features worker -- -D warnings
 
 test-native:
 	cargo test
 
 test-wasm: setup
 	CHROMEDRIVER=/usr/bin/chromedriver $(WASM_ENV) wasm-pack test --headless --chrome
-	CHROMEDRIVER=/usr/bin/chromedriver $(WASM_SIMD_ENV) wasm-pack test --headless --chrome -- --test core --test networks --test alloc
+	CHROMEDRIVER=/usr/bin/chromedriver $(WASM_SIMD_ENV) wasm-pack test --headless --chrome -- --test core --test networks --test alloc --test atlas
 
 test-e2e: web
 	bash scripts/e2e.sh

@@ -1,5 +1,7 @@
 // Runs the page's benchmark (window.demo.bench(), a Web Worker) in headless
-// Chromium and prints one JSON object per run, then the median of each figure:
+// Chromium and prints one JSON object per run, then the median of each figure;
+// then times the page's default atlas (window.demo.atlas({}): Task 1, 41 x 41
+// cells, five modes, in a worker) as often and prints its median:
 //
 //   BASE_URL=http://127.0.0.1:8000/ RUNS=3 [BUILD=baseline] node scripts/bench-web.mjs
 //
@@ -53,4 +55,14 @@ for (const key of ['theta_dot_ns', 'step_ns', 'forward_ns']) {
 }
 const build = await page.evaluate(() => window.demo.build);
 console.log(`median of ${RUNS} (${build} build): ${JSON.stringify(out)}`);
+const atlas = [];
+for (let i = 0; i < RUNS; i++) {
+  const s = await page.evaluate(async () => {
+    await window.demo.atlas({});
+    return Number(document.getElementById('atlas-status').dataset.ms) / 1000;
+  });
+  atlas.push(s);
+  console.log(`atlas of Task 1, 41 x 41 cells, five modes (8,405 runs), in a worker: ${s.toFixed(2)} s`);
+}
+console.log(`median of ${RUNS} (${build} build): atlas ${median(atlas).toFixed(2)} s`);
 await browser.close();

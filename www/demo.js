@@ -11,7 +11,8 @@
 // `[data-readout]` elements): the page's document, or the shadow root of a
 // <redundant-ik-demo> element, so several demos on one page stay independent.
 
-import init, { Demo, lastPanic, networksError, modes, palette, legend } from './pkg/redundant_ik.js';
+import init, { Demo, lastPanic, networksError, modes, palette, legend, atlasClasses } from './pkg/redundant_ik.js';
+import { mountAtlas } from './atlas.js';
 
 let module = null;
 let wasmUrl = null;
@@ -25,6 +26,12 @@ export function moduleUrl() {
 const BUILDS = {
   simd: new URL('./pkg/redundant_ik_simd_bg.wasm', import.meta.url).href,
   baseline: new URL('./pkg/redundant_ik_bg.wasm', import.meta.url).href,
+};
+
+/** The same two builds of the workers' module (the atlas, the benchmark). */
+const WORKER_BUILDS = {
+  simd: new URL('./pkg/redundant_ik_worker_simd_bg.wasm', import.meta.url).href,
+  baseline: new URL('./pkg/redundant_ik_worker_bg.wasm', import.meta.url).href,
 };
 
 /** Whether this browser validates wasm SIMD (v128, as wasm-feature-detect checks it). */
@@ -104,6 +111,46 @@ function fillLegend(list) {
 export const FEEDBACK_GAIN = 1;
 
 /**
+ * Runs one job in a Web Worker (www/worker.js) on the workers' module of
+ * the build the page runs, so the page keeps drawing. `onProgress({ done,
+ * total, label })` follows it; `signal` (an AbortSignal) cancels it, which
+ * terminates the worker at once. Resolves to `{ result, ms }` (`ms`: the
+ * job's time inside the worker).
+ */
+export async function runWorker(job, { onProgress, signal } = {}) {
+  await loadModule();
+  return new Promise((resolve, reject) => {
+    const abort = () => {
+      finish();
+      reject(new DOMException('Cancelled.', 'AbortError'));
+    };
+    if (signal?.aborted) return abort();
+    const worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
+    function finish() {
+      worker.terminate();
+      if (signal) signal.removeEventListener('abort', abort);
+    }
+    if (signal) signal.addEventListener('abort', abort);
+    worker.onmessage = ({ data }) => {
+      if (data.type === 'progress') {
+        if (onProgress) onProgress(data);
+      } else if (data.type === 'done') {
+        finish();
+        resolve({ result: data.result, ms: data.ms });
+      } else {
+        finish();
+        reject(new Error(data.message));
+      }
+    };
+    worker.onerror = (e) => {
+      finish();
+      reject(new Error(e.message || 'the worker failed to start'));
+    };
+    worker.postMessage({ ...job, wasm: WORKER_BUILDS[build] });
+  });
+}
+
+/**
  * Measures this browser as `redundant-ik bench` measures the machine: one
  * theta_dot and one RK4 step of Task 1 in every mode and the forward passes of
  * both networks (ns); each figure the median of seven batches after a
@@ -113,38 +160,8 @@ export const FEEDBACK_GAIN = 1;
  * `{ theta_dot_ns: {mode: ns}, step_ns: {mode: ns}, forward_ns: {phi, v} }`.
  */
 export async function bench({ onProgress, signal, batchMs = 20 } = {}) {
-  await loadModule();
-  return new Promise((resolve, reject) => {
-    const worker = new Worker(new URL('./bench-worker.js', import.meta.url), { type: 'module' });
-    const finish = () => {
-      worker.terminate();
-      if (signal) signal.removeEventListener('abort', abort);
-    };
-    const abort = () => {
-      finish();
-      reject(new DOMException('The benchmark was cancelled.', 'AbortError'));
-    };
-    if (signal) {
-      if (signal.aborted) return abort();
-      signal.addEventListener('abort', abort);
-    }
-    worker.onmessage = ({ data }) => {
-      if (data.type === 'progress') {
-        if (onProgress) onProgress(data);
-      } else if (data.type === 'done') {
-        finish();
-        resolve(data.result);
-      } else {
-        finish();
-        reject(new Error(data.message));
-      }
-    };
-    worker.onerror = (e) => {
-      finish();
-      reject(new Error(e.message || 'the benchmark worker failed to start'));
-    };
-    worker.postMessage({ wasm: wasmUrl, batchMs });
-  });
+  const { result } = await runWorker({ kind: 'bench', batchMs }, { onProgress, signal });
+  return result;
 }
 
 /** A readable message for an exception thrown by the module. */
@@ -356,6 +373,17 @@ export async function mount(root, options = {}) {
     );
   });
 
+  // ---- the atlas (www/atlas.js) ----------------------------------------
+  let userWeights = null; // the weights files loaded, for the workers
+  const atlas = mountAtlas(root, demo, {
+    runWorker,
+    classes: atlasClasses,
+    methods: modes,
+    weights: () => userWeights,
+    describe,
+    changed: () => changed(),
+  });
+
   const weightButton = $('load-weights');
   weightButton?.addEventListener('click', async () => {
     const phi = $('phi-file')?.files?.[0];
@@ -366,6 +394,7 @@ export async function mount(root, options = {}) {
     }
     const [phiText, vText] = await Promise.all([phi.text(), v.text()]);
     if (attempt(() => demo.loadNetworks(phiText, vText))) {
+      userWeights = { phi: phiText, v: vText };
       show(`Loaded ${phi.name} and ${v.name}; Cases 1-3 now use them.`, 'info');
     }
   });
@@ -400,6 +429,7 @@ export async function mount(root, options = {}) {
 
   // ---- pointer: drag target and obstacle -------------------------------
   let held = null; // pointerId while dragging
+  let press = null; // { id, x, y } of a press on no handle: a click on an atlas cell
   const local = (e) => {
     const r = stage.getBoundingClientRect();
     return [e.clientX - r.left, e.clientY - r.top];
@@ -409,7 +439,10 @@ export async function mount(root, options = {}) {
     if (held !== null || (e.pointerType === 'mouse' && e.button !== 0)) return;
     const [x, y] = local(e);
     const what = demo.pointerDown(x, y, slopFor(e));
-    if (!what) return;
+    if (!what) {
+      press = { id: e.pointerId, x, y };
+      return;
+    }
     held = e.pointerId;
     stage.setPointerCapture(e.pointerId);
     stage.style.cursor = 'grabbing';
@@ -420,8 +453,18 @@ export async function mount(root, options = {}) {
     if (held === e.pointerId) {
       attempt(() => demo.pointerMove(x, y), 'warn');
     } else if (held === null && e.pointerType === 'mouse') {
-      stage.style.cursor = demo.hover(x, y, slopFor(e)) ? 'grab' : 'default';
+      const handle = demo.hover(x, y, slopFor(e));
+      const cell = handle ? atlas.leave() : atlas.hover(x, y);
+      stage.style.cursor = handle ? 'grab' : cell !== undefined ? 'pointer' : 'default';
     }
+  });
+  stage.addEventListener('pointerleave', () => atlas.leave());
+  stage.addEventListener('pointerup', (e) => {
+    if (!press || press.id !== e.pointerId) return;
+    const [x, y] = local(e);
+    const near = Math.hypot(x - press.x, y - press.y) < 6;
+    press = null;
+    if (near) attempt(() => atlas.click(x, y), 'warn');
   });
   const release = (e) => {
     if (held !== e.pointerId) return;
@@ -477,6 +520,7 @@ export async function mount(root, options = {}) {
     }
     autoDampingShown = s.auto_damping;
     syncControls(s);
+    atlas.check(s);
     return s;
   }
 
@@ -511,6 +555,8 @@ export async function mount(root, options = {}) {
       return update();
     },
     show,
+    atlas: (options) => atlas.run(options),
+    atlasResult: () => atlas.result(),
     stop() {
       stopped = true;
     },

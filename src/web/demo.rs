@@ -5,8 +5,10 @@
 use wasm_bindgen::prelude::*;
 use web_sys::HtmlCanvasElement;
 
+use super::layer::Layer;
 use super::surface::Surface;
 use super::{input, js_err, now_ms, plots, shared_networks, stage, to_js};
+use crate::atlas::Grid;
 use crate::networks::Networks;
 use crate::planner::{Mode, Surrogate};
 use crate::session::Session;
@@ -17,6 +19,7 @@ pub struct Demo {
     session: Session,
     stage: Surface,
     plots: Option<Surface>,
+    layer: Option<Layer>,
 }
 
 type JsResult<T = ()> = Result<T, JsError>;
@@ -42,6 +45,7 @@ impl Demo {
             session,
             stage: Surface::new(stage)?,
             plots: plots.map(Surface::new).transpose()?,
+            layer: None,
         })
     }
 
@@ -182,6 +186,48 @@ impl Demo {
         to_js(&state)
     }
 
+    /// The scene as a plain object (arm, start pose, target, obstacles,
+    /// gains, time step): what an atlas worker maps (`AtlasJob`).
+    pub fn scene(&self) -> JsResult<JsValue> {
+        to_js(self.session.planner().scene())
+    }
+
+    /// Shows an atlas under the arm: `region` `[x0, x1, y0, y1]`, `n` points
+    /// per side and one class index per cell (rows from `y0`, each from
+    /// `x0`; the order of `atlasClasses()`). Throws, keeping the layer shown
+    /// before, if they do not fit together.
+    #[wasm_bindgen(js_name = setAtlasLayer)]
+    pub fn set_atlas_layer(&mut self, region: Vec<f64>, n: usize, classes: Vec<u8>) -> JsResult {
+        let [x0, x1, y0, y1] = region[..] else {
+            return Err(JsError::new(&format!(
+                "region needs four numbers [x0, x1, y0, y1], got {}",
+                region.len()
+            )));
+        };
+        let grid = Grid::new([x0, x1, y0, y1], n).map_err(js_err)?;
+        self.layer = Some(Layer::new(grid, classes).map_err(js_err)?);
+        Ok(())
+    }
+
+    /// Hides the atlas layer.
+    #[wasm_bindgen(js_name = clearAtlasLayer)]
+    pub fn clear_atlas_layer(&mut self) {
+        self.layer = None;
+    }
+
+    /// The atlas cell under canvas CSS pixel `(x, y)`, if a layer is shown
+    /// and the point lies on it; the cell is outlined until the next call.
+    #[wasm_bindgen(js_name = atlasCellAt)]
+    pub fn atlas_cell_at(&mut self, x: f64, y: f64) -> Option<usize> {
+        let view = self.stage.view();
+        let layer = self.layer.as_mut()?;
+        let cell = (x.is_finite() && y.is_finite())
+            .then(|| layer.grid().nearest(view.to_world(x, y)))
+            .flatten();
+        layer.hover = cell;
+        cell
+    }
+
     /// Sets the stage size in CSS pixels and the device-pixel ratio, then redraws.
     pub fn resize(&mut self, width: f64, height: f64, dpr: f64) -> JsResult {
         self.stage.resize(width, height, dpr)?;
@@ -265,7 +311,7 @@ impl Demo {
 
     /// Redraws the stage and the plots.
     pub fn draw(&self) {
-        stage::draw(&self.session, &self.stage);
+        stage::draw(&self.session, &self.stage, self.layer.as_ref());
         if let Some(p) = &self.plots {
             plots::draw(&self.session, p);
         }

@@ -6,18 +6,33 @@
 //! the core's message; numbers from JavaScript are checked by the core
 //! (NaN included), so nothing the user does can panic the module.
 //!
+//! Two modules are built from this layer (features `page` and `worker`):
+//! the page's, which draws, and the Web Workers', which computes (the atlas,
+//! the benchmark), so the page loads only what it draws with.
+//!
 //! One file per concern: [`demo`] (the `Demo` binding), [`style`] (colours
 //! and the legend, the one source the page's CSS reads), [`surface`]
 //! (canvas, view transform, drawing helpers), [`stage`] (the arm's drawing),
-//! [`plots`] (the time series) and [`input`] (pointer hit-testing and keys);
-//! this file holds the module-level functions.
+//! [`layer`] (an atlas drawn under it), [`plots`] (the time series) and
+//! [`input`] (pointer hit-testing and keys) make the page's module;
+//! [`worker`] is the workers'. This file holds what both export.
 
+#[cfg(feature = "page")]
 mod demo;
+#[cfg(feature = "page")]
 mod input;
+#[cfg(feature = "page")]
+mod layer;
+#[cfg(feature = "page")]
 mod plots;
+#[cfg(feature = "page")]
 mod stage;
+#[cfg(feature = "page")]
 mod style;
+#[cfg(feature = "page")]
 mod surface;
+#[cfg(feature = "worker")]
+mod worker;
 
 use std::cell::RefCell;
 
@@ -25,12 +40,14 @@ use serde::Serialize;
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 
-use crate::bench;
 use crate::error::Error;
 use crate::networks::Networks;
 use crate::planner::Mode;
 
+#[cfg(feature = "page")]
 pub use demo::Demo;
+#[cfg(feature = "worker")]
+pub use worker::*;
 
 thread_local! {
     /// The trained networks built into the module, loaded once (or why not).
@@ -112,6 +129,7 @@ pub fn modes() -> Result<JsValue, JsError> {
     to_js(&all)
 }
 
+#[cfg(feature = "page")]
 /// The colours the drawing uses, `{ name: css colour }`: the page sets them
 /// as CSS custom properties (`--arm`, ...), so the stylesheet has no copy.
 #[wasm_bindgen]
@@ -122,9 +140,36 @@ pub fn palette() -> Result<JsValue, JsError> {
 
 /// The legend of the drawing: `[{ key, label, swatch, kind }]`, each swatch
 /// the colour (with the alpha) that the renderer draws that element with.
+#[cfg(feature = "page")]
 #[wasm_bindgen]
 pub fn legend() -> Result<JsValue, JsError> {
     to_js(&style::legend())
+}
+
+/// The classes of an atlas, in the order of `setAtlasLayer`'s indices:
+/// `[{ name, label, colour, swatch }]`: `colour` is `#rrggbb` (the command
+/// line's SVG draws it), `swatch` the translucent colour the layer is drawn
+/// with.
+#[cfg(feature = "page")]
+#[wasm_bindgen(js_name = atlasClasses)]
+pub fn atlas_classes() -> Result<JsValue, JsError> {
+    #[derive(Serialize)]
+    struct Entry {
+        name: &'static str,
+        label: &'static str,
+        colour: &'static str,
+        swatch: String,
+    }
+    let all: Vec<Entry> = crate::atlas::Class::ALL
+        .iter()
+        .map(|c| Entry {
+            name: c.name(),
+            label: c.label(),
+            colour: c.colour(),
+            swatch: style::rgba(c.colour(), layer::LAYER_ALPHA),
+        })
+        .collect();
+    to_js(&all)
 }
 
 /// A serialisable value as a plain JavaScript object (`None` as `null`).
@@ -141,46 +186,4 @@ fn js_err(e: Error) -> JsError {
 /// `performance.now()` in a page or a worker (0 where there is none).
 fn now_ms() -> f64 {
     PERFORMANCE.with(|p| p.as_ref().map_or(0.0, |p| p.now()))
-}
-
-// ---- the in-browser benchmark ------------------------------------------
-
-/// The benchmark's options: `batch_ms` is the shortest timed batch (1 to
-/// 1000 ms); each figure is the median of seven batches after a warm-up.
-fn bench_options(batch_ms: f64) -> Result<bench::Options, JsError> {
-    crate::error::within("batch length (ms)", batch_ms, 1.0, 1000.0).map_err(js_err)?;
-    Ok(bench::Options {
-        batch_ms,
-        ..bench::Options::default()
-    })
-}
-
-fn probes() -> bench::Probes<'static> {
-    bench::Probes {
-        now_ms: &now_ms,
-        allocations: None,
-    }
-}
-
-/// One `theta_dot` of `mode` at Task 1's start pose, in nanoseconds (the
-/// code behind `redundant-ik bench`; one figure per call, so a Web Worker can
-/// report progress between them).
-#[wasm_bindgen(js_name = benchThetaDot)]
-pub fn bench_theta_dot(mode: &str, batch_ms: f64) -> Result<f64, JsError> {
-    let mode: Mode = mode.parse().map_err(js_err)?;
-    bench::theta_dot_ns(mode, &bench_options(batch_ms)?, &probes()).map_err(js_err)
-}
-
-/// One RK4 step of Task 1 in `mode`, sample included, in nanoseconds.
-#[wasm_bindgen(js_name = benchStep)]
-pub fn bench_step(mode: &str, batch_ms: f64) -> Result<f64, JsError> {
-    let mode: Mode = mode.parse().map_err(js_err)?;
-    bench::step_ns(mode, &bench_options(batch_ms)?, &probes()).map_err(js_err)
-}
-
-/// Forward passes of the shipped networks in nanoseconds: `{ phi, v }`.
-#[wasm_bindgen(js_name = benchForward)]
-pub fn bench_forward(batch_ms: f64) -> Result<JsValue, JsError> {
-    let f = bench::forward_ns(&bench_options(batch_ms)?, &probes()).map_err(js_err)?;
-    to_js(&f)
 }

@@ -3,16 +3,20 @@
 
 use web_sys::CanvasRenderingContext2d;
 
+use super::layer::Layer;
 use super::plots::{fmt_tick, nice_step};
 use super::style::*;
 use super::surface::{dash, disc, polyline, text, Surface, View};
 use crate::session::{Handle, Session};
 
-/// Draws the session on the stage.
-pub fn draw(s: &Session, surface: &Surface) {
+/// Draws the session on the stage, over an atlas layer if one is shown.
+pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) {
     let ctx = &surface.ctx;
     let view = surface.view();
     surface.begin();
+    if let Some(layer) = layer {
+        layer.draw(ctx, view);
+    }
     grid(ctx, view, surface.width, surface.height);
 
     let planner = s.planner();

@@ -1,0 +1,209 @@
+//! What runs in the page's Web Workers (feature `worker`): the atlas, a
+//! chunk of cells at a time so that the worker can report progress between
+//! chunks, and the in-browser benchmark, one figure per call. The page's
+//! own module does not carry either.
+
+use std::sync::Arc;
+
+use serde::Deserialize;
+use wasm_bindgen::prelude::*;
+
+use super::{js_err, now_ms, shared_networks, to_js};
+use crate::atlas::{Grid, Job, Spec, DEFAULT_GRID};
+use crate::bench;
+use crate::error::{self, Error};
+use crate::networks::Networks;
+use crate::planner::Mode;
+use crate::scene::Scene;
+
+// ---- the atlas -----------------------------------------------------------
+
+/// The options of an atlas as the page passes them.
+#[derive(Deserialize)]
+struct AtlasOptions {
+    /// Mode names; all five when absent.
+    modes: Option<Vec<String>>,
+    /// Points per side; 41 when absent.
+    n: Option<f64>,
+    /// `[x0, x1, y0, y1]`; the box of the arm's reach when absent.
+    region: Option<Vec<f64>>,
+    /// The paper task the scene came from, for the report.
+    task: Option<u32>,
+}
+
+const OPTION_NAMES: [&str; 4] = ["modes", "n", "region", "task"];
+
+/// An atlas being computed in a worker: `new AtlasJob(scene, options,
+/// phiJson, vJson)`, then `advance(cells)` until `done == total`, then
+/// `finish()` for the result (the JSON shape of `redundant-ik atlas --json`).
+#[wasm_bindgen]
+pub struct AtlasJob {
+    job: Job,
+    row: usize,
+}
+
+#[wasm_bindgen]
+impl AtlasJob {
+    /// `scene` is the page's scene (`Demo.scene()`); `options` is
+    /// `{ modes, n, region, task }`, each optional. The network modes use
+    /// the weights files `phi_json` and `v_json` if both are given, else the
+    /// built-in networks. Throws with the core's message on bad input.
+    #[wasm_bindgen(constructor)]
+    pub fn new(
+        scene: JsValue,
+        options: JsValue,
+        phi_json: Option<String>,
+        v_json: Option<String>,
+    ) -> Result<AtlasJob, JsError> {
+        let scene: Scene = serde_wasm_bindgen::from_value(scene)
+            .map_err(|e| JsError::new(&format!("not a scene: {e}")))?;
+        let options: AtlasOptions = if options.is_undefined() || options.is_null() {
+            AtlasOptions {
+                modes: None,
+                n: None,
+                region: None,
+                task: None,
+            }
+        } else {
+            // serde-wasm-bindgen reads only the fields it knows: refuse a
+            // misspelt one rather than quietly use a default.
+            for key in js_sys::Object::keys(&js_sys::Object::from(options.clone())).iter() {
+                let key = key.as_string().unwrap_or_default();
+                if !OPTION_NAMES.contains(&key.as_str()) {
+                    return Err(JsError::new(&format!(
+                        "atlas options: unknown field '{key}', expected one of {}",
+                        OPTION_NAMES.join(", ")
+                    )));
+                }
+            }
+            serde_wasm_bindgen::from_value(options)
+                .map_err(|e| JsError::new(&format!("atlas options: {e}")))?
+        };
+        let n = match options.n {
+            None => DEFAULT_GRID,
+            Some(n) => {
+                let n = error::within(
+                    "grid points per side",
+                    n,
+                    2.0,
+                    crate::atlas::MAX_GRID as f64,
+                )
+                .map_err(js_err)?;
+                if n.fract() != 0.0 {
+                    return Err(JsError::new(&format!(
+                        "grid points per side must be a whole number (got {n})"
+                    )));
+                }
+                n as usize
+            }
+        };
+        let grid = match options.region.as_deref() {
+            None => Grid::around_reach(&scene.arm, n),
+            Some(&[x0, x1, y0, y1]) => Grid::new([x0, x1, y0, y1], n).map_err(js_err)?,
+            Some(other) => {
+                return Err(JsError::new(&format!(
+                    "region needs four numbers [x0, x1, y0, y1], got {}",
+                    other.len()
+                )))
+            }
+        };
+        let modes = match options.modes {
+            None => Mode::ALL.to_vec(),
+            Some(names) => names
+                .iter()
+                .map(|m| m.parse::<Mode>())
+                .collect::<Result<Vec<_>, Error>>()
+                .map_err(js_err)?,
+        };
+        let networks = if modes.iter().any(|m| m.learned_phi() || m.learned_v()) {
+            Some(Arc::new(match (phi_json, v_json) {
+                (Some(phi), Some(v)) => Networks::from_json(&phi, &v).map_err(js_err)?,
+                _ => shared_networks().map_err(|e| JsError::new(&e))?,
+            }))
+        } else {
+            None
+        };
+        let spec = Spec {
+            scene,
+            grid,
+            modes,
+            task: options.task,
+        };
+        Ok(AtlasJob {
+            job: Job::new(spec, networks).map_err(js_err)?,
+            row: n,
+        })
+    }
+
+    /// Cells in the grid.
+    #[wasm_bindgen(getter)]
+    pub fn total(&self) -> usize {
+        self.job.total()
+    }
+
+    /// Cells computed so far.
+    #[wasm_bindgen(getter)]
+    pub fn done(&self) -> usize {
+        self.job.done()
+    }
+
+    /// Points per side: a sensible chunk is one row.
+    #[wasm_bindgen(getter)]
+    pub fn row(&self) -> usize {
+        self.row
+    }
+
+    /// Computes up to `cells` more cells; returns how many are done in all.
+    pub fn advance(&mut self, cells: usize) -> usize {
+        self.job.advance(cells)
+    }
+
+    /// The finished atlas as a plain object (the JSON shape of
+    /// `redundant-ik atlas --json`); throws while cells are missing.
+    pub fn finish(&self) -> Result<JsValue, JsError> {
+        let atlas = self.job.clone().finish().map_err(js_err)?;
+        to_js(&atlas)
+    }
+}
+
+// ---- the benchmark -------------------------------------------------------
+
+/// The benchmark's options: `batch_ms` is the shortest timed batch (1 to
+/// 1000 ms); each figure is the median of seven batches after a warm-up.
+fn bench_options(batch_ms: f64) -> Result<bench::Options, JsError> {
+    crate::error::within("batch length (ms)", batch_ms, 1.0, 1000.0).map_err(js_err)?;
+    Ok(bench::Options {
+        batch_ms,
+        ..bench::Options::default()
+    })
+}
+
+fn probes() -> bench::Probes<'static> {
+    bench::Probes {
+        now_ms: &now_ms,
+        allocations: None,
+    }
+}
+
+/// One `theta_dot` of `mode` at Task 1's start pose, in nanoseconds (the
+/// code behind `redundant-ik bench`; one figure per call, so a Web Worker can
+/// report progress between them).
+#[wasm_bindgen(js_name = benchThetaDot)]
+pub fn bench_theta_dot(mode: &str, batch_ms: f64) -> Result<f64, JsError> {
+    let mode: Mode = mode.parse().map_err(js_err)?;
+    bench::theta_dot_ns(mode, &bench_options(batch_ms)?, &probes()).map_err(js_err)
+}
+
+/// One RK4 step of Task 1 in `mode`, sample included, in nanoseconds.
+#[wasm_bindgen(js_name = benchStep)]
+pub fn bench_step(mode: &str, batch_ms: f64) -> Result<f64, JsError> {
+    let mode: Mode = mode.parse().map_err(js_err)?;
+    bench::step_ns(mode, &bench_options(batch_ms)?, &probes()).map_err(js_err)
+}
+
+/// Forward passes of the shipped networks in nanoseconds: `{ phi, v }`.
+#[wasm_bindgen(js_name = benchForward)]
+pub fn bench_forward(batch_ms: f64) -> Result<JsValue, JsError> {
+    let f = bench::forward_ns(&bench_options(batch_ms)?, &probes()).map_err(js_err)?;
+    to_js(&f)
+}

@@ -1,0 +1,290 @@
+// The Atlas panel: the current task run with the obstacle centred on every
+// cell of a grid, in the chosen methods, in a Web Worker (worker.js); the
+// result drawn under the arm by the module (Demo.setAtlasLayer), a legend,
+// a table of success rates, the numbers of the cell under the pointer, and
+// a click on a cell to put the obstacle there and replay the task.
+//
+// `mountAtlas(root, demo, hooks)` wires the elements of `root` that exist
+// (`#atlas-modes`, `#atlas-n`, `#atlas-run`, `#atlas-cancel`,
+// `#atlas-progress`, `#atlas-status`, `#atlas-result`, `#atlas-show`,
+// `#atlas-hide`, `#atlas-legend`, `#atlas-body`, `#atlas-agreement`,
+// `#atlas-tip`) and returns
+// `{ run(options), hover(x, y), click(x, y), result() }` for the page's
+// pointer handlers and for `window.demo.atlas()`.
+
+/** Points per side the panel offers; the first default is 41 (as the CLI's). */
+export const RESOLUTIONS = [11, 21, 41, 61];
+
+function pct(rate) {
+  return rate === null || rate === undefined ? '–' : `${(100 * rate).toFixed(1)}%`;
+}
+
+function metres(v) {
+  if (v === null || v === undefined || !Number.isFinite(v)) return '–';
+  if (v >= 0.01) return `${v.toFixed(3)} m`;
+  if (v >= 1e-5) return `${(v * 1000).toFixed(2)} mm`;
+  return '< 0.01 mm';
+}
+
+export function mountAtlas(root, demo, { runWorker, classes, methods, weights, describe, changed }) {
+  const $ = (id) => root.querySelector('#' + id);
+  const el = {
+    modes: $('atlas-modes'),
+    n: $('atlas-n'),
+    run: $('atlas-run'),
+    cancel: $('atlas-cancel'),
+    progress: $('atlas-progress'),
+    status: $('atlas-status'),
+    result: $('atlas-result'),
+    show: $('atlas-show'),
+    hide: $('atlas-hide'),
+    legend: $('atlas-legend'),
+    body: $('atlas-body'),
+    agreement: $('atlas-agreement'),
+    tip: $('atlas-tip'),
+  };
+  const CLASSES = classes(); // [{ name, label, colour, swatch }], the layer's indices
+  const code = Object.fromEntries(CLASSES.map((c, i) => [c.name, i]));
+  const label = Object.fromEntries(methods().map((m) => [m.name, m.label]));
+
+  if (el.modes && !el.modes.querySelector('input')) {
+    for (const m of methods()) {
+      const l = document.createElement('label');
+      const box = document.createElement('input');
+      box.type = 'checkbox';
+      box.value = m.name;
+      box.checked = true;
+      l.append(box, ` ${m.label}`);
+      el.modes.append(l);
+    }
+  }
+  if (el.n && !el.n.options.length) {
+    for (const n of RESOLUTIONS) el.n.add(new Option(`${n} × ${n} cells`, String(n), n === 41, n === 41));
+  }
+
+  let atlas = null; // the last result (the JSON shape of `redundant-ik atlas --json`)
+  let shown = null; // the mode drawn on the stage
+  let running = null; // AbortController of the job under way
+  let sceneKey = null; // the scene the atlas was computed on
+
+  const status = (text) => el.status && (el.status.textContent = text);
+
+  /** What the atlas depends on, from the state (not the moved obstacle). */
+  const keyOf = (s) => JSON.stringify([s.task, s.target, s.lambda, s.damping, s.feedback]);
+
+  function show(mode) {
+    if (!atlas) return;
+    shown = mode;
+    const codes = new Uint8Array(atlas.cells.length);
+    atlas.cells.forEach((c, i) => (codes[i] = code[c.outcomes[mode].class]));
+    demo.setAtlasLayer(atlas.grid.region, atlas.grid.n, codes);
+    if (el.show && el.show.value !== mode) el.show.value = mode;
+    fillLegend(mode);
+    demo.draw();
+  }
+
+  function hide() {
+    shown = null;
+    demo.clearAtlasLayer();
+    if (el.tip) el.tip.hidden = true;
+    if (el.show) el.show.value = '';
+    fillLegend(null);
+    demo.draw();
+  }
+
+  function fillLegend(mode) {
+    if (!el.legend) return;
+    el.legend.replaceChildren();
+    if (!mode) return;
+    const counts = atlas.summary[mode].counts;
+    for (const c of CLASSES) {
+      const li = document.createElement('li');
+      li.dataset.key = c.name;
+      const key = document.createElement('span');
+      key.className = 'key key-disc';
+      key.style.setProperty('--swatch', c.swatch);
+      li.append(key, `${c.label} (${counts[c.name]})`);
+      el.legend.append(li);
+    }
+  }
+
+  function fillTable() {
+    if (el.body) {
+      el.body.replaceChildren(
+        ...atlas.modes.map((m) => {
+          const s = atlas.summary[m];
+          const tr = document.createElement('tr');
+          tr.dataset.mode = m;
+          for (const text of [
+            label[m],
+            pct(s.success_rate),
+            pct(s.inside_trained_region?.rate),
+            pct(s.outside_trained_region?.rate),
+          ]) {
+            const td = document.createElement('td');
+            td.textContent = text;
+            tr.append(td);
+          }
+          return tr;
+        }),
+      );
+    }
+    if (el.agreement) {
+      el.agreement.replaceChildren(
+        ...atlas.modes
+          .filter((m) => atlas.summary[m].agreement)
+          .map((m) => {
+            const g = atlas.summary[m].agreement;
+            const li = document.createElement('li');
+            li.dataset.mode = m;
+            li.textContent =
+              `${label[m]} fails in ${g.numerical_only} cell${g.numerical_only === 1 ? '' : 's'} where the numerical route succeeds, ` +
+              `and succeeds in ${g.mode_only} where it fails.`;
+            return li;
+          }),
+      );
+    }
+  }
+
+  function accept(result, ms, state) {
+    atlas = result;
+    sceneKey = keyOf(state);
+    if (el.status) el.status.dataset.stale = 'false';
+    if (el.show) {
+      el.show.replaceChildren(new Option('(hidden)', ''));
+      for (const m of atlas.modes) el.show.add(new Option(label[m], m));
+    }
+    fillTable();
+    if (el.result) el.result.hidden = false;
+    const runs = atlas.cells.length * atlas.modes.length;
+    status(`${runs.toLocaleString('en')} runs in ${(ms / 1000).toFixed(2)} s. Hover a cell for its numbers; click one to put the obstacle there and replay.`);
+    if (el.status) el.status.dataset.ms = String(ms);
+    const preferred = atlas.modes.includes(shown) ? shown : atlas.modes.find((m) => m !== 'none') ?? atlas.modes[0];
+    show(preferred);
+  }
+
+  /**
+   * Computes the atlas of the scene as it is now. `options`: `modes` (names;
+   * default the panel's ticked ones, or all), `n` (default the panel's
+   * choice, or 41), `region` ([x0, x1, y0, y1]; default the box of the
+   * arm's reach), `onProgress`, `signal`. Resolves to the JSON shape of
+   * `redundant-ik atlas --json`; the map is drawn under the arm.
+   */
+  async function run(options = {}) {
+    const known = ['modes', 'n', 'region', 'onProgress', 'signal'];
+    const unknown = Object.keys(options ?? {}).filter((k) => !known.includes(k));
+    if (unknown.length) throw new Error(`unknown atlas option '${unknown[0]}': use ${known.join(', ')}`);
+    if (running) running.abort();
+    const controller = new AbortController();
+    running = controller;
+    if (options.signal) {
+      if (options.signal.aborted) controller.abort();
+      options.signal.addEventListener('abort', () => controller.abort());
+    }
+    const ticked = el.modes ? [...el.modes.querySelectorAll('input:checked')].map((b) => b.value) : [];
+    const modes = options.modes ?? (ticked.length ? ticked : methods().map((m) => m.name));
+    const n = options.n ?? (el.n ? Number(el.n.value) : 41);
+    const scene = demo.scene();
+    const state = demo.state();
+    const task = state.task;
+    const w = weights();
+    if (el.run) el.run.disabled = true;
+    if (el.cancel) el.cancel.hidden = false;
+    if (el.progress) {
+      el.progress.hidden = false;
+      el.progress.value = 0;
+    }
+    status('Computing…');
+    try {
+      const { result, ms } = await runWorker(
+        { kind: 'atlas', scene, options: { modes, n, region: options.region, task }, phi: w?.phi, v: w?.v },
+        {
+          signal: controller.signal,
+          onProgress: (p) => {
+            if (el.progress) el.progress.value = p.total ? p.done / p.total : 0;
+            status(`Computing… ${p.done} of ${p.total} cells`);
+            if (options.onProgress) options.onProgress(p);
+          },
+        },
+      );
+      accept(result, ms, state);
+      return result;
+    } catch (e) {
+      status(e.name === 'AbortError' ? 'Cancelled.' : `The atlas failed: ${describe(e)}`);
+      throw e;
+    } finally {
+      if (running === controller) running = null;
+      if (el.run) el.run.disabled = false;
+      if (el.cancel) el.cancel.hidden = true;
+      if (el.progress) el.progress.hidden = true;
+    }
+  }
+
+  el.run?.addEventListener('click', () => run().catch(() => {}));
+  el.cancel?.addEventListener('click', () => running && running.abort());
+  el.show?.addEventListener('change', () => (el.show.value ? show(el.show.value) : hide()));
+  el.hide?.addEventListener('click', hide);
+
+  /** The cell under canvas CSS pixel (x, y) while a map is shown, outlined. */
+  function cellAt(x, y) {
+    if (!atlas || !shown) return undefined;
+    return demo.atlasCellAt(x, y);
+  }
+
+  /** Shows the numbers of the cell under the pointer (or hides them). */
+  function hover(x, y) {
+    const k = cellAt(x, y);
+    if (!el.tip) return k;
+    if (k === undefined) {
+      el.tip.hidden = true;
+      return k;
+    }
+    const c = atlas.cells[k];
+    const lines = [`obstacle at (${c.x.toFixed(3)}, ${c.y.toFixed(3)})`];
+    for (const m of atlas.modes) {
+      const o = c.outcomes[m];
+      const cls = CLASSES[code[o.class]].label;
+      const nums = o.min_distance === null ? '' : `, closest ${metres(o.min_distance)}, error ${metres(o.final_error)}`;
+      lines.push(`${label[m]}: ${cls}${nums}`);
+    }
+    el.tip.textContent = lines.join('\n');
+    el.tip.dataset.cell = String(k);
+    el.tip.hidden = false;
+    // Beside the pointer, on the side where it fits inside the stage.
+    const box = el.tip.offsetParent?.getBoundingClientRect();
+    const [w, h] = [el.tip.offsetWidth, el.tip.offsetHeight];
+    const left = box && x + 14 + w > box.width ? Math.max(0, x - 14 - w) : x + 14;
+    const top = box && y + 14 + h > box.height ? Math.max(0, y - 14 - h) : y + 14;
+    el.tip.style.left = `${left}px`;
+    el.tip.style.top = `${top}px`;
+    return k;
+  }
+
+  /** A click on a shown cell: the obstacle goes there and the task replays. */
+  function click(x, y) {
+    const k = cellAt(x, y);
+    if (k === undefined) return false;
+    const c = atlas.cells[k];
+    demo.setObstacle(c.x, c.y);
+    demo.runTask();
+    changed();
+    return true;
+  }
+
+  function leave() {
+    if (atlas && shown) demo.atlasCellAt(NaN, NaN);
+    if (el.tip) el.tip.hidden = true;
+  }
+
+  /** Says so when the task changed since the atlas was computed (per frame, cheap). */
+  function check(state) {
+    if (!atlas || !el.status || running) return;
+    const stale = keyOf(state) !== sceneKey;
+    if (stale !== (el.status.dataset.stale === 'true')) {
+      el.status.dataset.stale = String(stale);
+      if (stale) status('The task changed since this atlas was computed (target, λ or a switch): compute it again to map the new one.');
+    }
+  }
+
+  return { run, hover, click, leave, check, result: () => atlas, shown: () => shown };
+}

@@ -1,0 +1,81 @@
+// The page's heavy work, off its thread: a module Worker that loads the
+// workers' WebAssembly module (src/web/worker.rs; the SIMD or the baseline
+// build, as the page chose for itself) and runs one job, posting progress
+// as it goes. The page terminates the worker when the job ends or is
+// cancelled, so a cancelled job stops at once and leaves nothing behind.
+//
+// Messages in:
+//   { kind: 'bench', wasm, batchMs }
+//       the code behind `redundant-ik bench`, one figure per call
+//   { kind: 'atlas', wasm, scene, options: { modes, n, region, task }, phi, v }
+//       the atlas of `redundant-ik atlas`, one row of cells per chunk
+// Messages out:
+//   { type: 'progress', done, total, label }
+//   { type: 'done', result, ms }
+//   { type: 'error', message }
+
+import init, {
+  AtlasJob,
+  benchThetaDot,
+  benchStep,
+  benchForward,
+  modes,
+  lastPanic,
+} from './pkg/redundant_ik_worker.js';
+
+function bench({ batchMs = 20 }) {
+  const MODES = modes().map((m) => m.name);
+  const result = { theta_dot_ns: {}, step_ns: {}, forward_ns: null };
+  const jobs = [
+    ...MODES.map((m) => [`θ̇ ${m}`, () => (result.theta_dot_ns[m] = benchThetaDot(m, batchMs))]),
+    ...MODES.map((m) => [`step ${m}`, () => (result.step_ns[m] = benchStep(m, batchMs))]),
+    ['forward passes', () => (result.forward_ns = benchForward(batchMs))],
+  ];
+  for (const [i, [label, run]] of jobs.entries()) {
+    self.postMessage({ type: 'progress', done: i, total: jobs.length, label });
+    run();
+  }
+  self.postMessage({ type: 'progress', done: jobs.length, total: jobs.length, label: 'done' });
+  return result;
+}
+
+function atlas({ scene, options, phi, v }) {
+  const job = new AtlasJob(scene, options ?? {}, phi ?? undefined, v ?? undefined);
+  try {
+    const total = job.total;
+    const chunk = job.row;
+    self.postMessage({ type: 'progress', done: 0, total, label: 'cells' });
+    while (job.done < total) {
+      const done = job.advance(chunk);
+      self.postMessage({ type: 'progress', done, total, label: 'cells' });
+    }
+    return job.finish();
+  } finally {
+    job.free();
+  }
+}
+
+self.onmessage = async ({ data }) => {
+  try {
+    await init({ module_or_path: data.wasm });
+    const t0 = performance.now();
+    let result;
+    if (data.kind === 'bench') result = bench(data);
+    else if (data.kind === 'atlas') result = atlas(data);
+    else throw new Error(`unknown job '${data.kind}'`);
+    self.postMessage({ type: 'done', result, ms: performance.now() - t0 });
+  } catch (e) {
+    let panic = null;
+    try {
+      panic = lastPanic();
+    } catch (_) {
+      /* the module did not load */
+    }
+    const message = panic
+      ? `Internal error in the simulation (please report it): ${panic}`
+      : e && e.message
+        ? e.message
+        : String(e);
+    self.postMessage({ type: 'error', message });
+  }
+};
