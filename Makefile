@@ -8,7 +8,7 @@ WASM_ENV = RUSTUP_TOOLCHAIN=$$(cat target/wasm-toolchain)
 WASM_SIMD_ENV = $(WASM_ENV) CARGO_TARGET_DIR=target/wasm-simd RUSTFLAGS="-C target-feature=+simd128"
 WASM_BUILD = CARGO_PROFILE_RELEASE_OPT_LEVEL=s wasm-pack build --release --target web --no-typescript
 
-.PHONY: setup web demo test lint test-native test-wasm test-e2e bench bench-native bench-web figures weights clean-web
+.PHONY: setup web demo test lint test-native test-wasm test-e2e bench bench-native bench-web figures atlas-figures weights clean-web
 
 ## Make this machine able to build and test for wasm32 (idempotent).
 setup:
@@ -79,6 +79,16 @@ bench-native:
 ## Chromium, three runs and their median.
 bench-web: web
 	bash scripts/bench-web.sh
+
+## The robustness atlases of both tasks (41 x 41 cells, five modes) as SVG
+## in docs/img, over the arm's reach and over the v network's trained
+## obstacle box, with their tables of success rates (docs/atlas.md).
+atlas-figures:
+	cargo build --release
+	for t in 1 2; do \
+	  ./target/release/redundant-ik atlas --task $$t --out docs/img/atlas_task$$t.svg; \
+	  ./target/release/redundant-ik atlas --task $$t --region 0.3,0.8,0.3,0.8 --out docs/img/atlas_task$${t}_box.svg; \
+	done
 
 ## The paper's figures for both tasks and every mode, as SVG.
 figures:

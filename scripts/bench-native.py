@@ -36,7 +36,7 @@ def main() -> int:
         results.append(json.loads(text))
         print(f"bench-native: run {i + 1}/{runs}", file=sys.stderr)
     merged = {"kernels": results[0]["kernels"], "runs": runs}
-    for key in ["theta_dot_ns", "step_ns", "forward_ns", "lm_epoch_ms", "allocs_per_step"]:
+    for key in ["theta_dot_ns", "step_ns", "forward_ns", "lm_epoch_ms", "allocs_per_step", "atlas_ms"]:
         merged[key] = median_of(results, key)
     with open(out, "w") as f:
         json.dump(merged, f, indent=2)

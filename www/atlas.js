@@ -26,6 +26,15 @@ function metres(v) {
   return '< 0.01 mm';
 }
 
+let native = null;
+/** The native figures (`make bench-native` writes www/bench-native.json), fetched once. */
+function nativeFigures() {
+  native ??= fetch(new URL('./bench-native.json', import.meta.url))
+    .then((r) => (r.ok ? r.json() : null))
+    .catch(() => null);
+  return native;
+}
+
 export function mountAtlas(root, demo, { runWorker, classes, methods, weights, describe, changed }) {
   const $ = (id) => root.querySelector('#' + id);
   const el = {
@@ -157,8 +166,17 @@ export function mountAtlas(root, demo, { runWorker, classes, methods, weights, d
     fillTable();
     if (el.result) el.result.hidden = false;
     const runs = atlas.cells.length * atlas.modes.length;
-    status(`${runs.toLocaleString('en')} runs in ${(ms / 1000).toFixed(2)} s. Hover a cell for its numbers; click one to put the obstacle there and replay.`);
+    const text = (native) =>
+      `${runs.toLocaleString('en')} runs in ${(ms / 1000).toFixed(2)} s here${native}. ` +
+      'Hover a cell for its numbers; click one to put the obstacle there and replay.';
+    status(text(''));
     if (el.status) el.status.dataset.ms = String(ms);
+    // The default atlas is also timed natively (`make bench-native`).
+    if (runs === 8405 && atlas.task === 1) {
+      nativeFigures().then((nat) => {
+        if (nat?.atlas_ms && atlas === result) status(text(` (native, one core: ${(nat.atlas_ms / 1000).toFixed(2)} s)`));
+      });
+    }
     const preferred = atlas.modes.includes(shown) ? shown : atlas.modes.find((m) => m !== 'none') ?? atlas.modes[0];
     show(preferred);
   }

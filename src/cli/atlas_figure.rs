@@ -24,6 +24,57 @@ const REGION: RGBColor = RGBColor(255, 255, 255);
 /// Plot width of one panel in pixels (the height follows the region's aspect).
 const PANEL_W: f64 = 330.0;
 
+type Pt = (f64, f64);
+
+/// The part of segment `a`-`b` inside the box `[x0, x1] x [y0, y1]`
+/// (Liang-Barsky), if any: plotters does not clip what lies outside a
+/// chart's range, it pins it to the edge.
+fn clip(a: Pt, b: Pt, [x0, x1, y0, y1]: [f64; 4]) -> Option<(Pt, Pt)> {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, q) in [
+        (-dx, a.0 - x0),
+        (dx, x1 - a.0),
+        (-dy, a.1 - y0),
+        (dy, y1 - a.1),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return None;
+            }
+        } else {
+            let r = q / p;
+            if p < 0.0 {
+                t0 = t0.max(r);
+            } else {
+                t1 = t1.min(r);
+            }
+        }
+    }
+    (t0 <= t1).then(|| {
+        (
+            (a.0 + t0 * dx, a.1 + t0 * dy),
+            (a.0 + t1 * dx, a.1 + t1 * dy),
+        )
+    })
+}
+
+/// The pieces of a polyline inside the box, each as long as it can be.
+fn clip_polyline(points: &[Pt], bounds: [f64; 4]) -> Vec<Vec<Pt>> {
+    let mut pieces: Vec<Vec<Pt>> = Vec::new();
+    for (a, b) in points.windows(2).filter_map(|w| clip(w[0], w[1], bounds)) {
+        match pieces.last_mut() {
+            Some(piece) if piece.last() == Some(&a) => piece.push(b),
+            _ => pieces.push(vec![a, b]),
+        }
+    }
+    pieces
+}
+
+fn inside(p: Pt, [x0, x1, y0, y1]: [f64; 4]) -> bool {
+    (x0..=x1).contains(&p.0) && (y0..=y1).contains(&p.1)
+}
+
 /// Draws `atlas` (computed on `scene`) to `path`.
 pub fn draw(path: &Path, atlas: &Atlas, scene: &Scene) -> Result<(), String> {
     let e = |err: &dyn std::fmt::Display| format!("cannot draw {}: {err}", path.display());
@@ -57,6 +108,7 @@ pub fn draw(path: &Path, atlas: &Atlas, scene: &Scene) -> Result<(), String> {
     let (maps, legend) = rest.split_vertically(panel_h);
     let panels = maps.split_evenly((1, k as usize));
 
+    let bounds = [wx0, wx1, wy0, wy1];
     let start = Pose::new(&scene.arm, &scene.theta0).map_err(|x| e(&x))?;
     let joints: Vec<(f64, f64)> = start.joints().iter().map(|p| (p[0], p[1])).collect();
     let ee = start.end_effector();
@@ -113,50 +165,61 @@ pub fn draw(path: &Path, atlas: &Atlas, scene: &Scene) -> Result<(), String> {
 
         // Where the v network saw obstacle centres in training.
         if let Some([rx0, rx1, ry0, ry1]) = atlas.trained_region {
+            let edges = [(rx0, ry0), (rx1, ry0), (rx1, ry1), (rx0, ry1), (rx0, ry0)];
+            for piece in clip_polyline(&edges, bounds) {
+                chart
+                    .draw_series(DashedLineSeries::new(
+                        piece,
+                        4,
+                        3,
+                        ShapeStyle::from(&REGION).stroke_width(1),
+                    ))
+                    .map_err(|x| e(&x))?;
+            }
+        }
+        // The straight line and the target.
+        let target = (scene.target[0], scene.target[1]);
+        for piece in clip_polyline(&[(ee[0], ee[1]), target], bounds) {
             chart
                 .draw_series(DashedLineSeries::new(
-                    vec![(rx0, ry0), (rx1, ry0), (rx1, ry1), (rx0, ry1), (rx0, ry0)],
+                    piece,
+                    5,
                     4,
-                    3,
-                    ShapeStyle::from(&REGION).stroke_width(1),
+                    ShapeStyle::from(&ACCENT).stroke_width(2),
                 ))
                 .map_err(|x| e(&x))?;
         }
-        // The straight line and the target.
-        chart
-            .draw_series(DashedLineSeries::new(
-                vec![(ee[0], ee[1]), (scene.target[0], scene.target[1])],
-                5,
-                4,
-                ShapeStyle::from(&ACCENT).stroke_width(2),
-            ))
-            .map_err(|x| e(&x))?;
-        chart
-            .draw_series(std::iter::once(Cross::new(
-                (scene.target[0], scene.target[1]),
-                5,
-                ShapeStyle::from(&ACCENT).stroke_width(2),
-            )))
-            .map_err(|x| e(&x))?;
+        if inside(target, bounds) {
+            chart
+                .draw_series(std::iter::once(Cross::new(
+                    target,
+                    5,
+                    ShapeStyle::from(&ACCENT).stroke_width(2),
+                )))
+                .map_err(|x| e(&x))?;
+        }
         // The post and the start pose.
+        for piece in clip_polyline(&[(0.0, 0.0), (0.0, scene.arm.post())], bounds) {
+            chart
+                .draw_series(LineSeries::new(piece, ShapeStyle::from(&INK).stroke_width(4)))
+                .map_err(|x| e(&x))?;
+        }
+        for piece in clip_polyline(&joints, bounds) {
+            chart
+                .draw_series(LineSeries::new(piece, ShapeStyle::from(&ARM).stroke_width(3)))
+                .map_err(|x| e(&x))?;
+        }
         chart
-            .draw_series(LineSeries::new(
-                vec![(0.0, 0.0), (0.0, scene.arm.post())],
-                ShapeStyle::from(&INK).stroke_width(4),
-            ))
-            .map_err(|x| e(&x))?;
-        chart
-            .draw_series(LineSeries::new(
-                joints.clone(),
-                ShapeStyle::from(&ARM).stroke_width(3),
-            ))
-            .map_err(|x| e(&x))?;
-        chart
-            .draw_series(joints.iter().map(|p| Circle::new(*p, 2, WHITE.filled())))
+            .draw_series(
+                joints
+                    .iter()
+                    .filter(|p| inside(**p, bounds))
+                    .map(|p| Circle::new(*p, 2, WHITE.filled())),
+            )
             .map_err(|x| e(&x))?;
         // The canonical obstacle, outlined at its true size.
         for ob in scene.obstacles.iter().take(1) {
-            let ring: Vec<(f64, f64)> = (0..=48)
+            let ring: Vec<Pt> = (0..=48)
                 .map(|t| {
                     let a = t as f64 / 48.0 * std::f64::consts::TAU;
                     (
@@ -165,12 +228,11 @@ pub fn draw(path: &Path, atlas: &Atlas, scene: &Scene) -> Result<(), String> {
                     )
                 })
                 .collect();
-            chart
-                .draw_series(LineSeries::new(
-                    ring,
-                    ShapeStyle::from(&INK).stroke_width(2),
-                ))
-                .map_err(|x| e(&x))?;
+            for piece in clip_polyline(&ring, bounds) {
+                chart
+                    .draw_series(LineSeries::new(piece, ShapeStyle::from(&INK).stroke_width(2)))
+                    .map_err(|x| e(&x))?;
+            }
         }
     }
 

@@ -651,6 +651,7 @@ test('atlas panel: the map under the arm, its legend, hover numbers, click to re
   assert.ok(px.slice(0, 3).every((v, i) => Math.abs(v - blended[i]) <= 4), `cell pixel ${px} vs swatch ${blended}`);
   assert.equal(await page.locator('#atlas-legend li').count(), 6);
   // Hover: the tip names the cell and every method's outcome.
+  await page.evaluate(() => window.scrollTo(0, 0));
   const at = await page.evaluate(([x, y]) => window.demo.worldToClient(x, y), [pick.x, pick.y]);
   await page.mouse.move(at.x, at.y);
   await page.waitForSelector('#atlas-tip:not([hidden])');
