@@ -691,6 +691,10 @@ test('atlas panel: the map under the arm, its legend, hover numbers, click to re
     assert.match(e, message, JSON.stringify(options));
   }
   assert.equal(await page.evaluate(() => window.demo.atlasResult().grid.n), 11, 'a refused atlas changes nothing');
+  // A change of the task (here lambda) marks the map as stale.
+  await page.evaluate(() => window.demo.controller.demo.setLambda(6));
+  await page.waitForFunction(() => document.getElementById('atlas-status').dataset.stale === 'true');
+  assert.match(await page.textContent('#atlas-status'), /task changed since this atlas was computed/);
   clean(page);
   await page.close();
 });
