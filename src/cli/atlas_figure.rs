@@ -201,12 +201,18 @@ pub fn draw(path: &Path, atlas: &Atlas, scene: &Scene) -> Result<(), String> {
         // The post and the start pose.
         for piece in clip_polyline(&[(0.0, 0.0), (0.0, scene.arm.post())], bounds) {
             chart
-                .draw_series(LineSeries::new(piece, ShapeStyle::from(&INK).stroke_width(4)))
+                .draw_series(LineSeries::new(
+                    piece,
+                    ShapeStyle::from(&INK).stroke_width(4),
+                ))
                 .map_err(|x| e(&x))?;
         }
         for piece in clip_polyline(&joints, bounds) {
             chart
-                .draw_series(LineSeries::new(piece, ShapeStyle::from(&ARM).stroke_width(3)))
+                .draw_series(LineSeries::new(
+                    piece,
+                    ShapeStyle::from(&ARM).stroke_width(3),
+                ))
                 .map_err(|x| e(&x))?;
         }
         chart
@@ -230,7 +236,10 @@ pub fn draw(path: &Path, atlas: &Atlas, scene: &Scene) -> Result<(), String> {
                 .collect();
             for piece in clip_polyline(&ring, bounds) {
                 chart
-                    .draw_series(LineSeries::new(piece, ShapeStyle::from(&INK).stroke_width(2)))
+                    .draw_series(LineSeries::new(
+                        piece,
+                        ShapeStyle::from(&INK).stroke_width(2),
+                    ))
                     .map_err(|x| e(&x))?;
             }
         }
