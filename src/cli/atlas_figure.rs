@@ -51,12 +51,10 @@ fn clip(a: Pt, b: Pt, [x0, x1, y0, y1]: [f64; 4]) -> Option<(Pt, Pt)> {
             }
         }
     }
-    (t0 <= t1).then(|| {
-        (
-            (a.0 + t0 * dx, a.1 + t0 * dy),
-            (a.0 + t1 * dx, a.1 + t1 * dy),
-        )
-    })
+    (t0 <= t1).then_some((
+        (a.0 + t0 * dx, a.1 + t0 * dy),
+        (a.0 + t1 * dx, a.1 + t1 * dy),
+    ))
 }
 
 /// The pieces of a polyline inside the box, each as long as it can be.
