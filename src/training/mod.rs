@@ -4,7 +4,10 @@
 //! [`crate::nn::lm`] and writes a weights file. Kept apart from the run-time
 //! networks ([`crate::networks`]): the page's simulation needs none of it.
 
+#[cfg(feature = "eval")]
+pub mod playground;
 pub mod sampling;
+pub mod tasks;
 
 use serde::{Deserialize, Serialize};
 
@@ -56,6 +59,16 @@ impl TrainSpec {
             },
             options: LmOptions::default(),
             sampling: Sampling::default(),
+        }
+    }
+
+    /// [`TrainSpec::paper`] for any arm: the same architecture and
+    /// optimiser, sampled as [`Sampling::for_arm`] says.
+    pub fn for_arm(arm: &Arm, net: NetKind, variant: Variant, seed: u64) -> Self {
+        Self {
+            arm: arm.clone(),
+            sampling: Sampling::for_arm(arm),
+            ..Self::paper(net, variant, seed)
         }
     }
 }

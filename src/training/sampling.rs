@@ -3,10 +3,15 @@
 //! A box over theta that spans the tasks contains singular poses where `Phi`
 //! is unbounded, so the data is drawn around the configurations the tasks
 //! actually visit: the numerical route and the no-avoidance route are run
-//! on Task 1 and Task 2 with many obstacle positions drawn uniformly from a
-//! region around and between both canonical obstacles, every visited pose is
-//! kept, and samples are visited poses plus Gaussian noise. Poses whose
-//! Jacobian's smallest singular value is below a floor are rejected.
+//! on a set of straight-line tasks with many obstacle positions drawn
+//! uniformly from a region, every visited pose is kept, and samples are
+//! visited poses plus Gaussian noise. Poses whose Jacobian's smallest
+//! singular value is below a floor are rejected.
+//!
+//! The tasks are the paper's Task 1 and Task 2 for the paper's arm (with
+//! the region around and between both canonical obstacles:
+//! [`Sampling::default`]), and random straight-line tasks inside the arm's
+//! reach for any other arm ([`Sampling::for_arm`], [`super::tasks`]).
 
 use nalgebra::{DVector, Vector2};
 use serde::{Deserialize, Serialize};
@@ -23,8 +28,13 @@ use crate::scene::Scene;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Sampling {
-    /// Paper tasks whose trajectories seed the pose pool.
+    /// Paper tasks whose trajectories seed the pose pool (3-link arms only).
     pub tasks: Vec<u32>,
+    /// Random straight-line tasks inside the arm's reach that seed it too
+    /// ([`super::tasks::random_task`]); absent in files written before
+    /// arms other than the paper's could be trained, hence the default 0.
+    #[serde(default)]
+    pub random_tasks: usize,
     /// Modes run on each task and obstacle (`none`, `numerical`).
     pub modes: Vec<Mode>,
     /// Obstacle positions drawn per task.
@@ -42,12 +52,20 @@ pub struct Sampling {
     pub paired_obstacle_share: f64,
     /// Standard deviation of the noise on paired obstacle points (m).
     pub obstacle_noise: f64,
+    /// When positive, the obstacles of the random tasks are drawn near the
+    /// links' sweep in the no-avoidance run (a point on a link at a random
+    /// step, moved by Gaussian noise of this standard deviation, m), where
+    /// they matter, instead of uniformly in the region. Absent in older
+    /// files, hence the default 0.
+    #[serde(default)]
+    pub obstacle_spread: f64,
 }
 
 impl Default for Sampling {
     fn default() -> Self {
         Self {
             tasks: vec![1, 2],
+            random_tasks: 0,
             modes: vec![Mode::None, Mode::Numerical],
             obstacles_per_task: 60,
             obstacle_min: [0.3, 0.3],
@@ -56,6 +74,7 @@ impl Default for Sampling {
             sigma_floor: 0.2,
             paired_obstacle_share: 0.5,
             obstacle_noise: 0.03,
+            obstacle_spread: 0.0,
         }
     }
 }
@@ -70,10 +89,39 @@ pub struct Visited {
 }
 
 impl Sampling {
+    /// How to sample for `arm`: the paper's sampling ([`Sampling::default`])
+    /// for the paper's arm; for any other arm 60 random straight-line tasks
+    /// with 6 obstacles each near the links' sweep (spread 0.08 of the
+    /// reach; the region is [`super::tasks::obstacle_region`]), every `v`
+    /// sample paired with its run's obstacle, the rest as the paper's, with
+    /// the sigma floor scaled by the reach (0.2 m of the paper's 2.05 m).
+    /// Uniform obstacles over the whole reach would mostly sit far from the
+    /// arm, where the area criterion keeps turning the joints (the areas
+    /// grow with distance), and would spread the poses over several turns.
+    pub fn for_arm(arm: &Arm) -> Self {
+        if *arm == Arm::paper() {
+            return Self::default();
+        }
+        let (obstacle_min, obstacle_max) = super::tasks::obstacle_region(arm);
+        let paper_reach = Arm::paper().max_reach();
+        Self {
+            tasks: Vec::new(),
+            random_tasks: 60,
+            obstacles_per_task: 6,
+            obstacle_min,
+            obstacle_max,
+            sigma_floor: 0.2 * arm.max_reach() / paper_reach,
+            paired_obstacle_share: 1.0,
+            obstacle_spread: 0.08 * arm.max_reach(),
+            ..Self::default()
+        }
+    }
+
     /// Checks the numbers make sense.
     pub fn validate(&self) -> Result<()> {
         let ok = |x: f64| x.is_finite() && x >= 0.0;
         if !(ok(self.theta_noise)
+            && ok(self.obstacle_spread)
             && ok(self.sigma_floor)
             && ok(self.obstacle_noise)
             && (0.0..=1.0).contains(&self.paired_obstacle_share))
@@ -92,9 +140,14 @@ impl Sampling {
                 ));
             }
         }
-        if self.tasks.is_empty() || self.modes.is_empty() {
+        if (self.tasks.is_empty() && self.random_tasks == 0) || self.modes.is_empty() {
             return Err(Error::Training(
                 "sampling: need at least one task and one mode".into(),
+            ));
+        }
+        if self.random_tasks > 10_000 || self.obstacles_per_task > 10_000 {
+            return Err(Error::Training(
+                "sampling: at most 10 000 random tasks and 10 000 obstacles per task".into(),
             ));
         }
         if self.modes.iter().any(|m| m.learned_phi() || m.learned_v()) {
@@ -106,31 +159,56 @@ impl Sampling {
         Ok(())
     }
 
-    /// Every pose `arm` visits in the numerical runs: each task with its
-    /// canonical obstacle and with `obstacles_per_task` obstacles uniform in
-    /// the region, in every mode listed. Runs that fail (obstacle on the
-    /// post, a singular pose) are skipped. The paper's tasks start from three
-    /// joint angles, so `arm` needs three links.
+    /// Every pose `arm` visits in the numerical runs: each paper task with
+    /// its canonical obstacle, and each random task, with
+    /// `obstacles_per_task` obstacles uniform in the region, in every mode
+    /// listed. Runs that fail (obstacle on the post, a singular pose) are
+    /// skipped. The paper's tasks start from three joint angles, so they
+    /// need a 3-link arm.
     pub fn visited(&self, arm: &Arm, rng: &mut Rng) -> Result<Vec<Visited>> {
         self.validate()?;
-        let mut out = Vec::new();
+        let mut bases = Vec::with_capacity(self.tasks.len() + self.random_tasks);
         for &task in &self.tasks {
             let mut base = Scene::task(task)?;
             if arm.dof() != base.theta0.len() {
                 return Err(Error::Training(format!(
-                    "sampling: the paper's tasks start from {} joint angles; a {}-link arm needs tasks of its own",
+                    "sampling: the paper's tasks start from {} joint angles; a {}-link arm needs random tasks (Sampling::for_arm)",
                     base.theta0.len(),
                     arm.dof()
                 )));
             }
             base.arm = arm.clone();
+            bases.push(base);
+        }
+        let paper_tasks = bases.len();
+        for _ in 0..self.random_tasks {
+            bases.push(super::tasks::random_task(arm, rng)?);
+        }
+        let mut out = Vec::new();
+        for (k, base) in bases.into_iter().enumerate() {
             let canonical = base.obstacles.first().map(|o| o.centre);
             let mut obstacles: Vec<[f64; 2]> = canonical.into_iter().collect();
+            let sweep = if k >= paper_tasks && self.obstacle_spread > 0.0 {
+                Planner::run(base.clone(), Mode::None, None).ok()
+            } else {
+                None
+            };
             for _ in 0..self.obstacles_per_task {
-                obstacles.push([
-                    rng.range(self.obstacle_min[0], self.obstacle_max[0]),
-                    rng.range(self.obstacle_min[1], self.obstacle_max[1]),
-                ]);
+                obstacles.push(match &sweep {
+                    Some(run) => {
+                        let joints = &run.steps[rng.below(run.steps.len())].joints;
+                        let link = 1 + rng.below(joints.len() - 1);
+                        let (a, b, s) = (joints[link - 1], joints[link], rng.uniform());
+                        [
+                            a[0] + s * (b[0] - a[0]) + self.obstacle_spread * rng.normal(),
+                            a[1] + s * (b[1] - a[1]) + self.obstacle_spread * rng.normal(),
+                        ]
+                    }
+                    None => [
+                        rng.range(self.obstacle_min[0], self.obstacle_max[0]),
+                        rng.range(self.obstacle_min[1], self.obstacle_max[1]),
+                    ],
+                });
             }
             for o in obstacles {
                 let radius = base.obstacles.first().map_or(0.05, |ob| ob.radius);

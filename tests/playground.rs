@@ -1,0 +1,221 @@
+//! The playground's core: random tasks and training data for any arm, and
+//! training both networks for it with a report (what the page's Training
+//! panel runs in a Web Worker).
+
+#[cfg(target_arch = "wasm32")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
+
+use std::sync::Arc;
+
+use redundant_ik::nalgebra::DVector;
+use redundant_ik::networks::Networks;
+use redundant_ik::nn::rng::Rng;
+use redundant_ik::nn::{NetKind, Variant};
+use redundant_ik::training::playground::{self, Preset, Request, Which};
+use redundant_ik::training::{self, tasks, Sampling};
+use redundant_ik::{Arm, Error, Mode, Planner, Surrogate};
+
+fn four_links() -> Arm {
+    Arm::new(0.5, vec![0.6, 0.85, 0.6, 0.4]).unwrap()
+}
+
+#[test]
+fn random_tasks_start_above_the_ground_and_their_lines_stay_in_reach() {
+    for arm in [four_links(), Arm::new(0.3, vec![0.5, 0.5]).unwrap()] {
+        let mut rng = Rng::new(3);
+        let reach = arm.max_reach();
+        for _ in 0..20 {
+            let scene = tasks::random_task(&arm, &mut rng).unwrap();
+            scene.validate().unwrap();
+            let joints = arm.joints(&scene.theta0_vector());
+            assert!(joints.iter().all(|p| p[1] >= tasks::GROUND));
+            let start = joints[joints.len() - 1];
+            let length = (start[0] - scene.target[0]).hypot(start[1] - scene.target[1]);
+            assert!(length >= tasks::MIN_LENGTH * reach);
+            let run = Planner::run_summary(scene, Mode::None, None).unwrap();
+            assert!(run.reached, "the line is reachable: {run:?}");
+        }
+    }
+}
+
+#[test]
+fn random_tasks_are_seeded() {
+    let arm = four_links();
+    let a = tasks::random_task(&arm, &mut Rng::new(9)).unwrap();
+    let b = tasks::random_task(&arm, &mut Rng::new(9)).unwrap();
+    let c = tasks::random_task(&arm, &mut Rng::new(10)).unwrap();
+    assert_eq!(a, b);
+    assert_ne!(a, c);
+}
+
+#[test]
+fn the_check_tasks_need_avoidance_and_the_numerical_route_manages_them() {
+    let arm = four_links();
+    let scenes = tasks::avoidance_tasks(&arm, 5, tasks::obstacle_region(&arm), 1).unwrap();
+    assert_eq!(scenes.len(), 5);
+    for scene in &scenes {
+        assert_eq!(scene.obstacles.len(), 1);
+        let none = Planner::run_summary(scene.clone(), Mode::None, None).unwrap();
+        let numerical = Planner::run_summary(scene.clone(), Mode::Numerical, None).unwrap();
+        assert!(none.collided);
+        assert!(tasks::succeeded(&numerical));
+    }
+    let check = tasks::check(&scenes, Mode::None, None);
+    assert_eq!((check.tasks, check.succeeded, check.collided), (5, 0, 5));
+    let check = tasks::check(&scenes, Mode::Numerical, None);
+    assert_eq!(check.succeeded, 5);
+}
+
+#[test]
+fn the_paper_arm_keeps_the_paper_sampling_and_other_arms_sample_random_tasks() {
+    assert_eq!(Sampling::for_arm(&Arm::paper()), Sampling::default());
+    let s = Sampling::for_arm(&four_links());
+    assert!(s.tasks.is_empty());
+    assert!(s.random_tasks > 0);
+    s.validate().unwrap();
+    // The paper's tasks cannot seed a 4-link arm.
+    let err = Sampling::default()
+        .visited(&four_links(), &mut Rng::new(1))
+        .unwrap_err();
+    assert!(matches!(err, Error::Training(m) if m.contains("random tasks")));
+}
+
+#[test]
+fn training_data_for_a_four_link_arm_has_its_shape_and_respects_the_floor() {
+    let arm = four_links();
+    let sampling = Sampling::for_arm(&arm);
+    let samples = training::draw_samples(&arm, &sampling, 300, 5).unwrap();
+    assert_eq!(samples.len(), 300);
+    for s in &samples {
+        assert_eq!(s.theta.len(), 4);
+        let j = arm.jacobian(&DVector::from_column_slice(&s.theta));
+        assert!(redundant_ik::ik::smallest_singular_value(&j) >= sampling.sigma_floor);
+    }
+    assert_eq!(
+        samples,
+        training::draw_samples(&arm, &sampling, 300, 5).unwrap(),
+        "seeded"
+    );
+    // The equivariant Phi takes theta_2..theta_4 and gives the 4 x 2 Phi.
+    let sets = training::phi_datasets(&arm, Variant::Equivariant, &samples).unwrap();
+    assert_eq!((sets.len(), sets[0].n_in, sets[0].n_out), (1, 3, 8));
+    let v = training::v_dataset(&arm, Variant::Plain, &samples).unwrap();
+    assert_eq!((v.n_in, v.n_out), (6, 4));
+}
+
+fn small(arm: Arm, net: Which) -> Request {
+    Request {
+        arm,
+        net,
+        preset: Preset::Quick,
+        samples: Some(200),
+        epochs: Some(4),
+        seed: Some(3),
+    }
+}
+
+#[test]
+fn training_for_a_four_link_arm_gives_networks_the_planner_takes() {
+    let arm = four_links();
+    let mut epochs = Vec::new();
+    let trained = playground::train(&small(arm.clone(), Which::Both), None, |p| {
+        epochs.push((p.net, p.report.epoch));
+        assert!(p.report.train_mse.is_finite() && p.report.val_mse.is_finite());
+        true
+    })
+    .unwrap();
+    assert!(epochs.first() == Some(&("phi", 1)));
+    assert!(epochs.iter().any(|e| e.0 == "v"));
+    assert_eq!(trained.phi.arm().unwrap(), arm);
+    assert_eq!(trained.phi.net, NetKind::Phi);
+    assert_eq!(trained.v.net, NetKind::V);
+    // The files round-trip through their JSON text, as the page's download does.
+    let nets = Networks::from_json(
+        &trained.phi.to_json().unwrap(),
+        &trained.v.to_json().unwrap(),
+    )
+    .unwrap();
+    assert_eq!(nets.arm(), &arm);
+    let scene = tasks::random_task(&arm, &mut Rng::new(1)).unwrap();
+    let surrogate: Arc<dyn Surrogate> = Arc::new(nets);
+    Planner::new(scene, Mode::Case3, Some(surrogate)).unwrap();
+    let r = &trained.report;
+    assert_eq!(r.samples, 200);
+    assert!(r.phi.as_ref().unwrap().epochs <= 4);
+    assert_eq!(r.phi_error.samples, 500);
+    assert!(
+        r.paper_tasks.is_empty(),
+        "the paper's tasks are for its arm"
+    );
+    assert_eq!(
+        r.random_tasks.len(),
+        8,
+        "numerical and Cases 1-3, K = 0 and 1"
+    );
+    for row in &r.random_tasks {
+        assert_eq!(row.check.tasks, playground::CHECK_TASKS);
+        if row.check.mode == "numerical" {
+            assert_eq!(row.check.succeeded, playground::CHECK_TASKS);
+        }
+    }
+}
+
+#[test]
+fn training_one_network_keeps_the_other_and_needs_it_for_this_arm() {
+    let embedded = Networks::embedded().unwrap();
+    let t = playground::train(&small(Arm::paper(), Which::V), Some(&embedded), |_| true).unwrap();
+    assert_eq!(&t.phi, embedded.phi_file(), "Phi kept");
+    assert_ne!(&t.v, embedded.v_file());
+    assert!(t.report.phi.is_none() && t.report.v.is_some());
+    assert_eq!(t.report.paper_tasks.len(), 6, "Cases 1-3 on Tasks 1 and 2");
+    // The built-in networks are for the paper's arm, not this one.
+    let err =
+        playground::train(&small(four_links(), Which::Phi), Some(&embedded), |_| true).unwrap_err();
+    assert!(matches!(err, Error::Training(m) if m.contains("train both")));
+}
+
+#[test]
+fn bad_training_requests_are_refused_with_a_reason() {
+    let mut r = small(four_links(), Which::Both);
+    r.samples = Some(5);
+    assert!(matches!(
+        playground::train(&r, None, |_| true),
+        Err(Error::OutOfRange { .. })
+    ));
+    let mut r = small(four_links(), Which::Both);
+    r.epochs = Some(0);
+    assert!(matches!(r.size(), Err(Error::OutOfRange { .. })));
+    r.epochs = Some(playground::MAX_EPOCHS + 1);
+    assert!(r.size().is_err());
+    let json = r#"{"arm": {"post": 0.5, "links": [0.6, 0.6]}, "net": "both", "preset": "quick", "epoch": 3}"#;
+    assert!(
+        serde_json::from_str::<Request>(json).is_err(),
+        "unknown field"
+    );
+    let json = r#"{"arm": {"post": 0.5, "links": [0.6, 0.6]}, "net": "all", "preset": "quick"}"#;
+    assert!(
+        serde_json::from_str::<Request>(json).is_err(),
+        "unknown network"
+    );
+    // An arm that bypassed Arm::new (as JSON does) is checked again.
+    let json = r#"{"arm": {"post": 0.5, "links": [0.6]}, "net": "both", "preset": "quick"}"#;
+    let r: Request = serde_json::from_str(json).unwrap();
+    assert!(matches!(
+        playground::train(&r, None, |_| true),
+        Err(Error::LinkCount { .. })
+    ));
+}
+
+#[test]
+fn stopping_early_keeps_what_was_learnt() {
+    let mut r = small(four_links(), Which::Both);
+    r.epochs = Some(50);
+    let mut seen = 0;
+    let t = playground::train(&r, None, |_| {
+        seen += 1;
+        seen % 3 != 0
+    })
+    .unwrap();
+    assert!(t.report.phi.as_ref().unwrap().epochs <= 3);
+    assert!(t.report.v.as_ref().unwrap().epochs <= 3);
+}
