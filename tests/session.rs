@@ -8,8 +8,10 @@ use wasm_bindgen_test::wasm_bindgen_test as test;
 wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 
 use redundant_ik::networks::Networks;
-use redundant_ik::session::{Handle, Session, MAX_STEPS_PER_FRAME, NUDGE, STROBE_EVERY};
-use redundant_ik::{Error, Mode};
+use redundant_ik::session::{
+    Handle, Session, MAX_OBSTACLES, MAX_STEPS_PER_FRAME, NUDGE, STROBE_EVERY,
+};
+use redundant_ik::{Arm, Error, Mode, Obstacle};
 
 fn with_networks(task: u32) -> Session {
     let mut s = Session::new(task).unwrap();
@@ -138,7 +140,7 @@ fn dropping_the_target_plans_a_line_from_the_hand_and_starts_the_clock() {
 #[test]
 fn the_obstacle_follows_the_pointer_but_never_onto_the_post() {
     let mut s = Session::new(1).unwrap();
-    s.drag_start(Some(Handle::Obstacle));
+    s.drag_start(Some(Handle::Obstacle(0)));
     s.drag_to([0.8, 0.9]).unwrap();
     assert_eq!(s.state().obstacle, Some([0.8, 0.9]));
     assert!(matches!(
@@ -164,7 +166,7 @@ fn arrow_keys_nudge_the_target_and_the_obstacle() {
     assert!((st.target[0] - (target[0] + NUDGE)).abs() < 1e-12);
     assert!(st.running, "a new line starts the clock");
     let o = s.state().obstacle.unwrap();
-    s.nudge(Handle::Obstacle, 0.0, -1.0).unwrap();
+    s.nudge(Handle::Obstacle(0), 0.0, -1.0).unwrap();
     let moved = s.state().obstacle.unwrap();
     assert!((moved[1] - (o[1] - NUDGE)).abs() < 1e-12);
 }
@@ -254,10 +256,134 @@ fn the_state_serialises_to_the_object_the_page_reads() {
         "steps",
         "solver_ms",
         "dragging",
+        "dragging_obstacle",
+        "arm",
+        "obstacles",
+        "nearest",
         "error",
     ] {
         assert!(v.get(key).is_some(), "missing {key}");
     }
     assert_eq!(v["dragging"], serde_json::Value::Null);
     assert_eq!(v["joints"].as_array().unwrap().len(), 4);
+}
+
+// ---- the playground: arms and several obstacles ---------------------------
+
+fn four_links() -> Arm {
+    Arm::new(0.5, vec![0.6, 0.85, 0.6, 0.4]).unwrap()
+}
+
+#[test]
+fn a_new_arm_restarts_from_its_own_start_pose_and_the_numerical_modes_run_at_once() {
+    let mut s = Session::new(1).unwrap();
+    s.set_arm(four_links()).unwrap();
+    let st = s.state();
+    assert_eq!(st.arm.links().len(), 4);
+    assert_eq!(st.theta.len(), 4);
+    assert_eq!(st.t, 0.0);
+    assert!(
+        st.joints.iter().all(|p| p[1] > 0.0),
+        "start pose above the ground"
+    );
+    for mode in [Mode::None, Mode::Numerical] {
+        s.set_mode(mode).unwrap();
+        s.run_task();
+        s.run_until(10.0).unwrap();
+        assert!(s.state().final_error < 5e-3, "{mode} reaches the target");
+    }
+}
+
+#[test]
+fn networks_for_another_arm_are_set_aside_and_the_network_cases_fall_back() {
+    let mut s = Session::new(1).unwrap();
+    s.set_networks(Networks::embedded().unwrap()).unwrap();
+    s.set_mode(Mode::Case3).unwrap();
+    s.set_arm(four_links()).unwrap();
+    assert!(s.networks().is_none());
+    assert_eq!(s.state().mode, "numerical");
+    assert!(matches!(
+        s.set_networks(Networks::embedded().unwrap()),
+        Err(Error::NetworksForAnotherArm { .. })
+    ));
+    // Back to the paper's arm: its task, and the networks install again.
+    s.set_arm(Arm::paper()).unwrap();
+    s.set_networks(Networks::embedded().unwrap()).unwrap();
+    s.set_mode(Mode::Case3).unwrap();
+}
+
+#[test]
+fn a_bad_arm_is_refused_and_the_old_one_stays() {
+    let mut s = Session::new(1).unwrap();
+    assert!(Arm::new(0.5, vec![0.6]).is_err());
+    assert!(Arm::new(f64::NAN, vec![0.6, 0.6]).is_err());
+    assert!(Arm::new(0.5, vec![0.6, -0.1]).is_err());
+    assert_eq!(s.state().arm, &Arm::paper());
+    s.set_arm(four_links()).unwrap();
+    assert_eq!(s.state().arm, &four_links());
+}
+
+#[test]
+fn obstacles_can_be_added_moved_and_removed_up_to_eight() {
+    let mut s = Session::new(1).unwrap();
+    assert_eq!(s.obstacles().len(), 1);
+    assert!(matches!(
+        s.add_obstacle(Obstacle::new(0.0, 0.2, 0.05)),
+        Err(Error::ObstacleOnPost { .. })
+    ));
+    for k in 1..MAX_OBSTACLES {
+        let i = s
+            .add_obstacle(Obstacle::new(-0.6 + 0.1 * k as f64, 1.6, 0.04))
+            .unwrap();
+        assert_eq!(i, k);
+    }
+    assert!(matches!(
+        s.add_obstacle(Obstacle::new(0.9, 0.9, 0.05)),
+        Err(Error::OutOfRange { .. })
+    ));
+    assert_eq!(s.obstacles().len(), MAX_OBSTACLES);
+    s.move_obstacle(3, [1.0, 1.7]).unwrap();
+    assert_eq!(s.obstacles()[3].centre, [1.0, 1.7]);
+    assert_eq!(s.obstacles()[3].radius, 0.04, "moving keeps the radius");
+    s.remove_obstacle(0).unwrap();
+    assert_eq!(s.obstacles().len(), MAX_OBSTACLES - 1);
+    assert_eq!(s.obstacles()[2].centre, [1.0, 1.7], "the others shift down");
+    assert!(s.remove_obstacle(99).is_err());
+    assert!(s.add_obstacle(Obstacle::new(0.5, 0.5, -1.0)).is_err());
+    assert!(s.add_obstacle(Obstacle::new(f64::NAN, 0.5, 0.05)).is_err());
+    assert_eq!(
+        s.obstacles().len(),
+        MAX_OBSTACLES - 1,
+        "refusals change nothing"
+    );
+}
+
+#[test]
+fn the_readout_follows_the_nearest_obstacle() {
+    let mut s = Session::new(1).unwrap();
+    // The canonical obstacle at (0.5, 0.5), and one right on the start arm's last link.
+    let joints = s.state().joints.to_vec();
+    let (a, b) = (joints[2], joints[3]);
+    let on = [(a[0] + b[0]) / 2.0 + 0.06, (a[1] + b[1]) / 2.0];
+    s.add_obstacle(Obstacle::new(on[0], on[1], 0.02)).unwrap();
+    s.reset();
+    let st = s.state();
+    assert_eq!(st.nearest, Some(1));
+    assert!(st.distance.unwrap() < 0.07);
+    s.remove_obstacle(1).unwrap();
+    s.reset();
+    assert_eq!(s.state().nearest, Some(0));
+}
+
+#[test]
+fn dragging_moves_the_obstacle_grabbed() {
+    let mut s = Session::new(1).unwrap();
+    s.add_obstacle(Obstacle::new(-0.5, 1.5, 0.05)).unwrap();
+    s.drag_start(Some(Handle::Obstacle(1)));
+    assert_eq!(s.state().dragging, Some("obstacle"));
+    assert_eq!(s.state().dragging_obstacle, Some(1));
+    s.drag_to([-0.6, 1.4]).unwrap();
+    assert_eq!(s.obstacles()[1].centre, [-0.6, 1.4]);
+    assert_eq!(s.obstacles()[0].centre, [0.5, 0.5]);
+    s.drag_end([-0.6, 1.4]).unwrap();
 }

@@ -9,12 +9,13 @@ use std::sync::Arc;
 
 use serde::Serialize;
 
-use crate::error::{finite, within, Result};
+use crate::arm::Arm;
+use crate::error::{finite, within, Error, Result};
 use crate::ik::DampingSchedule;
 use crate::networks::{Networks, TrainedRange};
 use crate::obstacle::Obstacle;
 use crate::planner::{Mode, Planner, Summary, Surrogate};
-use crate::scene::{Scene, PAPER_RADIUS};
+use crate::scene::{Scene, PAPER_RADIUS, PAPER_TARGET};
 use crate::twin::Twin;
 
 mod state;
@@ -36,14 +37,16 @@ const MAX_TRAIL: usize = 4000;
 const MAX_STROBE: usize = 200;
 const MAX_HISTORY: usize = 600;
 
+/// Most obstacles a session holds.
+pub const MAX_OBSTACLES: usize = 8;
+
 /// What the pointer holds.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "lowercase")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Handle {
     /// The target of the straight line.
     Target,
-    /// The (first) obstacle.
-    Obstacle,
+    /// Obstacle `i`.
+    Obstacle(usize),
 }
 
 impl Handle {
@@ -51,7 +54,7 @@ impl Handle {
     pub fn name(self) -> &'static str {
         match self {
             Handle::Target => "target",
-            Handle::Obstacle => "obstacle",
+            Handle::Obstacle(_) => "obstacle",
         }
     }
 }
@@ -87,6 +90,7 @@ pub struct ModeRun {
 struct Installed {
     surrogate: Arc<dyn Surrogate>,
     range: TrainedRange,
+    networks: Arc<Networks>,
 }
 
 /// An interactive simulation: see the module documentation.
@@ -116,6 +120,18 @@ pub struct Session {
 
 fn no_clock() -> f64 {
     0.0
+}
+
+/// A start pose for `arm`: the paper's Task 1 pose for its first three
+/// joints (`pi/12, pi/2, -pi/6`), then each further joint bent `-pi/6`,
+/// which keeps a 2- to 6-link arm off the ground, bent (not singular) and
+/// inside its reach.
+pub fn start_pose(arm: &Arm) -> Vec<f64> {
+    use std::f64::consts::PI;
+    let paper = [PI / 12.0, PI / 2.0, -PI / 6.0];
+    (0..arm.dof())
+        .map(|i| paper.get(i).copied().unwrap_or(-PI / 6.0))
+        .collect()
 }
 
 /// The paper's scene `task` with the damping switch and feedback gain given.
@@ -178,6 +194,11 @@ impl Session {
         self.networks.as_ref().map(|n| &n.range)
     }
 
+    /// The networks installed, with their weights files.
+    pub fn installed(&self) -> Option<&Networks> {
+        self.networks.as_ref().map(|n| n.networks.as_ref())
+    }
+
     /// The networks installed, if any.
     pub fn networks(&self) -> Option<&Arc<dyn Surrogate>> {
         self.networks.as_ref().map(|n| &n.surrogate)
@@ -185,10 +206,17 @@ impl Session {
 
     /// Loads the paper's scene `task` (obstacle, start pose, target and
     /// `lambda = 4`), keeping the mode, the damping switch and the feedback
-    /// gain, and runs it from `t = 0` to `tf`.
+    /// gain, and runs it from `t = 0` to `tf`. With an arm other than the
+    /// paper's, the arm stays and starts from [`start_pose`].
     pub fn load_task(&mut self, task: u32) -> Result<()> {
-        let scene = self.planner().scene();
-        let scene = paper_scene(task, scene.damping.is_some(), scene.feedback_gain)?;
+        let old = self.planner().scene();
+        let mut scene = paper_scene(task, old.damping.is_some(), old.feedback_gain)?;
+        if old.arm != scene.arm {
+            // Another arm: the paper's target and obstacle from its own start pose.
+            scene.theta0 = start_pose(&old.arm);
+            scene.arm = old.arm.clone();
+            scene.obstacles.retain(|o| o.validate(&scene.arm).is_ok());
+        }
         let planner = Planner::new(scene, self.planner().mode(), self.networks().cloned())?;
         self.twin.replace(planner);
         self.task = task;
@@ -240,9 +268,14 @@ impl Session {
     /// networks in use stay then).
     pub fn set_networks(&mut self, networks: Networks) -> Result<()> {
         let range = networks.trained_range();
-        let surrogate: Arc<dyn Surrogate> = Arc::new(networks);
+        let networks = Arc::new(networks);
+        let surrogate: Arc<dyn Surrogate> = networks.clone();
         self.twin.set_networks(Some(surrogate.clone()))?;
-        self.networks = Some(Installed { surrogate, range });
+        self.networks = Some(Installed {
+            surrogate,
+            range,
+            networks,
+        });
         Ok(())
     }
 
@@ -287,16 +320,128 @@ impl Session {
     }
 
     /// Moves the first obstacle's centre to `centre` (takes effect at the
-    /// next step); refused, leaving it where it was, on the base post.
+    /// next step), or places one there with the paper's radius if there is
+    /// none; refused, leaving it where it was, on the base post.
     pub fn set_obstacle(&mut self, centre: [f64; 2]) -> Result<()> {
-        let radius = self
-            .planner()
-            .scene()
-            .obstacles
-            .first()
-            .map_or(PAPER_RADIUS, |o| o.radius);
-        let obstacles = vec![Obstacle::new(centre[0], centre[1], radius)];
+        if self.obstacles().is_empty() {
+            return self
+                .add_obstacle(Obstacle::new(centre[0], centre[1], PAPER_RADIUS))
+                .map(|_| ());
+        }
+        self.move_obstacle(0, centre)
+    }
+
+    /// The obstacles.
+    pub fn obstacles(&self) -> &[Obstacle] {
+        &self.planner().scene().obstacles
+    }
+
+    /// Moves obstacle `index` to `centre`, keeping its radius; refused,
+    /// leaving it where it was, on the base post.
+    pub fn move_obstacle(&mut self, index: usize, centre: [f64; 2]) -> Result<()> {
+        self.twin.apply(|p| p.move_obstacle(index, centre))
+    }
+
+    /// Replaces the obstacles (at most [`MAX_OBSTACLES`]); refused as a
+    /// whole if one is invalid.
+    pub fn set_obstacles(&mut self, obstacles: Vec<Obstacle>) -> Result<()> {
+        if obstacles.len() > MAX_OBSTACLES {
+            return Err(Error::OutOfRange {
+                what: "number of obstacles".into(),
+                value: obstacles.len() as f64,
+                min: 0.0,
+                max: MAX_OBSTACLES as f64,
+            });
+        }
         self.twin.apply(|p| p.set_obstacles(obstacles.clone()))
+    }
+
+    /// Adds an obstacle; returns its index. Refused beyond
+    /// [`MAX_OBSTACLES`], on the post, or with a bad radius.
+    pub fn add_obstacle(&mut self, obstacle: Obstacle) -> Result<usize> {
+        let mut all = self.obstacles().to_vec();
+        all.push(obstacle);
+        let index = all.len() - 1;
+        self.set_obstacles(all)?;
+        Ok(index)
+    }
+
+    /// Removes obstacle `index`.
+    pub fn remove_obstacle(&mut self, index: usize) -> Result<()> {
+        let mut all = self.obstacles().to_vec();
+        if index >= all.len() {
+            return Err(Error::OutOfRange {
+                what: "obstacle index".into(),
+                value: index as f64,
+                min: 0.0,
+                max: all.len().saturating_sub(1) as f64,
+            });
+        }
+        all.remove(index);
+        if self.drag == Some(Handle::Obstacle(index)) {
+            self.drag = None;
+        }
+        self.set_obstacles(all)
+    }
+
+    /// The arm.
+    pub fn arm(&self) -> &Arm {
+        &self.planner().scene().arm
+    }
+
+    /// Replaces the arm. The paper's arm gets Task 1's start pose; any
+    /// other a pose of the same shape ([`start_pose`]). The target stays if
+    /// the new arm reaches it, else it moves to the paper's; obstacles
+    /// that would now overlap the post are dropped. Networks trained for
+    /// another arm are set aside (the network cases then need networks for
+    /// this arm: the mode falls back to `numerical`). Paused at `t = 0`.
+    pub fn set_arm(&mut self, arm: Arm) -> Result<()> {
+        Arm::new(arm.post(), arm.links().to_vec())?;
+        let old = self.planner().scene().clone();
+        let mut scene = if arm == Arm::paper() {
+            paper_scene(1, old.damping.is_some(), old.feedback_gain)?
+        } else {
+            Scene {
+                theta0: start_pose(&arm),
+                ..old.clone()
+            }
+        };
+        scene.arm = arm.clone();
+        scene.lambda = old.lambda;
+        scene.target = old.target;
+        if !arm.can_reach(&scene.target_vector()) {
+            scene.target = PAPER_TARGET;
+        }
+        scene.obstacles = old
+            .obstacles
+            .iter()
+            .filter(|o| o.validate(&arm).is_ok())
+            .copied()
+            .collect();
+        let nets = self
+            .networks
+            .as_ref()
+            .filter(|n| n.surrogate.arm() == &arm)
+            .cloned();
+        let mode = match self.planner().mode() {
+            m if (m.learned_phi() || m.learned_v()) && nets.is_none() => Mode::Numerical,
+            m => m,
+        };
+        let planner = Planner::new(scene, mode, nets.as_ref().map(|n| n.surrogate.clone()))?;
+        self.networks = nets;
+        self.twin.replace(planner);
+        self.restart();
+        Ok(())
+    }
+
+    /// Sets the networks aside (after an arm change, or to use others).
+    pub fn clear_networks(&mut self) -> Result<()> {
+        if self.planner().mode().learned_phi() || self.planner().mode().learned_v() {
+            self.twin.set_mode(Mode::Numerical)?;
+        }
+        self.twin.set_networks(None)?;
+        self.networks = None;
+        Ok(())
     }
 
     /// Starts or pauses the clock. Starting after a task run continues
@@ -512,7 +657,7 @@ impl Session {
                 self.drag_point = Some(point);
                 Ok(())
             }
-            Some(Handle::Obstacle) => self.set_obstacle(point),
+            Some(Handle::Obstacle(i)) => self.move_obstacle(i, point),
             None => Ok(()),
         }
     }
@@ -544,7 +689,7 @@ impl Session {
         let scene = self.planner().scene();
         let at = match handle {
             Handle::Target => scene.target,
-            Handle::Obstacle => match scene.obstacles.first() {
+            Handle::Obstacle(i) => match scene.obstacles.get(i) {
                 Some(o) => o.centre,
                 None => return Ok(()),
             },
@@ -556,7 +701,7 @@ impl Session {
                 self.set_running(true);
                 Ok(())
             }
-            Handle::Obstacle => self.set_obstacle(to),
+            Handle::Obstacle(i) => self.move_obstacle(i, to),
         }
     }
 

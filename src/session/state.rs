@@ -3,7 +3,9 @@
 use serde::Serialize;
 
 use super::{Handle, Session};
+use crate::arm::Arm;
 use crate::networks::TrainedRange;
+use crate::obstacle::{self, Obstacle};
 use crate::planner::Line;
 
 /// The snapshot the page reads every frame.
@@ -39,10 +41,16 @@ pub struct State<'a> {
     pub target: [f64; 2],
     /// The line being tracked.
     pub line: Line,
+    /// The arm.
+    pub arm: &'a Arm,
     /// Centre of the first obstacle.
     pub obstacle: Option<[f64; 2]>,
     /// Its radius.
     pub radius: Option<f64>,
+    /// All obstacles, `{ centre, radius }`.
+    pub obstacles: &'a [Obstacle],
+    /// Index of the obstacle nearest to a link now (what `distance` measures).
+    pub nearest: Option<usize>,
     /// Distance from the nearest obstacle centre to a link now.
     pub distance: Option<f64>,
     /// Smallest such distance since the last reset.
@@ -80,8 +88,10 @@ pub struct State<'a> {
     pub solver_ms: f64,
     /// The same per step.
     pub solver_ms_per_step: f64,
-    /// What the pointer holds.
-    pub dragging: Option<Handle>,
+    /// What the pointer holds: `"target"` or `"obstacle"`.
+    pub dragging: Option<&'static str>,
+    /// Which obstacle, if one is held.
+    pub dragging_obstacle: Option<usize>,
     /// The last step's error, if it failed.
     pub error: Option<&'a str>,
 }
@@ -119,8 +129,11 @@ impl Session {
             reference: s.reference,
             target: scene.target,
             line: p.line(),
+            arm: &scene.arm,
             obstacle: obstacle.map(|o| o.centre),
             radius: obstacle.map(|o| o.radius),
+            obstacles: &scene.obstacles,
+            nearest: nearest(&s.joints, &scene.obstacles),
             distance: s.distance,
             min_distance: summary.min_distance,
             collision: s.collision,
@@ -142,8 +155,27 @@ impl Session {
             frame_steps: self.frame_steps,
             solver_ms: self.solver_ms,
             solver_ms_per_step: self.solver_ms_per_step,
-            dragging: self.drag,
+            dragging: self.drag.map(Handle::name),
+            dragging_obstacle: match self.drag {
+                Some(Handle::Obstacle(i)) => Some(i),
+                _ => None,
+            },
             error: self.error.as_deref(),
         }
     }
+}
+
+/// The obstacle whose centre is nearest to a link of the arm with joints
+/// `joints`.
+fn nearest(joints: &[[f64; 2]], obstacles: &[Obstacle]) -> Option<usize> {
+    let joints: Vec<_> = joints
+        .iter()
+        .map(|p| nalgebra::Vector2::new(p[0], p[1]))
+        .collect();
+    obstacles
+        .iter()
+        .map(|o| obstacle::clearance(&joints, &o.point()))
+        .enumerate()
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(i, _)| i)
 }
