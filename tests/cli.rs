@@ -136,7 +136,7 @@ fn bad_input_is_one_error_line_and_exit_status_2() {
         (&["simulate", "--dt", "0"], "dt"),
         (&["simulate", "--dt", "-0.1"], "dt"),
         (&["simulate", "--tf", "1.05"], "whole number"),
-        (&["simulate", "--obstacle", "1"], "two numbers"),
+        (&["simulate", "--obstacle", "1"], "x,y or x,y,r"),
         (&["simulate", "--obstacle", "a,b"], "obstacle"),
         (&["simulate", "--obstacle", "0,0.3"], "post"),
         (&["simulate", "--radius", "-1"], "radius"),
@@ -443,4 +443,77 @@ fn atlas_refuses_bad_grids_regions_modes_and_threads() {
     refused(&["atlas", "--modes", "numerical,fast"], "unknown mode");
     refused(&["atlas", "--threads", "0"], "threads");
     refused(&["atlas", "--radius", "-1"], "radius");
+}
+
+#[test]
+fn train_and_simulate_take_any_arm() {
+    let arm = "0.5:0.6,0.85,0.6,0.4";
+    let phi = scratch("phi-4.json");
+    let v = scratch("v-4.json");
+    for (net, variant, out) in [("phi", "equivariant", &phi), ("v", "plain", &v)] {
+        ok(&[
+            "train",
+            "--arm",
+            arm,
+            "--net",
+            net,
+            "--variant",
+            variant,
+            "--samples",
+            "200",
+            "--epochs",
+            "3",
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+    }
+    let file: Value = serde_json::from_str(&std::fs::read_to_string(&phi).unwrap()).unwrap();
+    assert_eq!(file["arm"]["links"].as_array().unwrap().len(), 4);
+    assert_eq!(file["training"]["sampling"]["random_tasks"], 60);
+    // The numerical route runs on the arm at once, from its start pose, with
+    // obstacles of their own radii.
+    let s = json(&[
+        "simulate",
+        "--arm",
+        arm,
+        "--mode",
+        "numerical",
+        "--obstacle",
+        "0.5,0.5,0.08",
+        "--obstacle",
+        "-0.4,1.2",
+        "--json",
+    ]);
+    assert_eq!(s["steps"][0]["theta"].as_array().unwrap().len(), 4);
+    assert_eq!(s["summary"]["reached"], true);
+    // Case 3 with the networks trained for it, and an explicit start pose.
+    let s = json(&[
+        "simulate",
+        "--arm",
+        arm,
+        "--mode",
+        "case3",
+        "--theta0",
+        "0.2,1.4,-0.5,-0.5",
+        "--phi-weights",
+        phi.to_str().unwrap(),
+        "--v-weights",
+        v.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(s["steps"][0]["theta"][1], 1.4);
+    // Networks for another arm, a start pose of the wrong length, bad arms.
+    refused(&["simulate", "--arm", arm, "--mode", "case3"], "arm");
+    refused(
+        &["simulate", "--arm", arm, "--theta0", "0.1,0.2,0.3"],
+        "theta",
+    );
+    refused(&["simulate", "--arm", "0.5:0.6"], "link");
+    refused(&["simulate", "--arm", "0.5,0.6,0.6"], "post:l1");
+    refused(&["simulate", "--arm", "0.5:0.6,x"], "not a number");
+    refused(&["simulate", "--arm", "-1:0.6,0.6"], "post");
+    refused(&["simulate", "--obstacle", "0.5,0.5,-0.1"], "radius");
+    refused(&["simulate", "--obstacle", "0.5,0.5,0.1,3"], "x,y,r");
+    refused(&["train", "--arm", "0.5:0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6", "--net", "phi", "--out", "/dev/null"], "link");
 }

@@ -72,6 +72,29 @@ pub fn parse_pair(s: &str) -> Result<[f64; 2], String> {
     }
 }
 
+/// Parses `X,Y` or `X,Y,R` (an obstacle; the radius is optional).
+pub fn parse_obstacle(s: &str) -> Result<[f64; 3], String> {
+    let v = parse_list(s)?;
+    match v.as_slice() {
+        [x, y] => Ok([*x, *y, f64::NAN]),
+        [x, y, r] => Ok([*x, *y, *r]),
+        _ => Err(format!("expected X,Y or X,Y,R, got '{s}'")),
+    }
+}
+
+/// Parses an arm `POST:L1,L2,...` (post height and link lengths, m).
+pub fn parse_arm(s: &str) -> Result<redundant_ik::Arm, String> {
+    let (post, links) = s
+        .split_once(':')
+        .ok_or_else(|| format!("arm '{s}': expected POST:L1,L2,... (e.g. 0.5:0.6,0.85,0.6)"))?;
+    let post = post
+        .trim()
+        .parse::<f64>()
+        .map_err(|_| format!("arm '{s}': post '{}' is not a number", post.trim()))?;
+    let links = parse_list(links).map_err(|e| format!("arm '{s}': {e}"))?;
+    redundant_ik::Arm::new(post, links).map_err(|e| format!("arm '{s}': {e}"))
+}
+
 /// Parses a comma-separated list of numbers.
 pub fn parse_list(s: &str) -> Result<Vec<f64>, String> {
     s.split(',')

@@ -1,11 +1,11 @@
 //! `redundant-ik simulate`: one planning run, as a readable summary or JSON.
 
 use clap::Args;
-use redundant_ik::{DampingSchedule, Mode, Obstacle, Planner, Scene, Trajectory};
+use redundant_ik::{Arm, DampingSchedule, Mode, Obstacle, Planner, Scene, Trajectory};
 
 use std::fmt::Write as _;
 
-use super::{emit, parse_list, parse_pair, NetworkArgs};
+use super::{emit, parse_arm, parse_list, parse_obstacle, parse_pair, NetworkArgs};
 
 /// Scene options shared by `simulate`, `figure` and `atlas`.
 #[derive(Args, Debug, Clone)]
@@ -13,10 +13,14 @@ pub struct SceneArgs {
     /// Paper task (1 or 2) that provides the defaults.
     #[arg(long, default_value_t = 1)]
     pub task: u32,
-    /// Obstacle centre X,Y in metres (repeat for several obstacles).
-    #[arg(long, value_parser = parse_pair, allow_hyphen_values = true)]
-    pub obstacle: Vec<[f64; 2]>,
-    /// Obstacle radius in metres.
+    /// The arm, POST:L1,L2,... in metres (default: the paper's, 0.5:0.6,0.85,0.6).
+    #[arg(long, value_parser = parse_arm)]
+    pub arm: Option<Arm>,
+    /// Obstacle centre X,Y in metres, with its own radius X,Y,R (repeat for
+    /// several obstacles).
+    #[arg(long, value_parser = parse_obstacle, allow_hyphen_values = true)]
+    pub obstacle: Vec<[f64; 3]>,
+    /// Radius of the obstacles given without one, in metres.
     #[arg(long, allow_hyphen_values = true)]
     pub radius: Option<f64>,
     /// Gain lambda of the obstacle vector, eq. (14).
@@ -37,7 +41,8 @@ pub struct SceneArgs {
     /// End of the straight line X,Y in metres.
     #[arg(long, value_parser = parse_pair, allow_hyphen_values = true)]
     pub target: Option<[f64; 2]>,
-    /// Initial joint angles A,B,C in radians.
+    /// Initial joint angles in radians, one per link (default: the task's
+    /// for the paper's arm, else the page's start pose for the arm).
     #[arg(long, allow_hyphen_values = true)]
     pub theta0: Option<String>,
     /// Closed-loop gain K in Xdot + K (X_ref - X); 0 is the paper's open loop.
@@ -51,12 +56,18 @@ impl SceneArgs {
     /// The scene these options describe, validated.
     pub fn scene(&self) -> Result<Scene, String> {
         let mut s = Scene::task(self.task).map_err(|e| e.to_string())?;
+        if let Some(arm) = &self.arm {
+            if *arm != s.arm {
+                s.theta0 = redundant_ik::session::start_pose(arm);
+                s.arm = arm.clone();
+            }
+        }
         let radius = self.radius.unwrap_or(s.obstacles[0].radius);
         if !self.obstacle.is_empty() {
             s.obstacles = self
                 .obstacle
                 .iter()
-                .map(|o| Obstacle::new(o[0], o[1], radius))
+                .map(|o| Obstacle::new(o[0], o[1], if o[2].is_nan() { radius } else { o[2] }))
                 .collect();
         } else {
             for o in &mut s.obstacles {

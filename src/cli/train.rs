@@ -19,6 +19,10 @@ pub struct TrainArgs {
     /// equivariant (rotation-equivariant inputs).
     #[arg(long, default_value = "plain")]
     pub variant: String,
+    /// The arm to train for, POST:L1,L2,... in metres (default: the
+    /// paper's). Other arms sample random straight-line tasks in their reach.
+    #[arg(long, value_parser = super::parse_arm)]
+    pub arm: Option<redundant_ik::Arm>,
     /// Seed for sampling, the train/validation/test split and initial weights.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -70,7 +74,10 @@ pub fn run(args: &TrainArgs) -> Result<(), String> {
         other => return Err(format!("unknown network '{other}': use phi or v")),
     };
     let variant: Variant = args.variant.parse().map_err(|e| format!("{e}"))?;
-    let mut spec = TrainSpec::paper(net, variant, args.seed);
+    let mut spec = match &args.arm {
+        Some(arm) => TrainSpec::for_arm(arm, net, variant, args.seed),
+        None => TrainSpec::paper(net, variant, args.seed),
+    };
     spec.samples = args.samples;
     spec.options.max_epochs = args.epochs;
     if args.epochs == 0 {
@@ -86,7 +93,7 @@ pub fn run(args: &TrainArgs) -> Result<(), String> {
         spec.sampling.theta_noise = n;
     }
     spec.sampling.validate().map_err(|e| e.to_string())?;
-    let nets = redundant_ik::nn::weights::shape(net, variant, 3)
+    let nets = redundant_ik::nn::weights::shape(net, variant, spec.arm.dof())
         .map_err(|e| e.to_string())?
         .0;
 
