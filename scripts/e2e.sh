@@ -33,6 +33,10 @@ command -v node >/dev/null || { echo "e2e: node is not installed" >&2; exit 2; }
   fi
 )
 
+# The command-line tool, for the test that feeds it the page's downloaded weights.
+cargo build --quiet --bin redundant-ik
+export REDUNDANT_IK="$root/target/debug/redundant-ik"
+
 log="$(mktemp -t e2e-serve.XXXXXX)"
 python3 scripts/serve.py --port 0 --dir www --quiet >"$log" 2>&1 &
 server=$!

@@ -13,6 +13,7 @@
 
 import init, { Demo, lastPanic, networksError, modes, palette, legend, atlasClasses } from './pkg/redundant_ik.js';
 import { mountAtlas } from './atlas.js';
+import { mountPlayground, storedWeights, flatObstacles } from './playground.js';
 
 let module = null;
 let wasmUrl = null;
@@ -207,7 +208,8 @@ const READOUTS = {
 
 /**
  * Starts a demo on `root`. Options: task (1|2), mode, lambda, target [x, y],
- * obstacle [x, y], damping (bool), feedback (closed-loop gain K, 1/s; default 0,
+ * obstacle [x, y], obstacles [[x, y, r], ...] (instead of obstacle), arm
+ * { post, links }, damping (bool), feedback (closed-loop gain K, 1/s; default 0,
  * the paper's open loop), speed, autoplay (default true),
  * keyboard (element that receives key presses; default none),
  * onChange(state) (after user changes, e.g. to update the URL).
@@ -267,17 +269,29 @@ export async function mount(root, options = {}) {
 
   const changed = () => options.onChange && options.onChange(controller.state());
 
+  const restoreStored = () => {
+    const stored = storedWeights(demo.state().arm);
+    if (stored) demo.loadNetworks(stored.phi, stored.v);
+  };
+
   // ---- initial settings (URL or attributes) ---------------------------
   if (options.damping === false) attempt(() => demo.setDamping(false));
   if (options.feedback) attempt(() => demo.setFeedback(options.feedback));
   if (options.speed) attempt(() => demo.setSpeed(options.speed));
+  if (options.arm) attempt(() => demo.setArm(options.arm.post, Float64Array.from(options.arm.links)));
+  if (options.obstacles) attempt(() => demo.setObstacles(flatObstacles(options.obstacles)));
   if (options.mode && options.mode !== 'numerical') {
-    attempt(() => demo.setMode(options.mode));
+    // Networks kept in this browser for the arm come first (mountPlayground
+    // restores them too; this makes the URL's mode work at once).
+    attempt(() => {
+      if (!demo.networksFit()) restoreStored();
+      demo.setMode(options.mode);
+    });
   }
   if (options.lambda !== undefined && options.lambda !== null) {
     attempt(() => demo.setLambda(options.lambda));
   }
-  if (options.obstacle) attempt(() => demo.setObstacle(options.obstacle[0], options.obstacle[1]));
+  if (options.obstacle && !options.obstacles) attempt(() => demo.setObstacle(options.obstacle[0], options.obstacle[1]));
   if (options.target) attempt(() => demo.setTarget(options.target[0], options.target[1], 10));
   if (options.autoplay !== false) demo.runTask();
 
@@ -374,15 +388,17 @@ export async function mount(root, options = {}) {
   });
 
   // ---- the atlas (www/atlas.js) ----------------------------------------
-  let userWeights = null; // the weights files loaded, for the workers
   const atlas = mountAtlas(root, demo, {
     runWorker,
     classes: atlasClasses,
     methods: modes,
-    weights: () => userWeights,
+    weights: () => playground.files(),
     describe,
     changed: () => changed(),
   });
+
+  // ---- the arm, obstacles and training (www/playground.js) --------------
+  const playground = mountPlayground(root, demo, { runWorker, describe, show, changed: () => changed() });
 
   const weightButton = $('load-weights');
   weightButton?.addEventListener('click', async () => {
@@ -393,8 +409,7 @@ export async function mount(root, options = {}) {
       return;
     }
     const [phiText, vText] = await Promise.all([phi.text(), v.text()]);
-    if (attempt(() => demo.loadNetworks(phiText, vText))) {
-      userWeights = { phi: phiText, v: vText };
+    if (attempt(() => playground.installNetworks(phiText, vText))) {
       show(`Loaded ${phi.name} and ${v.name}; Cases 1-3 now use them.`, 'info');
     }
   });
@@ -429,6 +444,12 @@ export async function mount(root, options = {}) {
 
   // ---- pointer: drag target and obstacle -------------------------------
   let held = null; // pointerId while dragging
+  let longPress = null; // { id, x, y, timer } while a touch holds an obstacle
+  const LONG_PRESS_MS = 600;
+  const cancelLongPress = () => {
+    if (longPress) clearTimeout(longPress.timer);
+    longPress = null;
+  };
   let press = null; // { id, x, y } of a press on no handle: a click on an atlas cell
   const local = (e) => {
     const r = stage.getBoundingClientRect();
@@ -438,10 +459,20 @@ export async function mount(root, options = {}) {
   stage.addEventListener('pointerdown', (e) => {
     if (held !== null || (e.pointerType === 'mouse' && e.button !== 0)) return;
     const [x, y] = local(e);
-    const what = demo.pointerDown(x, y, slopFor(e));
+    const what = playground.wantsClick() ? undefined : demo.pointerDown(x, y, slopFor(e));
     if (!what) {
       press = { id: e.pointerId, x, y };
       return;
+    }
+    if (what === 'obstacle' && e.pointerType !== 'mouse') {
+      // A long press on an obstacle removes it.
+      const i = demo.state().dragging_obstacle;
+      longPress = { id: e.pointerId, x, y, timer: setTimeout(() => {
+        if (held !== e.pointerId) return;
+        held = null;
+        demo.pointerCancel();
+        attempt(() => playground.removeObstacle(i));
+      }, LONG_PRESS_MS) };
     }
     held = e.pointerId;
     stage.setPointerCapture(e.pointerId);
@@ -451,6 +482,7 @@ export async function mount(root, options = {}) {
   stage.addEventListener('pointermove', (e) => {
     const [x, y] = local(e);
     if (held === e.pointerId) {
+      if (longPress && Math.hypot(x - longPress.x, y - longPress.y) > 8) cancelLongPress();
       attempt(() => demo.pointerMove(x, y), 'warn');
     } else if (held === null && e.pointerType === 'mouse') {
       const handle = demo.hover(x, y, slopFor(e));
@@ -464,9 +496,17 @@ export async function mount(root, options = {}) {
     const [x, y] = local(e);
     const near = Math.hypot(x - press.x, y - press.y) < 6;
     press = null;
-    if (near) attempt(() => atlas.click(x, y), 'warn');
+    if (!near) return;
+    if (playground.wantsClick()) attempt(() => playground.click(x, y));
+    else attempt(() => atlas.click(x, y), 'warn');
+  });
+  stage.addEventListener('dblclick', (e) => {
+    const [x, y] = local(e);
+    const i = demo.obstacleAt(x, y, 4);
+    if (i !== undefined) attempt(() => playground.removeObstacle(i));
   });
   const release = (e) => {
+    cancelLongPress();
     if (held !== e.pointerId) return;
     const [x, y] = local(e);
     held = null;
@@ -521,6 +561,7 @@ export async function mount(root, options = {}) {
     autoDampingShown = s.auto_damping;
     syncControls(s);
     atlas.check(s);
+    playground.check(s);
     return s;
   }
 
@@ -556,6 +597,7 @@ export async function mount(root, options = {}) {
     },
     show,
     atlas: (options) => atlas.run(options),
+    playground,
     atlasResult: () => atlas.result(),
     stop() {
       stopped = true;

@@ -9,6 +9,9 @@
 //       the code behind `redundant-ik bench`, one figure per call
 //   { kind: 'atlas', wasm, scene, options: { modes, n, region, task }, phi, v }
 //       the atlas of `redundant-ik atlas`, one row of cells per chunk
+//   { kind: 'train', wasm, request: { arm, net, preset, samples, epochs, seed }, phi, v }
+//       Levenberg-Marquardt training of the networks for an arm, a progress
+//       message per epoch (with the epoch's numbers in `epoch`)
 // Messages out:
 //   { type: 'progress', done, total, label }
 //   { type: 'done', result, ms }
@@ -16,6 +19,7 @@
 
 import init, {
   AtlasJob,
+  trainNetworks,
   benchThetaDot,
   benchStep,
   benchForward,
@@ -55,6 +59,22 @@ function atlas({ scene, options, phi, v }) {
   }
 }
 
+function train({ request, phi, v }) {
+  // Progress: epochs done over the most epochs of the networks asked for.
+  const nets = request.net === 'both' ? ['phi', 'v'] : [request.net];
+  const offsets = {};
+  let max = 0;
+  const post = (e) => {
+    if (!(e.net in offsets)) {
+      offsets[e.net] = nets.indexOf(e.net) * e.max_epochs;
+      max = nets.length * e.max_epochs;
+    }
+    self.postMessage({ type: 'progress', done: offsets[e.net] + e.epoch, total: max, label: e.net, epoch: e });
+  };
+  self.postMessage({ type: 'progress', done: 0, total: 1, label: 'sampling' });
+  return trainNetworks(request, phi ?? undefined, v ?? undefined, post);
+}
+
 self.onmessage = async ({ data }) => {
   try {
     await init({ module_or_path: data.wasm });
@@ -62,6 +82,7 @@ self.onmessage = async ({ data }) => {
     let result;
     if (data.kind === 'bench') result = bench(data);
     else if (data.kind === 'atlas') result = atlas(data);
+    else if (data.kind === 'train') result = train(data);
     else throw new Error(`unknown job '${data.kind}'`);
     self.postMessage({ type: 'done', result, ms: performance.now() - t0 });
   } catch (e) {

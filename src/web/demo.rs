@@ -16,16 +16,35 @@ use crate::session::Session;
 /// One interactive simulation drawn on one canvas. Several can live on a page.
 #[wasm_bindgen]
 pub struct Demo {
-    session: Session,
-    stage: Surface,
+    pub(super) session: Session,
+    pub(super) stage: Surface,
     plots: Option<Surface>,
     layer: Option<Layer>,
 }
 
-type JsResult<T = ()> = Result<T, JsError>;
+pub(super) type JsResult<T = ()> = Result<T, JsError>;
 
 fn finite(what: &str, value: f64) -> JsResult<f64> {
     crate::error::finite(what, value).map_err(js_err)
+}
+
+impl Demo {
+    /// Whether the built-in networks were trained for the arm in use.
+    pub(super) fn shared_fit(&self) -> bool {
+        *self.session.arm() == crate::arm::Arm::paper()
+    }
+
+    /// Installs the built-in networks, or says why the network cases
+    /// cannot run.
+    pub(super) fn install_shared(&mut self) -> JsResult {
+        if !self.shared_fit() {
+            return Err(JsError::new(
+                "networks not available for this arm: the built-in ones were trained for the paper's arm; train networks for this arm (Training panel) or load weights trained for it",
+            ));
+        }
+        let nets = shared_networks().map_err(|e| JsError::new(&e))?;
+        self.session.set_networks(nets).map_err(js_err)
+    }
 }
 
 #[wasm_bindgen]
@@ -77,8 +96,7 @@ impl Demo {
     pub fn set_mode(&mut self, mode: &str) -> JsResult {
         let mode: Mode = mode.parse().map_err(js_err)?;
         if (mode.learned_phi() || mode.learned_v()) && self.session.networks().is_none() {
-            let nets = shared_networks().map_err(|e| JsError::new(&e))?;
-            self.session.set_networks(nets).map_err(js_err)?;
+            self.install_shared()?;
         }
         self.session.set_mode(mode).map_err(js_err)
     }
@@ -173,6 +191,7 @@ impl Demo {
     pub fn compare_modes(&self) -> JsResult<JsValue> {
         let fallback = shared_networks()
             .ok()
+            .filter(|_| self.shared_fit())
             .map(|n| std::sync::Arc::new(n) as std::sync::Arc<dyn Surrogate>);
         to_js(&self.session.compare_modes(fallback))
     }
@@ -182,7 +201,7 @@ impl Demo {
     /// or the built-in ones available).
     pub fn state(&self) -> JsResult<JsValue> {
         let mut state = self.session.state();
-        state.networks |= shared_networks().is_ok();
+        state.networks |= self.shared_fit() && shared_networks().is_ok();
         to_js(&state)
     }
 

@@ -25,8 +25,21 @@ pub fn hit(s: &Session, surface: &Surface, x: f64, y: f64, slop: f64) -> Option<
     if near(s.target_marker(), TARGET_GRAB_PX + slop) {
         return Some(Handle::Target);
     }
-    let ob = s.planner().scene().obstacles.first()?;
-    near(ob.centre, ob.radius * view.scale + slop).then_some(Handle::Obstacle)
+    obstacle_at(s, surface, x, y, slop).map(Handle::Obstacle)
+}
+
+/// The obstacle under canvas CSS pixel `(x, y)` with `slop` extra pixels of
+/// tolerance: the one drawn last (on top) when discs overlap.
+pub fn obstacle_at(s: &Session, surface: &Surface, x: f64, y: f64, slop: f64) -> Option<usize> {
+    if !(x.is_finite() && y.is_finite() && slop.is_finite()) {
+        return None;
+    }
+    let slop = slop.clamp(0.0, 64.0);
+    let view = surface.view();
+    s.obstacles().iter().rposition(|ob| {
+        let (px, py) = view.to_px(ob.centre);
+        (px - x).hypot(py - y) <= ob.radius * view.scale + slop
+    })
 }
 
 /// The world point of canvas CSS pixel `(x, y)`, kept inside the canvas.
@@ -43,7 +56,8 @@ pub fn drag_point(surface: &Surface, x: f64, y: f64) -> [f64; 2] {
 }
 
 /// What an arrow key does on the drawing: `(handle, dx, dy)` in steps of
-/// [`crate::session::NUDGE`]; Shift moves the obstacle instead of the target.
+/// [`crate::session::NUDGE`]; Shift moves the first obstacle instead of the
+/// target.
 pub fn arrow(key: &str, shift: bool) -> Option<(Handle, f64, f64)> {
     let (dx, dy) = match key {
         "ArrowLeft" => (-1.0, 0.0),
@@ -53,7 +67,7 @@ pub fn arrow(key: &str, shift: bool) -> Option<(Handle, f64, f64)> {
         _ => return None,
     };
     let handle = if shift {
-        Handle::Obstacle
+        Handle::Obstacle(0)
     } else {
         Handle::Target
     };

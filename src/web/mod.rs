@@ -14,7 +14,8 @@
 //! and the legend, the one source the page's CSS reads), [`surface`]
 //! (canvas, view transform, drawing helpers), [`stage`] (the arm's drawing),
 //! [`layer`] (an atlas drawn under it), [`plots`] (the time series) and
-//! [`input`] (pointer hit-testing and keys) make the page's module;
+//! [`input`] (pointer hit-testing and keys) and [`playground`] (the arm,
+//! several obstacles, trained networks, runs off screen) make the page's module;
 //! [`worker`] is the workers'. This file holds what both export.
 
 #[cfg(feature = "page")]
@@ -23,6 +24,8 @@ mod demo;
 mod input;
 #[cfg(feature = "page")]
 mod layer;
+#[cfg(feature = "page")]
+mod playground;
 #[cfg(feature = "page")]
 mod plots;
 #[cfg(feature = "page")]

@@ -85,7 +85,7 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) {
         ctx.set_fill_style_str(&rgba(DANGER, alpha));
         ctx.fill();
         ctx.set_stroke_style_str(DANGER);
-        let held = i == 0 && s.dragging() == Some(Handle::Obstacle);
+        let held = s.dragging() == Some(Handle::Obstacle(i));
         ctx.set_line_width(if held { 2.5 } else { 1.5 });
         ctx.stroke();
         disc(ctx, ox, oy, 2.0);

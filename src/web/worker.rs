@@ -1,7 +1,8 @@
 //! What runs in the page's Web Workers (feature `worker`): the atlas, a
 //! chunk of cells at a time so that the worker can report progress between
-//! chunks, and the in-browser benchmark, one figure per call. The page's
-//! own module does not carry either.
+//! chunks; the trainer, which reports every epoch; and the in-browser
+//! benchmark, one figure per call. The page's own module carries none of
+//! them.
 
 use std::sync::Arc;
 
@@ -164,6 +165,59 @@ impl AtlasJob {
         let atlas = self.job.clone().finish().map_err(js_err)?;
         to_js(&atlas)
     }
+}
+
+// ---- training ------------------------------------------------------------
+
+const TRAIN_FIELDS: [&str; 6] = ["arm", "net", "preset", "samples", "epochs", "seed"];
+
+/// Trains networks for an arm (`crate::training::playground::train`):
+/// `request` is `{ arm: { post, links }, net: "phi" | "v" | "both", preset:
+/// "quick" | "thorough", samples?, epochs?, seed? }`; `phi_json` and
+/// `v_json` are the weights files in use (the network not trained is kept
+/// from them). `on_epoch(progress)` is called after every epoch with `{ net,
+/// epoch, train_mse, val_mse, mu, gradient, max_epochs }`. Returns `{ phi,
+/// v, report }`: both weights files as JSON text and the report. Throws
+/// with the core's message on bad input; nothing is installed anywhere.
+#[wasm_bindgen(js_name = trainNetworks)]
+pub fn train_networks(
+    request: JsValue,
+    phi_json: Option<String>,
+    v_json: Option<String>,
+    on_epoch: &js_sys::Function,
+) -> Result<JsValue, JsError> {
+    use crate::training::playground::{self, Request};
+    if !request.is_object() {
+        return Err(JsError::new("training request: expected an object"));
+    }
+    for key in js_sys::Object::keys(&js_sys::Object::from(request.clone())).iter() {
+        let key = key.as_string().unwrap_or_default();
+        if !TRAIN_FIELDS.contains(&key.as_str()) {
+            return Err(JsError::new(&format!(
+                "training request: unknown field '{key}', expected one of {}",
+                TRAIN_FIELDS.join(", ")
+            )));
+        }
+    }
+    let request: Request = serde_wasm_bindgen::from_value(request)
+        .map_err(|e| JsError::new(&format!("training request: {e}")))?;
+    let current = match (phi_json, v_json) {
+        (Some(phi), Some(v)) => Some(Networks::from_json(&phi, &v).map_err(js_err)?),
+        _ => shared_networks().ok(),
+    };
+    let trained = playground::train(&request, current.as_ref(), |p| {
+        if let Ok(v) = to_js(p) {
+            let _ = on_epoch.call1(&JsValue::NULL, &v);
+        }
+        true
+    })
+    .map_err(js_err)?;
+    let out = serde_json::json!({
+        "phi": trained.phi.to_json().map_err(js_err)?,
+        "v": trained.v.to_json().map_err(js_err)?,
+        "report": trained.report,
+    });
+    to_js(&out)
 }
 
 // ---- the benchmark -------------------------------------------------------

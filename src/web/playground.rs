@@ -1,0 +1,168 @@
+//! The playground's bindings on [`Demo`]: the arm, several obstacles, the
+//! networks trained in the page, and whole runs off screen. Each forwards to
+//! the [`Session`](crate::session::Session) and maps the core's errors to
+//! exceptions; values from JavaScript are checked by the core.
+
+use std::sync::Arc;
+
+use wasm_bindgen::prelude::*;
+
+use super::demo::{Demo, JsResult};
+use super::{input, js_err, shared_networks, to_js};
+use crate::arm::Arm;
+use crate::error::Error;
+use crate::obstacle::Obstacle;
+use crate::planner::{Mode, Planner, Surrogate};
+use crate::scene::PAPER_RADIUS;
+
+/// Obstacles from a flat list `[x0, y0, r0, x1, y1, r1, ...]` (plain
+/// numbers cross into the module without a deserialiser, which keeps the
+/// page's module small).
+fn obstacles_from(flat: &[f64]) -> JsResult<Vec<Obstacle>> {
+    if !flat.len().is_multiple_of(3) {
+        return Err(JsError::new(&format!(
+            "obstacles: expected x, y, r for each, got {} numbers",
+            flat.len()
+        )));
+    }
+    if flat.len() / 3 > crate::session::MAX_OBSTACLES {
+        return Err(js_err(Error::OutOfRange {
+            what: "number of obstacles".into(),
+            value: (flat.len() / 3) as f64,
+            min: 0.0,
+            max: crate::session::MAX_OBSTACLES as f64,
+        }));
+    }
+    Ok(flat
+        .chunks_exact(3)
+        .map(|o| Obstacle::new(o[0], o[1], o[2]))
+        .collect())
+}
+
+#[wasm_bindgen]
+impl Demo {
+    /// Replaces the arm: a post of height `post` and 2 to 6 links of the
+    /// given lengths (m). Throws, keeping the arm, on bad numbers. The scene
+    /// restarts at `t = 0` from a start pose for the new arm; networks
+    /// trained for another arm are set aside (see `Session::set_arm`).
+    #[wasm_bindgen(js_name = setArm)]
+    pub fn set_arm(&mut self, post: f64, links: Vec<f64>) -> JsResult {
+        if !(2..=6).contains(&links.len()) {
+            return Err(js_err(Error::LinkCount {
+                found: links.len(),
+                min: 2,
+                max: 6,
+            }));
+        }
+        let arm = Arm::new(post, links).map_err(js_err)?;
+        self.session.set_arm(arm).map_err(js_err)
+    }
+
+    /// Adds an obstacle at `(x, y)` with radius `r` (default 0.05 m);
+    /// returns its index. Throws beyond 8 obstacles, on the post, or with a
+    /// bad radius; nothing changes then.
+    #[wasm_bindgen(js_name = addObstacle)]
+    pub fn add_obstacle(&mut self, x: f64, y: f64, r: Option<f64>) -> JsResult<usize> {
+        let ob = Obstacle::new(x, y, r.unwrap_or(PAPER_RADIUS));
+        self.session.add_obstacle(ob).map_err(js_err)
+    }
+
+    /// Removes obstacle `i`; throws if there is none.
+    #[wasm_bindgen(js_name = removeObstacle)]
+    pub fn remove_obstacle(&mut self, i: f64) -> JsResult {
+        self.session.remove_obstacle(index(i)?).map_err(js_err)
+    }
+
+    /// Replaces all obstacles, given flat as `[x0, y0, r0, x1, y1, r1, ...]`
+    /// (at most 8); refused as a whole if one is bad.
+    #[wasm_bindgen(js_name = setObstacles)]
+    pub fn set_obstacles(&mut self, flat: Vec<f64>) -> JsResult {
+        let obs = obstacles_from(&flat)?;
+        self.session.set_obstacles(obs).map_err(js_err)
+    }
+
+    /// The obstacle under canvas CSS pixel `(x, y)` (with `slop` pixels of
+    /// tolerance), if any: for double-click and long-press removal.
+    #[wasm_bindgen(js_name = obstacleAt)]
+    pub fn obstacle_at(&self, x: f64, y: f64, slop: f64) -> Option<usize> {
+        input::obstacle_at(&self.session, &self.stage, x, y, slop)
+    }
+
+    /// Whether networks for the arm in use are available: loaded or trained
+    /// for it, or the built-in ones for the paper's arm.
+    #[wasm_bindgen(js_name = networksFit)]
+    pub fn networks_fit(&self) -> bool {
+        self.session.networks().is_some() || (self.shared_fit() && shared_networks().is_ok())
+    }
+
+    /// Sets the networks aside; the network cases then fall back to the
+    /// built-in ones (paper's arm) or need new ones.
+    #[wasm_bindgen(js_name = clearNetworks)]
+    pub fn clear_networks(&mut self) -> JsResult {
+        self.session.clear_networks().map_err(js_err)
+    }
+
+    /// Runs a whole task off screen with the current arm, gains, switches
+    /// and networks, and returns its summary (the `summary` of `redundant-ik
+    /// simulate --json`). `target` (`[x, y]`), `obstacles` (flat, as in
+    /// `setObstacles`), `tf` and `theta0` default to the scene in use. The
+    /// scene on the stage does not change.
+    pub fn simulate(
+        &self,
+        mode: &str,
+        target: Option<Vec<f64>>,
+        obstacles: Option<Vec<f64>>,
+        tf: Option<f64>,
+        theta0: Option<Vec<f64>>,
+    ) -> JsResult<JsValue> {
+        let mode: Mode = mode.parse().map_err(js_err)?;
+        let mut scene = self.session.planner().scene().clone();
+        if let Some(t) = target {
+            let [x, y] = t[..] else {
+                return Err(JsError::new(&format!(
+                    "target: expected [x, y], got {} numbers",
+                    t.len()
+                )));
+            };
+            scene.target = [x, y];
+        }
+        if let Some(flat) = obstacles {
+            scene.obstacles = obstacles_from(&flat)?;
+        }
+        if let Some(tf) = tf {
+            scene.tf = tf;
+        }
+        if let Some(t) = theta0 {
+            scene.theta0 = t;
+        }
+        scene.validate().map_err(js_err)?;
+        let networks: Option<Arc<dyn Surrogate>> = if mode.learned_phi() || mode.learned_v() {
+            match self.session.networks() {
+                Some(n) => Some(n.clone()),
+                None if self.shared_fit() => {
+                    Some(Arc::new(shared_networks().map_err(|e| JsError::new(&e))?))
+                }
+                None => {
+                    return Err(JsError::new(
+                        "networks not available for this arm: train networks for it first",
+                    ))
+                }
+            }
+        } else {
+            None
+        };
+        let summary = Planner::run_summary(scene, mode, networks).map_err(js_err)?;
+        to_js(&summary)
+    }
+}
+
+/// An obstacle index from JavaScript: a whole number from 0.
+fn index(i: f64) -> JsResult<usize> {
+    if i.is_finite() && i >= 0.0 && i.fract() == 0.0 && i < 1e6 {
+        Ok(i as usize)
+    } else {
+        Err(JsError::new(&format!(
+            "obstacle index must be a whole number from 0 (got {i})"
+        )))
+    }
+}
