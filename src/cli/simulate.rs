@@ -14,7 +14,7 @@ pub struct SceneArgs {
     #[arg(long, default_value_t = 1)]
     pub task: u32,
     /// The arm, POST:L1,L2,... in metres (default: the paper's, 0.5:0.6,0.85,0.6).
-    #[arg(long, value_parser = parse_arm)]
+    #[arg(long, value_parser = parse_arm, allow_hyphen_values = true)]
     pub arm: Option<Arm>,
     /// Obstacle centre X,Y in metres, with its own radius X,Y,R (repeat for
     /// several obstacles).
