@@ -33,7 +33,7 @@ pub struct Sampling {
     /// Random straight-line tasks inside the arm's reach that seed it too
     /// ([`super::tasks::random_task`]); absent in files written before
     /// arms other than the paper's could be trained, hence the default 0.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "is_zero_count")]
     pub random_tasks: usize,
     /// Modes run on each task and obstacle (`none`, `numerical`).
     pub modes: Vec<Mode>,
@@ -57,8 +57,17 @@ pub struct Sampling {
     /// step, moved by Gaussian noise of this standard deviation, m), where
     /// they matter, instead of uniformly in the region. Absent in older
     /// files, hence the default 0.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "is_zero_length")]
     pub obstacle_spread: f64,
+}
+
+// The paper's sampling writes neither field, so its files stay as shipped.
+fn is_zero_count(n: &usize) -> bool {
+    *n == 0
+}
+
+fn is_zero_length(x: &f64) -> bool {
+    *x == 0.0
 }
 
 impl Default for Sampling {
