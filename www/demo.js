@@ -13,7 +13,7 @@
 
 import init, { Demo, lastPanic, networksError, modes, palette, legend, atlasClasses } from './pkg/redundant_ik.js';
 import { mountAtlas } from './atlas.js';
-import { mountPlayground, storedWeights, flatObstacles } from './playground.js';
+import { mountPlayground, flatObstacles } from './playground.js';
 
 let module = null;
 let wasmUrl = null;
@@ -269,10 +269,8 @@ export async function mount(root, options = {}) {
 
   const changed = () => options.onChange && options.onChange(controller.state());
 
-  const restoreStored = () => {
-    const stored = storedWeights(demo.state().arm);
-    if (stored) demo.loadNetworks(stored.phi, stored.v);
-  };
+  // ---- the arm, obstacles and training (www/playground.js) --------------
+  const playground = mountPlayground(root, demo, { runWorker, describe, show, changed: () => changed() });
 
   // ---- initial settings (URL or attributes) ---------------------------
   if (options.damping === false) attempt(() => demo.setDamping(false));
@@ -280,13 +278,10 @@ export async function mount(root, options = {}) {
   if (options.speed) attempt(() => demo.setSpeed(options.speed));
   if (options.arm) attempt(() => demo.setArm(options.arm.post, Float64Array.from(options.arm.links)));
   if (options.obstacles) attempt(() => demo.setObstacles(flatObstacles(options.obstacles)));
+  // Networks kept in this browser for the arm, before the mode that may need them.
+  playground.restore();
   if (options.mode && options.mode !== 'numerical') {
-    // Networks kept in this browser for the arm come first (mountPlayground
-    // restores them too; this makes the URL's mode work at once).
-    attempt(() => {
-      if (!demo.networksFit()) restoreStored();
-      demo.setMode(options.mode);
-    });
+    attempt(() => demo.setMode(options.mode));
   }
   if (options.lambda !== undefined && options.lambda !== null) {
     attempt(() => demo.setLambda(options.lambda));
@@ -397,8 +392,6 @@ export async function mount(root, options = {}) {
     changed: () => changed(),
   });
 
-  // ---- the arm, obstacles and training (www/playground.js) --------------
-  const playground = mountPlayground(root, demo, { runWorker, describe, show, changed: () => changed() });
 
   const weightButton = $('load-weights');
   weightButton?.addEventListener('click', async () => {

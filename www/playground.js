@@ -580,10 +580,6 @@ export function mountPlayground(root, demo, { runWorker, describe, show, changed
     }
   }
 
-  // Weights kept for the starting arm.
-  restoreWeights(demo.state().arm);
-  if (lastReport) showReport(lastReport);
-
   /** A whole run off screen: `{ mode, target?, obstacles?, tf?, theta0? }` -> summary. */
   function simulate(options) {
     const allowed = ['mode', 'target', 'obstacles', 'tf', 'theta0'];
@@ -620,7 +616,11 @@ export function mountPlayground(root, demo, { runWorker, describe, show, changed
       return addObstacle(wx, wy);
     },
     check,
-    restoreWeights,
+    /** Installs the weights kept for the arm in use, with their report (at start-up). */
+    restore() {
+      restoreWeights(demo.state().arm);
+      if (lastReport) showReport(lastReport);
+    },
     installNetworks,
     files,
   };

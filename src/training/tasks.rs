@@ -24,7 +24,7 @@ use crate::error::{Error, Result};
 use crate::ik;
 use crate::nn::rng::Rng;
 use crate::obstacle::Obstacle;
-use crate::scene::{Scene, PAPER_LAMBDA, PAPER_RADIUS};
+use crate::scene::{Scene, PAPER_RADIUS};
 
 /// Start poses and targets keep at least this share of the reach from `P(0)`.
 pub const INNER: f64 = 0.3;
@@ -111,17 +111,13 @@ pub fn random_task(arm: &Arm, rng: &mut Rng) -> Result<Scene> {
             if !inside {
                 continue;
             }
+            // The paper's timing and gains (Task 1's), this arm, pose and line.
             return Ok(Scene {
                 arm: arm.clone(),
                 theta0,
                 target,
                 obstacles: Vec::new(),
-                lambda: PAPER_LAMBDA,
-                delta: 0.0,
-                damping: None,
-                dt: 0.1,
-                tf: 10.0,
-                feedback_gain: 0.0,
+                ..Scene::task1()
             });
         }
     }
@@ -183,7 +179,7 @@ pub fn avoidance_tasks(
             continue;
         };
         // Not at the start already, and hit without avoidance.
-        let start = crate::planner::Planner::new(scene.clone(), Mode::None, None)?;
+        let start = Planner::new(scene.clone(), Mode::None, None)?;
         if start.sample().collision || !none.collided || !succeeded(&numerical) {
             continue;
         }

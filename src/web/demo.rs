@@ -201,7 +201,7 @@ impl Demo {
     /// or the built-in ones available).
     pub fn state(&self) -> JsResult<JsValue> {
         let mut state = self.session.state();
-        state.networks |= self.shared_fit() && shared_networks().is_ok();
+        state.networks = self.networks_fit();
         to_js(&state)
     }
 

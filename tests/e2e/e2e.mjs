@@ -93,6 +93,18 @@ async function touchDrag(page, from, to, steps = 10) {
   await cdp.detach();
 }
 
+/** Counts animation frames from now on (window.__frames). */
+async function countFrames(page) {
+  await page.evaluate(() => {
+    window.__frames = 0;
+    const f = () => {
+      window.__frames += 1;
+      requestAnimationFrame(f);
+    };
+    requestAnimationFrame(f);
+  });
+}
+
 async function selectMode(page, mode) {
   await page.selectOption('#mode', mode);
 }
@@ -509,14 +521,7 @@ test('in-page benchmark: every mode, in a worker, while the page keeps drawing',
   const page = await open('?task=1&mode=numerical');
   await page.click('#bench-panel summary');
   // Count animation frames while the benchmark runs.
-  await page.evaluate(() => {
-    window.__frames = 0;
-    const f = () => {
-      window.__frames += 1;
-      requestAnimationFrame(f);
-    };
-    requestAnimationFrame(f);
-  });
+  await countFrames(page);
   const t0 = Date.now();
   await page.click('#bench');
   await page.waitForFunction(() => document.getElementById('bench-result').dataset.numerical, null, {
@@ -566,14 +571,7 @@ test('atlas: computed in a worker while the page draws, equal to the module comp
   const page = await open('?task=1&mode=case3');
   await pause(page);
   await page.click('#atlas-panel summary');
-  await page.evaluate(() => {
-    window.__frames = 0;
-    const f = () => {
-      window.__frames += 1;
-      requestAnimationFrame(f);
-    };
-    requestAnimationFrame(f);
-  });
+  await countFrames(page);
   const modes = ['none', 'numerical', 'case3'];
   const run = await page.evaluate(async (modes) => {
     const progress = [];
@@ -894,18 +892,6 @@ test('embed page: two independent demos', async () => {
 // ---- the playground: arms, several obstacles, training in the page --------
 
 const FOUR = { post: 0.5, links: [0.6, 0.85, 0.6, 0.4] };
-
-/** Counts animation frames from now on (window.__frames). */
-async function countFrames(page) {
-  await page.evaluate(() => {
-    window.__frames = 0;
-    const f = () => {
-      window.__frames += 1;
-      requestAnimationFrame(f);
-    };
-    requestAnimationFrame(f);
-  });
-}
 
 test('playground: a 4-link arm and two obstacles from the URL; the network cases wait for networks', async () => {
   const page = await open('?arm=0.5:0.6,0.85,0.6,0.4&obstacles=0.5,0.5,0.05;-0.5,1.2,0.08&mode=case3');
