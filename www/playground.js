@@ -516,6 +516,8 @@ export function mountPlayground(root, demo, { runWorker, describe, show, changed
     }
   }
 
+  // The empty plot says what will appear once the panel is open (a closed panel has no size).
+  el.trainPanel?.addEventListener('toggle', () => el.trainPanel.open && drawCurves(el.trainCurves, curves));
   el.trainRun?.addEventListener('click', () => train().catch(() => {}));
   el.trainCancel?.addEventListener('click', () => training && training.abort());
   el.trainForArm?.addEventListener('click', () => {
