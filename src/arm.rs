@@ -8,7 +8,7 @@
 use nalgebra::{DVector, Matrix2xX, Vector2};
 use serde::{Deserialize, Serialize};
 
-use crate::error::{non_negative, positive, Error, Result};
+use crate::error::{coordinate, non_negative, positive, Error, Result};
 use crate::kinematics::{segment_distance_squared, Pose};
 
 /// Fewest links an [`Arm`] may have: two, to position a planar end effector.
@@ -17,6 +17,13 @@ pub const MIN_LINKS: usize = 2;
 /// Most links an [`Arm`] may have. The page offers 2 to 6; the limit keeps
 /// the networks' fixed-size input buffers sufficient and refuses absurd input.
 pub const MAX_LINKS: usize = 32;
+
+/// Largest joint angle accepted (rad), about 160 000 turns: far beyond any
+/// run (the numerical route turns a joint by a few radians per task), small
+/// enough that sums of angles stay exact to a microradian and finite.
+/// Without it, `theta = [1e308, 1e308, ...]` passed as finite and its
+/// absolute angles overflowed to NaN positions (found by fuzzing).
+pub const MAX_ANGLE: f64 = 1.0e6;
 
 /// A planar arm on a vertical base post of length `post`, with revolute links of
 /// lengths `links[0..n]` (the paper's `L0` and `L1..L3`).
@@ -31,9 +38,11 @@ impl Arm {
     ///
     /// The post may be zero (base joint on the ground); every link must be a
     /// positive finite length, and there must be at least two links so that the
-    /// end effector can reach a planar neighbourhood.
+    /// end effector can reach a planar neighbourhood. Lengths beyond
+    /// [`crate::error::MAX_COORDINATE`] are refused (their joint positions would overflow).
     pub fn new(post: f64, links: Vec<f64>) -> Result<Self> {
         non_negative("post length L0", post)?;
+        coordinate("post length L0", post)?;
         if !(MIN_LINKS..=MAX_LINKS).contains(&links.len()) {
             return Err(Error::LinkCount {
                 found: links.len(),
@@ -42,7 +51,9 @@ impl Arm {
             });
         }
         for (i, &l) in links.iter().enumerate() {
-            positive(&format!("link length L{}", i + 1), l)?;
+            let what = format!("link length L{}", i + 1);
+            positive(&what, l)?;
+            coordinate(&what, l)?;
         }
         Ok(Self { post, links })
     }
@@ -98,8 +109,8 @@ impl Arm {
         self.check_angles(theta.as_slice())
     }
 
-    /// Checks that `theta` has `n` finite entries (the message is only
-    /// formatted when there is a problem).
+    /// Checks that `theta` has `n` finite entries, none beyond
+    /// [`MAX_ANGLE`] (the message is only formatted when there is a problem).
     pub fn check_angles(&self, theta: &[f64]) -> Result<()> {
         if theta.len() != self.dof() {
             return Err(Error::DimensionMismatch {
@@ -108,7 +119,13 @@ impl Arm {
                 found: theta.len(),
             });
         }
-        match theta.iter().position(|t| !t.is_finite()) {
+        match theta.iter().position(|t| t.abs() > MAX_ANGLE || t.is_nan()) {
+            Some(i) if theta[i].is_finite() => Err(Error::TooLarge {
+                what: format!("theta_{}", i + 1),
+                value: theta[i],
+                max: MAX_ANGLE,
+                unit: "rad",
+            }),
             Some(i) => Err(Error::NonFinite {
                 what: format!("theta_{}", i + 1),
             }),

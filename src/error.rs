@@ -38,7 +38,8 @@ pub enum Error {
         /// Largest accepted.
         max: f64,
     },
-    /// A coordinate (m) beyond the largest accepted, [`MAX_COORDINATE`].
+    /// A coordinate or length (m) beyond [`MAX_COORDINATE`], or a joint
+    /// angle (rad) beyond [`crate::arm::MAX_ANGLE`].
     TooLarge {
         /// What was checked, e.g. `"target x"`.
         what: String,
@@ -46,6 +47,8 @@ pub enum Error {
         value: f64,
         /// The largest accepted magnitude.
         max: f64,
+        /// Its unit, `"m"` or `"rad"`.
+        unit: &'static str,
     },
     /// A closed-loop gain `K` with `K dt` beyond what RK4 integrates stably.
     UnstableGain {
@@ -174,8 +177,13 @@ impl fmt::Display for Error {
                 min,
                 max,
             } => write!(f, "{what} must lie between {min} and {max} (got {value})"),
-            Error::TooLarge { what, value, max } => {
-                write!(f, "{what} must lie within ±{max} m (got {value})")
+            Error::TooLarge {
+                what,
+                value,
+                max,
+                unit,
+            } => {
+                write!(f, "{what} must lie within ±{max} {unit} (got {value})")
             }
             Error::UnstableGain { gain, dt, max_gain } => write!(
                 f,
@@ -263,6 +271,7 @@ pub(crate) fn coordinate(what: &str, value: f64) -> Result<f64> {
             what: what.into(),
             value,
             max: MAX_COORDINATE,
+            unit: "m",
         })
     }
 }

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
 use crate::arm::Arm;
-use crate::error::{coordinate, non_negative, positive, Error, Result};
+use crate::error::{coordinate, non_negative, positive, within, Error, Result};
 use crate::ik::DampingSchedule;
 use crate::obstacle::Obstacle;
 
@@ -136,12 +136,23 @@ impl Scene {
 /// Most RK4 steps a run may take.
 pub const MAX_STEPS: f64 = 1.0e7;
 
+/// Largest gain `lambda` accepted: 250 times the paper's 4 (the page's
+/// slider ends at 12). Far larger gains only make the first RK4 step
+/// overflow (`lambda = 1e308` did, found by the hostile-URL test).
+pub const MAX_LAMBDA: f64 = 1000.0;
+
+/// Largest constant damping `delta` accepted (m^2): with `J J^T` of order
+/// 1 m^2 it already stops the arm; larger values say nothing more.
+pub const MAX_DELTA: f64 = 1000.0;
+
 pub(crate) fn validate_lambda(lambda: f64) -> Result<()> {
-    non_negative("lambda", lambda).map(|_| ())
+    non_negative("lambda", lambda)?;
+    within("lambda", lambda, 0.0, MAX_LAMBDA).map(|_| ())
 }
 
 pub(crate) fn validate_delta(delta: f64) -> Result<()> {
-    non_negative("damping factor delta", delta).map(|_| ())
+    non_negative("damping factor delta", delta)?;
+    within("damping factor delta", delta, 0.0, MAX_DELTA).map(|_| ())
 }
 
 /// Largest `K dt` accepted for the closed-loop gain. The tracking error then

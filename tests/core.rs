@@ -511,6 +511,20 @@ fn bad_input_is_rejected_with_an_error_naming_the_problem() {
             Box::new(|s| s.lambda = -1.0),
             |e| matches!(e, Negative { what, .. } if what == "lambda"),
         ),
+        // Gains so large that the first step overflows.
+        (
+            Box::new(|s| s.lambda = 1e308),
+            |e| matches!(e, OutOfRange { what, max, .. } if what == "lambda" && *max == 1000.0),
+        ),
+        (
+            Box::new(|s| s.delta = 1e308),
+            |e| matches!(e, OutOfRange { what, .. } if what.contains("delta")),
+        ),
+        // Finite angles and lengths whose sums overflow (found by fuzzing).
+        (
+            Box::new(|s| s.theta0 = vec![1e308, 1e308, 0.0]),
+            |e| matches!(e, TooLarge { what, unit: "rad", .. } if what == "theta_1"),
+        ),
         (
             Box::new(|s| s.delta = -1.0),
             |e| matches!(e, Negative { what, .. } if what.contains("delta")),

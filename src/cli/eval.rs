@@ -69,7 +69,7 @@ struct Generalisation {
 }
 
 fn read(path: &str) -> Result<String, String> {
-    std::fs::read_to_string(path).map_err(|e| format!("cannot read {path}: {e}"))
+    super::read_weights_file(std::path::Path::new(path))
 }
 
 /// Runs `redundant-ik eval`.

@@ -145,9 +145,7 @@ impl NetworkArgs {
                 self.phi_variant
             )
         })?;
-        let read = |f: &std::path::Path| {
-            std::fs::read_to_string(f).map_err(|e| format!("cannot read {}: {e}", f.display()))
-        };
+        let read = |f: &std::path::Path| read_weights_file(f);
         let phi = match &self.phi_weights {
             Some(f) => read(f)?,
             None => networks::embedded_phi_json(variant).to_owned(),
@@ -167,4 +165,22 @@ impl NetworkArgs {
         }
         Ok(Some(Arc::new(self.load()?)))
     }
+}
+
+/// Reads a weights file, refusing one larger than
+/// [`redundant_ik::nn::weights::MAX_FILE_BYTES`] before reading it.
+pub(crate) fn read_weights_file(f: &std::path::Path) -> Result<String, String> {
+    let max = redundant_ik::nn::weights::MAX_FILE_BYTES;
+    let size = std::fs::metadata(f)
+        .map_err(|e| format!("cannot read {}: {e}", f.display()))?
+        .len();
+    if size > max as u64 {
+        return Err(format!(
+            "bad network weights: {} has {:.1} MB; weights files are at most {} MB",
+            f.display(),
+            size as f64 / 1048576.0,
+            max >> 20
+        ));
+    }
+    std::fs::read_to_string(f).map_err(|e| format!("cannot read {}: {e}", f.display()))
 }

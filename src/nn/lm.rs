@@ -106,6 +106,39 @@ impl Default for LmOptions {
     }
 }
 
+impl LmOptions {
+    /// Checks that the options make a trainer that ends: at least one
+    /// epoch, `0 < mu <= mu_max` finite, `0 < mu_dec < 1 < mu_inc` (else
+    /// `mu` never grows past `mu_max` and a failing epoch never ends),
+    /// `min_grad` and `goal` finite and non-negative, `chunk` positive.
+    /// (The split is checked against the data by [`LmTrainer::new`].)
+    pub fn validate(&self) -> Result<()> {
+        let fine = |x: f64| x.is_finite() && x >= 0.0;
+        let problem = if self.max_epochs == 0 {
+            "max_epochs must be at least 1"
+        } else if !(self.mu.is_finite()
+            && self.mu > 0.0
+            && self.mu_max.is_finite()
+            && self.mu <= self.mu_max)
+        {
+            "mu must be positive and finite, at most mu_max"
+        } else if !(self.mu_dec > 0.0 && self.mu_dec < 1.0) {
+            "mu_dec must lie in (0, 1)"
+        } else if !(self.mu_inc.is_finite() && self.mu_inc > 1.0) {
+            "mu_inc must be finite and above 1"
+        } else if !(fine(self.min_grad) && fine(self.goal)) {
+            "min_grad and goal must be finite and non-negative"
+        } else if self.chunk == 0 {
+            "chunk must be at least 1"
+        } else {
+            return Ok(());
+        };
+        Err(Error::Training(format!(
+            "Levenberg-Marquardt options: {problem}"
+        )))
+    }
+}
+
 /// What one epoch did; passed to the per-epoch callback.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct EpochReport {
@@ -227,11 +260,7 @@ impl LmTrainer {
                 "{n} samples are too few to split {ftrain} / {fval}"
             )));
         }
-        if opts.chunk == 0 || opts.mu.is_nan() || opts.mu <= 0.0 || !opts.mu_max.is_finite() {
-            return Err(Error::Training(
-                "LM options: chunk and mu must be positive, mu_max finite".into(),
-            ));
-        }
+        opts.validate()?;
         let mut idx: Vec<usize> = (0..n).collect();
         rng.shuffle(&mut idx);
         let train = idx[..n_train].to_vec();

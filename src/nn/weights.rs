@@ -167,9 +167,22 @@ pub fn shape(kind: NetKind, variant: Variant, n: usize) -> Result<(usize, usize,
     }
 }
 
+/// Largest weights file read (bytes). The shipped files are under 80 KB;
+/// the paper's networks at any width the page trains stay far below. A
+/// larger file is refused before it is parsed, so a wrong or hostile file
+/// cannot hold the page for seconds or its memory.
+pub const MAX_FILE_BYTES: usize = 8 << 20;
+
 impl WeightsFile {
-    /// Parses and validates a weights file.
+    /// Parses and validates a weights file (at most [`MAX_FILE_BYTES`]).
     pub fn from_json(json: &str) -> Result<Self> {
+        if json.len() > MAX_FILE_BYTES {
+            return Err(Error::Weights(format!(
+                "the file has {:.1} MB; weights files are at most {} MB",
+                json.len() as f64 / 1048576.0,
+                MAX_FILE_BYTES >> 20
+            )));
+        }
         let file: WeightsFile = serde_json::from_str(json)
             .map_err(|e| Error::Weights(format!("not a valid weights file: {e}")))?;
         file.validate()?;

@@ -431,7 +431,8 @@ impl Planner {
         let mut finite = true;
         for (i, next) in ws.next.iter_mut().enumerate() {
             *next = theta[i] + w * (((k1[i] + 2.0 * k2[i]) + 2.0 * k3[i]) + k4[i]);
-            finite &= next.is_finite();
+            // Also false for NaN: a runaway angle is refused like a non-finite one.
+            finite &= next.abs() <= crate::arm::MAX_ANGLE;
         }
         if !finite {
             return Err(Error::Diverged { t });

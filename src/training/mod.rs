@@ -87,6 +87,7 @@ pub fn phi_datasets(arm: &Arm, variant: Variant, samples: &[Visited]) -> Result<
     let (count, n_in, n_out) = weights::shape(NetKind::Phi, variant, n)?;
     let mut sets = vec![Dataset::new(n_in, n_out); count];
     for s in samples {
+        check_sample(arm, s)?;
         let theta = &s.theta[..];
         let target = match variant {
             Variant::Equivariant => {
@@ -115,6 +116,7 @@ pub fn v_dataset(arm: &Arm, variant: Variant, samples: &[Visited]) -> Result<Dat
     let mut set = Dataset::new(n_in, n_out);
     let mut buf = [0.0; MAX_V_INPUTS];
     for s in samples {
+        check_sample(arm, s)?;
         let x = v_inputs(
             variant,
             arm.post(),
@@ -126,6 +128,18 @@ pub fn v_dataset(arm: &Arm, variant: Variant, samples: &[Visited]) -> Result<Dat
         set.push(x, &sampling::v_target(arm, &s.theta, s.obstacle));
     }
     Ok(set)
+}
+
+/// A sample fits `arm` and is finite: the right number of angles, none
+/// beyond [`crate::arm::MAX_ANGLE`], an obstacle point within
+/// [`crate::error::MAX_COORDINATE`]. (Drawn samples always are; samples
+/// handed in by a caller are checked, since a non-finite one would
+/// poison the `mapminmax` ranges of the whole set.)
+fn check_sample(arm: &Arm, s: &Visited) -> Result<()> {
+    arm.check_angles(&s.theta)?;
+    crate::error::coordinate("obstacle x", s.obstacle[0])?;
+    crate::error::coordinate("obstacle y", s.obstacle[1])?;
+    Ok(())
 }
 
 fn input_names(net: NetKind, variant: Variant, n: usize) -> Vec<String> {

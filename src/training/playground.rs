@@ -199,7 +199,9 @@ impl Request {
         Ok((samples, epochs))
     }
 
-    fn spec(&self, net: NetKind) -> Result<TrainSpec> {
+    /// The training spec of network `net` this request means (checked
+    /// sizes, the page's variants, the arm's sampling).
+    pub fn spec(&self, net: NetKind) -> Result<TrainSpec> {
         let (samples, epochs) = self.size()?;
         let variant = match net {
             NetKind::Phi => DEFAULT_PHI_VARIANT,
