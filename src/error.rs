@@ -162,10 +162,10 @@ impl fmt::Display for Error {
                 write!(f, "{what} must be a finite number (got NaN or infinity)")
             }
             Error::NotPositive { what, value } => {
-                write!(f, "{what} must be positive (got {value})")
+                write!(f, "{what} must be positive (got {})", Num(*value))
             }
             Error::Negative { what, value } => {
-                write!(f, "{what} must not be negative (got {value})")?;
+                write!(f, "{what} must not be negative (got {})", Num(*value))?;
                 if what == "lambda" {
                     write!(f, "; a negative gain pulls links towards the obstacle")?;
                 }
@@ -176,27 +176,37 @@ impl fmt::Display for Error {
                 value,
                 min,
                 max,
-            } => write!(f, "{what} must lie between {min} and {max} (got {value})"),
+            } => write!(
+                f,
+                "{what} must lie between {} and {} (got {})",
+                Num(*min),
+                Num(*max),
+                Num(*value)
+            ),
             Error::TooLarge {
                 what,
                 value,
                 max,
                 unit,
             } => {
-                write!(f, "{what} must lie within ±{max} {unit} (got {value})")
+                write!(f, "{what} must lie within ±{} {unit} (got {})", Num(*max), Num(*value))
             }
             Error::UnstableGain { gain, dt, max_gain } => write!(
                 f,
-                "feedback gain K = {gain} with dt = {dt} s makes the RK4 step unstable: \
+                "feedback gain K = {} with dt = {} s makes the RK4 step unstable: \
                  K dt must not exceed {} (K <= {max_gain:.4} here)",
+                Num(*gain),
+                Num(*dt),
                 crate::scene::MAX_GAIN_STEP
             ),
             Error::NotWholeSteps { tf, dt } => write!(
                 f,
-                "final time tf = {tf} is not a whole number of steps dt = {dt}"
+                "final time tf = {} is not a whole number of steps dt = {}",
+                Num(*tf),
+                Num(*dt)
             ),
             Error::TooManySteps { steps, max } => {
-                write!(f, "tf / dt = {steps:.0} steps is too many (at most {max})")
+                write!(f, "tf / dt = {} steps is too many (at most {max})", Num(steps.round()))
             }
             Error::LinkCount { found, min, max } => write!(
                 f,
@@ -246,6 +256,22 @@ impl fmt::Display for Error {
 }
 
 impl std::error::Error for Error {}
+
+/// A number as a message shows it: as written for everyday magnitudes,
+/// in scientific notation beyond a million or below 1e-4 (`1e308` prints
+/// as `1e308`, not as 309 digits).
+struct Num(f64);
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let x = self.0;
+        if x.is_finite() && x != 0.0 && !(1e-4..1e6).contains(&x.abs()) {
+            write!(f, "{x:e}")
+        } else {
+            write!(f, "{x}")
+        }
+    }
+}
 
 /// Checks that `value` is finite, naming it in the error.
 pub(crate) fn finite(what: &str, value: f64) -> Result<f64> {

@@ -129,6 +129,8 @@ pub fn run_task(
             ob.centre = o;
         }
     }
+    // Bad input is refused, not recorded as a failed run.
+    crate::scene::validate_gain(feedback_gain, scene.dt)?;
     scene.feedback_gain = feedback_gain;
     let centre = scene.obstacles.first().map_or([f64::NAN; 2], |o| o.centre);
     let surrogate: Arc<dyn Surrogate> = Arc::new(nets.clone());

@@ -195,6 +195,9 @@ function fmtLength(v) {
   return '< 0.01 mm';
 }
 
+/** Largest weights file read (the core's `nn::weights::MAX_FILE_BYTES`). */
+const MAX_WEIGHTS_BYTES = 8 << 20;
+
 const READOUTS = {
   t: (s) => fmt(s.t, 1),
   error: (s) => fmtLength(s.tracking_error),
@@ -212,7 +215,9 @@ const READOUTS = {
  * { post, links }, damping (bool), feedback (closed-loop gain K, 1/s; default 0,
  * the paper's open loop), speed, autoplay (default true),
  * keyboard (element that receives key presses; default none),
- * onChange(state) (after user changes, e.g. to update the URL).
+ * onChange(state) (after user changes, e.g. to update the URL),
+ * problems (what the caller could not parse, shown with the settings the
+ * core refuses under problemsLabel; default 'Not applied').
  * Returns a controller with state(), worldToClient(x, y), runUntil(t), demo.
  */
 export async function mount(root, options = {}) {
@@ -273,21 +278,35 @@ export async function mount(root, options = {}) {
   const playground = mountPlayground(root, demo, { runWorker, describe, show, changed: () => changed() });
 
   // ---- initial settings (URL or attributes) ---------------------------
-  if (options.damping === false) attempt(() => demo.setDamping(false));
-  if (options.feedback) attempt(() => demo.setFeedback(options.feedback));
-  if (options.speed) attempt(() => demo.setSpeed(options.speed));
-  if (options.arm) attempt(() => demo.setArm(options.arm.post, Float64Array.from(options.arm.links)));
-  if (options.obstacles) attempt(() => demo.setObstacles(flatObstacles(options.obstacles)));
+  // Each is tried on its own: one refused keeps the others. What was
+  // refused (with what the caller could not parse, options.problems) is
+  // shown together, so no problem hides another.
+  const problems = [...(options.problems ?? [])];
+  const initial = (name, fn) => {
+    try {
+      fn();
+    } catch (e) {
+      problems.push(`${name}: ${describe(e)}`);
+    }
+  };
+  if (options.damping === false) initial('damping', () => demo.setDamping(false));
+  if (options.feedback) initial('feedback', () => demo.setFeedback(options.feedback));
+  if (options.speed) initial('speed', () => demo.setSpeed(options.speed));
+  if (options.arm) initial('arm', () => demo.setArm(options.arm.post, Float64Array.from(options.arm.links)));
+  if (options.obstacles) initial('obstacles', () => demo.setObstacles(flatObstacles(options.obstacles)));
   // Networks kept in this browser for the arm, before the mode that may need them.
   playground.restore();
   if (options.mode && options.mode !== 'numerical') {
-    attempt(() => demo.setMode(options.mode));
+    initial('mode', () => demo.setMode(options.mode));
   }
   if (options.lambda !== undefined && options.lambda !== null) {
-    attempt(() => demo.setLambda(options.lambda));
+    initial('lambda', () => demo.setLambda(options.lambda));
   }
-  if (options.obstacle && !options.obstacles) attempt(() => demo.setObstacle(options.obstacle[0], options.obstacle[1]));
-  if (options.target) attempt(() => demo.setTarget(options.target[0], options.target[1], 10));
+  if (options.obstacle && !options.obstacles) {
+    initial('obstacle', () => demo.setObstacle(options.obstacle[0], options.obstacle[1]));
+  }
+  if (options.target) initial('target', () => demo.setTarget(options.target[0], options.target[1], 10));
+  if (problems.length) show(`${options.problemsLabel ?? 'Not applied'}: ${problems.join('; ')}`, 'warn', true);
   if (options.autoplay !== false) demo.runTask();
 
   // ---- controls -------------------------------------------------------
@@ -401,7 +420,20 @@ export async function mount(root, options = {}) {
       show('Choose both files: the Φ weights and the v weights.', 'warn');
       return;
     }
-    const [phiText, vText] = await Promise.all([phi.text(), v.text()]);
+    // Too large to be weights: refused before reading (the core says the same of text).
+    const tooBig = [phi, v].find((f) => f.size > MAX_WEIGHTS_BYTES);
+    if (tooBig) {
+      show(`${tooBig.name} has ${(tooBig.size / 1048576).toFixed(1)} MB; weights files are at most ${MAX_WEIGHTS_BYTES / 1048576} MB.`);
+      return;
+    }
+    let phiText;
+    let vText;
+    try {
+      [phiText, vText] = await Promise.all([phi.text(), v.text()]);
+    } catch (e) {
+      show(`Cannot read the files: ${describe(e)}`);
+      return;
+    }
     if (attempt(() => playground.installNetworks(phiText, vText))) {
       show(`Loaded ${phi.name} and ${v.name}; Cases 1-3 now use them.`, 'info');
     }

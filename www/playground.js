@@ -28,17 +28,22 @@ export function armKey({ post, links }) {
   return `${+post.toFixed(4)}:${links.map((l) => +l.toFixed(4)).join(',')}`;
 }
 
+// A number from text: blank is not zero (Number('') is), and what a
+// message quotes is cut short (an address can be megabytes long).
+const number = (x) => (x.trim() === '' ? NaN : Number(x));
+const clip = (text) => (String(text).length > 40 ? `${String(text).slice(0, 40)}…` : String(text));
+
 /** Parses `POST:L1,L2,...`; throws a readable error. */
 export function parseArm(text) {
   const m = /^([^:]+):(.+)$/.exec(String(text).trim());
-  if (!m) throw new Error(`arm '${text}': expected POST:L1,L2,... (e.g. 0.5:0.6,0.85,0.6)`);
-  const post = Number(m[1]);
-  const links = m[2].split(',').map((x) => Number(x));
-  if (!Number.isFinite(post) || links.some((l) => !Number.isFinite(l))) {
-    throw new Error(`arm '${text}': every length must be a number`);
-  }
+  if (!m) throw new Error(`arm '${clip(text)}': expected POST:L1,L2,... (e.g. 0.5:0.6,0.85,0.6)`);
+  const post = number(m[1]);
+  const links = m[2].split(',').map(number);
   if (links.length < MIN_LINKS || links.length > MAX_LINKS) {
-    throw new Error(`arm '${text}': ${links.length} links; the page takes ${MIN_LINKS} to ${MAX_LINKS}`);
+    throw new Error(`arm '${clip(text)}': ${links.length} links; the page takes ${MIN_LINKS} to ${MAX_LINKS}`);
+  }
+  if (!Number.isFinite(post) || links.some((l) => !Number.isFinite(l))) {
+    throw new Error(`arm '${clip(text)}': every length must be a finite number`);
   }
   return { post, links };
 }
@@ -48,9 +53,9 @@ export function parseObstacles(text) {
   const parts = String(text).split(';').filter((p) => p.trim() !== '');
   if (parts.length > MAX_OBSTACLES) throw new Error(`${parts.length} obstacles; at most ${MAX_OBSTACLES}`);
   return parts.map((p) => {
-    const v = p.split(',').map(Number);
+    const v = p.split(',').map(number);
     if (!(v.length === 2 || v.length === 3) || v.some((x) => !Number.isFinite(x))) {
-      throw new Error(`obstacle '${p}': expected x,y or x,y,r`);
+      throw new Error(`obstacle '${clip(p)}': expected x,y or x,y,r (finite numbers)`);
     }
     return v;
   });

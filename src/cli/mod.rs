@@ -123,8 +123,8 @@ pub fn emit(text: &str) -> Result<(), String> {
 pub struct NetworkArgs {
     /// Embedded Phi network: equivariant (default, most accurate), plain
     /// (the paper's 3-35-14-6) or rows (the paper's three 3-35-14-2 nets).
-    #[arg(long, default_value = "equivariant")]
-    pub phi_variant: String,
+    #[arg(long, default_value = "equivariant", value_parser = parse_variant)]
+    pub phi_variant: Variant,
     /// Your own Phi weights file (JSON written by `train`, see docs/networks.md);
     /// replaces the embedded Phi network.
     #[arg(long)]
@@ -139,12 +139,7 @@ impl NetworkArgs {
     /// Loads the selected networks: each of the two from the user's file if
     /// given, else the embedded one.
     pub fn load(&self) -> Result<Networks, String> {
-        let variant: Variant = self.phi_variant.parse().map_err(|_| {
-            format!(
-                "unknown --phi-variant '{}': use equivariant, plain or rows",
-                self.phi_variant
-            )
-        })?;
+        let variant = self.phi_variant;
         let read = |f: &std::path::Path| read_weights_file(f);
         let phi = match &self.phi_weights {
             Some(f) => read(f)?,
@@ -165,6 +160,12 @@ impl NetworkArgs {
         }
         Ok(Some(Arc::new(self.load()?)))
     }
+}
+
+/// A `--phi-variant`, refused at once when unknown (even where no network runs).
+fn parse_variant(s: &str) -> Result<Variant, String> {
+    s.parse()
+        .map_err(|_| format!("unknown --phi-variant '{s}': use equivariant, plain or rows"))
 }
 
 /// Reads a weights file, refusing one larger than
