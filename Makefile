@@ -8,7 +8,7 @@ WASM_ENV = RUSTUP_TOOLCHAIN=$$(cat target/wasm-toolchain)
 WASM_SIMD_ENV = $(WASM_ENV) CARGO_TARGET_DIR=target/wasm-simd RUSTFLAGS="-C target-feature=+simd128"
 WASM_BUILD = CARGO_PROFILE_RELEASE_OPT_LEVEL=s wasm-pack build --release --target web --no-typescript
 
-.PHONY: setup web demo test lint test-native test-wasm test-e2e bench bench-native bench-web figures atlas-figures weights clean-web
+.PHONY: setup web demo test lint test-native test-wasm test-e2e test-fuzz test-soak fuzz soak bench bench-native bench-web figures atlas-figures weights clean-web
 
 ## Make this machine able to build and test for wasm32 (idempotent).
 setup:
@@ -44,8 +44,9 @@ demo: web
 	python3 scripts/serve.py --dir www --port $(PORT)
 
 ## Everything CI runs: formatting, lints, native tests, the same core tests in
-## headless Chromium, and the end-to-end browser test of the page.
-test: lint test-native test-wasm test-e2e
+## headless Chromium, the end-to-end browser test of the page, and the short
+## versions of the fuzzing and of the browser soak (docs/reliability.md).
+test: lint test-native test-wasm test-e2e test-fuzz test-soak
 
 lint: setup
 	cargo fmt --check
@@ -64,6 +65,28 @@ test-wasm: setup
 
 test-e2e: web
 	bash scripts/e2e.sh
+
+## Every cargo-fuzz target (fuzz/) for FUZZ_RUNS executions (1 000 000 by
+## default); new inputs grow the committed corpora in fuzz/corpus/.
+FUZZ_RUNS ?= 1000000
+fuzz:
+	FUZZ_RUNS=$(FUZZ_RUNS) bash scripts/fuzz.sh
+
+## CI's short fuzzing: 20 000 executions per target from the committed
+## corpora, which stay untouched (new inputs go to a scratch directory).
+test-fuzz:
+	FUZZ_RUNS=20000 FUZZ_SCRATCH=1 FUZZ_WALL_SECONDS=600 bash scripts/fuzz.sh
+
+## The browser soak (tests/e2e/soak.mjs) for SOAK_SECONDS (600 by default):
+## random drags, methods, tasks, arms, obstacles, atlases, trainings and
+## resizes; fails on any error or on memory growing more than 10%.
+SOAK_SECONDS ?= 600
+soak: web
+	SOAK_SECONDS=$(SOAK_SECONDS) E2E_SCRIPT=soak.mjs bash scripts/e2e.sh
+
+## CI's short soak: 60 seconds.
+test-soak: web
+	SOAK_SECONDS=60 E2E_SCRIPT=soak.mjs bash scripts/e2e.sh
 
 ## Criterion benchmarks (for developers; the README quotes `redundant-ik bench`).
 bench:

@@ -5,6 +5,7 @@
 #
 #   scripts/e2e.sh              # all tests
 #   CHROMIUM=/path/to/chromium scripts/e2e.sh
+#   E2E_SCRIPT=soak.mjs scripts/e2e.sh   # the soak instead (make soak)
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -64,4 +65,4 @@ if [[ -z "$url" ]]; then
 fi
 echo "e2e: serving www/ at $url"
 
-BASE_URL="$url" CHROMIUM="$chromium" node tests/e2e/e2e.mjs
+BASE_URL="$url" CHROMIUM="$chromium" node "tests/e2e/${E2E_SCRIPT:-e2e.mjs}"

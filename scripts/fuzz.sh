@@ -49,7 +49,10 @@ for t in $TARGETS; do
   fi
   log=$(mktemp)
   start=$SECONDS
-  if ! cargo fuzz run -s "$san" "$t" "${dirs[@]}" -- \
+  # libFuzzer reports an input slower than -timeout, but its alarm handler
+  # can deadlock when the slow input sits in malloc (seen with a hang in
+  # the trainer): the wall-clock guard makes sure the script ends.
+  if ! timeout -k 10 "${FUZZ_WALL_SECONDS:-3600}" cargo fuzz run -s "$san" "$t" "${dirs[@]}" -- \
       -runs="$RUNS" -timeout=10 -print_final_stats=1 \
       -artifact_prefix="fuzz/artifacts/$t/" >"$log" 2>&1; then
     tail -60 "$log"

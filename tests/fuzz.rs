@@ -3,7 +3,8 @@
 //! corpora (`fuzz/corpus/<target>/`, what `make fuzz` grew) run through the
 //! same bodies as the fuzzer (`fuzz/src/lib.rs`), so a fix that regresses
 //! fails `cargo test` without cargo-fuzz. docs/reliability.md tells how
-//! the targets run and what they found.
+//! the targets run and what they found. Native only (as the fuzzer).
+#![cfg(not(target_family = "wasm"))]
 
 #[path = "../fuzz/src/lib.rs"]
 #[allow(dead_code)]

@@ -47,10 +47,16 @@ function simdSupported() {
 }
 
 let build = null;
+let memory = null;
 
 /** Which build the page runs: 'simd' or 'baseline' (null before loading). */
 export function moduleBuild() {
   return build;
+}
+
+/** Bytes of the page module's linear memory (it grows, never shrinks; the soak watches it). */
+export function moduleMemoryBytes() {
+  return memory ? memory.buffer.byteLength : 0;
 }
 
 /**
@@ -61,7 +67,8 @@ export function moduleBuild() {
 export function loadModule() {
   if (!module) {
     const start = async (which) => {
-      await init({ module_or_path: BUILDS[which] });
+      const exports = await init({ module_or_path: BUILDS[which] });
+      memory = exports.memory;
       build = which;
       wasmUrl = BUILDS[which];
       // The drawing's colours, for the stylesheet (var(--arm), ...).

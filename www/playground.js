@@ -87,6 +87,7 @@ export function storedWeights(arm) {
     const raw = localStorage.getItem(STORE + armKey(arm));
     return raw ? JSON.parse(raw) : null;
   } catch (_) {
+    forgetWeights(arm); // not JSON: nothing to keep
     return null;
   }
 }

@@ -106,10 +106,20 @@ impl Default for LmOptions {
     }
 }
 
+/// Smallest `mu` the trainer keeps (the smallest normal `f64`): `mu`
+/// stays positive, so `mu_inc` always lifts it past `mu_max` in the end.
+pub const MU_MIN: f64 = f64::MIN_POSITIVE;
+
+/// Smallest `mu_inc` accepted: a failing epoch then tries at most
+/// `ln(f64::MAX / MU_MIN) / ln 1.5`, about 3 500, values of `mu`
+/// (Matlab's `mu_inc` is 10: 616 at most).
+pub const MIN_MU_INC: f64 = 1.5;
+
 impl LmOptions {
     /// Checks that the options make a trainer that ends: at least one
-    /// epoch, `0 < mu <= mu_max` finite, `0 < mu_dec < 1 < mu_inc` (else
-    /// `mu` never grows past `mu_max` and a failing epoch never ends),
+    /// epoch, `0 < mu <= mu_max` finite, `0 < mu_dec < 1`, `mu_inc` at
+    /// least [`MIN_MU_INC`] (else `mu` creeps towards `mu_max` and a
+    /// failing epoch takes for ever),
     /// `min_grad` and `goal` finite and non-negative, `chunk` positive.
     /// (The split is checked against the data by [`LmTrainer::new`].)
     pub fn validate(&self) -> Result<()> {
@@ -124,8 +134,8 @@ impl LmOptions {
             "mu must be positive and finite, at most mu_max"
         } else if !(self.mu_dec > 0.0 && self.mu_dec < 1.0) {
             "mu_dec must lie in (0, 1)"
-        } else if !(self.mu_inc.is_finite() && self.mu_inc > 1.0) {
-            "mu_inc must be finite and above 1"
+        } else if !(self.mu_inc.is_finite() && self.mu_inc >= MIN_MU_INC) {
+            "mu_inc must be finite and at least 1.5"
         } else if !(fine(self.min_grad) && fine(self.goal)) {
             "min_grad and goal must be finite and non-negative"
         } else if self.chunk == 0 {
@@ -376,7 +386,10 @@ impl LmTrainer {
                 if perf < self.perf {
                     self.params = trial;
                     self.perf = perf;
-                    self.mu *= self.opts.mu_dec;
+                    // Floored: Matlab's `mu * mu_dec` reaches 0 after about
+                    // 320 successes in a row, and then `mu * mu_inc` stays 0
+                    // and a failing epoch never ends (found by fuzzing).
+                    self.mu = (self.mu * self.opts.mu_dec).max(MU_MIN);
                     improved = true;
                     break;
                 }

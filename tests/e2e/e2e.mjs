@@ -1372,6 +1372,32 @@ test('nothing lost: a refused atlas keeps the last map, a refused training keeps
   await page.close();
 });
 
+test('weights kept in the browser that are corrupt: dropped with a message, the built-in networks run', async () => {
+  const page = await open('?task=1&mode=case3');
+  await pause(page);
+  const shipped = await page.evaluate(() => window.demo.simulate({ mode: 'case3' }));
+  const key = 'redundant-ik:weights:0.5:0.6,0.85,0.6';
+  for (const junk of ['{"phi": "{\\"format\\": 1", "v": 12}', 'not json at all', '{"phi": null}']) {
+    await page.evaluate(([k, v]) => localStorage.setItem(k, v), [key, junk]);
+    await page.reload();
+    await page.waitForSelector('body[data-ready="true"]', { timeout: 15000 });
+    await pause(page);
+    const r = await page.evaluate((k) => ({
+      message: document.getElementById('message').textContent,
+      kept: localStorage.getItem(k),
+      sim: window.demo.simulate({ mode: 'case3' }),
+      mode: window.demo.state().mode,
+    }), key);
+    assert.equal(r.kept, null, `${junk}: the corrupt entry is dropped`);
+    assert.deepEqual(r.sim, shipped, `${junk}: the built-in networks run`);
+    assert.equal(r.mode, 'case3');
+    if (junk.startsWith('{"phi": "')) assert.match(r.message, /could not be loaded and were dropped/);
+  }
+  await stillWorks(page);
+  clean(page);
+  await page.close();
+});
+
 // ---------------------------------------------------------------------------
 
 // E2E_ONLY=text runs only the tests whose name contains it (for development).
