@@ -219,3 +219,21 @@ fn stopping_early_keeps_what_was_learnt() {
     assert!(t.report.phi.as_ref().unwrap().epochs <= 3);
     assert!(t.report.v.as_ref().unwrap().epochs <= 3);
 }
+
+#[test]
+fn an_arm_without_avoidance_tasks_still_gets_its_networks_and_the_report_says_why() {
+    // Two links: no redundancy, so no task in which the obstacle changes the
+    // route. The check is empty and says so; the trained networks are kept
+    // (the soak found the job failing as a whole here).
+    let arm = Arm::new(0.3, vec![0.8, 0.7]).unwrap();
+    let mut request = small(arm.clone(), Which::Both);
+    request.samples = Some(40);
+    request.epochs = Some(1);
+    let trained = playground::train(&request, None, |_| true).unwrap();
+    assert_eq!(trained.phi.arm().unwrap(), arm);
+    assert!(trained.report.random_tasks.is_empty());
+    let note = trained.report.random_tasks_note.as_deref().unwrap();
+    assert!(note.contains("where the obstacle matters"), "{note}");
+    let json = serde_json::to_value(&trained.report).unwrap();
+    assert_eq!(json["random_tasks_note"], note);
+}

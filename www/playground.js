@@ -396,6 +396,7 @@ export function mountPlayground(root, demo, { runWorker, describe, show, changed
     lines.push(
       `Test errors on ${report.phi_error.samples} fresh samples (relative): Φ median ${sci(report.phi_error.median)}, 99th percentile ${sci(report.phi_error.p99)}; v median ${sci(report.v_error.median)}.`,
     );
+    if (report.random_tasks_note) lines.push(`No check on random tasks: ${report.random_tasks_note}.`);
     return lines;
   }
 

@@ -152,6 +152,11 @@ pub struct Report {
     /// matters ([`tasks::avoidance_tasks`]), open loop (`K = 0`) and with
     /// the drift corrected (`K = 1`): numerical and Cases 1 to 3.
     pub random_tasks: Vec<CheckRow>,
+    /// Why there are no random tasks, when the arm has none in which the
+    /// obstacle matters (a 2-link arm has no redundancy to avoid with).
+    /// The networks are kept all the same.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub random_tasks_note: Option<String>,
 }
 
 /// One line of the task check.
@@ -303,10 +308,20 @@ pub fn assess(nets: &Networks, samples: usize) -> Result<Report> {
             }
         }
     }
-    let scenes = tasks::avoidance_tasks(arm, CHECK_TASKS, tasks::obstacle_region(arm), CHECK_SEED)?;
+    // An arm without such tasks still gets its networks: the check says why
+    // it is empty instead of failing the whole job (found by the soak).
+    let (scenes, random_tasks_note) =
+        match tasks::avoidance_tasks(arm, CHECK_TASKS, tasks::obstacle_region(arm), CHECK_SEED) {
+            Ok(scenes) => (scenes, None),
+            Err(Error::Training(why)) => (Vec::new(), Some(why)),
+            Err(e) => (Vec::new(), Some(e.to_string())),
+        };
     let surrogate: Arc<dyn Surrogate> = Arc::new(nets.clone());
     let mut random_tasks = Vec::new();
     for feedback in [0.0, 1.0] {
+        if scenes.is_empty() {
+            break;
+        }
         let scenes: Vec<_> = scenes
             .iter()
             .cloned()
@@ -330,5 +345,6 @@ pub fn assess(nets: &Networks, samples: usize) -> Result<Report> {
         v_error,
         paper_tasks,
         random_tasks,
+        random_tasks_note,
     })
 }
