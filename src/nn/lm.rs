@@ -112,7 +112,7 @@ pub const MU_MIN: f64 = f64::MIN_POSITIVE;
 
 /// Smallest `mu_inc` accepted: a failing epoch then tries at most
 /// `ln(f64::MAX / MU_MIN) / ln 1.5`, about 3 500, values of `mu`
-/// (Matlab's `mu_inc` is 10: 616 at most).
+/// (with `trainlm`'s 10: 616 at most).
 pub const MIN_MU_INC: f64 = 1.5;
 
 impl LmOptions {
@@ -386,9 +386,10 @@ impl LmTrainer {
                 if perf < self.perf {
                     self.params = trial;
                     self.perf = perf;
-                    // Floored: Matlab's `mu * mu_dec` reaches 0 after about
-                    // 320 successes in a row, and then `mu * mu_inc` stays 0
-                    // and a failing epoch never ends (found by fuzzing).
+                    // Floored: the `trainlm` rule as SPEC.md states it (x0.1
+                    // after a success, no floor) reaches 0 after about 320
+                    // successes in a row; then `mu * mu_inc` stays 0 and a
+                    // failing epoch never ends (found by fuzzing).
                     self.mu = (self.mu * self.opts.mu_dec).max(MU_MIN);
                     improved = true;
                     break;
