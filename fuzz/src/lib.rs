@@ -142,6 +142,19 @@ impl Snapshot {
     }
 }
 
+/// Up to `steps` RK4 steps: each one that goes through leaves a finite
+/// state, and the first that fails leaves the state as it was.
+fn step_checked(p: &mut Planner, steps: usize) {
+    for _ in 0..steps {
+        let before = Snapshot::of(p);
+        if p.step().is_err() {
+            assert_eq!(Snapshot::of(p), before, "a failed step changed the state");
+            return;
+        }
+        Snapshot::of(p).assert_finite();
+    }
+}
+
 // ---- weights files ---------------------------------------------------------
 
 /// Weights files from arbitrary bytes, as the page's file picker, its
@@ -175,14 +188,7 @@ pub fn weights(data: &[u8]) {
         let Ok(mut p) = Planner::new(scene.clone(), mode, Some(nets.clone())) else {
             continue;
         };
-        for _ in 0..10 {
-            let before = Snapshot::of(&p);
-            if p.step().is_err() {
-                assert_eq!(Snapshot::of(&p), before, "a failed step changed the state");
-                break;
-            }
-            Snapshot::of(&p).assert_finite();
-        }
+        step_checked(&mut p, 10);
     }
 }
 
@@ -242,14 +248,7 @@ pub fn scene(data: &[u8]) {
         };
         scene.validate().expect("an accepted scene validates");
         Snapshot::of(&p).assert_finite();
-        for _ in 0..scene.steps().min(12) {
-            let before = Snapshot::of(&p);
-            if p.step().is_err() {
-                assert_eq!(Snapshot::of(&p), before, "a failed step changed the state");
-                break;
-            }
-            Snapshot::of(&p).assert_finite();
-        }
+        step_checked(&mut p, scene.steps().min(12));
     }
 }
 
@@ -442,11 +441,10 @@ pub fn atlas(data: &[u8]) {
         guard += 1;
         assert!(guard <= total, "advance took more calls than cells");
     }
-    let modes = job.clone().finish().expect("a done job finishes").modes;
     let atlas = job.finish().expect("a done job finishes");
     assert_eq!(atlas.cells.len(), total);
     for cell in &atlas.cells {
-        assert_eq!(cell.outcomes.len(), modes.len());
+        assert_eq!(cell.outcomes.len(), atlas.modes.len());
     }
     for s in &atlas.summary {
         assert_eq!(
