@@ -140,13 +140,12 @@ impl NetworkArgs {
     /// given, else the embedded one.
     pub fn load(&self) -> Result<Networks, String> {
         let variant = self.phi_variant;
-        let read = |f: &std::path::Path| read_weights_file(f);
         let phi = match &self.phi_weights {
-            Some(f) => read(f)?,
+            Some(f) => read_weights_file(f)?,
             None => networks::embedded_phi_json(variant).to_owned(),
         };
         let v = match &self.v_weights {
-            Some(f) => read(f)?,
+            Some(f) => read_weights_file(f)?,
             None => networks::V_PLAIN_JSON.to_owned(),
         };
         Networks::from_json(&phi, &v).map_err(|e| e.to_string())

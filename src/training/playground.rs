@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{tasks, train_weights, TrainSpec};
 use crate::arm::Arm;
-use crate::error::{Error, Result};
+use crate::error::{within, Error, Result};
 use crate::evaluation::{self, ErrorStats};
 use crate::networks::{Networks, DEFAULT_PHI_VARIANT, DEFAULT_V_VARIANT};
 use crate::nn::lm::EpochReport;
@@ -185,22 +185,8 @@ impl Request {
     pub fn size(&self) -> Result<(usize, usize)> {
         let samples = self.samples.unwrap_or(self.preset.samples());
         let epochs = self.epochs.unwrap_or(self.preset.epochs());
-        if !(20..=MAX_SAMPLES).contains(&samples) {
-            return Err(Error::OutOfRange {
-                what: "training samples".into(),
-                value: samples as f64,
-                min: 20.0,
-                max: MAX_SAMPLES as f64,
-            });
-        }
-        if !(1..=MAX_EPOCHS).contains(&epochs) {
-            return Err(Error::OutOfRange {
-                what: "training epochs".into(),
-                value: epochs as f64,
-                min: 1.0,
-                max: MAX_EPOCHS as f64,
-            });
-        }
+        within("training samples", samples as f64, 20.0, MAX_SAMPLES as f64)?;
+        within("training epochs", epochs as f64, 1.0, MAX_EPOCHS as f64)?;
         Ok((samples, epochs))
     }
 
