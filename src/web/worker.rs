@@ -17,6 +17,21 @@ use crate::networks::Networks;
 use crate::planner::Mode;
 use crate::scene::Scene;
 
+/// Refuses a field of `value` not in `names`: serde-wasm-bindgen reads only
+/// the fields it knows, so a misspelt one would quietly become a default.
+fn known_fields(value: &JsValue, names: &[&str], what: &str) -> Result<(), JsError> {
+    for key in js_sys::Object::keys(&js_sys::Object::from(value.clone())).iter() {
+        let key = key.as_string().unwrap_or_default();
+        if !names.contains(&key.as_str()) {
+            return Err(JsError::new(&format!(
+                "{what}: unknown field '{key}', expected one of {}",
+                names.join(", ")
+            )));
+        }
+    }
+    Ok(())
+}
+
 // ---- the atlas -----------------------------------------------------------
 
 /// The options of an atlas as the page passes them.
@@ -66,17 +81,7 @@ impl AtlasJob {
                 task: None,
             }
         } else {
-            // serde-wasm-bindgen reads only the fields it knows: refuse a
-            // misspelt one rather than quietly use a default.
-            for key in js_sys::Object::keys(&js_sys::Object::from(options.clone())).iter() {
-                let key = key.as_string().unwrap_or_default();
-                if !OPTION_NAMES.contains(&key.as_str()) {
-                    return Err(JsError::new(&format!(
-                        "atlas options: unknown field '{key}', expected one of {}",
-                        OPTION_NAMES.join(", ")
-                    )));
-                }
-            }
+            known_fields(&options, &OPTION_NAMES, "atlas options")?;
             serde_wasm_bindgen::from_value(options)
                 .map_err(|e| JsError::new(&format!("atlas options: {e}")))?
         };
@@ -190,15 +195,7 @@ pub fn train_networks(
     if !request.is_object() {
         return Err(JsError::new("training request: expected an object"));
     }
-    for key in js_sys::Object::keys(&js_sys::Object::from(request.clone())).iter() {
-        let key = key.as_string().unwrap_or_default();
-        if !TRAIN_FIELDS.contains(&key.as_str()) {
-            return Err(JsError::new(&format!(
-                "training request: unknown field '{key}', expected one of {}",
-                TRAIN_FIELDS.join(", ")
-            )));
-        }
-    }
+    known_fields(&request, &TRAIN_FIELDS, "training request")?;
     let request: Request = serde_wasm_bindgen::from_value(request)
         .map_err(|e| JsError::new(&format!("training request: {e}")))?;
     let current = match (phi_json, v_json) {
