@@ -11,22 +11,12 @@
 // `make bench-web` serves www/ and calls it. Needs playwright-core (installed
 // under tests/e2e by scripts/e2e.sh) and Debian's Chromium.
 
-import { createRequire } from 'node:module';
-import { dirname, join } from 'node:path';
-import { fileURLToPath } from 'node:url';
-
-const here = dirname(fileURLToPath(import.meta.url));
-const require = createRequire(join(here, '..', 'tests', 'e2e', 'package.json'));
-const { chromium } = require('playwright-core');
+// playwright-core comes from tests/e2e/node_modules, through the shared launcher.
+import { launchChromium } from '../tests/e2e/chromium.mjs';
 
 const BASE = process.env.BASE_URL ?? 'http://127.0.0.1:8000/';
 const RUNS = Number(process.env.RUNS ?? 3);
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
-  headless: true,
-  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-dev-shm-usage',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run'],
-});
+const browser = await launchChromium();
 const context = await browser.newContext();
 if (process.env.BUILD === 'baseline') {
   await context.addInitScript(() => {

@@ -28,10 +28,10 @@ export function armKey({ post, links }) {
   return `${+post.toFixed(4)}:${links.map((l) => +l.toFixed(4)).join(',')}`;
 }
 
-// A number from text: blank is not zero (Number('') is), and what a
-// message quotes is cut short (an address can be megabytes long).
-const number = (x) => (x.trim() === '' ? NaN : Number(x));
-const clip = (text) => (String(text).length > 40 ? `${String(text).slice(0, 40)}…` : String(text));
+/** A number from text: blank is not zero (as `Number('')` is). */
+export const number = (x) => (x.trim() === '' ? NaN : Number(x));
+/** Text a message quotes, cut to 40 characters (an address can be megabytes long). */
+export const clip = (text) => (String(text).length > 40 ? `${String(text).slice(0, 40)}…` : String(text));
 
 /** Parses `POST:L1,L2,...`; throws a readable error. */
 export function parseArm(text) {

@@ -9,7 +9,7 @@
 // tests/e2e/screenshots/ (ignored by git). Measurements (time to data-ready,
 // Case 3 solver time) are printed as lines starting with "measure:".
 
-import { chromium } from 'playwright-core';
+import { launchChromium } from './chromium.mjs';
 import { mkdirSync, writeFileSync, mkdtempSync, readFileSync } from 'node:fs';
 import { spawnSync } from 'node:child_process';
 import { tmpdir } from 'node:os';
@@ -22,19 +22,7 @@ const shots = join(here, 'screenshots');
 mkdirSync(shots, { recursive: true });
 
 const BASE = process.env.BASE_URL ?? 'http://127.0.0.1:8000/';
-const CHROMIUM = process.env.CHROMIUM ?? '/usr/bin/chromium';
-const ARGS = [
-  '--headless',
-  '--no-sandbox',
-  '--disable-gpu',
-  '--disable-dev-shm-usage',
-  '--disable-background-networking',
-  '--disable-component-update',
-  '--disable-sync',
-  '--no-first-run',
-];
-
-const browser = await chromium.launch({ executablePath: CHROMIUM, args: ARGS, headless: true });
+const browser = await launchChromium();
 const tests = [];
 const test = (name, fn) => tests.push({ name, fn });
 

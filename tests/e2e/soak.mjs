@@ -21,13 +21,12 @@
 // at the end and prints the object kinds whose total size grew most (for
 // finding what a growing heap holds).
 
-import { chromium } from 'playwright-core';
+import { launchChromium } from './chromium.mjs';
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { dirname } from 'node:path';
 import assert from 'node:assert/strict';
 
 const BASE = process.env.BASE_URL ?? 'http://127.0.0.1:8000/';
-const CHROMIUM = process.env.CHROMIUM ?? '/usr/bin/chromium';
 const SECONDS = Number(process.env.SOAK_SECONDS ?? 600);
 const OUT = process.env.SOAK_OUT ?? 'target/soak.json';
 const SVG = process.env.SOAK_SVG;
@@ -55,20 +54,7 @@ const ARMS = [
   { post: 0.4, links: [0.5, 0.5, 0.4, 0.3, 0.3] },
 ];
 
-const browser = await chromium.launch({
-  executablePath: CHROMIUM,
-  headless: true,
-  args: [
-    '--headless',
-    '--no-sandbox',
-    '--disable-gpu',
-    '--disable-dev-shm-usage',
-    '--disable-background-networking',
-    '--disable-component-update',
-    '--disable-sync',
-    '--no-first-run',
-  ],
-});
+const browser = await launchChromium();
 const context = await browser.newContext({ viewport: { width: 1280, height: 900 } });
 const page = await context.newPage();
 const problems = [];
