@@ -5,12 +5,12 @@
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use redundant_ik::nalgebra::Vector2;
-use redundant_ik::{Mode, Planner, Scene};
+use redundant_ik::{Method, Planner, Scene};
 
 fn theta_dot(c: &mut Criterion) {
     let scene = Scene::task1();
     let xdot = Vector2::new(-0.0955884, -0.0814851);
-    for mode in [Mode::None, Mode::Numerical] {
+    for mode in [Method::NO_AVOIDANCE, Method::NUMERICAL] {
         let mut p = Planner::new(scene.clone(), mode, None).unwrap();
         let th = scene.theta0.clone();
         let mut out = [0.0; 3];
@@ -24,7 +24,7 @@ fn theta_dot(c: &mut Criterion) {
 }
 
 fn task1_run(c: &mut Criterion) {
-    for mode in [Mode::None, Mode::Numerical] {
+    for mode in [Method::NO_AVOIDANCE, Method::NUMERICAL] {
         c.bench_function(&format!("task1_run/{mode}"), |b| {
             b.iter(|| Planner::run(black_box(Scene::task1()), mode, None).unwrap())
         });

@@ -7,12 +7,13 @@ use std::sync::Arc;
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
 use redundant_ik::nalgebra::Vector2;
-use redundant_ik::networks::Networks;
+use redundant_ik::networks::{NetKind, Networks, Sampling, Variant};
 use redundant_ik::nn::lm::{LmOptions, LmTrainer};
 use redundant_ik::nn::mlp::{MapMinMax, Mlp};
-use redundant_ik::nn::{Dataset, NetKind, Rng, Variant};
+use redundant_ik::nn::{Dataset, Rng};
+use redundant_ik::planner::methods;
 use redundant_ik::training::{self, TrainSpec};
-use redundant_ik::{Arm, Mode, Planner, Scene, Surrogate};
+use redundant_ik::{Arm, Planner, Scene, Surrogate};
 
 fn forward(c: &mut Criterion) {
     let theta = Scene::task1().theta0;
@@ -50,7 +51,7 @@ fn theta_dot(c: &mut Criterion) {
     let nets: Arc<dyn Surrogate> = Arc::new(Networks::embedded().unwrap());
     let xdot = Vector2::new(-0.1, -0.08);
     let mut g = c.benchmark_group("theta_dot");
-    for mode in Mode::ALL {
+    for &mode in methods::ALL {
         let mut p = Planner::new(Scene::task1(), mode, Some(nets.clone())).unwrap();
         let th = Scene::task1().theta0;
         let mut out = [0.0; 3];
@@ -63,7 +64,7 @@ fn theta_dot(c: &mut Criterion) {
     }
     g.finish();
     let mut g = c.benchmark_group("task1_run_100_rk4_steps");
-    for mode in Mode::ALL {
+    for &mode in methods::ALL {
         g.bench_function(mode.name(), |b| {
             b.iter(|| Planner::run(Scene::task1(), mode, Some(nets.clone())).unwrap())
         });
@@ -73,7 +74,7 @@ fn theta_dot(c: &mut Criterion) {
 
 fn lm_epoch(c: &mut Criterion) {
     let arm = Arm::paper();
-    let sampling = training::Sampling::default();
+    let sampling = Sampling::default();
     let samples = training::draw_samples(&arm, &sampling, 3000, 1).unwrap();
     let phi_plain = training::phi_datasets(&arm, Variant::Plain, &samples).unwrap();
     let phi_rows = training::phi_datasets(&arm, Variant::Rows, &samples).unwrap();

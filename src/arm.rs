@@ -5,11 +5,13 @@
 //! `+X1`, so joint `k` sits at `P(k) = P(k-1) + L_k (sin phi_k, cos phi_k)` with
 //! `P(0) = (0, L0)` the top of the post. The end effector is `X = P(n)`.
 
-use nalgebra::{DVector, Matrix2xX, Vector2};
+use std::fmt;
+use std::str::FromStr;
+
+use nalgebra::{DVector, Vector2};
 use serde::{Deserialize, Serialize};
 
-use crate::error::{coordinate, non_negative, positive, Error, Result};
-use crate::kinematics::{segment_distance_squared, Pose};
+use crate::error::{clip, coordinate, non_negative, positive, Error, Result};
 
 /// Fewest links an [`Arm`] may have: two, to position a planar end effector.
 pub const MIN_LINKS: usize = 2;
@@ -27,7 +29,11 @@ pub const MAX_ANGLE: f64 = 1.0e6;
 
 /// A planar arm on a vertical base post of length `post`, with revolute links of
 /// lengths `links[0..n]` (the paper's `L0` and `L1..L3`).
+///
+/// An arm deserialises through [`Arm::new`], so a scene or a weights file
+/// cannot carry an arm that the constructor would refuse.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "ArmFields")]
 pub struct Arm {
     post: f64,
     links: Vec<f64>,
@@ -132,49 +138,111 @@ impl Arm {
             None => Ok(()),
         }
     }
+}
 
-    /// Absolute link angles `phi_i = theta_1 + ... + theta_i`.
-    pub fn absolute_angles(&self, theta: &DVector<f64>) -> Vec<f64> {
-        theta
-            .iter()
-            .scan(0.0, |acc, &t| {
-                *acc += t;
-                Some(*acc)
-            })
-            .collect()
-    }
+/// The fields of an arm as a file or a scene writes them, checked by
+/// [`Arm::new`] when they become an [`Arm`].
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ArmFields {
+    post: f64,
+    links: Vec<f64>,
+}
 
-    /// All joint positions `P(0), P(1), ..., P(n)`; the last is the end effector.
-    pub fn joints(&self, theta: &DVector<f64>) -> Vec<Vector2<f64>> {
-        Pose::lenient(self, theta.as_slice())
-            .joints()
-            .iter()
-            .map(|p| Vector2::new(p[0], p[1]))
-            .collect()
-    }
-
-    /// Forward kinematics `X = f(theta)`, eq. (1): the end effector `P(n)`.
-    ///
-    /// # Examples
-    /// ```
-    /// use redundant_ik::{Arm, nalgebra::DVector};
-    /// use std::f64::consts::PI;
-    /// let x = Arm::paper().forward(&DVector::from_vec(vec![PI / 12.0, PI / 2.0, -PI / 6.0]));
-    /// assert!((x[0] - 1.555884).abs() < 1e-6 && (x[1] - 1.014851).abs() < 1e-6);
-    /// ```
-    pub fn forward(&self, theta: &DVector<f64>) -> Vector2<f64> {
-        let x = Pose::lenient(self, theta.as_slice()).end_effector();
-        Vector2::new(x[0], x[1])
-    }
-
-    /// Analytic Jacobian `J = dX/dtheta`, eq. (3), a `2 x n` matrix:
-    /// `J[0][i] = sum_{k>=i} L_k cos phi_k`, `J[1][i] = -sum_{k>=i} L_k sin phi_k`.
-    pub fn jacobian(&self, theta: &DVector<f64>) -> Matrix2xX<f64> {
-        Matrix2xX::from_column_slice(Pose::lenient(self, theta.as_slice()).jacobian())
+impl TryFrom<ArmFields> for Arm {
+    type Error = Error;
+    fn try_from(f: ArmFields) -> Result<Self> {
+        Arm::new(f.post, f.links)
     }
 }
 
-/// Euclidean distance from point `p` to the segment `a`-`b`.
-pub fn point_segment_distance(p: &Vector2<f64>, a: &Vector2<f64>, b: &Vector2<f64>) -> f64 {
-    segment_distance_squared([p[0], p[1]], [a[0], a[1]], [b[0], b[1]]).sqrt()
+/// The arm syntax of the command line (`--arm`), the page's address
+/// (`arm=`) and its stored weights: `POST:L1,L2,...` in metres, e.g.
+/// `0.5:0.6,0.85,0.6` for the paper's arm.
+impl FromStr for Arm {
+    type Err = Error;
+    fn from_str(text: &str) -> Result<Self> {
+        let syntax = |expected: String| Error::Syntax {
+            what: "arm",
+            text: text.to_string(),
+            expected,
+        };
+        let (post, links) = text.trim().split_once(':').ok_or_else(|| {
+            syntax("expected POST:L1,L2,... (e.g. 0.5:0.6,0.85,0.6)".into())
+        })?;
+        let post = number(post).map_err(&syntax)?;
+        let links = number_list(links).map_err(&syntax)?;
+        Arm::new(post, links).map_err(|e| syntax(e.to_string()))
+    }
+}
+
+/// `POST:L1,L2,...`, each number as short as it round-trips (what
+/// [`Arm::from_str`] reads back to the same arm).
+impl fmt::Display for Arm {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}:", self.post)?;
+        for (i, l) in self.links.iter().enumerate() {
+            write!(f, "{}{l}", if i == 0 { "" } else { "," })?;
+        }
+        Ok(())
+    }
+}
+
+/// One finite number from text, or why not.
+pub(crate) fn number(text: &str) -> std::result::Result<f64, String> {
+    let t = text.trim();
+    match t.parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        _ => Err(format!("'{}' is not a finite number", clip(t))),
+    }
+}
+
+/// A comma-separated list of finite numbers, or why not.
+pub(crate) fn number_list(text: &str) -> std::result::Result<Vec<f64>, String> {
+    text.split(',').map(number).collect()
+}
+
+/// An arm the page's designer and the command line offer by name.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Preset {
+    /// Its name (`--arm four` on the command line).
+    pub key: &'static str,
+    /// What the designer's menu says.
+    pub label: &'static str,
+    /// Post height `L0` (m).
+    pub post: f64,
+    /// Link lengths (m).
+    pub links: &'static [f64],
+}
+
+/// The named arms: the paper's and two longer ones.
+pub const PRESETS: [Preset; 3] = [
+    Preset {
+        key: "paper",
+        label: "The paper's arm (3 links)",
+        post: 0.5,
+        links: &[0.6, 0.85, 0.6],
+    },
+    Preset {
+        key: "four",
+        label: "4 links",
+        post: 0.5,
+        links: &[0.6, 0.85, 0.6, 0.4],
+    },
+    Preset {
+        key: "five",
+        label: "5 links",
+        post: 0.5,
+        links: &[0.5, 0.6, 0.5, 0.4, 0.3],
+    },
+];
+
+impl Preset {
+    /// The arm.
+    pub fn arm(&self) -> Arm {
+        Arm {
+            post: self.post,
+            links: self.links.to_vec(),
+        }
+    }
 }

@@ -19,14 +19,15 @@ use crate::nalgebra::Vector2;
 use crate::networks::Networks;
 use crate::nn::lm::{LmOptions, LmTrainer};
 use crate::nn::mlp::{MapMinMax, Mlp};
-use crate::nn::{Rng, Variant};
-use crate::planner::{Mode, Planner, Surrogate};
+use crate::networks::{Sampling, Variant};
+use crate::nn::Rng;
+use crate::planner::{methods, Method, Planner, Surrogate};
 use crate::scene::Scene;
 use crate::training;
 use crate::Arm;
 
 /// What to measure and how long.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Options {
     /// Shortest timed batch (ms).
     pub batch_ms: f64,
@@ -39,6 +40,13 @@ pub struct Options {
     pub paper_variants: bool,
     /// Whether to time the default atlas (about 0.6 s natively per run).
     pub atlas: bool,
+    /// The methods to time (the paper's five by default).
+    #[serde(default = "paper_methods")]
+    pub methods: Vec<Method>,
+}
+
+fn paper_methods() -> Vec<Method> {
+    methods::PAPER.to_vec()
 }
 
 impl Default for Options {
@@ -49,45 +57,63 @@ impl Default for Options {
             lm_epoch: true,
             paper_variants: true,
             atlas: true,
+            methods: paper_methods(),
         }
     }
 }
 
-/// One figure per mode, in the paper's order.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct PerMode {
-    /// Mode `none`.
-    pub none: f64,
-    /// Mode `numerical`.
-    pub numerical: f64,
-    /// Case 1.
-    pub case1: f64,
-    /// Case 2.
-    pub case2: f64,
-    /// Case 3.
-    pub case3: f64,
-}
+/// One figure per method, in the order measured; serialised as one key per
+/// method name (`{"none": .., "numerical": .., ...}`).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct PerMethod(pub Vec<(Method, f64)>);
 
-impl PerMode {
-    fn from_fn(mut f: impl FnMut(Mode) -> Result<f64>) -> Result<Self> {
-        Ok(Self {
-            none: f(Mode::None)?,
-            numerical: f(Mode::Numerical)?,
-            case1: f(Mode::Case1)?,
-            case2: f(Mode::Case2)?,
-            case3: f(Mode::Case3)?,
-        })
+impl PerMethod {
+    fn from_fn(methods: &[Method], mut f: impl FnMut(Method) -> Result<f64>) -> Result<Self> {
+        methods
+            .iter()
+            .map(|&m| Ok((m, f(m)?)))
+            .collect::<Result<Vec<_>>>()
+            .map(PerMethod)
     }
 
-    /// The figure of `mode`.
-    pub fn get(&self, mode: Mode) -> f64 {
-        match mode {
-            Mode::None => self.none,
-            Mode::Numerical => self.numerical,
-            Mode::Case1 => self.case1,
-            Mode::Case2 => self.case2,
-            Mode::Case3 => self.case3,
+    /// The figure of `method`, if it was measured.
+    pub fn get(&self, method: Method) -> Option<f64> {
+        self.0.iter().find(|(m, _)| *m == method).map(|(_, v)| *v)
+    }
+}
+
+impl Serialize for PerMethod {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut map = s.serialize_map(Some(self.0.len()))?;
+        for (m, v) in &self.0 {
+            map.serialize_entry(m.name(), v)?;
         }
+        map.end()
+    }
+}
+
+impl<'de> Deserialize<'de> for PerMethod {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        struct Visitor;
+        impl<'de> serde::de::Visitor<'de> for Visitor {
+            type Value = PerMethod;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a map from method names to numbers")
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                mut map: A,
+            ) -> std::result::Result<PerMethod, A::Error> {
+                let mut out = Vec::new();
+                while let Some((name, value)) = map.next_entry::<String, f64>()? {
+                    let m: Method = name.parse().map_err(serde::de::Error::custom)?;
+                    out.push((m, value));
+                }
+                Ok(PerMethod(out))
+            }
+        }
+        d.deserialize_map(Visitor)
     }
 }
 
@@ -113,16 +139,16 @@ pub struct Report {
     /// `portable` ([`crate::nn::kernel::kernel_isa`]).
     pub kernels: String,
     /// One `theta_dot` at Task 1's start pose (ns).
-    pub theta_dot_ns: PerMode,
+    pub theta_dot_ns: PerMethod,
     /// One RK4 step of Task 1, with the sample bookkeeping (ns).
-    pub step_ns: PerMode,
+    pub step_ns: PerMethod,
     /// One forward pass of each shipped network (ns).
     pub forward_ns: Forward,
     /// One `trainlm` epoch of the 2-35-14-6 `Phi` net on 3,000 samples (2,100
     /// in the training split), in ms; `None` when not measured.
     pub lm_epoch_ms: Option<f64>,
     /// Heap allocations per RK4 step; `None` when no counter was given.
-    pub allocs_per_step: Option<PerMode>,
+    pub allocs_per_step: Option<PerMethod>,
     /// One 41 x 41 atlas of Task 1 in all five modes (8,405 runs) on one
     /// thread, in ms ([`atlas_ms`]); `None` when not measured.
     #[serde(default)]
@@ -187,7 +213,7 @@ fn task1_xdot() -> Vector2<f64> {
 }
 
 /// One `theta_dot` of `mode` at Task 1's start pose (ns).
-pub fn theta_dot_ns(mode: Mode, opts: &Options, probes: &Probes) -> Result<f64> {
+pub fn theta_dot_ns(mode: Method, opts: &Options, probes: &Probes) -> Result<f64> {
     let mut p = Planner::new(Scene::task1(), mode, Some(shipped()?))?;
     let th: Vec<f64> = p.theta().iter().copied().collect();
     let xdot = task1_xdot();
@@ -202,7 +228,7 @@ pub fn theta_dot_ns(mode: Mode, opts: &Options, probes: &Probes) -> Result<f64> 
 
 /// One RK4 step of Task 1 in `mode`, sample included (ns); the task restarts
 /// every 100 steps.
-pub fn step_ns(mode: Mode, opts: &Options, probes: &Probes) -> Result<f64> {
+pub fn step_ns(mode: Method, opts: &Options, probes: &Probes) -> Result<f64> {
     let mut p = Planner::new(Scene::task1(), mode, Some(shipped()?))?;
     let n = p.scene().steps();
     let mut k = 0;
@@ -219,7 +245,7 @@ pub fn step_ns(mode: Mode, opts: &Options, probes: &Probes) -> Result<f64> {
 
 /// Heap allocations per RK4 step of Task 1 in `mode`, over one whole run,
 /// once the planner exists.
-pub fn allocs_per_step(mode: Mode, count: &dyn Fn() -> u64) -> Result<f64> {
+pub fn allocs_per_step(mode: Method, count: &dyn Fn() -> u64) -> Result<f64> {
     let mut p = Planner::new(Scene::task1(), mode, Some(shipped()?))?;
     let n = p.scene().steps();
     let before = count();
@@ -270,7 +296,7 @@ pub fn forward_paper_ns(opts: &Options, probes: &Probes) -> Result<(f64, f64)> {
 /// training split. Each timed epoch starts from the same trainer state.
 pub fn lm_epoch_ms(opts: &Options, probes: &Probes) -> Result<f64> {
     let arm = Arm::paper();
-    let sampling = training::Sampling::default();
+    let sampling = Sampling::default();
     let samples = training::draw_samples(&arm, &sampling, 3000, 1)?;
     let sets = training::phi_datasets(&arm, Variant::Equivariant, &samples)?;
     let data = sets
@@ -319,8 +345,8 @@ pub fn atlas_ms(probes: &Probes) -> Result<f64> {
 
 /// Runs every measurement.
 pub fn run(opts: &Options, probes: &Probes) -> Result<Report> {
-    let theta_dot = PerMode::from_fn(|m| theta_dot_ns(m, opts, probes))?;
-    let step = PerMode::from_fn(|m| step_ns(m, opts, probes))?;
+    let theta_dot = PerMethod::from_fn(&opts.methods, |m| theta_dot_ns(m, opts, probes))?;
+    let step = PerMethod::from_fn(&opts.methods, |m| step_ns(m, opts, probes))?;
     let mut forward = forward_ns(opts, probes)?;
     if opts.paper_variants {
         let (plain, rows) = forward_paper_ns(opts, probes)?;
@@ -338,7 +364,9 @@ pub fn run(opts: &Options, probes: &Probes) -> Result<Report> {
         None
     };
     let allocs = match probes.allocations {
-        Some(count) => Some(PerMode::from_fn(|m| allocs_per_step(m, count))?),
+        Some(count) => Some(PerMethod::from_fn(&opts.methods, |m| {
+            allocs_per_step(m, count)
+        })?),
         None => None,
     };
     Ok(Report {

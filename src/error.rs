@@ -58,6 +58,8 @@ pub enum Error {
         dt: f64,
         /// The largest gain accepted with this `dt`.
         max_gain: f64,
+        /// The largest `K dt` accepted.
+        max_step: f64,
     },
     /// The final time is not a whole number of time steps.
     NotWholeSteps {
@@ -89,7 +91,17 @@ pub enum Error {
         /// The name given.
         name: String,
         /// The names accepted, for the message.
-        choices: &'static str,
+        choices: String,
+    },
+    /// Text that does not follow its syntax (an arm `POST:L1,L2,...`, an
+    /// obstacle list `x,y,r;x,y,r`).
+    Syntax {
+        /// What was read, e.g. `"arm"`.
+        what: &'static str,
+        /// The text given (the message quotes at most 40 characters).
+        text: String,
+        /// What was wrong, or what was expected.
+        expected: String,
     },
     /// The paper has tasks 1 and 2 only.
     UnknownTask {
@@ -128,6 +140,11 @@ pub enum Error {
     Diverged {
         /// Time at the start of the step (s).
         t: f64,
+    },
+    /// A method whose joint rates have no null-space vector `v` of eq. (5).
+    NoNullSpace {
+        /// The method's name.
+        method: &'static str,
     },
     /// A network mode was requested but no trained networks are loaded.
     NetworksUnavailable(String),
@@ -191,13 +208,17 @@ impl fmt::Display for Error {
             } => {
                 write!(f, "{what} must lie within ±{} {unit} (got {})", Num(*max), Num(*value))
             }
-            Error::UnstableGain { gain, dt, max_gain } => write!(
+            Error::UnstableGain {
+                gain,
+                dt,
+                max_gain,
+                max_step,
+            } => write!(
                 f,
                 "feedback gain K = {} with dt = {} s makes the RK4 step unstable: \
-                 K dt must not exceed {} (K <= {max_gain:.4} here)",
+                 K dt must not exceed {max_step} (K <= {max_gain:.4} here)",
                 Num(*gain),
                 Num(*dt),
-                crate::scene::MAX_GAIN_STEP
             ),
             Error::NotWholeSteps { tf, dt } => write!(
                 f,
@@ -217,6 +238,11 @@ impl fmt::Display for Error {
                 name,
                 choices,
             } => write!(f, "unknown {kind} '{name}': use {choices}"),
+            Error::Syntax {
+                what,
+                text,
+                expected,
+            } => write!(f, "{what} '{}': {expected}", clip(text)),
             Error::UnknownTask { task } => {
                 write!(f, "unknown task {task}: the paper has tasks 1 and 2")
             }
@@ -235,6 +261,9 @@ impl fmt::Display for Error {
                 f,
                 "integration diverged: non-finite joint angles after the step at t = {t:.3} s; switch damping on"
             ),
+            Error::NoNullSpace { method } => {
+                write!(f, "method {method} has no null-space vector v")
+            }
             Error::NetworksUnavailable(msg) => write!(f, "networks not available: {msg}"),
             Error::NetworksForAnotherArm { trained, arm } => write!(
                 f,
@@ -278,6 +307,15 @@ impl fmt::Display for Num {
             m = (scale(x, e) * 1e5).round() / 1e5;
         }
         write!(f, "{m}e{e}")
+    }
+}
+
+/// Text a message quotes, cut to 40 characters (an address can be
+/// megabytes long).
+pub(crate) fn clip(text: &str) -> String {
+    match text.char_indices().nth(40) {
+        Some((i, _)) => format!("{}…", &text[..i]),
+        None => text.to_string(),
     }
 }
 

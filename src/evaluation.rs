@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::Result;
 use crate::networks::Networks;
-use crate::planner::{Mode, Planner, Surrogate, REACH_TOLERANCE};
+use crate::planner::{methods, Method, Planner, Surrogate, REACH_TOLERANCE};
 use crate::scene::Scene;
 use crate::training::{self, sampling, Visited};
 
@@ -89,8 +89,8 @@ fn rel(y: &[f64], exact: &[f64]) -> f64 {
 pub struct TaskOutcome {
     /// Paper task (1 or 2).
     pub task: u32,
-    /// Mode run.
-    pub mode: Mode,
+    /// Method run.
+    pub mode: Method,
     /// Obstacle centre.
     pub obstacle: [f64; 2],
     /// Closed-loop gain `K` (0 = open loop).
@@ -119,7 +119,7 @@ impl TaskOutcome {
 pub fn run_task(
     nets: &Networks,
     task: u32,
-    mode: Mode,
+    mode: Method,
     obstacle: Option<[f64; 2]>,
     feedback_gain: f64,
 ) -> Result<TaskOutcome> {
@@ -162,7 +162,7 @@ pub fn run_task(
 pub fn task_outcomes(nets: &Networks, feedback_gain: f64) -> Result<Vec<TaskOutcome>> {
     let mut out = Vec::new();
     for task in [1, 2] {
-        for mode in Mode::ALL {
+        for mode in methods::PAPER {
             out.push(run_task(nets, task, mode, None, feedback_gain)?);
         }
     }

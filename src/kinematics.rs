@@ -12,8 +12,55 @@
 //! planner that keeps its poses allocates nothing per step, for any number of
 //! links.
 
+use nalgebra::{DVector, Matrix2xX, Vector2};
+
 use crate::arm::Arm;
 use crate::error::{Error, Result};
+use crate::geometry::segment_distance_squared;
+
+/// The kinematics of an [`Arm`] as plain values (each a [`Pose`] computed
+/// and read once): convenient, and allocating; the planner keeps poses.
+impl Arm {
+    /// Absolute link angles `phi_i = theta_1 + ... + theta_i`.
+    pub fn absolute_angles(&self, theta: &DVector<f64>) -> Vec<f64> {
+        theta
+            .iter()
+            .scan(0.0, |acc, &t| {
+                *acc += t;
+                Some(*acc)
+            })
+            .collect()
+    }
+
+    /// All joint positions `P(0), P(1), ..., P(n)`; the last is the end effector.
+    pub fn joints(&self, theta: &DVector<f64>) -> Vec<Vector2<f64>> {
+        Pose::lenient(self, theta.as_slice())
+            .joints()
+            .iter()
+            .map(|p| Vector2::new(p[0], p[1]))
+            .collect()
+    }
+
+    /// Forward kinematics `X = f(theta)`, eq. (1): the end effector `P(n)`.
+    ///
+    /// # Examples
+    /// ```
+    /// use redundant_ik::{Arm, nalgebra::DVector};
+    /// use std::f64::consts::PI;
+    /// let x = Arm::paper().forward(&DVector::from_vec(vec![PI / 12.0, PI / 2.0, -PI / 6.0]));
+    /// assert!((x[0] - 1.555884).abs() < 1e-6 && (x[1] - 1.014851).abs() < 1e-6);
+    /// ```
+    pub fn forward(&self, theta: &DVector<f64>) -> Vector2<f64> {
+        let x = Pose::lenient(self, theta.as_slice()).end_effector();
+        Vector2::new(x[0], x[1])
+    }
+
+    /// Analytic Jacobian `J = dX/dtheta`, eq. (3), a `2 x n` matrix:
+    /// `J[0][i] = sum_{k>=i} L_k cos phi_k`, `J[1][i] = -sum_{k>=i} L_k sin phi_k`.
+    pub fn jacobian(&self, theta: &DVector<f64>) -> Matrix2xX<f64> {
+        Matrix2xX::from_column_slice(Pose::lenient(self, theta.as_slice()).jacobian())
+    }
+}
 
 /// The kinematics of one joint configuration of one arm.
 #[derive(Debug, Clone, PartialEq)]
@@ -212,21 +259,6 @@ pub fn smallest_singular_value([p, q, r]: [f64; 3]) -> f64 {
     let mean = 0.5 * (p + r);
     let radius = (0.25 * (p - r) * (p - r) + q * q).sqrt();
     (mean - radius).max(0.0).sqrt()
-}
-
-/// Squared distance from `p` to the segment `a`-`b`.
-#[inline]
-pub fn segment_distance_squared(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-    let ab = [b[0] - a[0], b[1] - a[1]];
-    let ap = [p[0] - a[0], p[1] - a[1]];
-    let len2 = ab[0] * ab[0] + ab[1] * ab[1];
-    let s = if len2 > 0.0 {
-        ((ap[0] * ab[0] + ap[1] * ab[1]) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let d = [ap[0] - s * ab[0], ap[1] - s * ab[1]];
-    d[0] * d[0] + d[1] * d[1]
 }
 
 /// `(sin x, cos x)`, within one unit in the last place of the C library's,

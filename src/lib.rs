@@ -9,6 +9,7 @@ pub mod bench;
 pub mod error;
 #[cfg(feature = "eval")]
 pub mod evaluation;
+pub mod geometry;
 pub mod ik;
 pub mod kinematics;
 pub mod networks;
@@ -18,6 +19,8 @@ pub mod planner;
 pub mod scene;
 pub mod session;
 pub mod training;
+#[cfg(feature = "eval")]
+pub mod training_job;
 pub mod twin;
 #[cfg(target_family = "wasm")]
 pub mod web;
@@ -28,7 +31,7 @@ pub use ik::DampingSchedule;
 pub use kinematics::Pose;
 pub use networks::{Networks, TrainedRange};
 pub use obstacle::Obstacle;
-pub use planner::{Line, Mode, Planner, Sample, Summary, Surrogate, Trajectory};
+pub use planner::{Line, Method, Planner, Sample, Summary, Surrogate, Trajectory};
 pub use scene::Scene;
 
 /// Re-export of the linear-algebra crate used in the public API.

@@ -2,11 +2,14 @@
 //! triangle areas between each moving link and the obstacle point, eqs.
 //! (12)-(16), and their gradient, eqs. (14)-(15).
 
+use std::str::FromStr;
+
 use nalgebra::{DMatrix, DVector, Vector2};
 use serde::{Deserialize, Serialize};
 
-use crate::arm::{point_segment_distance, Arm};
+use crate::arm::{number_list, Arm};
 use crate::error::{coordinate, positive, Error, Result};
+use crate::geometry::point_segment_distance;
 use crate::kinematics::Pose;
 
 /// A disc obstacle. Its centre is the point `O` of eq. (16); the radius only
@@ -51,6 +54,63 @@ impl Obstacle {
         }
         Ok(())
     }
+}
+
+/// An obstacle as people write it: on the command line
+/// (`--obstacle X,Y` or `X,Y,R`) and in the page's address
+/// (`obstacles=x,y,r;x,y`). The radius may be left out; whoever places the
+/// obstacle gives the default.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Placement {
+    /// Centre `(x, y)` in metres.
+    pub centre: [f64; 2],
+    /// Radius in metres, if written.
+    pub radius: Option<f64>,
+}
+
+impl Placement {
+    /// The obstacle, with `default_radius` where none was written.
+    pub fn obstacle(self, default_radius: f64) -> Obstacle {
+        Obstacle {
+            centre: self.centre,
+            radius: self.radius.unwrap_or(default_radius),
+        }
+    }
+}
+
+/// `X,Y` or `X,Y,R`, finite numbers.
+impl FromStr for Placement {
+    type Err = Error;
+    fn from_str(text: &str) -> Result<Self> {
+        let syntax = |expected: String| Error::Syntax {
+            what: "obstacle",
+            text: text.to_string(),
+            expected,
+        };
+        match number_list(text).map_err(&syntax)?[..] {
+            [x, y] => Ok(Self {
+                centre: [x, y],
+                radius: None,
+            }),
+            [x, y, r] => Ok(Self {
+                centre: [x, y],
+                radius: Some(r),
+            }),
+            ref other => Err(syntax(format!(
+                "expected x,y or x,y,r, got {} numbers",
+                other.len()
+            ))),
+        }
+    }
+}
+
+/// Obstacles written `x,y,r;x,y,r;...` (each radius optional; empty parts
+/// are skipped, so a trailing `;` is fine).
+pub fn parse_placements(text: &str) -> Result<Vec<Placement>> {
+    text.split(';')
+        .filter(|p| !p.trim().is_empty())
+        .map(str::parse)
+        .collect()
 }
 
 /// `D_k = det[O - P(k-1), P(k) - P(k-1)]` for every moving link `k = 1..n`,

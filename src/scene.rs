@@ -155,6 +155,59 @@ pub(crate) fn validate_delta(delta: f64) -> Result<()> {
     within("damping factor delta", delta, 0.0, MAX_DELTA).map(|_| ())
 }
 
+/// A number of the scene that a method reads ([`crate::planner::MethodInfo::params`]):
+/// its name on the command line and in the page, its bounds, and how to
+/// read and set it with the scene's checks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Param {
+    /// Gain `lambda` of the obstacle vector, eq. (14).
+    Lambda,
+    /// Constant damping `delta` of eqs. (6), (17), (20).
+    Delta,
+}
+
+impl Param {
+    /// The name on the command line (`--lambda`) and in the page.
+    pub fn name(self) -> &'static str {
+        match self {
+            Param::Lambda => "lambda",
+            Param::Delta => "delta",
+        }
+    }
+
+    /// Smallest and largest value accepted.
+    pub fn bounds(self) -> (f64, f64) {
+        match self {
+            Param::Lambda => (0.0, MAX_LAMBDA),
+            Param::Delta => (0.0, MAX_DELTA),
+        }
+    }
+
+    /// Its value in `scene`.
+    pub fn get(self, scene: &Scene) -> f64 {
+        match self {
+            Param::Lambda => scene.lambda,
+            Param::Delta => scene.delta,
+        }
+    }
+
+    /// Sets it in `scene`; refused, changing nothing, when out of bounds.
+    pub fn set(self, scene: &mut Scene, value: f64) -> Result<()> {
+        match self {
+            Param::Lambda => {
+                validate_lambda(value)?;
+                scene.lambda = value;
+            }
+            Param::Delta => {
+                validate_delta(value)?;
+                scene.delta = value;
+            }
+        }
+        Ok(())
+    }
+}
+
 /// Largest `K dt` accepted for the closed-loop gain. The tracking error then
 /// obeys `e' = -K e`, which classical RK4 integrates stably only for
 /// `K dt < 2.785`; 2.5 leaves a margin for the arm's nonlinearity.
@@ -167,6 +220,7 @@ pub(crate) fn validate_gain(gain: f64, dt: f64) -> Result<()> {
             gain,
             dt,
             max_gain: MAX_GAIN_STEP / dt,
+            max_step: MAX_GAIN_STEP,
         });
     }
     Ok(())

@@ -8,7 +8,7 @@
 use std::sync::Arc;
 
 use crate::error::Result;
-use crate::planner::{Mode, Planner, Surrogate};
+use crate::planner::{Method, Planner, Surrogate};
 
 /// A planner and, while its mode uses networks, a copy of it solved
 /// numerically (the ghost).
@@ -52,8 +52,8 @@ impl Twin {
 
     /// Switches the planner's mode; the ghost appears in the network cases
     /// (a copy of the planner from now on) and goes in the others.
-    pub fn set_mode(&mut self, mode: Mode) -> Result<()> {
-        self.main.set_mode(mode)?;
+    pub fn set_method(&mut self, mode: Method) -> Result<()> {
+        self.main.set_method(mode)?;
         self.sync_ghost(false);
         Ok(())
     }
@@ -90,12 +90,12 @@ impl Twin {
     /// Keeps the ghost in step with the mode: present in the network cases,
     /// absent otherwise; `fresh` rebuilds it from the planner.
     fn sync_ghost(&mut self, fresh: bool) {
-        let mode = self.main.mode();
-        if !(mode.learned_phi() || mode.learned_v()) {
+        let mode = self.main.method();
+        if !mode.uses_networks() {
             self.ghost = None;
         } else if self.ghost.is_none() || fresh {
             let mut ghost = self.main.clone();
-            self.ghost = ghost.set_mode(Mode::Numerical).is_ok().then_some(ghost);
+            self.ghost = ghost.set_method(Method::NUMERICAL).is_ok().then_some(ghost);
         }
     }
 }

@@ -9,9 +9,10 @@ wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 
 use std::sync::{Arc, OnceLock};
 
+use redundant_ik::planner::methods;
 use redundant_ik::atlas::{Atlas, Class, Grid, Job, Spec, DEFAULT_GRID, MAX_GRID};
 use redundant_ik::networks::Networks;
-use redundant_ik::{Arm, Error, Mode, Planner, Scene};
+use redundant_ik::{Arm, Error, Method, Planner, Scene};
 
 fn nets() -> Arc<Networks> {
     static NETS: OnceLock<Arc<Networks>> = OnceLock::new();
@@ -20,7 +21,7 @@ fn nets() -> Arc<Networks> {
 }
 
 /// Task `task` on a small grid over `region`, in `modes`.
-fn spec(task: u32, region: [f64; 4], n: usize, modes: &[Mode]) -> Spec {
+fn spec(task: u32, region: [f64; 4], n: usize, modes: &[Method]) -> Spec {
     Spec {
         scene: Scene::task(task).unwrap(),
         grid: Grid::new(region, n).unwrap(),
@@ -34,7 +35,7 @@ fn spec(task: u32, region: [f64; 4], n: usize, modes: &[Mode]) -> Spec {
 fn small() -> &'static Atlas {
     static ATLAS: OnceLock<Atlas> = OnceLock::new();
     ATLAS.get_or_init(|| {
-        Atlas::run(spec(1, [0.1, 1.3, 0.1, 1.3], 7, &Mode::ALL), Some(nets())).unwrap()
+        Atlas::run(spec(1, [0.1, 1.3, 0.1, 1.3], 7, &methods::PAPER), Some(nets())).unwrap()
     })
 }
 
@@ -69,7 +70,7 @@ fn the_default_grid_is_41_points_over_the_box_of_the_arms_reach_above_the_floor(
     assert!((x0 + reach).abs() < 1e-12 && (x1 - reach).abs() < 1e-12);
     assert_eq!(y0, 0.0);
     assert!((y1 - (0.5 + reach)).abs() < 1e-12);
-    assert_eq!(s.modes, Mode::ALL.to_vec());
+    assert_eq!(s.modes, methods::PAPER.to_vec());
     // An arm whose reach does not get down to the floor keeps its full box.
     let g = Grid::around_reach(&Arm::new(3.0, vec![0.5, 0.5]).unwrap(), 5);
     assert_eq!(g.region, [-1.0, 1.0, 2.0, 4.0]);
@@ -83,14 +84,14 @@ fn the_canonical_obstacles_cell_succeeds_in_numerical_and_collides_in_none() {
             task,
             [0.2, 0.9, 0.2, 0.9],
             8,
-            &[Mode::None, Mode::Numerical],
+            &[Method::NO_AVOIDANCE, Method::NUMERICAL],
         );
         let k = s.grid.nearest(obstacle).unwrap();
         let p = s.grid.point(k);
         assert!((p[0] - obstacle[0]).abs() < 1e-12 && (p[1] - obstacle[1]).abs() < 1e-12);
         let a = Atlas::run(s, None).unwrap();
-        let none = a.outcome(k, Mode::None).unwrap();
-        let numerical = a.outcome(k, Mode::Numerical).unwrap();
+        let none = a.outcome(k, Method::NO_AVOIDANCE).unwrap();
+        let numerical = a.outcome(k, Method::NUMERICAL).unwrap();
         assert_eq!(none.class, Class::Collision, "task {task}: {none:?}");
         assert!(none.min_distance.unwrap() < 0.05);
         assert_eq!(
@@ -117,7 +118,7 @@ fn a_cell_on_the_line_is_path_blocked_and_one_on_the_start_arm_is_start_overlap(
             centre[1] - 0.3,
             centre[1] + 0.3,
         ];
-        let a = Atlas::run(spec(1, region, 3, &Mode::ALL), Some(nets())).unwrap();
+        let a = Atlas::run(spec(1, region, 3, &methods::PAPER), Some(nets())).unwrap();
         for (m, o) in a.modes.iter().zip(&a.cells[4].outcomes) {
             assert_eq!(o.class, class, "{m} at {centre:?}");
             // Path-blocked cells are still run and recorded; overlaps are not run.
@@ -126,7 +127,7 @@ fn a_cell_on_the_line_is_path_blocked_and_one_on_the_start_arm_is_start_overlap(
         }
     }
     // The post counts as the start arm too.
-    let a = Atlas::run(spec(1, [-0.3, 0.3, 0.0, 0.6], 3, &[Mode::None]), None).unwrap();
+    let a = Atlas::run(spec(1, [-0.3, 0.3, 0.0, 0.6], 3, &[Method::NO_AVOIDANCE]), None).unwrap();
     assert_eq!(a.cells[4].outcomes[0].class, Class::StartOverlap);
 }
 
@@ -146,7 +147,7 @@ fn atlas_outcomes_equal_single_planner_runs_at_random_cells() {
             if o.class == Class::StartOverlap {
                 continue;
             }
-            let nets = (mode != Mode::None && mode != Mode::Numerical)
+            let nets = (mode != Method::NO_AVOIDANCE && mode != Method::NUMERICAL)
                 .then(|| nets() as Arc<dyn redundant_ik::Surrogate>);
             let run = Planner::run(scene, mode, nets).unwrap().summary;
             assert_eq!(o.min_distance, run.min_distance, "cell {k} {mode}");
@@ -190,7 +191,7 @@ fn classes_mean_what_they_say() {
         }
     }
     // The small grid has something of nearly every kind.
-    let none = a.summary_of(Mode::None).unwrap();
+    let none = a.summary_of(Method::NO_AVOIDANCE).unwrap();
     assert!(none.count(Class::Collision) > 0 && none.count(Class::Success) > 0);
     assert!(none.count(Class::StartOverlap) > 0 && none.count(Class::PathBlocked) > 0);
 }
@@ -198,7 +199,7 @@ fn classes_mean_what_they_say() {
 #[test]
 fn summaries_count_every_cell_and_rate_the_avoidable_ones() {
     let a = small();
-    let numerical = a.modes.iter().position(|&m| m == Mode::Numerical).unwrap();
+    let numerical = a.modes.iter().position(|&m| m == Method::NUMERICAL).unwrap();
     for (k, s) in a.summary.iter().enumerate() {
         assert_eq!(s.mode, a.modes[k]);
         assert_eq!(s.counts.iter().sum::<usize>(), a.cells.len());
@@ -221,7 +222,7 @@ fn summaries_count_every_cell_and_rate_the_avoidable_ones() {
         assert_eq!(i.cells + o.cells, avoidable);
         assert_eq!(i.successes + o.successes, s.avoidable.successes);
         // Agreement with the numerical route, for the network modes only.
-        let learned = s.mode.learned_phi() || s.mode.learned_v();
+        let learned = s.mode.uses_networks();
         assert_eq!(s.agreement.is_some(), learned);
         if let Some(g) = s.agreement {
             assert_eq!(
@@ -303,7 +304,7 @@ fn the_json_has_the_documented_shape() {
 
 #[test]
 fn a_job_in_chunks_and_across_threads_equals_the_whole_run() {
-    let s = spec(2, [0.0, 1.6, 0.0, 1.6], 6, &[Mode::Numerical, Mode::Case3]);
+    let s = spec(2, [0.0, 1.6, 0.0, 1.6], 6, &[Method::NUMERICAL, Method::CASE3]);
     let whole = Atlas::run(s.clone(), Some(nets())).unwrap();
     let mut job = Job::new(s.clone(), Some(nets())).unwrap();
     assert_eq!((job.done(), job.total()), (0, 36));
@@ -325,7 +326,7 @@ fn a_job_in_chunks_and_across_threads_equals_the_whole_run() {
 
 #[test]
 fn bad_specs_are_refused_with_an_error_naming_the_problem() {
-    let ok = spec(1, [0.0, 1.0, 0.0, 1.0], 3, &[Mode::Numerical]);
+    let ok = spec(1, [0.0, 1.0, 0.0, 1.0], 3, &[Method::NUMERICAL]);
     let refused = |s: Spec, nets: Option<Arc<Networks>>| Job::new(s, nets).unwrap_err();
 
     let mut s = ok.clone();
@@ -339,7 +340,7 @@ fn bad_specs_are_refused_with_an_error_naming_the_problem() {
     );
 
     let mut s = ok.clone();
-    s.modes = vec![Mode::Case3];
+    s.modes = vec![Method::CASE3];
     assert!(matches!(refused(s, None), Error::NetworksUnavailable(_)));
 
     for n in [0, 1, MAX_GRID + 1] {
@@ -363,7 +364,7 @@ fn bad_specs_are_refused_with_an_error_naming_the_problem() {
     // Networks for another arm are refused, naming both arms.
     let mut s = ok.clone();
     s.scene.arm = Arm::new(0.5, vec![0.6, 0.85, 0.7]).unwrap();
-    s.modes = vec![Mode::Case2];
+    s.modes = vec![Method::CASE2];
     assert!(matches!(
         refused(s, Some(nets())),
         Error::NetworksForAnotherArm { .. }
@@ -371,7 +372,7 @@ fn bad_specs_are_refused_with_an_error_naming_the_problem() {
 
     // Finishing early is refused; duplicate modes are dropped.
     let mut s = ok;
-    s.modes = vec![Mode::Numerical, Mode::Numerical];
+    s.modes = vec![Method::NUMERICAL, Method::NUMERICAL];
     let mut job = Job::new(s, None).unwrap();
     job.advance(4);
     assert!(matches!(
@@ -379,12 +380,12 @@ fn bad_specs_are_refused_with_an_error_naming_the_problem() {
         Err(Error::OutOfRange { .. })
     ));
     job.advance(usize::MAX);
-    assert_eq!(job.finish().unwrap().modes, [Mode::Numerical]);
+    assert_eq!(job.finish().unwrap().modes, [Method::NUMERICAL]);
 }
 
 #[test]
 fn moving_an_obstacle_onto_the_post_or_past_the_list_is_refused_and_changes_nothing() {
-    let mut p = Planner::new(Scene::task(1).unwrap(), Mode::Numerical, None).unwrap();
+    let mut p = Planner::new(Scene::task(1).unwrap(), Method::NUMERICAL, None).unwrap();
     let before = p.scene().clone();
     assert!(matches!(
         p.move_obstacle(0, [0.0, 0.2]),

@@ -230,7 +230,7 @@ fn hostile_input_through_every_subcommand_is_one_readable_error() {
             "noise",
         ),
         // 0, 1 or 100 links; huge lists.
-        (&["simulate", "--arm", "0.5:"], "not a number"),
+        (&["simulate", "--arm", "0.5:"], "not a finite number"),
         (&["simulate", "--arm", "0.5:0.6"], "link"),
         (&["simulate", "--arm", &hundred_links], "link"),
         (
@@ -409,7 +409,7 @@ fn figure_writes_an_svg_and_all_writes_every_task_and_mode() {
         cmp.to_str().unwrap(),
     ]);
     let svg = std::fs::read_to_string(&cmp).unwrap();
-    // The legends use the modes' labels (Mode::label, as the page does).
+    // The legends use the modes' labels (Method::label, as the page does).
     for label in ["No avoidance", "Numerical", "Case 1", "Case 2", "Case 3"] {
         assert!(
             svg.contains(&format!("\n{label}, min ")),
@@ -704,7 +704,7 @@ fn train_and_simulate_take_any_arm() {
     );
     refused(&["simulate", "--arm", "0.5:0.6"], "link");
     refused(&["simulate", "--arm", "0.5,0.6,0.6"], "post:l1");
-    refused(&["simulate", "--arm", "0.5:0.6,x"], "not a number");
+    refused(&["simulate", "--arm", "0.5:0.6,x"], "not a finite number");
     refused(&["simulate", "--arm", "-1:0.6,0.6"], "post");
     refused(&["simulate", "--obstacle", "0.5,0.5,-0.1"], "radius");
     refused(&["simulate", "--obstacle", "0.5,0.5,0.1,3"], "x,y,r");

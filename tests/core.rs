@@ -15,7 +15,7 @@ use redundant_ik::ik::{self, DampingSchedule, Weights};
 use redundant_ik::kinematics;
 use redundant_ik::nalgebra::{DMatrix, DVector, Vector2};
 use redundant_ik::obstacle::{self, Obstacle};
-use redundant_ik::{Arm, Error, Mode, Planner, Pose, Scene};
+use redundant_ik::{Arm, Error, Method, Planner, Pose, Scene};
 
 /// Small deterministic generator so that the same "random" poses are checked
 /// on every target (no OS entropy in the browser).
@@ -264,7 +264,7 @@ fn clearance_is_the_distance_to_the_nearest_moving_link() {
 fn final_theta(dt: f64) -> DVector<f64> {
     let mut s = Scene::task1();
     s.dt = dt;
-    let mut p = Planner::new(s, Mode::None, None).unwrap();
+    let mut p = Planner::new(s, Method::NO_AVOIDANCE, None).unwrap();
     while p.time() < 10.0 - 1e-9 {
         p.step().unwrap();
     }
@@ -289,7 +289,7 @@ fn rk4_error_falls_about_sixteen_times_when_dt_halves() {
 
 struct Reference {
     task: Scene,
-    mode: Mode,
+    mode: Method,
     min_distance: f64,
     collides: bool,
 }
@@ -299,25 +299,25 @@ fn numerical_runs_match_the_reference_rows_of_the_spec() {
     let rows = [
         Reference {
             task: Scene::task1(),
-            mode: Mode::None,
+            mode: Method::NO_AVOIDANCE,
             min_distance: 0.0019,
             collides: true,
         },
         Reference {
             task: Scene::task1(),
-            mode: Mode::Numerical,
+            mode: Method::NUMERICAL,
             min_distance: 0.2345,
             collides: false,
         },
         Reference {
             task: Scene::task2(),
-            mode: Mode::None,
+            mode: Method::NO_AVOIDANCE,
             min_distance: 0.0016,
             collides: true,
         },
         Reference {
             task: Scene::task2(),
-            mode: Mode::Numerical,
+            mode: Method::NUMERICAL,
             min_distance: 0.2193,
             collides: false,
         },
@@ -375,7 +375,7 @@ fn damping_keeps_joint_rates_finite_at_a_fully_stretched_pose() {
 fn an_out_of_reach_target_completes_with_finite_numbers_and_is_not_reached() {
     let mut s = Scene::task1();
     s.target = [3.0, 2.0];
-    for mode in [Mode::None, Mode::Numerical] {
+    for mode in [Method::NO_AVOIDANCE, Method::NUMERICAL] {
         let t = Planner::run(s.clone(), mode, None).unwrap();
         assert!(t
             .steps
@@ -392,7 +392,7 @@ fn a_failed_step_reports_an_error_and_leaves_the_state_unchanged() {
     let mut s = Scene::task1();
     s.theta0 = vec![0.0, 0.0, 0.0]; // straight up: J J^T is singular
     s.target = [0.5, 1.5];
-    let mut p = Planner::new(s, Mode::None, None).unwrap();
+    let mut p = Planner::new(s, Method::NO_AVOIDANCE, None).unwrap();
     let before = p.sample().clone();
     assert!(matches!(p.step(), Err(Error::Singular(_))));
     assert_eq!(p.sample(), &before);
@@ -402,7 +402,7 @@ fn a_failed_step_reports_an_error_and_leaves_the_state_unchanged() {
 
 #[test]
 fn retargeting_plans_a_new_line_from_the_current_end_effector() {
-    let mut p = Planner::new(Scene::task1(), Mode::Numerical, None).unwrap();
+    let mut p = Planner::new(Scene::task1(), Method::NUMERICAL, None).unwrap();
     for _ in 0..30 {
         p.step().unwrap();
     }
@@ -429,7 +429,7 @@ fn retargeting_plans_a_new_line_from_the_current_end_effector() {
 
 #[test]
 fn moving_the_obstacle_takes_effect_at_the_next_step() {
-    let mut p = Planner::new(Scene::task1(), Mode::Numerical, None).unwrap();
+    let mut p = Planner::new(Scene::task1(), Method::NUMERICAL, None).unwrap();
     let v_before = p.null_space(p.theta()).unwrap();
     p.set_obstacles(vec![Obstacle::new(1.2, 1.3, 0.05)])
         .unwrap();
@@ -442,14 +442,14 @@ fn moving_the_obstacle_takes_effect_at_the_next_step() {
 
 #[test]
 fn network_modes_without_networks_fail_clearly() {
-    for mode in [Mode::Case1, Mode::Case2, Mode::Case3] {
+    for mode in [Method::CASE1, Method::CASE2, Method::CASE3] {
         let err = Planner::new(Scene::task1(), mode, None).unwrap_err();
         assert!(matches!(err, Error::NetworksUnavailable(_)));
         assert!(err.to_string().contains("networks not available"));
     }
-    let mut p = Planner::new(Scene::task1(), Mode::Numerical, None).unwrap();
-    assert!(p.set_mode(Mode::Case3).is_err());
-    assert_eq!(p.mode(), Mode::Numerical);
+    let mut p = Planner::new(Scene::task1(), Method::NUMERICAL, None).unwrap();
+    assert!(p.set_method(Method::CASE3).is_err());
+    assert_eq!(p.method(), Method::NUMERICAL);
 }
 
 /// A way to spoil a scene, and the words its error message must contain.
@@ -551,7 +551,7 @@ fn bad_input_is_rejected_with_an_error_naming_the_problem() {
     for (mutate, expected) in cases {
         let mut s = Scene::task1();
         mutate(&mut s);
-        let err = Planner::new(s, Mode::Numerical, None).unwrap_err();
+        let err = Planner::new(s, Method::NUMERICAL, None).unwrap_err();
         assert!(expected(&err), "unexpected error: {err:?}");
         // Every message is a sentence a user can act on.
         assert!(err.to_string().len() > 20, "{err}");
@@ -559,7 +559,7 @@ fn bad_input_is_rejected_with_an_error_naming_the_problem() {
     // The messages name the problem.
     let mut s = Scene::task1();
     s.feedback_gain = 30.0;
-    let err = Planner::new(s, Mode::Numerical, None).unwrap_err();
+    let err = Planner::new(s, Method::NUMERICAL, None).unwrap_err();
     assert!(named(&err, "makes the RK4 step unstable"), "{err}");
     assert!(matches!(
         Arm::new(0.5, vec![0.6, -0.85, 0.6]),
@@ -585,11 +585,11 @@ fn bad_input_is_rejected_with_an_error_naming_the_problem() {
         ));
     }
     assert!(matches!(
-        "case4".parse::<Mode>(),
+        "case4".parse::<Method>(),
         Err(UnknownName { kind: "mode", .. })
     ));
     assert!(matches!(Scene::task(3), Err(UnknownTask { task: 3 })));
-    let mut p = Planner::new(Scene::task1(), Mode::Numerical, None).unwrap();
+    let mut p = Planner::new(Scene::task1(), Method::NUMERICAL, None).unwrap();
     assert!(p.set_target([f64::NAN, 0.0], 1.0).is_err());
     assert!(p.set_target([0.5, 0.5], 0.0).is_err());
     assert!(p
@@ -622,7 +622,7 @@ fn an_obstacle_exactly_on_a_joint_is_handled() {
     assert!(v[0] != 0.0);
     let mut s = Scene::task1();
     s.obstacles = vec![Obstacle::new(p[2][0], p[2][1], 0.05)];
-    let t = Planner::run(s, Mode::Numerical, None).unwrap();
+    let t = Planner::run(s, Method::NUMERICAL, None).unwrap();
     assert!(
         t.summary.collided,
         "starting inside the obstacle is a collision"
@@ -812,7 +812,7 @@ fn the_allocation_free_routines_equal_the_matrix_forms_and_refuse_wrong_sizes() 
 
 #[test]
 fn the_planner_rates_through_its_workspace_equal_the_convenience_form() {
-    for mode in [Mode::None, Mode::Numerical] {
+    for mode in [Method::NO_AVOIDANCE, Method::NUMERICAL] {
         let mut p = Planner::new(Scene::task2(), mode, None).unwrap();
         let th = DVector::from_vec(vec![0.4, 1.2, 0.3]);
         let a = p.theta_dot(&th, &Vector2::new(-0.05, 0.02)).unwrap();
@@ -828,8 +828,8 @@ fn the_planner_rates_through_its_workspace_equal_the_convenience_form() {
 fn reset_returns_to_the_state_of_a_fresh_planner() {
     let mut s = Scene::task1();
     s.damping = Some(DampingSchedule::default());
-    let fresh = Planner::new(s.clone(), Mode::Numerical, None).unwrap();
-    let mut p = Planner::new(s, Mode::Numerical, None).unwrap();
+    let fresh = Planner::new(s.clone(), Method::NUMERICAL, None).unwrap();
+    let mut p = Planner::new(s, Method::NUMERICAL, None).unwrap();
     for _ in 0..37 {
         p.step().unwrap();
     }
@@ -840,6 +840,6 @@ fn reset_returns_to_the_state_of_a_fresh_planner() {
     for _ in 0..100 {
         p.step().unwrap();
     }
-    let run = Planner::run(Scene::task1(), Mode::Numerical, None).unwrap();
+    let run = Planner::run(Scene::task1(), Method::NUMERICAL, None).unwrap();
     assert!((p.summary().final_error - run.summary.final_error).abs() < 1e-12);
 }

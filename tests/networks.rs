@@ -14,14 +14,16 @@ wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 use std::f64::consts::PI;
 use std::sync::Arc;
 
+use redundant_ik::planner::methods;
 use redundant_ik::evaluation::{self, ErrorStats, GENERALISATION_SCENES};
 use redundant_ik::nalgebra::{DVector, Vector2};
 use redundant_ik::networks::{self, Networks};
-use redundant_ik::nn::kernel::tansig;
+use redundant_ik::nn::activation::tansig;
 use redundant_ik::nn::lm::{self, Dataset, LmOptions};
 use redundant_ik::nn::mlp::{Activations, Layer, MapMinMax, Mlp};
-use redundant_ik::nn::{Kernel, NetKind, Rng, Variant, WeightsFile};
-use redundant_ik::{ik, Arm, Error, Mode, Planner, Pose, Scene, Surrogate};
+use redundant_ik::networks::{NetKind, Variant, WeightsFile};
+use redundant_ik::nn::{Kernel, Rng};
+use redundant_ik::{ik, Arm, Error, Method, Planner, Pose, Scene, Surrogate};
 
 fn tiny() -> Mlp {
     Mlp {
@@ -339,7 +341,7 @@ fn shipped_networks_meet_the_documented_accuracy() {
 fn cases_1_to_3_avoid_the_obstacle_and_reach_the_target_on_both_tasks() {
     let nets = Networks::embedded().unwrap();
     for task in [1, 2] {
-        for mode in [Mode::Case1, Mode::Case2, Mode::Case3] {
+        for mode in [Method::CASE1, Method::CASE2, Method::CASE3] {
             let o = evaluation::run_task(&nets, task, mode, None, 0.0).unwrap();
             assert!(
                 o.success(),
@@ -361,7 +363,7 @@ fn paper_form_networks_also_succeed_on_both_tasks() {
     for variant in [Variant::Plain, Variant::Rows] {
         let nets = Networks::embedded_with(variant).unwrap();
         for task in [1, 2] {
-            for mode in [Mode::Case1, Mode::Case3] {
+            for mode in [Method::CASE1, Method::CASE3] {
                 let o = evaluation::run_task(&nets, task, mode, None, 0.0).unwrap();
                 assert!(o.success(), "{variant:?} task {task} {mode}: {o:?}");
             }
@@ -373,8 +375,8 @@ fn paper_form_networks_also_succeed_on_both_tasks() {
 fn closed_loop_feedback_shrinks_the_network_cases_final_error() {
     let nets = Networks::embedded_with(Variant::Plain).unwrap();
     for task in [1, 2] {
-        let open = evaluation::run_task(&nets, task, Mode::Case3, None, 0.0).unwrap();
-        let closed = evaluation::run_task(&nets, task, Mode::Case3, None, 1.0).unwrap();
+        let open = evaluation::run_task(&nets, task, Method::CASE3, None, 0.0).unwrap();
+        let closed = evaluation::run_task(&nets, task, Method::CASE3, None, 1.0).unwrap();
         assert!(closed.success());
         assert!(
             closed.final_error < 0.5 * open.final_error,
@@ -388,15 +390,15 @@ fn case_3_avoids_wherever_the_numerical_route_does_in_9_of_10_scenes() {
     let nets = Networks::embedded().unwrap();
     let mut avoided = 0;
     for (task, o) in GENERALISATION_SCENES {
-        let numerical = evaluation::run_task(&nets, task, Mode::Numerical, Some(o), 0.0).unwrap();
-        let none = evaluation::run_task(&nets, task, Mode::None, Some(o), 0.0).unwrap();
+        let numerical = evaluation::run_task(&nets, task, Method::NUMERICAL, Some(o), 0.0).unwrap();
+        let none = evaluation::run_task(&nets, task, Method::NO_AVOIDANCE, Some(o), 0.0).unwrap();
         // A scene counts when the obstacle is in the way and the numerical route avoids it.
         assert!(
             none.collided,
             "scene {o:?} on task {task} is not in the way"
         );
         assert!(!numerical.collided, "numerical collides at {o:?}");
-        let case3 = evaluation::run_task(&nets, task, Mode::Case3, Some(o), 0.0).unwrap();
+        let case3 = evaluation::run_task(&nets, task, Method::CASE3, Some(o), 0.0).unwrap();
         if case3.error.is_none() && !case3.collided {
             avoided += 1;
         }
@@ -407,7 +409,7 @@ fn case_3_avoids_wherever_the_numerical_route_does_in_9_of_10_scenes() {
 #[test]
 fn planner_runs_every_mode_with_the_networks_as_surrogate() {
     let nets: Arc<dyn Surrogate> = Arc::new(Networks::embedded().unwrap());
-    let p = Planner::new(Scene::task2(), Mode::Case3, Some(nets.clone())).unwrap();
+    let p = Planner::new(Scene::task2(), Method::CASE3, Some(nets.clone())).unwrap();
     let xdot = Vector2::new(-0.1, -0.03);
     let td = p.theta_dot(p.theta(), &xdot).unwrap();
     let arm = Arm::paper();
@@ -560,9 +562,9 @@ fn a_constant_delta_damps_the_network_phi_instead_of_replacing_it() {
     let nets: Arc<dyn Surrogate> = Arc::new(Networks::embedded().unwrap());
     let mut scene = Scene::task1();
     scene.delta = 0.001;
-    let numerical = Planner::run(scene.clone(), Mode::Numerical, None).unwrap();
+    let numerical = Planner::run(scene.clone(), Method::NUMERICAL, None).unwrap();
     // With an exact Phi, Case 1 with delta is the damped numerical route ...
-    let case1_exact = Planner::run(scene.clone(), Mode::Case1, Some(exact)).unwrap();
+    let case1_exact = Planner::run(scene.clone(), Method::CASE1, Some(exact)).unwrap();
     for (a, b) in numerical.steps.iter().zip(&case1_exact.steps) {
         for (x, y) in a.theta.iter().zip(&b.theta) {
             assert!((x - y).abs() < 1e-10);
@@ -571,7 +573,7 @@ fn a_constant_delta_damps_the_network_phi_instead_of_replacing_it() {
     // ... and with the trained network it is the network's route, damped:
     // not the numerical route's numbers (the old silent swap), and within
     // the network's accuracy of them.
-    let case1 = Planner::run(scene.clone(), Mode::Case1, Some(nets.clone())).unwrap();
+    let case1 = Planner::run(scene.clone(), Method::CASE1, Some(nets.clone())).unwrap();
     let (s, n) = (&case1.summary, &numerical.summary);
     assert_ne!(s.final_error, n.final_error);
     // Damping trades tracking for bounded rates: about 7 mm here on both.
@@ -583,7 +585,7 @@ fn a_constant_delta_damps_the_network_phi_instead_of_replacing_it() {
     assert_eq!(s.handover_steps, 0, "a constant delta is no hand-over");
     // delta = 0 gives the undamped network route.
     scene.delta = 0.0;
-    let undamped = Planner::run(scene, Mode::Case1, Some(nets)).unwrap();
+    let undamped = Planner::run(scene, Method::CASE1, Some(nets)).unwrap();
     assert_ne!(undamped.summary.final_error, s.final_error);
 }
 
@@ -594,24 +596,25 @@ fn near_a_singular_pose_the_damping_schedule_hands_phi_over_and_says_so() {
     let nets: Arc<dyn Surrogate> = Arc::new(Networks::embedded().unwrap());
     let mut scene = Scene::task1();
     scene.target = [2.5, 0.8];
-    for mode in Mode::ALL {
+    for &mode in methods::ALL {
         let run = Planner::run(scene.clone(), mode, Some(nets.clone())).unwrap();
         let s = &run.summary;
         assert!(s.auto_damping, "{mode}");
         let flagged = run.steps.iter().filter(|x| x.phi_handover).count();
         assert_eq!(flagged, s.handover_steps, "{mode}");
-        match mode {
+        if mode == Method::CASE1 {
             // Phi by the network, v exact: the arm stretches and the exact
             // damped Phi takes over.
-            Mode::Case1 => assert!(s.handover_steps > 10, "{}", s.handover_steps),
-            // (Case 3's v network, far outside its trained range here, folds
-            // the arm instead: it never comes near the singular pose.)
-            Mode::Case3 => {}
-            _ => assert_eq!(s.handover_steps, 0, "{mode}"),
+            assert!(s.handover_steps > 10, "{}", s.handover_steps);
+        } else if !mode.networks().phi {
+            // No Phi network, nothing to hand over. (Case 3's v network, far
+            // outside its trained range here, folds the arm instead: it
+            // never comes near the singular pose.)
+            assert_eq!(s.handover_steps, 0, "{mode}");
         }
     }
     // In the paper's scenes the networks work alone.
-    for mode in [Mode::Case1, Mode::Case3] {
+    for mode in [Method::CASE1, Method::CASE3] {
         let run = Planner::run(Scene::task2(), mode, Some(nets.clone())).unwrap();
         assert_eq!(run.summary.handover_steps, 0);
     }
@@ -714,7 +717,7 @@ fn the_planner_refuses_networks_trained_for_another_arm() {
         scene.theta0 = vec![0.2; arm.dof()];
         scene.arm = arm.clone();
         // In any mode: networks for another arm are never installed.
-        for mode in [Mode::Numerical, Mode::Case3] {
+        for mode in [Method::NUMERICAL, Method::CASE3] {
             let err = Planner::new(scene.clone(), mode, Some(nets.clone())).unwrap_err();
             assert!(
                 matches!(&err, Error::NetworksForAnotherArm { trained, arm: mine }
@@ -722,7 +725,7 @@ fn the_planner_refuses_networks_trained_for_another_arm() {
                 "{err:?}"
             );
         }
-        let mut p = Planner::new(scene, Mode::Numerical, None).unwrap();
+        let mut p = Planner::new(scene, Method::NUMERICAL, None).unwrap();
         assert!(matches!(
             p.set_networks(Some(nets.clone())),
             Err(Error::NetworksForAnotherArm { .. })

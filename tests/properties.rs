@@ -111,8 +111,8 @@ proptest! {
         damping in any::<bool>(),
         later in (user_number(), user_number()),
     ) {
-        use redundant_ik::{DampingSchedule, Mode, Obstacle, Planner, Scene};
-        let mode = [Mode::None, Mode::Numerical, Mode::Case1, Mode::Case2, Mode::Case3][mode];
+        use redundant_ik::{DampingSchedule, Method, Obstacle, Planner, Scene};
+        let mode = [Method::NO_AVOIDANCE, Method::NUMERICAL, Method::CASE1, Method::CASE2, Method::CASE3][mode];
         let mut scene = Scene::task1();
         scene.target = [target.0, target.1];
         scene.obstacles = vec![Obstacle::new(obstacle.0, obstacle.1, obstacle.2.abs())];

@@ -7,15 +7,18 @@ use wasm_bindgen_test::wasm_bindgen_test as test;
 #[cfg(target_family = "wasm")]
 wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 
+use std::sync::Arc;
+
 use redundant_ik::networks::Networks;
+use redundant_ik::planner::methods;
 use redundant_ik::session::{
     Handle, Session, MAX_OBSTACLES, MAX_STEPS_PER_FRAME, NUDGE, STROBE_EVERY,
 };
-use redundant_ik::{Arm, Error, Mode, Obstacle};
+use redundant_ik::{Arm, Error, Method, Obstacle};
 
 fn with_networks(task: u32) -> Session {
     let mut s = Session::new(task).unwrap();
-    s.set_networks(Networks::embedded().unwrap()).unwrap();
+    s.set_networks(Arc::new(Networks::embedded().unwrap())).unwrap();
     s
 }
 
@@ -38,10 +41,10 @@ fn a_new_session_is_the_papers_task_at_rest_in_numerical_mode_with_damping() {
 
 #[test]
 fn running_a_task_stops_at_its_final_time_and_avoidance_works() {
-    for (mode, collides) in [(Mode::None, true), (Mode::Numerical, false)] {
+    for (mode, collides) in [(Method::NO_AVOIDANCE, true), (Method::NUMERICAL, false)] {
         let mut s = Session::new(1).unwrap();
         s.set_damping(false).unwrap();
-        s.set_mode(mode).unwrap();
+        s.set_method(mode).unwrap();
         s.run_task();
         assert!(s.running());
         for _ in 0..10_000 {
@@ -83,9 +86,11 @@ fn the_clock_turns_real_time_into_steps_at_the_chosen_speed() {
 
 #[test]
 fn the_network_cases_need_networks_and_bring_a_numerical_ghost() {
+    // An arm the built-in networks were not trained for: refused.
     let mut s = Session::new(1).unwrap();
+    s.set_arm(four_links()).unwrap();
     assert!(matches!(
-        s.set_mode(Mode::Case3),
+        s.set_method(Method::CASE3),
         Err(Error::NetworksUnavailable(_))
     ));
     assert_eq!(
@@ -93,10 +98,14 @@ fn the_network_cases_need_networks_and_bring_a_numerical_ghost() {
         "numerical",
         "a refused change changes nothing"
     );
+    // The paper's arm takes the built-in networks when none are installed.
+    let mut s = Session::new(1).unwrap();
+    s.set_method(Method::CASE3).unwrap();
+    assert!(s.installed().is_some());
     let mut s = with_networks(1);
-    s.set_mode(Mode::Case3).unwrap();
+    s.set_method(Method::CASE3).unwrap();
     assert!(s.ghost().is_some());
-    assert_eq!(s.ghost().unwrap().mode(), Mode::Numerical);
+    assert_eq!(s.ghost().unwrap().method(), Method::NUMERICAL);
     // Every change reaches the ghost too.
     s.set_lambda(6.0).unwrap();
     s.set_feedback(1.0).unwrap();
@@ -107,7 +116,7 @@ fn the_network_cases_need_networks_and_bring_a_numerical_ghost() {
     s.run_until(3.0).unwrap();
     assert_eq!(s.ghost().unwrap().time(), s.planner().time());
     assert!(s.state().ghost.is_some());
-    s.set_mode(Mode::Numerical).unwrap();
+    s.set_method(Method::NUMERICAL).unwrap();
     assert!(s.ghost().is_none());
 }
 
@@ -195,22 +204,31 @@ fn comparing_the_modes_runs_the_scene_off_screen_and_changes_nothing() {
     s.set_obstacle([0.65, 0.55]).unwrap();
     s.run_until(1.0).unwrap();
     let before = format!("{:?}", s.state());
-    let rows = s.compare_modes(None);
-    assert_eq!(rows.len(), 5);
-    assert_eq!(rows[2].label, "Case 1");
-    let none = rows[0].summary.as_ref().unwrap();
-    let numerical = rows[1].summary.as_ref().unwrap();
+    let rows = s.compare_methods();
+    assert_eq!(rows.len(), methods::ALL.len());
+    for (row, m) in rows.iter().zip(methods::ALL) {
+        assert_eq!((row.mode, row.label), (m.name(), m.label()));
+    }
+    let run = |m: Method| rows.iter().find(|r| r.mode == m.name()).unwrap();
+    let none = run(Method::NO_AVOIDANCE).summary.as_ref().unwrap();
+    let numerical = run(Method::NUMERICAL).summary.as_ref().unwrap();
     assert!(none.collided && !numerical.collided);
     assert_eq!(format!("{:?}", s.state()), before);
-    // Without networks the network modes say why.
-    let rows = Session::new(1).unwrap().compare_modes(None);
-    assert!(rows[4].error.as_deref().unwrap().contains("networks"));
+    // Without networks for the arm, the methods that need them say why.
+    let mut s = Session::new(1).unwrap();
+    s.set_arm(four_links()).unwrap();
+    for (row, m) in s.compare_methods().iter().zip(methods::ALL) {
+        assert_eq!(m.uses_networks(), row.summary.is_none(), "{m}");
+        if m.uses_networks() {
+            assert!(row.error.as_deref().unwrap().contains("networks"));
+        }
+    }
 }
 
 #[test]
 fn loading_a_task_keeps_the_mode_damping_and_feedback_and_runs_it() {
     let mut s = with_networks(1);
-    s.set_mode(Mode::Case1).unwrap();
+    s.set_method(Method::CASE1).unwrap();
     s.set_damping(false).unwrap();
     s.set_feedback(1.0).unwrap();
     s.set_lambda(7.0).unwrap();
@@ -286,8 +304,8 @@ fn a_new_arm_restarts_from_its_own_start_pose_and_the_numerical_modes_run_at_onc
         st.joints.iter().all(|p| p[1] > 0.0),
         "start pose above the ground"
     );
-    for mode in [Mode::None, Mode::Numerical] {
-        s.set_mode(mode).unwrap();
+    for mode in [Method::NO_AVOIDANCE, Method::NUMERICAL] {
+        s.set_method(mode).unwrap();
         s.run_task();
         s.run_until(10.0).unwrap();
         assert!(s.state().final_error < 5e-3, "{mode} reaches the target");
@@ -297,19 +315,19 @@ fn a_new_arm_restarts_from_its_own_start_pose_and_the_numerical_modes_run_at_onc
 #[test]
 fn networks_for_another_arm_are_set_aside_and_the_network_cases_fall_back() {
     let mut s = Session::new(1).unwrap();
-    s.set_networks(Networks::embedded().unwrap()).unwrap();
-    s.set_mode(Mode::Case3).unwrap();
+    s.set_networks(Arc::new(Networks::embedded().unwrap())).unwrap();
+    s.set_method(Method::CASE3).unwrap();
     s.set_arm(four_links()).unwrap();
     assert!(s.networks().is_none());
     assert_eq!(s.state().mode, "numerical");
     assert!(matches!(
-        s.set_networks(Networks::embedded().unwrap()),
+        s.set_networks(Arc::new(Networks::embedded().unwrap())),
         Err(Error::NetworksForAnotherArm { .. })
     ));
     // Back to the paper's arm: its task, and the networks install again.
     s.set_arm(Arm::paper()).unwrap();
-    s.set_networks(Networks::embedded().unwrap()).unwrap();
-    s.set_mode(Mode::Case3).unwrap();
+    s.set_networks(Arc::new(Networks::embedded().unwrap())).unwrap();
+    s.set_method(Method::CASE3).unwrap();
 }
 
 #[test]

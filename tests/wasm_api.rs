@@ -72,7 +72,7 @@ fn unknown_task_is_an_exception_with_the_cores_message() {
 #[wasm_bindgen_test]
 fn task_1_collides_without_avoidance_and_not_with_it() {
     let mut d = demo(1);
-    d.set_mode("none").unwrap();
+    d.set_method("none").unwrap();
     d.load_task(1).unwrap();
     d.run_until(10.0).unwrap();
     let s = state(&d);
@@ -80,7 +80,7 @@ fn task_1_collides_without_avoidance_and_not_with_it() {
     assert_eq!(s["collided"], true);
     assert_eq!(s["running"], false, "a task run stops at tf");
 
-    d.set_mode("numerical").unwrap();
+    d.set_method("numerical").unwrap();
     d.load_task(1).unwrap();
     assert_eq!(
         state(&d)["collided"],
@@ -97,11 +97,11 @@ fn task_1_collides_without_avoidance_and_not_with_it() {
 #[wasm_bindgen_test]
 fn modes_parse_and_bad_names_throw() {
     let mut d = demo(2);
-    let err = d.set_mode("case4").err().unwrap();
+    let err = d.set_method("case4").err().unwrap();
     assert!(message(err).contains("unknown mode 'case4'"));
     assert_eq!(state(&d)["mode"], "numerical");
     for mode in ["none", "numerical", "case1", "case2", "case3"] {
-        match (d.set_mode(mode), networks_error()) {
+        match (d.set_method(mode), networks_error()) {
             (Ok(()), _) => {
                 assert_eq!(state(&d)["mode"], mode);
                 d.step().unwrap();
@@ -238,7 +238,7 @@ fn user_weights_load_or_say_what_is_wrong() {
         .unwrap();
     assert!(message(err).contains("bad network weights"));
     d.load_networks(PHI_EQUIVARIANT_JSON, V_PLAIN_JSON).unwrap();
-    d.set_mode("case3").unwrap();
+    d.set_method("case3").unwrap();
     d.load_task(1).unwrap();
     d.run_until(10.0).unwrap();
     let s = state(&d);
@@ -252,7 +252,7 @@ fn closed_loop_feedback_shrinks_the_networks_drift_and_survives_a_task_load() {
     let final_error = |d: &Demo| state(d)["final_error"].as_f64().unwrap();
     let mut d = demo(1);
     d.set_damping(false).unwrap();
-    d.set_mode("case3").unwrap();
+    d.set_method("case3").unwrap();
     d.load_task(1).unwrap();
     d.run_until(10.0).unwrap();
     let open = final_error(&d);
@@ -323,7 +323,7 @@ fn compare_modes_runs_the_current_scene_in_all_five_modes_off_screen() {
 #[wasm_bindgen_test]
 fn the_state_says_when_the_exact_phi_stood_in_for_the_network() {
     let mut d = demo(1);
-    d.set_mode("case1").unwrap();
+    d.set_method("case1").unwrap();
     let s = state(&d);
     assert_eq!(s["handover_steps"], 0);
     assert_eq!(s["phi_handover"], false);
@@ -407,7 +407,7 @@ fn an_atlas_job_maps_the_pages_scene_a_chunk_at_a_time() {
     let spec = redundant_ik::atlas::Spec {
         scene,
         grid: redundant_ik::atlas::Grid::new([0.2, 0.8, 0.2, 0.8], 4).unwrap(),
-        modes: vec![redundant_ik::Mode::None, redundant_ik::Mode::Numerical],
+        modes: vec![redundant_ik::Method::NO_AVOIDANCE, redundant_ik::Method::NUMERICAL],
         task: Some(1),
     };
     let core = redundant_ik::atlas::Atlas::run(spec, None).unwrap();

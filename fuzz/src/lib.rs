@@ -21,15 +21,15 @@
 use std::sync::{Arc, OnceLock};
 
 use arbitrary::Unstructured;
+use redundant_ik::planner::methods;
 use redundant_ik::atlas::{Grid, Job, Spec};
 use redundant_ik::ik::DampingSchedule;
 use redundant_ik::nn::lm::{self, Dataset, LmOptions};
-use redundant_ik::nn::weights::{NetKind, Variant};
-use redundant_ik::nn::WeightsFile;
-use redundant_ik::planner::{Mode, Planner, Surrogate};
+use redundant_ik::networks::{NetKind, Sampling, Variant, WeightsFile};
+use redundant_ik::planner::{Method, Planner, Surrogate};
 use redundant_ik::session::{Handle, Session};
-use redundant_ik::training::playground::Request;
-use redundant_ik::training::{phi_datasets, v_dataset, Sampling, Visited};
+use redundant_ik::training_job::Request;
+use redundant_ik::training::{phi_datasets, v_dataset, Visited};
 use redundant_ik::{Arm, Networks, Obstacle, Scene};
 
 /// Values that people, URLs and hostile files produce.
@@ -79,8 +79,8 @@ fn small(u: &mut Unstructured, max: usize) -> usize {
     u.int_in_range(0..=max).unwrap_or(0)
 }
 
-fn mode(u: &mut Unstructured) -> Mode {
-    *u.choose(&Mode::ALL).unwrap_or(&Mode::Numerical)
+fn mode(u: &mut Unstructured) -> Method {
+    *u.choose(&methods::PAPER).unwrap_or(&Method::NUMERICAL)
 }
 
 /// The shipped networks, parsed once per process.
@@ -118,7 +118,7 @@ fn assert_finite(what: &str, xs: &[f64]) {
 #[derive(Debug, Clone, PartialEq)]
 struct Snapshot {
     scene: Scene,
-    mode: Mode,
+    mode: Method,
     time: f64,
     theta: Vec<f64>,
     ee: [f64; 2],
@@ -128,7 +128,7 @@ impl Snapshot {
     fn of(p: &Planner) -> Self {
         Self {
             scene: p.scene().clone(),
-            mode: p.mode(),
+            mode: p.method(),
             time: p.time(),
             theta: p.theta().as_slice().to_vec(),
             ee: p.sample().ee,
@@ -184,7 +184,7 @@ pub fn weights(data: &[u8]) {
     let nets: Arc<dyn Surrogate> = Arc::new(nets);
     let mut scene = Scene::task1();
     scene.tf = 1.0;
-    for mode in [Mode::Case1, Mode::Case2, Mode::Case3] {
+    for mode in [Method::CASE1, Method::CASE2, Method::CASE3] {
         let Ok(mut p) = Planner::new(scene.clone(), mode, Some(nets.clone())) else {
             continue;
         };
@@ -242,7 +242,7 @@ pub fn scene(data: &[u8]) {
         }
     };
     let networks = (scene.arm == Arm::paper()).then(shipped_surrogate);
-    for mode in Mode::ALL {
+    for mode in methods::PAPER {
         let Ok(mut p) = Planner::new(scene.clone(), mode, networks.clone()) else {
             continue;
         };
@@ -272,7 +272,7 @@ pub fn session(data: &[u8]) {
         panic!("the paper's task {task} makes a session");
     };
     if u.ratio(3u8, 4u8).unwrap_or(false) {
-        s.set_networks(shipped().clone())
+        s.set_networks(Arc::new(shipped().clone()))
             .expect("the shipped networks fit the paper's arm");
     }
     for _ in 0..32 {
@@ -319,7 +319,7 @@ pub fn session(data: &[u8]) {
                     .collect();
                 s.set_obstacles(obstacles)
             }
-            10 => s.set_mode(mode(&mut u)),
+            10 => s.set_method(mode(&mut u)),
             11 => s.set_lambda(num(&mut u)),
             12 => s.set_damping(u.arbitrary().unwrap_or(false)),
             13 => s.set_feedback(num(&mut u)),
@@ -332,7 +332,7 @@ pub fn session(data: &[u8]) {
                 }
             }
             16 => s.clear_networks(),
-            17 => s.set_networks(shipped().clone()),
+            17 => s.set_networks(Arc::new(shipped().clone())),
             18 => s.load_task(u.int_in_range(0u32..=3).unwrap_or(1)),
             19 => {
                 s.run_task();

@@ -19,9 +19,10 @@ use std::sync::Arc;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
-use crate::kinematics::{segment_distance_squared, Pose};
+use crate::geometry::segment_distance_squared;
+use crate::kinematics::Pose;
 use crate::networks::Networks;
-use crate::planner::{Mode, Planner, Surrogate};
+use crate::planner::{methods, Method, Planner, Surrogate};
 use crate::scene::Scene;
 
 pub use grid::{Grid, DEFAULT_GRID, MAX_GRID};
@@ -152,7 +153,7 @@ pub struct Spec {
     /// The obstacle centres.
     pub grid: Grid,
     /// The modes to run (duplicates are dropped).
-    pub modes: Vec<Mode>,
+    pub modes: Vec<Method>,
     /// The paper task the scene came from, for the report.
     pub task: Option<u32>,
 }
@@ -166,7 +167,7 @@ impl Spec {
         Ok(Self {
             scene,
             grid,
-            modes: Mode::ALL.to_vec(),
+            modes: methods::PAPER.to_vec(),
             task: Some(task),
         })
     }
@@ -184,7 +185,7 @@ pub struct Atlas {
     /// Gain `lambda` of the obstacle vector.
     pub lambda: f64,
     /// The modes, in the order of each cell's outcomes.
-    pub modes: Vec<Mode>,
+    pub modes: Vec<Method>,
     /// Row by row from `y0`, each row from `x0`: cell `(i, j)` is `cells[j * n + i]`.
     pub cells: Vec<Cell>,
     /// Where the `v` network saw obstacle centres in training,
@@ -206,13 +207,13 @@ impl Atlas {
     }
 
     /// The outcome of cell `index` in `mode`, if the atlas ran that mode.
-    pub fn outcome(&self, index: usize, mode: Mode) -> Option<&Outcome> {
+    pub fn outcome(&self, index: usize, mode: Method) -> Option<&Outcome> {
         let m = self.modes.iter().position(|&x| x == mode)?;
         self.cells.get(index)?.outcomes.get(m)
     }
 
     /// The summary of `mode`.
-    pub fn summary_of(&self, mode: Mode) -> Option<&ModeSummary> {
+    pub fn summary_of(&self, mode: Method) -> Option<&ModeSummary> {
         self.summary.iter().find(|s| s.mode == mode)
     }
 }
@@ -284,7 +285,7 @@ impl Job {
                 what: "number of modes".into(),
                 value: 0.0,
                 min: 1.0,
-                max: Mode::ALL.len() as f64,
+                max: methods::ALL.len() as f64,
             });
         }
         spec.modes = modes;
@@ -300,7 +301,7 @@ impl Job {
             .modes
             .iter()
             .map(|&m| {
-                let nets = (m.learned_phi() || m.learned_v()).then(|| surrogate.clone());
+                let nets = m.uses_networks().then(|| surrogate.clone());
                 Planner::new(spec.scene.clone(), m, nets.flatten())
             })
             .collect::<Result<Vec<_>>>()?;

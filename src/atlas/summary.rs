@@ -4,7 +4,7 @@ use serde::ser::{SerializeMap, SerializeStruct};
 use serde::{Serialize, Serializer};
 
 use super::{Atlas, Cell, Class, Outcome};
-use crate::planner::Mode;
+use crate::planner::Method;
 
 /// Successes among some cells.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -44,7 +44,7 @@ pub struct Agreement {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ModeSummary {
     /// The mode.
-    pub mode: Mode,
+    pub mode: Method,
     /// Cells of each class, in the order of [`Class::ALL`].
     pub counts: [usize; 6],
     /// Success over the cells where avoidance is possible (neither
@@ -78,11 +78,11 @@ fn inside(region: [f64; 4], c: &Cell) -> bool {
 }
 
 pub(super) fn summarise(
-    modes: &[Mode],
+    modes: &[Method],
     cells: &[Cell],
     region: Option<[f64; 4]>,
 ) -> Vec<ModeSummary> {
-    let numerical = modes.iter().position(|&m| m == Mode::Numerical);
+    let numerical = modes.iter().position(|&m| m == Method::NUMERICAL);
     let success = |o: &Outcome| o.class == Class::Success;
     modes
         .iter()
@@ -117,7 +117,7 @@ pub(super) fn summarise(
                     }
                 }
             }
-            let learned = mode.learned_phi() || mode.learned_v();
+            let learned = mode.uses_networks();
             ModeSummary {
                 mode,
                 counts,
@@ -160,7 +160,7 @@ impl Serialize for Atlas {
 }
 
 struct CellJson<'a> {
-    modes: &'a [Mode],
+    modes: &'a [Method],
     cell: &'a Cell,
 }
 
@@ -175,7 +175,7 @@ impl Serialize for CellJson<'_> {
 }
 
 /// `{"<mode>": value}` in the modes' order.
-struct ByMode<'a, T>(&'a [Mode], &'a [T]);
+struct ByMode<'a, T>(&'a [Method], &'a [T]);
 
 impl<T: Serialize> Serialize for ByMode<'_, T> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {

@@ -10,7 +10,7 @@ use std::time::Instant;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use redundant_ik::atlas::{Atlas, Class, Grid, Job, Spec, DEFAULT_GRID};
-use redundant_ik::Mode;
+use redundant_ik::Method;
 
 use super::simulate::SceneArgs;
 use super::{emit, parse_list};
@@ -29,8 +29,9 @@ pub struct AtlasArgs {
     /// above the floor).
     #[arg(long, allow_hyphen_values = true)]
     pub region: Option<String>,
-    /// Modes to map, comma-separated, or all.
-    #[arg(long, default_value = "all")]
+    /// Methods to map, comma-separated; `paper` (the default) for the
+    /// paper's five, `all` for every method.
+    #[arg(long, default_value = "paper")]
     pub modes: String,
     /// Print the whole atlas as one JSON object instead of the table.
     #[arg(long)]
@@ -43,14 +44,10 @@ pub struct AtlasArgs {
     pub threads: Option<usize>,
 }
 
-/// Parses `--modes`: `all` or a comma-separated list of mode names.
-pub fn parse_modes(s: &str) -> Result<Vec<Mode>, String> {
-    if s.trim() == "all" {
-        return Ok(Mode::ALL.to_vec());
-    }
-    s.split(',')
-        .map(|m| m.trim().parse::<Mode>().map_err(|e| e.to_string()))
-        .collect()
+/// Parses `--modes`: `paper`, `all` or a comma-separated list of method
+/// names.
+pub fn parse_modes(s: &str) -> Result<Vec<Method>, String> {
+    Method::parse_list(s).map_err(|e| e.to_string())
 }
 
 /// Runs `redundant-ik atlas`.
@@ -69,7 +66,7 @@ pub fn run(args: &AtlasArgs) -> Result<(), String> {
         None => Grid::new(Grid::around_reach(&scene.arm, args.grid).region, args.grid),
     }
     .map_err(|e| e.to_string())?;
-    let networks = if modes.iter().any(|m| m.learned_phi() || m.learned_v()) {
+    let networks = if modes.iter().any(|m| m.uses_networks()) {
         Some(Arc::new(args.scene.networks.load()?))
     } else {
         None

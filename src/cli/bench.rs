@@ -5,8 +5,8 @@
 use std::time::Instant;
 
 use clap::Args;
-use redundant_ik::bench::{self, Options, PerMode, Report};
-use redundant_ik::Mode;
+use redundant_ik::bench::{self, Options, Report};
+use redundant_ik::Method;
 
 use super::emit;
 
@@ -28,6 +28,10 @@ pub struct BenchArgs {
     /// Skip the atlas (three runs of 8,405 tasks, about two seconds in all).
     #[arg(long)]
     pub no_atlas: bool,
+    /// Methods to time, comma-separated; `paper` (the default) for the
+    /// paper's five, `all` for every method.
+    #[arg(long, default_value = "paper")]
+    pub modes: String,
     /// Run the networks on the portable x86-64 baseline kernels instead of
     /// the AVX2 + FMA ones chosen at run time (to measure what that choice buys).
     #[arg(long)]
@@ -48,6 +52,7 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         lm_epoch: !args.no_lm,
         paper_variants: true,
         atlas: !args.no_atlas,
+        methods: Method::parse_list(&args.modes).map_err(|e| e.to_string())?,
     };
     redundant_ik::nn::kernel::set_runtime_dispatch(!args.baseline_kernels);
     #[allow(clippy::disallowed_methods)] // the native CLI has a clock
@@ -72,17 +77,18 @@ fn table(r: &Report) -> String {
          mode        theta_dot      RK4 step   allocs/step\n",
         r.kernels
     );
-    let allocs = |m: Mode| {
+    let allocs = |m: Method| {
         r.allocs_per_step
             .as_ref()
-            .map_or("-".to_string(), |a: &PerMode| format!("{}", a.get(m)))
+            .and_then(|a| a.get(m))
+            .map_or("-".to_string(), |a| format!("{a}"))
     };
-    for m in Mode::ALL {
+    for &(m, theta_dot) in &r.theta_dot_ns.0 {
         s.push_str(&format!(
             "{:<10} {:>10.1} ns {:>10.1} ns {:>12}\n",
             m.name(),
-            r.theta_dot_ns.get(m),
-            r.step_ns.get(m),
+            theta_dot,
+            r.step_ns.get(m).unwrap_or(f64::NAN),
             allocs(m)
         ));
     }

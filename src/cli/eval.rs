@@ -7,8 +7,8 @@ use serde::Serialize;
 
 use redundant_ik::evaluation::{self, ErrorStats, TaskOutcome};
 use redundant_ik::networks::{self, Networks};
-use redundant_ik::nn::Variant;
-use redundant_ik::Mode;
+use redundant_ik::networks::Variant;
+use redundant_ik::Method;
 
 /// Options of `redundant-ik eval`.
 #[derive(Args, Debug)]
@@ -121,9 +121,9 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
         generalisation.push(Generalisation {
             task,
             obstacle: o,
-            none_collided: run(Mode::None).map_err(e)?.collided,
-            numerical_collided: run(Mode::Numerical).map_err(e)?.collided,
-            case3: run(Mode::Case3).map_err(e)?,
+            none_collided: run(Method::NO_AVOIDANCE).map_err(e)?.collided,
+            numerical_collided: run(Method::NUMERICAL).map_err(e)?.collided,
+            case3: run(Method::CASE3).map_err(e)?,
         });
     }
     let case3_avoided = generalisation
@@ -206,7 +206,7 @@ fn render(r: &Report) -> String {
             ));
             continue;
         }
-        let ok = if o.mode == Mode::None {
+        let ok = if o.mode == Method::NO_AVOIDANCE {
             "-"
         } else if o.success() {
             "yes"

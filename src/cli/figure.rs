@@ -6,9 +6,10 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use plotters::prelude::*;
-use redundant_ik::{Mode, Planner, Scene, Trajectory};
+use redundant_ik::planner::methods;
+use redundant_ik::{Method, Planner, Scene, Trajectory};
 
-use super::simulate::{ModeArg, SceneArgs};
+use super::simulate::{MethodArg, SceneArgs};
 
 /// Options of `redundant-ik figure`.
 #[derive(Args, Debug)]
@@ -16,7 +17,7 @@ pub struct FigureArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
     #[command(flatten)]
-    pub mode: ModeArg,
+    pub method: MethodArg,
     /// Output SVG file, or with --all a directory.
     #[arg(long)]
     pub out: PathBuf,
@@ -24,23 +25,13 @@ pub struct FigureArgs {
     /// comparison figure of each task.
     #[arg(long)]
     pub all: bool,
-    /// Instead of the arm: clearance and tracking error over time for all
-    /// five modes on one figure.
+    /// Instead of the arm: clearance and tracking error over time for every
+    /// method on one figure.
     #[arg(long, conflicts_with = "all")]
     pub compare: bool,
     /// Draw the arm every this many steps.
     #[arg(long, default_value_t = 5)]
     pub every: usize,
-}
-
-/// The paper's figure number for a task and mode (Figs. 2-11).
-pub fn paper_figure(task: u32, mode: Mode) -> Option<u32> {
-    let base = match task {
-        1 => 2,
-        2 => 7,
-        _ => return None,
-    };
-    Some(base + Mode::ALL.iter().position(|m| *m == mode)? as u32)
 }
 
 /// Runs `redundant-ik figure`.
@@ -56,7 +47,7 @@ pub fn run(args: &FigureArgs) -> Result<(), String> {
         return Ok(());
     }
     if !args.all {
-        let (scene, traj) = args.scene.run(args.mode.mode()?)?;
+        let (scene, traj) = args.scene.run(args.method.method)?;
         draw(&args.out, args.scene.task, &scene, &traj, args.every)?;
         println!("wrote {}", args.out.display());
         return Ok(());
@@ -69,7 +60,7 @@ pub fn run(args: &FigureArgs) -> Result<(), String> {
         let scene = sa.scene()?;
         let runs = run_all_modes(&sa, &scene)?;
         for traj in &runs {
-            let path = args.out.join(format!("task{task}_{}.svg", traj.mode));
+            let path = args.out.join(format!("task{task}_{}.svg", traj.method));
             draw(&path, task, &scene, traj, args.every)?;
             println!("wrote {}", path.display());
         }
@@ -80,12 +71,12 @@ pub fn run(args: &FigureArgs) -> Result<(), String> {
     Ok(())
 }
 
-/// Runs `scene` in every mode whose networks are available (the others are
-/// skipped with a note on stderr).
+/// Runs `scene` with every method whose networks are available (the others
+/// are skipped with a note on stderr).
 fn run_all_modes(sa: &SceneArgs, scene: &Scene) -> Result<Vec<Trajectory>, String> {
     let mut runs = Vec::new();
-    for mode in Mode::ALL {
-        let nets = match sa.networks.for_mode(mode) {
+    for &mode in methods::ALL {
+        let nets = match sa.networks.for_method(mode) {
             Ok(n) => n,
             Err(e) => {
                 eprintln!("skipping {mode}: {e}");
@@ -115,15 +106,11 @@ fn draw_legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
         .draw()
 }
 
-/// Colour of a mode in the comparison figure (matplotlib's tab10).
-fn mode_colour(mode: Mode) -> RGBColor {
-    match mode {
-        Mode::None => RGBColor(214, 39, 40),
-        Mode::Numerical => RGBColor(0, 0, 0),
-        Mode::Case1 => RGBColor(31, 119, 180),
-        Mode::Case2 => RGBColor(44, 160, 44),
-        Mode::Case3 => RGBColor(255, 127, 14),
-    }
+/// Colour of a method in the comparison figure ([`Method::info`]'s).
+fn mode_colour(method: Method) -> RGBColor {
+    let hex = method.info().colour;
+    let channel = |i: usize| u8::from_str_radix(hex.get(i..i + 2).unwrap_or("00"), 16).unwrap_or(0);
+    RGBColor(channel(1), channel(3), channel(5))
 }
 
 /// Two stacked panels over time for every run: the clearance between the
@@ -135,7 +122,7 @@ fn draw_compare(path: &Path, task: u32, scene: &Scene, runs: &[Trajectory]) -> R
     root.fill(&WHITE).map_err(|x| e(&x))?;
     let root = root
         .titled(
-            &format!("Task {task}: the five methods over time"),
+            &format!("Task {task}: the methods over time"),
             ("sans-serif", 18),
         )
         .map_err(|x| e(&x))?;
@@ -180,7 +167,7 @@ fn draw_compare(path: &Path, task: u32, scene: &Scene, runs: &[Trajectory]) -> R
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RGBColor(214, 39, 40)));
     }
     for r in runs {
-        let c = mode_colour(r.mode);
+        let c = mode_colour(r.method);
         let min = r
             .summary
             .min_distance
@@ -191,7 +178,7 @@ fn draw_compare(path: &Path, task: u32, scene: &Scene, runs: &[Trajectory]) -> R
                 ShapeStyle::from(&c).stroke_width(2),
             ))
             .map_err(|x| e(&x))?
-            .label(format!("{}{min}", r.mode.label()))
+            .label(format!("{}{min}", r.method.label()))
             .legend(swatch(ShapeStyle::from(&c).stroke_width(2)));
     }
     draw_legend(&mut chart, SeriesLabelPosition::UpperRight).map_err(|x| e(&x))?;
@@ -219,7 +206,7 @@ fn draw_compare(path: &Path, task: u32, scene: &Scene, runs: &[Trajectory]) -> R
         .draw()
         .map_err(|x| e(&x))?;
     for r in runs {
-        let c = mode_colour(r.mode);
+        let c = mode_colour(r.method);
         chart
             .draw_series(LineSeries::new(
                 r.steps.iter().map(|s| (s.t, s.tracking_error.max(FLOOR))),
@@ -228,7 +215,7 @@ fn draw_compare(path: &Path, task: u32, scene: &Scene, runs: &[Trajectory]) -> R
             .map_err(|x| e(&x))?
             .label(format!(
                 "{}, final {:.1e} m",
-                r.mode.label(),
+                r.method.label(),
                 r.summary.final_error
             ))
             .legend(swatch(ShapeStyle::from(&c).stroke_width(2)));
@@ -274,7 +261,9 @@ fn draw(
     let e = |err: &dyn std::fmt::Display| format!("cannot draw {}: {err}", path.display());
     root.fill(&WHITE).map_err(|x| e(&x))?;
     let s = &traj.summary;
-    let fig = paper_figure(task, traj.mode)
+    let fig = traj
+        .method
+        .paper_figure(task)
         .map(|n| format!(" (paper Fig. {n})"))
         .unwrap_or_default();
     let verdict = match s.min_distance {
@@ -284,7 +273,7 @@ fn draw(
     };
     let title = format!(
         "Task {task}, {}{fig}: {verdict}, final error {:.1e} m",
-        traj.mode.title(),
+        traj.method.title(),
         s.final_error
     );
     let mut chart = ChartBuilder::on(&root)

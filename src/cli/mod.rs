@@ -5,9 +5,9 @@
 use std::sync::Arc;
 
 use clap::{Parser, Subcommand};
-use redundant_ik::networks::{self, Networks};
-use redundant_ik::nn::weights::Variant;
-use redundant_ik::{Mode, Surrogate};
+use redundant_ik::networks::{self, Networks, Variant};
+use redundant_ik::obstacle::Placement;
+use redundant_ik::{Arm, Method, Surrogate};
 
 pub mod atlas;
 pub mod atlas_figure;
@@ -72,27 +72,34 @@ pub fn parse_pair(s: &str) -> Result<[f64; 2], String> {
     }
 }
 
-/// Parses `X,Y` or `X,Y,R` (an obstacle; the radius is optional).
-pub fn parse_obstacle(s: &str) -> Result<[f64; 3], String> {
-    let v = parse_list(s)?;
-    match v.as_slice() {
-        [x, y] => Ok([*x, *y, f64::NAN]),
-        [x, y, r] => Ok([*x, *y, *r]),
-        _ => Err(format!("expected X,Y or X,Y,R, got '{s}'")),
-    }
+/// Parses `X,Y` or `X,Y,R` (an obstacle; the radius is optional), as the
+/// core reads the syntax.
+pub fn parse_obstacle(s: &str) -> Result<Placement, String> {
+    s.parse().map_err(|e: redundant_ik::Error| e.to_string())
 }
 
-/// Parses an arm `POST:L1,L2,...` (post height and link lengths, m).
-pub fn parse_arm(s: &str) -> Result<redundant_ik::Arm, String> {
-    let (post, links) = s
-        .split_once(':')
-        .ok_or_else(|| format!("arm '{s}': expected POST:L1,L2,... (e.g. 0.5:0.6,0.85,0.6)"))?;
-    let post = post
-        .trim()
-        .parse::<f64>()
-        .map_err(|_| format!("arm '{s}': post '{}' is not a number", post.trim()))?;
-    let links = parse_list(links).map_err(|e| format!("arm '{s}': {e}"))?;
-    redundant_ik::Arm::new(post, links).map_err(|e| format!("arm '{s}': {e}"))
+/// Parses an arm: a preset's name (`paper`, `four`, `five`) or
+/// `POST:L1,L2,...` (post height and link lengths, m), as the core reads
+/// the syntax.
+pub fn parse_arm(s: &str) -> Result<Arm, String> {
+    if let Some(p) = redundant_ik::arm::PRESETS.iter().find(|p| p.key == s.trim()) {
+        return Ok(p.arm());
+    }
+    s.parse().map_err(|e: redundant_ik::Error| e.to_string())
+}
+
+/// Parses a method name (`--mode`), refused at once when unknown.
+pub fn parse_method(s: &str) -> Result<Method, String> {
+    s.parse().map_err(|e: redundant_ik::Error| e.to_string())
+}
+
+/// The help of a `--mode` option: every method's name and what it is.
+pub fn method_help() -> String {
+    let list: Vec<String> = redundant_ik::planner::methods::ALL
+        .iter()
+        .map(|m| format!("{} ({})", m.name(), m.label()))
+        .collect();
+    format!("The method: {}", list.join(", "))
 }
 
 /// Parses a comma-separated list of numbers.
@@ -151,10 +158,10 @@ impl NetworkArgs {
         Networks::from_json(&phi, &v).map_err(|e| e.to_string())
     }
 
-    /// The networks a mode needs, or `None` for the numerical modes (the
-    /// planner refuses networks trained for another arm).
-    pub fn for_mode(&self, mode: Mode) -> Result<Option<Arc<dyn Surrogate>>, String> {
-        if !(mode.learned_phi() || mode.learned_v()) {
+    /// The networks a method needs, or `None` for a method without
+    /// networks (the planner refuses networks trained for another arm).
+    pub fn for_method(&self, method: Method) -> Result<Option<Arc<dyn Surrogate>>, String> {
+        if !method.uses_networks() {
             return Ok(None);
         }
         Ok(Some(Arc::new(self.load()?)))
@@ -168,9 +175,9 @@ fn parse_variant(s: &str) -> Result<Variant, String> {
 }
 
 /// Reads a weights file, refusing one larger than
-/// [`redundant_ik::nn::weights::MAX_FILE_BYTES`] before reading it.
+/// [`redundant_ik::networks::MAX_FILE_BYTES`] before reading it.
 pub(crate) fn read_weights_file(f: &std::path::Path) -> Result<String, String> {
-    let max = redundant_ik::nn::weights::MAX_FILE_BYTES;
+    let max = redundant_ik::networks::MAX_FILE_BYTES;
     let size = std::fs::metadata(f)
         .map_err(|e| format!("cannot read {}: {e}", f.display()))?
         .len();

@@ -1,11 +1,14 @@
 //! `redundant-ik simulate`: one planning run, as a readable summary or JSON.
 
 use clap::Args;
-use redundant_ik::{Arm, DampingSchedule, Mode, Obstacle, Planner, Scene, Trajectory};
+use redundant_ik::{Arm, DampingSchedule, Method, Planner, Scene, Trajectory};
 
 use std::fmt::Write as _;
 
-use super::{emit, parse_arm, parse_list, parse_obstacle, parse_pair, NetworkArgs};
+use redundant_ik::obstacle::Placement;
+
+use super::{emit, method_help, parse_arm, parse_list, parse_method, parse_obstacle, parse_pair};
+use super::NetworkArgs;
 
 /// Scene options shared by `simulate`, `figure` and `atlas`.
 #[derive(Args, Debug, Clone)]
@@ -13,13 +16,14 @@ pub struct SceneArgs {
     /// Paper task (1 or 2) that provides the defaults.
     #[arg(long, default_value_t = 1)]
     pub task: u32,
-    /// The arm, POST:L1,L2,... in metres (default: the paper's, 0.5:0.6,0.85,0.6).
+    /// The arm, POST:L1,L2,... in metres, or a preset's name: paper (the
+    /// default, 0.5:0.6,0.85,0.6), four or five.
     #[arg(long, value_parser = parse_arm, allow_hyphen_values = true)]
     pub arm: Option<Arm>,
     /// Obstacle centre X,Y in metres, with its own radius X,Y,R (repeat for
     /// several obstacles).
     #[arg(long, value_parser = parse_obstacle, allow_hyphen_values = true)]
-    pub obstacle: Vec<[f64; 3]>,
+    pub obstacle: Vec<Placement>,
     /// Radius of the obstacles given without one, in metres.
     #[arg(long, allow_hyphen_values = true)]
     pub radius: Option<f64>,
@@ -67,7 +71,7 @@ impl SceneArgs {
             s.obstacles = self
                 .obstacle
                 .iter()
-                .map(|o| Obstacle::new(o[0], o[1], if o[2].is_nan() { radius } else { o[2] }))
+                .map(|o| o.obstacle(radius))
                 .collect();
         } else {
             for o in &mut s.obstacles {
@@ -102,28 +106,20 @@ impl SceneArgs {
         Ok(s)
     }
 
-    /// Runs the scene in `mode`.
-    pub fn run(&self, mode: Mode) -> Result<(Scene, Trajectory), String> {
+    /// Runs the scene with `method`.
+    pub fn run(&self, method: Method) -> Result<(Scene, Trajectory), String> {
         let scene = self.scene()?;
-        let nets = self.networks.for_mode(mode)?;
-        let traj = Planner::run(scene.clone(), mode, nets).map_err(|e| e.to_string())?;
+        let nets = self.networks.for_method(method)?;
+        let traj = Planner::run(scene.clone(), method, nets).map_err(|e| e.to_string())?;
         Ok((scene, traj))
     }
 }
 
 /// The `--mode` option of `simulate` and `figure`.
 #[derive(Args, Debug, Clone)]
-pub struct ModeArg {
-    /// none, numerical, case1, case2 or case3.
-    #[arg(long, default_value = "numerical")]
-    pub mode: String,
-}
-
-impl ModeArg {
-    /// The selected mode.
-    pub fn mode(&self) -> Result<Mode, String> {
-        self.mode.parse::<Mode>().map_err(|e| e.to_string())
-    }
+pub struct MethodArg {
+    #[arg(long = "mode", default_value = "numerical", value_parser = parse_method, help = method_help())]
+    pub method: Method,
 }
 
 /// Options of `redundant-ik simulate`.
@@ -132,7 +128,7 @@ pub struct SimulateArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
     #[command(flatten)]
-    pub mode: ModeArg,
+    pub method: MethodArg,
     /// Print one JSON object (every step and the summary) instead of text.
     #[arg(long)]
     pub json: bool,
@@ -140,7 +136,7 @@ pub struct SimulateArgs {
 
 /// Runs `redundant-ik simulate`.
 pub fn run(args: &SimulateArgs) -> Result<(), String> {
-    let (scene, traj) = args.scene.run(args.mode.mode()?)?;
+    let (scene, traj) = args.scene.run(args.method.method)?;
     let mut out = String::new();
     macro_rules! w {
         ($o:ident, $($arg:tt)*) => {{
@@ -150,7 +146,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     if args.json {
         let json = serde_json::json!({
             "task": args.scene.task,
-            "mode": traj.mode,
+            "mode": traj.method,
             "scene": scene,
             "steps": traj.steps,
             "summary": traj.summary,
@@ -163,7 +159,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         out,
         "Task {} | mode {} | lambda {} | delta {}{} | dt {} s | tf {} s{}",
         args.scene.task,
-        traj.mode,
+        traj.method,
         scene.lambda,
         scene.delta,
         if scene.damping.is_some() {

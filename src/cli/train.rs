@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use redundant_ik::nn::{NetKind, Variant};
+use redundant_ik::networks::{NetKind, Variant};
 use redundant_ik::training::{self, TrainSpec};
 
 /// Options of `redundant-ik train`.
@@ -93,7 +93,7 @@ pub fn run(args: &TrainArgs) -> Result<(), String> {
         spec.sampling.theta_noise = n;
     }
     spec.sampling.validate().map_err(|e| e.to_string())?;
-    let nets = redundant_ik::nn::weights::shape(net, variant, spec.arm.dof())
+    let nets = redundant_ik::networks::file::shape(net, variant, spec.arm.dof())
         .map_err(|e| e.to_string())?
         .0;
 

@@ -5,7 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
-pub use crate::nn::kernel::tansig;
+use crate::nn::activation::tansig;
 use crate::nn::rng::Rng;
 
 /// Matlab's `mapminmax` with the default `[-1, 1]` target range:

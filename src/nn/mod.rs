@@ -1,21 +1,21 @@
 //! Small feed-forward networks and their training, as in the paper's
-//! section V: a Matlab-`newff`-style [`Mlp`], a `trainlm`-style
-//! Levenberg-Marquardt trainer ([`lm`], with [`kronecker`] and [`cholesky`]),
-//! the run-time [`kernel`], a seeded PRNG ([`Rng`]) and the weights file
-//! ([`weights`]). Nothing here runs the planner (the training data are drawn
-//! in [`crate::training`]). Everything here is single-threaded and free of
-//! OS entropy and clocks, so it runs unchanged in the browser.
+//! section V: a Matlab-`newff`-style [`Mlp`] with its [`activation`], a
+//! `trainlm`-style Levenberg-Marquardt trainer ([`lm`], with [`kronecker`]
+//! and [`cholesky`]), the run-time [`kernel`] and a seeded PRNG ([`Rng`]).
+//! Nothing here knows the planner, the paper's networks or their training
+//! (the weights file is [`crate::networks::file`], the training data are
+//! drawn in `crate::training`). Everything here is single-threaded and
+//! free of OS entropy and clocks, so it runs unchanged in the browser.
 
+pub mod activation;
 pub mod cholesky;
 pub mod kernel;
 pub mod kronecker;
 pub mod lm;
 pub mod mlp;
 pub mod rng;
-pub mod weights;
 
 pub use kernel::Kernel;
 pub use lm::{Dataset, EpochReport, LmOptions, LmTrainer, StopReason, TrainReport};
 pub use mlp::{MapMinMax, Mlp};
 pub use rng::Rng;
-pub use weights::{NetKind, Variant, WeightsFile};

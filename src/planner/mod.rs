@@ -1,33 +1,43 @@
 //! The motion planner of section V, steps (a)-(g): a straight-line task at
-//! constant speed, joint rates from eq. (18) or eq. (21), integrated by the
-//! classical fourth-order Runge-Kutta method.
+//! constant speed, joint rates from the chosen method ([`methods`]: the
+//! paper's eq. (18) or eq. (21), or a method beyond the paper), integrated
+//! by the classical fourth-order Runge-Kutta method.
 //!
 //! A [`Planner`] holds the state and can be stepped one RK4 step at a time;
-//! target, obstacles, mode and gains may change between steps (the browser
-//! demo re-plans a new straight line from the current end effector when the
-//! user drags the target). [`Planner::run`] integrates a whole scene.
+//! target, obstacles, method and gains may change between steps (the
+//! browser demo re-plans a new straight line from the current end effector
+//! when the user drags the target). [`Planner::run`] integrates a whole
+//! scene.
+//!
+//! One file per concern: the state and its construction here, the
+//! settings that change it ([`settings`](self)), the RK4 step and rate
+//! evaluations (`integrate.rs`), what is observed of the state (`observe.rs`:
+//! the sample and the summary), the records (`record.rs`), the learned
+//! replacements' interface (`surrogate.rs`) and the methods (`methods/`).
 
-mod mode;
-mod rates;
+mod integrate;
+pub mod methods;
+mod observe;
 mod record;
+mod settings;
+mod surrogate;
 
 use std::fmt;
 use std::sync::Arc;
 
-use nalgebra::{DVector, Matrix2xX, Vector2};
+use nalgebra::DVector;
 
 use crate::arm::Arm;
-use crate::error::{positive, Error, Result};
+use crate::error::{Error, Result};
 use crate::ik::DampingSchedule;
 use crate::kinematics::Pose;
-use crate::obstacle::Obstacle;
-use crate::scene::{self, Scene};
+use crate::scene::Scene;
 
-pub use mode::Mode;
-pub use rates::Surrogate;
+pub use methods::{Group, Method, MethodInfo, Needs};
 pub use record::{Line, Sample, Summary, Trajectory};
+pub use surrogate::Surrogate;
 
-use rates::{Rates, Scratch, Workspace};
+use methods::Rule;
 use record::Stats;
 
 /// Final end-effector error below which a run counts as having reached its
@@ -38,7 +48,7 @@ pub const REACH_TOLERANCE: f64 = 5e-3;
 #[derive(Clone)]
 pub struct Planner {
     scene: Scene,
-    mode: Mode,
+    method: Method,
     networks: Option<Arc<dyn Surrogate>>,
     theta: DVector<f64>,
     step_index: usize,
@@ -51,10 +61,43 @@ pub struct Planner {
     ws: Workspace,
 }
 
+/// Scratch space the planner owns and reuses at every step (as rapier keeps
+/// a solver workspace), so that [`Planner::step`] allocates nothing once the
+/// planner exists, with every method and for any arm.
+#[derive(Clone)]
+struct Workspace {
+    /// The kinematics of the current state; always up to date. A step's first
+    /// RK4 stage reads it, and so does the sample.
+    pose: Pose,
+    /// The kinematics at an RK4 stage (and for [`Planner::theta_dot_into`]).
+    stage: Pose,
+    /// `theta` at a stage.
+    theta_stage: Vec<f64>,
+    /// The state after the step, before it is accepted.
+    next: Vec<f64>,
+    /// The stage rates `k1..k4`.
+    k: [Vec<f64>; 4],
+    /// The method's computation, with its own scratch space.
+    rule: Box<dyn Rule>,
+}
+
+impl Workspace {
+    fn new(n: usize, method: Method) -> Self {
+        Self {
+            pose: Pose::zeros(n),
+            stage: Pose::zeros(n),
+            theta_stage: vec![0.0; n],
+            next: vec![0.0; n],
+            k: [vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]],
+            rule: method.rule(n),
+        }
+    }
+}
+
 impl fmt::Debug for Planner {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("Planner")
-            .field("mode", &self.mode)
+            .field("method", &self.method)
             .field("t", &self.t)
             .field("theta", &self.theta.as_slice())
             .field("networks", &self.networks.is_some())
@@ -63,46 +106,32 @@ impl fmt::Debug for Planner {
 }
 
 impl Planner {
-    /// A planner at the scene's start. Network modes need `networks`.
+    /// A planner at the scene's start. Methods that use networks need
+    /// `networks`, trained for the scene's arm.
     ///
     /// A target outside the workspace is legal: the damping schedule is then
     /// switched on (and the summary says so), so the arm stretches towards it
     /// with bounded joint rates instead of blowing up.
-    pub fn new(mut scene: Scene, mode: Mode, networks: Option<Arc<dyn Surrogate>>) -> Result<Self> {
+    pub fn new(
+        mut scene: Scene,
+        method: Method,
+        networks: Option<Arc<dyn Surrogate>>,
+    ) -> Result<Self> {
         scene.validate()?;
-        check_networks(mode, &networks, &scene.arm)?;
+        check_networks(method, &networks, &scene.arm)?;
         let auto_damping = needs_auto_damping(&scene);
         if auto_damping {
             scene.damping = Some(DampingSchedule::default());
         }
         let n = scene.arm.dof();
         let theta = scene.theta0_vector();
-        let mut ws = Workspace::new(n);
+        let mut ws = Workspace::new(n, method);
         ws.pose.update(&scene.arm, theta.as_slice())?;
-        let start = ws.pose.end_effector();
-        let line = Line {
-            start,
-            end: scene.target,
-            t0: 0.0,
-            duration: scene.tf,
-        };
-        let sample = Sample {
-            t: 0.0,
-            theta: vec![0.0; n],
-            joints: vec![[0.0; 2]; n + 1],
-            ee: start,
-            reference: start,
-            tracking_error: 0.0,
-            distance: None,
-            collision: false,
-            delta: 0.0,
-            manipulability: 0.0,
-            in_range: true,
-            phi_handover: false,
-        };
+        let line = Line::new(ws.pose.end_effector(), scene.target, 0.0, scene.tf);
         let mut p = Self {
+            sample: Sample::zeros(n, line.start),
             scene,
-            mode,
+            method,
             networks,
             theta,
             step_index: 0,
@@ -110,7 +139,6 @@ impl Planner {
             line,
             stats: Stats::new(),
             auto_damping,
-            sample,
             ws,
         };
         p.refresh_sample(false);
@@ -121,10 +149,10 @@ impl Planner {
     /// Integrates a whole scene from `t = 0` to `tf` (the paper's runs).
     pub fn run(
         scene: Scene,
-        mode: Mode,
+        method: Method,
         networks: Option<Arc<dyn Surrogate>>,
     ) -> Result<Trajectory> {
-        let mut p = Self::new(scene, mode, networks)?;
+        let mut p = Self::new(scene, method, networks)?;
         let n = p.scene.steps();
         let mut steps = Vec::with_capacity(n + 1);
         steps.push(p.sample.clone());
@@ -132,7 +160,7 @@ impl Planner {
             steps.push(p.step()?.clone());
         }
         Ok(Trajectory {
-            mode,
+            method,
             steps,
             summary: p.summary(),
         })
@@ -143,10 +171,10 @@ impl Planner {
     /// built (what an atlas of thousands of runs needs).
     pub fn run_summary(
         scene: Scene,
-        mode: Mode,
+        method: Method,
         networks: Option<Arc<dyn Surrogate>>,
     ) -> Result<Summary> {
-        let mut p = Self::new(scene, mode, networks)?;
+        let mut p = Self::new(scene, method, networks)?;
         for _ in 0..p.scene.steps() {
             p.step()?;
         }
@@ -161,12 +189,12 @@ impl Planner {
         let _ = self.ws.pose.update(&self.scene.arm, self.theta.as_slice());
         self.step_index = 0;
         self.t = 0.0;
-        self.line = Line {
-            start: self.ws.pose.end_effector(),
-            end: self.scene.target,
-            t0: 0.0,
-            duration: self.scene.tf,
-        };
+        self.line = Line::new(
+            self.ws.pose.end_effector(),
+            self.scene.target,
+            0.0,
+            self.scene.tf,
+        );
         self.stats = Stats::new();
         self.refresh_sample(false);
         self.stats.record(&self.sample);
@@ -177,9 +205,9 @@ impl Planner {
         &self.scene
     }
 
-    /// The current mode.
-    pub fn mode(&self) -> Mode {
-        self.mode
+    /// The current method.
+    pub fn method(&self) -> Method {
+        self.method
     }
 
     /// Current time (s).
@@ -206,353 +234,22 @@ impl Planner {
     pub fn networks(&self) -> Option<&Arc<dyn Surrogate>> {
         self.networks.as_ref()
     }
-
-    /// Switches mode; network modes need networks.
-    pub fn set_mode(&mut self, mode: Mode) -> Result<()> {
-        check_networks(mode, &self.networks, &self.scene.arm)?;
-        self.mode = mode;
-        self.resample();
-        Ok(())
-    }
-
-    /// Installs (or removes) the trained networks. Networks trained for
-    /// another arm are refused ([`Error::NetworksForAnotherArm`]).
-    pub fn set_networks(&mut self, networks: Option<Arc<dyn Surrogate>>) -> Result<()> {
-        check_networks(self.mode, &networks, &self.scene.arm)?;
-        self.networks = networks;
-        self.resample();
-        Ok(())
-    }
-
-    /// Re-plans: a new straight line from the current end effector to `target`,
-    /// starting now and lasting `duration` seconds (rounded up to whole steps).
-    pub fn set_target(&mut self, target: [f64; 2], duration: f64) -> Result<()> {
-        crate::error::coordinate("target x", target[0])?;
-        crate::error::coordinate("target y", target[1])?;
-        positive("line duration", duration)?;
-        let steps = (duration / self.scene.dt - 1e-9).ceil().max(1.0);
-        self.scene.target = target;
-        if needs_auto_damping(&self.scene) {
-            self.scene.damping = Some(DampingSchedule::default());
-            self.auto_damping = true;
-        }
-        self.line = Line {
-            start: self.ws.pose.end_effector(),
-            end: target,
-            t0: self.t,
-            duration: steps * self.scene.dt,
-        };
-        self.resample();
-        Ok(())
-    }
-
-    /// Replaces the obstacles; takes effect at the next step.
-    pub fn set_obstacles(&mut self, obstacles: Vec<Obstacle>) -> Result<()> {
-        for ob in &obstacles {
-            ob.validate(&self.scene.arm)?;
-        }
-        self.scene.obstacles = obstacles;
-        self.resample();
-        Ok(())
-    }
-
-    /// Moves obstacle `index` to `centre`, keeping its radius; takes effect
-    /// at the next step. Allocation-free (what an atlas of thousands of runs
-    /// needs). Refused, leaving everything as it was, if the disc would
-    /// overlap the base post or `index` names no obstacle.
-    pub fn move_obstacle(&mut self, index: usize, centre: [f64; 2]) -> Result<()> {
-        let count = self.scene.obstacles.len();
-        let Some(ob) = self.scene.obstacles.get(index) else {
-            return Err(Error::OutOfRange {
-                what: "obstacle index".into(),
-                value: index as f64,
-                min: 0.0,
-                max: count as f64 - 1.0,
-            });
-        };
-        let moved = crate::obstacle::Obstacle {
-            centre,
-            radius: ob.radius,
-        };
-        moved.validate(&self.scene.arm)?;
-        self.scene.obstacles[index] = moved;
-        self.resample();
-        Ok(())
-    }
-
-    /// Sets `lambda`, the gain of the obstacle vector.
-    pub fn set_lambda(&mut self, lambda: f64) -> Result<()> {
-        scene::validate_lambda(lambda)?;
-        self.scene.lambda = lambda;
-        Ok(())
-    }
-
-    /// Sets the constant damping `delta` (eqs. 6, 17, 20). In Cases 1 and 3
-    /// it damps the network's `Phi` through [`ik::damp_phi`].
-    pub fn set_delta(&mut self, delta: f64) -> Result<()> {
-        scene::validate_delta(delta)?;
-        self.scene.delta = delta;
-        self.resample();
-        Ok(())
-    }
-
-    /// Switches the damping schedule on (`Some`) or off (`None`).
-    pub fn set_damping(&mut self, damping: Option<DampingSchedule>) -> Result<()> {
-        if let Some(d) = &damping {
-            d.validate()?;
-        }
-        self.scene.damping = damping;
-        self.resample();
-        Ok(())
-    }
-
-    /// Sets the closed-loop gain `K` (0 = open loop, as in the paper).
-    pub fn set_feedback_gain(&mut self, gain: f64) -> Result<()> {
-        scene::validate_gain(gain, self.scene.dt)?;
-        self.scene.feedback_gain = gain;
-        Ok(())
-    }
-
-    /// Damping `delta` in force at Jacobian `j`: the constant `delta` plus the
-    /// schedule's share.
-    pub fn delta_at(&self, j: &Matrix2xX<f64>) -> f64 {
-        self.scene.delta + self.scene.damping.map_or(0.0, |d| d.delta(j))
-    }
-
-    fn rates(&self) -> Rates<'_> {
-        Rates {
-            scene: &self.scene,
-            mode: self.mode,
-            networks: self.networks.as_deref(),
-        }
-    }
-
-    /// Null-space vector `v` at `theta` in the current mode (zero in mode
-    /// `none`). A convenience that allocates; the step uses a workspace.
-    pub fn null_space(&self, theta: &DVector<f64>) -> Result<DVector<f64>> {
-        let n = self.scene.arm.dof();
-        let pose = Pose::new(&self.scene.arm, theta.as_slice())?;
-        let mut s = Scratch::new(n);
-        self.rates().null_space(&pose, &mut s)?;
-        Ok(DVector::from_vec(s.v))
-    }
-
-    /// Joint rates `theta_dot(theta)` for task velocity `xdot`: eq. (18) in
-    /// modes `none`, `numerical` and Case 2, eq. (21) in Cases 1 and 3. A
-    /// convenience that allocates; see [`Planner::theta_dot_into`].
-    pub fn theta_dot(&self, theta: &DVector<f64>, xdot: &Vector2<f64>) -> Result<DVector<f64>> {
-        let n = self.scene.arm.dof();
-        let pose = Pose::new(&self.scene.arm, theta.as_slice())?;
-        let mut s = Scratch::new(n);
-        let mut out = DVector::zeros(n);
-        self.rates()
-            .theta_dot(&pose, [xdot[0], xdot[1]], &mut s, out.as_mut_slice())?;
-        Ok(out)
-    }
-
-    /// [`Planner::theta_dot`] into `out` (`n` entries) through the planner's
-    /// workspace: one kinematics pass and no allocation. `theta` must have
-    /// `n` entries; it is not checked for finiteness (NaN gives NaN rates).
-    pub fn theta_dot_into(&mut self, theta: &[f64], xdot: [f64; 2], out: &mut [f64]) -> Result<()> {
-        let Self {
-            scene,
-            mode,
-            networks,
-            ws,
-            ..
-        } = self;
-        ws.stage.update(&scene.arm, theta)?;
-        let rates = Rates {
-            scene,
-            mode: *mode,
-            networks: networks.as_deref(),
-        };
-        rates.theta_dot(&ws.stage, xdot, &mut ws.scratch, out)?;
-        Ok(())
-    }
-
-    /// One classical RK4 step of size `dt` (section V, step e), then the new
-    /// sample, which the planner keeps (see [`Planner::sample`]). On error
-    /// the state is left unchanged. Allocation-free.
-    pub fn step(&mut self) -> Result<&Sample> {
-        let h = self.scene.dt;
-        let t = self.t;
-        let line_xdot = self.line.velocity_at(t + 0.5 * h);
-        let Self {
-            scene,
-            mode,
-            networks,
-            theta,
-            line,
-            ws,
-            ..
-        } = self;
-        let rates = Rates {
-            scene,
-            mode: *mode,
-            networks: networks.as_deref(),
-        };
-        let theta = theta.as_slice();
-        let gain = scene.feedback_gain;
-        // The commanded task velocity at a stage: the line's Xdot plus, when
-        // K > 0, K (X_ref(t) - X(theta)).
-        let xdot = |tt: f64, pose: &Pose| -> [f64; 2] {
-            if gain > 0.0 {
-                let r = line.reference(tt);
-                let x = pose.end_effector();
-                [
-                    line_xdot[0] + gain * (r[0] - x[0]),
-                    line_xdot[1] + gain * (r[1] - x[1]),
-                ]
-            } else {
-                [line_xdot[0], line_xdot[1]]
-            }
-        };
-        let [k1, k2, k3, k4] = &mut ws.k;
-        // Stage 1 reads the kinematics of the current state, computed when
-        // the previous step ended.
-        let mut handover = rates.theta_dot(&ws.pose, xdot(t, &ws.pose), &mut ws.scratch, k1)?;
-        for (stage, (c, tt)) in [(0.5 * h, t + 0.5 * h), (0.5 * h, t + 0.5 * h), (h, t + h)]
-            .into_iter()
-            .enumerate()
-        {
-            let (prev, out): (&[f64], &mut [f64]) = match stage {
-                0 => (&k1[..], &mut k2[..]),
-                1 => (&k2[..], &mut k3[..]),
-                _ => (&k3[..], &mut k4[..]),
-            };
-            for ((s, th), k) in ws.theta_stage.iter_mut().zip(theta).zip(prev) {
-                *s = th + c * k;
-            }
-            ws.stage.update(&scene.arm, &ws.theta_stage)?;
-            handover |= rates.theta_dot(&ws.stage, xdot(tt, &ws.stage), &mut ws.scratch, out)?;
-        }
-        let w = h / 6.0;
-        let mut finite = true;
-        for (i, next) in ws.next.iter_mut().enumerate() {
-            *next = theta[i] + w * (((k1[i] + 2.0 * k2[i]) + 2.0 * k3[i]) + k4[i]);
-            // Also false for NaN: a runaway angle is refused like a non-finite one.
-            finite &= next.abs() <= crate::arm::MAX_ANGLE;
-        }
-        if !finite {
-            return Err(Error::Diverged { t });
-        }
-        self.theta.copy_from_slice(&self.ws.next);
-        self.ws.pose.update(&self.scene.arm, &self.ws.next)?;
-        self.step_index += 1;
-        self.t = self.step_index as f64 * h;
-        self.refresh_sample(handover);
-        self.stats.record(&self.sample);
-        self.stats.steps += 1;
-        Ok(&self.sample)
-    }
-
-    /// The current state: the start, or the result of the last step. Kept up
-    /// to date by the planner (no copy, no allocation).
-    pub fn sample(&self) -> &Sample {
-        &self.sample
-    }
-
-    /// Refreshes the sample after a change of setting (same state, same step).
-    fn resample(&mut self) {
-        self.refresh_sample(self.sample.phi_handover);
-    }
-
-    /// Rewrites the sample in place from the current pose.
-    fn refresh_sample(&mut self, phi_handover: bool) {
-        let pose = &self.ws.pose;
-        let s = &mut self.sample;
-        let ee = pose.end_effector();
-        let reference = self.line.reference(self.t);
-        s.t = self.t;
-        s.theta.copy_from_slice(pose.theta());
-        s.joints.copy_from_slice(pose.joints());
-        s.ee = ee;
-        s.reference = [reference[0], reference[1]];
-        s.tracking_error = distance(ee, [reference[0], reference[1]]);
-        s.distance = None;
-        s.collision = false;
-        for ob in &self.scene.obstacles {
-            let d = pose.clearance(ob.centre);
-            s.collision |= d < ob.radius;
-            s.distance = Some(s.distance.map_or(d, |m| m.min(d)));
-        }
-        s.delta = self.scene.delta
-            + self
-                .scene
-                .damping
-                .map_or(0.0, |d| d.delta_at_sigma(pose.sigma_min()));
-        s.manipulability = pose.manipulability();
-        s.in_range = in_range(
-            self.mode,
-            self.networks.as_deref(),
-            pose,
-            &self.scene.obstacles,
-        );
-        s.phi_handover = phi_handover;
-    }
-
-    /// Whether the networks the current mode uses see inputs inside their
-    /// trained range (true for numerical modes).
-    pub fn in_range(&self) -> bool {
-        self.sample.in_range
-    }
-
-    /// Outcome since the last reset.
-    pub fn summary(&self) -> Summary {
-        let x = self.ws.pose.end_effector();
-        let target = self.scene.target;
-        let final_error = distance(x, target);
-        Summary {
-            mode: self.mode,
-            steps: self.stats.steps,
-            t: self.t,
-            min_distance: self.stats.min_distance,
-            collided: self.stats.collided,
-            final_error,
-            max_tracking_error: self.stats.max_tracking_error,
-            reached: final_error <= REACH_TOLERANCE,
-            target_reachable: self.scene.arm.can_reach(&self.scene.target_vector()),
-            out_of_range_steps: self.stats.out_of_range_steps,
-            max_delta: self.stats.max_delta,
-            auto_damping: self.auto_damping,
-            handover_steps: self.stats.handover_steps,
-        }
-    }
-}
-
-/// Euclidean distance between two points.
-#[inline]
-fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
-    let (dx, dy) = (a[0] - b[0], a[1] - b[1]);
-    (dx * dx + dy * dy).sqrt()
-}
-
-/// Whether the networks `mode` uses see `pose` (and every obstacle) inside
-/// their trained range.
-fn in_range(
-    mode: Mode,
-    networks: Option<&dyn Surrogate>,
-    pose: &Pose,
-    obstacles: &[Obstacle],
-) -> bool {
-    let Some(nets) = networks else {
-        return true;
-    };
-    let phi_ok = !mode.learned_phi() || nets.phi_in_range(pose);
-    let v_ok = !mode.learned_v() || obstacles.iter().all(|ob| nets.v_in_range(pose, ob.centre));
-    phi_ok && v_ok
 }
 
 fn needs_auto_damping(scene: &Scene) -> bool {
     scene.damping.is_none() && !scene.arm.can_reach(&scene.target_vector())
 }
 
-/// Network modes need networks, and networks must be trained for `arm`.
-fn check_networks(mode: Mode, networks: &Option<Arc<dyn Surrogate>>, arm: &Arm) -> Result<()> {
+/// Methods that use networks need them, and networks must be trained for
+/// `arm`.
+fn check_networks(
+    method: Method,
+    networks: &Option<Arc<dyn Surrogate>>,
+    arm: &Arm,
+) -> Result<()> {
     match networks {
-        None if mode.learned_phi() || mode.learned_v() => Err(Error::NetworksUnavailable(format!(
-            "mode {mode} needs trained networks and none are loaded"
+        None if method.uses_networks() => Err(Error::NetworksUnavailable(format!(
+            "mode {method} needs trained networks and none are loaded"
         ))),
         Some(n) if n.arm() != arm => {
             let spec = |a: &Arm| (a.post(), a.links().to_vec());

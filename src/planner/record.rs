@@ -4,7 +4,7 @@
 use nalgebra::Vector2;
 use serde::{Deserialize, Serialize};
 
-use super::Mode;
+use super::Method;
 
 /// The straight line being tracked: from `start` at time `t0` to `end` at
 /// `t0 + duration`, at constant speed, then holding still at `end`.
@@ -21,6 +21,16 @@ pub struct Line {
 }
 
 impl Line {
+    /// The line from `start` at `t0` to `end`, taking `duration` seconds.
+    pub fn new(start: [f64; 2], end: [f64; 2], t0: f64, duration: f64) -> Self {
+        Self {
+            start,
+            end,
+            t0,
+            duration,
+        }
+    }
+
     fn start_v(&self) -> Vector2<f64> {
         Vector2::new(self.start[0], self.start[1])
     }
@@ -69,8 +79,8 @@ pub struct Sample {
     pub delta: f64,
     /// Manipulability `sqrt(det(J J^T))`.
     pub manipulability: f64,
-    /// Whether the state is inside the trained range of the networks this mode uses
-    /// (always true for numerical modes).
+    /// Whether the state is inside the trained range of the networks the
+    /// method uses (always true for methods without networks).
     pub in_range: bool,
     /// Whether, in the step that led here, the damping schedule switched on
     /// near a singular pose and the exact damped `Phi` (eq. 20) stood in for
@@ -79,11 +89,33 @@ pub struct Sample {
     pub phi_handover: bool,
 }
 
+impl Sample {
+    /// A sample of an `n`-joint arm with everything zero but the end
+    /// effector and the reference, at `ee` (the planner fills it at once).
+    pub(super) fn zeros(n: usize, ee: [f64; 2]) -> Self {
+        Self {
+            t: 0.0,
+            theta: vec![0.0; n],
+            joints: vec![[0.0; 2]; n + 1],
+            ee,
+            reference: ee,
+            tracking_error: 0.0,
+            distance: None,
+            collision: false,
+            delta: 0.0,
+            manipulability: 0.0,
+            in_range: true,
+            phi_handover: false,
+        }
+    }
+}
+
 /// What a run achieved, over every step since the last reset.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Summary {
-    /// Mode of the last step.
-    pub mode: Mode,
+    /// Method of the last step (`mode` in JSON, as on the command line).
+    #[serde(rename = "mode")]
+    pub method: Method,
     /// RK4 steps taken.
     pub steps: usize,
     /// Time reached (s).
@@ -116,8 +148,9 @@ pub struct Summary {
 /// A whole run: every sample from `t = 0` to `tf`, and the summary.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Trajectory {
-    /// Mode used.
-    pub mode: Mode,
+    /// Method used (`mode` in JSON).
+    #[serde(rename = "mode")]
+    pub method: Method,
     /// One sample per RK4 step, the initial state first.
     pub steps: Vec<Sample>,
     /// Outcome.

@@ -6,7 +6,7 @@ use super::{Handle, Session};
 use crate::arm::Arm;
 use crate::networks::TrainedRange;
 use crate::obstacle::{self, Obstacle};
-use crate::planner::Line;
+use crate::planner::{Line, Needs};
 
 /// The snapshot the page reads every frame.
 #[derive(Debug, Serialize)]
@@ -15,8 +15,10 @@ pub struct State<'a> {
     pub t: f64,
     /// The paper's task last loaded (1 or 2).
     pub task: u32,
-    /// Mode name.
+    /// Method name.
     pub mode: &'static str,
+    /// The networks the method uses (`{ phi, v }`).
+    pub uses: Needs,
     /// Whether the clock runs.
     pub running: bool,
     /// Simulated seconds per real second.
@@ -73,8 +75,8 @@ pub struct State<'a> {
     pub phi_handover: bool,
     /// Steps in which it did, since the last reset.
     pub handover_steps: usize,
-    /// Whether networks are installed (the page also counts networks it can
-    /// install on demand).
+    /// Whether methods that use networks can run with this arm (networks
+    /// installed for it, or built-in ones trained for it).
     pub networks: bool,
     /// What they were trained on.
     pub trained_range: Option<&'a TrainedRange>,
@@ -116,7 +118,8 @@ impl Session {
         State {
             t: s.t,
             task: self.task,
-            mode: p.mode().name(),
+            mode: p.method().name(),
+            uses: p.method().networks(),
             running: self.running,
             speed: self.speed,
             lambda: scene.lambda,
@@ -145,7 +148,7 @@ impl Session {
             in_range: s.in_range,
             phi_handover: s.phi_handover,
             handover_steps: summary.handover_steps,
-            networks: self.networks.is_some(),
+            networks: self.networks_fit(),
             trained_range: self.trained_range(),
             ghost: self.ghost().map(|g| GhostState {
                 theta: g.theta().iter().copied().collect(),

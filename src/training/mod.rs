@@ -4,8 +4,6 @@
 //! [`crate::nn::lm`] and writes a weights file. Kept apart from the run-time
 //! networks ([`crate::networks`]): the page's simulation needs none of it.
 
-#[cfg(feature = "eval")]
-pub mod playground;
 pub mod sampling;
 pub mod tasks;
 
@@ -13,13 +11,12 @@ use serde::{Deserialize, Serialize};
 
 use crate::arm::Arm;
 use crate::error::{Error, Result};
-use crate::networks::{phi_inputs, v_inputs, MAX_V_INPUTS};
+use crate::networks::file::{self as weights, InputRange, NetEntry, NetKind, Training, Variant};
+use crate::networks::{phi_inputs, v_inputs, Sampling, WeightsFile, MAX_V_INPUTS};
 use crate::nn::lm::{self, Dataset, EpochReport, LmOptions};
 use crate::nn::rng::Rng;
-use crate::nn::weights::{self, ArmSpec, InputRange, NetEntry, NetKind, Training, Variant};
-use crate::nn::WeightsFile;
 
-pub use sampling::{Sampling, Visited};
+pub use sampling::Visited;
 
 /// What to train: the arm, the quantity, the variant, the data and the
 /// optimiser.
@@ -201,10 +198,7 @@ pub fn train_weights(
         net: spec.net,
         variant: spec.variant,
         tool_version: env!("CARGO_PKG_VERSION").to_string(),
-        arm: ArmSpec {
-            post: arm.post(),
-            links: arm.links().to_vec(),
-        },
+        arm: arm.clone(),
         range: InputRange {
             names: input_names(spec.net, spec.variant, arm.dof()),
             min,

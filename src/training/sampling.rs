@@ -1,4 +1,5 @@
-//! Training data from the numerical route (SPEC.md, "The networks").
+//! Training data from the numerical route (`docs/conventions.md`, "The
+//! networks"): how the poses and obstacle points of [`Sampling`] are drawn.
 //!
 //! A box over theta that spans the tasks contains singular poses where `Phi`
 //! is unbounded, so the data is drawn around the configurations the tasks
@@ -14,79 +15,15 @@
 //! reach for any other arm ([`Sampling::for_arm`], [`super::tasks`]).
 
 use nalgebra::{DVector, Vector2};
-use serde::{Deserialize, Serialize};
 
 use crate::arm::Arm;
 use crate::error::{Error, Result};
+use crate::networks::Sampling;
 use crate::ik;
 use crate::nn::rng::Rng;
 use crate::obstacle::{self, Obstacle};
-use crate::planner::{Mode, Planner};
+use crate::planner::{Method, Planner};
 use crate::scene::Scene;
-
-/// How training poses and obstacle points are drawn; stored in the weights file.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Sampling {
-    /// Paper tasks whose trajectories seed the pose pool (3-link arms only).
-    pub tasks: Vec<u32>,
-    /// Random straight-line tasks inside the arm's reach that seed it too
-    /// ([`super::tasks::random_task`]); absent in files written before
-    /// arms other than the paper's could be trained, hence the default 0.
-    #[serde(default, skip_serializing_if = "is_zero_count")]
-    pub random_tasks: usize,
-    /// Modes run on each task and obstacle (`none`, `numerical`).
-    pub modes: Vec<Mode>,
-    /// Obstacle positions drawn per task.
-    pub obstacles_per_task: usize,
-    /// Lower corner of the obstacle region (also the canonical obstacles are run).
-    pub obstacle_min: [f64; 2],
-    /// Upper corner of the obstacle region.
-    pub obstacle_max: [f64; 2],
-    /// Standard deviation of the Gaussian noise added to visited joint angles (rad).
-    pub theta_noise: f64,
-    /// Poses whose smallest singular value of `J` is below this are rejected (m).
-    pub sigma_floor: f64,
-    /// Share of `v` samples whose obstacle point is the one of the run the pose
-    /// came from (plus `obstacle_noise`); the rest are uniform in the region.
-    pub paired_obstacle_share: f64,
-    /// Standard deviation of the noise on paired obstacle points (m).
-    pub obstacle_noise: f64,
-    /// When positive, the obstacles of the random tasks are drawn near the
-    /// links' sweep in the no-avoidance run (a point on a link at a random
-    /// step, moved by Gaussian noise of this standard deviation, m), where
-    /// they matter, instead of uniformly in the region. Absent in older
-    /// files, hence the default 0.
-    #[serde(default, skip_serializing_if = "is_zero_length")]
-    pub obstacle_spread: f64,
-}
-
-// The paper's sampling writes neither field, so its files stay as shipped.
-fn is_zero_count(n: &usize) -> bool {
-    *n == 0
-}
-
-fn is_zero_length(x: &f64) -> bool {
-    *x == 0.0
-}
-
-impl Default for Sampling {
-    fn default() -> Self {
-        Self {
-            tasks: vec![1, 2],
-            random_tasks: 0,
-            modes: vec![Mode::None, Mode::Numerical],
-            obstacles_per_task: 60,
-            obstacle_min: [0.3, 0.3],
-            obstacle_max: [0.8, 0.8],
-            theta_noise: 0.08,
-            sigma_floor: 0.2,
-            paired_obstacle_share: 0.5,
-            obstacle_noise: 0.03,
-            obstacle_spread: 0.0,
-        }
-    }
-}
 
 /// A pose visited by a planner run, with that run's obstacle point.
 #[derive(Debug, Clone, PartialEq)]
@@ -126,48 +63,6 @@ impl Sampling {
         }
     }
 
-    /// Checks the numbers make sense.
-    pub fn validate(&self) -> Result<()> {
-        let ok = |x: f64| x.is_finite() && x >= 0.0;
-        if !(ok(self.theta_noise)
-            && ok(self.obstacle_spread)
-            && ok(self.sigma_floor)
-            && ok(self.obstacle_noise)
-            && (0.0..=1.0).contains(&self.paired_obstacle_share))
-        {
-            return Err(Error::Training(
-                "sampling: noise, sigma floor and shares must be finite and non-negative".into(),
-            ));
-        }
-        for i in 0..2 {
-            if !(self.obstacle_min[i].is_finite()
-                && self.obstacle_max[i].is_finite()
-                && self.obstacle_min[i] <= self.obstacle_max[i])
-            {
-                return Err(Error::Training(
-                    "sampling: obstacle region must be finite with min <= max".into(),
-                ));
-            }
-        }
-        if (self.tasks.is_empty() && self.random_tasks == 0) || self.modes.is_empty() {
-            return Err(Error::Training(
-                "sampling: need at least one task and one mode".into(),
-            ));
-        }
-        if self.random_tasks > 10_000 || self.obstacles_per_task > 10_000 {
-            return Err(Error::Training(
-                "sampling: at most 10 000 random tasks and 10 000 obstacles per task".into(),
-            ));
-        }
-        if self.modes.iter().any(|m| m.learned_phi() || m.learned_v()) {
-            return Err(Error::Training(
-                "sampling: only the numerical modes (none, numerical) can seed training data"
-                    .into(),
-            ));
-        }
-        Ok(())
-    }
-
     /// Every pose `arm` visits in the numerical runs: each paper task with
     /// its canonical obstacle, and each random task, with
     /// `obstacles_per_task` obstacles uniform in the region, in every mode
@@ -198,7 +93,7 @@ impl Sampling {
             let canonical = base.obstacles.first().map(|o| o.centre);
             let mut obstacles: Vec<[f64; 2]> = canonical.into_iter().collect();
             let sweep = if k >= paper_tasks && self.obstacle_spread > 0.0 {
-                Planner::run(base.clone(), Mode::None, None).ok()
+                Planner::run(base.clone(), Method::NO_AVOIDANCE, None).ok()
             } else {
                 None
             };

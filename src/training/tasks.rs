@@ -160,7 +160,7 @@ pub fn avoidance_tasks(
     region: ([f64; 2], [f64; 2]),
     seed: u64,
 ) -> Result<Vec<Scene>> {
-    use crate::planner::{Mode, Planner};
+    use crate::planner::{Method, Planner};
     let mut rng = Rng::new(seed);
     let mut out = Vec::with_capacity(count);
     let mut draws = 0usize;
@@ -175,11 +175,11 @@ pub fn avoidance_tasks(
         let mut scene = random_task(arm, &mut rng)?;
         scene.obstacles = vec![random_obstacle(arm, region.0, region.1, &mut rng)?];
         let run = |mode| Planner::run_summary(scene.clone(), mode, None);
-        let (Ok(none), Ok(numerical)) = (run(Mode::None), run(Mode::Numerical)) else {
+        let (Ok(none), Ok(numerical)) = (run(Method::NO_AVOIDANCE), run(Method::NUMERICAL)) else {
             continue;
         };
         // Not at the start already, and hit without avoidance.
-        let start = Planner::new(scene.clone(), Mode::None, None)?;
+        let start = Planner::new(scene.clone(), Method::NO_AVOIDANCE, None)?;
         if start.sample().collision || !none.collided || !succeeded(&numerical) {
             continue;
         }
@@ -191,7 +191,7 @@ pub fn avoidance_tasks(
 /// How a mode fared on a set of tasks ([`check`]).
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Check {
-    /// Mode name.
+    /// Method name.
     pub mode: &'static str,
     /// Tasks run.
     pub tasks: usize,
@@ -209,7 +209,7 @@ pub struct Check {
 /// Runs every scene in `mode` with `networks` and counts the outcomes.
 pub fn check(
     scenes: &[Scene],
-    mode: crate::planner::Mode,
+    mode: crate::planner::Method,
     networks: Option<std::sync::Arc<dyn crate::planner::Surrogate>>,
 ) -> Check {
     use crate::planner::Planner;

@@ -10,7 +10,7 @@ use super::surface::Surface;
 use super::{input, js_err, now_ms, plots, shared_networks, stage, to_js};
 use crate::atlas::Grid;
 use crate::networks::Networks;
-use crate::planner::{Mode, Surrogate};
+use crate::planner::{Method, Surrogate};
 use crate::session::Session;
 
 /// One interactive simulation drawn on one canvas. Several can live on a page.
@@ -93,12 +93,12 @@ impl Demo {
     /// without them this throws "networks not available: ..." and the mode
     /// stays as it was.
     #[wasm_bindgen(js_name = setMode)]
-    pub fn set_mode(&mut self, mode: &str) -> JsResult {
-        let mode: Mode = mode.parse().map_err(js_err)?;
-        if (mode.learned_phi() || mode.learned_v()) && self.session.networks().is_none() {
+    pub fn set_method(&mut self, mode: &str) -> JsResult {
+        let mode: Method = mode.parse().map_err(js_err)?;
+        if mode.uses_networks() && self.session.networks().is_none() {
             self.install_shared()?;
         }
-        self.session.set_mode(mode).map_err(js_err)
+        self.session.set_method(mode).map_err(js_err)
     }
 
     /// Loads user-trained networks for this demo from the JSON text of a `Phi`

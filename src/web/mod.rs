@@ -45,7 +45,7 @@ use wasm_bindgen::JsCast;
 
 use crate::error::Error;
 use crate::networks::Networks;
-use crate::planner::Mode;
+use crate::planner::Method;
 
 #[cfg(feature = "page")]
 pub use demo::Demo;
@@ -112,7 +112,7 @@ pub fn networks_error() -> Option<String> {
 }
 
 /// The five methods, in the paper's order: `[{ name, label, description }]`
-/// (`Mode::name`, `Mode::label`, `Mode::description`), for the page's menus.
+/// (`Method::name`, `Method::label`, `Method::description`), for the page's menus.
 #[wasm_bindgen]
 pub fn modes() -> Result<JsValue, JsError> {
     #[derive(Serialize)]
@@ -121,7 +121,7 @@ pub fn modes() -> Result<JsValue, JsError> {
         label: &'static str,
         description: &'static str,
     }
-    let all: Vec<Entry> = Mode::ALL
+    let all: Vec<Entry> = methods::PAPER
         .iter()
         .map(|m| Entry {
             name: m.name(),

@@ -12,7 +12,7 @@ use super::{input, js_err, shared_networks, to_js};
 use crate::arm::Arm;
 use crate::error::Error;
 use crate::obstacle::Obstacle;
-use crate::planner::{Mode, Planner, Surrogate};
+use crate::planner::{Method, Planner, Surrogate};
 use crate::scene::PAPER_RADIUS;
 
 /// Obstacles from a flat list `[x0, y0, r0, x1, y1, r1, ...]` (plain
@@ -115,7 +115,7 @@ impl Demo {
         tf: Option<f64>,
         theta0: Option<Vec<f64>>,
     ) -> JsResult<JsValue> {
-        let mode: Mode = mode.parse().map_err(js_err)?;
+        let mode: Method = mode.parse().map_err(js_err)?;
         let mut scene = self.session.planner().scene().clone();
         if let Some(t) = target {
             let [x, y] = t[..] else {
@@ -136,7 +136,7 @@ impl Demo {
             scene.theta0 = t;
         }
         scene.validate().map_err(js_err)?;
-        let networks: Option<Arc<dyn Surrogate>> = if mode.learned_phi() || mode.learned_v() {
+        let networks: Option<Arc<dyn Surrogate>> = if mode.uses_networks() {
             match self.session.networks() {
                 Some(n) => Some(n.clone()),
                 None if self.shared_fit() => {

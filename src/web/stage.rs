@@ -34,7 +34,7 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) {
     dash(ctx, &[]);
 
     // Where the v network saw obstacles in training (network v modes).
-    if let (true, Some(r)) = (planner.mode().learned_v(), s.trained_range()) {
+    if let (true, Some(r)) = (planner.method().networks().v, s.trained_range()) {
         let (x0, y0) = view.to_px(r.obstacle_min);
         let (x1, y1) = view.to_px(r.obstacle_max);
         ctx.set_stroke_style_str(REGION);
@@ -146,7 +146,7 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) {
     let caption = format!(
         "t = {:.1} s   ·   {}",
         planner.sample().t,
-        planner.mode().title()
+        planner.method().title()
     );
     text(
         ctx,

@@ -14,7 +14,7 @@ use crate::atlas::{Grid, Job, Spec, DEFAULT_GRID};
 use crate::bench;
 use crate::error::{self, Error};
 use crate::networks::Networks;
-use crate::planner::Mode;
+use crate::planner::Method;
 use crate::scene::Scene;
 
 /// Refuses a field of `value` not in `names`: serde-wasm-bindgen reads only
@@ -37,7 +37,7 @@ fn known_fields(value: &JsValue, names: &[&str], what: &str) -> Result<(), JsErr
 /// The options of an atlas as the page passes them.
 #[derive(Deserialize)]
 struct AtlasOptions {
-    /// Mode names; all five when absent.
+    /// Method names; all five when absent.
     modes: Option<Vec<String>>,
     /// Points per side; 41 when absent.
     n: Option<f64>,
@@ -114,14 +114,14 @@ impl AtlasJob {
             }
         };
         let modes = match options.modes {
-            None => Mode::ALL.to_vec(),
+            None => methods::PAPER.to_vec(),
             Some(names) => names
                 .iter()
-                .map(|m| m.parse::<Mode>())
+                .map(|m| m.parse::<Method>())
                 .collect::<Result<Vec<_>, Error>>()
                 .map_err(js_err)?,
         };
-        let networks = if modes.iter().any(|m| m.learned_phi() || m.learned_v()) {
+        let networks = if modes.iter().any(|m| m.uses_networks()) {
             Some(Arc::new(match (phi_json, v_json) {
                 (Some(phi), Some(v)) => Networks::from_json(&phi, &v).map_err(js_err)?,
                 _ => shared_networks().map_err(|e| JsError::new(&e))?,
@@ -176,7 +176,7 @@ impl AtlasJob {
 
 const TRAIN_FIELDS: [&str; 6] = ["arm", "net", "preset", "samples", "epochs", "seed"];
 
-/// Trains networks for an arm (`crate::training::playground::train`):
+/// Trains networks for an arm (`crate::training_job::train`):
 /// `request` is `{ arm: { post, links }, net: "phi" | "v" | "both", preset:
 /// "quick" | "thorough", samples?, epochs?, seed? }`; `phi_json` and
 /// `v_json` are the weights files in use (the network not trained is kept
@@ -191,7 +191,7 @@ pub fn train_networks(
     v_json: Option<String>,
     on_epoch: &js_sys::Function,
 ) -> Result<JsValue, JsError> {
-    use crate::training::playground::{self, Request};
+    use crate::training_job::{self, Request};
     if !request.is_object() {
         return Err(JsError::new("training request: expected an object"));
     }
@@ -241,14 +241,14 @@ fn probes() -> bench::Probes<'static> {
 /// report progress between them).
 #[wasm_bindgen(js_name = benchThetaDot)]
 pub fn bench_theta_dot(mode: &str, batch_ms: f64) -> Result<f64, JsError> {
-    let mode: Mode = mode.parse().map_err(js_err)?;
+    let mode: Method = mode.parse().map_err(js_err)?;
     bench::theta_dot_ns(mode, &bench_options(batch_ms)?, &probes()).map_err(js_err)
 }
 
 /// One RK4 step of Task 1 in `mode`, sample included, in nanoseconds.
 #[wasm_bindgen(js_name = benchStep)]
 pub fn bench_step(mode: &str, batch_ms: f64) -> Result<f64, JsError> {
-    let mode: Mode = mode.parse().map_err(js_err)?;
+    let mode: Method = mode.parse().map_err(js_err)?;
     bench::step_ns(mode, &bench_options(batch_ms)?, &probes()).map_err(js_err)
 }
 

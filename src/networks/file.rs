@@ -1,6 +1,8 @@
-//! The weights file: a serde JSON document holding one trained network
-//! family (the `Phi` networks or the `v` network), how it was trained and the
-//! input range it was trained on. Schema documented in `docs/networks.md`.
+//! The weights file of the paper's networks: a serde JSON document holding
+//! one trained network family (the `Phi` networks or the `v` network), the
+//! arm, how the networks were trained (including how the samples were
+//! drawn, [`Sampling`], as plain data) and the input range they were
+//! trained on. Schema documented in `docs/networks.md`.
 
 use serde::{Deserialize, Serialize};
 
@@ -8,7 +10,7 @@ use crate::arm::Arm;
 use crate::error::{Error, Result};
 use crate::nn::lm::{LmOptions, TrainReport};
 use crate::nn::mlp::Mlp;
-use crate::training::Sampling;
+use crate::planner::Method;
 
 /// Value of the `format` field this version reads and writes.
 pub const FORMAT: &str = "redundant-ik-weights/1";
@@ -61,20 +63,10 @@ impl std::str::FromStr for Variant {
             other => Err(Error::UnknownName {
                 kind: "variant",
                 name: other.into(),
-                choices: "plain, rows or equivariant",
+                choices: "plain, rows or equivariant".into(),
             }),
         }
     }
-}
-
-/// The arm the networks were trained for.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ArmSpec {
-    /// Post height `L0` (m).
-    pub post: f64,
-    /// Link lengths `L1..Ln` (m).
-    pub links: Vec<f64>,
 }
 
 /// The box of network inputs seen in training (per-input min/max over the
@@ -143,8 +135,8 @@ pub struct WeightsFile {
     pub variant: Variant,
     /// `redundant-ik` version that wrote the file.
     pub tool_version: String,
-    /// Arm the networks were trained for.
-    pub arm: ArmSpec,
+    /// Arm the networks were trained for (checked as it is read).
+    pub arm: Arm,
     /// Range of network inputs seen in training.
     pub range: InputRange,
     /// How the networks were trained.
@@ -195,12 +187,6 @@ impl WeightsFile {
             .map_err(|e| Error::Weights(format!("cannot serialise weights: {e}")))
     }
 
-    /// The arm the file was trained for.
-    pub fn arm(&self) -> Result<Arm> {
-        Arm::new(self.arm.post, self.arm.links.clone())
-            .map_err(|e| Error::Weights(format!("arm in weights file: {e}")))
-    }
-
     /// Checks that the file is consistent: format, arm, network count and
     /// input/output counts for the kind and variant, every network's shapes
     /// and finiteness, and the range.
@@ -211,8 +197,7 @@ impl WeightsFile {
                 self.format
             )));
         }
-        let arm = self.arm()?;
-        let n = arm.dof();
+        let n = self.arm.dof();
         let (count, n_in, n_out) = shape(self.net, self.variant, n)?;
         let kind = match self.net {
             NetKind::Phi => "phi",
@@ -266,5 +251,113 @@ fn strip(e: &Error) -> String {
     match e {
         Error::Weights(m) => m.clone(),
         other => other.to_string(),
+    }
+}
+
+/// How training poses and obstacle points are drawn; stored in the weights file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Sampling {
+    /// Paper tasks whose trajectories seed the pose pool (3-link arms only).
+    pub tasks: Vec<u32>,
+    /// Random straight-line tasks inside the arm's reach that seed it too
+    /// ([`super::tasks::random_task`]); absent in files written before
+    /// arms other than the paper's could be trained, hence the default 0.
+    #[serde(default, skip_serializing_if = "is_zero_count")]
+    pub random_tasks: usize,
+    /// Modes run on each task and obstacle (`none`, `numerical`).
+    pub modes: Vec<Method>,
+    /// Obstacle positions drawn per task.
+    pub obstacles_per_task: usize,
+    /// Lower corner of the obstacle region (also the canonical obstacles are run).
+    pub obstacle_min: [f64; 2],
+    /// Upper corner of the obstacle region.
+    pub obstacle_max: [f64; 2],
+    /// Standard deviation of the Gaussian noise added to visited joint angles (rad).
+    pub theta_noise: f64,
+    /// Poses whose smallest singular value of `J` is below this are rejected (m).
+    pub sigma_floor: f64,
+    /// Share of `v` samples whose obstacle point is the one of the run the pose
+    /// came from (plus `obstacle_noise`); the rest are uniform in the region.
+    pub paired_obstacle_share: f64,
+    /// Standard deviation of the noise on paired obstacle points (m).
+    pub obstacle_noise: f64,
+    /// When positive, the obstacles of the random tasks are drawn near the
+    /// links' sweep in the no-avoidance run (a point on a link at a random
+    /// step, moved by Gaussian noise of this standard deviation, m), where
+    /// they matter, instead of uniformly in the region. Absent in older
+    /// files, hence the default 0.
+    #[serde(default, skip_serializing_if = "is_zero_length")]
+    pub obstacle_spread: f64,
+}
+
+// The paper's sampling writes neither field, so its files stay as shipped.
+fn is_zero_count(n: &usize) -> bool {
+    *n == 0
+}
+
+fn is_zero_length(x: &f64) -> bool {
+    *x == 0.0
+}
+
+impl Default for Sampling {
+    fn default() -> Self {
+        Self {
+            tasks: vec![1, 2],
+            random_tasks: 0,
+            modes: vec![Method::NO_AVOIDANCE, Method::NUMERICAL],
+            obstacles_per_task: 60,
+            obstacle_min: [0.3, 0.3],
+            obstacle_max: [0.8, 0.8],
+            theta_noise: 0.08,
+            sigma_floor: 0.2,
+            paired_obstacle_share: 0.5,
+            obstacle_noise: 0.03,
+            obstacle_spread: 0.0,
+        }
+    }
+}
+
+impl Sampling {
+    /// Checks the numbers make sense.
+    pub fn validate(&self) -> Result<()> {
+        let ok = |x: f64| x.is_finite() && x >= 0.0;
+        if !(ok(self.theta_noise)
+            && ok(self.obstacle_spread)
+            && ok(self.sigma_floor)
+            && ok(self.obstacle_noise)
+            && (0.0..=1.0).contains(&self.paired_obstacle_share))
+        {
+            return Err(Error::Training(
+                "sampling: noise, sigma floor and shares must be finite and non-negative".into(),
+            ));
+        }
+        for i in 0..2 {
+            if !(self.obstacle_min[i].is_finite()
+                && self.obstacle_max[i].is_finite()
+                && self.obstacle_min[i] <= self.obstacle_max[i])
+            {
+                return Err(Error::Training(
+                    "sampling: obstacle region must be finite with min <= max".into(),
+                ));
+            }
+        }
+        if (self.tasks.is_empty() && self.random_tasks == 0) || self.modes.is_empty() {
+            return Err(Error::Training(
+                "sampling: need at least one task and one mode".into(),
+            ));
+        }
+        if self.random_tasks > 10_000 || self.obstacles_per_task > 10_000 {
+            return Err(Error::Training(
+                "sampling: at most 10 000 random tasks and 10 000 obstacles per task".into(),
+            ));
+        }
+        if self.modes.iter().any(|m| m.uses_networks()) {
+            return Err(Error::Training(
+                "sampling: only the numerical modes (none, numerical) can seed training data"
+                    .into(),
+            ));
+        }
+        Ok(())
     }
 }

@@ -5,26 +5,35 @@
 //!
 //! The shipped weights are embedded in the build, so the command-line tool and
 //! the page need no files; users may load their own with
-//! [`Networks::from_json`]. How they were trained ([`crate::training`]), the
-//! schema and the measured accuracy are in `docs/networks.md`.
+//! [`Networks::from_json`]. The file format is [`file`]; how the networks
+//! are trained is `crate::training`; the schema and the measured accuracy
+//! are in `docs/networks.md`. Which networks a method runs with, and
+//! whether they fit the arm, is decided here, in one place ([`for_method`]).
+
+pub mod file;
+
+use std::sync::{Arc, OnceLock};
 
 use serde::{Deserialize, Serialize};
 
 use crate::arm::Arm;
 use crate::error::{Error, Result};
 use crate::kinematics::Pose;
-use crate::nn::weights::{InputRange, NetKind, Variant};
-use crate::nn::{Kernel, WeightsFile};
-use crate::planner::Surrogate;
+use crate::nn::Kernel;
+use crate::planner::{Method, Surrogate};
+
+pub use file::{
+    InputRange, NetEntry, NetKind, Sampling, Training, Variant, WeightsFile, MAX_FILE_BYTES,
+};
 
 /// Shipped `Phi` networks, paper form: one 3-35-14-6 net over `theta`.
-pub const PHI_PLAIN_JSON: &str = include_str!("../weights/phi-plain.json");
+pub const PHI_PLAIN_JSON: &str = include_str!("../../weights/phi-plain.json");
 /// Shipped `Phi` networks, paper form: three 3-35-14-2 nets, one per row of `Phi`.
-pub const PHI_ROWS_JSON: &str = include_str!("../weights/phi-rows.json");
+pub const PHI_ROWS_JSON: &str = include_str!("../../weights/phi-rows.json");
 /// Shipped `Phi` network, rotation-equivariant: 2-35-14-6 over `(theta_2, theta_3)`.
-pub const PHI_EQUIVARIANT_JSON: &str = include_str!("../weights/phi-equivariant.json");
+pub const PHI_EQUIVARIANT_JSON: &str = include_str!("../../weights/phi-equivariant.json");
 /// Shipped `v` network, paper form: 5-25-14-3 over `(theta, O)`.
-pub const V_PLAIN_JSON: &str = include_str!("../weights/v-plain.json");
+pub const V_PLAIN_JSON: &str = include_str!("../../weights/v-plain.json");
 
 /// The `Phi` variant [`Networks::embedded`] uses.
 pub const DEFAULT_PHI_VARIANT: Variant = Variant::Equivariant;
@@ -38,6 +47,56 @@ pub fn embedded_phi_json(variant: Variant) -> &'static str {
         Variant::Rows => PHI_ROWS_JSON,
         Variant::Equivariant => PHI_EQUIVARIANT_JSON,
     }
+}
+
+/// The shipped networks ([`Networks::embedded`]), loaded on first use and
+/// shared; or why they cannot load.
+pub fn builtin() -> Result<Arc<Networks>> {
+    static BUILTIN: OnceLock<Result<Arc<Networks>>> = OnceLock::new();
+    BUILTIN
+        .get_or_init(|| {
+            Networks::embedded().map(Arc::new).map_err(|e| {
+                Error::NetworksUnavailable(format!(
+                    "the built-in weights could not be loaded ({e})"
+                ))
+            })
+        })
+        .clone()
+}
+
+/// The networks `method` runs with on `arm`: none for a method without
+/// networks; else the `installed` ones if they were trained for `arm`, else
+/// the built-in ones if they were (the paper's arm). The one place that
+/// decides which networks a method uses and whether they fit: the session,
+/// the page's off-screen runs and its workers ask here.
+pub fn for_method(
+    method: Method,
+    arm: &Arm,
+    installed: Option<&Arc<Networks>>,
+) -> Result<Option<Arc<dyn Surrogate>>> {
+    if !method.uses_networks() {
+        return Ok(None);
+    }
+    Ok(Some(available(arm, installed)? as Arc<dyn Surrogate>))
+}
+
+/// The networks for `arm`: the `installed` ones if they fit it, else the
+/// built-in ones if they do; else why there are none.
+pub fn available(arm: &Arm, installed: Option<&Arc<Networks>>) -> Result<Arc<Networks>> {
+    if let Some(n) = installed.filter(|n| n.arm() == arm) {
+        return Ok(n.clone());
+    }
+    if builtin_fits(arm) {
+        return builtin();
+    }
+    Err(Error::NetworksUnavailable(
+        "the built-in ones were trained for the paper's arm, not for this one; train networks for this arm (the Training panel, or redundant-ik train) or load weights trained for it".into(),
+    ))
+}
+
+/// Whether the built-in networks were trained for `arm` (the paper's).
+pub fn builtin_fits(arm: &Arm) -> bool {
+    *arm == Arm::paper()
 }
 
 /// A `Phi` network family and a `v` network for the same arm.
@@ -95,7 +154,7 @@ impl Networks {
                 "the Phi and v files were trained for different arms".into(),
             ));
         }
-        let arm = phi.arm()?;
+        let arm = phi.arm.clone();
         let phi_kernels = phi.nets.iter().map(|e| Kernel::new(&e.mlp)).collect();
         let v_kernel = Kernel::new(&v.nets[0].mlp);
         Ok(Self {

@@ -10,10 +10,10 @@ use std::sync::Arc;
 use redundant_ik::nalgebra::DVector;
 use redundant_ik::networks::Networks;
 use redundant_ik::nn::rng::Rng;
-use redundant_ik::nn::{NetKind, Variant};
-use redundant_ik::training::playground::{self, Preset, Request, Which};
-use redundant_ik::training::{self, tasks, Sampling};
-use redundant_ik::{Arm, Error, Mode, Planner, Surrogate};
+use redundant_ik::networks::{NetKind, Sampling, Variant};
+use redundant_ik::training_job::{self, Preset, Request, Which};
+use redundant_ik::training::{self, tasks};
+use redundant_ik::{Arm, Error, Method, Planner, Surrogate};
 
 fn four_links() -> Arm {
     Arm::new(0.5, vec![0.6, 0.85, 0.6, 0.4]).unwrap()
@@ -32,7 +32,7 @@ fn random_tasks_start_above_the_ground_and_their_lines_stay_in_reach() {
             let start = joints[joints.len() - 1];
             let length = (start[0] - scene.target[0]).hypot(start[1] - scene.target[1]);
             assert!(length >= tasks::MIN_LENGTH * reach);
-            let run = Planner::run_summary(scene, Mode::None, None).unwrap();
+            let run = Planner::run_summary(scene, Method::NO_AVOIDANCE, None).unwrap();
             assert!(run.reached, "the line is reachable: {run:?}");
         }
     }
@@ -55,14 +55,14 @@ fn the_check_tasks_need_avoidance_and_the_numerical_route_manages_them() {
     assert_eq!(scenes.len(), 5);
     for scene in &scenes {
         assert_eq!(scene.obstacles.len(), 1);
-        let none = Planner::run_summary(scene.clone(), Mode::None, None).unwrap();
-        let numerical = Planner::run_summary(scene.clone(), Mode::Numerical, None).unwrap();
+        let none = Planner::run_summary(scene.clone(), Method::NO_AVOIDANCE, None).unwrap();
+        let numerical = Planner::run_summary(scene.clone(), Method::NUMERICAL, None).unwrap();
         assert!(none.collided);
         assert!(tasks::succeeded(&numerical));
     }
-    let check = tasks::check(&scenes, Mode::None, None);
+    let check = tasks::check(&scenes, Method::NO_AVOIDANCE, None);
     assert_eq!((check.tasks, check.succeeded, check.collided), (5, 0, 5));
-    let check = tasks::check(&scenes, Mode::Numerical, None);
+    let check = tasks::check(&scenes, Method::NUMERICAL, None);
     assert_eq!(check.succeeded, 5);
 }
 
@@ -118,7 +118,7 @@ fn small(arm: Arm, net: Which) -> Request {
 fn training_for_a_four_link_arm_gives_networks_the_planner_takes() {
     let arm = four_links();
     let mut epochs = Vec::new();
-    let trained = playground::train(&small(arm.clone(), Which::Both), None, |p| {
+    let trained = training_job::train(&small(arm.clone(), Which::Both), None, |p| {
         epochs.push((p.net, p.report.epoch));
         assert!(p.report.train_mse.is_finite() && p.report.val_mse.is_finite());
         true
@@ -126,7 +126,7 @@ fn training_for_a_four_link_arm_gives_networks_the_planner_takes() {
     .unwrap();
     assert!(epochs.first() == Some(&("phi", 1)));
     assert!(epochs.iter().any(|e| e.0 == "v"));
-    assert_eq!(trained.phi.arm().unwrap(), arm);
+    assert_eq!(trained.phi.arm, arm);
     assert_eq!(trained.phi.net, NetKind::Phi);
     assert_eq!(trained.v.net, NetKind::V);
     // The files round-trip through their JSON text, as the page's download does.
@@ -138,7 +138,7 @@ fn training_for_a_four_link_arm_gives_networks_the_planner_takes() {
     assert_eq!(nets.arm(), &arm);
     let scene = tasks::random_task(&arm, &mut Rng::new(1)).unwrap();
     let surrogate: Arc<dyn Surrogate> = Arc::new(nets);
-    Planner::new(scene, Mode::Case3, Some(surrogate)).unwrap();
+    Planner::new(scene, Method::CASE3, Some(surrogate)).unwrap();
     let r = &trained.report;
     assert_eq!(r.samples, 200);
     assert!(r.phi.as_ref().unwrap().epochs <= 4);
@@ -153,9 +153,9 @@ fn training_for_a_four_link_arm_gives_networks_the_planner_takes() {
         "numerical and Cases 1-3, K = 0 and 1"
     );
     for row in &r.random_tasks {
-        assert_eq!(row.check.tasks, playground::CHECK_TASKS);
+        assert_eq!(row.check.tasks, training_job::CHECK_TASKS);
         if row.check.mode == "numerical" {
-            assert_eq!(row.check.succeeded, playground::CHECK_TASKS);
+            assert_eq!(row.check.succeeded, training_job::CHECK_TASKS);
         }
     }
 }
@@ -163,14 +163,14 @@ fn training_for_a_four_link_arm_gives_networks_the_planner_takes() {
 #[test]
 fn training_one_network_keeps_the_other_and_needs_it_for_this_arm() {
     let embedded = Networks::embedded().unwrap();
-    let t = playground::train(&small(Arm::paper(), Which::V), Some(&embedded), |_| true).unwrap();
+    let t = training_job::train(&small(Arm::paper(), Which::V), Some(&embedded), |_| true).unwrap();
     assert_eq!(&t.phi, embedded.phi_file(), "Phi kept");
     assert_ne!(&t.v, embedded.v_file());
     assert!(t.report.phi.is_none() && t.report.v.is_some());
     assert_eq!(t.report.paper_tasks.len(), 6, "Cases 1-3 on Tasks 1 and 2");
     // The built-in networks are for the paper's arm, not this one.
     let err =
-        playground::train(&small(four_links(), Which::Phi), Some(&embedded), |_| true).unwrap_err();
+        training_job::train(&small(four_links(), Which::Phi), Some(&embedded), |_| true).unwrap_err();
     assert!(matches!(err, Error::Training(m) if m.contains("train both")));
 }
 
@@ -179,13 +179,13 @@ fn bad_training_requests_are_refused_with_a_reason() {
     let mut r = small(four_links(), Which::Both);
     r.samples = Some(5);
     assert!(matches!(
-        playground::train(&r, None, |_| true),
+        training_job::train(&r, None, |_| true),
         Err(Error::OutOfRange { .. })
     ));
     let mut r = small(four_links(), Which::Both);
     r.epochs = Some(0);
     assert!(matches!(r.size(), Err(Error::OutOfRange { .. })));
-    r.epochs = Some(playground::MAX_EPOCHS + 1);
+    r.epochs = Some(training_job::MAX_EPOCHS + 1);
     assert!(r.size().is_err());
     let json = r#"{"arm": {"post": 0.5, "links": [0.6, 0.6]}, "net": "both", "preset": "quick", "epoch": 3}"#;
     assert!(
@@ -197,13 +197,10 @@ fn bad_training_requests_are_refused_with_a_reason() {
         serde_json::from_str::<Request>(json).is_err(),
         "unknown network"
     );
-    // An arm that bypassed Arm::new (as JSON does) is checked again.
+    // An arm read from JSON goes through Arm::new: one link is refused there.
     let json = r#"{"arm": {"post": 0.5, "links": [0.6]}, "net": "both", "preset": "quick"}"#;
-    let r: Request = serde_json::from_str(json).unwrap();
-    assert!(matches!(
-        playground::train(&r, None, |_| true),
-        Err(Error::LinkCount { .. })
-    ));
+    let e = serde_json::from_str::<Request>(json).unwrap_err();
+    assert!(e.to_string().contains("2 to 32 links"), "{e}");
 }
 
 #[test]
@@ -211,7 +208,7 @@ fn stopping_early_keeps_what_was_learnt() {
     let mut r = small(four_links(), Which::Both);
     r.epochs = Some(50);
     let mut seen = 0;
-    let t = playground::train(&r, None, |_| {
+    let t = training_job::train(&r, None, |_| {
         seen += 1;
         seen % 3 != 0
     })
@@ -229,8 +226,8 @@ fn an_arm_without_avoidance_tasks_still_gets_its_networks_and_the_report_says_wh
     let mut request = small(arm.clone(), Which::Both);
     request.samples = Some(40);
     request.epochs = Some(1);
-    let trained = playground::train(&request, None, |_| true).unwrap();
-    assert_eq!(trained.phi.arm().unwrap(), arm);
+    let trained = training_job::train(&request, None, |_| true).unwrap();
+    assert_eq!(trained.phi.arm, arm);
     assert!(trained.report.random_tasks.is_empty());
     let note = trained.report.random_tasks_note.as_deref().unwrap();
     assert!(note.contains("where the obstacle matters"), "{note}");

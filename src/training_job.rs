@@ -1,22 +1,21 @@
-//! Training both networks for an arm in one go, as the page's Training
-//! panel and `window.demo.train()` do: presets for the size of the job, a
-//! progress event per epoch, and a report of the test errors and of how the
-//! trained networks fare on tasks (feature `eval`, which the workers' module
-//! and the command-line tool carry).
+//! A training job: both networks for an arm in one go, as the page's
+//! Training panel and `window.demo.train()` run it: presets for the size
+//! of the job, a progress event per epoch, and a report of the test errors
+//! and of how the trained networks fare on tasks. It sits above both
+//! [`crate::training`] and [`crate::evaluation`] (feature `eval`, which the
+//! workers' module and the command-line tool carry).
 
 use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
 
-use super::{tasks, train_weights, TrainSpec};
 use crate::arm::Arm;
 use crate::error::{within, Error, Result};
 use crate::evaluation::{self, ErrorStats};
-use crate::networks::{Networks, DEFAULT_PHI_VARIANT, DEFAULT_V_VARIANT};
+use crate::networks::{NetKind, Networks, WeightsFile, DEFAULT_PHI_VARIANT, DEFAULT_V_VARIANT};
 use crate::nn::lm::EpochReport;
-use crate::nn::weights::NetKind;
-use crate::nn::WeightsFile;
-use crate::planner::{Mode, Surrogate};
+use crate::planner::{Method, Surrogate};
+use crate::training::{tasks, train_weights, TrainSpec};
 
 /// How big a training job is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -289,7 +288,7 @@ pub fn assess(nets: &Networks, samples: usize) -> Result<Report> {
     let mut paper_tasks = Vec::new();
     if *arm == Arm::paper() {
         for task in [1, 2] {
-            for mode in [Mode::Case1, Mode::Case2, Mode::Case3] {
+            for mode in [Method::CASE1, Method::CASE2, Method::CASE3] {
                 paper_tasks.push(evaluation::run_task(nets, task, mode, None, 0.0)?);
             }
         }
@@ -316,7 +315,7 @@ pub fn assess(nets: &Networks, samples: usize) -> Result<Report> {
                 s
             })
             .collect();
-        for mode in [Mode::Numerical, Mode::Case1, Mode::Case2, Mode::Case3] {
+        for mode in [Method::NUMERICAL, Method::CASE1, Method::CASE2, Method::CASE3] {
             random_tasks.push(CheckRow {
                 feedback,
                 check: tasks::check(&scenes, mode, Some(surrogate.clone())),

@@ -1,0 +1,154 @@
+//! The classical fourth-order Runge-Kutta step (section V, step e) and the
+//! rate evaluations it makes through the method's rule.
+
+use nalgebra::{DVector, Matrix2xX, Vector2};
+
+use super::methods::{Context, Note};
+use super::Planner;
+use crate::error::{Error, Result};
+use crate::kinematics::Pose;
+
+impl Planner {
+    /// Damping `delta` in force at Jacobian `j`: the constant `delta` plus the
+    /// schedule's share.
+    pub fn delta_at(&self, j: &Matrix2xX<f64>) -> f64 {
+        self.scene.delta + self.scene.damping.map_or(0.0, |d| d.delta(j))
+    }
+
+    fn context(&self) -> Context<'_> {
+        Context {
+            scene: &self.scene,
+            networks: self.networks.as_deref(),
+        }
+    }
+
+    /// Null-space vector `v` at `theta` with the current method (zero
+    /// without avoidance). A convenience that allocates; the step uses a
+    /// workspace. Refused for a method without a null-space vector.
+    pub fn null_space(&self, theta: &DVector<f64>) -> Result<DVector<f64>> {
+        let n = self.scene.arm.dof();
+        let pose = Pose::new(&self.scene.arm, theta.as_slice())?;
+        let mut v = DVector::zeros(n);
+        let mut rule = self.method.rule(n);
+        if rule.null_space(&self.context(), &pose, v.as_mut_slice())? {
+            Ok(v)
+        } else {
+            Err(Error::NoNullSpace {
+                method: self.method.name(),
+            })
+        }
+    }
+
+    /// Joint rates `theta_dot(theta)` for task velocity `xdot` with the
+    /// current method. A convenience that allocates; see
+    /// [`Planner::theta_dot_into`].
+    pub fn theta_dot(&self, theta: &DVector<f64>, xdot: &Vector2<f64>) -> Result<DVector<f64>> {
+        let n = self.scene.arm.dof();
+        let pose = Pose::new(&self.scene.arm, theta.as_slice())?;
+        let mut out = DVector::zeros(n);
+        let mut rule = self.method.rule(n);
+        rule.theta_dot(
+            &self.context(),
+            &pose,
+            [xdot[0], xdot[1]],
+            out.as_mut_slice(),
+        )?;
+        Ok(out)
+    }
+
+    /// [`Planner::theta_dot`] into `out` (`n` entries) through the planner's
+    /// workspace: one kinematics pass and no allocation. `theta` must have
+    /// `n` entries; it is not checked for finiteness (NaN gives NaN rates).
+    pub fn theta_dot_into(&mut self, theta: &[f64], xdot: [f64; 2], out: &mut [f64]) -> Result<()> {
+        let Self {
+            scene,
+            networks,
+            ws,
+            ..
+        } = self;
+        ws.stage.update(&scene.arm, theta)?;
+        let cx = Context {
+            scene,
+            networks: networks.as_deref(),
+        };
+        ws.rule.theta_dot(&cx, &ws.stage, xdot, out)?;
+        Ok(())
+    }
+
+    /// One classical RK4 step of size `dt` (section V, step e), then the new
+    /// sample, which the planner keeps (see [`Planner::sample`]). On error
+    /// the state is left unchanged. Allocation-free.
+    pub fn step(&mut self) -> Result<&super::Sample> {
+        let h = self.scene.dt;
+        let t = self.t;
+        let line_xdot = self.line.velocity_at(t + 0.5 * h);
+        let Self {
+            scene,
+            networks,
+            theta,
+            line,
+            ws,
+            ..
+        } = self;
+        let cx = Context {
+            scene,
+            networks: networks.as_deref(),
+        };
+        let theta = theta.as_slice();
+        let gain = scene.feedback_gain;
+        // The commanded task velocity at a stage: the line's Xdot plus, when
+        // K > 0, K (X_ref(t) - X(theta)).
+        let xdot = |tt: f64, pose: &Pose| -> [f64; 2] {
+            if gain > 0.0 {
+                let r = line.reference(tt);
+                let x = pose.end_effector();
+                [
+                    line_xdot[0] + gain * (r[0] - x[0]),
+                    line_xdot[1] + gain * (r[1] - x[1]),
+                ]
+            } else {
+                [line_xdot[0], line_xdot[1]]
+            }
+        };
+        let [k1, k2, k3, k4] = &mut ws.k;
+        // Stage 1 reads the kinematics of the current state, computed when
+        // the previous step ended.
+        let Note { mut handover } = ws.rule.theta_dot(&cx, &ws.pose, xdot(t, &ws.pose), k1)?;
+        for (stage, (c, tt)) in [(0.5 * h, t + 0.5 * h), (0.5 * h, t + 0.5 * h), (h, t + h)]
+            .into_iter()
+            .enumerate()
+        {
+            let (prev, out): (&[f64], &mut [f64]) = match stage {
+                0 => (&k1[..], &mut k2[..]),
+                1 => (&k2[..], &mut k3[..]),
+                _ => (&k3[..], &mut k4[..]),
+            };
+            for ((s, th), k) in ws.theta_stage.iter_mut().zip(theta).zip(prev) {
+                *s = th + c * k;
+            }
+            ws.stage.update(&scene.arm, &ws.theta_stage)?;
+            let note = ws
+                .rule
+                .theta_dot(&cx, &ws.stage, xdot(tt, &ws.stage), out)?;
+            handover |= note.handover;
+        }
+        let w = h / 6.0;
+        let mut finite = true;
+        for (i, next) in ws.next.iter_mut().enumerate() {
+            *next = theta[i] + w * (((k1[i] + 2.0 * k2[i]) + 2.0 * k3[i]) + k4[i]);
+            // Also false for NaN: a runaway angle is refused like a non-finite one.
+            finite &= next.abs() <= crate::arm::MAX_ANGLE;
+        }
+        if !finite {
+            return Err(Error::Diverged { t });
+        }
+        self.theta.copy_from_slice(&self.ws.next);
+        self.ws.pose.update(&self.scene.arm, &self.ws.next)?;
+        self.step_index += 1;
+        self.t = self.step_index as f64 * h;
+        self.refresh_sample(handover);
+        self.stats.record(&self.sample);
+        self.stats.steps += 1;
+        Ok(&self.sample)
+    }
+}

@@ -1,0 +1,336 @@
+//! The redundancy-resolution methods, one file each (as mink keeps one file
+//! per task and per limit): what each computes for a pose, and what the
+//! planner, the command line, the page, the atlas, the benchmark and the
+//! tests need to know of it.
+//!
+//! A method is a [`Method`]: a handle on its [`MethodInfo`] (name, label,
+//! description, paper figures, the networks it needs, its colour, the
+//! parameters it reads) and on its [`Rule`], which writes the joint rates of
+//! a pose into a slice the planner owns. A planner builds the method's rule
+//! once ([`Method::rule`]) and calls it at every RK4 stage; the rule owns
+//! its scratch space, so a step allocates nothing.
+//!
+//! **Adding a method** is one new file here that defines its `Method`
+//! constant, and its line in [`register!`](self) below. Everything that
+//! lists methods reads [`ALL`] (every method) or [`PAPER`] (the five of the
+//! paper's section VI, which the published tables default to, so they do
+//! not change when a method is added).
+
+mod area;
+mod route;
+
+use std::fmt;
+use std::hash::{Hash, Hasher};
+use std::str::FromStr;
+
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+use super::Surrogate;
+use crate::error::{Error, Result};
+use crate::kinematics::Pose;
+use crate::scene::{Param, Scene};
+
+/// One line per method, in the order of the menus: declares the method's
+/// module and puts its constant into [`ALL`].
+macro_rules! register {
+    ($($module:ident :: $method:ident),+ $(,)?) => {
+        $(mod $module; pub use $module::$method;)+
+        /// Every method, in the order of the menus.
+        pub const ALL: &[Method] = &[$($method),+];
+    };
+}
+
+register! {
+    none::NO_AVOIDANCE,
+    numerical::NUMERICAL,
+    case1::CASE1,
+    case2::CASE2,
+    case3::CASE3,
+}
+
+/// The five methods of the paper's section VI, in its order (Figs. 2-6 and
+/// 7-11). The atlas, `bench` and `eval` default to these.
+pub const PAPER: [Method; 5] = [NO_AVOIDANCE, NUMERICAL, CASE1, CASE2, CASE3];
+
+/// Where a method comes from, for the grouped menus.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Group {
+    /// The five methods of the paper's section VI.
+    Paper,
+    /// Methods the field uses today, on the same scenes.
+    Beyond,
+}
+
+/// Which of the paper's networks a method runs (section V).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct Needs {
+    /// The `Phi` network (eq. 19).
+    pub phi: bool,
+    /// The `v` network (eqs. 14-15).
+    pub v: bool,
+}
+
+impl Needs {
+    /// No network: the method is computed exactly.
+    pub const NOTHING: Needs = Needs {
+        phi: false,
+        v: false,
+    };
+
+    /// Whether any network is needed.
+    pub fn any(self) -> bool {
+        self.phi || self.v
+    }
+}
+
+/// What a method is, for people and for the code that lists methods.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct MethodInfo {
+    /// The name on the command line, in URLs, weights files and JSON.
+    pub name: &'static str,
+    /// The name people read in menus and legends (the paper's terms).
+    pub label: &'static str,
+    /// What the method computes, in one line.
+    pub description: &'static str,
+    /// The paper's group, or beyond it.
+    pub group: Group,
+    /// The paper's figures of Task 1 and Task 2 with this method, if any.
+    pub paper_figures: Option<[u32; 2]>,
+    /// The networks it needs.
+    pub networks: Needs,
+    /// Whether it avoids obstacles at all.
+    pub avoids: bool,
+    /// Its colour in comparison figures and tables, `#rrggbb`.
+    pub colour: &'static str,
+    /// The scene's parameters it reads.
+    pub params: &'static [Param],
+}
+
+/// What a method's rule reads besides the pose: the scene (arm,
+/// obstacles, gains) and the learned replacements, if any.
+#[derive(Clone, Copy)]
+pub struct Context<'a> {
+    /// The scene, with its current target, obstacles and gains.
+    pub scene: &'a Scene,
+    /// The trained networks, if loaded.
+    pub networks: Option<&'a dyn Surrogate>,
+}
+
+impl Context<'_> {
+    /// The networks, or why `method` cannot run without them.
+    pub fn networks_for(&self, method: Method) -> Result<&dyn Surrogate> {
+        self.networks.ok_or_else(|| {
+            Error::NetworksUnavailable(format!("mode {method} needs trained networks"))
+        })
+    }
+
+    /// The damping `delta` of the schedule at `pose` (zero when it is off):
+    /// what is added to the scene's constant `delta` near singular poses.
+    #[inline]
+    pub fn scheduled_delta(&self, pose: &Pose) -> f64 {
+        self.scene
+            .damping
+            .map_or(0.0, |d| d.delta_at_sigma(pose.sigma_min()))
+    }
+}
+
+/// What a rate evaluation tells the planner besides the rates.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Note {
+    /// The exact damped `Phi` (eq. 20) stood in for the `Phi` network: the
+    /// damping schedule was active at a near-singular pose, where `Phi` is
+    /// unbounded and no network fits it.
+    pub handover: bool,
+}
+
+/// A method's computation for one planner: the joint rates of a pose,
+/// written into a slice the planner owns, with no allocation (the rule owns
+/// its scratch space, sized for the arm when it is built).
+pub trait Rule: Send + Sync {
+    /// Joint rates `theta_dot` at `pose` for the commanded task velocity
+    /// `xdot` (the line's, plus the feedback term) into `out` (`n` entries).
+    fn theta_dot(
+        &mut self,
+        cx: &Context<'_>,
+        pose: &Pose,
+        xdot: [f64; 2],
+        out: &mut [f64],
+    ) -> Result<Note>;
+
+    /// The null-space vector `v` of eq. (5) at `pose` into `v` (`n`
+    /// entries); `false` (and `v` untouched) for a method without one.
+    fn null_space(&mut self, cx: &Context<'_>, pose: &Pose, v: &mut [f64]) -> Result<bool> {
+        let _ = (cx, pose, v);
+        Ok(false)
+    }
+
+    /// A copy with its own scratch space (a cloned planner steps on its own).
+    fn boxed_clone(&self) -> Box<dyn Rule>;
+}
+
+impl Clone for Box<dyn Rule> {
+    fn clone(&self) -> Self {
+        self.boxed_clone()
+    }
+}
+
+/// A method's registration: its description and how to build its rule for
+/// an arm of `n` joints.
+pub struct Entry {
+    /// What the method is.
+    pub info: MethodInfo,
+    /// Builds the rule for an `n`-joint arm.
+    pub rule: fn(n: usize) -> Box<dyn Rule>,
+}
+
+/// A redundancy-resolution method: a handle on its registration.
+/// Compared, hashed and serialised by name.
+#[derive(Clone, Copy)]
+pub struct Method(&'static Entry);
+
+impl Method {
+    /// The paper's methods by name: no avoidance (`none`).
+    pub const NO_AVOIDANCE: Method = NO_AVOIDANCE;
+    /// The numerical route (`numerical`).
+    pub const NUMERICAL: Method = NUMERICAL;
+    /// Case 1 (`case1`): `Phi` by a network.
+    pub const CASE1: Method = CASE1;
+    /// Case 2 (`case2`): `v` by a network.
+    pub const CASE2: Method = CASE2;
+    /// Case 3 (`case3`): both by networks.
+    pub const CASE3: Method = CASE3;
+
+    /// The method registered by `entry` (each method file declares its
+    /// constant with this).
+    pub const fn new(entry: &'static Entry) -> Self {
+        Method(entry)
+    }
+
+    /// Its description.
+    pub fn info(self) -> &'static MethodInfo {
+        &self.0.info
+    }
+
+    /// The name used on the command line, in JSON and in the page.
+    pub fn name(self) -> &'static str {
+        self.0.info.name
+    }
+
+    /// The name people read in menus and legends.
+    pub fn label(self) -> &'static str {
+        self.0.info.label
+    }
+
+    /// What the method computes, in one line.
+    pub fn description(self) -> &'static str {
+        self.0.info.description
+    }
+
+    /// `label: description`, for titles and captions.
+    pub fn title(self) -> String {
+        format!("{}: {}", self.label(), self.description())
+    }
+
+    /// The networks it needs.
+    pub fn networks(self) -> Needs {
+        self.0.info.networks
+    }
+
+    /// Whether it needs any trained network.
+    pub fn uses_networks(self) -> bool {
+        self.0.info.networks.any()
+    }
+
+    /// Whether it avoids obstacles at all.
+    pub fn avoids(self) -> bool {
+        self.0.info.avoids
+    }
+
+    /// The paper's figure of this method on `task` (1 or 2), if it has one.
+    pub fn paper_figure(self, task: u32) -> Option<u32> {
+        let figs = self.0.info.paper_figures?;
+        match task {
+            1 => Some(figs[0]),
+            2 => Some(figs[1]),
+            _ => None,
+        }
+    }
+
+    /// Its rule for an `n`-joint arm, with its scratch space.
+    pub fn rule(self, n: usize) -> Box<dyn Rule> {
+        (self.0.rule)(n)
+    }
+
+    /// The names of [`ALL`], for messages: `"none, numerical, ... or case3"`.
+    pub fn names() -> String {
+        let names: Vec<_> = ALL.iter().map(|m| m.name()).collect();
+        match names.split_last() {
+            Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+            _ => names.join(""),
+        }
+    }
+
+    /// A list of method names separated by commas, or `all` (every
+    /// method) or `paper` (the paper's five).
+    pub fn parse_list(text: &str) -> Result<Vec<Method>> {
+        match text.trim() {
+            "all" => Ok(ALL.to_vec()),
+            "paper" => Ok(PAPER.to_vec()),
+            list => list.split(',').map(|m| m.trim().parse()).collect(),
+        }
+    }
+}
+
+impl PartialEq for Method {
+    fn eq(&self, other: &Self) -> bool {
+        self.name() == other.name()
+    }
+}
+
+impl Eq for Method {}
+
+impl Hash for Method {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        self.name().hash(state);
+    }
+}
+
+impl fmt::Debug for Method {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl fmt::Display for Method {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Method {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        ALL.iter()
+            .copied()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| Error::UnknownName {
+                kind: "mode",
+                name: s.into(),
+                choices: Method::names(),
+            })
+    }
+}
+
+impl Serialize for Method {
+    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
+    }
+}
+
+impl<'de> Deserialize<'de> for Method {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        let name = String::deserialize(d)?;
+        name.parse().map_err(serde::de::Error::custom)
+    }
+}

@@ -1,0 +1,106 @@
+//! What is observed of a planner's state: the sample after each step (and
+//! after each change of setting), whether the networks in use see inputs
+//! in their trained range, and the summary of the run so far.
+
+use super::{Method, Planner, Sample, Summary, Surrogate, REACH_TOLERANCE};
+use crate::kinematics::Pose;
+use crate::obstacle::Obstacle;
+
+impl Planner {
+    /// The current state: the start, or the result of the last step. Kept up
+    /// to date by the planner (no copy, no allocation).
+    pub fn sample(&self) -> &Sample {
+        &self.sample
+    }
+
+    /// Refreshes the sample after a change of setting (same state, same step).
+    pub(super) fn resample(&mut self) {
+        self.refresh_sample(self.sample.phi_handover);
+    }
+
+    /// Rewrites the sample in place from the current pose.
+    pub(super) fn refresh_sample(&mut self, phi_handover: bool) {
+        let pose = &self.ws.pose;
+        let s = &mut self.sample;
+        let ee = pose.end_effector();
+        let reference = self.line.reference(self.t);
+        s.t = self.t;
+        s.theta.copy_from_slice(pose.theta());
+        s.joints.copy_from_slice(pose.joints());
+        s.ee = ee;
+        s.reference = [reference[0], reference[1]];
+        s.tracking_error = distance(ee, [reference[0], reference[1]]);
+        s.distance = None;
+        s.collision = false;
+        for ob in &self.scene.obstacles {
+            let d = pose.clearance(ob.centre);
+            s.collision |= d < ob.radius;
+            s.distance = Some(s.distance.map_or(d, |m| m.min(d)));
+        }
+        s.delta = self.scene.delta
+            + self
+                .scene
+                .damping
+                .map_or(0.0, |d| d.delta_at_sigma(pose.sigma_min()));
+        s.manipulability = pose.manipulability();
+        s.in_range = in_range(
+            self.method,
+            self.networks.as_deref(),
+            pose,
+            &self.scene.obstacles,
+        );
+        s.phi_handover = phi_handover;
+    }
+
+    /// Whether the networks the current method uses see inputs inside
+    /// their trained range (true for methods without networks).
+    pub fn in_range(&self) -> bool {
+        self.sample.in_range
+    }
+
+    /// Outcome since the last reset.
+    pub fn summary(&self) -> Summary {
+        let x = self.ws.pose.end_effector();
+        let target = self.scene.target;
+        let final_error = distance(x, target);
+        Summary {
+            method: self.method,
+            steps: self.stats.steps,
+            t: self.t,
+            min_distance: self.stats.min_distance,
+            collided: self.stats.collided,
+            final_error,
+            max_tracking_error: self.stats.max_tracking_error,
+            reached: final_error <= REACH_TOLERANCE,
+            target_reachable: self.scene.arm.can_reach(&self.scene.target_vector()),
+            out_of_range_steps: self.stats.out_of_range_steps,
+            max_delta: self.stats.max_delta,
+            auto_damping: self.auto_damping,
+            handover_steps: self.stats.handover_steps,
+        }
+    }
+}
+
+/// Euclidean distance between two points.
+#[inline]
+fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (dx, dy) = (a[0] - b[0], a[1] - b[1]);
+    (dx * dx + dy * dy).sqrt()
+}
+
+/// Whether the networks `method` uses see `pose` (and every obstacle)
+/// inside their trained range.
+fn in_range(
+    method: Method,
+    networks: Option<&dyn Surrogate>,
+    pose: &Pose,
+    obstacles: &[Obstacle],
+) -> bool {
+    let Some(nets) = networks else {
+        return true;
+    };
+    let needs = method.networks();
+    let phi_ok = !needs.phi || nets.phi_in_range(pose);
+    let v_ok = !needs.v || obstacles.iter().all(|ob| nets.v_in_range(pose, ob.centre));
+    phi_ok && v_ok
+}

@@ -1,0 +1,126 @@
+//! What changes a planner between steps: the method, the networks, the
+//! target (a new line), the obstacles and the gains. Each setting is
+//! checked first; a refused one changes nothing.
+
+use std::sync::Arc;
+
+use super::{check_networks, needs_auto_damping, Line, Method, Planner, Surrogate};
+use crate::error::{coordinate, positive, Error, Result};
+use crate::ik::DampingSchedule;
+use crate::obstacle::Obstacle;
+use crate::scene::{self, Param};
+
+impl Planner {
+    /// Switches method; methods that use networks need them. The new
+    /// method's rule is built here (its scratch space allocated once).
+    pub fn set_method(&mut self, method: Method) -> Result<()> {
+        check_networks(method, &self.networks, &self.scene.arm)?;
+        if method != self.method {
+            self.ws.rule = method.rule(self.scene.arm.dof());
+        }
+        self.method = method;
+        self.resample();
+        Ok(())
+    }
+
+    /// Installs (or removes) the trained networks. Networks trained for
+    /// another arm are refused ([`Error::NetworksForAnotherArm`]).
+    pub fn set_networks(&mut self, networks: Option<Arc<dyn Surrogate>>) -> Result<()> {
+        check_networks(self.method, &networks, &self.scene.arm)?;
+        self.networks = networks;
+        self.resample();
+        Ok(())
+    }
+
+    /// Re-plans: a new straight line from the current end effector to `target`,
+    /// starting now and lasting `duration` seconds (rounded up to whole steps).
+    pub fn set_target(&mut self, target: [f64; 2], duration: f64) -> Result<()> {
+        coordinate("target x", target[0])?;
+        coordinate("target y", target[1])?;
+        positive("line duration", duration)?;
+        let steps = (duration / self.scene.dt - 1e-9).ceil().max(1.0);
+        self.scene.target = target;
+        if needs_auto_damping(&self.scene) {
+            self.scene.damping = Some(DampingSchedule::default());
+            self.auto_damping = true;
+        }
+        self.line = Line::new(
+            self.ws.pose.end_effector(),
+            target,
+            self.t,
+            steps * self.scene.dt,
+        );
+        self.resample();
+        Ok(())
+    }
+
+    /// Replaces the obstacles; takes effect at the next step.
+    pub fn set_obstacles(&mut self, obstacles: Vec<Obstacle>) -> Result<()> {
+        for ob in &obstacles {
+            ob.validate(&self.scene.arm)?;
+        }
+        self.scene.obstacles = obstacles;
+        self.resample();
+        Ok(())
+    }
+
+    /// Moves obstacle `index` to `centre`, keeping its radius; takes effect
+    /// at the next step. Allocation-free (what an atlas of thousands of runs
+    /// needs). Refused, leaving everything as it was, if the disc would
+    /// overlap the base post or `index` names no obstacle.
+    pub fn move_obstacle(&mut self, index: usize, centre: [f64; 2]) -> Result<()> {
+        let count = self.scene.obstacles.len();
+        let Some(ob) = self.scene.obstacles.get(index) else {
+            return Err(Error::OutOfRange {
+                what: "obstacle index".into(),
+                value: index as f64,
+                min: 0.0,
+                max: count as f64 - 1.0,
+            });
+        };
+        let moved = Obstacle {
+            centre,
+            radius: ob.radius,
+        };
+        moved.validate(&self.scene.arm)?;
+        self.scene.obstacles[index] = moved;
+        self.resample();
+        Ok(())
+    }
+
+    /// Sets a parameter of the methods ([`Param`]); refused, changing
+    /// nothing, when out of its bounds.
+    pub fn set_param(&mut self, param: Param, value: f64) -> Result<()> {
+        param.set(&mut self.scene, value)?;
+        self.resample();
+        Ok(())
+    }
+
+    /// Sets `lambda`, the gain of the obstacle vector.
+    pub fn set_lambda(&mut self, lambda: f64) -> Result<()> {
+        self.set_param(Param::Lambda, lambda)
+    }
+
+    /// Sets the constant damping `delta` (eqs. 6, 17, 20). In Cases 1 and 3
+    /// it damps the network's `Phi` through [`crate::ik::damp_phi`].
+    pub fn set_delta(&mut self, delta: f64) -> Result<()> {
+        self.set_param(Param::Delta, delta)
+    }
+
+    /// Switches the damping schedule on (`Some`) or off (`None`).
+    pub fn set_damping(&mut self, damping: Option<DampingSchedule>) -> Result<()> {
+        if let Some(d) = &damping {
+            d.validate()?;
+        }
+        self.scene.damping = damping;
+        self.resample();
+        Ok(())
+    }
+
+    /// Sets the closed-loop gain `K` (0 = open loop, as in the paper).
+    pub fn set_feedback_gain(&mut self, gain: f64) -> Result<()> {
+        scene::validate_gain(gain, self.scene.dt)?;
+        self.scene.feedback_gain = gain;
+        Ok(())
+    }
+}

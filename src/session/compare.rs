@@ -1,0 +1,53 @@
+//! Runs off screen: the current scene (or a variant of it) from `t = 0`
+//! with any method, and the comparison of every method on it. The
+//! networks come from [`crate::networks::for_method`], as on screen.
+
+use serde::Serialize;
+
+use super::Session;
+use crate::error::Result;
+use crate::networks;
+use crate::planner::{methods, Method, Planner, Summary};
+use crate::scene::Scene;
+
+/// One method's run of the current scene, for the comparison table.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MethodRun {
+    /// Method name.
+    pub mode: &'static str,
+    /// Method label ([`Method::label`]).
+    pub label: &'static str,
+    /// The outcome, if the run went through.
+    pub summary: Option<Summary>,
+    /// Why it did not.
+    pub error: Option<String>,
+}
+
+impl Session {
+    /// Runs `scene` from `t = 0` to its final time with `method`, off
+    /// screen, with the networks the session would use for it.
+    pub fn run_offscreen(&self, scene: Scene, method: Method) -> Result<Summary> {
+        let nets = networks::for_method(method, &scene.arm, self.installed())?;
+        Planner::run_summary(scene, method, nets)
+    }
+
+    /// Runs the current scene from `t = 0` with every method, off screen.
+    pub fn compare_methods(&self) -> Vec<MethodRun> {
+        let scene = self.planner().scene();
+        methods::ALL
+            .iter()
+            .map(|&m| {
+                let (summary, error) = match self.run_offscreen(scene.clone(), m) {
+                    Ok(s) => (Some(s), None),
+                    Err(e) => (None, Some(e.to_string())),
+                };
+                MethodRun {
+                    mode: m.name(),
+                    label: m.label(),
+                    summary,
+                    error,
+                }
+            })
+            .collect()
+    }
+}
