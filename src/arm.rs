@@ -167,9 +167,10 @@ impl FromStr for Arm {
             text: text.to_string(),
             expected,
         };
-        let (post, links) = text.trim().split_once(':').ok_or_else(|| {
-            syntax("expected POST:L1,L2,... (e.g. 0.5:0.6,0.85,0.6)".into())
-        })?;
+        let (post, links) = text
+            .trim()
+            .split_once(':')
+            .ok_or_else(|| syntax("expected POST:L1,L2,... (e.g. 0.5:0.6,0.85,0.6)".into()))?;
         let post = number(post).map_err(&syntax)?;
         let links = number_list(links).map_err(&syntax)?;
         Arm::new(post, links).map_err(|e| syntax(e.to_string()))

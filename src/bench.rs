@@ -17,14 +17,19 @@ use crate::atlas;
 use crate::error::{Error, Result};
 use crate::nalgebra::Vector2;
 use crate::networks::Networks;
+use crate::networks::{Sampling, Variant};
 use crate::nn::lm::{LmOptions, LmTrainer};
 use crate::nn::mlp::{MapMinMax, Mlp};
-use crate::networks::{Sampling, Variant};
 use crate::nn::Rng;
 use crate::planner::{methods, Method, Planner, Surrogate};
 use crate::scene::Scene;
 use crate::training;
 use crate::Arm;
+
+/// The verdict's pair: the learned route (both networks, Case 3) and the
+/// exact route it imitates (the numerical one). The README's and the
+/// page's "the networks are slower" compares their step times.
+pub const VERDICT: [Method; 2] = [methods::CASE3, methods::NUMERICAL];
 
 /// What to measure and how long.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

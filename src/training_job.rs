@@ -315,7 +315,12 @@ pub fn assess(nets: &Networks, samples: usize) -> Result<Report> {
                 s
             })
             .collect();
-        for mode in [Method::NUMERICAL, Method::CASE1, Method::CASE2, Method::CASE3] {
+        for mode in [
+            Method::NUMERICAL,
+            Method::CASE1,
+            Method::CASE2,
+            Method::CASE3,
+        ] {
             random_tasks.push(CheckRow {
                 feedback,
                 check: tasks::check(&scenes, mode, Some(surrogate.clone())),

@@ -12,8 +12,8 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 use std::sync::Arc;
 
-use redundant_ik::planner::methods;
 use redundant_ik::networks::Networks;
+use redundant_ik::planner::methods;
 use redundant_ik::{Arm, DampingSchedule, Method, Obstacle, Planner, Scene, Surrogate};
 
 thread_local! {

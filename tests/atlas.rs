@@ -9,9 +9,9 @@ wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 
 use std::sync::{Arc, OnceLock};
 
-use redundant_ik::planner::methods;
 use redundant_ik::atlas::{Atlas, Class, Grid, Job, Spec, DEFAULT_GRID, MAX_GRID};
 use redundant_ik::networks::Networks;
+use redundant_ik::planner::methods;
 use redundant_ik::{Arm, Error, Method, Planner, Scene};
 
 fn nets() -> Arc<Networks> {
@@ -35,7 +35,11 @@ fn spec(task: u32, region: [f64; 4], n: usize, modes: &[Method]) -> Spec {
 fn small() -> &'static Atlas {
     static ATLAS: OnceLock<Atlas> = OnceLock::new();
     ATLAS.get_or_init(|| {
-        Atlas::run(spec(1, [0.1, 1.3, 0.1, 1.3], 7, &methods::PAPER), Some(nets())).unwrap()
+        Atlas::run(
+            spec(1, [0.1, 1.3, 0.1, 1.3], 7, &methods::PAPER),
+            Some(nets()),
+        )
+        .unwrap()
     })
 }
 
@@ -127,7 +131,11 @@ fn a_cell_on_the_line_is_path_blocked_and_one_on_the_start_arm_is_start_overlap(
         }
     }
     // The post counts as the start arm too.
-    let a = Atlas::run(spec(1, [-0.3, 0.3, 0.0, 0.6], 3, &[Method::NO_AVOIDANCE]), None).unwrap();
+    let a = Atlas::run(
+        spec(1, [-0.3, 0.3, 0.0, 0.6], 3, &[Method::NO_AVOIDANCE]),
+        None,
+    )
+    .unwrap();
     assert_eq!(a.cells[4].outcomes[0].class, Class::StartOverlap);
 }
 
@@ -199,7 +207,11 @@ fn classes_mean_what_they_say() {
 #[test]
 fn summaries_count_every_cell_and_rate_the_avoidable_ones() {
     let a = small();
-    let numerical = a.modes.iter().position(|&m| m == Method::NUMERICAL).unwrap();
+    let numerical = a
+        .modes
+        .iter()
+        .position(|&m| m == Method::NUMERICAL)
+        .unwrap();
     for (k, s) in a.summary.iter().enumerate() {
         assert_eq!(s.mode, a.modes[k]);
         assert_eq!(s.counts.iter().sum::<usize>(), a.cells.len());
@@ -304,7 +316,12 @@ fn the_json_has_the_documented_shape() {
 
 #[test]
 fn a_job_in_chunks_and_across_threads_equals_the_whole_run() {
-    let s = spec(2, [0.0, 1.6, 0.0, 1.6], 6, &[Method::NUMERICAL, Method::CASE3]);
+    let s = spec(
+        2,
+        [0.0, 1.6, 0.0, 1.6],
+        6,
+        &[Method::NUMERICAL, Method::CASE3],
+    );
     let whole = Atlas::run(s.clone(), Some(nets())).unwrap();
     let mut job = Job::new(s.clone(), Some(nets())).unwrap();
     assert_eq!((job.done(), job.total()), (0, 36));

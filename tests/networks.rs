@@ -14,15 +14,15 @@ wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 use std::f64::consts::PI;
 use std::sync::Arc;
 
-use redundant_ik::planner::methods;
 use redundant_ik::evaluation::{self, ErrorStats, GENERALISATION_SCENES};
 use redundant_ik::nalgebra::{DVector, Vector2};
 use redundant_ik::networks::{self, Networks};
+use redundant_ik::networks::{NetKind, Variant, WeightsFile};
 use redundant_ik::nn::activation::tansig;
 use redundant_ik::nn::lm::{self, Dataset, LmOptions};
 use redundant_ik::nn::mlp::{Activations, Layer, MapMinMax, Mlp};
-use redundant_ik::networks::{NetKind, Variant, WeightsFile};
 use redundant_ik::nn::{Kernel, Rng};
+use redundant_ik::planner::methods;
 use redundant_ik::{ik, Arm, Error, Method, Planner, Pose, Scene, Surrogate};
 
 fn tiny() -> Mlp {

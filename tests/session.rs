@@ -18,7 +18,8 @@ use redundant_ik::{Arm, Error, Method, Obstacle};
 
 fn with_networks(task: u32) -> Session {
     let mut s = Session::new(task).unwrap();
-    s.set_networks(Arc::new(Networks::embedded().unwrap())).unwrap();
+    s.set_networks(Arc::new(Networks::embedded().unwrap()))
+        .unwrap();
     s
 }
 
@@ -315,7 +316,8 @@ fn a_new_arm_restarts_from_its_own_start_pose_and_the_numerical_modes_run_at_onc
 #[test]
 fn networks_for_another_arm_are_set_aside_and_the_network_cases_fall_back() {
     let mut s = Session::new(1).unwrap();
-    s.set_networks(Arc::new(Networks::embedded().unwrap())).unwrap();
+    s.set_networks(Arc::new(Networks::embedded().unwrap()))
+        .unwrap();
     s.set_method(Method::CASE3).unwrap();
     s.set_arm(four_links()).unwrap();
     assert!(s.networks().is_none());
@@ -326,7 +328,8 @@ fn networks_for_another_arm_are_set_aside_and_the_network_cases_fall_back() {
     ));
     // Back to the paper's arm: its task, and the networks install again.
     s.set_arm(Arm::paper()).unwrap();
-    s.set_networks(Arc::new(Networks::embedded().unwrap())).unwrap();
+    s.set_networks(Arc::new(Networks::embedded().unwrap()))
+        .unwrap();
     s.set_method(Method::CASE3).unwrap();
 }
 

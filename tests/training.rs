@@ -9,10 +9,10 @@ use std::sync::Arc;
 
 use redundant_ik::nalgebra::DVector;
 use redundant_ik::networks::Networks;
-use redundant_ik::nn::rng::Rng;
 use redundant_ik::networks::{NetKind, Sampling, Variant};
-use redundant_ik::training_job::{self, Preset, Request, Which};
+use redundant_ik::nn::rng::Rng;
 use redundant_ik::training::{self, tasks};
+use redundant_ik::training_job::{self, Preset, Request, Which};
 use redundant_ik::{Arm, Error, Method, Planner, Surrogate};
 
 fn four_links() -> Arm {
@@ -169,8 +169,8 @@ fn training_one_network_keeps_the_other_and_needs_it_for_this_arm() {
     assert!(t.report.phi.is_none() && t.report.v.is_some());
     assert_eq!(t.report.paper_tasks.len(), 6, "Cases 1-3 on Tasks 1 and 2");
     // The built-in networks are for the paper's arm, not this one.
-    let err =
-        training_job::train(&small(four_links(), Which::Phi), Some(&embedded), |_| true).unwrap_err();
+    let err = training_job::train(&small(four_links(), Which::Phi), Some(&embedded), |_| true)
+        .unwrap_err();
     assert!(matches!(err, Error::Training(m) if m.contains("train both")));
 }
 

@@ -100,17 +100,14 @@ fn modes_parse_and_bad_names_throw() {
     let err = d.set_method("case4").err().unwrap();
     assert!(message(err).contains("unknown mode 'case4'"));
     assert_eq!(state(&d)["mode"], "numerical");
-    for mode in ["none", "numerical", "case1", "case2", "case3"] {
+    for m in redundant_ik::planner::methods::ALL {
+        let mode = m.name();
         match (d.set_method(mode), networks_error()) {
             (Ok(()), _) => {
                 assert_eq!(state(&d)["mode"], mode);
                 d.step().unwrap();
                 let ghost = !state(&d)["ghost"].is_null();
-                assert_eq!(
-                    ghost,
-                    mode.starts_with("case"),
-                    "ghost arm only in network cases"
-                );
+                assert_eq!(ghost, m.uses_networks(), "ghost arm only with networks");
             }
             (Err(e), Some(_)) => assert!(message(e).contains("networks not available")),
             (Err(e), None) => panic!("mode {mode}: {}", message(e)),
@@ -336,20 +333,28 @@ fn the_state_says_when_the_exact_phi_stood_in_for_the_network() {
 
 #[wasm_bindgen_test]
 fn names_colours_and_the_legend_come_from_the_module() {
-    use redundant_ik::web::{legend, modes, palette};
-    let m = json_of(modes().unwrap());
+    use redundant_ik::planner::methods;
+    use redundant_ik::web::{legend, limits, methods as listed, palette};
+    let m = json_of(listed().unwrap());
     let names: Vec<&str> = m
         .as_array()
         .unwrap()
         .iter()
         .map(|e| e["name"].as_str().unwrap())
         .collect();
-    assert_eq!(names, ["none", "numerical", "case1", "case2", "case3"]);
+    let registry: Vec<&str> = methods::ALL.iter().map(|m| m.name()).collect();
+    assert_eq!(names, registry);
     assert_eq!(m[3]["label"], "Case 2");
+    assert_eq!(m[3]["networks"]["v"], true);
+    assert_eq!(m[3]["paper_figures"][1], 10);
     assert!(m[3]["description"]
         .as_str()
         .unwrap()
         .contains("v by a network"));
+    let l = json_of(limits().unwrap());
+    assert_eq!(l["max_links"], redundant_ik::session::MAX_LINKS);
+    assert_eq!(l["max_obstacles"], redundant_ik::session::MAX_OBSTACLES);
+    assert_eq!(l["arm_presets"][1]["links"].as_array().unwrap().len(), 4);
     let p = json_of(palette().unwrap());
     assert_eq!(p["arm"], "#1d4e89");
     let l = json_of(legend().unwrap());
@@ -407,7 +412,10 @@ fn an_atlas_job_maps_the_pages_scene_a_chunk_at_a_time() {
     let spec = redundant_ik::atlas::Spec {
         scene,
         grid: redundant_ik::atlas::Grid::new([0.2, 0.8, 0.2, 0.8], 4).unwrap(),
-        modes: vec![redundant_ik::Method::NO_AVOIDANCE, redundant_ik::Method::NUMERICAL],
+        modes: vec![
+            redundant_ik::Method::NO_AVOIDANCE,
+            redundant_ik::Method::NUMERICAL,
+        ],
         task: Some(1),
     };
     let core = redundant_ik::atlas::Atlas::run(spec, None).unwrap();

@@ -21,15 +21,15 @@
 use std::sync::{Arc, OnceLock};
 
 use arbitrary::Unstructured;
-use redundant_ik::planner::methods;
 use redundant_ik::atlas::{Grid, Job, Spec};
 use redundant_ik::ik::DampingSchedule;
-use redundant_ik::nn::lm::{self, Dataset, LmOptions};
 use redundant_ik::networks::{NetKind, Sampling, Variant, WeightsFile};
+use redundant_ik::nn::lm::{self, Dataset, LmOptions};
+use redundant_ik::planner::methods;
 use redundant_ik::planner::{Method, Planner, Surrogate};
 use redundant_ik::session::{Handle, Session};
-use redundant_ik::training_job::Request;
 use redundant_ik::training::{phi_datasets, v_dataset, Visited};
+use redundant_ik::training_job::Request;
 use redundant_ik::{Arm, Networks, Obstacle, Scene};
 
 /// Values that people, URLs and hostile files produce.

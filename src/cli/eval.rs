@@ -6,8 +6,8 @@ use clap::Args;
 use serde::Serialize;
 
 use redundant_ik::evaluation::{self, ErrorStats, TaskOutcome};
-use redundant_ik::networks::{self, Networks};
 use redundant_ik::networks::Variant;
+use redundant_ik::networks::{self, Networks};
 use redundant_ik::Method;
 
 /// Options of `redundant-ik eval`.

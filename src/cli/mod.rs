@@ -82,7 +82,10 @@ pub fn parse_obstacle(s: &str) -> Result<Placement, String> {
 /// `POST:L1,L2,...` (post height and link lengths, m), as the core reads
 /// the syntax.
 pub fn parse_arm(s: &str) -> Result<Arm, String> {
-    if let Some(p) = redundant_ik::arm::PRESETS.iter().find(|p| p.key == s.trim()) {
+    if let Some(p) = redundant_ik::arm::PRESETS
+        .iter()
+        .find(|p| p.key == s.trim())
+    {
         return Ok(p.arm());
     }
     s.parse().map_err(|e: redundant_ik::Error| e.to_string())

@@ -7,8 +7,8 @@ use std::fmt::Write as _;
 
 use redundant_ik::obstacle::Placement;
 
-use super::{emit, method_help, parse_arm, parse_list, parse_method, parse_obstacle, parse_pair};
 use super::NetworkArgs;
+use super::{emit, method_help, parse_arm, parse_list, parse_method, parse_obstacle, parse_pair};
 
 /// Scene options shared by `simulate`, `figure` and `atlas`.
 #[derive(Args, Debug, Clone)]
@@ -68,11 +68,7 @@ impl SceneArgs {
         }
         let radius = self.radius.unwrap_or(s.obstacles[0].radius);
         if !self.obstacle.is_empty() {
-            s.obstacles = self
-                .obstacle
-                .iter()
-                .map(|o| o.obstacle(radius))
-                .collect();
+            s.obstacles = self.obstacle.iter().map(|o| o.obstacle(radius)).collect();
         } else {
             for o in &mut s.obstacles {
                 o.radius = radius;

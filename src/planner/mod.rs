@@ -242,11 +242,7 @@ fn needs_auto_damping(scene: &Scene) -> bool {
 
 /// Methods that use networks need them, and networks must be trained for
 /// `arm`.
-fn check_networks(
-    method: Method,
-    networks: &Option<Arc<dyn Surrogate>>,
-    arm: &Arm,
-) -> Result<()> {
+fn check_networks(method: Method, networks: &Option<Arc<dyn Surrogate>>, arm: &Arm) -> Result<()> {
     match networks {
         None if method.uses_networks() => Err(Error::NetworksUnavailable(format!(
             "mode {method} needs trained networks and none are loaded"

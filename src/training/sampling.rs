@@ -18,8 +18,8 @@ use nalgebra::{DVector, Vector2};
 
 use crate::arm::Arm;
 use crate::error::{Error, Result};
-use crate::networks::Sampling;
 use crate::ik;
+use crate::networks::Sampling;
 use crate::nn::rng::Rng;
 use crate::obstacle::{self, Obstacle};
 use crate::planner::{Method, Planner};

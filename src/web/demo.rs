@@ -7,10 +7,10 @@ use web_sys::HtmlCanvasElement;
 
 use super::layer::Layer;
 use super::surface::Surface;
-use super::{input, js_err, now_ms, plots, shared_networks, stage, to_js};
+use super::{input, js_err, now_ms, plots, stage, to_js};
 use crate::atlas::Grid;
 use crate::networks::Networks;
-use crate::planner::{Method, Surrogate};
+use crate::planner::Method;
 use crate::session::Session;
 
 /// One interactive simulation drawn on one canvas. Several can live on a page.
@@ -26,25 +26,6 @@ pub(super) type JsResult<T = ()> = Result<T, JsError>;
 
 fn finite(what: &str, value: f64) -> JsResult<f64> {
     crate::error::finite(what, value).map_err(js_err)
-}
-
-impl Demo {
-    /// Whether the built-in networks were trained for the arm in use.
-    pub(super) fn shared_fit(&self) -> bool {
-        *self.session.arm() == crate::arm::Arm::paper()
-    }
-
-    /// Installs the built-in networks, or says why the network cases
-    /// cannot run.
-    pub(super) fn install_shared(&mut self) -> JsResult {
-        if !self.shared_fit() {
-            return Err(JsError::new(
-                "networks not available for this arm: the built-in ones were trained for the paper's arm; train networks for this arm (Training panel) or load weights trained for it",
-            ));
-        }
-        let nets = shared_networks().map_err(|e| JsError::new(&e))?;
-        self.session.set_networks(nets).map_err(js_err)
-    }
 }
 
 #[wasm_bindgen]
@@ -88,17 +69,14 @@ impl Demo {
         self.session.run_task();
     }
 
-    /// Sets the mode: `none`, `numerical`, `case1`, `case2` or `case3`. The
-    /// network cases use the built-in networks unless others were loaded;
-    /// without them this throws "networks not available: ..." and the mode
-    /// stays as it was.
+    /// Sets the method by name (`methods()` lists them). Methods that use
+    /// networks take the loaded ones, else the built-in ones where they fit
+    /// the arm; without them this throws "networks not available: ..." and
+    /// the method stays as it was.
     #[wasm_bindgen(js_name = setMode)]
     pub fn set_method(&mut self, mode: &str) -> JsResult {
-        let mode: Method = mode.parse().map_err(js_err)?;
-        if mode.uses_networks() && self.session.networks().is_none() {
-            self.install_shared()?;
-        }
-        self.session.set_method(mode).map_err(js_err)
+        let method: Method = mode.parse().map_err(js_err)?;
+        self.session.set_method(method).map_err(js_err)
     }
 
     /// Loads user-trained networks for this demo from the JSON text of a `Phi`
@@ -108,7 +86,9 @@ impl Demo {
     #[wasm_bindgen(js_name = loadNetworks)]
     pub fn load_networks(&mut self, phi_json: &str, v_json: &str) -> JsResult {
         let nets = Networks::from_json(phi_json, v_json).map_err(js_err)?;
-        self.session.set_networks(nets).map_err(js_err)
+        self.session
+            .set_networks(std::sync::Arc::new(nets))
+            .map_err(js_err)
     }
 
     /// Sets `lambda`, the gain of the obstacle vector (eq. 14); at least 0.
@@ -184,25 +164,19 @@ impl Demo {
         stepped.map_err(js_err)
     }
 
-    /// Runs the current scene from `t = 0` to `tf` in each of the five modes,
-    /// off screen: `[{ mode, label, summary, error }]`, `summary` as the CLI's
-    /// JSON or `null` with `error` saying why the mode could not run.
+    /// Runs the current scene from `t = 0` to `tf` with every method, off
+    /// screen: `[{ mode, label, summary, error }]`, `summary` as the CLI's
+    /// JSON or `null` with `error` saying why the method could not run.
     #[wasm_bindgen(js_name = compareModes)]
     pub fn compare_modes(&self) -> JsResult<JsValue> {
-        let fallback = shared_networks()
-            .ok()
-            .filter(|_| self.shared_fit())
-            .map(|n| std::sync::Arc::new(n) as std::sync::Arc<dyn Surrogate>);
-        to_js(&self.session.compare_modes(fallback))
+        to_js(&self.session.compare_methods())
     }
 
     /// A snapshot of the state as a plain object (see `docs/web.md`);
-    /// `networks` says whether the network cases can run (networks loaded,
-    /// or the built-in ones available).
+    /// `networks` says whether the methods that use networks can run
+    /// (networks loaded, or built-in ones trained for the arm).
     pub fn state(&self) -> JsResult<JsValue> {
-        let mut state = self.session.state();
-        state.networks = self.networks_fit();
-        to_js(&state)
+        to_js(&self.session.state())
     }
 
     /// The scene as a plain object (arm, start pose, target, obstacles,

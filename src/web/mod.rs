@@ -10,13 +10,15 @@
 //! the page's, which draws, and the Web Workers', which computes (the atlas,
 //! the benchmark), so the page loads only what it draws with.
 //!
-//! One file per concern: [`demo`] (the `Demo` binding), [`style`] (colours
-//! and the legend, the one source the page's CSS reads), [`surface`]
-//! (canvas, view transform, drawing helpers), [`stage`] (the arm's drawing),
-//! [`layer`] (an atlas drawn under it), [`plots`] (the time series) and
-//! [`input`] (pointer hit-testing and keys) and [`playground`] (the arm,
-//! several obstacles, trained networks, runs off screen) make the page's module;
-//! [`worker`] is the workers'. This file holds what both export.
+//! One file per concern: [`demo`] (the `Demo` binding), [`scene`] (its
+//! bindings for the arm, several obstacles, trained networks and runs off
+//! screen), [`style`] (colours and the legend, the one source the page's
+//! CSS reads), [`surface`] (canvas, view transform, drawing helpers),
+//! [`stage`] (the arm's drawing), [`layer`] (an atlas drawn under it),
+//! [`plots`] (the time series) and [`input`] (pointer hit-testing and keys)
+//! make the page's module; [`worker`] is the workers'. This file holds what
+//! both export: the facts the page reads instead of writing them down
+//! itself (the methods, the limits, the arm and obstacle syntax).
 
 #[cfg(feature = "page")]
 mod demo;
@@ -25,9 +27,9 @@ mod input;
 #[cfg(feature = "page")]
 mod layer;
 #[cfg(feature = "page")]
-mod playground;
-#[cfg(feature = "page")]
 mod plots;
+#[cfg(feature = "page")]
+mod scene;
 #[cfg(feature = "page")]
 mod stage;
 #[cfg(feature = "page")]
@@ -44,8 +46,7 @@ use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 
 use crate::error::Error;
-use crate::networks::Networks;
-use crate::planner::Method;
+use crate::networks;
 
 #[cfg(feature = "page")]
 pub use demo::Demo;
@@ -53,8 +54,6 @@ pub use demo::Demo;
 pub use worker::*;
 
 thread_local! {
-    /// The trained networks built into the module, loaded once (or why not).
-    static NETWORKS: RefCell<Option<Result<Networks, String>>> = const { RefCell::new(None) };
     /// Message of the last panic, for the page to show.
     static LAST_PANIC: RefCell<Option<String>> = const { RefCell::new(None) };
     /// The global `performance` object: the window's, or the worker's.
@@ -62,22 +61,6 @@ thread_local! {
         js_sys::Reflect::get(&js_sys::global(), &JsValue::from_str("performance"))
             .ok()
             .and_then(|p| p.dyn_into::<web_sys::Performance>().ok());
-}
-
-/// The networks shipped with the module, loaded on first use.
-fn shared_networks() -> Result<Networks, String> {
-    NETWORKS.with(|cell| {
-        cell.borrow_mut()
-            .get_or_insert_with(|| {
-                Networks::embedded().map_err(|e| {
-                    Error::NetworksUnavailable(format!(
-                        "the built-in weights could not be loaded ({e})"
-                    ))
-                    .to_string()
-                })
-            })
-            .clone()
-    })
 }
 
 /// Installs the panic hook: the message goes to the console and is kept for
@@ -104,32 +87,100 @@ pub fn last_panic() -> Option<String> {
     LAST_PANIC.with(|p| p.borrow().clone())
 }
 
-/// Whether the trained networks (Cases 1-3) are available: `null` when they
-/// are, else the reason.
+/// Whether the built-in networks load: `null` when they do, else the
+/// reason.
 #[wasm_bindgen(js_name = networksError)]
 pub fn networks_error() -> Option<String> {
-    shared_networks().err()
+    networks::builtin().err().map(|e| e.to_string())
 }
 
-/// The five methods, in the paper's order: `[{ name, label, description }]`
-/// (`Method::name`, `Method::label`, `Method::description`), for the page's menus.
+/// Every method, in the order of the menus: `[{ name, label, description,
+/// group, paper_figures, networks: { phi, v }, avoids, colour, params }]`
+/// ([`crate::planner::MethodInfo`]).
 #[wasm_bindgen]
-pub fn modes() -> Result<JsValue, JsError> {
-    #[derive(Serialize)]
-    struct Entry {
-        name: &'static str,
-        label: &'static str,
-        description: &'static str,
-    }
-    let all: Vec<Entry> = methods::PAPER
+pub fn methods() -> Result<JsValue, JsError> {
+    let all: Vec<_> = crate::planner::methods::ALL
         .iter()
-        .map(|m| Entry {
-            name: m.name(),
-            label: m.label(),
-            description: m.description(),
-        })
+        .map(|m| m.info())
         .collect();
     to_js(&all)
+}
+
+/// The method a page starts with where its address names none
+/// ([`crate::session::default_method`]).
+#[wasm_bindgen(js_name = defaultMethod)]
+pub fn default_method() -> String {
+    crate::session::default_method().name().into()
+}
+
+/// The limits and defaults the page uses, from the core that enforces
+/// them, so that no number is written twice: `{ min_links, max_links,
+/// max_obstacles, default_radius, max_weights_bytes, reach_tolerance,
+/// default_grid, max_grid, drift_gain, max_lambda, arm_presets }`.
+#[wasm_bindgen]
+pub fn limits() -> Result<JsValue, JsError> {
+    #[derive(Serialize)]
+    struct Limits {
+        min_links: usize,
+        max_links: usize,
+        max_obstacles: usize,
+        default_radius: f64,
+        max_weights_bytes: usize,
+        reach_tolerance: f64,
+        default_grid: usize,
+        max_grid: usize,
+        drift_gain: f64,
+        max_lambda: f64,
+        arm_presets: &'static [crate::arm::Preset],
+    }
+    to_js(&Limits {
+        min_links: crate::session::MIN_LINKS,
+        max_links: crate::session::MAX_LINKS,
+        max_obstacles: crate::session::MAX_OBSTACLES,
+        default_radius: crate::scene::PAPER_RADIUS,
+        max_weights_bytes: networks::MAX_FILE_BYTES,
+        reach_tolerance: crate::planner::REACH_TOLERANCE,
+        default_grid: crate::atlas::DEFAULT_GRID,
+        max_grid: crate::atlas::MAX_GRID,
+        drift_gain: crate::session::DRIFT_GAIN,
+        max_lambda: crate::scene::MAX_LAMBDA,
+        arm_presets: &crate::arm::PRESETS,
+    })
+}
+
+/// Parses an arm written `POST:L1,L2,...` (the address's `arm=`, the
+/// command line's `--arm`): `{ post, links }`, or an exception saying what
+/// is wrong (the arm's own checks included).
+#[wasm_bindgen(js_name = parseArm)]
+pub fn parse_arm(text: &str) -> Result<JsValue, JsError> {
+    let arm: crate::arm::Arm = text.parse().map_err(js_err)?;
+    to_js(&arm)
+}
+
+/// An arm as `POST:L1,L2,...`, what [`parse_arm`] reads back (and the key
+/// under which the page keeps an arm's trained networks).
+#[wasm_bindgen(js_name = formatArm)]
+pub fn format_arm(post: f64, links: Vec<f64>) -> Result<String, JsError> {
+    Ok(crate::arm::Arm::new(post, links)
+        .map_err(js_err)?
+        .to_string())
+}
+
+/// Parses obstacles written `x,y,r;x,y,r` (each radius optional, the
+/// paper's 0.05 m by default), as the address's `obstacles=` and the
+/// command line's `--obstacle` write them: `[x0, y0, r0, x1, y1, r1, ...]`,
+/// flat as `setObstacles` takes them, or an exception saying what is
+/// wrong. Each obstacle's own checks come when it is placed.
+#[wasm_bindgen(js_name = parseObstacles)]
+pub fn parse_obstacles(text: &str) -> Result<Vec<f64>, JsError> {
+    let list = crate::obstacle::parse_placements(text).map_err(js_err)?;
+    Ok(list
+        .into_iter()
+        .flat_map(|p| {
+            let o = p.obstacle(crate::scene::PAPER_RADIUS);
+            [o.centre[0], o.centre[1], o.radius]
+        })
+        .collect())
 }
 
 #[cfg(feature = "page")]

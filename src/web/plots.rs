@@ -41,7 +41,7 @@ pub fn draw(s: &Session, surface: &Surface) {
     surface.begin();
     let ctx = &surface.ctx;
     let history = s.history();
-    let (t0, t1) = match (history.first(), history.last()) {
+    let (t0, t1) = match (history.front(), history.back()) {
         (Some(a), Some(b)) => (a.t, b.t.max(a.t + 10.0)),
         _ => (0.0, 10.0),
     };
@@ -94,7 +94,7 @@ pub fn draw(s: &Session, surface: &Surface) {
     let pad = ((hi - lo) * 0.1).max(0.1);
     let frame = Frame::new(surface.width, 2.0 * h, h, (t0, t1), (lo - pad, hi + pad));
     frame.axes(ctx, "joint angles (rad)");
-    let joints = history.first().map_or(0, |p| p.theta.len());
+    let joints = history.front().map_or(0, |p| p.theta.len());
     for i in 0..joints {
         let colour = SERIES[i % SERIES.len()];
         frame.key(ctx, i, joints, &format!("θ{}", subscript(i + 1)), colour);

@@ -121,9 +121,13 @@ pub fn dash(ctx: &CanvasRenderingContext2d, pattern: &[f64]) {
 
 /// Strokes a polyline through points given in world (`view`) or pixel
 /// (`None`) coordinates.
-pub fn polyline(ctx: &CanvasRenderingContext2d, view: Option<View>, pts: &[[f64; 2]]) {
+pub fn polyline<'a>(
+    ctx: &CanvasRenderingContext2d,
+    view: Option<View>,
+    pts: impl IntoIterator<Item = &'a [f64; 2]>,
+) {
     ctx.begin_path();
-    for (i, p) in pts.iter().enumerate() {
+    for (i, p) in pts.into_iter().enumerate() {
         let (x, y) = view.map_or((p[0], p[1]), |v| v.to_px(*p));
         if i == 0 {
             ctx.move_to(x, y);

@@ -9,12 +9,12 @@ use std::sync::Arc;
 use serde::Deserialize;
 use wasm_bindgen::prelude::*;
 
-use super::{js_err, now_ms, shared_networks, to_js};
+use super::{js_err, now_ms, to_js};
 use crate::atlas::{Grid, Job, Spec, DEFAULT_GRID};
 use crate::bench;
 use crate::error::{self, Error};
-use crate::networks::Networks;
-use crate::planner::Method;
+use crate::networks::{self, Networks};
+use crate::planner::{methods, Method};
 use crate::scene::Scene;
 
 /// Refuses a field of `value` not in `names`: serde-wasm-bindgen reads only
@@ -30,6 +30,19 @@ fn known_fields(value: &JsValue, names: &[&str], what: &str) -> Result<(), JsErr
         }
     }
     Ok(())
+}
+
+/// The networks of a pair of weights files, if both are given.
+fn files(
+    phi_json: Option<String>,
+    v_json: Option<String>,
+) -> Result<Option<Arc<Networks>>, JsError> {
+    match (phi_json, v_json) {
+        (Some(phi), Some(v)) => Ok(Some(Arc::new(
+            Networks::from_json(&phi, &v).map_err(js_err)?,
+        ))),
+        _ => Ok(None),
+    }
 }
 
 // ---- the atlas -----------------------------------------------------------
@@ -61,9 +74,11 @@ pub struct AtlasJob {
 #[wasm_bindgen]
 impl AtlasJob {
     /// `scene` is the page's scene (`Demo.scene()`); `options` is
-    /// `{ modes, n, region, task }`, each optional. The network modes use
-    /// the weights files `phi_json` and `v_json` if both are given, else the
-    /// built-in networks. Throws with the core's message on bad input.
+    /// `{ modes, n, region, task }`, each optional. The methods that use
+    /// networks take the weights files `phi_json` and `v_json` if both are
+    /// given and fit the arm, else the built-in networks where they fit
+    /// ([`networks::available`]). Throws with the core's message on bad
+    /// input.
     #[wasm_bindgen(constructor)]
     pub fn new(
         scene: JsValue,
@@ -122,10 +137,8 @@ impl AtlasJob {
                 .map_err(js_err)?,
         };
         let networks = if modes.iter().any(|m| m.uses_networks()) {
-            Some(Arc::new(match (phi_json, v_json) {
-                (Some(phi), Some(v)) => Networks::from_json(&phi, &v).map_err(js_err)?,
-                _ => shared_networks().map_err(|e| JsError::new(&e))?,
-            }))
+            let installed = files(phi_json, v_json)?;
+            Some(networks::available(&scene.arm, installed.as_ref()).map_err(js_err)?)
         } else {
             None
         };
@@ -198,11 +211,9 @@ pub fn train_networks(
     known_fields(&request, &TRAIN_FIELDS, "training request")?;
     let request: Request = serde_wasm_bindgen::from_value(request)
         .map_err(|e| JsError::new(&format!("training request: {e}")))?;
-    let current = match (phi_json, v_json) {
-        (Some(phi), Some(v)) => Some(Networks::from_json(&phi, &v).map_err(js_err)?),
-        _ => shared_networks().ok(),
-    };
-    let trained = playground::train(&request, current.as_ref(), |p| {
+    let installed = files(phi_json, v_json)?;
+    let current = networks::available(&request.arm, installed.as_ref()).ok();
+    let trained = training_job::train(&request, current.as_deref(), |p| {
         if let Ok(v) = to_js(p) {
             let _ = on_epoch.call1(&JsValue::NULL, &v);
         }
@@ -234,6 +245,27 @@ fn probes() -> bench::Probes<'static> {
         now_ms: &now_ms,
         allocations: None,
     }
+}
+
+/// The names of the methods the benchmark times (`redundant-ik bench`'s
+/// default: the paper's five).
+#[wasm_bindgen(js_name = benchMethods)]
+pub fn bench_methods() -> Vec<String> {
+    bench::Options::default()
+        .methods
+        .iter()
+        .map(|m| m.name().to_string())
+        .collect()
+}
+
+/// The learned route and the exact route it imitates, whose step times the
+/// benchmark's verdict compares: `[learned, exact]` method names.
+#[wasm_bindgen(js_name = benchVerdict)]
+pub fn bench_verdict() -> Vec<String> {
+    bench::VERDICT
+        .iter()
+        .map(|m| m.name().to_string())
+        .collect()
 }
 
 /// One `theta_dot` of `mode` at Task 1's start pose, in nanoseconds (the

@@ -30,13 +30,7 @@ unsafe fn forward_avx2(k: &Kernel, x: &[f64], y: &mut [f64], a: &mut [f64], b: &
 
 /// Runs the AVX2 + FMA build. Call only when [`has_avx2_fma`] is true.
 #[inline]
-pub(super) fn forward_avx2_fma(
-    k: &Kernel,
-    x: &[f64],
-    y: &mut [f64],
-    a: &mut [f64],
-    b: &mut [f64],
-) {
+pub(super) fn forward_avx2_fma(k: &Kernel, x: &[f64], y: &mut [f64], a: &mut [f64], b: &mut [f64]) {
     debug_assert!(has_avx2_fma());
     // SAFETY: the only requirement of a `target_feature` function is that
     // the CPU supports the features, which the caller checked at run time

@@ -1,18 +1,16 @@
-//! The playground's bindings on [`Demo`]: the arm, several obstacles, the
+//! [`Demo`]'s bindings for the scene: the arm, several obstacles, the
 //! networks trained in the page, and whole runs off screen. Each forwards to
 //! the [`Session`](crate::session::Session) and maps the core's errors to
 //! exceptions; values from JavaScript are checked by the core.
 
-use std::sync::Arc;
-
 use wasm_bindgen::prelude::*;
 
 use super::demo::{Demo, JsResult};
-use super::{input, js_err, shared_networks, to_js};
+use super::{input, js_err, to_js};
 use crate::arm::Arm;
 use crate::error::Error;
 use crate::obstacle::Obstacle;
-use crate::planner::{Method, Planner, Surrogate};
+use crate::planner::Method;
 use crate::scene::PAPER_RADIUS;
 
 /// Obstacles from a flat list `[x0, y0, r0, x1, y1, r1, ...]` (plain
@@ -42,18 +40,12 @@ fn obstacles_from(flat: &[f64]) -> JsResult<Vec<Obstacle>> {
 #[wasm_bindgen]
 impl Demo {
     /// Replaces the arm: a post of height `post` and 2 to 6 links of the
-    /// given lengths (m). Throws, keeping the arm, on bad numbers. The scene
-    /// restarts at `t = 0` from a start pose for the new arm; networks
-    /// trained for another arm are set aside (see `Session::set_arm`).
+    /// given lengths (m; `limits()` has the bounds). Throws, keeping the
+    /// arm, on bad numbers. The scene restarts at `t = 0` from a start pose
+    /// for the new arm; networks trained for another arm are set aside (see
+    /// `Session::set_arm`).
     #[wasm_bindgen(js_name = setArm)]
     pub fn set_arm(&mut self, post: f64, links: Vec<f64>) -> JsResult {
-        if !(2..=6).contains(&links.len()) {
-            return Err(js_err(Error::LinkCount {
-                found: links.len(),
-                min: 2,
-                max: 6,
-            }));
-        }
         let arm = Arm::new(post, links).map_err(js_err)?;
         self.session.set_arm(arm).map_err(js_err)
     }
@@ -92,7 +84,7 @@ impl Demo {
     /// for it, or the built-in ones for the paper's arm.
     #[wasm_bindgen(js_name = networksFit)]
     pub fn networks_fit(&self) -> bool {
-        self.session.networks().is_some() || (self.shared_fit() && shared_networks().is_ok())
+        self.session.networks_fit()
     }
 
     /// Sets the networks aside; the network cases then fall back to the
@@ -136,22 +128,7 @@ impl Demo {
             scene.theta0 = t;
         }
         scene.validate().map_err(js_err)?;
-        let networks: Option<Arc<dyn Surrogate>> = if mode.uses_networks() {
-            match self.session.networks() {
-                Some(n) => Some(n.clone()),
-                None if self.shared_fit() => {
-                    Some(Arc::new(shared_networks().map_err(|e| JsError::new(&e))?))
-                }
-                None => {
-                    return Err(JsError::new(
-                        "networks not available for this arm: train networks for it first",
-                    ))
-                }
-            }
-        } else {
-            None
-        };
-        let summary = Planner::run_summary(scene, mode, networks).map_err(js_err)?;
+        let summary = self.session.run_offscreen(scene, mode).map_err(js_err)?;
         to_js(&summary)
     }
 }
