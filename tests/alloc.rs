@@ -14,7 +14,7 @@ use std::sync::Arc;
 
 use redundant_ik::networks::Networks;
 use redundant_ik::planner::methods;
-use redundant_ik::{Arm, DampingSchedule, Method, Obstacle, Planner, Scene, Surrogate};
+use redundant_ik::{Arm, DampingSchedule, Obstacle, Planner, Scene, Surrogate};
 
 thread_local! {
     /// Allocations made by this thread (tests run on several threads).
@@ -74,7 +74,7 @@ fn busy_scene() -> Scene {
 fn a_step_allocates_nothing_in_any_mode() {
     let nets: Arc<dyn Surrogate> = Arc::new(Networks::embedded().unwrap());
     for scene in [Scene::task1(), Scene::task2(), busy_scene()] {
-        for mode in methods::PAPER {
+        for &mode in methods::ALL {
             let mut p = Planner::new(scene.clone(), mode, Some(nets.clone())).unwrap();
             let n = allocations_in(|| {
                 for _ in 0..20 {
@@ -98,7 +98,8 @@ fn a_step_allocates_nothing_for_arms_of_two_to_six_links() {
         s.target = [0.8, 0.9];
         s.obstacles = vec![Obstacle::new(1.2, 0.2, 0.05), Obstacle::new(-0.8, 1.0, 0.1)];
         s.damping = Some(DampingSchedule::default());
-        for mode in [Method::NO_AVOIDANCE, Method::NUMERICAL] {
+        // Methods with networks need networks trained for the arm.
+        for mode in methods::ALL.iter().copied().filter(|m| !m.uses_networks()) {
             let mut p = Planner::new(s.clone(), mode, None).unwrap();
             let n = allocations_in(|| {
                 for _ in 0..20 {
@@ -113,7 +114,7 @@ fn a_step_allocates_nothing_for_arms_of_two_to_six_links() {
 #[test]
 fn theta_dot_into_allocates_nothing() {
     let nets: Arc<dyn Surrogate> = Arc::new(Networks::embedded().unwrap());
-    for mode in methods::PAPER {
+    for &mode in methods::ALL {
         let mut p = Planner::new(Scene::task1(), mode, Some(nets.clone())).unwrap();
         let theta = Scene::task1().theta0;
         let mut out = [0.0; 3];

@@ -6,6 +6,7 @@
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
+use redundant_ik::planner::methods;
 use serde_json::Value;
 
 fn cli(args: &[&str]) -> Output {
@@ -102,7 +103,8 @@ fn simulate_json_has_every_step_and_a_consistent_summary() {
 
 #[test]
 fn the_network_cases_run_from_the_embedded_weights() {
-    for mode in ["case1", "case2", "case3"] {
+    let learned = methods::ALL.iter().filter(|m| m.uses_networks());
+    for mode in learned.map(|m| m.name()) {
         let run = json(&["simulate", "--task", "1", "--mode", mode, "--json"]);
         let s = &run["summary"];
         assert_eq!(s["collided"], false, "{mode}");
@@ -409,8 +411,8 @@ fn figure_writes_an_svg_and_all_writes_every_task_and_mode() {
         cmp.to_str().unwrap(),
     ]);
     let svg = std::fs::read_to_string(&cmp).unwrap();
-    // The legends use the modes' labels (Method::label, as the page does).
-    for label in ["No avoidance", "Numerical", "Case 1", "Case 2", "Case 3"] {
+    // The legends use the methods' labels (Method::label, as the page does).
+    for label in methods::ALL.iter().map(|m| m.label()) {
         assert!(
             svg.contains(&format!("\n{label}, min ")),
             "{label} in the legend"
@@ -514,16 +516,26 @@ fn bench_reports_every_figure_and_no_allocation_per_step() {
         json(&args)
     };
     let v = bench(&[]);
+    // By default the paper's five methods, one key each.
     for key in ["theta_dot_ns", "step_ns", "allocs_per_step"] {
-        for mode in ["none", "numerical", "case1", "case2", "case3"] {
+        let mut names: Vec<&str> = v[key]
+            .as_object()
+            .unwrap()
+            .keys()
+            .map(String::as_str)
+            .collect();
+        let mut paper: Vec<&str> = methods::PAPER.iter().map(|m| m.name()).collect();
+        names.sort();
+        paper.sort();
+        assert_eq!(names, paper, "{key}");
+    }
+    for m in methods::PAPER {
+        let mode = m.name();
+        for key in ["theta_dot_ns", "step_ns"] {
             let x = v[key][mode].as_f64().unwrap_or(f64::NAN);
-            assert!(x.is_finite() && x >= 0.0, "{key}.{mode} = {}", v[key][mode]);
-            if key == "allocs_per_step" {
-                assert_eq!(x, 0.0, "{mode} allocates");
-            } else {
-                assert!(x > 0.0);
-            }
+            assert!(x.is_finite() && x > 0.0, "{key}.{mode} = {}", v[key][mode]);
         }
+        assert_eq!(v["allocs_per_step"][mode], 0.0, "{mode} allocates");
     }
     for net in ["phi", "v"] {
         assert!(v["forward_ns"][net].as_f64().is_some_and(|x| x > 0.0));
@@ -535,13 +547,21 @@ fn bench_reports_every_figure_and_no_allocation_per_step() {
         ["avx2+fma", "fma", "portable"].contains(&kernels.as_str()),
         "{kernels}"
     );
+    // The run-time choice of AVX2 can be switched off: the baseline build's
+    // kernels (FMA only where the compile-time target has it).
     let base = bench(&["--baseline-kernels"]);
-    if kernels == "avx2+fma" {
-        assert_eq!(
-            base["kernels"], "portable",
-            "the run-time choice can be switched off"
-        );
-    }
+    let expected = if cfg!(target_feature = "fma") {
+        "fma"
+    } else {
+        "portable"
+    };
+    assert_eq!(base["kernels"], expected);
+    // --modes all times every method.
+    let all = bench(&["--modes", "all"]);
+    assert_eq!(
+        all["step_ns"].as_object().unwrap().len(),
+        methods::ALL.len()
+    );
     refused(&["bench", "--batches", "2"], "batches");
     refused(&["bench", "--batch-ms", "nan"], "batch-ms");
 }
@@ -585,14 +605,14 @@ fn atlas_prints_the_success_table_and_writes_json_and_an_svg() {
     assert_eq!(v["grid"]["region"], serde_json::json!([0.2, 0.8, 0.2, 0.8]));
     assert_eq!(v["radius"], 0.05);
     assert_eq!(v["lambda"], 4.0);
-    assert_eq!(v["modes"].as_array().unwrap().len(), 5);
+    assert_eq!(v["modes"].as_array().unwrap().len(), methods::PAPER.len());
     let cells = v["cells"].as_array().unwrap();
     assert_eq!(cells.len(), 16);
     assert_eq!(
         (cells[1]["x"].as_f64(), cells[1]["y"].as_f64()),
         (Some(0.4), Some(0.2))
     );
-    for m in ["none", "numerical", "case1", "case2", "case3"] {
+    for m in methods::PAPER.iter().map(|m| m.name()) {
         assert!(cells[5]["outcomes"][m]["class"].is_string(), "{m}");
         assert!(v["summary"][m]["counts"]["success"].is_u64(), "{m}");
     }
@@ -613,14 +633,11 @@ fn atlas_prints_the_success_table_and_writes_json_and_an_svg() {
 
     let text = std::fs::read_to_string(&svg).unwrap();
     assert!(text.starts_with("<svg"));
-    for label in [
-        "No avoidance",
-        "Numerical",
-        "Case 1",
-        "Case 2",
-        "Case 3",
-        "collision",
-    ] {
+    for label in methods::PAPER
+        .iter()
+        .map(|m| m.label())
+        .chain(["collision"])
+    {
         assert!(text.contains(label), "the SVG names {label}");
     }
 }

@@ -15,6 +15,7 @@ use redundant_ik::ik::{self, DampingSchedule, Weights};
 use redundant_ik::kinematics;
 use redundant_ik::nalgebra::{DMatrix, DVector, Vector2};
 use redundant_ik::obstacle::{self, Obstacle};
+use redundant_ik::planner::methods;
 use redundant_ik::{Arm, Error, Method, Planner, Pose, Scene};
 
 /// Small deterministic generator so that the same "random" poses are checked
@@ -375,7 +376,7 @@ fn damping_keeps_joint_rates_finite_at_a_fully_stretched_pose() {
 fn an_out_of_reach_target_completes_with_finite_numbers_and_is_not_reached() {
     let mut s = Scene::task1();
     s.target = [3.0, 2.0];
-    for mode in [Method::NO_AVOIDANCE, Method::NUMERICAL] {
+    for mode in methods::ALL.iter().copied().filter(|m| !m.uses_networks()) {
         let t = Planner::run(s.clone(), mode, None).unwrap();
         assert!(t
             .steps
@@ -442,7 +443,7 @@ fn moving_the_obstacle_takes_effect_at_the_next_step() {
 
 #[test]
 fn network_modes_without_networks_fail_clearly() {
-    for mode in [Method::CASE1, Method::CASE2, Method::CASE3] {
+    for mode in methods::ALL.iter().copied().filter(|m| m.uses_networks()) {
         let err = Planner::new(Scene::task1(), mode, None).unwrap_err();
         assert!(matches!(err, Error::NetworksUnavailable(_)));
         assert!(err.to_string().contains("networks not available"));
@@ -812,7 +813,7 @@ fn the_allocation_free_routines_equal_the_matrix_forms_and_refuse_wrong_sizes() 
 
 #[test]
 fn the_planner_rates_through_its_workspace_equal_the_convenience_form() {
-    for mode in [Method::NO_AVOIDANCE, Method::NUMERICAL] {
+    for mode in methods::ALL.iter().copied().filter(|m| !m.uses_networks()) {
         let mut p = Planner::new(Scene::task2(), mode, None).unwrap();
         let th = DVector::from_vec(vec![0.4, 1.2, 0.3]);
         let a = p.theta_dot(&th, &Vector2::new(-0.05, 0.02)).unwrap();

@@ -12,8 +12,9 @@ mod bodies;
 
 use std::path::Path;
 
-/// Runs `body` on every file of `fuzz/<dir>/<target>`, naming the file
-/// that fails.
+/// Runs `body` on every input of `fuzz/<dir>/<target>` (a `README.md`
+/// there is a note, not an input), naming the input that fails; returns
+/// how many ran.
 fn replay(dir: &str, target: &str, body: fn(&[u8])) -> usize {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("fuzz")
@@ -22,8 +23,7 @@ fn replay(dir: &str, target: &str, body: fn(&[u8])) -> usize {
     let mut files: Vec<_> = std::fs::read_dir(&path)
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
         .map(|e| e.expect("a directory entry").path())
-        // `.keep` holds an empty directory in git.
-        .filter(|p| p.is_file() && p.file_name().is_some_and(|n| n != ".keep"))
+        .filter(|p| p.is_file() && p.file_name().is_some_and(|n| n != "README.md"))
         .collect();
     files.sort();
     for file in &files {
@@ -39,7 +39,20 @@ macro_rules! target {
         mod $name {
             #[test]
             fn every_input_that_once_failed_passes() {
-                super::replay("regressions", stringify!($name), super::bodies::$name);
+                let n = super::replay("regressions", stringify!($name), super::bodies::$name);
+                if n == 0 {
+                    // An empty folder must be deliberate and say why.
+                    let note = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                        .join("fuzz/regressions")
+                        .join(stringify!($name))
+                        .join("README.md");
+                    let why = std::fs::read_to_string(&note).unwrap_or_default();
+                    assert!(
+                        why.contains("on purpose"),
+                        "fuzz/regressions/{} replays no input and has no note saying why",
+                        stringify!($name)
+                    );
+                }
             }
 
             #[test]

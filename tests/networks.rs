@@ -341,7 +341,7 @@ fn shipped_networks_meet_the_documented_accuracy() {
 fn cases_1_to_3_avoid_the_obstacle_and_reach_the_target_on_both_tasks() {
     let nets = Networks::embedded().unwrap();
     for task in [1, 2] {
-        for mode in [Method::CASE1, Method::CASE2, Method::CASE3] {
+        for mode in methods::ALL.iter().copied().filter(|m| m.uses_networks()) {
             let o = evaluation::run_task(&nets, task, mode, None, 0.0).unwrap();
             assert!(
                 o.success(),
@@ -363,7 +363,7 @@ fn paper_form_networks_also_succeed_on_both_tasks() {
     for variant in [Variant::Plain, Variant::Rows] {
         let nets = Networks::embedded_with(variant).unwrap();
         for task in [1, 2] {
-            for mode in [Method::CASE1, Method::CASE3] {
+            for mode in methods::ALL.iter().copied().filter(|m| m.networks().phi) {
                 let o = evaluation::run_task(&nets, task, mode, None, 0.0).unwrap();
                 assert!(o.success(), "{variant:?} task {task} {mode}: {o:?}");
             }
@@ -614,7 +614,7 @@ fn near_a_singular_pose_the_damping_schedule_hands_phi_over_and_says_so() {
         }
     }
     // In the paper's scenes the networks work alone.
-    for mode in [Method::CASE1, Method::CASE3] {
+    for mode in methods::ALL.iter().copied().filter(|m| m.networks().phi) {
         let run = Planner::run(Scene::task2(), mode, Some(nets.clone())).unwrap();
         assert_eq!(run.summary.handover_steps, 0);
     }

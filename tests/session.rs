@@ -305,7 +305,7 @@ fn a_new_arm_restarts_from_its_own_start_pose_and_the_numerical_modes_run_at_onc
         st.joints.iter().all(|p| p[1] > 0.0),
         "start pose above the ground"
     );
-    for mode in [Method::NO_AVOIDANCE, Method::NUMERICAL] {
+    for mode in methods::ALL.iter().copied().filter(|m| !m.uses_networks()) {
         s.set_method(mode).unwrap();
         s.run_task();
         s.run_until(10.0).unwrap();

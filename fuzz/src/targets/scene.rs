@@ -1,0 +1,67 @@
+//! The `scene` target.
+
+use arbitrary::Unstructured;
+use redundant_ik::ik::DampingSchedule;
+use redundant_ik::planner::{methods, Planner};
+use redundant_ik::{Arm, Obstacle, Scene};
+
+use super::checks::{shipped_surrogate, step_checked, Snapshot};
+use super::gen::{arm, num, num_in, point, small};
+
+/// Arms, obstacles and scenes from arbitrary numbers (or, 1 time in 4, a
+/// scene as JSON, as the workers receive it), then a planner in every mode
+/// for up to 12 steps. A scene the planner accepts validates; no step
+/// accepts a non-finite angle; a failed step changes nothing.
+pub fn scene(data: &[u8]) {
+    let mut u = Unstructured::new(data);
+    let scene = if u.ratio(1u8, 4u8).unwrap_or(false) {
+        let text = String::from_utf8_lossy(u.take_rest());
+        match serde_json::from_str::<Scene>(&text) {
+            Ok(s) => s,
+            Err(_) => return,
+        }
+    } else {
+        let (post, links) = arm(&mut u);
+        let Ok(arm) = Arm::new(post, links) else {
+            return;
+        };
+        // The arm's own questions must answer for any point.
+        let p = point(&mut u);
+        let _ = arm.can_reach(&redundant_ik::nalgebra::Vector2::new(p[0], p[1]));
+        let theta0 = (0..arm.dof().min(8))
+            .map(|_| num(&mut u))
+            .collect::<Vec<_>>();
+        let _ = arm.check_angles(&theta0);
+        let obstacles = (0..small(&mut u, 3))
+            .map(|_| Obstacle::new(num(&mut u), num(&mut u), num_in(&mut u, 0.0, 0.3)))
+            .collect::<Vec<_>>();
+        for o in &obstacles {
+            let _ = o.validate(&arm);
+        }
+        let dt = num_in(&mut u, 0.01, 0.2);
+        Scene {
+            arm,
+            theta0,
+            target: point(&mut u),
+            obstacles,
+            lambda: num_in(&mut u, 0.0, 10.0),
+            delta: num_in(&mut u, 0.0, 0.1),
+            damping: u
+                .ratio(1u8, 2u8)
+                .unwrap_or(false)
+                .then(DampingSchedule::default),
+            dt,
+            tf: dt * small(&mut u, 30) as f64,
+            feedback_gain: num_in(&mut u, 0.0, 5.0),
+        }
+    };
+    let networks = (scene.arm == Arm::paper()).then(shipped_surrogate);
+    for &mode in methods::ALL {
+        let Ok(mut p) = Planner::new(scene.clone(), mode, networks.clone()) else {
+            continue;
+        };
+        scene.validate().expect("an accepted scene validates");
+        Snapshot::of(&p).assert_finite();
+        step_checked(&mut p, scene.steps().min(12));
+    }
+}
