@@ -1,6 +1,6 @@
 //! The planar redundant arm: a fixed vertical base post and `n` revolute links.
 //!
-//! Conventions (SPEC.md, "Arm and coordinates"): the absolute angle of link `i`
+//! Conventions (`docs/conventions.md`, "The arm and its coordinates"): the absolute angle of link `i`
 //! is `phi_i = theta_1 + ... + theta_i`, measured from the vertical axis towards
 //! `+X1`, so joint `k` sits at `P(k) = P(k-1) + L_k (sin phi_k, cos phi_k)` with
 //! `P(0) = (0, L0)` the top of the post. The end effector is `X = P(n)`.

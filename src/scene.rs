@@ -12,7 +12,7 @@ use crate::obstacle::Obstacle;
 
 /// The paper's final end-effector position for both tasks, `Xf = (0.60, 0.20)`.
 pub const PAPER_TARGET: [f64; 2] = [0.60, 0.20];
-/// Obstacle radius (our choice, SPEC.md: the paper gives none).
+/// Obstacle radius (our choice, `docs/conventions.md`: the paper gives none).
 pub const PAPER_RADIUS: f64 = 0.05;
 /// Gain of the obstacle vector in the paper's runs, `lambda = 4.0`.
 pub const PAPER_LAMBDA: f64 = 4.0;

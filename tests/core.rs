@@ -60,7 +60,8 @@ fn forward_kinematics_reproduces_the_papers_start_points() {
         (x2 - Vector2::new(1.495943, 0.559559)).norm() < 1e-6,
         "{x2}"
     );
-    // The theta0 printed for Task 2 does not give the printed start (SPEC.md).
+    // The theta0 printed for Task 2 does not give the printed start
+    // (docs/conventions.md).
     let printed = arm.forward(&theta(&[PI / 12.0, PI / 2.0, PI / 6.0]));
     assert!((printed - Vector2::new(1.400592, 0.435295)).norm() < 1e-6);
 }

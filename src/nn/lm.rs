@@ -1,4 +1,4 @@
-//! Levenberg-Marquardt training with Matlab `trainlm`'s behaviour (SPEC.md,
+//! Levenberg-Marquardt training with Matlab `trainlm`'s behaviour (`docs/conventions.md`,
 //! "The networks").
 //!
 //! Written by hand on purpose: no maintained Rust crate reproduces `trainlm`'s
@@ -386,7 +386,7 @@ impl LmTrainer {
                 if perf < self.perf {
                     self.params = trial;
                     self.perf = perf;
-                    // Floored: the `trainlm` rule as SPEC.md states it (x0.1
+                    // Floored: the `trainlm` rule as `docs/conventions.md` states it (x0.1
                     // after a success, no floor) reaches 0 after about 320
                     // successes in a row; then `mu * mu_inc` stays 0 and a
                     // failing epoch never ends (found by fuzzing).

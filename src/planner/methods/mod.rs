@@ -16,8 +16,7 @@
 //! paper's section VI, which the published tables default to, so they do
 //! not change when a method is added).
 
-mod area;
-mod route;
+mod paper;
 
 use std::fmt;
 use std::hash::{Hash, Hasher};

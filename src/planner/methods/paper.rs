@@ -1,0 +1,143 @@
+//! The paper's five methods are one computation with two switches (its
+//! section VI): where the obstacle vector `v` of eqs. (14)-(16) comes from
+//! (nowhere, computed exactly, or the `v` network), and how `v` becomes
+//! joint rates (eq. 18 with the exact `J`, or eq. 21 with `Phi` from the
+//! `Phi` network). Each method's file names its switches; the rule is here.
+
+use super::{Context, Method, Note, Rule};
+use crate::error::Result;
+use crate::ik;
+use crate::kinematics::Pose;
+use crate::obstacle;
+
+/// Where `v` comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum V {
+    /// `v = 0`: no avoidance.
+    Zero,
+    /// Eqs. (14)-(16), computed exactly.
+    Exact,
+    /// The area gradient from the `v` network.
+    Network,
+}
+
+/// Where `Phi` comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Phi {
+    /// Eq. (18): the symmetric 2x2 solve with the exact `J`.
+    Exact,
+    /// Eq. (21): `Phi` from the `Phi` network.
+    Network,
+}
+
+/// The rule of a paper's method, with its scratch space: `v`, one
+/// obstacle's gradient and `Phi` (row-major `n x 2`).
+#[derive(Debug, Clone)]
+pub(super) struct Paper {
+    method: Method,
+    v_from: V,
+    phi_from: Phi,
+    v: Vec<f64>,
+    g: Vec<f64>,
+    phi: Vec<f64>,
+}
+
+/// The rule of `method` for an `n`-joint arm: `v` from `v_from`, joint
+/// rates through `phi_from`.
+pub(super) fn rule(n: usize, method: Method, v_from: V, phi_from: Phi) -> Box<dyn Rule> {
+    Box::new(Paper {
+        method,
+        v_from,
+        phi_from,
+        v: vec![0.0; n],
+        g: vec![0.0; n],
+        phi: vec![0.0; 2 * n],
+    })
+}
+
+/// `v` at `pose` into `v`: `(lambda / 4) sum_O sum_k sign(D_k) dD_k/dtheta`
+/// (eqs. 14-15 summed over the obstacles), each obstacle's area gradient
+/// (into the scratch `g`) exact or from the `v` network of `method`.
+fn obstacle_vector(
+    method: Method,
+    from: V,
+    cx: &Context<'_>,
+    pose: &Pose,
+    g: &mut [f64],
+    v: &mut [f64],
+) -> Result<()> {
+    let scene = cx.scene;
+    match from {
+        V::Zero => v.iter_mut().for_each(|x| *x = 0.0),
+        V::Exact => {
+            obstacle::null_space_vector_into(&scene.arm, pose, &scene.obstacles, scene.lambda, g, v)
+        }
+        V::Network => {
+            let nets = cx.networks_for(method)?;
+            v.iter_mut().for_each(|x| *x = 0.0);
+            for ob in &scene.obstacles {
+                nets.area_gradient(pose, ob.centre, g)?;
+                for (vi, gi) in v.iter_mut().zip(g.iter()) {
+                    *vi += gi;
+                }
+            }
+            let scale = scene.lambda / 4.0;
+            v.iter_mut().for_each(|x| *x *= scale);
+        }
+    }
+    Ok(())
+}
+
+impl Rule for Paper {
+    /// Eq. (18), `(J J^T + delta I) varphi = Xdot - J v`,
+    /// `theta_dot = J^T varphi + v`, or eq. (21),
+    /// `theta_dot = Phi (Xdot - J v) + v` with `Phi` from the network, damped
+    /// by a constant `delta` through [`ik::damp_phi`]. Where the damping
+    /// schedule is active (a near-singular pose, where `Phi` is unbounded and
+    /// no network fits it), the exact damped `Phi` of eq. (20) stands in for
+    /// the network, and the note says so.
+    fn theta_dot(
+        &mut self,
+        cx: &Context<'_>,
+        pose: &Pose,
+        xdot: [f64; 2],
+        out: &mut [f64],
+    ) -> Result<Note> {
+        let Self {
+            method,
+            v_from,
+            v,
+            g,
+            ..
+        } = self;
+        obstacle_vector(*method, *v_from, cx, pose, g, v)?;
+        let scheduled = cx.scheduled_delta(pose);
+        let jac = pose.jacobian();
+        match self.phi_from {
+            Phi::Exact => {
+                ik::theta_dot_symmetric_into(jac, xdot, &self.v, cx.scene.delta + scheduled, out)?;
+                Ok(Note::default())
+            }
+            Phi::Network => {
+                let handover = scheduled > 0.0;
+                if handover {
+                    ik::phi_into(jac, cx.scene.delta + scheduled, &mut self.phi)?;
+                } else {
+                    cx.networks_for(self.method)?.phi(pose, &mut self.phi)?;
+                    ik::damp_phi(&mut self.phi, cx.scene.delta)?;
+                }
+                ik::theta_dot_network_into(&self.phi, jac, xdot, &self.v, out)?;
+                Ok(Note { handover })
+            }
+        }
+    }
+
+    fn null_space(&mut self, cx: &Context<'_>, pose: &Pose, v: &mut [f64]) -> Result<bool> {
+        obstacle_vector(self.method, self.v_from, cx, pose, &mut self.g, v)?;
+        Ok(true)
+    }
+
+    fn boxed_clone(&self) -> Box<dyn Rule> {
+        Box::new(self.clone())
+    }
+}
