@@ -27,11 +27,11 @@ from pathlib import Path
 # training job sits above both).
 LAYERS = [
     ["error"],
-    ["geometry"],
+    ["geometry", "qp"],
     ["arm"],
     ["kinematics"],
     ["ik", "obstacle"],
-    ["nn"],
+    ["nn", "clearance"],
     ["scene"],
     ["planner"],
     ["networks", "twin"],

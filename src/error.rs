@@ -146,6 +146,13 @@ pub enum Error {
         /// The method's name.
         method: &'static str,
     },
+    /// A quadratic program whose constraints no point satisfies at once.
+    Infeasible {
+        /// Constraints of the program.
+        constraints: usize,
+        /// Of which active when the conflict was found.
+        active: usize,
+    },
     /// A network mode was requested but no trained networks are loaded.
     NetworksUnavailable(String),
     /// The networks were trained for another arm than the planner's.
@@ -264,6 +271,14 @@ impl fmt::Display for Error {
             Error::NoNullSpace { method } => {
                 write!(f, "method {method} has no null-space vector v")
             }
+            Error::Infeasible {
+                constraints,
+                active,
+            } => write!(
+                f,
+                "no joint rates satisfy all {constraints} constraints at once \
+                 ({active} of them conflict)"
+            ),
             Error::NetworksUnavailable(msg) => write!(f, "networks not available: {msg}"),
             Error::NetworksForAnotherArm { trained, arm } => write!(
                 f,

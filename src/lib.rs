@@ -6,6 +6,7 @@
 pub mod arm;
 pub mod atlas;
 pub mod bench;
+pub mod clearance;
 pub mod error;
 #[cfg(feature = "eval")]
 pub mod evaluation;
@@ -16,6 +17,7 @@ pub mod networks;
 pub mod nn;
 pub mod obstacle;
 pub mod planner;
+pub mod qp;
 pub mod scene;
 pub mod session;
 pub mod training;

@@ -52,6 +52,27 @@ pub struct SceneArgs {
     /// Closed-loop gain K in Xdot + K (X_ref - X); 0 is the paper's open loop.
     #[arg(long, allow_hyphen_values = true)]
     pub feedback: Option<f64>,
+    /// Influence distance d_i (m) of distance, priority and qp: link-obstacle
+    /// pairs closer than this count (default 0.3).
+    #[arg(long, allow_hyphen_values = true)]
+    pub influence: Option<f64>,
+    /// Stop distance d_s (m) of the velocity dampers (qp) and of the escape
+    /// speed (priority); floors the clearance of distance (default 0.02).
+    #[arg(long, allow_hyphen_values = true)]
+    pub stop_distance: Option<f64>,
+    /// Damper gain xi (m/s): the approach speed allowed at d_i (qp), the
+    /// escape speed at d_s (priority) (default 1).
+    #[arg(long, allow_hyphen_values = true)]
+    pub damper_gain: Option<f64>,
+    /// Weight w of the task slack (qp; default 1e6).
+    #[arg(long, allow_hyphen_values = true)]
+    pub slack_weight: Option<f64>,
+    /// Gain lambda_d of the clearance potential (distance; default 1e-3).
+    #[arg(long, allow_hyphen_values = true)]
+    pub distance_gain: Option<f64>,
+    /// Limit of every joint's rate in rad/s (qp; default 1.5).
+    #[arg(long, allow_hyphen_values = true)]
+    pub rate_limit: Option<f64>,
     #[command(flatten)]
     pub networks: NetworkArgs,
 }
@@ -97,6 +118,20 @@ impl SceneArgs {
         }
         if let Some(v) = self.feedback {
             s.feedback_gain = v;
+        }
+        // All at once, then checked together (d_s < d_i whatever the order).
+        let a = &mut s.avoidance;
+        for (field, value) in [
+            (&mut a.influence, self.influence),
+            (&mut a.stop_distance, self.stop_distance),
+            (&mut a.damper_gain, self.damper_gain),
+            (&mut a.slack_weight, self.slack_weight),
+            (&mut a.distance_gain, self.distance_gain),
+            (&mut a.rate_limit, self.rate_limit),
+        ] {
+            if let Some(v) = value {
+                *field = v;
+            }
         }
         s.validate().map_err(|e| e.to_string())?;
         Ok(s)

@@ -3,7 +3,7 @@
 
 use nalgebra::{DVector, Matrix2xX, Vector2};
 
-use super::methods::{Context, Note};
+use super::methods::Context;
 use super::Planner;
 use crate::error::{Error, Result};
 use crate::kinematics::Pose;
@@ -113,7 +113,7 @@ impl Planner {
         let [k1, k2, k3, k4] = &mut ws.k;
         // Stage 1 reads the kinematics of the current state, computed when
         // the previous step ended.
-        let Note { mut handover } = ws.rule.theta_dot(&cx, &ws.pose, xdot(t, &ws.pose), k1)?;
+        let mut note = ws.rule.theta_dot(&cx, &ws.pose, xdot(t, &ws.pose), k1)?;
         for (stage, (c, tt)) in [(0.5 * h, t + 0.5 * h), (0.5 * h, t + 0.5 * h), (h, t + h)]
             .into_iter()
             .enumerate()
@@ -127,10 +127,11 @@ impl Planner {
                 *s = th + c * k;
             }
             ws.stage.update(&scene.arm, &ws.theta_stage)?;
-            let note = ws
+            let stage_note = ws
                 .rule
                 .theta_dot(&cx, &ws.stage, xdot(tt, &ws.stage), out)?;
-            handover |= note.handover;
+            note.handover |= stage_note.handover;
+            note.relaxed |= stage_note.relaxed;
         }
         let w = h / 6.0;
         let mut finite = true;
@@ -146,7 +147,7 @@ impl Planner {
         self.ws.pose.update(&self.scene.arm, &self.ws.next)?;
         self.step_index += 1;
         self.t = self.step_index as f64 * h;
-        self.refresh_sample(handover);
+        self.refresh_sample(note);
         self.stats.record(&self.sample);
         self.stats.steps += 1;
         Ok(&self.sample)

@@ -141,7 +141,7 @@ impl Planner {
             auto_damping,
             ws,
         };
-        p.refresh_sample(false);
+        p.refresh_sample(methods::Note::default());
         p.stats.record(&p.sample);
         Ok(p)
     }
@@ -196,7 +196,7 @@ impl Planner {
             self.scene.tf,
         );
         self.stats = Stats::new();
-        self.refresh_sample(false);
+        self.refresh_sample(methods::Note::default());
         self.stats.record(&self.sample);
     }
 

@@ -2,6 +2,7 @@
 //! after each change of setting), whether the networks in use see inputs
 //! in their trained range, and the summary of the run so far.
 
+use super::methods::Note;
 use super::{Method, Planner, Sample, Summary, Surrogate, REACH_TOLERANCE};
 use crate::kinematics::Pose;
 use crate::obstacle::Obstacle;
@@ -15,11 +16,15 @@ impl Planner {
 
     /// Refreshes the sample after a change of setting (same state, same step).
     pub(super) fn resample(&mut self) {
-        self.refresh_sample(self.sample.phi_handover);
+        self.refresh_sample(Note {
+            handover: self.sample.phi_handover,
+            relaxed: self.sample.relaxed,
+        });
     }
 
-    /// Rewrites the sample in place from the current pose.
-    pub(super) fn refresh_sample(&mut self, phi_handover: bool) {
+    /// Rewrites the sample in place from the current pose; `note` is what
+    /// the rate evaluations of the step that led here said.
+    pub(super) fn refresh_sample(&mut self, note: Note) {
         let pose = &self.ws.pose;
         let s = &mut self.sample;
         let ee = pose.end_effector();
@@ -49,7 +54,8 @@ impl Planner {
             pose,
             &self.scene.obstacles,
         );
-        s.phi_handover = phi_handover;
+        s.phi_handover = note.handover;
+        s.relaxed = note.relaxed;
     }
 
     /// Whether the networks the current method uses see inputs inside
@@ -77,6 +83,7 @@ impl Planner {
             max_delta: self.stats.max_delta,
             auto_damping: self.auto_damping,
             handover_steps: self.stats.handover_steps,
+            relaxed_steps: self.stats.relaxed_steps,
         }
     }
 }

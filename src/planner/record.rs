@@ -87,6 +87,18 @@ pub struct Sample {
     /// the `Phi` network (Cases 1 and 3 only: no network can fit `Phi` where
     /// it is unbounded).
     pub phi_handover: bool,
+    /// Whether, in the step that led here, a quadratic program's constraints
+    /// had to be relaxed because no rate satisfied them all (`qp` only).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub relaxed: bool,
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 impl Sample {
@@ -106,6 +118,7 @@ impl Sample {
             manipulability: 0.0,
             in_range: true,
             phi_handover: false,
+            relaxed: false,
         }
     }
 }
@@ -143,6 +156,10 @@ pub struct Summary {
     /// Steps in which the exact damped `Phi` stood in for the `Phi` network
     /// near a singular pose (see [`Sample::phi_handover`]).
     pub handover_steps: usize,
+    /// Steps in which the quadratic program's constraints were relaxed (see
+    /// [`Sample::relaxed`]); absent from the JSON when none was.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub relaxed_steps: usize,
 }
 
 /// A whole run: every sample from `t = 0` to `tf`, and the summary.
@@ -166,6 +183,7 @@ pub(super) struct Stats {
     pub(super) out_of_range_steps: usize,
     pub(super) max_delta: f64,
     pub(super) handover_steps: usize,
+    pub(super) relaxed_steps: usize,
 }
 
 impl Stats {
@@ -178,6 +196,7 @@ impl Stats {
             out_of_range_steps: 0,
             max_delta: 0.0,
             handover_steps: 0,
+            relaxed_steps: 0,
         }
     }
 
@@ -193,6 +212,9 @@ impl Stats {
         self.max_delta = self.max_delta.max(s.delta);
         if s.phi_handover {
             self.handover_steps += 1;
+        }
+        if s.relaxed {
+            self.relaxed_steps += 1;
         }
     }
 }

@@ -3,6 +3,7 @@
 use arbitrary::Unstructured;
 use redundant_ik::ik::DampingSchedule;
 use redundant_ik::planner::{methods, Planner};
+use redundant_ik::scene::Avoidance;
 use redundant_ik::{Arm, Obstacle, Scene};
 
 use super::checks::{shipped_surrogate, step_checked, Snapshot};
@@ -53,6 +54,19 @@ pub fn scene(data: &[u8]) {
             dt,
             tf: dt * small(&mut u, 30) as f64,
             feedback_gain: num_in(&mut u, 0.0, 5.0),
+            // Drawn last, and the defaults when the input has ended, so
+            // that inputs written before it existed make the same scene.
+            avoidance: if u.is_empty() {
+                Avoidance::default()
+            } else {
+                Avoidance {
+                    influence: num_in(&mut u, 0.05, 0.6),
+                    stop_distance: num_in(&mut u, 0.0, 0.04),
+                    damper_gain: num_in(&mut u, 0.1, 3.0),
+                    slack_weight: num_in(&mut u, 1.0, 1e7),
+                    distance_gain: num_in(&mut u, 0.0, 0.01),
+                }
+            },
         }
     };
     let networks = (scene.arm == Arm::paper()).then(shipped_surrogate);

@@ -66,7 +66,7 @@ pub struct Kernel {
     widest: usize,
     /// The layers as wasm `v128` pairs, for the `simd128` build.
     #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-    simd: Vec<wasm_simd::Layer>,
+    simd: Vec<wasm::Layer>,
 }
 
 fn pad(n: usize) -> usize {

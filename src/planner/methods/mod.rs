@@ -45,6 +45,9 @@ register! {
     case1::CASE1,
     case2::CASE2,
     case3::CASE3,
+    distance::DISTANCE,
+    priority::PRIORITY,
+    qp::QP,
 }
 
 /// The five methods of the paper's section VI, in its order (Figs. 2-6 and
@@ -141,6 +144,9 @@ pub struct Note {
     /// damping schedule was active at a near-singular pose, where `Phi` is
     /// unbounded and no network fits it.
     pub handover: bool,
+    /// The constraints of a quadratic program were relaxed because no rate
+    /// satisfied them all (`qp`: see its documentation).
+    pub relaxed: bool,
 }
 
 /// A method's computation for one planner: the joint rates of a pose,

@@ -58,7 +58,7 @@ pub(super) fn rule(n: usize, method: Method, v_from: V, phi_from: Phi) -> Box<dy
 /// `v` at `pose` into `v`: `(lambda / 4) sum_O sum_k sign(D_k) dD_k/dtheta`
 /// (eqs. 14-15 summed over the obstacles), each obstacle's area gradient
 /// (into the scratch `g`) exact or from the `v` network of `method`.
-fn obstacle_vector(
+pub(super) fn obstacle_vector(
     method: Method,
     from: V,
     cx: &Context<'_>,
@@ -127,7 +127,10 @@ impl Rule for Paper {
                     ik::damp_phi(&mut self.phi, cx.scene.delta)?;
                 }
                 ik::theta_dot_network_into(&self.phi, jac, xdot, &self.v, out)?;
-                Ok(Note { handover })
+                Ok(Note {
+                    handover,
+                    ..Note::default()
+                })
             }
         }
     }

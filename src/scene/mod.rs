@@ -5,10 +5,18 @@ use nalgebra::{DVector, Vector2};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
+mod params;
+
 use crate::arm::Arm;
-use crate::error::{coordinate, non_negative, positive, within, Error, Result};
+use crate::error::{coordinate, positive, Error, Result};
 use crate::ik::DampingSchedule;
 use crate::obstacle::Obstacle;
+
+pub(crate) use params::{validate_delta, validate_gain, validate_lambda};
+pub use params::{
+    Avoidance, Param, MAX_DAMPER_GAIN, MAX_DELTA, MAX_DISTANCE_GAIN, MAX_GAIN_STEP, MAX_INFLUENCE,
+    MAX_LAMBDA, MAX_RATE_LIMIT, MAX_SLACK_WEIGHT, MIN_SLACK_WEIGHT,
+};
 
 /// The paper's final end-effector position for both tasks, `Xf = (0.60, 0.20)`.
 pub const PAPER_TARGET: [f64; 2] = [0.60, 0.20];
@@ -40,6 +48,11 @@ pub struct Scene {
     pub tf: f64,
     /// Closed-loop gain `K` in `Xdot + K (X_ref - X)`; 0 is the paper's open loop.
     pub feedback_gain: f64,
+    /// The parameters of the methods beyond the paper (influence distance,
+    /// stop distance, damper gain, slack weight, distance gain); absent in
+    /// scenes written before they existed, hence the defaults.
+    #[serde(default)]
+    pub avoidance: Avoidance,
 }
 
 impl Scene {
@@ -80,6 +93,7 @@ impl Scene {
             dt: 0.1,
             tf: 10.0,
             feedback_gain: 0.0,
+            avoidance: Avoidance::default(),
         }
     }
 
@@ -113,6 +127,7 @@ impl Scene {
         if let Some(d) = &self.damping {
             d.validate()?;
         }
+        self.avoidance.validate()?;
         positive("time step dt", self.dt)?;
         validate_gain(self.feedback_gain, self.dt)?;
         positive("final time tf", self.tf)?;
@@ -135,93 +150,3 @@ impl Scene {
 
 /// Most RK4 steps a run may take.
 pub const MAX_STEPS: f64 = 1.0e7;
-
-/// Largest gain `lambda` accepted: 250 times the paper's 4 (the page's
-/// slider ends at 12). Far larger gains only make the first RK4 step
-/// overflow (`lambda = 1e308` did, found by the hostile-URL test).
-pub const MAX_LAMBDA: f64 = 1000.0;
-
-/// Largest constant damping `delta` accepted (m^2): with `J J^T` of order
-/// 1 m^2 it already stops the arm; larger values say nothing more.
-pub const MAX_DELTA: f64 = 1000.0;
-
-pub(crate) fn validate_lambda(lambda: f64) -> Result<()> {
-    non_negative("lambda", lambda)?;
-    within("lambda", lambda, 0.0, MAX_LAMBDA).map(|_| ())
-}
-
-pub(crate) fn validate_delta(delta: f64) -> Result<()> {
-    non_negative("damping factor delta", delta)?;
-    within("damping factor delta", delta, 0.0, MAX_DELTA).map(|_| ())
-}
-
-/// A number of the scene that a method reads ([`crate::planner::MethodInfo::params`]):
-/// its name on the command line and in the page, its bounds, and how to
-/// read and set it with the scene's checks.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Param {
-    /// Gain `lambda` of the obstacle vector, eq. (14).
-    Lambda,
-    /// Constant damping `delta` of eqs. (6), (17), (20).
-    Delta,
-}
-
-impl Param {
-    /// The name on the command line (`--lambda`) and in the page.
-    pub fn name(self) -> &'static str {
-        match self {
-            Param::Lambda => "lambda",
-            Param::Delta => "delta",
-        }
-    }
-
-    /// Smallest and largest value accepted.
-    pub fn bounds(self) -> (f64, f64) {
-        match self {
-            Param::Lambda => (0.0, MAX_LAMBDA),
-            Param::Delta => (0.0, MAX_DELTA),
-        }
-    }
-
-    /// Its value in `scene`.
-    pub fn get(self, scene: &Scene) -> f64 {
-        match self {
-            Param::Lambda => scene.lambda,
-            Param::Delta => scene.delta,
-        }
-    }
-
-    /// Sets it in `scene`; refused, changing nothing, when out of bounds.
-    pub fn set(self, scene: &mut Scene, value: f64) -> Result<()> {
-        match self {
-            Param::Lambda => {
-                validate_lambda(value)?;
-                scene.lambda = value;
-            }
-            Param::Delta => {
-                validate_delta(value)?;
-                scene.delta = value;
-            }
-        }
-        Ok(())
-    }
-}
-
-/// Largest `K dt` accepted for the closed-loop gain. The tracking error then
-/// obeys `e' = -K e`, which classical RK4 integrates stably only for
-/// `K dt < 2.785`; 2.5 leaves a margin for the arm's nonlinearity.
-pub const MAX_GAIN_STEP: f64 = 2.5;
-
-pub(crate) fn validate_gain(gain: f64, dt: f64) -> Result<()> {
-    non_negative("feedback gain", gain)?;
-    if gain * dt > MAX_GAIN_STEP {
-        return Err(Error::UnstableGain {
-            gain,
-            dt,
-            max_gain: MAX_GAIN_STEP / dt,
-            max_step: MAX_GAIN_STEP,
-        });
-    }
-    Ok(())
-}

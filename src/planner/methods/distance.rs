@@ -1,0 +1,97 @@
+//! Gradient projection on a clearance potential (Liégeois 1977, with
+//! Khatib's FIRAS potential, 1986): the paper's eq. (5) with another
+//! null-space vector. For every link-obstacle pair closer than the
+//! influence distance `d_i` (clearance `c`, normal `n`, point Jacobian
+//! `J_p`; [`crate::clearance`]),
+//!
+//! `U = sum (1/2) (1/c - 1/d_i)^2`, `v = -lambda_d grad U
+//!    = lambda_d sum (1/c - 1/d_i) / c^2 J_p^T n`,
+//!
+//! then eq. (18), `theta_dot = J^T (J J^T + delta I)^-1 (Xdot - J v) + v`.
+//! The potential is unbounded at contact: `c` is floored at the stop
+//! distance `d_s` (and at 1 mm), so a link that touches or enters a disc
+//! gets a large but finite push out.
+
+use super::{Context, Entry, Group, Method, MethodInfo, Needs, Note, Rule};
+use crate::clearance::Pairs;
+use crate::error::Result;
+use crate::ik;
+use crate::kinematics::Pose;
+use crate::scene::Param;
+
+/// Gradient projection on the clearance potential (`distance`).
+pub const DISTANCE: Method = Method::new(&ENTRY);
+
+static ENTRY: Entry = Entry {
+    info: MethodInfo {
+        name: "distance",
+        label: "Distance gradient",
+        description: "v pushes each close link away from the obstacle (FIRAS potential), eq. (5)",
+        group: Group::Beyond,
+        paper_figures: None,
+        networks: Needs::NOTHING,
+        avoids: true,
+        colour: "#9467bd",
+        params: &[
+            Param::DistanceGain,
+            Param::Influence,
+            Param::StopDistance,
+            Param::Delta,
+        ],
+    },
+    rule: |n| {
+        Box::new(Distance {
+            pairs: Pairs::with_capacity(8 * n),
+            row: vec![0.0; n],
+            v: vec![0.0; n],
+        })
+    },
+};
+
+#[derive(Clone)]
+struct Distance {
+    pairs: Pairs,
+    row: Vec<f64>,
+    v: Vec<f64>,
+}
+
+/// `v = lambda_d sum (1/c - 1/d_i) / c^2 J_p^T n` over the pairs closer than
+/// `d_i` (see the module documentation).
+fn potential_gradient(cx: &Context<'_>, pose: &Pose, pairs: &mut Pairs, row: &mut [f64], v: &mut [f64]) {
+    let a = &cx.scene.avoidance;
+    pairs.update(pose, &cx.scene.obstacles, a.influence);
+    v.iter_mut().for_each(|x| *x = 0.0);
+    let floor = a.stop_distance.max(1e-3);
+    for pair in pairs.as_slice() {
+        let c = pair.clearance.max(floor);
+        let coef = a.distance_gain * (1.0 / c - 1.0 / a.influence) / (c * c);
+        pair.rate_row(pose, row);
+        for (vi, ri) in v.iter_mut().zip(row.iter()) {
+            *vi += coef * ri;
+        }
+    }
+}
+
+impl Rule for Distance {
+    fn theta_dot(
+        &mut self,
+        cx: &Context<'_>,
+        pose: &Pose,
+        xdot: [f64; 2],
+        out: &mut [f64],
+    ) -> Result<Note> {
+        potential_gradient(cx, pose, &mut self.pairs, &mut self.row, &mut self.v);
+        let delta = cx.scene.delta + cx.scheduled_delta(pose);
+        ik::theta_dot_symmetric_into(pose.jacobian(), xdot, &self.v, delta, out)?;
+        Ok(Note::default())
+    }
+
+    fn null_space(&mut self, cx: &Context<'_>, pose: &Pose, v: &mut [f64]) -> Result<bool> {
+        potential_gradient(cx, pose, &mut self.pairs, &mut self.row, v);
+        Ok(true)
+    }
+
+    fn boxed_clone(&self) -> Box<dyn Rule> {
+        Box::new(self.clone())
+    }
+}

@@ -1,0 +1,370 @@
+//! The numbers of a scene that the methods read, each with its bounds: the
+//! paper's gain `lambda` and damping `delta`, and the parameters of the
+//! methods beyond the paper ([`Avoidance`], `docs/methods.md`). The command
+//! line, the page's controls and the checks all read them from [`Param`].
+
+use serde::{Deserialize, Serialize};
+
+use super::Scene;
+use crate::error::{finite, non_negative, within, Error, Result};
+
+/// Largest gain `lambda` accepted: 250 times the paper's 4 (the page's
+/// slider ends at 12). Far larger gains only make the first RK4 step
+/// overflow (`lambda = 1e308` did, found by the hostile-URL test).
+pub const MAX_LAMBDA: f64 = 1000.0;
+
+/// Largest constant damping `delta` accepted (m^2): with `J J^T` of order
+/// 1 m^2 it already stops the arm; larger values say nothing more.
+pub const MAX_DELTA: f64 = 1000.0;
+
+/// Largest influence distance `d_i` accepted (m): beyond any arm's reach.
+pub const MAX_INFLUENCE: f64 = 100.0;
+/// Largest damper gain `xi` accepted (m/s).
+pub const MAX_DAMPER_GAIN: f64 = 100.0;
+/// Smallest and largest task-slack weight `w` accepted: below 1 the task
+/// hardly counts; above 1e12 `1 / w` drowns in the rounding of `J J^T`.
+pub const MIN_SLACK_WEIGHT: f64 = 1.0;
+/// See [`MIN_SLACK_WEIGHT`].
+pub const MAX_SLACK_WEIGHT: f64 = 1e12;
+/// Largest gain `lambda_d` of the clearance potential accepted.
+pub const MAX_DISTANCE_GAIN: f64 = 1000.0;
+/// Largest joint-rate limit accepted (rad/s).
+pub const MAX_RATE_LIMIT: f64 = 1000.0;
+
+/// Largest `K dt` accepted for the closed-loop gain. The tracking error then
+/// obeys `e' = -K e`, which classical RK4 integrates stably only for
+/// `K dt < 2.785`; 2.5 leaves a margin for the arm's nonlinearity.
+pub const MAX_GAIN_STEP: f64 = 2.5;
+
+pub(crate) fn validate_lambda(lambda: f64) -> Result<()> {
+    non_negative("lambda", lambda)?;
+    within("lambda", lambda, 0.0, MAX_LAMBDA).map(|_| ())
+}
+
+pub(crate) fn validate_delta(delta: f64) -> Result<()> {
+    non_negative("damping factor delta", delta)?;
+    within("damping factor delta", delta, 0.0, MAX_DELTA).map(|_| ())
+}
+
+pub(crate) fn validate_gain(gain: f64, dt: f64) -> Result<()> {
+    non_negative("feedback gain", gain)?;
+    if gain * dt > MAX_GAIN_STEP {
+        return Err(Error::UnstableGain {
+            gain,
+            dt,
+            max_gain: MAX_GAIN_STEP / dt,
+            max_step: MAX_GAIN_STEP,
+        });
+    }
+    Ok(())
+}
+
+/// The parameters of the methods beyond the paper (`docs/methods.md`).
+/// Link-obstacle pairs with a clearance of at least `influence` are
+/// ignored by all three.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Avoidance {
+    /// Influence distance `d_i` (m): pairs closer than this count.
+    pub influence: f64,
+    /// Stop distance `d_s` (m) of the velocity dampers (`qp`) and of the
+    /// escape speed (`priority`): the clearance they keep.
+    pub stop_distance: f64,
+    /// Damper gain `xi` (m/s): how fast a link may approach at the
+    /// influence distance (`qp`); the escape speed at the stop distance
+    /// (`priority`).
+    pub damper_gain: f64,
+    /// Weight `w` of the task slack (`qp`): with no damper active the rates
+    /// are eq. (5) with damped least squares, `delta = 1 / w`.
+    pub slack_weight: f64,
+    /// Gain `lambda_d` of the clearance potential (`distance`).
+    pub distance_gain: f64,
+    /// The joints' rate limit (rad/s) of the quadratic program (`qp`), as
+    /// NEO bounds a robot's joint velocities: without it, where a damper
+    /// and the task pull apart the program buys the task with unbounded
+    /// rates. Absent in scenes written before it, hence the default.
+    #[serde(default = "default_rate_limit")]
+    pub rate_limit: f64,
+}
+
+fn default_rate_limit() -> f64 {
+    Avoidance::default().rate_limit
+}
+
+impl Default for Avoidance {
+    /// `d_i = 0.3 m`, `d_s = 0.02 m`, `xi = 1 m/s`, `w = 1e6` (NEO's and
+    /// mink's orders of magnitude, scaled to this arm), joint rates within
+    /// 1.5 rad/s (the paper's tasks need 0.54) and `lambda_d = 1e-3`, chosen
+    /// on the atlas (`docs/methods.md`).
+    fn default() -> Self {
+        Self {
+            influence: 0.3,
+            stop_distance: 0.02,
+            damper_gain: 1.0,
+            slack_weight: 1e6,
+            distance_gain: 1e-3,
+            rate_limit: 1.5,
+        }
+    }
+}
+
+impl Avoidance {
+    /// Checks every number and that `d_s < d_i`.
+    pub fn validate(&self) -> Result<()> {
+        for p in [
+            Param::Influence,
+            Param::StopDistance,
+            Param::DamperGain,
+            Param::SlackWeight,
+            Param::DistanceGain,
+            Param::RateLimit,
+        ] {
+            let (lo, hi) = p.bounds();
+            within(p.what(), p.read(self), lo, hi)?;
+        }
+        if self.stop_distance >= self.influence {
+            return Err(Error::OutOfRange {
+                what: "stop distance d_s (below the influence distance)".into(),
+                value: self.stop_distance,
+                min: 0.0,
+                max: self.influence,
+            });
+        }
+        Ok(())
+    }
+}
+
+/// A number of the scene that a method reads ([`crate::planner::MethodInfo::params`]):
+/// its name on the command line and in the page, its bounds, and how to
+/// read and set it with the scene's checks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Param {
+    /// Gain `lambda` of the obstacle vector, eq. (14).
+    Lambda,
+    /// Constant damping `delta` of eqs. (6), (17), (20).
+    Delta,
+    /// Influence distance `d_i` ([`Avoidance::influence`]).
+    Influence,
+    /// Stop distance `d_s` ([`Avoidance::stop_distance`]).
+    StopDistance,
+    /// Damper gain `xi` ([`Avoidance::damper_gain`]).
+    DamperGain,
+    /// Task-slack weight `w` ([`Avoidance::slack_weight`]).
+    SlackWeight,
+    /// Gain `lambda_d` of the clearance potential ([`Avoidance::distance_gain`]).
+    DistanceGain,
+    /// The joints' rate limit ([`Avoidance::rate_limit`]).
+    RateLimit,
+}
+
+/// What the page and the command line show of a parameter.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ParamInfo {
+    /// The name in URLs and JSON (`lambda`, `influence`, ...).
+    pub name: &'static str,
+    /// The command line's flag (`--lambda`, `--influence`, ...).
+    pub flag: &'static str,
+    /// What a control is labelled.
+    pub label: &'static str,
+    /// Its unit, if any.
+    pub unit: &'static str,
+    /// Smallest and largest value accepted.
+    pub bounds: (f64, f64),
+    /// The span and step of a slider for it: `(min, max, step)`.
+    pub slider: (f64, f64, f64),
+    /// Its value in the paper's tasks.
+    pub default: f64,
+}
+
+impl Param {
+    /// Every parameter.
+    pub const ALL: [Param; 8] = [
+        Param::Lambda,
+        Param::Delta,
+        Param::Influence,
+        Param::StopDistance,
+        Param::DamperGain,
+        Param::SlackWeight,
+        Param::DistanceGain,
+        Param::RateLimit,
+    ];
+
+    /// What the page and the command line show of it.
+    pub fn info(self) -> ParamInfo {
+        let d = Avoidance::default();
+        let (name, flag, label, unit, slider, default) = match self {
+            Param::Lambda => (
+                "lambda",
+                "--lambda",
+                "Obstacle gain λ",
+                "",
+                (0.0, 12.0, 0.5),
+                4.0,
+            ),
+            Param::Delta => (
+                "delta",
+                "--delta",
+                "Damping δ",
+                "m²",
+                (0.0, 0.05, 0.001),
+                0.0,
+            ),
+            Param::Influence => (
+                "influence",
+                "--influence",
+                "Influence distance dᵢ",
+                "m",
+                (0.05, 0.8, 0.01),
+                d.influence,
+            ),
+            Param::StopDistance => (
+                "stop_distance",
+                "--stop-distance",
+                "Stop distance dₛ",
+                "m",
+                (0.0, 0.2, 0.005),
+                d.stop_distance,
+            ),
+            Param::DamperGain => (
+                "damper_gain",
+                "--damper-gain",
+                "Damper gain ξ",
+                "m/s",
+                (0.1, 5.0, 0.1),
+                d.damper_gain,
+            ),
+            Param::SlackWeight => (
+                "slack_weight",
+                "--slack-weight",
+                "Slack weight w",
+                "",
+                (1e2, 1e8, 10.0),
+                d.slack_weight,
+            ),
+            Param::DistanceGain => (
+                "distance_gain",
+                "--distance-gain",
+                "Distance gain λd",
+                "",
+                (0.0, 0.01, 1e-4),
+                d.distance_gain,
+            ),
+            Param::RateLimit => (
+                "rate_limit",
+                "--rate-limit",
+                "Joint rate limit",
+                "rad/s",
+                (0.2, 10.0, 0.1),
+                d.rate_limit,
+            ),
+        };
+        ParamInfo {
+            name,
+            flag,
+            label,
+            unit,
+            bounds: self.bounds(),
+            slider,
+            default,
+        }
+    }
+
+    /// The name on the command line (`--lambda`) and in the page.
+    pub fn name(self) -> &'static str {
+        self.info().name
+    }
+
+    /// What a message calls it.
+    fn what(self) -> &'static str {
+        match self {
+            Param::Lambda => "lambda",
+            Param::Delta => "damping factor delta",
+            Param::Influence => "influence distance d_i",
+            Param::StopDistance => "stop distance d_s",
+            Param::DamperGain => "damper gain xi",
+            Param::SlackWeight => "slack weight w",
+            Param::DistanceGain => "distance gain lambda_d",
+            Param::RateLimit => "joint rate limit",
+        }
+    }
+
+    /// Smallest and largest value accepted.
+    pub fn bounds(self) -> (f64, f64) {
+        match self {
+            Param::Lambda => (0.0, MAX_LAMBDA),
+            Param::Delta => (0.0, MAX_DELTA),
+            Param::Influence => (1e-3, MAX_INFLUENCE),
+            Param::StopDistance => (0.0, MAX_INFLUENCE),
+            Param::DamperGain => (1e-3, MAX_DAMPER_GAIN),
+            Param::SlackWeight => (MIN_SLACK_WEIGHT, MAX_SLACK_WEIGHT),
+            Param::DistanceGain => (0.0, MAX_DISTANCE_GAIN),
+            Param::RateLimit => (1e-3, MAX_RATE_LIMIT),
+        }
+    }
+
+    fn read(self, a: &Avoidance) -> f64 {
+        match self {
+            Param::Influence => a.influence,
+            Param::StopDistance => a.stop_distance,
+            Param::DamperGain => a.damper_gain,
+            Param::SlackWeight => a.slack_weight,
+            Param::DistanceGain => a.distance_gain,
+            Param::RateLimit => a.rate_limit,
+            Param::Lambda | Param::Delta => f64::NAN,
+        }
+    }
+
+    /// Its value in `scene`.
+    pub fn get(self, scene: &Scene) -> f64 {
+        match self {
+            Param::Lambda => scene.lambda,
+            Param::Delta => scene.delta,
+            other => other.read(&scene.avoidance),
+        }
+    }
+
+    /// Sets it in `scene`; refused, changing nothing, when out of its
+    /// bounds (or, for the stop distance, not below the influence distance).
+    pub fn set(self, scene: &mut Scene, value: f64) -> Result<()> {
+        finite(self.what(), value)?;
+        match self {
+            Param::Lambda => {
+                validate_lambda(value)?;
+                scene.lambda = value;
+            }
+            Param::Delta => {
+                validate_delta(value)?;
+                scene.delta = value;
+            }
+            other => {
+                let mut a = scene.avoidance;
+                match other {
+                    Param::Influence => a.influence = value,
+                    Param::StopDistance => a.stop_distance = value,
+                    Param::DamperGain => a.damper_gain = value,
+                    Param::SlackWeight => a.slack_weight = value,
+                    Param::RateLimit => a.rate_limit = value,
+                    _ => a.distance_gain = value,
+                }
+                a.validate()?;
+                scene.avoidance = a;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl std::str::FromStr for Param {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        Param::ALL
+            .into_iter()
+            .find(|p| p.name() == s)
+            .ok_or_else(|| Error::UnknownName {
+                kind: "parameter",
+                name: s.into(),
+                choices: Param::ALL.map(Param::name).join(", "),
+            })
+    }
+}
