@@ -36,6 +36,9 @@ export function mountPlayground(root, demo, { attempt, show, changed }) {
     const stored = storedWeights(arm);
     if (!stored) return null;
     try {
+      if (typeof stored.phi !== 'string' || typeof stored.v !== 'string') {
+        throw new Error('the entry is not a pair of weights files');
+      }
       installNetworks(stored.phi, stored.v);
       return stored;
     } catch (e) {

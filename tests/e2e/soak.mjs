@@ -167,7 +167,8 @@ const actions = {
     if (s.obstacles.length > 1) await page.evaluate((i) => window.demo.removeObstacle(i), Math.floor(random() * s.obstacles.length));
   },
   async 'small atlas'() {
-    const modes = ['none', 'numerical', 'case1', 'case2', 'case3'].filter(() => random() < 0.5);
+    const names = (await page.evaluate(() => window.demo.methods())).map((m) => m.name);
+    const modes = names.filter(() => random() < 0.5);
     await page.evaluate(
       async ({ n, modes }) => {
         try {
