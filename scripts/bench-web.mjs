@@ -84,7 +84,7 @@ for (let i = 0; i < 5; i++) {
 }
 const ready = loads.map((t) => t.ready).sort((a, b) => a - b);
 console.log(
-  `navigation -> data-ready: median ${median(ready).toFixed(0)} ms, min ${ready[0].toFixed(0)}, max ${ready.at(-1).toFixed(0)} ms ` +
+  `measure: navigation -> data-ready: median ${median(ready).toFixed(0)} ms, min ${ready[0].toFixed(0)}, max ${ready.at(-1).toFixed(0)} ms ` +
     `(5 loads; DOMContentLoaded median ${median(loads.map((t) => t.dcl)).toFixed(0)} ms)`,
 );
 
@@ -123,11 +123,11 @@ const batch = await c3.evaluate(() => {
 });
 await c3.close();
 console.log(
-  `${batch.mode} solver per animation frame (8x speed, ${stepsPerFrame.toFixed(2)} RK4 steps/frame, ${frames.length} frames): ` +
+  `measure: ${batch.mode} solver per animation frame (8x speed, ${stepsPerFrame.toFixed(2)} RK4 steps/frame, ${frames.length} frames): ` +
     `median ${median(perFrame).toFixed(3)} ms, max ${perFrame.at(-1)?.toFixed(3)} ms`,
 );
 console.log(
-  `${batch.mode} batch of ${batch.steps} RK4 steps: planner ${((batch.plannerMs / batch.steps) * 1000).toFixed(1)} us/step; ` +
+  `measure: ${batch.mode} batch of ${batch.steps} RK4 steps: planner ${((batch.plannerMs / batch.steps) * 1000).toFixed(1)} us/step; ` +
     `with the ghost arm and bookkeeping ${((batch.ms / batch.steps) * 1000).toFixed(1)} us/step`,
 );
 await browser.close();

@@ -30,6 +30,15 @@ export function formatObstacles(obstacles) {
 
 const armText = (arm) => formatArm(arm.post, arm.links);
 
+/** A number field: `min`, `max`, `step` and `value`, named for screen readers by `label`. */
+function numberInput(min, max, step, value, label) {
+  const input = document.createElement('input');
+  input.type = 'number';
+  Object.assign(input, { min: String(min), max: String(max), step: String(step), value: String(value) });
+  input.setAttribute('aria-label', label);
+  return input;
+}
+
 /**
  * Wires the elements of `root` that exist (`#arm-preset`, `#arm-post`,
  * `#arm-links`, `#link-add`, `#link-remove`, `#arm-apply`,
@@ -64,14 +73,8 @@ export function mountArmDesigner(root, demo, { setArm, attempt, show, changed })
     el.links.replaceChildren(
       ...links.map((l, i) => {
         const label = document.createElement('label');
-        const input = document.createElement('input');
-        input.type = 'number';
-        input.min = '0.05';
-        input.max = '3';
-        input.step = '0.05';
-        input.value = String(l);
+        const input = numberInput(0.05, 3, 0.05, l, `Length of link ${i + 1} (m)`);
         input.dataset.link = String(i);
-        input.setAttribute('aria-label', `Length of link ${i + 1} (m)`);
         label.append(`L${i + 1} `, input);
         return label;
       }),
@@ -143,13 +146,7 @@ export function mountArmDesigner(root, demo, { setArm, attempt, show, changed })
     const li = document.createElement('li');
     li.dataset.index = String(i);
     const text = `#${i + 1} (${o.centre[0].toFixed(2)}, ${o.centre[1].toFixed(2)})`;
-    const r = document.createElement('input');
-    r.type = 'number';
-    r.min = '0.01';
-    r.max = '1';
-    r.step = '0.01';
-    r.value = String(o.radius);
-    r.setAttribute('aria-label', `Radius of obstacle ${i + 1} (m)`);
+    const r = numberInput(0.01, 1, 0.01, o.radius, `Radius of obstacle ${i + 1} (m)`);
     r.addEventListener('change', () => {
       const all = demo.state().obstacles.map((b) => [...b.centre, b.radius]);
       all[i][2] = Number(r.value);

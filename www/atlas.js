@@ -15,7 +15,7 @@
 // and the default grid come from the module.
 
 import { limits, methods, atlasClasses, describe } from './module.js';
-import { runWorker, nativeFigures } from './jobs.js';
+import { runWorker, nativeFigures, showBusy } from './jobs.js';
 import { metres, percent, row } from './format.js';
 
 /** Points per side the panel offers (with the core's default, selected). */
@@ -192,12 +192,7 @@ export function mountAtlas(root, demo, { weights, changed }) {
     const state = demo.state();
     const task = state.task;
     const w = weights();
-    if (el.run) el.run.disabled = true;
-    if (el.cancel) el.cancel.hidden = false;
-    if (el.progress) {
-      el.progress.hidden = false;
-      el.progress.value = 0;
-    }
+    showBusy(el, true);
     status('Computing…');
     try {
       const { result, ms } = await runWorker(
@@ -218,9 +213,7 @@ export function mountAtlas(root, demo, { weights, changed }) {
       throw e;
     } finally {
       if (running === controller) running = null;
-      if (el.run) el.run.disabled = false;
-      if (el.cancel) el.cancel.hidden = true;
-      if (el.progress) el.progress.hidden = true;
+      showBusy(el, false);
     }
   }
 

@@ -4,7 +4,7 @@
 // (benchVerdict(): the learned route and the exact one it imitates).
 
 import { describe, method, moduleBuild } from './module.js';
-import { bench, nativeFigures } from './jobs.js';
+import { bench, nativeFigures, showBusy } from './jobs.js';
 import { nanoseconds, row } from './format.js';
 
 const verdictText = (x) => (x >= 1 ? `${x.toFixed(1)}× slower` : `${(1 / x).toFixed(1)}× faster`);
@@ -19,15 +19,11 @@ export function mountBenchPanel(root) {
   const body = $('bench-body');
   const result = $('bench-result');
   if (!button || !result) return;
+  const controls = { run: button, cancel, progress };
   let abort = null;
   cancel?.addEventListener('click', () => abort && abort.abort());
   button.addEventListener('click', async () => {
-    button.disabled = true;
-    if (cancel) cancel.hidden = false;
-    if (progress) {
-      progress.hidden = false;
-      progress.value = 0;
-    }
+    showBusy(controls, true);
     result.textContent = 'Measuring…';
     abort = new AbortController();
     try {
@@ -64,9 +60,7 @@ export function mountBenchPanel(root) {
     } catch (e) {
       result.textContent = e.name === 'AbortError' ? 'Cancelled.' : `The benchmark failed: ${describe(e)}`;
     } finally {
-      button.disabled = false;
-      if (cancel) cancel.hidden = true;
-      if (progress) progress.hidden = true;
+      showBusy(controls, false);
       abort = null;
     }
   });

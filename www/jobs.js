@@ -57,6 +57,19 @@ export async function bench({ onProgress, signal, batchMs = 20 } = {}) {
   return result;
 }
 
+/**
+ * A job's controls while it runs (`on`) and after: the button that starts
+ * it disabled, its cancel button and its progress bar (from 0) shown.
+ */
+export function showBusy({ run, cancel, progress }, on) {
+  if (run) run.disabled = on;
+  if (cancel) cancel.hidden = !on;
+  if (progress) {
+    progress.hidden = !on;
+    if (on) progress.value = 0;
+  }
+}
+
 let native = null;
 /**
  * The native figures quoted beside the page's (`make bench-native` writes

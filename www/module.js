@@ -15,6 +15,8 @@ import init, {
 // The arm and obstacle syntax (`parseArm(text)`, `formatArm(post, links)`,
 // `parseObstacles(text)`), the legend, the atlas classes and the Demo, as
 // the module exports them.
+import { describeError } from './errors.js';
+
 export { parseArm, formatArm, parseObstacles, legend, atlasClasses, Demo } from './pkg/redundant_ik.js';
 
 /** The two builds of the module (make web): with wasm SIMD, and without. */
@@ -135,16 +137,7 @@ export function defaultMethod() {
 }
 
 /** A readable message for an exception thrown by the module. */
-export function describe(err) {
-  let panic = null;
-  try {
-    panic = lastPanic();
-  } catch (_) {
-    /* the module itself failed to load */
-  }
-  if (panic) return `Internal error in the simulation (please report it): ${panic}`;
-  return err && err.message ? err.message : String(err);
-}
+export const describe = (err) => describeError(err, lastPanic);
 
 /**
  * Fills every `[data-limit]` element under `root` with that limit (e.g.

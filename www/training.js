@@ -5,7 +5,7 @@
 // the playground's hooks.
 
 import { describe, limits, networkMethodLabels, formatArm } from './module.js';
-import { runWorker } from './jobs.js';
+import { runWorker, showBusy } from './jobs.js';
 import { metres, sci, seconds as fmtS, row } from './format.js';
 
 /** Draws MSE curves per epoch on a log scale: `series` is `{ name: [{ epoch, train_mse, val_mse }] }`. */
@@ -197,12 +197,7 @@ export function mountTraining(root, demo, { files, install, keep, forget, attemp
     training = new AbortController();
     curves = {};
     const t0 = performance.now();
-    if (el.run) el.run.disabled = true;
-    if (el.cancel) el.cancel.hidden = false;
-    if (el.progress) {
-      el.progress.hidden = false;
-      el.progress.value = 0;
-    }
+    showBusy(el, true);
     status('Sampling the numerical route…');
     drawCurves(el.curves, curves);
     try {
@@ -225,9 +220,7 @@ export function mountTraining(root, demo, { files, install, keep, forget, attemp
       throw e;
     } finally {
       training = null;
-      if (el.run) el.run.disabled = false;
-      if (el.cancel) el.cancel.hidden = true;
-      if (el.progress) el.progress.hidden = true;
+      showBusy(el, false);
     }
   }
 

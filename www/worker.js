@@ -28,6 +28,7 @@ import init, {
   benchVerdict,
   lastPanic,
 } from './pkg/redundant_ik_worker.js';
+import { describeError } from './errors.js';
 
 function bench({ batchMs = 20 }) {
   // The methods `redundant-ik bench` times, and the two whose step times are the verdict.
@@ -89,17 +90,6 @@ self.onmessage = async ({ data }) => {
     else throw new Error(`unknown job '${data.kind}'`);
     self.postMessage({ type: 'done', result, ms: performance.now() - t0 });
   } catch (e) {
-    let panic = null;
-    try {
-      panic = lastPanic();
-    } catch (_) {
-      /* the module did not load */
-    }
-    const message = panic
-      ? `Internal error in the simulation (please report it): ${panic}`
-      : e && e.message
-        ? e.message
-        : String(e);
-    self.postMessage({ type: 'error', message });
+    self.postMessage({ type: 'error', message: describeError(e, lastPanic) });
   }
 };
