@@ -1,7 +1,10 @@
 // Runs the page's benchmark (window.demo.bench(), a Web Worker) in headless
 // Chromium and prints one JSON object per run, then the median of each figure;
 // then times the page's default atlas (window.demo.atlas({}): Task 1, 41 x 41
-// cells, five modes, in a worker) as often and prints its median:
+// cells, five modes, in a worker) as often and prints its median; then the
+// time from navigation to data-ready (five loads in fresh contexts) and the
+// Case 3 solver time per animation frame and per step (docs/web.md). These
+// are measurements on a shared machine: printed, never judged.
 //
 //   BASE_URL=http://127.0.0.1:8000/ RUNS=3 [BUILD=baseline] node scripts/bench-web.mjs
 //
@@ -17,17 +20,25 @@ import { launchChromium } from '../tests/e2e/chromium.mjs';
 const BASE = process.env.BASE_URL ?? 'http://127.0.0.1:8000/';
 const RUNS = Number(process.env.RUNS ?? 3);
 const browser = await launchChromium();
-const context = await browser.newContext();
-if (process.env.BUILD === 'baseline') {
-  await context.addInitScript(() => {
-    const validate = WebAssembly.validate;
-    WebAssembly.validate = (bytes) => (new Uint8Array(bytes).includes(0xfd) ? false : validate(bytes));
-  });
+
+/** A page of a fresh context (with the baseline build if BUILD=baseline), ready. */
+async function open(query) {
+  const context = await browser.newContext({ viewport: { width: 1280, height: 900 } });
+  if (process.env.BUILD === 'baseline') {
+    await context.addInitScript(() => {
+      const validate = WebAssembly.validate;
+      WebAssembly.validate = (bytes) => (new Uint8Array(bytes).includes(0xfd) ? false : validate(bytes));
+    });
+  }
+  const page = await context.newPage();
+  page.on('pageerror', (e) => console.error(`page exception: ${e.message}`));
+  page.on('close', () => context.close().catch(() => {}));
+  await page.goto(`${BASE}${query}`);
+  await page.waitForSelector('body[data-ready="true"]', { timeout: 15000 });
+  return page;
 }
-const page = await context.newPage();
-page.on('pageerror', (e) => console.error(`page exception: ${e.message}`));
-await page.goto(`${BASE}?task=1&mode=numerical`);
-await page.waitForSelector('body[data-ready="true"]', { timeout: 15000 });
+
+const page = await open('?task=1&mode=numerical');
 await page.evaluate(() => window.demo.controller.demo.setRunning(false));
 const runs = [];
 for (let i = 0; i < RUNS; i++) {
@@ -55,4 +66,68 @@ for (let i = 0; i < RUNS; i++) {
   console.log(`atlas of Task 1, 41 x 41 cells, five modes (8,405 runs), in a worker: ${s.toFixed(2)} s`);
 }
 console.log(`median of ${RUNS} (${build} build): atlas ${median(atlas).toFixed(2)} s`);
+await page.close();
+
+// ---- time from navigation to data-ready ------------------------------------
+// `window.demo.readyMs` is performance.now() right after the first frame is
+// drawn and data-ready set.
+const loads = [];
+for (let i = 0; i < 5; i++) {
+  const p = await open('?task=1&mode=numerical');
+  loads.push(
+    await p.evaluate(() => ({
+      ready: window.demo.readyMs,
+      dcl: performance.getEntriesByType('navigation')[0].domContentLoadedEventEnd,
+    })),
+  );
+  await p.close();
+}
+const ready = loads.map((t) => t.ready).sort((a, b) => a - b);
+console.log(
+  `measure: navigation -> data-ready: median ${median(ready).toFixed(0)} ms, min ${ready[0].toFixed(0)}, max ${ready.at(-1).toFixed(0)} ms ` +
+    `(5 loads; DOMContentLoaded median ${median(loads.map((t) => t.dcl)).toFixed(0)} ms)`,
+);
+
+// ---- Case 3 solver time per animation frame ----------------------------------
+// `state().solver_ms` sums performance.now() around the planner's step calls
+// in the last frame that stepped; Task 1 at 8x speed is about 1-2 steps a frame.
+const c3 = await open('?task=1&mode=case3');
+await c3.selectOption('#speed', '8');
+await c3.click('#task1');
+const frames = await c3.evaluate(
+  () =>
+    new Promise((resolve) => {
+      const out = [];
+      let lastSteps = -1;
+      const tick = () => {
+        const s = window.demo.state();
+        if (s.steps !== lastSteps && s.frame_steps > 0) out.push([s.frame_steps, s.solver_ms]);
+        lastSteps = s.steps;
+        if (s.running) requestAnimationFrame(tick);
+        else resolve(out);
+      };
+      requestAnimationFrame(tick);
+    }),
+);
+const perFrame = frames.map((f) => f[1]).sort((a, b) => a - b);
+const stepsPerFrame = frames.reduce((a, f) => a + f[0], 0) / Math.max(frames.length, 1);
+// Many steps in a row, timed around the whole batch.
+const batch = await c3.evaluate(() => {
+  const d = window.demo.controller.demo;
+  d.reset();
+  d.setRunning(false);
+  const t0 = performance.now();
+  d.runUntil(100);
+  const s = d.state();
+  return { mode: s.mode, steps: s.frame_steps, plannerMs: s.solver_ms, ms: performance.now() - t0 };
+});
+await c3.close();
+console.log(
+  `measure: ${batch.mode} solver per animation frame (8x speed, ${stepsPerFrame.toFixed(2)} RK4 steps/frame, ${frames.length} frames): ` +
+    `median ${median(perFrame).toFixed(3)} ms, max ${perFrame.at(-1)?.toFixed(3)} ms`,
+);
+console.log(
+  `measure: ${batch.mode} batch of ${batch.steps} RK4 steps: planner ${((batch.plannerMs / batch.steps) * 1000).toFixed(1)} us/step; ` +
+    `with the ghost arm and bookkeeping ${((batch.ms / batch.steps) * 1000).toFixed(1)} us/step`,
+);
 await browser.close();

@@ -8,34 +8,20 @@
 // (`#atlas-modes`, `#atlas-n`, `#atlas-run`, `#atlas-cancel`,
 // `#atlas-progress`, `#atlas-status`, `#atlas-result`, `#atlas-show`,
 // `#atlas-hide`, `#atlas-legend`, `#atlas-body`, `#atlas-agreement`,
-// `#atlas-tip`) and returns
+// `#atlas-tip`); hooks: `weights()` (the weights files in use, or null) and
+// `changed()` (after the obstacle moved). Returns
 // `{ run(options), hover(x, y), click(x, y), result() }` for the page's
-// pointer handlers and for `window.demo.atlas()`.
+// pointer handlers and for `window.demo.atlas()`. The methods, their labels
+// and the default grid come from the module.
 
-/** Points per side the panel offers; the first default is 41 (as the CLI's). */
+import { limits, methods, atlasClasses, describe } from './module.js';
+import { runWorker, nativeFigures, showBusy } from './jobs.js';
+import { metres, percent, row } from './format.js';
+
+/** Points per side the panel offers (with the core's default, selected). */
 export const RESOLUTIONS = [11, 21, 41, 61];
 
-function pct(rate) {
-  return rate === null || rate === undefined ? '–' : `${(100 * rate).toFixed(1)}%`;
-}
-
-function metres(v) {
-  if (v === null || v === undefined || !Number.isFinite(v)) return '–';
-  if (v >= 0.01) return `${v.toFixed(3)} m`;
-  if (v >= 1e-5) return `${(v * 1000).toFixed(2)} mm`;
-  return '< 0.01 mm';
-}
-
-let native = null;
-/** The native figures (`make bench-native` writes www/bench-native.json), fetched once. */
-function nativeFigures() {
-  native ??= fetch(new URL('./bench-native.json', import.meta.url))
-    .then((r) => (r.ok ? r.json() : null))
-    .catch(() => null);
-  return native;
-}
-
-export function mountAtlas(root, demo, { runWorker, classes, methods, weights, describe, changed }) {
+export function mountAtlas(root, demo, { weights, changed }) {
   const $ = (id) => root.querySelector('#' + id);
   const el = {
     modes: $('atlas-modes'),
@@ -52,9 +38,11 @@ export function mountAtlas(root, demo, { runWorker, classes, methods, weights, d
     agreement: $('atlas-agreement'),
     tip: $('atlas-tip'),
   };
-  const CLASSES = classes(); // [{ name, label, colour, swatch }], the layer's indices
+  const CLASSES = atlasClasses(); // [{ name, label, colour, swatch }], the layer's indices
   const code = Object.fromEntries(CLASSES.map((c, i) => [c.name, i]));
   const label = Object.fromEntries(methods().map((m) => [m.name, m.label]));
+  const avoids = Object.fromEntries(methods().map((m) => [m.name, m.avoids]));
+  const defaultGrid = limits().default_grid;
 
   if (el.modes && !el.modes.querySelector('input')) {
     for (const m of methods()) {
@@ -68,7 +56,8 @@ export function mountAtlas(root, demo, { runWorker, classes, methods, weights, d
     }
   }
   if (el.n && !el.n.options.length) {
-    for (const n of RESOLUTIONS) el.n.add(new Option(`${n} × ${n} cells`, String(n), n === 41, n === 41));
+    const choices = [...new Set([...RESOLUTIONS, defaultGrid])].sort((a, b) => a - b);
+    for (const n of choices) el.n.add(new Option(`${n} × ${n} cells`, String(n), n === defaultGrid, n === defaultGrid));
   }
 
   let atlas = null; // the last result (the JSON shape of `redundant-ik atlas --json`)
@@ -122,18 +111,13 @@ export function mountAtlas(root, demo, { runWorker, classes, methods, weights, d
       el.body.replaceChildren(
         ...atlas.modes.map((m) => {
           const s = atlas.summary[m];
-          const tr = document.createElement('tr');
-          tr.dataset.mode = m;
-          for (const text of [
+          const tr = row([
             label[m],
-            pct(s.success_rate),
-            pct(s.inside_trained_region?.rate),
-            pct(s.outside_trained_region?.rate),
-          ]) {
-            const td = document.createElement('td');
-            td.textContent = text;
-            tr.append(td);
-          }
+            percent(s.success_rate),
+            percent(s.inside_trained_region?.rate),
+            percent(s.outside_trained_region?.rate),
+          ]);
+          tr.dataset.mode = m;
           return tr;
         }),
       );
@@ -171,20 +155,22 @@ export function mountAtlas(root, demo, { runWorker, classes, methods, weights, d
       'Hover a cell for its numbers; click one to put the obstacle there and replay.';
     status(text(''));
     if (el.status) el.status.dataset.ms = String(ms);
-    // The default atlas is also timed natively (`make bench-native`).
-    if (runs === 8405 && atlas.task === 1) {
+    // The default atlas (Task 1, the default grid, the paper's methods) is
+    // also timed natively (`make bench-native`).
+    const paper = methods().filter((m) => m.group === 'paper').map((m) => m.name);
+    if (atlas.grid.n === defaultGrid && atlas.task === 1 && atlas.modes.join() === paper.join()) {
       nativeFigures().then((nat) => {
         if (nat?.atlas_ms && atlas === result) status(text(` (native, one core: ${(nat.atlas_ms / 1000).toFixed(2)} s)`));
       });
     }
-    const preferred = atlas.modes.includes(shown) ? shown : atlas.modes.find((m) => m !== 'none') ?? atlas.modes[0];
+    const preferred = atlas.modes.includes(shown) ? shown : atlas.modes.find((m) => avoids[m]) ?? atlas.modes[0];
     show(preferred);
   }
 
   /**
    * Computes the atlas of the scene as it is now. `options`: `modes` (names;
    * default the panel's ticked ones, or all), `n` (default the panel's
-   * choice, or 41), `region` ([x0, x1, y0, y1]; default the box of the
+   * choice, or the core's default grid), `region` ([x0, x1, y0, y1]; default the box of the
    * arm's reach), `onProgress`, `signal`. Resolves to the JSON shape of
    * `redundant-ik atlas --json`; the map is drawn under the arm.
    */
@@ -201,17 +187,12 @@ export function mountAtlas(root, demo, { runWorker, classes, methods, weights, d
     }
     const ticked = el.modes ? [...el.modes.querySelectorAll('input:checked')].map((b) => b.value) : [];
     const modes = options.modes ?? (ticked.length ? ticked : methods().map((m) => m.name));
-    const n = options.n ?? (el.n ? Number(el.n.value) : 41);
+    const n = options.n ?? (el.n ? Number(el.n.value) : defaultGrid);
     const scene = demo.scene();
     const state = demo.state();
     const task = state.task;
     const w = weights();
-    if (el.run) el.run.disabled = true;
-    if (el.cancel) el.cancel.hidden = false;
-    if (el.progress) {
-      el.progress.hidden = false;
-      el.progress.value = 0;
-    }
+    showBusy(el, true);
     status('Computing…');
     try {
       const { result, ms } = await runWorker(
@@ -232,9 +213,7 @@ export function mountAtlas(root, demo, { runWorker, classes, methods, weights, d
       throw e;
     } finally {
       if (running === controller) running = null;
-      if (el.run) el.run.disabled = false;
-      if (el.cancel) el.cancel.hidden = true;
-      if (el.progress) el.progress.hidden = true;
+      showBusy(el, false);
     }
   }
 

@@ -3,14 +3,16 @@
 //   <script type="module" src="https://…/redundant-ik-demo.js"></script>
 //   <redundant-ik-demo task="2" mode="numerical"></redundant-ik-demo>
 //
-// Attributes: task (1 or 2), mode (none, numerical, case1, case2, case3),
+// Attributes: task (1 or 2), mode (a method's name from methods(): none,
+// numerical, case1, ...; the module's defaultMethod() where absent),
 // lambda, feedback (closed-loop gain K in 1/s; 0 = the paper's open loop),
 // autoplay ("false" to start paused), plots (present: show the time
 // series). Each element has its own simulation in its own shadow root; the
 // WebAssembly module is loaded once per page. After its first frame an element
 // sets data-ready="true" and exposes .controller (state(), worldToClient()).
 
-import { mount, describe, loadModule, networksProblem } from './demo.js';
+import { mount } from './demo.js';
+import { describe, loadModule, defaultMethod } from './module.js';
 
 const STYLE = `
 :host {
@@ -87,7 +89,7 @@ class RedundantIkDemo extends HTMLElement {
       await loadModule();
       const task = Number(this.getAttribute('task')) === 2 ? 2 : 1;
       const lambda = this.getAttribute('lambda');
-      const mode = this.getAttribute('mode') ?? (networksProblem() ? 'numerical' : 'case3');
+      const mode = this.getAttribute('mode') ?? defaultMethod();
       this.controller = await mount(root, {
         task,
         mode,

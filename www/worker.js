@@ -6,7 +6,8 @@
 //
 // Messages in:
 //   { kind: 'bench', wasm, batchMs }
-//       the code behind `redundant-ik bench`, one figure per call
+//       the code behind `redundant-ik bench`, one figure per call, over the
+//       methods of benchMethods(); the result names benchVerdict()'s pair
 //   { kind: 'atlas', wasm, scene, options: { modes, n, region, task }, phi, v }
 //       the atlas of `redundant-ik atlas`, one row of cells per chunk
 //   { kind: 'train', wasm, request: { arm, net, preset, samples, epochs, seed }, phi, v }
@@ -23,16 +24,19 @@ import init, {
   benchThetaDot,
   benchStep,
   benchForward,
-  modes,
+  benchMethods,
+  benchVerdict,
   lastPanic,
 } from './pkg/redundant_ik_worker.js';
+import { describeError } from './errors.js';
 
 function bench({ batchMs = 20 }) {
-  const MODES = modes().map((m) => m.name);
-  const result = { theta_dot_ns: {}, step_ns: {}, forward_ns: null };
+  // The methods `redundant-ik bench` times, and the two whose step times are the verdict.
+  const timed = benchMethods();
+  const result = { theta_dot_ns: {}, step_ns: {}, forward_ns: null, verdict: benchVerdict() };
   const jobs = [
-    ...MODES.map((m) => [`θ̇ ${m}`, () => (result.theta_dot_ns[m] = benchThetaDot(m, batchMs))]),
-    ...MODES.map((m) => [`step ${m}`, () => (result.step_ns[m] = benchStep(m, batchMs))]),
+    ...timed.map((m) => [`θ̇ ${m}`, () => (result.theta_dot_ns[m] = benchThetaDot(m, batchMs))]),
+    ...timed.map((m) => [`step ${m}`, () => (result.step_ns[m] = benchStep(m, batchMs))]),
     ['forward passes', () => (result.forward_ns = benchForward(batchMs))],
   ];
   for (const [i, [label, run]] of jobs.entries()) {
@@ -86,17 +90,6 @@ self.onmessage = async ({ data }) => {
     else throw new Error(`unknown job '${data.kind}'`);
     self.postMessage({ type: 'done', result, ms: performance.now() - t0 });
   } catch (e) {
-    let panic = null;
-    try {
-      panic = lastPanic();
-    } catch (_) {
-      /* the module did not load */
-    }
-    const message = panic
-      ? `Internal error in the simulation (please report it): ${panic}`
-      : e && e.message
-        ? e.message
-        : String(e);
-    self.postMessage({ type: 'error', message });
+    self.postMessage({ type: 'error', message: describeError(e, lastPanic) });
   }
 };

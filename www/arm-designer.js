@@ -1,0 +1,204 @@
+// The arm designer and the obstacle list: the "Arm and obstacles" panel.
+// Presets and bounds come from the module's limits(); the core checks every
+// arm and obstacle (Demo.setArm, addObstacle, setObstacles) and this file
+// shows its refusals.
+
+import { limits, formatArm } from './module.js';
+
+/**
+ * `[[x, y, r?], ...]` (or `{ x, y, r }` each) flat as the module takes it:
+ * `[x0, y0, r0, ...]`, each missing radius the core's default. A typed
+ * array is taken as already flat (parseObstacles() returns one).
+ */
+export function flatObstacles(list) {
+  if (ArrayBuffer.isView(list)) return list;
+  if (!Array.isArray(list)) throw new Error('obstacles: expected a list of [x, y, r]');
+  const radius = limits().default_radius;
+  return Float64Array.from(
+    list.flatMap((o) => {
+      const v = Array.isArray(o) ? o : [o?.x, o?.y, o?.r];
+      if (v.length < 2 || v.length > 3) throw new Error('an obstacle is [x, y] or [x, y, r]');
+      return [Number(v[0]), Number(v[1]), v[2] === undefined ? radius : Number(v[2])];
+    }),
+  );
+}
+
+/** `x,y,r;x,y,r` of the obstacles in the state (what parseObstacles reads). */
+export function formatObstacles(obstacles) {
+  return obstacles.map((o) => [...o.centre, o.radius].map((v) => +v.toFixed(3)).join(',')).join(';');
+}
+
+const armText = (arm) => formatArm(arm.post, arm.links);
+
+/** A number field: `min`, `max`, `step` and `value`, named for screen readers by `label`. */
+function numberInput(min, max, step, value, label) {
+  const input = document.createElement('input');
+  input.type = 'number';
+  Object.assign(input, { min: String(min), max: String(max), step: String(step), value: String(value) });
+  input.setAttribute('aria-label', label);
+  return input;
+}
+
+/**
+ * Wires the elements of `root` that exist (`#arm-preset`, `#arm-post`,
+ * `#arm-links`, `#link-add`, `#link-remove`, `#arm-apply`,
+ * `#obstacle-add`, `#obstacle-remove`, `#obstacle-list`). Hooks:
+ * `setArm(arm)` (the playground's, which also restores kept networks),
+ * `attempt(fn)`, `show(text, kind)`, `changed()`. Returns `{ addObstacle,
+ * removeObstacle, wantsClick, click, check }`.
+ */
+export function mountArmDesigner(root, demo, { setArm, attempt, show, changed }) {
+  const $ = (id) => root.querySelector('#' + id);
+  const el = {
+    preset: $('arm-preset'),
+    post: $('arm-post'),
+    links: $('arm-links'),
+    linkAdd: $('link-add'),
+    linkRemove: $('link-remove'),
+    apply: $('arm-apply'),
+    obstacleAdd: $('obstacle-add'),
+    obstacleRemove: $('obstacle-remove'),
+    obstacleList: $('obstacle-list'),
+  };
+  const { arm_presets: presets, min_links: fewest, max_links: most, max_obstacles: mostObstacles } = limits();
+
+  // ---- the arm ---------------------------------------------------------
+  if (el.preset && !el.preset.options.length) {
+    for (const p of presets) el.preset.add(new Option(p.label, p.key));
+    el.preset.add(new Option('Custom', 'custom'));
+  }
+
+  function linkInputs(links) {
+    if (!el.links) return;
+    el.links.replaceChildren(
+      ...links.map((l, i) => {
+        const label = document.createElement('label');
+        const input = numberInput(0.05, 3, 0.05, l, `Length of link ${i + 1} (m)`);
+        input.dataset.link = String(i);
+        label.append(`L${i + 1} `, input);
+        return label;
+      }),
+    );
+  }
+
+  function formArm() {
+    const post = Number(el.post?.value);
+    const links = [...(el.links?.querySelectorAll('input') ?? [])].map((i) => Number(i.value));
+    return { post, links };
+  }
+
+  function syncForm(arm) {
+    if (el.post && document.activeElement !== el.post) el.post.value = String(arm.post);
+    const shown = formArm().links;
+    if (shown.length !== arm.links.length || shown.some((l, i) => l !== arm.links[i])) linkInputs(arm.links);
+    if (el.preset) el.preset.value = presets.find((p) => armText(p) === armText(arm))?.key ?? 'custom';
+  }
+
+  el.preset?.addEventListener('change', () => {
+    const p = presets.find((p) => p.key === el.preset.value);
+    if (p) attempt(() => setArm(p));
+  });
+  const applyForm = () => attempt(() => setArm(formArm()));
+  el.apply?.addEventListener('click', applyForm);
+  el.links?.addEventListener('change', applyForm);
+  el.post?.addEventListener('change', applyForm);
+  el.linkAdd?.addEventListener('click', () => {
+    const a = formArm();
+    if (a.links.length >= most) return show(`At most ${most} links.`, 'warn');
+    attempt(() => setArm({ post: a.post, links: [...a.links, a.links[a.links.length - 1] ?? 0.4] }));
+  });
+  el.linkRemove?.addEventListener('click', () => {
+    const a = formArm();
+    if (a.links.length <= fewest) return show(`At least ${fewest} links.`, 'warn');
+    attempt(() => setArm({ post: a.post, links: a.links.slice(0, -1) }));
+  });
+
+  // ---- obstacles -------------------------------------------------------
+  let adding = false;
+  function setAdding(on) {
+    adding = on;
+    if (el.obstacleAdd) {
+      el.obstacleAdd.setAttribute('aria-pressed', String(on));
+      el.obstacleAdd.textContent = on ? 'Click on the drawing…' : 'Add obstacle';
+    }
+  }
+  el.obstacleAdd?.addEventListener('click', () => {
+    if (demo.state().obstacles.length >= mostObstacles) return show(`At most ${mostObstacles} obstacles.`, 'warn');
+    setAdding(!adding);
+  });
+  el.obstacleRemove?.addEventListener('click', () => {
+    const n = demo.state().obstacles.length;
+    if (n === 0) return show('There is no obstacle to remove.', 'warn');
+    attempt(() => removeObstacle(n - 1));
+  });
+
+  function addObstacle(x, y, r) {
+    const i = demo.addObstacle(Number(x), Number(y), r === undefined ? undefined : Number(r));
+    changed();
+    return i;
+  }
+  function removeObstacle(i) {
+    demo.removeObstacle(Number(i));
+    changed();
+  }
+
+  function obstacleItem(o, i) {
+    const li = document.createElement('li');
+    li.dataset.index = String(i);
+    const text = `#${i + 1} (${o.centre[0].toFixed(2)}, ${o.centre[1].toFixed(2)})`;
+    const r = numberInput(0.01, 1, 0.01, o.radius, `Radius of obstacle ${i + 1} (m)`);
+    r.addEventListener('change', () => {
+      const all = demo.state().obstacles.map((b) => [...b.centre, b.radius]);
+      all[i][2] = Number(r.value);
+      if (attempt(() => demo.setObstacles(flatObstacles(all)))) changed();
+    });
+    const del = document.createElement('button');
+    del.type = 'button';
+    del.textContent = '×';
+    del.title = `Remove obstacle ${i + 1}`;
+    del.addEventListener('click', () => attempt(() => removeObstacle(i)));
+    li.append(text, ' r ', r, ' ', del);
+    return li;
+  }
+
+  let listKey = '';
+  function syncObstacles(s) {
+    if (!el.obstacleList) return;
+    const key = formatObstacles(s.obstacles) + `|${s.nearest}`;
+    if (key === listKey) return;
+    listKey = key;
+    el.obstacleList.replaceChildren(
+      ...s.obstacles.map((o, i) => {
+        const li = obstacleItem(o, i);
+        if (s.nearest === i) li.classList.add('nearest');
+        return li;
+      }),
+    );
+  }
+
+  // ---- the loop --------------------------------------------------------
+  let armShown = '';
+  /** Follows the state (per frame, cheap): the form and the list. */
+  function check(s) {
+    const key = armText(s.arm);
+    if (key !== armShown) {
+      armShown = key;
+      syncForm(s.arm);
+    }
+    syncObstacles(s);
+  }
+
+  return {
+    addObstacle,
+    removeObstacle,
+    syncForm,
+    check,
+    wantsClick: () => adding,
+    /** A click on the drawing while adding: an obstacle there. */
+    click(x, y) {
+      setAdding(false);
+      const [wx, wy] = demo.canvasToWorld(x, y);
+      return addObstacle(wx, wy);
+    },
+  };
+}

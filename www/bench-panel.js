@@ -1,0 +1,67 @@
+// "Are the networks faster? Measure it": the in-browser benchmark (jobs.js,
+// in a Web Worker) tabulated beside the native figures, and the verdict:
+// the step-time ratio of the two methods the workers' module names
+// (benchVerdict(): the learned route and the exact one it imitates).
+
+import { describe, method, moduleBuild } from './module.js';
+import { bench, nativeFigures, showBusy } from './jobs.js';
+import { nanoseconds, row } from './format.js';
+
+const verdictText = (x) => (x >= 1 ? `${x.toFixed(1)}× slower` : `${(1 / x).toFixed(1)}× faster`);
+
+/** Wires `#bench`, `#bench-cancel`, `#bench-progress`, `#bench-table`, `#bench-body` and `#bench-result` under `root`. */
+export function mountBenchPanel(root) {
+  const $ = (id) => root.querySelector('#' + id);
+  const button = $('bench');
+  const cancel = $('bench-cancel');
+  const progress = $('bench-progress');
+  const table = $('bench-table');
+  const body = $('bench-body');
+  const result = $('bench-result');
+  if (!button || !result) return;
+  const controls = { run: button, cancel, progress };
+  let abort = null;
+  cancel?.addEventListener('click', () => abort && abort.abort());
+  button.addEventListener('click', async () => {
+    showBusy(controls, true);
+    result.textContent = 'Measuring…';
+    abort = new AbortController();
+    try {
+      const r = await bench({
+        signal: abort.signal,
+        onProgress: ({ done, total, label }) => {
+          if (progress) progress.value = done / total;
+          result.textContent = `Measuring… ${label}`;
+        },
+      });
+      const nat = await nativeFigures();
+      // One row per method timed, in the worker's order.
+      body?.replaceChildren(
+        ...Object.keys(r.step_ns).map((m) =>
+          row([method(m)?.label ?? m, nanoseconds(r.theta_dot_ns[m]), nanoseconds(r.step_ns[m]), nanoseconds(nat?.step_ns?.[m])]),
+        ),
+      );
+      if (table) table.hidden = false;
+      const [learned, exact] = r.verdict;
+      const [L, E] = [method(learned), method(exact)];
+      const ratio = r.step_ns[learned] / r.step_ns[exact];
+      const buildName = moduleBuild() === 'simd' ? 'wasm SIMD build' : 'baseline wasm build, no SIMD';
+      let text = `Per RK4 step, ${L.label} (${L.description}) is ${verdictText(ratio)} than ${E.label} (${E.description}) here (${buildName})`;
+      if (nat?.step_ns?.[learned] && nat.step_ns[exact]) text += ` (${verdictText(nat.step_ns[learned] / nat.step_ns[exact])} natively)`;
+      result.textContent = `${text}. Forward passes: Φ ${nanoseconds(r.forward_ns.phi)}, v ${nanoseconds(r.forward_ns.v)}.`;
+      Object.assign(result.dataset, {
+        learned,
+        exact,
+        learnedNs: String(r.step_ns[learned]),
+        exactNs: String(r.step_ns[exact]),
+        thetaDotLearnedNs: String(r.theta_dot_ns[learned]),
+        thetaDotExactNs: String(r.theta_dot_ns[exact]),
+      });
+    } catch (e) {
+      result.textContent = e.name === 'AbortError' ? 'Cancelled.' : `The benchmark failed: ${describe(e)}`;
+    } finally {
+      showBusy(controls, false);
+      abort = null;
+    }
+  });
+}

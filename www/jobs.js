@@ -1,0 +1,84 @@
+// Jobs off the page's thread: each runs in its own module Web Worker
+// (www/worker.js) on the workers' module of the build the page runs, so
+// the page keeps drawing; cancelling terminates the worker at once.
+
+import { loadModule, workerModuleUrl } from './module.js';
+
+/**
+ * Runs one job in a Web Worker. `onProgress({ done, total, label })`
+ * follows it; `signal` (an AbortSignal) cancels it. Resolves to `{ result,
+ * ms }` (`ms`: the job's time inside the worker).
+ */
+export async function runWorker(job, { onProgress, signal } = {}) {
+  await loadModule();
+  return new Promise((resolve, reject) => {
+    const abort = () => {
+      finish();
+      reject(new DOMException('Cancelled.', 'AbortError'));
+    };
+    if (signal?.aborted) return abort();
+    const worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
+    function finish() {
+      worker.terminate();
+      if (signal) signal.removeEventListener('abort', abort);
+    }
+    if (signal) signal.addEventListener('abort', abort);
+    worker.onmessage = ({ data }) => {
+      if (data.type === 'progress') {
+        if (onProgress) onProgress(data);
+      } else if (data.type === 'done') {
+        finish();
+        resolve({ result: data.result, ms: data.ms });
+      } else {
+        finish();
+        reject(new Error(data.message));
+      }
+    };
+    worker.onerror = (e) => {
+      finish();
+      reject(new Error(e.message || 'the worker failed to start'));
+    };
+    worker.postMessage({ ...job, wasm: workerModuleUrl() });
+  });
+}
+
+/**
+ * Measures this browser as `redundant-ik bench` measures the machine: one
+ * theta_dot and one RK4 step of Task 1 in each method the benchmark times
+ * (the workers' `benchMethods()`) and the forward passes of both networks
+ * (ns); each figure the median of seven batches after a warm-up.
+ * `onProgress({ done, total, label })` follows it and `signal` (an
+ * AbortSignal) cancels it. Resolves to `{ theta_dot_ns: {method: ns},
+ * step_ns: {method: ns}, forward_ns: {phi, v}, verdict: [learned, exact] }`
+ * (`verdict`: the two methods whose step times the panel compares).
+ */
+export async function bench({ onProgress, signal, batchMs = 20 } = {}) {
+  const { result } = await runWorker({ kind: 'bench', batchMs }, { onProgress, signal });
+  return result;
+}
+
+/**
+ * A job's controls while it runs (`on`) and after: the button that starts
+ * it disabled, its cancel button and its progress bar (from 0) shown.
+ */
+export function showBusy({ run, cancel, progress }, on) {
+  if (run) run.disabled = on;
+  if (cancel) cancel.hidden = !on;
+  if (progress) {
+    progress.hidden = !on;
+    if (on) progress.value = 0;
+  }
+}
+
+let native = null;
+/**
+ * The native figures quoted beside the page's (`make bench-native` writes
+ * www/bench-native.json with `redundant-ik bench --json`), fetched once when
+ * first needed: a Promise of the object, or of null where there is none.
+ */
+export function nativeFigures() {
+  native ??= fetch(new URL('./bench-native.json', import.meta.url))
+    .then((r) => (r.ok ? r.json() : null))
+    .catch(() => null);
+  return native;
+}

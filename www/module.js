@@ -1,0 +1,152 @@
+// Loading the page's WebAssembly module (src/web/), once per page, and the
+// facts it exports that the page reads instead of writing them down
+// itself: the methods, the limits, the default method, the arm and
+// obstacle syntax. Everything else in www/ imports them from here, after
+// loadModule() has resolved.
+
+import init, {
+  lastPanic,
+  methods as moduleMethods,
+  limits as moduleLimits,
+  defaultMethod as moduleDefaultMethod,
+  palette,
+} from './pkg/redundant_ik.js';
+
+// The arm and obstacle syntax (`parseArm(text)`, `formatArm(post, links)`,
+// `parseObstacles(text)`), the legend, the atlas classes and the Demo, as
+// the module exports them.
+import { describeError } from './errors.js';
+
+export { parseArm, formatArm, parseObstacles, legend, atlasClasses, Demo } from './pkg/redundant_ik.js';
+
+/** The two builds of the module (make web): with wasm SIMD, and without. */
+const BUILDS = {
+  simd: new URL('./pkg/redundant_ik_simd_bg.wasm', import.meta.url).href,
+  baseline: new URL('./pkg/redundant_ik_bg.wasm', import.meta.url).href,
+};
+
+/** The same two builds of the workers' module (the atlas, the benchmark, the trainer). */
+const WORKER_BUILDS = {
+  simd: new URL('./pkg/redundant_ik_worker_simd_bg.wasm', import.meta.url).href,
+  baseline: new URL('./pkg/redundant_ik_worker_bg.wasm', import.meta.url).href,
+};
+
+/** Whether this browser validates wasm SIMD (v128, as wasm-feature-detect checks it). */
+function simdSupported() {
+  try {
+    return WebAssembly.validate(
+      new Uint8Array([0, 97, 115, 109, 1, 0, 0, 0, 1, 5, 1, 96, 0, 1, 123, 3, 2, 1, 0, 10, 10, 1, 8, 0, 65, 0, 253, 15, 253, 98, 11]),
+    );
+  } catch (_) {
+    return false;
+  }
+}
+
+let module = null;
+let build = null;
+let memory = null;
+
+/** Which build the page runs: 'simd' or 'baseline' (null before loading). */
+export function moduleBuild() {
+  return build;
+}
+
+/** The workers' .wasm of the build the page runs (null before loading). */
+export function workerModuleUrl() {
+  return build && WORKER_BUILDS[build];
+}
+
+/** Bytes of the page module's linear memory (it grows, never shrinks; the soak watches it). */
+export function moduleMemoryBytes() {
+  return memory ? memory.buffer.byteLength : 0;
+}
+
+/**
+ * Loads and starts the WebAssembly module once per page: the SIMD build
+ * where the browser supports SIMD (the networks run about twice as fast),
+ * else, or if it fails to start, the baseline build.
+ */
+export function loadModule() {
+  if (!module) {
+    const start = async (which) => {
+      const exports = await init({ module_or_path: BUILDS[which] });
+      memory = exports.memory;
+      build = which;
+      // The drawing's colours, for the stylesheet (var(--arm), ...).
+      for (const [name, value] of Object.entries(palette())) {
+        document.documentElement.style.setProperty(`--${name}`, value);
+      }
+    };
+    module = (async () => {
+      if (simdSupported()) {
+        try {
+          return await start('simd');
+        } catch (e) {
+          console.warn(`the SIMD build did not start (${e && e.message ? e.message : e}); using the baseline build`);
+        }
+      }
+      return start('baseline');
+    })();
+  }
+  return module;
+}
+
+let cachedMethods = null;
+let cachedLimits = null;
+
+/**
+ * Every method, in the order of the menus (after loadModule): `[{ name,
+ * label, description, group, paper_figures, networks: { phi, v }, avoids,
+ * colour, params }]`. Read once; the same array every call.
+ */
+export function methods() {
+  cachedMethods ??= moduleMethods();
+  return cachedMethods;
+}
+
+/** The method called `name`, or undefined. */
+export function method(name) {
+  return methods().find((m) => m.name === name);
+}
+
+/** Whether method `m` (an entry of methods()) runs networks. */
+export const usesNetworks = (m) => Boolean(m && (m.networks.phi || m.networks.v));
+
+/** The labels of the methods that run networks, for messages: "Case 1, Case 2, Case 3". */
+export function networkMethodLabels() {
+  return methods()
+    .filter(usesNetworks)
+    .map((m) => m.label)
+    .join(', ');
+}
+
+/**
+ * The core's limits and defaults (after loadModule): `{ min_links,
+ * max_links, max_obstacles, default_radius, max_weights_bytes,
+ * reach_tolerance, default_grid, max_grid, drift_gain, max_lambda,
+ * arm_presets: [{ key, label, post, links }] }`.
+ */
+export function limits() {
+  cachedLimits ??= moduleLimits();
+  return cachedLimits;
+}
+
+/** The method a page starts with where its address or attributes name none. */
+export function defaultMethod() {
+  return moduleDefaultMethod();
+}
+
+/** A readable message for an exception thrown by the module. */
+export const describe = (err) => describeError(err, lastPanic);
+
+/**
+ * Fills every `[data-limit]` element under `root` with that limit (e.g.
+ * `<span data-limit="max_obstacles">`), times `data-scale` if given (1000
+ * for a tolerance in mm), so the page's prose quotes the core's numbers.
+ */
+export function fillLimits(root) {
+  for (const el of root.querySelectorAll('[data-limit]')) {
+    const value = limits()[el.dataset.limit];
+    if (typeof value === 'number') el.textContent = String(+(value * Number(el.dataset.scale ?? 1)).toPrecision(6));
+  }
+}
