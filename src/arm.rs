@@ -189,12 +189,45 @@ impl fmt::Display for Arm {
     }
 }
 
-/// One finite number from text, or why not.
+/// One finite number from text, or why not: decimal or scientific
+/// notation, an optional sign, digits on either side of the point (`.5`,
+/// `5.` and `+5` read as people mean them).
+///
+/// Read by serde_json's number parser (exact, with its `float_roundtrip`)
+/// rather than `str::parse`: the page's module carries serde_json's for the
+/// weights files anyway, and core's own costs it 13.5 KB gzipped
+/// (178.8 -> 165.2 KB, measured with `make web`).
 pub(crate) fn number(text: &str) -> std::result::Result<f64, String> {
     let t = text.trim();
-    match t.parse::<f64>() {
+    let refused = || format!("'{}' is not a finite number", clip(t));
+    let (sign, digits) = match t.strip_prefix('-') {
+        Some(rest) => ("-", rest),
+        None => ("", t.strip_prefix('+').unwrap_or(t)),
+    };
+    // A digit before the exponent, at least.
+    let mantissa = digits.split(['e', 'E']).next().unwrap_or("");
+    if !mantissa.bytes().any(|b| b.is_ascii_digit()) {
+        return Err(refused());
+    }
+    // JSON's grammar: no leading '+', no bare '.', no leading zeros.
+    let digits = digits.trim_start_matches('0');
+    let lead = if digits.is_empty() || digits.starts_with(['.', 'e', 'E']) {
+        "0"
+    } else {
+        ""
+    };
+    let body = match digits.split_once('.') {
+        Some((int, frac)) if frac.is_empty() || frac.starts_with(['e', 'E']) => {
+            format!("{int}.0{frac}")
+        }
+        _ => digits.to_string(),
+    };
+    if body.starts_with(['-', '+']) {
+        return Err(refused());
+    }
+    match serde_json::from_str::<f64>(&format!("{sign}{lead}{body}")) {
         Ok(x) if x.is_finite() => Ok(x),
-        _ => Err(format!("'{}' is not a finite number", clip(t))),
+        _ => Err(refused()),
     }
 }
 
@@ -244,6 +277,41 @@ impl Preset {
         Arm {
             post: self.post,
             links: self.links.to_vec(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::number;
+
+    #[test]
+    fn numbers_read_as_people_write_them() {
+        for (text, value) in [
+            ("0.6", 0.6),
+            (" 0.85 ", 0.85),
+            ("-1", -1.0),
+            ("+2", 2.0),
+            (".5", 0.5),
+            ("-.5", -0.5),
+            ("5.", 5.0),
+            ("007", 7.0),
+            ("0", 0.0),
+            ("-0", 0.0),
+            ("1e-3", 1e-3),
+            ("2.5E2", 250.0),
+            ("5.e1", 50.0),
+            ("0.1", 0.1),
+            ("0.30000000000000004", 0.30000000000000004),
+            ("1e308", 1e308),
+        ] {
+            assert_eq!(number(text), Ok(value), "{text}");
+        }
+        for text in [
+            "", "abc", "1,5", "NaN", "inf", "-", "+", ".", "1e999", "--1", "+-1", "0x10", "1 2",
+            "e5",
+        ] {
+            assert!(number(text).is_err(), "{text} is refused");
         }
     }
 }

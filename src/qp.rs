@@ -331,7 +331,8 @@ pub fn solve(
             let apz = dot(ap, z);
             let aphp = dot(ap, hp);
             let slack = dot(ap, x) - b[p];
-            let t2 = if apz > 1e-13 * aphp.abs() && apz > 0.0 {
+            // With n constraints active, any other depends on them.
+            let t2 = if k < n && apz > 1e-13 * aphp.abs() && apz > 0.0 {
                 -slack / apz
             } else {
                 f64::INFINITY

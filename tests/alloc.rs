@@ -70,10 +70,22 @@ fn busy_scene() -> Scene {
     s
 }
 
+/// Task 2 with an obstacle the arm starts within 2 cm of and one beside
+/// the line: `qp`'s dampers bind (and need relaxing) from the first step,
+/// so its solver runs.
+fn damper_scene() -> Scene {
+    let mut s = Scene::task2();
+    s.obstacles = vec![
+        Obstacle::new(0.615, 0.8925, 0.05),
+        Obstacle::new(0.82, 0.51, 0.05),
+    ];
+    s
+}
+
 #[test]
 fn a_step_allocates_nothing_in_any_mode() {
     let nets: Arc<dyn Surrogate> = Arc::new(Networks::embedded().unwrap());
-    for scene in [Scene::task1(), Scene::task2(), busy_scene()] {
+    for scene in [Scene::task1(), Scene::task2(), busy_scene(), damper_scene()] {
         for &mode in methods::ALL {
             let mut p = Planner::new(scene.clone(), mode, Some(nets.clone())).unwrap();
             let n = allocations_in(|| {

@@ -399,7 +399,11 @@ fn figure_writes_an_svg_and_all_writes_every_task_and_mode() {
                 .is_ok_and(|e| e.path().extension().is_some_and(|x| x == "svg"))
         })
         .count();
-    assert_eq!(count, 12, "2 tasks x 5 modes, and a comparison per task");
+    assert_eq!(
+        count,
+        2 * (methods::ALL.len() + 1),
+        "2 tasks x every method, and a comparison per task"
+    );
 
     let cmp = scratch("compare.svg");
     ok(&[

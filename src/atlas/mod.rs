@@ -26,7 +26,7 @@ use crate::planner::{methods, Method, Planner, Surrogate};
 use crate::scene::Scene;
 
 pub use grid::{Grid, DEFAULT_GRID, MAX_GRID};
-pub use summary::{Agreement, ModeSummary, Rate};
+pub use summary::{Agreement, Clearance, ModeSummary, Rate};
 
 /// What happened with the obstacle centred on one cell, in one mode.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -387,7 +387,12 @@ impl Job {
                 r.obstacle_max[1],
             ]
         });
-        let summary = summary::summarise(&self.spec.modes, &self.cells, trained_region);
+        let summary = summary::summarise(
+            &self.spec.modes,
+            &self.cells,
+            trained_region,
+            self.geometry.radius,
+        );
         Ok(Atlas {
             task: self.spec.task,
             grid: self.spec.grid,

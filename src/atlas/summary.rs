@@ -40,6 +40,33 @@ pub struct Agreement {
     pub neither: usize,
 }
 
+/// The smallest clearance (closest approach of a link to the disc's edge,
+/// m) of the successful runs: do they skim the obstacle or keep away?
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Clearance {
+    /// The median over the successes.
+    pub median: f64,
+    /// The 5th percentile: how close the closest twentieth come.
+    pub p5: f64,
+}
+
+impl Clearance {
+    /// Of the given clearances (`None` without any).
+    fn of(mut values: Vec<f64>) -> Option<Self> {
+        if values.is_empty() {
+            return None;
+        }
+        values.sort_by(f64::total_cmp);
+        let at = |q: f64| {
+            values[((q * (values.len() - 1) as f64).round() as usize).min(values.len() - 1)]
+        };
+        Some(Self {
+            median: at(0.5),
+            p5: at(0.05),
+        })
+    }
+}
+
 /// One mode over the whole grid.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ModeSummary {
@@ -56,6 +83,9 @@ pub struct ModeSummary {
     pub outside_trained_region: Option<Rate>,
     /// For the network modes, when the numerical route was mapped too.
     pub agreement: Option<Agreement>,
+    /// The smallest clearance of its successful runs, median and 5th
+    /// percentile (`None` without a success).
+    pub clearance: Option<Clearance>,
 }
 
 impl ModeSummary {
@@ -81,6 +111,7 @@ pub(super) fn summarise(
     modes: &[Method],
     cells: &[Cell],
     region: Option<[f64; 4]>,
+    radius: f64,
 ) -> Vec<ModeSummary> {
     let numerical = modes.iter().position(|&m| m == Method::NUMERICAL);
     let success = |o: &Outcome| o.class == Class::Success;
@@ -90,6 +121,7 @@ pub(super) fn summarise(
         .map(|(k, &mode)| {
             let mut counts = [0; 6];
             let (mut all, mut ins, mut outs) = ((0, 0), (0, 0), (0, 0));
+            let mut clearances = Vec::new();
             let mut agree = Agreement {
                 both: 0,
                 numerical_only: 0,
@@ -100,6 +132,9 @@ pub(super) fn summarise(
                 let o = &cell.outcomes[k];
                 let class_index = Class::ALL.iter().position(|&c| c == o.class).unwrap_or(0);
                 counts[class_index] += 1;
+                if let (true, Some(d)) = (success(o), o.min_distance) {
+                    clearances.push(d - radius);
+                }
                 if o.class.avoidable() {
                     let won = usize::from(success(o));
                     all = (all.0 + 1, all.1 + won);
@@ -125,6 +160,7 @@ pub(super) fn summarise(
                 inside_trained_region: region.map(|_| Rate::of(ins.0, ins.1)),
                 outside_trained_region: region.map(|_| Rate::of(outs.0, outs.1)),
                 agreement: (learned && numerical.is_some()).then_some(agree),
+                clearance: Clearance::of(clearances),
             }
         })
         .collect()
@@ -201,13 +237,14 @@ impl Serialize for SummaryJson<'_> {
 
 impl Serialize for ModeSummary {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        let mut st = s.serialize_struct("ModeSummary", 6)?;
+        let mut st = s.serialize_struct("ModeSummary", 7)?;
         st.serialize_field("success_rate", &self.success_rate())?;
         st.serialize_field("counts", &Counts(&self.counts))?;
         st.serialize_field("avoidable", &self.avoidable)?;
         st.serialize_field("inside_trained_region", &self.inside_trained_region)?;
         st.serialize_field("outside_trained_region", &self.outside_trained_region)?;
         st.serialize_field("agreement", &self.agreement)?;
+        st.serialize_field("clearance", &self.clearance)?;
         st.end()
     }
 }

@@ -157,22 +157,32 @@ fn report(a: &Atlas, seconds: f64, threads: usize) -> String {
     let region = a
         .trained_region
         .map(|r| format!("v net region x {}..{}, y {}..{}", r[0], r[1], r[2], r[3]));
+    let width = a
+        .summary
+        .iter()
+        .map(|s| s.mode.label().chars().count())
+        .fold(4, usize::max);
     w!(
-        "{:<13} {:>8} {:>8} {:>8}   {}",
+        "{:<width$} {:>8} {:>8} {:>8} {:>15}   {}",
         "mode",
         "success",
         "inside",
         "outside",
+        "clearance",
         "cells: success / collision / missed / failed / path_blocked / start_overlap"
     );
     for s in &a.summary {
         let counts: Vec<String> = Class::ALL.iter().map(|&c| s.count(c).to_string()).collect();
+        let clearance = s
+            .clearance
+            .map_or("–".into(), |c| format!("{:.3} / {:.3}", c.median, c.p5));
         w!(
-            "{:<13} {:>8} {:>8} {:>8}   {}",
+            "{:<width$} {:>8} {:>8} {:>8} {:>15}   {}",
             s.mode.label(),
             percent(s.success_rate()),
             percent(s.inside_trained_region.and_then(|r| r.rate)),
             percent(s.outside_trained_region.and_then(|r| r.rate)),
+            clearance,
             counts.join(" / ")
         );
     }
@@ -185,6 +195,7 @@ fn report(a: &Atlas, seconds: f64, threads: usize) -> String {
     if let Some(r) = region {
         w!("inside / outside: the same, for obstacle centres inside / outside the {r}");
     }
+    w!("clearance: the smallest link-to-disc clearance of the successful runs (m), median / 5th percentile");
     for s in &a.summary {
         if let Some(g) = s.agreement {
             w!(

@@ -60,8 +60,8 @@ pub struct SceneArgs {
     /// speed (priority); floors the clearance of distance (default 0.02).
     #[arg(long, allow_hyphen_values = true)]
     pub stop_distance: Option<f64>,
-    /// Damper gain xi (m/s): the approach speed allowed at d_i (qp), the
-    /// escape speed at d_s (priority) (default 1).
+    /// Damper gain xi (m/s): the approach speed allowed at d_i (qp;
+    /// default 1).
     #[arg(long, allow_hyphen_values = true)]
     pub damper_gain: Option<f64>,
     /// Weight w of the task slack (qp; default 1e6).
@@ -70,6 +70,10 @@ pub struct SceneArgs {
     /// Gain lambda_d of the clearance potential (distance; default 1e-3).
     #[arg(long, allow_hyphen_values = true)]
     pub distance_gain: Option<f64>,
+    /// Escape speed (m/s) of the point closest to an obstacle at d_s
+    /// (priority; default 0.1).
+    #[arg(long, allow_hyphen_values = true)]
+    pub escape_speed: Option<f64>,
     /// Limit of every joint's rate in rad/s (qp; default 1.5).
     #[arg(long, allow_hyphen_values = true)]
     pub rate_limit: Option<f64>,
@@ -128,6 +132,7 @@ impl SceneArgs {
             (&mut a.slack_weight, self.slack_weight),
             (&mut a.distance_gain, self.distance_gain),
             (&mut a.rate_limit, self.rate_limit),
+            (&mut a.escape_speed, self.escape_speed),
         ] {
             if let Some(v) = value {
                 *field = v;

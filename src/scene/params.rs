@@ -71,14 +71,17 @@ pub struct Avoidance {
     /// escape speed (`priority`): the clearance they keep.
     pub stop_distance: f64,
     /// Damper gain `xi` (m/s): how fast a link may approach at the
-    /// influence distance (`qp`); the escape speed at the stop distance
-    /// (`priority`).
+    /// influence distance (`qp`).
     pub damper_gain: f64,
     /// Weight `w` of the task slack (`qp`): with no damper active the rates
     /// are eq. (5) with damped least squares, `delta = 1 / w`.
     pub slack_weight: f64,
     /// Gain `lambda_d` of the clearance potential (`distance`).
     pub distance_gain: f64,
+    /// The escape speed (m/s) of task priority's obstacle-avoidance point
+    /// at the stop distance (`priority`); absent in older scenes.
+    #[serde(default = "default_escape_speed")]
+    pub escape_speed: f64,
     /// The joints' rate limit (rad/s) of the quadratic program (`qp`), as
     /// NEO bounds a robot's joint velocities: without it, where a damper
     /// and the task pull apart the program buys the task with unbounded
@@ -91,11 +94,15 @@ fn default_rate_limit() -> f64 {
     Avoidance::default().rate_limit
 }
 
+fn default_escape_speed() -> f64 {
+    Avoidance::default().escape_speed
+}
+
 impl Default for Avoidance {
     /// `d_i = 0.3 m`, `d_s = 0.02 m`, `xi = 1 m/s`, `w = 1e6` (NEO's and
     /// mink's orders of magnitude, scaled to this arm), joint rates within
-    /// 1.5 rad/s (the paper's tasks need 0.54) and `lambda_d = 1e-3`, chosen
-    /// on the atlas (`docs/methods.md`).
+    /// 1.5 rad/s (the paper's tasks need 0.54), `lambda_d = 1e-3` and an
+    /// escape speed of 0.1 m/s, chosen on the atlas (`docs/methods.md`).
     fn default() -> Self {
         Self {
             influence: 0.3,
@@ -103,6 +110,7 @@ impl Default for Avoidance {
             damper_gain: 1.0,
             slack_weight: 1e6,
             distance_gain: 1e-3,
+            escape_speed: 0.1,
             rate_limit: 1.5,
         }
     }
@@ -117,6 +125,7 @@ impl Avoidance {
             Param::DamperGain,
             Param::SlackWeight,
             Param::DistanceGain,
+            Param::EscapeSpeed,
             Param::RateLimit,
         ] {
             let (lo, hi) = p.bounds();
@@ -154,6 +163,8 @@ pub enum Param {
     SlackWeight,
     /// Gain `lambda_d` of the clearance potential ([`Avoidance::distance_gain`]).
     DistanceGain,
+    /// The escape speed of task priority ([`Avoidance::escape_speed`]).
+    EscapeSpeed,
     /// The joints' rate limit ([`Avoidance::rate_limit`]).
     RateLimit,
 }
@@ -179,7 +190,7 @@ pub struct ParamInfo {
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 8] = [
+    pub const ALL: [Param; 9] = [
         Param::Lambda,
         Param::Delta,
         Param::Influence,
@@ -187,6 +198,7 @@ impl Param {
         Param::DamperGain,
         Param::SlackWeight,
         Param::DistanceGain,
+        Param::EscapeSpeed,
         Param::RateLimit,
     ];
 
@@ -250,6 +262,14 @@ impl Param {
                 (0.0, 0.01, 1e-4),
                 d.distance_gain,
             ),
+            Param::EscapeSpeed => (
+                "escape_speed",
+                "--escape-speed",
+                "Escape speed",
+                "m/s",
+                (0.0, 1.0, 0.01),
+                d.escape_speed,
+            ),
             Param::RateLimit => (
                 "rate_limit",
                 "--rate-limit",
@@ -285,6 +305,7 @@ impl Param {
             Param::DamperGain => "damper gain xi",
             Param::SlackWeight => "slack weight w",
             Param::DistanceGain => "distance gain lambda_d",
+            Param::EscapeSpeed => "escape speed",
             Param::RateLimit => "joint rate limit",
         }
     }
@@ -299,6 +320,7 @@ impl Param {
             Param::DamperGain => (1e-3, MAX_DAMPER_GAIN),
             Param::SlackWeight => (MIN_SLACK_WEIGHT, MAX_SLACK_WEIGHT),
             Param::DistanceGain => (0.0, MAX_DISTANCE_GAIN),
+            Param::EscapeSpeed => (0.0, MAX_DAMPER_GAIN),
             Param::RateLimit => (1e-3, MAX_RATE_LIMIT),
         }
     }
@@ -310,6 +332,7 @@ impl Param {
             Param::DamperGain => a.damper_gain,
             Param::SlackWeight => a.slack_weight,
             Param::DistanceGain => a.distance_gain,
+            Param::EscapeSpeed => a.escape_speed,
             Param::RateLimit => a.rate_limit,
             Param::Lambda | Param::Delta => f64::NAN,
         }
@@ -345,6 +368,7 @@ impl Param {
                     Param::DamperGain => a.damper_gain = value,
                     Param::SlackWeight => a.slack_weight = value,
                     Param::RateLimit => a.rate_limit = value,
+                    Param::EscapeSpeed => a.escape_speed = value,
                     _ => a.distance_gain = value,
                 }
                 a.validate()?;

@@ -63,8 +63,10 @@ pub fn scene(data: &[u8]) {
                     influence: num_in(&mut u, 0.05, 0.6),
                     stop_distance: num_in(&mut u, 0.0, 0.04),
                     damper_gain: num_in(&mut u, 0.1, 3.0),
+                    escape_speed: num_in(&mut u, 0.0, 1.0),
                     slack_weight: num_in(&mut u, 1.0, 1e7),
                     distance_gain: num_in(&mut u, 0.0, 0.01),
+                    rate_limit: num_in(&mut u, 0.05, 5.0),
                 }
             },
         }

@@ -9,9 +9,10 @@
 //! `delta` plus the schedule's), `J_o = n^T J_p` the `1 x n` row of the
 //! closest link-obstacle pair over all links and obstacles
 //! ([`crate::clearance`]), and the escape speed
-//! `xdot_o = xi (d_i - c) / (d_i - d_s)` while its clearance `c` is below
-//! the influence distance `d_i`: zero at `d_i`, the damper gain `xi` at the
-//! stop distance `d_s`, more below it. The pseudoinverse of the row
+//! `xdot_o = v_e (d_i - c) / (d_i - d_s)` while its clearance `c` is below
+//! the influence distance `d_i`: zero at `d_i`, the escape speed `v_e` at
+//! the stop distance `d_s`, more below it (the profile of a velocity
+//! damper, as an equality). The pseudoinverse of the row
 //! `b = J_o (I - J^+ J)` is damped, `b^T / (b b^T + mu)` with
 //! [`ROW_DAMPING`] `= mu`, so it stays bounded where `b` vanishes (the
 //! escape direction needs the task's own joints). With no pair within
@@ -44,7 +45,7 @@ static ENTRY: Entry = Entry {
         params: &[
             Param::Influence,
             Param::StopDistance,
-            Param::DamperGain,
+            Param::EscapeSpeed,
             Param::Delta,
         ],
     },
@@ -84,7 +85,7 @@ impl Rule for Priority {
             return Ok(Note::default());
         };
         pair.rate_row(pose, &mut self.jo);
-        let escape = a.damper_gain * (a.influence - pair.clearance) / (a.influence - a.stop_distance);
+        let escape = a.escape_speed * (a.influence - pair.clearance) / (a.influence - a.stop_distance);
         // J_o J^+ = (J_o J^T) (J J^T + delta I)^-1, a 1 x 2 row.
         let (mut p0, mut p1) = (0.0, 0.0);
         for (col, joi) in jac.chunks_exact(2).zip(&self.jo) {
