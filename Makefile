@@ -6,7 +6,14 @@ PORT ?= 8000
 WASM_ENV = RUSTUP_TOOLCHAIN=$$(cat target/wasm-toolchain)
 # The SIMD build has its own target directory, so neither build evicts the other.
 WASM_SIMD_ENV = $(WASM_ENV) CARGO_TARGET_DIR=target/wasm-simd RUSTFLAGS="-C target-feature=+simd128"
-WASM_BUILD = CARGO_PROFILE_RELEASE_OPT_LEVEL=s wasm-pack build --release --target web --no-typescript
+WASM_BUILD = wasm-pack build --release --target web --no-typescript
+# The page's module is optimised for size (opt-level z: 142 KB gzipped
+# against 149 KB at s, measured in docs/web.md), the workers' module for
+# size with speed (s: it runs the benchmark, the atlas and the trainer).
+# Each has its own target directories, so neither rebuild evicts the other.
+PAGE_ENV = CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_TARGET_DIR=target/wasm-page
+PAGE_SIMD_ENV = CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_TARGET_DIR=target/wasm-page-simd
+WORKER_OPT = CARGO_PROFILE_RELEASE_OPT_LEVEL=s
 
 .PHONY: setup web demo test lint test-native test-wasm test-e2e test-fuzz test-soak fuzz soak bench bench-native bench-web figures atlas-figures weights clean-web
 
@@ -20,23 +27,25 @@ setup:
 ## twice: a baseline build and one with wasm SIMD (+simd128) for the
 ## networks' kernels; the page loads the SIMD ones where the browser
 ## validates SIMD, else the baseline (some hardened browser modes switch SIMD
-## off). Each pair shares its JS glue (checked). Optimised for size
-## (opt-level s: 3 is 13 KB gzipped larger, z came out larger), then the
-## debug `name` section stripped (cargo's strip also drops a section
-## wasm-bindgen needs).
+## off). Each pair shares its JS glue (checked). Optimised for size (the
+## page's at opt-level z, the workers' at s; 3 is 13 KB gzipped larger),
+## then the debug `name` section stripped (cargo's strip also drops a
+## section wasm-bindgen needs). The built-in networks' weights files go
+## beside the page (www/weights/), which fetches them.
 PAGE = -- --no-default-features --features page
 WORKER = --out-name redundant_ik_worker -- --no-default-features --features worker
 web: setup
-	$(WASM_ENV) $(WASM_BUILD) --out-dir www/pkg $(PAGE)
-	$(WASM_SIMD_ENV) $(WASM_BUILD) --out-dir target/pkg-simd $(PAGE)
+	$(WASM_ENV) $(PAGE_ENV) $(WASM_BUILD) --out-dir www/pkg $(PAGE)
+	$(WASM_SIMD_ENV) $(PAGE_SIMD_ENV) $(WASM_BUILD) --out-dir target/pkg-simd $(PAGE)
 	cmp www/pkg/redundant_ik.js target/pkg-simd/redundant_ik.js
 	cp target/pkg-simd/redundant_ik_bg.wasm www/pkg/redundant_ik_simd_bg.wasm
-	$(WASM_ENV) $(WASM_BUILD) --out-dir target/pkg-worker $(WORKER)
-	$(WASM_SIMD_ENV) $(WASM_BUILD) --out-dir target/pkg-worker-simd $(WORKER)
+	$(WASM_ENV) $(WORKER_OPT) $(WASM_BUILD) --out-dir target/pkg-worker $(WORKER)
+	$(WASM_SIMD_ENV) $(WORKER_OPT) $(WASM_BUILD) --out-dir target/pkg-worker-simd $(WORKER)
 	cmp target/pkg-worker/redundant_ik_worker.js target/pkg-worker-simd/redundant_ik_worker.js
 	cp target/pkg-worker/redundant_ik_worker.js target/pkg-worker/redundant_ik_worker_bg.wasm www/pkg/
 	cp target/pkg-worker-simd/redundant_ik_worker_bg.wasm www/pkg/redundant_ik_worker_simd_bg.wasm
 	for f in www/pkg/*.wasm; do python3 scripts/strip-wasm-names.py $$f; done
+	mkdir -p www/weights && cp weights/*.json www/weights/
 	@for f in www/pkg/*.wasm; do echo "$$f: $$(stat -c %s $$f) B, gzip -9 $$(gzip -9 -c $$f | wc -c) B"; done
 
 ## Build, then serve www/ on http://127.0.0.1:$(PORT)/.

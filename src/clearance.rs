@@ -17,7 +17,7 @@ use crate::kinematics::Pose;
 use crate::obstacle::Obstacle;
 
 /// One link and one obstacle, at one pose.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Pair {
     /// The link, from 0 (`P(0) P(1)`, the first moving link).
     pub link: usize,

@@ -5,6 +5,7 @@
 
 pub mod arm;
 pub mod atlas;
+#[cfg(feature = "embedded-weights")]
 pub mod bench;
 pub mod clearance;
 pub mod error;

@@ -254,11 +254,11 @@ pub fn solve(
         // The most violated constraint not yet active.
         let mut worst = None;
         let mut worst_slack = 0.0;
-        for i in 0..m {
+        for (i, &bi) in b.iter().enumerate() {
             if ws.active.contains(&i) {
                 continue;
             }
-            let slack = dot(row(i), x) - b[i];
+            let slack = dot(row(i), x) - bi;
             if slack < -tolerance(i, x) && slack < worst_slack {
                 worst = Some(i);
                 worst_slack = slack;

@@ -308,8 +308,8 @@ fn without_binding_constraints_the_solution_is_the_unconstrained_minimum() {
     )
     .unwrap();
     assert_eq!(sol.active, 0);
-    // H x = g: x = (1.0 + 0.5) / 1.75, ...
-    let det = 2.0 * 1.0 - 0.25;
-    assert!((x[0] - (1.0 * 1.0 - 0.5 * -1.0) / det).abs() < 1e-15);
-    assert!((x[1] - (2.0 * -1.0 - 0.5 * 1.0) / det).abs() < 1e-15);
+    // H x = g by Cramer's rule: det H = 2 - 0.25.
+    let det = 1.75;
+    assert!((x[0] - (g[0] * h[3] - h[1] * g[1]) / det).abs() < 1e-15);
+    assert!((x[1] - (h[0] * g[1] - h[2] * g[0]) / det).abs() < 1e-15);
 }

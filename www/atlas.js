@@ -14,7 +14,7 @@
 // pointer handlers and for `window.demo.atlas()`. The methods, their labels
 // and the default grid come from the module.
 
-import { limits, methods, atlasClasses, describe } from './module.js';
+import { limits, methods, methodGroups, atlasClasses, describe } from './module.js';
 import { runWorker, nativeFigures, showBusy } from './jobs.js';
 import { metres, percent, row } from './format.js';
 
@@ -45,14 +45,20 @@ export function mountAtlas(root, demo, { weights, changed }) {
   const defaultGrid = limits().default_grid;
 
   if (el.modes && !el.modes.querySelector('input')) {
-    for (const m of methods()) {
-      const l = document.createElement('label');
-      const box = document.createElement('input');
-      box.type = 'checkbox';
-      box.value = m.name;
-      box.checked = true;
-      l.append(box, ` ${m.label}`);
-      el.modes.append(l);
+    for (const g of methodGroups()) {
+      const head = document.createElement('span');
+      head.className = 'group';
+      head.textContent = g.label;
+      el.modes.append(head);
+      for (const m of g.methods) {
+        const l = document.createElement('label');
+        const box = document.createElement('input');
+        box.type = 'checkbox';
+        box.value = m.name;
+        box.checked = true;
+        l.append(box, ` ${m.label}`);
+        el.modes.append(l);
+      }
     }
   }
   if (el.n && !el.n.options.length) {
@@ -68,7 +74,7 @@ export function mountAtlas(root, demo, { weights, changed }) {
   const status = (text) => el.status && (el.status.textContent = text);
 
   /** What the atlas depends on, from the state (not the moved obstacle). */
-  const keyOf = (s) => JSON.stringify([s.task, s.target, s.lambda, s.damping, s.feedback]);
+  const keyOf = (s) => JSON.stringify([s.task, s.target, s.params, s.damping, s.feedback]);
 
   function show(mode) {
     if (!atlas) return;
@@ -116,6 +122,7 @@ export function mountAtlas(root, demo, { weights, changed }) {
             percent(s.success_rate),
             percent(s.inside_trained_region?.rate),
             percent(s.outside_trained_region?.rate),
+            s.clearance ? `${metres(s.clearance.median)} / ${metres(s.clearance.p5)}` : '–',
           ]);
           tr.dataset.mode = m;
           return tr;
@@ -279,7 +286,7 @@ export function mountAtlas(root, demo, { weights, changed }) {
     const stale = keyOf(state) !== sceneKey;
     if (stale !== (el.status.dataset.stale === 'true')) {
       el.status.dataset.stale = String(stale);
-      if (stale) status('The task changed since this atlas was computed (target, λ or a switch): compute it again to map the new one.');
+      if (stale) status('The task changed since this atlas was computed (target, a parameter or a switch): compute it again to map the new one.');
     }
   }
 

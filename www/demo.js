@@ -9,12 +9,12 @@
 //
 // `mount(root, options)` works on any root that holds the expected ids
 // (`#stage` and, all optional, `#plots`, `#mode`, `#legend`, `#play`, `#step`,
-// `#reset`, `#task1`, `#task2`, `#lambda`, `#damping`, `#feedback`, `#speed`,
+// `#reset`, `#task1`, `#task2`, `#lambda`, `#method-params`, `#damping`, `#feedback`, `#speed`,
 // `#message`, `#range-warning`, `#handover-note`, `#loading` and
 // `[data-readout]` elements): the page's document, or the shadow root of a
 // <redundant-ik-demo> element, so several demos on one page stay independent.
 
-import { Demo, loadModule, describe, methods, limits, legend } from './module.js';
+import { Demo, loadModule, describe, methodGroups, limits, legend } from './module.js';
 import { fixed, metres } from './format.js';
 import { mountAtlas } from './atlas.js';
 import { mountPlayground } from './playground.js';
@@ -22,11 +22,21 @@ import { flatObstacles } from './arm-designer.js';
 import { mountCompare } from './compare.js';
 import { mountWeightsUpload } from './weights-upload.js';
 import { wireStage } from './stage-input.js';
+import { mountMethodParams } from './method-params.js';
 
-/** Fills a `<select>` with the methods: "Case 1: Φ by a network, v exact". */
+/**
+ * Fills a `<select>` with the methods, grouped ("The paper", "Beyond the
+ * paper"): "Case 1: Φ by a network, v exact".
+ */
 function fillModes(select) {
   if (!select || select.options.length) return;
-  for (const m of methods()) select.add(new Option(`${m.label}: ${m.description}`, m.name));
+  for (const g of methodGroups()) {
+    const group = document.createElement('optgroup');
+    group.label = g.label;
+    group.dataset.group = g.group;
+    for (const m of g.methods) group.append(new Option(`${m.label}: ${m.description}`, m.name));
+    select.append(group);
+  }
 }
 
 /** Fills a legend list from the module's legend (the renderer's colours). */
@@ -77,8 +87,6 @@ export async function mount(root, options = {}) {
     reset: $('reset'),
     task1: $('task1'),
     task2: $('task2'),
-    lambda: $('lambda'),
-    lambdaValue: $('lambda-value'),
     damping: $('damping'),
     feedback: $('feedback'),
     speed: $('speed'),
@@ -161,10 +169,7 @@ export async function mount(root, options = {}) {
       el.play.textContent = s.running ? 'Pause' : 'Play';
       el.play.setAttribute('aria-pressed', String(s.running));
     }
-    if (el.lambda && document.activeElement !== el.lambda && Number(el.lambda.value) !== s.lambda) {
-      el.lambda.value = String(s.lambda);
-    }
-    if (el.lambdaValue) el.lambdaValue.textContent = s.lambda.toFixed(1);
+    syncParams(s);
     if (el.damping) el.damping.checked = s.damping;
     if (el.feedback) el.feedback.checked = s.feedback > 0;
   }
@@ -200,9 +205,8 @@ export async function mount(root, options = {}) {
       }
     });
   }
-  el.lambda?.addEventListener('input', () => {
-    if (attempt(() => demo.setLambda(Number(el.lambda.value)))) changed();
-  });
+  // λ and the parameters of the method in use (www/method-params.js).
+  const syncParams = mountMethodParams(root, demo, { attempt, changed });
   el.damping?.addEventListener('change', () => attempt(() => demo.setDamping(el.damping.checked)));
   // "Correct drift": the core's gain K (1/s) of Xdot + K (X_ref - X).
   el.feedback?.addEventListener('change', () => {

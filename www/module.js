@@ -7,8 +7,12 @@
 import init, {
   lastPanic,
   methods as moduleMethods,
+  params as moduleParams,
   limits as moduleLimits,
   defaultMethod as moduleDefaultMethod,
+  builtinWeightsFiles,
+  provideBuiltinNetworks,
+  builtinNetworksFailed,
   palette,
 } from './pkg/redundant_ik.js';
 
@@ -61,10 +65,41 @@ export function moduleMemoryBytes() {
   return memory ? memory.buffer.byteLength : 0;
 }
 
+/** Where `make web` puts the repository's weights files, beside the page. */
+const WEIGHTS = new URL('./weights/', import.meta.url);
+
+/**
+ * Fetches the built-in networks' weights files (the module names them) and
+ * hands them to the module, or tells it why they could not be had: the
+ * page's module does not carry them (15 KB of its gzipped size). A failure
+ * leaves the page running; the methods that need networks then say why.
+ */
+async function fetchBuiltinNetworks() {
+  const files = builtinWeightsFiles();
+  try {
+    const texts = await Promise.all(
+      files.map(async (name) => {
+        const r = await fetch(new URL(name, WEIGHTS));
+        if (!r.ok) throw new Error(`could not fetch weights/${name} (HTTP ${r.status})`);
+        return r.text();
+      }),
+    );
+    provideBuiltinNetworks(texts[0], texts[1]);
+  } catch (e) {
+    builtinNetworksFailed(e && e.message ? e.message : String(e));
+  }
+}
+
+/** The URL of the built-in networks' weights file `name` (for downloads). */
+export function builtinWeightsUrl(name) {
+  return new URL(name, WEIGHTS).href;
+}
+
 /**
  * Loads and starts the WebAssembly module once per page: the SIMD build
  * where the browser supports SIMD (the networks run about twice as fast),
- * else, or if it fails to start, the baseline build.
+ * else, or if it fails to start, the baseline build; then the built-in
+ * networks.
  */
 export function loadModule() {
   if (!module) {
@@ -78,21 +113,46 @@ export function loadModule() {
       }
     };
     module = (async () => {
+      let started = false;
       if (simdSupported()) {
         try {
-          return await start('simd');
+          await start('simd');
+          started = true;
         } catch (e) {
           console.warn(`the SIMD build did not start (${e && e.message ? e.message : e}); using the baseline build`);
         }
       }
-      return start('baseline');
+      if (!started) await start('baseline');
+      await fetchBuiltinNetworks();
     })();
   }
   return module;
 }
 
 let cachedMethods = null;
+let cachedParams = null;
 let cachedLimits = null;
+
+/**
+ * Every parameter of the methods (after loadModule): `[{ name, flag, label,
+ * unit, bounds, slider: [min, max, step], default }]`.
+ */
+export function params() {
+  cachedParams ??= moduleParams();
+  return cachedParams;
+}
+
+/** The groups of methods in menu order: `[{ group, label, methods }]`. */
+export function methodGroups() {
+  const labels = { paper: 'The paper', beyond: 'Beyond the paper' };
+  const groups = [];
+  for (const m of methods()) {
+    let g = groups.find((x) => x.group === m.group);
+    if (!g) groups.push((g = { group: m.group, label: labels[m.group] ?? m.group, methods: [] }));
+    g.methods.push(m);
+  }
+  return groups;
+}
 
 /**
  * Every method, in the order of the menus (after loadModule): `[{ name,

@@ -5,7 +5,7 @@
 // and tests. If the module cannot start, the page says so and disables its
 // controls instead of showing a blank stage.
 
-import { loadModule, describe, methods, fillLimits, moduleBuild, moduleMemoryBytes } from './module.js';
+import { loadModule, describe, methods, methodGroups, fillLimits, moduleBuild, moduleMemoryBytes } from './module.js';
 import { bench } from './jobs.js';
 import { mount } from './demo.js';
 import { readAddress, writeAddress } from './address.js';
@@ -14,12 +14,18 @@ import { mountBenchPanel } from './bench-panel.js';
 /** The methods, each with what it computes: the "The methods" list of the page. */
 function explainMethods(list) {
   if (!list) return;
-  for (const m of methods()) {
-    const dt = document.createElement('dt');
-    dt.textContent = m.label;
-    const dd = document.createElement('dd');
-    dd.textContent = m.description;
-    list.append(dt, dd);
+  for (const g of methodGroups()) {
+    const head = document.createElement('dt');
+    head.className = 'group';
+    head.textContent = g.label;
+    list.append(head);
+    for (const m of g.methods) {
+      const dt = document.createElement('dt');
+      dt.textContent = m.label;
+      const dd = document.createElement('dd');
+      dd.textContent = m.description;
+      list.append(dt, dd);
+    }
   }
 }
 

@@ -27,13 +27,23 @@ pub use file::{
 };
 
 /// Shipped `Phi` networks, paper form: one 3-35-14-6 net over `theta`.
+#[cfg(feature = "embedded-weights")]
 pub const PHI_PLAIN_JSON: &str = include_str!("../../weights/phi-plain.json");
 /// Shipped `Phi` networks, paper form: three 3-35-14-2 nets, one per row of `Phi`.
+#[cfg(feature = "embedded-weights")]
 pub const PHI_ROWS_JSON: &str = include_str!("../../weights/phi-rows.json");
 /// Shipped `Phi` network, rotation-equivariant: 2-35-14-6 over `(theta_2, theta_3)`.
+#[cfg(feature = "embedded-weights")]
 pub const PHI_EQUIVARIANT_JSON: &str = include_str!("../../weights/phi-equivariant.json");
 /// Shipped `v` network, paper form: 5-25-14-3 over `(theta, O)`.
+#[cfg(feature = "embedded-weights")]
 pub const V_PLAIN_JSON: &str = include_str!("../../weights/v-plain.json");
+
+/// The files of `weights/` that hold the built-in networks
+/// ([`DEFAULT_PHI_VARIANT`] and [`DEFAULT_V_VARIANT`]): `[phi, v]`. A build
+/// without `embedded-weights` (the page's) fetches these and hands them to
+/// [`provide_builtin`].
+pub const BUILTIN_FILES: [&str; 2] = ["phi-equivariant.json", "v-plain.json"];
 
 /// The `Phi` variant [`Networks::embedded`] uses.
 pub const DEFAULT_PHI_VARIANT: Variant = Variant::Equivariant;
@@ -41,6 +51,7 @@ pub const DEFAULT_PHI_VARIANT: Variant = Variant::Equivariant;
 pub const DEFAULT_V_VARIANT: Variant = Variant::Plain;
 
 /// The shipped `Phi` weights file of a variant (JSON text).
+#[cfg(feature = "embedded-weights")]
 pub fn embedded_phi_json(variant: Variant) -> &'static str {
     match variant {
         Variant::Plain => PHI_PLAIN_JSON,
@@ -49,19 +60,38 @@ pub fn embedded_phi_json(variant: Variant) -> &'static str {
     }
 }
 
-/// The shipped networks ([`Networks::embedded`]), loaded on first use and
-/// shared; or why they cannot load.
+/// The built-in networks, once loaded, or why they are not.
+static BUILTIN: OnceLock<Result<Arc<Networks>>> = OnceLock::new();
+
+/// The shipped networks, loaded on first use and shared; or why they
+/// cannot load. Compiled in with `embedded-weights` ([`Networks::embedded`]);
+/// otherwise what [`provide_builtin`] was given.
 pub fn builtin() -> Result<Arc<Networks>> {
-    static BUILTIN: OnceLock<Result<Arc<Networks>>> = OnceLock::new();
-    BUILTIN
-        .get_or_init(|| {
-            Networks::embedded().map(Arc::new).map_err(|e| {
-                Error::NetworksUnavailable(format!(
-                    "the built-in weights could not be loaded ({e})"
-                ))
-            })
+    #[cfg(feature = "embedded-weights")]
+    let loaded = BUILTIN.get_or_init(|| {
+        Networks::embedded().map(Arc::new).map_err(|e| {
+            Error::NetworksUnavailable(format!("the built-in weights could not be loaded ({e})"))
         })
-        .clone()
+    });
+    #[cfg(not(feature = "embedded-weights"))]
+    let loaded = BUILTIN.get().ok_or_else(|| {
+        Error::NetworksUnavailable("the built-in networks have not been loaded yet".into())
+    })?;
+    loaded.clone()
+}
+
+/// Hands a build without `embedded-weights` its built-in networks: the JSON
+/// text of the files [`BUILTIN_FILES`] names, or why they could not be
+/// fetched. Only the first call counts (the built-in networks never
+/// change); a corrupt file is kept as the reason [`builtin`] gives.
+pub fn provide_builtin(files: std::result::Result<(&str, &str), String>) -> Result<()> {
+    let result = match files {
+        Ok((phi, v)) => Networks::from_json(phi, v).map(Arc::new),
+        Err(why) => Err(Error::NetworksUnavailable(why)),
+    };
+    let answer = result.as_ref().map(|_| ()).map_err(Clone::clone);
+    let _ = BUILTIN.set(result);
+    answer
 }
 
 /// The networks `method` runs with on `arm`: none for a method without
@@ -178,12 +208,14 @@ impl Networks {
 
     /// The shipped networks: the default `Phi` variant ([`DEFAULT_PHI_VARIANT`])
     /// and the `v` network.
+    #[cfg(feature = "embedded-weights")]
     pub fn embedded() -> Result<Self> {
         Self::embedded_with(DEFAULT_PHI_VARIANT)
     }
 
     /// The shipped networks with the chosen `Phi` variant (`plain` and `rows`
     /// are the paper's form, `equivariant` the measured improvement).
+    #[cfg(feature = "embedded-weights")]
     pub fn embedded_with(phi_variant: Variant) -> Result<Self> {
         Self::from_json(embedded_phi_json(phi_variant), V_PLAIN_JSON)
     }

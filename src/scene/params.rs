@@ -182,8 +182,12 @@ pub struct ParamInfo {
     pub unit: &'static str,
     /// Smallest and largest value accepted.
     pub bounds: (f64, f64),
-    /// The span and step of a slider for it: `(min, max, step)`.
+    /// The span and step of a slider for it: `(min, max, step)`; in powers
+    /// of ten (`log10` of the value) when `log_slider`.
     pub slider: (f64, f64, f64),
+    /// Whether its slider moves in powers of ten (a weight that spans
+    /// orders of magnitude).
+    pub log_slider: bool,
     /// Its value in the paper's tasks.
     pub default: f64,
 }
@@ -251,7 +255,7 @@ impl Param {
                 "--slack-weight",
                 "Slack weight w",
                 "",
-                (1e2, 1e8, 10.0),
+                (2.0, 8.0, 0.5),
                 d.slack_weight,
             ),
             Param::DistanceGain => (
@@ -286,6 +290,7 @@ impl Param {
             unit,
             bounds: self.bounds(),
             slider,
+            log_slider: self == Param::SlackWeight,
             default,
         }
     }

@@ -24,7 +24,7 @@ use crate::ik::DampingSchedule;
 use crate::networks::{self, Networks, TrainedRange};
 use crate::obstacle::Obstacle;
 use crate::planner::{Method, Planner, Surrogate};
-use crate::scene::{Scene, PAPER_RADIUS, PAPER_TARGET};
+use crate::scene::{Param, Scene, PAPER_RADIUS, PAPER_TARGET};
 use crate::twin::Twin;
 
 pub use clock::MAX_STEPS_PER_FRAME;
@@ -250,6 +250,12 @@ impl Session {
     /// Sets `lambda`, the gain of the obstacle vector (eq. 14).
     pub fn set_lambda(&mut self, lambda: f64) -> Result<()> {
         self.twin.apply(|p| p.set_lambda(lambda))
+    }
+
+    /// Sets a parameter of the methods ([`Param`]), for the planner and the
+    /// ghost; refused, changing nothing, when out of its bounds.
+    pub fn set_param(&mut self, param: Param, value: f64) -> Result<()> {
+        self.twin.apply(|p| p.set_param(param, value))
     }
 
     /// Switches the damping schedule on or off.

@@ -2,11 +2,15 @@
 
 use serde::Serialize;
 
+use std::collections::BTreeMap;
+
 use super::{Handle, Session};
 use crate::arm::Arm;
+use crate::clearance::{Pair, Pairs};
 use crate::networks::TrainedRange;
 use crate::obstacle::{self, Obstacle};
 use crate::planner::{Line, Needs};
+use crate::scene::Param;
 
 /// The snapshot the page reads every frame.
 #[derive(Debug, Serialize)]
@@ -25,6 +29,16 @@ pub struct State<'a> {
     pub speed: f64,
     /// Gain of the obstacle vector.
     pub lambda: f64,
+    /// Every parameter of the methods by name (`lambda`, `delta`,
+    /// `influence`, ...; [`Param`]), and which of them the method reads.
+    pub params: BTreeMap<&'static str, f64>,
+    /// The names of the parameters the method reads.
+    pub reads: Vec<&'static str>,
+    /// For a method with an influence distance (`distance`, `priority`,
+    /// `qp`): it, and the link-obstacle pairs within it now.
+    pub influence: Option<f64>,
+    /// Those pairs: `{ link, obstacle, point, centre, clearance, normal }`.
+    pub dampers: Vec<Pair>,
     /// Whether the damping schedule is on.
     pub damping: bool,
     /// Whether it was switched on for an out-of-reach target.
@@ -108,6 +122,20 @@ pub struct GhostState {
 }
 
 impl Session {
+    /// For a method that reads an influence distance, it and the
+    /// link-obstacle pairs within it at the current pose (what the page
+    /// draws as the active dampers).
+    pub fn near_pairs(&self) -> Option<(f64, Pairs)> {
+        let p = self.planner();
+        if !p.method().info().params.contains(&Param::Influence) {
+            return None;
+        }
+        let influence = p.scene().avoidance.influence;
+        let mut pairs = Pairs::default();
+        pairs.update(p.pose(), &p.scene().obstacles, influence);
+        Some((influence, pairs))
+    }
+
     /// The snapshot the page reads.
     pub fn state(&self) -> State<'_> {
         let p = self.planner();
@@ -115,6 +143,7 @@ impl Session {
         let summary = p.summary();
         let scene = p.scene();
         let obstacle = scene.obstacles.first();
+        let near = self.near_pairs();
         State {
             t: s.t,
             task: self.task,
@@ -123,6 +152,13 @@ impl Session {
             running: self.running,
             speed: self.speed,
             lambda: scene.lambda,
+            params: Param::ALL
+                .iter()
+                .map(|q| (q.name(), q.get(scene)))
+                .collect(),
+            reads: p.method().info().params.iter().map(|q| q.name()).collect(),
+            influence: near.as_ref().map(|(d, _)| *d),
+            dampers: near.map_or_else(Vec::new, |(_, pairs)| pairs.as_slice().to_vec()),
             damping: scene.damping.is_some(),
             auto_damping: summary.auto_damping,
             feedback: scene.feedback_gain,

@@ -97,6 +97,15 @@ impl Demo {
         self.session.set_lambda(lambda).map_err(js_err)
     }
 
+    /// Sets a parameter of the methods by name (`lambda`, `influence`,
+    /// `stop_distance`, ...; `params()` lists them with their bounds).
+    /// Throws, changing nothing, on an unknown name or a value out of bounds.
+    #[wasm_bindgen(js_name = setParam)]
+    pub fn set_param(&mut self, name: &str, value: f64) -> JsResult {
+        let param: crate::scene::Param = name.parse().map_err(js_err)?;
+        self.session.set_param(param, value).map_err(js_err)
+    }
+
     /// Switches the damping schedule (damped least squares near singular
     /// poses) on or off.
     #[wasm_bindgen(js_name = setDamping)]

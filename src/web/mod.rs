@@ -94,6 +94,33 @@ pub fn networks_error() -> Option<String> {
     networks::builtin().err().map(|e| e.to_string())
 }
 
+/// The weights files of the built-in networks, `[phi, v]` (names in the
+/// repository's `weights/`, which `make web` copies beside the page). A
+/// module built without them (the page's) fetches these at start-up and
+/// hands them to [`provide_builtin_networks`].
+#[wasm_bindgen(js_name = builtinWeightsFiles)]
+pub fn builtin_weights_files() -> Vec<String> {
+    networks::BUILTIN_FILES
+        .iter()
+        .map(|f| f.to_string())
+        .collect()
+}
+
+/// Hands the module the built-in networks: the JSON text of the two files
+/// of [`builtin_weights_files`]. Throws if they do not load (the reason
+/// then stays what [`networks_error`] says). Only the first call counts.
+#[wasm_bindgen(js_name = provideBuiltinNetworks)]
+pub fn provide_builtin_networks(phi_json: &str, v_json: &str) -> Result<(), JsError> {
+    networks::provide_builtin(Ok((phi_json, v_json))).map_err(js_err)
+}
+
+/// Tells the module why the built-in networks could not be fetched; the
+/// methods that need them then say so.
+#[wasm_bindgen(js_name = builtinNetworksFailed)]
+pub fn builtin_networks_failed(why: &str) {
+    let _ = networks::provide_builtin(Err(why.to_string()));
+}
+
 /// Every method, in the order of the menus: `[{ name, label, description,
 /// group, paper_figures, networks: { phi, v }, avoids, colour, params }]`
 /// ([`crate::planner::MethodInfo`]).
@@ -103,6 +130,15 @@ pub fn methods() -> Result<JsValue, JsError> {
         .iter()
         .map(|m| m.info())
         .collect();
+    to_js(&all)
+}
+
+/// Every parameter of the methods: `[{ name, flag, label, unit, bounds,
+/// slider: [min, max, step], default }]` ([`crate::scene::Param`]), for the
+/// page's controls.
+#[wasm_bindgen]
+pub fn params() -> Result<JsValue, JsError> {
+    let all: Vec<_> = crate::scene::Param::ALL.iter().map(|p| p.info()).collect();
     to_js(&all)
 }
 

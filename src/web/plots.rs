@@ -15,7 +15,8 @@ const SERIES: [&str; 3] = [ARM, TEAL, ACCENT];
 /// Tick spacing giving about `target` ticks over `span`.
 pub fn nice_step(span: f64, target: f64) -> f64 {
     let raw = (span / target).max(1e-12);
-    let mag = 10f64.powf(raw.log10().floor());
+    // powi, not powf: libm's pow costs the page's module 2 KB.
+    let mag = 10f64.powi(raw.log10().floor().clamp(-300.0, 300.0) as i32);
     let f = raw / mag;
     let nice = if f < 1.5 {
         1.0

@@ -76,6 +76,37 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) {
     ctx.set_line_width(2.0);
     polyline(ctx, Some(view), s.trail());
 
+    // The influence distance around each obstacle, and the link-obstacle
+    // pairs within it (the dampers of `qp`, the pairs `distance` and
+    // `priority` push apart): a segment from the link's closest point to
+    // the disc.
+    if let Some((influence, pairs)) = s.near_pairs() {
+        ctx.set_stroke_style_str(DAMPER);
+        ctx.set_global_alpha(INFLUENCE_ALPHA);
+        ctx.set_line_width(1.0);
+        dash(ctx, &[2.0, 4.0]);
+        for ob in &scene.obstacles {
+            let (ox, oy) = view.to_px(ob.centre);
+            disc(ctx, ox, oy, (ob.radius + influence) * view.scale);
+            ctx.stroke();
+        }
+        dash(ctx, &[]);
+        ctx.set_global_alpha(1.0);
+        ctx.set_line_width(2.0);
+        for pair in pairs.as_slice() {
+            let r = scene.obstacles[pair.obstacle].radius;
+            let edge = [
+                pair.centre[0] + r * pair.normal[0],
+                pair.centre[1] + r * pair.normal[1],
+            ];
+            polyline(ctx, Some(view), &[pair.point, edge]);
+            let (px, py) = view.to_px(pair.point);
+            disc(ctx, px, py, 3.0);
+            ctx.set_fill_style_str(DAMPER);
+            ctx.fill();
+        }
+    }
+
     // Obstacle discs, with their points O.
     let hit = planner.sample().collision;
     for (i, ob) in scene.obstacles.iter().enumerate() {

@@ -20,6 +20,7 @@ pub const GHOST: &str = "#5f6b78";
 pub const REGION: &str = "#b9c7d6";
 pub const POST: &str = "#4a5560";
 pub const GROUND: &str = "#dfe4ea";
+pub const DAMPER: &str = "#17becf";
 pub const PAPER: &str = "#ffffff";
 pub const FONT: &str = "system-ui, -apple-system, 'Segoe UI', Roboto, sans-serif";
 
@@ -29,9 +30,11 @@ pub const STROBE_ALPHA: f64 = 0.16;
 pub const GHOST_ALPHA: f64 = 0.8;
 pub const OBSTACLE_ALPHA: f64 = 0.16;
 pub const HIT_ALPHA: f64 = 0.55;
+/// Opacity of the influence-distance circles.
+pub const INFLUENCE_ALPHA: f64 = 0.6;
 
 /// Every named colour, for the page's CSS custom properties.
-pub const PALETTE: [(&str, &str); 12] = [
+pub const PALETTE: [(&str, &str); 13] = [
     ("ink", INK),
     ("muted", MUTED),
     ("grid", GRID),
@@ -44,6 +47,7 @@ pub const PALETTE: [(&str, &str); 12] = [
     ("region", REGION),
     ("post", POST),
     ("ground", GROUND),
+    ("damper", DAMPER),
 ];
 
 /// `#rrggbb` with an alpha, as a CSS colour.
@@ -100,6 +104,12 @@ pub fn legend() -> Vec<Entry> {
             "obstacle region the v network was trained on (Cases 2, 3)",
             rgba(REGION, 1.0),
             "region",
+        ),
+        entry(
+            "dampers",
+            "link-obstacle pairs within the influence distance (distance, priority, qp)",
+            rgba(DAMPER, 1.0),
+            "line",
         ),
     ]
 }

@@ -274,6 +274,49 @@ test('every mode is selectable', async () => {
   await page.close();
 });
 
+test("the menu groups the paper's methods and those beyond it; each runs Task 1", async () => {
+  const page = await open('?task=1&mode=numerical');
+  const methods = await methodsOf(page);
+  const groups = await page.$$eval('#mode optgroup', (gs) => gs.map((g) => ({ label: g.label, names: [...g.querySelectorAll('option')].map((o) => o.value) })));
+  assert.deepEqual(groups.map((g) => g.label), ['The paper', 'Beyond the paper']);
+  assert.deepEqual(groups.flatMap((g) => g.names), methods.map((m) => m.name), 'every method once, in menu order');
+  assert.deepEqual(groups[0].names, methods.filter((m) => m.group === 'paper').map((m) => m.name));
+  assert.ok(groups[1].names.length >= 3, `distance, priority and qp at least: ${groups[1].names}`);
+  const outcomes = [];
+  for (const m of methods) {
+    await selectMode(page, m.name);
+    await page.click('#task1');
+    const s = await page.evaluate(() => window.demo.runUntil(10));
+    assert.equal(s.error, null, `${m.name}: Task 1 runs`);
+    assert.ok(Math.abs(s.t - 10) < 1e-9, `${m.name}: to its end`);
+    // Every method that avoids keeps Task 1's arm clear of its obstacle.
+    assert.equal(s.collided, !m.avoids, `${m.name}: ${s.collided ? 'collided' : 'clear'}`);
+    outcomes.push(`${m.name} ${s.min_distance.toFixed(3)} m, ${(s.final_error * 1000).toFixed(2)} mm`);
+    // The sliders of the method's own parameters (beyond λ and δ).
+    const sliders = await page.$$eval('#method-params [data-param]', (fs) => fs.map((f) => f.dataset.param));
+    assert.deepEqual(sliders, m.params.filter((p) => p !== 'lambda' && p !== 'delta'), `${m.name}: its parameters`);
+  }
+  console.log(`measure: Task 1 in the page: ${outcomes.join('; ')}`);
+  // A parameter set on its slider reaches the planner; a refused one changes nothing.
+  await selectMode(page, 'qp');
+  await page.fill('#param-influence', '0.2');
+  await page.dispatchEvent('#param-influence', 'input');
+  assert.equal((await state(page)).params.influence, 0.2);
+  const refused = await page.evaluate(() => {
+    try {
+      window.demo.controller.demo.setParam('stop_distance', 0.5);
+      return null;
+    } catch (e) {
+      return e.message;
+    }
+  });
+  assert.match(refused, /stop distance/);
+  assert.equal((await state(page)).params.stop_distance, 0.02);
+  await page.screenshot({ path: join(shots, 'qp-dampers.png') });
+  clean(page);
+  await page.close();
+});
+
 for (const task of [1, 2]) {
   test(`#task${task}: collides without avoidance, not with it`, async () => {
     const page = await open('?task=1&mode=numerical');
@@ -426,6 +469,7 @@ test('compare panel: every method on a moved obstacle', async () => {
   assert.equal(by.numerical.collided, 'false', `the numerical route avoids: ${JSON.stringify(by.numerical)}`);
   assert.equal(by.case3.collided, 'false', `Case 3 avoids where numerical does: ${JSON.stringify(by.case3)}`);
   assert.equal(by.none.collided, 'true', 'no avoidance hits the obstacle moved next to the path');
+  assert.equal(by.qp.collided, 'false', `the QP with dampers avoids: ${JSON.stringify(by.qp)}`);
   console.log(
     'measure: compare at obstacle (0.65, 0.55), Task 2: ' +
       rows.map((r) => `${r.mode} ${Number(r.minDistance).toFixed(3)} m`).join(', '),
@@ -495,7 +539,7 @@ test('atlas: computed in a worker while the page draws, equal to the module comp
   await pause(page);
   await page.click('#atlas-panel summary');
   await countFrames(page);
-  const modes = ['none', 'numerical', 'case3'];
+  const modes = ['none', 'numerical', 'case3', 'distance', 'priority', 'qp'];
   const run = await page.evaluate(async (modes) => {
     const progress = [];
     const t0 = performance.now();
@@ -542,8 +586,9 @@ test('atlas panel: the map under the arm, its legend, hover numbers, click to re
   await page.selectOption('#atlas-n', '11');
   await page.click('#atlas-run');
   await page.waitForSelector('#atlas-result:not([hidden])', { timeout: 60000 });
-  assert.equal(await page.locator('#atlas-body tr').count(), 5, 'one row per method');
-  assert.equal(await page.locator('#atlas-agreement li').count(), 3, 'Cases 1-3 against numerical');
+  const methods = await methodsOf(page);
+  assert.equal(await page.locator('#atlas-body tr').count(), methods.length, 'one row per method (all ticked)');
+  assert.equal(await page.locator('#atlas-agreement li').count(), methods.filter(usesNetworks).length, 'the methods with networks against numerical');
   assert.equal(await page.inputValue('#atlas-show'), 'numerical', 'the numerical map is shown first');
   // A cell in view, away from the target and the obstacle, where the
   // numerical route succeeds: its pixel is the legend's swatch over white.
@@ -622,7 +667,7 @@ test('atlas panel: the map under the arm, its legend, hover numbers, click to re
   await page.close();
 });
 
-test('atlas of 41 x 41 cells in all five methods, in Chromium', async () => {
+test('atlas of 41 x 41 cells in every method, in Chromium', async () => {
   const page = await open('?task=1&mode=numerical');
   const r = await page.evaluate(async () => {
     const t0 = performance.now();
@@ -636,10 +681,12 @@ test('atlas of 41 x 41 cells in all five methods, in Chromium', async () => {
       build: window.demo.build,
     };
   });
-  assert.equal(r.cells * r.modes, 8405);
+  const count = (await methodsOf(page)).length;
+  assert.equal(r.cells, 41 * 41);
+  assert.equal(r.modes, count, 'every method ticked by default');
   const rates = Object.entries(r.rates).map(([m, v]) => `${m} ${(100 * v).toFixed(1)}%`).join(', ');
   console.log(
-    `measure: atlas of Task 1, 41 x 41 cells, five modes (8,405 runs) in a worker (${r.build} build): ` +
+    `measure: atlas of Task 1, 41 x 41 cells, ${count} methods (${r.cells * r.modes} runs) in a worker (${r.build} build): ` +
       `${r.worker.toFixed(2)} s computing, ${r.wall.toFixed(2)} s with the worker's start; success ${rates}`,
   );
   clean(page);

@@ -3,6 +3,7 @@
 use std::sync::Arc;
 
 use arbitrary::Unstructured;
+use redundant_ik::scene::Param;
 use redundant_ik::session::{Handle, Session};
 use redundant_ik::{Arm, Obstacle};
 
@@ -10,7 +11,8 @@ use super::checks::{shipped, Snapshot};
 use super::gen::{arm, method, num, num_in, point, small};
 
 /// A session (the page's simulation) driven by up to 32 operations: steps,
-/// ticks, targets, obstacles (add, move, remove, replace), modes, `lambda`,
+/// ticks, targets, obstacles (add, move, remove, replace), every method,
+/// every parameter of the methods, `lambda`,
 /// damping, feedback, speed, arms, networks, tasks, drags and nudges, with
 /// arbitrary numbers. After every operation no angle, time or position is
 /// non-finite; an operation refused (other than a step, whose refusal
@@ -35,7 +37,7 @@ pub fn session(data: &[u8]) {
             break;
         }
         let before = Snapshot::of(s.planner());
-        let op = u.int_in_range(0u8..=24).unwrap_or(0);
+        let op = u.int_in_range(0u8..=25).unwrap_or(0);
         // Operations that step may fail part-way and keep the last good step.
         let steps = matches!(op, 0..=2 | 19 | 20);
         let result = match op {
@@ -111,6 +113,11 @@ pub fn session(data: &[u8]) {
             23 => {
                 s.drag_cancel();
                 Ok(())
+            }
+            25 => {
+                // Any parameter of any method, to any number.
+                let param = *u.choose(&Param::ALL).unwrap_or(&Param::Lambda);
+                s.set_param(param, num(&mut u))
             }
             _ => {
                 let handle = if u.arbitrary().unwrap_or(false) {

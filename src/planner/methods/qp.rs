@@ -130,13 +130,13 @@ impl Rule for Qp {
         }
         // The joints' rate limits, as rows +-e_i.
         let limit = av.rate_limit;
-        for i in 0..n {
+        for (i, &rate) in out.iter().enumerate() {
             for sign in [1.0, -1.0] {
                 let at = self.a.len();
                 self.a.resize(at + n, 0.0);
                 self.a[at + i] = sign;
                 self.b.push(-limit);
-                broken |= sign * out[i] < -limit;
+                broken |= sign * rate < -limit;
             }
         }
         if !broken {
