@@ -711,6 +711,35 @@ test('a module that cannot load gives a readable message, not a blank page', asy
   await context.close();
 });
 
+test('built-in networks that cannot be fetched: the page runs the exact methods and says why the others wait', async () => {
+  const context = await browser.newContext({ viewport: { width: 1280, height: 900 } });
+  const page = await context.newPage();
+  const problems = [];
+  page.on('pageerror', (err) => problems.push(err.message));
+  await page.route('**/weights/*.json', (route) => route.fulfill({ status: 404, body: 'gone' }));
+  await page.goto(BASE);
+  await page.waitForSelector('body[data-ready="true"]', { timeout: 15000 });
+  const s = await page.evaluate(() => window.demo.state());
+  assert.equal(s.mode, 'numerical', 'the default method falls back to one without networks');
+  assert.equal(s.networks, false);
+  const refused = await page.evaluate(() => {
+    try {
+      window.demo.controller.demo.setMode('case3');
+      return null;
+    } catch (e) {
+      return e.message;
+    }
+  });
+  assert.match(refused, /networks not available: could not fetch weights\/phi-equivariant\.json \(HTTP 404\)/);
+  // The methods without networks are there, the others disabled.
+  const options = await page.$$eval('#mode option', (os) => os.map((o) => [o.value, o.disabled]));
+  const methods = await methodsOf(page);
+  assert.deepEqual(options, methods.map((m) => [m.name, usesNetworks(m)]));
+  await page.evaluate(() => window.demo.runUntil(2));
+  assert.deepEqual(problems, []);
+  await context.close();
+});
+
 test('the SIMD build runs where SIMD is available, the baseline build where it is not', async () => {
   // Chromium has wasm SIMD: the page picks the SIMD build.
   const page = await open('?task=1&mode=case3');
@@ -773,10 +802,12 @@ test('names and colours come from the module: the method menu, and legend swatch
   assert.match(options[2][1], /^Case 1: /);
   // So are the method explanations and the limits quoted in the prose.
   const prose = await page.evaluate(() => ({
-    explained: [...document.querySelectorAll('#modes-explained dt')].map((dt) => dt.textContent),
+    explained: [...document.querySelectorAll('#modes-explained dt:not(.group)')].map((dt) => dt.textContent),
+    groups: [...document.querySelectorAll('#modes-explained dt.group')].map((dt) => dt.textContent),
     limits: Object.fromEntries([...document.querySelectorAll('[data-limit]')].map((e) => [e.dataset.limit, e.textContent])),
   }));
   assert.deepEqual(prose.explained, methods.map((m) => m.label));
+  assert.deepEqual(prose.groups, ['The paper', 'Beyond the paper']);
   assert.deepEqual(prose.limits, { min_links: '2', max_links: '6', max_obstacles: '8', reach_tolerance: '5', drift_gain: '1', default_radius: '0.05' });
   // Each legend swatch has the colour the renderer draws its element with,
   // read back from the canvas where that element is.
@@ -808,7 +839,7 @@ test('names and colours come from the module: the method menu, and legend swatch
       cssArm: getComputedStyle(document.documentElement).getPropertyValue('--arm').trim(),
     };
   });
-  assert.deepEqual(probe.keys, ['arm', 'strobe', 'ghost', 'path', 'trail', 'obstacle', 'region']);
+  assert.deepEqual(probe.keys, ['arm', 'strobe', 'ghost', 'path', 'trail', 'obstacle', 'region', 'dampers']);
   const rgba = (css) => {
     const m = css.match(/rgba?\(([^)]+)\)/);
     const v = m[1].split(',').map(Number);
