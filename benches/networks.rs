@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
 use redundant_ik::nalgebra::Vector2;
-use redundant_ik::networks::{NetKind, Networks, Sampling, Variant};
+use redundant_ik::networks::{Encoding, NetKind, Networks, Sampling, Variant};
 use redundant_ik::nn::lm::{LmOptions, LmTrainer};
 use redundant_ik::nn::mlp::{MapMinMax, Mlp};
 use redundant_ik::nn::{Dataset, Rng};
@@ -76,10 +76,11 @@ fn lm_epoch(c: &mut Criterion) {
     let arm = Arm::paper();
     let sampling = Sampling::default();
     let samples = training::draw_samples(&arm, &sampling, 3000, 1).unwrap();
-    let phi_plain = training::phi_datasets(&arm, Variant::Plain, &samples).unwrap();
-    let phi_rows = training::phi_datasets(&arm, Variant::Rows, &samples).unwrap();
-    let phi_eq = training::phi_datasets(&arm, Variant::Equivariant, &samples).unwrap();
-    let v = training::v_dataset(&arm, Variant::Plain, &samples).unwrap();
+    let phi_plain = training::phi_datasets(&arm, Variant::Plain, Encoding::Raw, &samples).unwrap();
+    let phi_rows = training::phi_datasets(&arm, Variant::Rows, Encoding::Raw, &samples).unwrap();
+    let phi_eq =
+        training::phi_datasets(&arm, Variant::Equivariant, Encoding::Raw, &samples).unwrap();
+    let v = training::v_dataset(&arm, Variant::Plain, Encoding::Raw, 0.0, &samples).unwrap();
     let cases: [(&str, &Dataset, Vec<usize>); 4] = [
         ("phi_plain_3-35-14-6", &phi_plain[0], vec![3, 35, 14, 6]),
         ("phi_rows_3-35-14-2", &phi_rows[0], vec![3, 35, 14, 2]),

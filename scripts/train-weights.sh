@@ -13,4 +13,8 @@ BIN="$CARGO_TARGET_DIR/release/redundant-ik"
 "$BIN" train --net v   --variant plain       --seed 1 --samples 3000 --epochs 400 --hidden 25,14 --out weights/v-plain.json
 "$BIN" train --net phi --variant plain       --seed 1 --samples 3000 --epochs 400 --hidden 35,14 --out weights/phi-plain.json
 "$BIN" train --net phi --variant rows        --seed 2 --samples 3000 --epochs 400 --hidden 35,14 --out weights/phi-rows.json
+# The whole-reach set (docs/learning.md): angle features, Phi over the whole
+# joint torus, v from runs with obstacles anywhere in the reach.
+"$BIN" train --net phi --recipe reach --seed 1 --out weights/phi-reach.json
+"$BIN" train --net v   --recipe reach --seed 1 --out weights/v-reach.json
 "$BIN" eval

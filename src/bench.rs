@@ -17,7 +17,7 @@ use crate::atlas;
 use crate::error::{Error, Result};
 use crate::nalgebra::Vector2;
 use crate::networks::Networks;
-use crate::networks::{Sampling, Variant};
+use crate::networks::{Encoding, Sampling, Variant};
 use crate::nn::lm::{LmOptions, LmTrainer};
 use crate::nn::mlp::{MapMinMax, Mlp};
 use crate::nn::Rng;
@@ -303,7 +303,7 @@ pub fn lm_epoch_ms(opts: &Options, probes: &Probes) -> Result<f64> {
     let arm = Arm::paper();
     let sampling = Sampling::default();
     let samples = training::draw_samples(&arm, &sampling, 3000, 1)?;
-    let sets = training::phi_datasets(&arm, Variant::Equivariant, &samples)?;
+    let sets = training::phi_datasets(&arm, Variant::Equivariant, Encoding::Raw, &samples)?;
     let data = sets
         .first()
         .ok_or_else(|| Error::Training("no training set".into()))?;

@@ -8,7 +8,7 @@ use std::sync::Arc;
 use serde::{Deserialize, Serialize};
 
 use crate::error::Result;
-use crate::networks::Networks;
+use crate::networks::{NetKind, Networks};
 use crate::planner::{methods, Method, Planner, Surrogate, REACH_TOLERANCE};
 use crate::scene::Scene;
 use crate::training::{self, sampling, Visited};
@@ -60,22 +60,28 @@ pub fn phi_relative_errors(nets: &Networks, samples: &[Visited]) -> Result<Vec<f
     Ok(out)
 }
 
-/// Relative error `|g_net - g| / |g|` at each pose and obstacle point.
+/// Relative error `|g_net - g| / |g|` at each pose and obstacle point, `g`
+/// with the sign smoothing the `v` file was trained with.
 pub fn v_relative_errors(nets: &Networks, samples: &[Visited]) -> Result<Vec<f64>> {
     let arm = nets.arm();
     let mut out = Vec::with_capacity(samples.len());
     let mut y = vec![0.0; arm.dof()];
+    let eps = nets.v_file().training.sampling.sign_smoothing;
     for s in samples {
-        let exact = sampling::v_target(arm, &s.theta, s.obstacle);
+        let exact = sampling::v_target(arm, &s.theta, s.obstacle, eps);
         nets.area_gradient_into(&s.theta, s.obstacle, &mut y)?;
         out.push(rel(&y, &exact));
     }
     Ok(out)
 }
 
-/// A fresh test set drawn as the `Phi` file's training data was, with another seed.
-pub fn fresh_samples(nets: &Networks, n: usize, seed: u64) -> Result<Vec<Visited>> {
-    training::draw_samples(nets.arm(), &nets.phi_file().training.sampling, n, seed)
+/// A fresh test set drawn as the `net` file's training data was, with another seed.
+pub fn fresh_samples(nets: &Networks, net: NetKind, n: usize, seed: u64) -> Result<Vec<Visited>> {
+    let file = match net {
+        NetKind::Phi => nets.phi_file(),
+        NetKind::V => nets.v_file(),
+    };
+    training::draw_samples(nets.arm(), &file.training.sampling, n, seed)
 }
 
 fn rel(y: &[f64], exact: &[f64]) -> f64 {
@@ -123,7 +129,21 @@ pub fn run_task(
     obstacle: Option<[f64; 2]>,
     feedback_gain: f64,
 ) -> Result<TaskOutcome> {
+    run_task_refined(nets, task, mode, obstacle, feedback_gain, 0)
+}
+
+/// [`run_task`] with `refine` Newton-Schulz steps on the learned `Phi`
+/// ([`crate::scene::Scene::refine`]).
+pub fn run_task_refined(
+    nets: &Networks,
+    task: u32,
+    mode: Method,
+    obstacle: Option<[f64; 2]>,
+    feedback_gain: f64,
+    refine: u32,
+) -> Result<TaskOutcome> {
     let mut scene = Scene::task(task)?;
+    crate::scene::Param::Refine.set(&mut scene, f64::from(refine))?;
     if let Some(o) = obstacle {
         for ob in &mut scene.obstacles {
             ob.centre = o;
@@ -158,12 +178,20 @@ pub fn run_task(
     Ok(out)
 }
 
-/// All five modes on both paper tasks with their canonical obstacles.
-pub fn task_outcomes(nets: &Networks, feedback_gain: f64) -> Result<Vec<TaskOutcome>> {
+/// All five modes on both paper tasks with their canonical obstacles,
+/// `refine` steps on the learned `Phi`.
+pub fn task_outcomes(nets: &Networks, feedback_gain: f64, refine: u32) -> Result<Vec<TaskOutcome>> {
     let mut out = Vec::new();
     for task in [1, 2] {
         for mode in methods::PAPER {
-            out.push(run_task(nets, task, mode, None, feedback_gain)?);
+            out.push(run_task_refined(
+                nets,
+                task,
+                mode,
+                None,
+                feedback_gain,
+                refine,
+            )?);
         }
     }
     Ok(out)

@@ -300,6 +300,43 @@ pub fn damp_phi(phi: &mut [f64], delta: f64) -> Result<()> {
     Ok(())
 }
 
+/// Refines an approximate right inverse `Phi` of `J` in place by `steps`
+/// Newton-Schulz steps, `Phi <- Phi (2 I - J Phi)`.
+///
+/// With `J Phi = I + E`, one step gives `J Phi' = (I + E)(I - E) = I - E^2`:
+/// the error is squared, so `k` steps turn `E` into `-(-E)^(2^k)` and
+/// converge whenever `|E| < 1`. A learned `Phi` (Cases 1 and 3) is fixed
+/// this way with the `J` eq. (21) already evaluates, at the cost of two
+/// small products per step (`docs/learning.md`). An exact pseudoinverse is
+/// left as it is (`J Phi = I`). `phi` row-major (`2n`), `jac` column-major.
+#[inline]
+pub fn refine_phi(phi: &mut [f64], jac: &[f64], steps: u32) -> Result<()> {
+    check_lengths(jac, &[("Phi (n x 2)", phi.len() / 2)])?;
+    for _ in 0..steps {
+        // J Phi, a 2 x 2 matrix.
+        let mut jp = [[0.0; 2]; 2];
+        for (j, p) in jac.chunks_exact(2).zip(phi.chunks_exact(2)) {
+            for a in 0..2 {
+                for b in 0..2 {
+                    jp[a][b] += j[a] * p[b];
+                }
+            }
+        }
+        let m = [[2.0 - jp[0][0], -jp[0][1]], [-jp[1][0], 2.0 - jp[1][1]]];
+        for row in phi.chunks_exact_mut(2) {
+            let (x, y) = (row[0], row[1]);
+            row[0] = x * m[0][0] + y * m[1][0];
+            row[1] = x * m[0][1] + y * m[1][1];
+        }
+    }
+    if phi.iter().any(|x| !x.is_finite()) {
+        return Err(Error::NonFinite {
+            what: "refined Phi".into(),
+        });
+    }
+    Ok(())
+}
+
 /// Network route, eq. (21): `theta_dot = Phi (Xdot - J v) + v`, with `Phi` from
 /// any provider (a trained network, or [`phi`] itself).
 pub fn theta_dot_network(

@@ -190,29 +190,58 @@ impl Link {
 /// that `v = (lambda / 4) g`. This is the quantity the paper's second network
 /// learns; it does not depend on `lambda`.
 pub fn area_gradient(arm: &Arm, theta: &DVector<f64>, o: &Vector2<f64>) -> DVector<f64> {
+    area_gradient_smoothed(arm, theta, o, 0.0)
+}
+
+/// [`area_gradient`] with the sign of eq. (15) smoothed by `eps` (m^2):
+/// `sign(D)` becomes `D / sqrt(D^2 + eps^2)` ([`smoothed_sign`]).
+pub fn area_gradient_smoothed(
+    arm: &Arm,
+    theta: &DVector<f64>,
+    o: &Vector2<f64>,
+    eps: f64,
+) -> DVector<f64> {
     let pose = Pose::lenient(arm, theta.as_slice());
     let mut g = DVector::zeros(arm.dof());
-    area_gradient_into(arm, &pose, [o[0], o[1]], g.as_mut_slice());
+    area_gradient_into(arm, &pose, [o[0], o[1]], eps, g.as_mut_slice());
     g
 }
 
-/// [`area_gradient`] from a [`Pose`], allocation-free and in `O(n)`: with
-/// `s_k = sign(D_k)` and [`determinant_gradient`]'s `dD_k/dtheta_i = c_k - det[J_i, b_k]`,
-/// `g_i = sum_{k>=i} s_k c_k - det[J_i, sum_{k>=i} s_k b_k]`: two suffix sums.
-/// Writes `min(n, out.len())` entries; `pose` must be a pose of `arm`.
+/// The sign of `D_k` in eq. (15), smoothed by `eps >= 0` (m^2):
+/// `D / sqrt(D^2 + eps^2)`, or `sign(D)` (0 at 0) when `eps = 0`, the paper's.
+///
+/// The paper's criterion is the sum of the triangles' unsigned areas, so
+/// its gradient jumps wherever the obstacle crosses the line of a link
+/// (`D_k` changes sign): the joint rates jump, and a network cannot fit
+/// the jump (`docs/learning.md`). Smoothing turns the criterion into
+/// `sum_k sqrt(D_k^2 + eps^2)`, whose gradient this is; `eps` is a
+/// parameter of the criterion itself, for the exact and the learned route
+/// alike ([`crate::scene::Param::SignSmoothing`]).
 #[inline]
-pub fn area_gradient_into(arm: &Arm, pose: &Pose, o: [f64; 2], out: &mut [f64]) {
+pub fn smoothed_sign(d: f64, eps: f64) -> f64 {
+    if eps > 0.0 {
+        d / d.hypot(eps)
+    } else if d > 0.0 {
+        1.0
+    } else if d < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
+/// [`area_gradient_smoothed`] from a [`Pose`], allocation-free and in
+/// `O(n)`: with `s_k` the (smoothed) sign of `D_k` and
+/// [`determinant_gradient`]'s `dD_k/dtheta_i = c_k - det[J_i, b_k]`,
+/// `g_i = sum_{k>=i} s_k c_k - det[J_i, sum_{k>=i} s_k b_k]`: two suffix
+/// sums. Writes `min(n, out.len())` entries; `pose` must be a pose of `arm`.
+#[inline]
+pub fn area_gradient_into(arm: &Arm, pose: &Pose, o: [f64; 2], eps: f64, out: &mut [f64]) {
     let n = pose.dof().min(arm.dof());
     let (mut sc, mut sb) = (0.0, [0.0, 0.0]);
     for k in (0..n).rev() {
         let link = Link::at(arm, pose, k, o);
-        let s = if link.d > 0.0 {
-            1.0
-        } else if link.d < 0.0 {
-            -1.0
-        } else {
-            0.0
-        };
+        let s = smoothed_sign(link.d, eps);
         sc += s * link.c;
         sb = [sb[0] + s * link.b[0], sb[1] + s * link.b[1]];
         if let Some(g) = out.get_mut(k) {
@@ -232,23 +261,25 @@ pub fn null_space_vector(
     let pose = Pose::lenient(arm, theta.as_slice());
     let mut v = DVector::zeros(arm.dof());
     let mut g = vec![0.0; arm.dof()];
-    null_space_vector_into(arm, &pose, obstacles, lambda, &mut g, v.as_mut_slice());
+    null_space_vector_into(arm, &pose, obstacles, lambda, 0.0, &mut g, v.as_mut_slice());
     v
 }
 
-/// [`null_space_vector`] from a [`Pose`], allocation-free: `scratch` and `v`
-/// have `n` entries each.
+/// [`null_space_vector`] from a [`Pose`], with the sign smoothed by `eps`
+/// ([`smoothed_sign`]), allocation-free: `scratch` and `v` have `n`
+/// entries each.
 pub fn null_space_vector_into(
     arm: &Arm,
     pose: &Pose,
     obstacles: &[Obstacle],
     lambda: f64,
+    eps: f64,
     scratch: &mut [f64],
     v: &mut [f64],
 ) {
     v.iter_mut().for_each(|x| *x = 0.0);
     for ob in obstacles {
-        area_gradient_into(arm, pose, ob.centre, scratch);
+        area_gradient_into(arm, pose, ob.centre, eps, scratch);
         for (vi, gi) in v.iter_mut().zip(scratch.iter()) {
             *vi += gi;
         }

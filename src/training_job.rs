@@ -12,10 +12,10 @@ use serde::{Deserialize, Serialize};
 use crate::arm::Arm;
 use crate::error::{within, Error, Result};
 use crate::evaluation::{self, ErrorStats};
-use crate::networks::{NetKind, Networks, WeightsFile, DEFAULT_PHI_VARIANT, DEFAULT_V_VARIANT};
+use crate::networks::{NetKind, Networks, WeightsFile};
 use crate::nn::lm::EpochReport;
 use crate::planner::{Method, Surrogate};
-use crate::training::{tasks, train_weights, TrainSpec};
+use crate::training::{tasks, train_weights, Recipe, TrainSpec};
 
 /// How big a training job is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -25,22 +25,37 @@ pub enum Preset {
     Quick,
     /// The paper's 3 000 samples and at most 400 epochs: the shipped files.
     Thorough,
+    /// The `reach` recipe ([`Recipe::Reach`]): networks meant to hold over
+    /// the whole workspace, at the recipe's sizes (the shipped `reach` set
+    /// for the paper's arm).
+    Reach,
 }
 
 impl Preset {
-    /// Samples drawn.
-    pub fn samples(self) -> usize {
+    /// The recipe it trains by.
+    pub fn recipe(self) -> Recipe {
         match self {
-            Preset::Quick => 1000,
-            Preset::Thorough => 3000,
+            Preset::Quick | Preset::Thorough => Recipe::Paper,
+            Preset::Reach => Recipe::Reach,
         }
     }
 
-    /// Most Levenberg-Marquardt epochs per network.
-    pub fn epochs(self) -> usize {
+    /// Samples drawn, where the preset sets them (else the recipe's).
+    pub fn samples(self) -> Option<usize> {
         match self {
-            Preset::Quick => 100,
-            Preset::Thorough => 400,
+            Preset::Quick => Some(1000),
+            Preset::Thorough => Some(3000),
+            Preset::Reach => None,
+        }
+    }
+
+    /// Most Levenberg-Marquardt epochs per network, where the preset sets
+    /// them (else the recipe's).
+    pub fn epochs(self) -> Option<usize> {
+        match self {
+            Preset::Quick => Some(100),
+            Preset::Thorough => Some(400),
+            Preset::Reach => None,
         }
     }
 }
@@ -149,7 +164,8 @@ pub struct Report {
     pub paper_tasks: Vec<evaluation::TaskOutcome>,
     /// [`CHECK_TASKS`] random tasks of this arm in which the obstacle
     /// matters ([`tasks::avoidance_tasks`]), open loop (`K = 0`) and with
-    /// the drift corrected (`K = 1`): numerical and Cases 1 to 3.
+    /// the drift corrected (`K = 1`), each unrefined and refined
+    /// ([`CHECK_LOOPS`]): numerical and Cases 1 to 3.
     pub random_tasks: Vec<CheckRow>,
     /// Why there are no random tasks, when the arm has none in which the
     /// obstacle matters (a 2-link arm has no redundancy to avoid with).
@@ -158,11 +174,18 @@ pub struct Report {
     pub random_tasks_note: Option<String>,
 }
 
+/// The loops the task check runs in, `(K, refine)`: open and closed, each
+/// as the paper (no refinement) and with two Newton-Schulz steps on the
+/// learned `Phi` (`docs/learning.md`).
+pub const CHECK_LOOPS: [(f64, u32); 4] = [(0.0, 0), (1.0, 0), (0.0, 2), (1.0, 2)];
+
 /// One line of the task check.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CheckRow {
     /// Closed-loop gain `K`.
     pub feedback: f64,
+    /// Newton-Schulz steps on the learned `Phi`.
+    pub refine: u32,
     /// The outcome.
     #[serde(flatten)]
     pub check: tasks::Check,
@@ -180,36 +203,39 @@ pub struct Trained {
 }
 
 impl Request {
-    /// The samples and epochs this request means, checked.
-    pub fn size(&self) -> Result<(usize, usize)> {
-        let samples = self.samples.unwrap_or(self.preset.samples());
-        let epochs = self.epochs.unwrap_or(self.preset.epochs());
-        within("training samples", samples as f64, 20.0, MAX_SAMPLES as f64)?;
-        within("training epochs", epochs as f64, 1.0, MAX_EPOCHS as f64)?;
-        Ok((samples, epochs))
-    }
-
-    /// The training spec of network `net` this request means (checked
-    /// sizes, the page's variants, the arm's sampling).
+    /// The training spec of network `net` this request means: the preset's
+    /// recipe for the arm (the paper's: the page's variants and the arm's
+    /// sampling), its sizes or the request's, checked.
     pub fn spec(&self, net: NetKind) -> Result<TrainSpec> {
-        let (samples, epochs) = self.size()?;
-        let variant = match net {
-            NetKind::Phi => DEFAULT_PHI_VARIANT,
-            NetKind::V => DEFAULT_V_VARIANT,
-        };
         // One seed for both, as the shipped files (scripts/train-weights.sh):
-        // the thorough preset on the paper's arm retrains them.
+        // the thorough and reach presets on the paper's arm retrain them.
         let seed = self.seed.unwrap_or(1);
-        let mut spec = TrainSpec::for_arm(&self.arm, net, variant, seed);
-        spec.samples = samples;
-        spec.options.max_epochs = epochs;
+        let mut spec = self.preset.recipe().spec(&self.arm, net, seed);
+        if let Some(n) = self.samples.or(self.preset.samples()) {
+            spec.samples = n;
+        }
+        if let Some(n) = self.epochs.or(self.preset.epochs()) {
+            spec.options.max_epochs = n;
+        }
+        within(
+            "training samples",
+            spec.samples as f64,
+            20.0,
+            MAX_SAMPLES as f64,
+        )?;
+        within(
+            "training epochs",
+            spec.options.max_epochs as f64,
+            1.0,
+            MAX_EPOCHS as f64,
+        )?;
         Ok(spec)
     }
 }
 
-/// Trains what `request` asks for (the variants the page uses: the
-/// rotation-equivariant `Phi` and the plain `v`, with the paper's layer
-/// sizes), keeps the other network from `current` when only one is
+/// Trains what `request` asks for (by its preset's recipe: for the
+/// paper's, the variants the page uses, the rotation-equivariant `Phi` and
+/// the plain `v`, with the paper's layer sizes), keeps the other network from `current` when only one is
 /// trained, and reports. `on_epoch` sees every epoch; returning `false`
 /// stops that network early (what it learnt so far is kept). Nothing is
 /// installed anywhere: the caller swaps the networks in, so a failed or
@@ -221,7 +247,12 @@ pub fn train(
 ) -> Result<Trained> {
     let arm = &request.arm;
     Arm::new(arm.post(), arm.links().to_vec())?;
-    let (samples, _) = request.size()?;
+    let samples = request
+        .spec(match request.net {
+            Which::V => NetKind::V,
+            _ => NetKind::Phi,
+        })?
+        .samples;
     let kept = |net: NetKind| -> Result<WeightsFile> {
         let nets = current.filter(|n| n.arm() == arm).ok_or_else(|| {
             Error::Training(format!(
@@ -281,9 +312,12 @@ pub fn train(
 
 /// The report of [`train`] for networks already trained.
 pub fn assess(nets: &Networks, samples: usize) -> Result<Report> {
-    let fresh = evaluation::fresh_samples(nets, 500, 0x7e57)?;
-    let phi_error = ErrorStats::of(evaluation::phi_relative_errors(nets, &fresh)?);
-    let v_error = ErrorStats::of(evaluation::v_relative_errors(nets, &fresh)?);
+    let fresh = |net| evaluation::fresh_samples(nets, net, 500, 0x7e57);
+    let phi_error = ErrorStats::of(evaluation::phi_relative_errors(
+        nets,
+        &fresh(NetKind::Phi)?,
+    )?);
+    let v_error = ErrorStats::of(evaluation::v_relative_errors(nets, &fresh(NetKind::V)?)?);
     let arm = nets.arm();
     let mut paper_tasks = Vec::new();
     if *arm == Arm::paper() {
@@ -303,7 +337,7 @@ pub fn assess(nets: &Networks, samples: usize) -> Result<Report> {
         };
     let surrogate: Arc<dyn Surrogate> = Arc::new(nets.clone());
     let mut random_tasks = Vec::new();
-    for feedback in [0.0, 1.0] {
+    for (feedback, refine) in CHECK_LOOPS {
         if scenes.is_empty() {
             break;
         }
@@ -312,6 +346,7 @@ pub fn assess(nets: &Networks, samples: usize) -> Result<Report> {
             .cloned()
             .map(|mut s| {
                 s.feedback_gain = feedback;
+                s.refine = refine;
                 s
             })
             .collect();
@@ -321,8 +356,13 @@ pub fn assess(nets: &Networks, samples: usize) -> Result<Report> {
             Method::CASE2,
             Method::CASE3,
         ] {
+            // The exact route takes no refinement: once is enough.
+            if refine > 0 && !mode.networks().phi {
+                continue;
+            }
             random_tasks.push(CheckRow {
                 feedback,
+                refine,
                 check: tasks::check(&scenes, mode, Some(surrogate.clone())),
             });
         }

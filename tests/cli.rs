@@ -731,3 +731,100 @@ fn train_and_simulate_take_any_arm() {
     refused(&["simulate", "--obstacle", "0.5,0.5,0.1,3"], "x,y,r");
     refused(&["train", "--arm", "0.5:0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6,0.6", "--net", "phi", "--out", "/dev/null"], "link");
 }
+
+#[test]
+fn the_reach_recipe_and_network_set_through_the_command_line() {
+    // `train --recipe reach` writes angle features and the smoothed sign.
+    let out = scratch("tiny-reach-v.json");
+    let path = out.to_str().unwrap();
+    let text = ok(&[
+        "train",
+        "--net",
+        "v",
+        "--recipe",
+        "reach",
+        "--samples",
+        "200",
+        "--epochs",
+        "3",
+        "--hidden",
+        "6",
+        "--quiet",
+        "--out",
+        path,
+    ]);
+    assert!(
+        text.contains("recipe reach") && text.contains("encoding angles"),
+        "{text}"
+    );
+    let file: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(file["encoding"], "angles");
+    assert_eq!(file["variant"], "equivariant");
+    assert_eq!(file["training"]["sampling"]["sign_smoothing"], 0.1);
+    // The shipped reach set runs Case 3 with refinement and feedback, and
+    // the refinement changes the run (it is applied).
+    let run = |refine: &str| {
+        json(&[
+            "simulate",
+            "--mode",
+            "case3",
+            "--networks",
+            "reach",
+            "--refine",
+            refine,
+            "--feedback",
+            "1",
+            "--json",
+        ])
+    };
+    let (plain, refined) = (run("0"), run("2"));
+    assert_eq!(refined["scene"]["refine"], 2);
+    assert!(refined["summary"]["final_error"].as_f64().unwrap() < 5e-3);
+    assert_ne!(plain["summary"], refined["summary"]);
+    // The exact route is the same with either set (it runs no network).
+    let numerical = |set: &str| {
+        json(&[
+            "simulate",
+            "--mode",
+            "numerical",
+            "--networks",
+            set,
+            "--json",
+        ])["summary"]
+            .clone()
+    };
+    assert_eq!(numerical("paper"), numerical("reach"));
+    refused(&["simulate", "--networks", "nope"], "networks");
+    refused(&["simulate", "--refine", "1.5"], "refine");
+    refused(&["simulate", "--refine", "9"], "refine");
+    refused(&["simulate", "--sign-smoothing", "-1"], "smoothing");
+    refused(
+        &[
+            "simulate",
+            "--mode",
+            "case1",
+            "--networks",
+            "reach",
+            "--phi-variant",
+            "plain",
+        ],
+        "phi-variant",
+    );
+    refused(
+        &["train", "--net", "v", "--recipe", "both", "--out", path],
+        "recipe",
+    );
+    // eval of the reach set.
+    let text = ok(&[
+        "eval",
+        "--networks",
+        "reach",
+        "--refine",
+        "2",
+        "--feedback",
+        "1",
+        "--samples",
+        "200",
+    ]);
+    assert!(text.contains("feedback K = 1, refine 2"), "{text}");
+}

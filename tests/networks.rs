@@ -317,7 +317,7 @@ fn trained_range_is_reported_and_leaving_it_is_flagged() {
 #[test]
 fn shipped_networks_meet_the_documented_accuracy() {
     let nets = Networks::embedded().unwrap();
-    let test = evaluation::fresh_samples(&nets, 400, 7).unwrap();
+    let test = evaluation::fresh_samples(&nets, NetKind::Phi, 400, 7).unwrap();
     let bounds = [
         (Variant::Equivariant, 2.0e-4, 2.0e-3),
         (Variant::Plain, 1.0e-3, 1.0e-2),

@@ -9,7 +9,7 @@ use std::sync::Arc;
 
 use redundant_ik::nalgebra::DVector;
 use redundant_ik::networks::Networks;
-use redundant_ik::networks::{NetKind, Sampling, Variant};
+use redundant_ik::networks::{Encoding, NetKind, Sampling, Variant};
 use redundant_ik::nn::rng::Rng;
 use redundant_ik::training::{self, tasks};
 use redundant_ik::training_job::{self, Preset, Request, Which};
@@ -97,10 +97,17 @@ fn training_data_for_a_four_link_arm_has_its_shape_and_respects_the_floor() {
         "seeded"
     );
     // The equivariant Phi takes theta_2..theta_4 and gives the 4 x 2 Phi.
-    let sets = training::phi_datasets(&arm, Variant::Equivariant, &samples).unwrap();
+    let sets = training::phi_datasets(&arm, Variant::Equivariant, Encoding::Raw, &samples).unwrap();
     assert_eq!((sets.len(), sets[0].n_in, sets[0].n_out), (1, 3, 8));
-    let v = training::v_dataset(&arm, Variant::Plain, &samples).unwrap();
+    let v = training::v_dataset(&arm, Variant::Plain, Encoding::Raw, 0.0, &samples).unwrap();
     assert_eq!((v.n_in, v.n_out), (6, 4));
+    // With angle features each angle is two inputs.
+    let sets =
+        training::phi_datasets(&arm, Variant::Equivariant, Encoding::Angles, &samples).unwrap();
+    assert_eq!((sets[0].n_in, sets[0].n_out), (6, 8));
+    let v =
+        training::v_dataset(&arm, Variant::Equivariant, Encoding::Angles, 0.1, &samples).unwrap();
+    assert_eq!((v.n_in, v.n_out), (8, 4));
 }
 
 fn small(arm: Arm, net: Which) -> Request {
@@ -149,9 +156,18 @@ fn training_for_a_four_link_arm_gives_networks_the_planner_takes() {
     );
     assert_eq!(
         r.random_tasks.len(),
-        8,
-        "numerical and Cases 1-3, K = 0 and 1"
+        12,
+        "numerical and Cases 1-3, K = 0 and 1; Cases 1 and 3 (the learned Phi) again refined twice"
     );
+    let refined: Vec<_> = r
+        .random_tasks
+        .iter()
+        .filter(|row| row.refine == 2)
+        .collect();
+    assert!(refined
+        .iter()
+        .all(|row| ["case1", "case3"].contains(&row.check.mode)));
+    assert_eq!(refined.len(), 4);
     for row in &r.random_tasks {
         assert_eq!(row.check.tasks, training_job::CHECK_TASKS);
         if row.check.mode == "numerical" {
@@ -184,9 +200,12 @@ fn bad_training_requests_are_refused_with_a_reason() {
     ));
     let mut r = small(four_links(), Which::Both);
     r.epochs = Some(0);
-    assert!(matches!(r.size(), Err(Error::OutOfRange { .. })));
+    assert!(matches!(
+        r.spec(NetKind::Phi),
+        Err(Error::OutOfRange { .. })
+    ));
     r.epochs = Some(training_job::MAX_EPOCHS + 1);
-    assert!(r.size().is_err());
+    assert!(r.spec(NetKind::V).is_err());
     let json = r#"{"arm": {"post": 0.5, "links": [0.6, 0.6]}, "net": "both", "preset": "quick", "epoch": 3}"#;
     assert!(
         serde_json::from_str::<Request>(json).is_err(),

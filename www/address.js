@@ -1,12 +1,12 @@
 // The page's address: what `?task=2&mode=case3&lambda=4&target=…&obstacle=…
-// &obstacles=…&arm=…&feedback=1` asks for, and the state written back into
+// &obstacles=…&arm=…&feedback=1&networks=reach` asks for, and the state written back into
 // it. The arm and obstacle syntax is the module's (parseArm, parseObstacles,
 // formatArm: the command line's too). Every parameter that does not parse
 // is reported once the page runs (with the core's refusals of those that
 // parse but make no sense), never dropped silently; the page then starts
 // from its defaults for it.
 
-import { parseArm, parseObstacles, formatArm, limits, methods, defaultMethod } from './module.js';
+import { parseArm, parseObstacles, formatArm, limits, methods, defaultMethod, networkSets, params as moduleParams } from './module.js';
 import { formatObstacles } from './arm-designer.js';
 
 /** A number from text: blank is not zero (as `Number('')` is). */
@@ -63,6 +63,18 @@ export function readAddress(search) {
     obstacle: pair('obstacle'),
     obstacles: parsed('obstacles', parseObstacles),
     arm: parsed('arm', parseArm),
+    // The methods' other parameters (refine, influence, ...) by their names.
+    params: Object.fromEntries(
+      moduleParams()
+        .filter((p) => p.name !== 'lambda' && params.has(p.name))
+        .map((p) => [p.name, num(p.name)])
+        .filter(([, v]) => v !== undefined),
+    ),
+    networks: parsed('networks', (v) => {
+      const sets = networkSets().map((s) => s.name);
+      if (!sets.includes(v)) throw new Error(`unknown network set '${clip(v)}': use ${sets.join(' or ')}`);
+      return v;
+    }),
     problems,
   };
 }
@@ -89,5 +101,10 @@ export function writeAddress(s) {
     q.set('obstacle', s.obstacle.map((v) => v.toFixed(3)).join(','));
   }
   if (s.feedback > 0) q.set('feedback', String(s.feedback));
+  if (s.network_set && s.network_set !== 'paper') q.set('networks', s.network_set);
+  for (const p of moduleParams()) {
+    const v = s.params[p.name];
+    if (p.name !== 'lambda' && v !== undefined && v !== p.default) q.set(p.name, String(v));
+  }
   history.replaceState(null, '', `${location.pathname}?${q}`);
 }

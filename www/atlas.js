@@ -178,11 +178,14 @@ export function mountAtlas(root, demo, { weights, changed }) {
    * Computes the atlas of the scene as it is now. `options`: `modes` (names;
    * default the panel's ticked ones, or all), `n` (default the panel's
    * choice, or the core's default grid), `region` ([x0, x1, y0, y1]; default the box of the
-   * arm's reach), `onProgress`, `signal`. Resolves to the JSON shape of
-   * `redundant-ik atlas --json`; the map is drawn under the arm.
+   * arm's reach), `feedback` (the closed-loop gain K) and `refine`
+   * (Newton-Schulz steps on a learned Φ; both default to the scene's),
+   * `networks` (a shipped set; default the set in use, or the networks
+   * trained or loaded here), `onProgress`, `signal`. Resolves to the JSON
+   * shape of `redundant-ik atlas --json`; the map is drawn under the arm.
    */
   async function run(options = {}) {
-    const known = ['modes', 'n', 'region', 'onProgress', 'signal'];
+    const known = ['modes', 'n', 'region', 'feedback', 'refine', 'networks', 'onProgress', 'signal'];
     const unknown = Object.keys(options ?? {}).filter((k) => !known.includes(k));
     if (unknown.length) throw new Error(`unknown atlas option '${unknown[0]}': use ${known.join(', ')}`);
     if (running) running.abort();
@@ -198,12 +201,14 @@ export function mountAtlas(root, demo, { weights, changed }) {
     const scene = demo.scene();
     const state = demo.state();
     const task = state.task;
-    const w = weights();
+    const networks = options.networks ?? state.network_set ?? undefined;
+    const w = networks ? null : weights();
+    const { feedback, refine } = options;
     showBusy(el, true);
     status('Computing…');
     try {
       const { result, ms } = await runWorker(
-        { kind: 'atlas', scene, options: { modes, n, region: options.region, task }, phi: w?.phi, v: w?.v },
+        { kind: 'atlas', scene, options: { modes, n, region: options.region, task, feedback, refine, networks }, phi: w?.phi, v: w?.v },
         {
           signal: controller.signal,
           onProgress: (p) => {

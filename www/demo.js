@@ -23,6 +23,7 @@ import { mountCompare } from './compare.js';
 import { mountWeightsUpload } from './weights-upload.js';
 import { wireStage } from './stage-input.js';
 import { mountMethodParams } from './method-params.js';
+import { mountNetworkSet } from './network-set.js';
 
 /**
  * Fills a `<select>` with the methods, grouped ("The paper", "Beyond the
@@ -68,7 +69,9 @@ const READOUTS = {
  * Starts a demo on `root`. Options: task (1|2), mode, lambda, target [x, y],
  * obstacle [x, y], obstacles [[x, y, r], ...] or flat [x0, y0, r0, ...]
  * (instead of obstacle), arm { post, links }, damping (bool), feedback
- * (closed-loop gain K, 1/s; default 0, the paper's open loop), speed,
+ * (closed-loop gain K, 1/s; default 0, the paper's open loop), networks
+ * (a shipped set: 'paper' or 'reach'), params ({ name: value } for the
+ * methods' other parameters: refine, influence, ...), speed,
  * autoplay (default true), keyboard (element that receives key presses;
  * default none), onChange(state) (after user changes, e.g. to update the
  * URL), problems (what the caller could not parse, shown with the settings
@@ -129,6 +132,7 @@ export async function mount(root, options = {}) {
 
   // ---- the arm, obstacles and training (www/playground.js) --------------
   const playground = mountPlayground(root, demo, { attempt, show, changed: () => changed() });
+  const networkSet = mountNetworkSet(root, demo, { show, changed: () => changed() });
 
   // ---- initial settings (URL or attributes) ---------------------------
   // Each is tried on its own: one refused keeps the others. What was
@@ -155,10 +159,15 @@ export async function mount(root, options = {}) {
   if (options.lambda !== undefined && options.lambda !== null) {
     initial('lambda', () => demo.setLambda(options.lambda));
   }
+  for (const [name, value] of Object.entries(options.params ?? {})) initial(name, () => demo.setParam(name, value));
   if (options.obstacle && !options.obstacles) {
     initial('obstacle', () => demo.setObstacle(options.obstacle[0], options.obstacle[1]));
   }
   if (options.target) initial('target', () => demo.setTarget(options.target[0], options.target[1], 10));
+  // A shipped set other than the paper's is fetched first: it comes in when it arrives.
+  if (options.networks && options.networks !== demo.state().network_set) {
+    networkSet.choose(options.networks).catch((e) => show(`networks: ${describe(e)}`, 'warn', true));
+  }
   if (problems.length) show(`${options.problemsLabel ?? 'Not applied'}: ${problems.join('; ')}`, 'warn', true);
   if (options.autoplay !== false) demo.runTask();
 
@@ -263,6 +272,7 @@ export async function mount(root, options = {}) {
     syncControls(s);
     atlas.check(s);
     playground.check(s);
+    networkSet.sync(s);
     return s;
   }
 
@@ -298,6 +308,7 @@ export async function mount(root, options = {}) {
     },
     show,
     atlas: (options) => atlas.run(options),
+    useNetworks: (name) => networkSet.choose(name),
     playground,
     atlasResult: () => atlas.result(),
     stop() {

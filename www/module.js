@@ -13,6 +13,9 @@ import init, {
   builtinWeightsFiles,
   provideBuiltinNetworks,
   builtinNetworksFailed,
+  builtinNetworksReady,
+  networksError,
+  networkSets as moduleNetworkSets,
   palette,
 } from './pkg/redundant_ik.js';
 
@@ -68,26 +71,57 @@ export function moduleMemoryBytes() {
 /** Where `make web` puts the repository's weights files, beside the page. */
 const WEIGHTS = new URL('./weights/', import.meta.url);
 
+/** The fetches of shipped network sets under way or done, by name. */
+const fetchedSets = new Map();
+
 /**
- * Fetches the built-in networks' weights files (the module names them) and
- * hands them to the module, or tells it why they could not be had: the
- * page's module does not carry them (15 KB of its gzipped size). A failure
- * leaves the page running; the methods that need networks then say why.
+ * Fetches a shipped network set's weights files (the module names them)
+ * and hands them to the module, or tells it why they could not be had: the
+ * page's module does not carry them (15 KB of its gzipped size for the
+ * paper's set). The paper's set is fetched at start-up, the others when
+ * first chosen. Resolves to null when the set is ready, else to the
+ * reason; a failure leaves the page running, and the methods that need
+ * networks then say why.
  */
-async function fetchBuiltinNetworks() {
-  const files = builtinWeightsFiles();
-  try {
-    const texts = await Promise.all(
-      files.map(async (name) => {
-        const r = await fetch(new URL(name, WEIGHTS));
-        if (!r.ok) throw new Error(`could not fetch weights/${name} (HTTP ${r.status})`);
-        return r.text();
-      }),
+export function loadNetworkSet(set = 'paper') {
+  if (!fetchedSets.has(set)) {
+    fetchedSets.set(
+      set,
+      (async () => {
+        if (builtinNetworksReady(set)) return networksError(set) ?? null;
+        try {
+          const files = builtinWeightsFiles(set);
+          const texts = await Promise.all(
+            files.map(async (name) => {
+              const r = await fetch(new URL(name, WEIGHTS));
+              if (!r.ok) throw new Error(`could not fetch weights/${name} (HTTP ${r.status})`);
+              return r.text();
+            }),
+          );
+          provideBuiltinNetworks(texts[0], texts[1], set);
+        } catch (e) {
+          const why = e && e.message ? e.message : String(e);
+          // The paper's set is what the network methods start with: its
+          // failure is kept as their reason. Another set may be tried again.
+          if (set === 'paper') builtinNetworksFailed(why, set);
+          else {
+            fetchedSets.delete(set);
+            return why;
+          }
+        }
+        return networksError(set) ?? null;
+      })(),
     );
-    provideBuiltinNetworks(texts[0], texts[1]);
-  } catch (e) {
-    builtinNetworksFailed(e && e.message ? e.message : String(e));
   }
+  return fetchedSets.get(set);
+}
+
+let cachedSets = null;
+
+/** The shipped network sets (after loadModule): `[{ name, label, files: [phi, v] }]`. */
+export function networkSets() {
+  cachedSets ??= moduleNetworkSets();
+  return cachedSets;
 }
 
 /** The URL of the built-in networks' weights file `name` (for downloads). */
@@ -123,7 +157,7 @@ export function loadModule() {
         }
       }
       if (!started) await start('baseline');
-      await fetchBuiltinNetworks();
+      await loadNetworkSet('paper');
     })();
   }
   return module;

@@ -49,6 +49,7 @@ async function start() {
       runUntil: (t) => controller.runUntil(t),
       bench: (options) => bench(options),
       atlas: (options) => controller.atlas(options),
+      useNetworks: (name) => controller.useNetworks(name),
       atlasResult: () => controller.atlasResult(),
       setArm: (arm) => controller.playground.setArm(arm),
       addObstacle: (x, y, r) => controller.playground.addObstacle(x, y, r),

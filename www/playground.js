@@ -88,10 +88,10 @@ export function mountPlayground(root, demo, { attempt, show, changed }) {
     }
   }
 
-  /** A whole run off screen: `{ mode, target?, obstacles?, tf?, theta0? }` -> summary. */
+  /** A whole run off screen: `{ mode, target?, obstacles?, tf?, theta0?, feedback?, refine? }` -> summary. */
   function simulate(options) {
-    const allowed = ['mode', 'target', 'obstacles', 'tf', 'theta0'];
-    if (!options || typeof options !== 'object') throw new Error('simulate expects { mode, target?, obstacles?, tf?, theta0? }');
+    const allowed = ['mode', 'target', 'obstacles', 'tf', 'theta0', 'feedback', 'refine'];
+    if (!options || typeof options !== 'object') throw new Error('simulate expects { mode, target?, obstacles?, tf?, theta0?, feedback?, refine? }');
     for (const k of Object.keys(options)) {
       if (!allowed.includes(k)) throw new Error(`simulate: unknown option '${k}', expected one of ${allowed.join(', ')}`);
     }
@@ -106,6 +106,8 @@ export function mountPlayground(root, demo, { attempt, show, changed }) {
       options.obstacles === undefined ? undefined : flatObstacles(options.obstacles),
       options.tf === undefined ? undefined : Number(options.tf),
       nums(options.theta0, 'theta0'),
+      options.feedback === undefined ? undefined : Number(options.feedback),
+      options.refine === undefined ? undefined : Number(options.refine),
     );
   }
 

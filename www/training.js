@@ -92,13 +92,13 @@ function reportTable(report) {
   }
   for (const c of report.random_tasks) {
     const tr = row([
-      `${c.tasks} random tasks, K = ${c.feedback}`,
+      `${c.tasks} random tasks, K = ${c.feedback}${c.refine ? `, refine ${c.refine}` : ''}`,
       c.mode,
       `${c.succeeded}/${c.tasks}`,
       String(c.collided),
       metres(c.median_final_error),
     ]);
-    Object.assign(tr.dataset, { mode: c.mode, feedback: String(c.feedback), succeeded: String(c.succeeded) });
+    Object.assign(tr.dataset, { mode: c.mode, feedback: String(c.feedback), refine: String(c.refine), succeeded: String(c.succeeded) });
     body.append(tr);
   }
   table.append(body);

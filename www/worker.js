@@ -8,7 +8,7 @@
 //   { kind: 'bench', wasm, batchMs }
 //       the code behind `redundant-ik bench`, one figure per call, over the
 //       methods of benchMethods(); the result names benchVerdict()'s pair
-//   { kind: 'atlas', wasm, scene, options: { modes, n, region, task }, phi, v }
+//   { kind: 'atlas', wasm, scene, options: { modes, n, region, task, feedback, refine, networks }, phi, v }
 //       the atlas of `redundant-ik atlas`, one row of cells per chunk
 //   { kind: 'train', wasm, request: { arm, net, preset, samples, epochs, seed }, phi, v }
 //       Levenberg-Marquardt training of the networks for an arm, a progress

@@ -6,8 +6,8 @@ use clap::Args;
 use serde::Serialize;
 
 use redundant_ik::evaluation::{self, ErrorStats, TaskOutcome};
-use redundant_ik::networks::Variant;
-use redundant_ik::networks::{self, Networks};
+use redundant_ik::networks::{self, NetworkSet, Networks};
+use redundant_ik::networks::{NetKind, Variant};
 use redundant_ik::Method;
 
 /// Options of `redundant-ik eval`.
@@ -28,6 +28,13 @@ pub struct EvalArgs {
     /// Closed-loop gain K for the task runs (0 = the paper's open loop).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub feedback: f64,
+    /// Newton-Schulz steps refining the learned Phi with the pose's J in
+    /// the task runs (Cases 1 and 3; 0 = the paper's).
+    #[arg(long, default_value_t = 0)]
+    pub refine: u32,
+    /// Shipped network set to evaluate: paper or reach (docs/learning.md).
+    #[arg(long, default_value = "paper", value_parser = ["paper", "reach"])]
+    pub networks: String,
     /// A Phi weights file to evaluate instead of the embedded one (needs --v).
     #[arg(long, requires = "v")]
     pub phi: Option<String>,
@@ -53,6 +60,7 @@ struct Report {
     v_sizes: Vec<Vec<usize>>,
     task_variant: Variant,
     feedback_gain: f64,
+    refine: u32,
     outcomes: Vec<TaskOutcome>,
     generalisation: Vec<Generalisation>,
     case3_avoided: usize,
@@ -83,6 +91,16 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
             let nets = Networks::from_json(&read(p)?, &read(v)?).map_err(e)?;
             (vec![nets.clone()], nets)
         }
+        _ if args.networks == "reach" => {
+            if args.variant.is_some() {
+                return Err(
+                    "--variant chooses among the paper's set; the reach set has one Phi network"
+                        .into(),
+                );
+            }
+            let nets = Networks::embedded_set(NetworkSet::Reach).map_err(e)?;
+            (vec![nets.clone()], nets)
+        }
         _ => {
             let variant = match &args.variant {
                 Some(s) => s.parse::<Variant>().map_err(e)?,
@@ -97,7 +115,10 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
             (all, chosen)
         }
     };
-    let test = evaluation::fresh_samples(&task_nets, args.samples, args.seed).map_err(e)?;
+    let test =
+        evaluation::fresh_samples(&task_nets, NetKind::Phi, args.samples, args.seed).map_err(e)?;
+    let v_test =
+        evaluation::fresh_samples(&task_nets, NetKind::V, args.samples, args.seed).map_err(e)?;
     let mut phi = Vec::new();
     for nets in &candidates {
         phi.push(PhiAccuracy {
@@ -113,11 +134,20 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
             ),
         });
     }
-    let v = ErrorStats::of(evaluation::v_relative_errors(&task_nets, &test).map_err(e)?);
-    let outcomes = evaluation::task_outcomes(&task_nets, args.feedback).map_err(e)?;
+    let v = ErrorStats::of(evaluation::v_relative_errors(&task_nets, &v_test).map_err(e)?);
+    let outcomes = evaluation::task_outcomes(&task_nets, args.feedback, args.refine).map_err(e)?;
     let mut generalisation = Vec::new();
     for (task, o) in evaluation::GENERALISATION_SCENES {
-        let run = |mode| evaluation::run_task(&task_nets, task, mode, Some(o), args.feedback);
+        let run = |mode| {
+            evaluation::run_task_refined(
+                &task_nets,
+                task,
+                mode,
+                Some(o),
+                args.feedback,
+                args.refine,
+            )
+        };
         generalisation.push(Generalisation {
             task,
             obstacle: o,
@@ -144,6 +174,7 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
             .collect(),
         task_variant: task_nets.phi_file().variant,
         feedback_gain: args.feedback,
+        refine: args.refine,
         outcomes,
         generalisation,
         case3_avoided,
@@ -192,9 +223,10 @@ fn render(r: &Report) -> String {
     t.push_str(&row("v", r.v_variant, &r.v_sizes, &r.v));
     t.push('\n');
     t.push_str(&format!(
-        "Task outcomes (Phi variant {}, feedback K = {}, delta = 0)\n\n",
+        "Task outcomes (Phi variant {}, feedback K = {}, refine {}, delta = 0)\n\n",
         r.task_variant.name(),
-        r.feedback_gain
+        r.feedback_gain,
+        r.refine
     ));
     t.push_str("| task | mode | min distance (m) | collided | final error (m) | out-of-range steps | ok |\n");
     t.push_str("|---|---|---|---|---|---|---|\n");

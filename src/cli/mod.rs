@@ -5,7 +5,7 @@
 use std::sync::Arc;
 
 use clap::{Parser, Subcommand};
-use redundant_ik::networks::{self, Networks, Variant};
+use redundant_ik::networks::{self, NetworkSet, Networks, Variant};
 use redundant_ik::obstacle::Placement;
 use redundant_ik::{Arm, Method, Surrogate};
 
@@ -127,14 +127,20 @@ pub fn emit(text: &str) -> Result<(), String> {
     }
 }
 
-/// Which networks the network modes use: the embedded ones (with a choice of
-/// `Phi` variant) or a user's pair of weights files.
+/// Which networks the network modes use: a shipped set (with a choice of
+/// `Phi` variant for the paper's) or a user's pair of weights files.
 #[derive(clap::Args, Debug, Clone)]
 pub struct NetworkArgs {
-    /// Embedded Phi network: equivariant (default, most accurate), plain
-    /// (the paper's 3-35-14-6) or rows (the paper's three 3-35-14-2 nets).
-    #[arg(long, default_value = "equivariant", value_parser = parse_variant)]
-    pub phi_variant: Variant,
+    /// Shipped network set: paper (trained by the paper's recipe, near its
+    /// tasks) or reach (angle features, trained over the whole reach;
+    /// docs/learning.md).
+    #[arg(long, default_value = "paper", value_parser = parse_set)]
+    pub networks: NetworkSet,
+    /// The paper's set's Phi network: equivariant (default, most accurate),
+    /// plain (the paper's 3-35-14-6) or rows (the paper's three 3-35-14-2
+    /// nets).
+    #[arg(long, value_parser = parse_variant)]
+    pub phi_variant: Option<Variant>,
     /// Your own Phi weights file (JSON written by `train`, see docs/networks.md);
     /// replaces the embedded Phi network.
     #[arg(long)]
@@ -149,14 +155,24 @@ impl NetworkArgs {
     /// Loads the selected networks: each of the two from the user's file if
     /// given, else the embedded one.
     pub fn load(&self) -> Result<Networks, String> {
-        let variant = self.phi_variant;
+        let (phi_shipped, v_shipped) = match (self.networks, self.phi_variant) {
+            (NetworkSet::Paper, variant) => (
+                networks::embedded_phi_json(variant.unwrap_or(networks::DEFAULT_PHI_VARIANT)),
+                networks::V_PLAIN_JSON,
+            ),
+            (NetworkSet::Reach, None) => (networks::PHI_REACH_JSON, networks::V_REACH_JSON),
+            (NetworkSet::Reach, Some(_)) => return Err(
+                "--phi-variant chooses among the paper's set; the reach set has one Phi network"
+                    .into(),
+            ),
+        };
         let phi = match &self.phi_weights {
             Some(f) => read_weights_file(f)?,
-            None => networks::embedded_phi_json(variant).to_owned(),
+            None => phi_shipped.to_owned(),
         };
         let v = match &self.v_weights {
             Some(f) => read_weights_file(f)?,
-            None => networks::V_PLAIN_JSON.to_owned(),
+            None => v_shipped.to_owned(),
         };
         Networks::from_json(&phi, &v).map_err(|e| e.to_string())
     }
@@ -169,6 +185,12 @@ impl NetworkArgs {
         }
         Ok(Some(Arc::new(self.load()?)))
     }
+}
+
+/// A `--networks` set, refused at once when unknown.
+fn parse_set(s: &str) -> Result<NetworkSet, String> {
+    s.parse()
+        .map_err(|_| format!("unknown --networks '{s}': use paper or reach"))
 }
 
 /// A `--phi-variant`, refused at once when unknown (even where no network runs).

@@ -6,6 +6,7 @@ use redundant_ik::{Arm, DampingSchedule, Method, Planner, Scene, Trajectory};
 use std::fmt::Write as _;
 
 use redundant_ik::obstacle::Placement;
+use redundant_ik::scene::Param;
 
 use super::NetworkArgs;
 use super::{emit, method_help, parse_arm, parse_list, parse_method, parse_obstacle, parse_pair};
@@ -77,6 +78,14 @@ pub struct SceneArgs {
     /// Limit of every joint's rate in rad/s (qp; default 1.5).
     #[arg(long, allow_hyphen_values = true)]
     pub rate_limit: Option<f64>,
+    /// Smoothing eps (m^2) of the sign in eq. (15) of the exact obstacle
+    /// vector (numerical, Case 1; default 0, the paper's).
+    #[arg(long, allow_hyphen_values = true)]
+    pub sign_smoothing: Option<f64>,
+    /// Newton-Schulz steps refining the learned Phi with the pose's J
+    /// (Cases 1 and 3; default 0, the paper's).
+    #[arg(long, allow_hyphen_values = true)]
+    pub refine: Option<f64>,
     #[command(flatten)]
     pub networks: NetworkArgs,
 }
@@ -136,6 +145,16 @@ impl SceneArgs {
         ] {
             if let Some(v) = value {
                 *field = v;
+            }
+        }
+        for (param, value) in [
+            (Param::SignSmoothing, self.sign_smoothing),
+            (Param::Refine, self.refine),
+        ] {
+            if let Some(v) = value {
+                param
+                    .set(&mut s, v)
+                    .map_err(|e| format!("{}: {e}", param.info().flag))?;
             }
         }
         s.validate().map_err(|e| e.to_string())?;

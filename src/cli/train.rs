@@ -7,7 +7,7 @@ use std::time::Instant;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use redundant_ik::networks::{NetKind, Variant};
-use redundant_ik::training::{self, TrainSpec};
+use redundant_ik::training::{self, Recipe};
 
 /// Options of `redundant-ik train`.
 #[derive(Args, Debug)]
@@ -15,10 +15,25 @@ pub struct TrainArgs {
     /// Which network: `phi` (eq. 19) or `v` (the obstacle vector, eqs. 14-15).
     #[arg(long)]
     pub net: String,
+    /// How to train: `paper` (section V: raw angles, data around the poses
+    /// the tasks visit) or `reach` (networks for the whole workspace: angle
+    /// features, Phi over the whole joint torus, v from runs with obstacles
+    /// anywhere in the reach, the sign smoothed; docs/learning.md).
+    #[arg(long, default_value = "paper", value_parser = ["paper", "reach"])]
+    pub recipe: String,
     /// plain (paper), rows (phi only: one 2-output net per row of Phi) or
-    /// equivariant (rotation-equivariant inputs).
-    #[arg(long, default_value = "plain")]
-    pub variant: String,
+    /// equivariant (rotation-equivariant inputs). Default: plain for the
+    /// paper's recipe, equivariant for reach.
+    #[arg(long)]
+    pub variant: Option<String>,
+    /// How joint angles enter the networks: raw (the paper's) or angles
+    /// (sin, cos). Default: the recipe's.
+    #[arg(long, value_parser = ["raw", "angles"])]
+    pub encoding: Option<String>,
+    /// Smoothing eps (m^2) of the sign in eq. (15) for the v targets.
+    /// Default: the recipe's (0 for paper, 0.1 for reach).
+    #[arg(long)]
+    pub sign_smoothing: Option<f64>,
     /// The arm to train for, POST:L1,L2,... in metres (default: the
     /// paper's). Other arms sample random straight-line tasks in their reach.
     #[arg(long, value_parser = super::parse_arm, allow_hyphen_values = true)]
@@ -26,12 +41,13 @@ pub struct TrainArgs {
     /// Seed for sampling, the train/validation/test split and initial weights.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
-    /// Samples to draw (split 70/15/15).
-    #[arg(long, default_value_t = 3000)]
-    pub samples: usize,
-    /// Maximum Levenberg-Marquardt epochs.
-    #[arg(long, default_value_t = 400)]
-    pub epochs: usize,
+    /// Samples to draw (split 70/15/15). Default: the recipe's (3000; 10000
+    /// for v by reach).
+    #[arg(long)]
+    pub samples: Option<usize>,
+    /// Maximum Levenberg-Marquardt epochs. Default: the recipe's (400).
+    #[arg(long)]
+    pub epochs: Option<usize>,
     /// Hidden layer widths, e.g. 35,14 (default: 35,14 for phi, 25,14 for v).
     #[arg(long)]
     pub hidden: Option<String>,
@@ -73,16 +89,31 @@ pub fn run(args: &TrainArgs) -> Result<(), String> {
         "v" => NetKind::V,
         other => return Err(format!("unknown network '{other}': use phi or v")),
     };
-    let variant: Variant = args.variant.parse().map_err(|e| format!("{e}"))?;
-    let mut spec = match &args.arm {
-        Some(arm) => TrainSpec::for_arm(arm, net, variant, args.seed),
-        None => TrainSpec::paper(net, variant, args.seed),
-    };
-    spec.samples = args.samples;
-    spec.options.max_epochs = args.epochs;
-    if args.epochs == 0 {
-        return Err("--epochs must be at least 1".into());
+    let recipe: Recipe = args.recipe.parse().map_err(|e| format!("{e}"))?;
+    let arm = args.arm.clone().unwrap_or_else(redundant_ik::Arm::paper);
+    let mut spec = recipe.spec(&arm, net, args.seed);
+    match (&args.variant, recipe) {
+        (Some(v), _) => spec.variant = v.parse().map_err(|e| format!("{e}"))?,
+        (None, Recipe::Paper) => spec.variant = Variant::Plain,
+        (None, Recipe::Reach) => {}
     }
+    if let Some(e) = &args.encoding {
+        spec.encoding = e.parse().map_err(|e| format!("{e}"))?;
+    }
+    if let Some(eps) = args.sign_smoothing {
+        spec.sampling.sign_smoothing = eps;
+    }
+    let variant = spec.variant;
+    if let Some(n) = args.samples {
+        spec.samples = n;
+    }
+    if let Some(n) = args.epochs {
+        if n == 0 {
+            return Err("--epochs must be at least 1".into());
+        }
+        spec.options.max_epochs = n;
+    }
+    let epochs = spec.options.max_epochs;
     if let Some(h) = &args.hidden {
         spec.hidden = parse_hidden(h)?;
     }
@@ -93,14 +124,14 @@ pub fn run(args: &TrainArgs) -> Result<(), String> {
         spec.sampling.theta_noise = n;
     }
     spec.sampling.validate().map_err(|e| e.to_string())?;
-    let nets = redundant_ik::networks::file::shape(net, variant, spec.arm.dof())
+    let nets = redundant_ik::networks::file::shape(net, variant, spec.encoding, spec.arm.dof())
         .map_err(|e| e.to_string())?
         .0;
 
     let bar = if args.quiet {
         ProgressBar::hidden()
     } else {
-        ProgressBar::new((nets * args.epochs) as u64)
+        ProgressBar::new((nets * epochs) as u64)
     };
     bar.set_style(
         ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} epochs  {msg}")
@@ -110,7 +141,7 @@ pub fn run(args: &TrainArgs) -> Result<(), String> {
     #[allow(clippy::disallowed_methods)] // the native CLI has a clock
     let start = Instant::now();
     let mut file = training::train_weights(&spec, |k, r| {
-        bar.set_position((k * args.epochs + r.epoch) as u64);
+        bar.set_position((k * epochs + r.epoch) as u64);
         bar.set_message(format!(
             "net {}/{nets}  train {:.3e}  val {:.3e}  mu {:.0e}  grad {:.2e}",
             k + 1,
@@ -130,9 +161,11 @@ pub fn run(args: &TrainArgs) -> Result<(), String> {
         .map_err(|e| format!("cannot write {}: {e}", args.out))?;
 
     let mut text = format!(
-        "{} network(s), variant {}, {} samples, seed {}, trained in {seconds:.1} s -> {}\n",
+        "{} network(s), recipe {}, variant {}, encoding {}, {} samples, seed {}, trained in {seconds:.1} s -> {}\n",
         args.net,
+        recipe.name(),
         variant.name(),
+        spec.encoding.name(),
         spec.samples,
         spec.seed,
         args.out

@@ -12,6 +12,8 @@ use crate::nn::lm::{LmOptions, TrainReport};
 use crate::nn::mlp::Mlp;
 use crate::planner::Method;
 
+pub use super::inputs::Encoding;
+
 /// Value of the `format` field this version reads and writes.
 pub const FORMAT: &str = "redundant-ik-weights/1";
 
@@ -133,6 +135,10 @@ pub struct WeightsFile {
     pub net: NetKind,
     /// How inputs and outputs are mapped.
     pub variant: Variant,
+    /// How the joint angles enter the networks; absent (raw, the paper's)
+    /// in files written before angle features existed.
+    #[serde(default, skip_serializing_if = "Encoding::is_raw")]
+    pub encoding: Encoding,
     /// `redundant-ik` version that wrote the file.
     pub tool_version: String,
     /// Arm the networks were trained for (checked as it is read).
@@ -145,14 +151,21 @@ pub struct WeightsFile {
     pub nets: Vec<NetEntry>,
 }
 
-/// Network count, inputs and outputs per network for a kind and variant on an `n`-link arm.
-pub fn shape(kind: NetKind, variant: Variant, n: usize) -> Result<(usize, usize, usize)> {
+/// Network count, inputs and outputs per network for a kind, variant and
+/// encoding on an `n`-link arm.
+pub fn shape(
+    kind: NetKind,
+    variant: Variant,
+    encoding: Encoding,
+    n: usize,
+) -> Result<(usize, usize, usize)> {
+    let angles = |k: usize| encoding.width(k);
     match (kind, variant) {
-        (NetKind::Phi, Variant::Plain) => Ok((1, n, 2 * n)),
-        (NetKind::Phi, Variant::Rows) => Ok((n, n, 2)),
-        (NetKind::Phi, Variant::Equivariant) => Ok((1, n - 1, 2 * n)),
-        (NetKind::V, Variant::Plain) => Ok((1, n + 2, n)),
-        (NetKind::V, Variant::Equivariant) => Ok((1, n + 1, n)),
+        (NetKind::Phi, Variant::Plain) => Ok((1, angles(n), 2 * n)),
+        (NetKind::Phi, Variant::Rows) => Ok((n, angles(n), 2)),
+        (NetKind::Phi, Variant::Equivariant) => Ok((1, angles(n - 1), 2 * n)),
+        (NetKind::V, Variant::Plain) => Ok((1, angles(n) + 2, n)),
+        (NetKind::V, Variant::Equivariant) => Ok((1, angles(n - 1) + 2, n)),
         (NetKind::V, Variant::Rows) => Err(Error::Weights(
             "variant 'rows' exists only for the phi network".into(),
         )),
@@ -198,7 +211,7 @@ impl WeightsFile {
             )));
         }
         let n = self.arm.dof();
-        let (count, n_in, n_out) = shape(self.net, self.variant, n)?;
+        let (count, n_in, n_out) = shape(self.net, self.variant, self.encoding, n)?;
         let kind = match self.net {
             NetKind::Phi => "phi",
             NetKind::V => "v",
@@ -217,11 +230,12 @@ impl WeightsFile {
                 .map_err(|e| Error::Weights(format!("network {}: {}", i + 1, strip(&e))))?;
             if entry.mlp.inputs() != n_in || entry.mlp.outputs() != n_out {
                 return Err(Error::Weights(format!(
-                    "network {}: {} inputs and {} outputs, but {kind} variant '{}' on a {n}-link arm needs {n_in} and {n_out}",
+                    "network {}: {} inputs and {} outputs, but {kind} variant '{}' with {} angles on a {n}-link arm needs {n_in} and {n_out}",
                     i + 1,
                     entry.mlp.inputs(),
                     entry.mlp.outputs(),
-                    self.variant.name()
+                    self.variant.name(),
+                    self.encoding.name()
                 )));
             }
         }
@@ -289,6 +303,21 @@ pub struct Sampling {
     /// files, hence the default 0.
     #[serde(default, skip_serializing_if = "is_zero_length")]
     pub obstacle_spread: f64,
+    /// When set, poses are drawn uniformly over the whole joint torus
+    /// (`[-pi, pi)` per joint; poses below the sigma floor rejected)
+    /// instead of around the poses the tasks visit: the `reach` recipe's
+    /// `Phi`, which must hold wherever a run may go. Absent in older files.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub whole_torus: bool,
+    /// The smoothing `eps` (m^2) of the sign in eq. (15) that the `v`
+    /// targets were computed with ([`crate::obstacle::smoothed_sign`]); 0,
+    /// the paper's sign, in older files.
+    #[serde(default, skip_serializing_if = "is_zero_length")]
+    pub sign_smoothing: f64,
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
 }
 
 // The paper's sampling writes neither field, so its files stay as shipped.
@@ -314,6 +343,8 @@ impl Default for Sampling {
             paired_obstacle_share: 0.5,
             obstacle_noise: 0.03,
             obstacle_spread: 0.0,
+            whole_torus: false,
+            sign_smoothing: 0.0,
         }
     }
 }
@@ -324,6 +355,7 @@ impl Sampling {
         let ok = |x: f64| x.is_finite() && x >= 0.0;
         if !(ok(self.theta_noise)
             && ok(self.obstacle_spread)
+            && ok(self.sign_smoothing)
             && ok(self.sigma_floor)
             && ok(self.obstacle_noise)
             && (0.0..=1.0).contains(&self.paired_obstacle_share))
@@ -342,7 +374,9 @@ impl Sampling {
                 ));
             }
         }
-        if (self.tasks.is_empty() && self.random_tasks == 0) || self.modes.is_empty() {
+        if !self.whole_torus
+            && ((self.tasks.is_empty() && self.random_tasks == 0) || self.modes.is_empty())
+        {
             return Err(Error::Training(
                 "sampling: need at least one task and one mode".into(),
             ));

@@ -10,9 +10,9 @@
 //! are in `docs/networks.md`. Which networks a method runs with, and
 //! whether they fit the arm, is decided here, in one place ([`for_method`]).
 
+mod builtin;
 pub mod file;
-
-use std::sync::{Arc, OnceLock};
+pub mod inputs;
 
 use serde::{Deserialize, Serialize};
 
@@ -20,114 +20,13 @@ use crate::arm::Arm;
 use crate::error::{Error, Result};
 use crate::kinematics::Pose;
 use crate::nn::Kernel;
-use crate::planner::{Method, Surrogate};
+use crate::planner::Surrogate;
 
+pub use builtin::*;
 pub use file::{
     InputRange, NetEntry, NetKind, Sampling, Training, Variant, WeightsFile, MAX_FILE_BYTES,
 };
-
-/// Shipped `Phi` networks, paper form: one 3-35-14-6 net over `theta`.
-#[cfg(feature = "embedded-weights")]
-pub const PHI_PLAIN_JSON: &str = include_str!("../../weights/phi-plain.json");
-/// Shipped `Phi` networks, paper form: three 3-35-14-2 nets, one per row of `Phi`.
-#[cfg(feature = "embedded-weights")]
-pub const PHI_ROWS_JSON: &str = include_str!("../../weights/phi-rows.json");
-/// Shipped `Phi` network, rotation-equivariant: 2-35-14-6 over `(theta_2, theta_3)`.
-#[cfg(feature = "embedded-weights")]
-pub const PHI_EQUIVARIANT_JSON: &str = include_str!("../../weights/phi-equivariant.json");
-/// Shipped `v` network, paper form: 5-25-14-3 over `(theta, O)`.
-#[cfg(feature = "embedded-weights")]
-pub const V_PLAIN_JSON: &str = include_str!("../../weights/v-plain.json");
-
-/// The files of `weights/` that hold the built-in networks
-/// ([`DEFAULT_PHI_VARIANT`] and [`DEFAULT_V_VARIANT`]): `[phi, v]`. A build
-/// without `embedded-weights` (the page's) fetches these and hands them to
-/// [`provide_builtin`].
-pub const BUILTIN_FILES: [&str; 2] = ["phi-equivariant.json", "v-plain.json"];
-
-/// The `Phi` variant [`Networks::embedded`] uses.
-pub const DEFAULT_PHI_VARIANT: Variant = Variant::Equivariant;
-/// The `v` variant [`Networks::embedded`] uses.
-pub const DEFAULT_V_VARIANT: Variant = Variant::Plain;
-
-/// The shipped `Phi` weights file of a variant (JSON text).
-#[cfg(feature = "embedded-weights")]
-pub fn embedded_phi_json(variant: Variant) -> &'static str {
-    match variant {
-        Variant::Plain => PHI_PLAIN_JSON,
-        Variant::Rows => PHI_ROWS_JSON,
-        Variant::Equivariant => PHI_EQUIVARIANT_JSON,
-    }
-}
-
-/// The built-in networks, once loaded, or why they are not.
-static BUILTIN: OnceLock<Result<Arc<Networks>>> = OnceLock::new();
-
-/// The shipped networks, loaded on first use and shared; or why they
-/// cannot load. Compiled in with `embedded-weights` ([`Networks::embedded`]);
-/// otherwise what [`provide_builtin`] was given.
-pub fn builtin() -> Result<Arc<Networks>> {
-    #[cfg(feature = "embedded-weights")]
-    let loaded = BUILTIN.get_or_init(|| {
-        Networks::embedded().map(Arc::new).map_err(|e| {
-            Error::NetworksUnavailable(format!("the built-in weights could not be loaded ({e})"))
-        })
-    });
-    #[cfg(not(feature = "embedded-weights"))]
-    let loaded = BUILTIN.get().ok_or_else(|| {
-        Error::NetworksUnavailable("the built-in networks have not been loaded yet".into())
-    })?;
-    loaded.clone()
-}
-
-/// Hands a build without `embedded-weights` its built-in networks: the JSON
-/// text of the files [`BUILTIN_FILES`] names, or why they could not be
-/// fetched. Only the first call counts (the built-in networks never
-/// change); a corrupt file is kept as the reason [`builtin`] gives.
-pub fn provide_builtin(files: std::result::Result<(&str, &str), String>) -> Result<()> {
-    let result = match files {
-        Ok((phi, v)) => Networks::from_json(phi, v).map(Arc::new),
-        Err(why) => Err(Error::NetworksUnavailable(why)),
-    };
-    let answer = result.as_ref().map(|_| ()).map_err(Clone::clone);
-    let _ = BUILTIN.set(result);
-    answer
-}
-
-/// The networks `method` runs with on `arm`: none for a method without
-/// networks; else the `installed` ones if they were trained for `arm`, else
-/// the built-in ones if they were (the paper's arm). The one place that
-/// decides which networks a method uses and whether they fit: the session,
-/// the page's off-screen runs and its workers ask here.
-pub fn for_method(
-    method: Method,
-    arm: &Arm,
-    installed: Option<&Arc<Networks>>,
-) -> Result<Option<Arc<dyn Surrogate>>> {
-    if !method.uses_networks() {
-        return Ok(None);
-    }
-    Ok(Some(available(arm, installed)? as Arc<dyn Surrogate>))
-}
-
-/// The networks for `arm`: the `installed` ones if they fit it, else the
-/// built-in ones if they do; else why there are none.
-pub fn available(arm: &Arm, installed: Option<&Arc<Networks>>) -> Result<Arc<Networks>> {
-    if let Some(n) = installed.filter(|n| n.arm() == arm) {
-        return Ok(n.clone());
-    }
-    if builtin_fits(arm) {
-        return builtin();
-    }
-    Err(Error::NetworksUnavailable(
-        "the built-in ones were trained for the paper's arm, not for this one; train networks for this arm (the Training panel, or redundant-ik train) or load weights trained for it".into(),
-    ))
-}
-
-/// Whether the built-in networks were trained for `arm` (the paper's).
-pub fn builtin_fits(arm: &Arm) -> bool {
-    *arm == Arm::paper()
-}
+pub use inputs::{Encoding, MAX_INPUTS};
 
 /// A `Phi` network family and a `v` network for the same arm.
 #[derive(Debug, Clone, PartialEq)]
@@ -206,20 +105,6 @@ impl Networks {
         Self::new(phi, v)
     }
 
-    /// The shipped networks: the default `Phi` variant ([`DEFAULT_PHI_VARIANT`])
-    /// and the `v` network.
-    #[cfg(feature = "embedded-weights")]
-    pub fn embedded() -> Result<Self> {
-        Self::embedded_with(DEFAULT_PHI_VARIANT)
-    }
-
-    /// The shipped networks with the chosen `Phi` variant (`plain` and `rows`
-    /// are the paper's form, `equivariant` the measured improvement).
-    #[cfg(feature = "embedded-weights")]
-    pub fn embedded_with(phi_variant: Variant) -> Result<Self> {
-        Self::from_json(embedded_phi_json(phi_variant), V_PLAIN_JSON)
-    }
-
     /// The `Phi` weights file.
     pub fn phi_file(&self) -> &WeightsFile {
         &self.phi
@@ -267,15 +152,17 @@ impl Networks {
             return Err(dimension("Phi (n x 2) output", 2 * n, out.len()));
         }
         let k = &self.phi_kernels;
+        let mut buf = [0.0; MAX_INPUTS];
+        let x = inputs::phi_inputs(self.phi.variant, self.phi.encoding, theta, &mut buf);
         match self.phi.variant {
-            Variant::Plain => k[0].forward(theta, out),
+            Variant::Plain => k[0].forward(x, out),
             Variant::Rows => {
                 for (kernel, row) in k.iter().zip(out.chunks_exact_mut(2)) {
-                    kernel.forward(theta, row);
+                    kernel.forward(x, row);
                 }
             }
             Variant::Equivariant => {
-                k[0].forward(&theta[1..], out);
+                k[0].forward(x, out);
                 // Phi(theta) = Phi(0, theta_2, ..) R(theta_1)^T,
                 // R(a) = [[cos a, sin a], [-sin a, cos a]].
                 for row in out.chunks_exact_mut(2) {
@@ -319,7 +206,7 @@ impl Networks {
         if out.len() != n {
             return Err(dimension("v network output", n, out.len()));
         }
-        let mut input = [0.0; MAX_V_INPUTS];
+        let mut input = [0.0; MAX_INPUTS];
         self.v_kernel
             .forward(self.v_input(theta, (s1, c1), o, &mut input), out);
         if out.iter().any(|x| !x.is_finite()) {
@@ -338,9 +225,9 @@ impl Networks {
     }
 
     fn phi_in_range_at(&self, pose: &Pose) -> bool {
-        let theta = pose.theta();
-        self.phi.range.contains(phi_inputs(self.phi.variant, theta))
-            && pose.sigma_min() >= self.phi.range.sigma_floor
+        let mut buf = [0.0; MAX_INPUTS];
+        let x = inputs::phi_inputs(self.phi.variant, self.phi.encoding, pose.theta(), &mut buf);
+        self.phi.range.contains(x) && pose.sigma_min() >= self.phi.range.sigma_floor
     }
 
     /// Whether `(theta, O)` is inside the `v` network's trained box.
@@ -353,7 +240,7 @@ impl Networks {
     }
 
     fn v_in_range_raw(&self, theta: &[f64], s1: f64, c1: f64, o: [f64; 2]) -> bool {
-        let mut input = [0.0; MAX_V_INPUTS];
+        let mut input = [0.0; MAX_INPUTS];
         self.v
             .range
             .contains(self.v_input(theta, (s1, c1), o, &mut input))
@@ -365,9 +252,17 @@ impl Networks {
         theta: &[f64],
         sc: (f64, f64),
         o: [f64; 2],
-        buf: &'a mut [f64; MAX_V_INPUTS],
+        buf: &'a mut [f64; MAX_INPUTS],
     ) -> &'a [f64] {
-        v_inputs(self.v.variant, self.arm.post(), theta, sc, o, buf)
+        inputs::v_inputs(
+            self.v.variant,
+            self.v.encoding,
+            self.arm.post(),
+            theta,
+            sc,
+            o,
+            buf,
+        )
     }
 
     /// Whether `pose` is a pose of an arm with as many joints as the networks'.
@@ -398,48 +293,6 @@ fn inner(e: &Error) -> String {
     match e {
         Error::Weights(m) => m.clone(),
         other => other.to_string(),
-    }
-}
-
-/// The `Phi` networks' inputs for a pose.
-pub(crate) fn phi_inputs(variant: Variant, theta: &[f64]) -> &[f64] {
-    match variant {
-        Variant::Equivariant => &theta[1..],
-        _ => theta,
-    }
-}
-
-/// Most links the `v` network's input buffer holds (`n + 2` inputs); weights
-/// files for longer arms are refused when they load.
-pub const MAX_V_INPUTS: usize = 64;
-
-/// The `v` network's inputs for a pose and obstacle point, written into `buf`
-/// (`sc` = sine and cosine of `theta_1`).
-pub(crate) fn v_inputs<'a>(
-    variant: Variant,
-    post: f64,
-    theta: &[f64],
-    (s, c): (f64, f64),
-    o: [f64; 2],
-    buf: &'a mut [f64; MAX_V_INPUTS],
-) -> &'a [f64] {
-    let n = theta.len().min(MAX_V_INPUTS - 2);
-    match variant {
-        Variant::Equivariant => {
-            // Rotate O by -theta_1 about P(0): the arm at theta_1 is the arm at
-            // theta_1 = 0 turned by R(theta_1), so O' = R(theta_1)^T (O - P(0)) + P(0).
-            let (dx, dy) = (o[0], o[1] - post);
-            buf[..n - 1].copy_from_slice(&theta[1..n]);
-            buf[n - 1] = c * dx - s * dy;
-            buf[n] = s * dx + c * dy + post;
-            &buf[..n + 1]
-        }
-        _ => {
-            buf[..n].copy_from_slice(&theta[..n]);
-            buf[n] = o[0];
-            buf[n + 1] = o[1];
-            &buf[..n + 2]
-        }
     }
 }
 

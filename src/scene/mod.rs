@@ -15,7 +15,7 @@ use crate::obstacle::Obstacle;
 pub(crate) use params::{validate_delta, validate_gain, validate_lambda};
 pub use params::{
     Avoidance, Param, MAX_DAMPER_GAIN, MAX_DELTA, MAX_DISTANCE_GAIN, MAX_GAIN_STEP, MAX_INFLUENCE,
-    MAX_LAMBDA, MAX_RATE_LIMIT, MAX_SLACK_WEIGHT, MIN_SLACK_WEIGHT,
+    MAX_LAMBDA, MAX_RATE_LIMIT, MAX_REFINE, MAX_SIGN_SMOOTHING, MAX_SLACK_WEIGHT, MIN_SLACK_WEIGHT,
 };
 
 /// The paper's final end-effector position for both tasks, `Xf = (0.60, 0.20)`.
@@ -53,6 +53,25 @@ pub struct Scene {
     /// scenes written before they existed, hence the defaults.
     #[serde(default)]
     pub avoidance: Avoidance,
+    /// The smoothing `eps` (m^2) of the sign in eq. (15)
+    /// ([`crate::obstacle::smoothed_sign`]); 0, the paper's, leaves the
+    /// sign as it is. Absent in scenes written before it, and left out of
+    /// written scenes while 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub sign_smoothing: f64,
+    /// Newton-Schulz steps that refine a learned `Phi` with the pose's `J`
+    /// (Cases 1 and 3, [`crate::ik::refine_phi`]); 0, the paper's, uses the
+    /// network's `Phi` as it is. Left out of written scenes while 0.
+    #[serde(default, skip_serializing_if = "is_zero_count")]
+    pub refine: u32,
+}
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
+}
+
+fn is_zero_count(k: &u32) -> bool {
+    *k == 0
 }
 
 impl Scene {
@@ -94,6 +113,8 @@ impl Scene {
             tf: 10.0,
             feedback_gain: 0.0,
             avoidance: Avoidance::default(),
+            sign_smoothing: 0.0,
+            refine: 0,
         }
     }
 
@@ -128,6 +149,8 @@ impl Scene {
             d.validate()?;
         }
         self.avoidance.validate()?;
+        Param::SignSmoothing.check(self.sign_smoothing)?;
+        Param::Refine.check(f64::from(self.refine))?;
         positive("time step dt", self.dt)?;
         validate_gain(self.feedback_gain, self.dt)?;
         positive("final time tf", self.tf)?;

@@ -31,6 +31,16 @@ pub const MAX_DISTANCE_GAIN: f64 = 1000.0;
 /// Largest joint-rate limit accepted (rad/s).
 pub const MAX_RATE_LIMIT: f64 = 1000.0;
 
+/// Largest smoothing `eps` of the sign in eq. (15) accepted (m^2): the
+/// paper's arm's triangles have `|D| < 4 m^2`, so beyond this the
+/// criterion is flat everywhere.
+pub const MAX_SIGN_SMOOTHING: f64 = 100.0;
+
+/// Most Newton-Schulz steps on a learned `Phi`: each squares the error
+/// `J Phi - I`, so after 8 steps any error below 0.9 is below 1e-5 and
+/// further steps change nothing a run can see.
+pub const MAX_REFINE: u32 = 8;
+
 /// Largest `K dt` accepted for the closed-loop gain. The tracking error then
 /// obeys `e' = -K e`, which classical RK4 integrates stably only for
 /// `K dt < 2.785`; 2.5 leaves a margin for the arm's nonlinearity.
@@ -167,6 +177,10 @@ pub enum Param {
     EscapeSpeed,
     /// The joints' rate limit ([`Avoidance::rate_limit`]).
     RateLimit,
+    /// The smoothing of the sign in eq. (15) ([`Scene::sign_smoothing`]).
+    SignSmoothing,
+    /// Newton-Schulz steps on a learned `Phi` ([`Scene::refine`]).
+    Refine,
 }
 
 /// What the page and the command line show of a parameter.
@@ -194,7 +208,7 @@ pub struct ParamInfo {
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 9] = [
+    pub const ALL: [Param; 11] = [
         Param::Lambda,
         Param::Delta,
         Param::Influence,
@@ -204,6 +218,8 @@ impl Param {
         Param::DistanceGain,
         Param::EscapeSpeed,
         Param::RateLimit,
+        Param::SignSmoothing,
+        Param::Refine,
     ];
 
     /// What the page and the command line show of it.
@@ -282,6 +298,22 @@ impl Param {
                 (0.2, 10.0, 0.1),
                 d.rate_limit,
             ),
+            Param::SignSmoothing => (
+                "sign_smoothing",
+                "--sign-smoothing",
+                "Sign smoothing ε",
+                "m²",
+                (0.0, 0.3, 0.01),
+                0.0,
+            ),
+            Param::Refine => (
+                "refine",
+                "--refine",
+                "Refinement steps",
+                "",
+                (0.0, 4.0, 1.0),
+                0.0,
+            ),
         };
         ParamInfo {
             name,
@@ -312,6 +344,8 @@ impl Param {
             Param::DistanceGain => "distance gain lambda_d",
             Param::EscapeSpeed => "escape speed",
             Param::RateLimit => "joint rate limit",
+            Param::SignSmoothing => "sign smoothing eps",
+            Param::Refine => "refinement steps",
         }
     }
 
@@ -327,7 +361,31 @@ impl Param {
             Param::DistanceGain => (0.0, MAX_DISTANCE_GAIN),
             Param::EscapeSpeed => (0.0, MAX_DAMPER_GAIN),
             Param::RateLimit => (1e-3, MAX_RATE_LIMIT),
+            Param::SignSmoothing => (0.0, MAX_SIGN_SMOOTHING),
+            Param::Refine => (0.0, f64::from(MAX_REFINE)),
         }
+    }
+
+    /// Checks a value against the bounds (and, for a count, that it is
+    /// whole), changing nothing.
+    pub(crate) fn check(self, value: f64) -> Result<()> {
+        finite(self.what(), value)?;
+        let (lo, hi) = self.bounds();
+        within(self.what(), value, lo, hi)?;
+        if self.is_count() && value.fract() != 0.0 {
+            return Err(Error::OutOfRange {
+                what: format!("{} (a whole number)", self.what()),
+                value,
+                min: lo,
+                max: hi,
+            });
+        }
+        Ok(())
+    }
+
+    /// Whether it counts something (a whole number).
+    pub fn is_count(self) -> bool {
+        self == Param::Refine
     }
 
     fn read(self, a: &Avoidance) -> f64 {
@@ -339,7 +397,7 @@ impl Param {
             Param::DistanceGain => a.distance_gain,
             Param::EscapeSpeed => a.escape_speed,
             Param::RateLimit => a.rate_limit,
-            Param::Lambda | Param::Delta => f64::NAN,
+            Param::Lambda | Param::Delta | Param::SignSmoothing | Param::Refine => f64::NAN,
         }
     }
 
@@ -348,6 +406,8 @@ impl Param {
         match self {
             Param::Lambda => scene.lambda,
             Param::Delta => scene.delta,
+            Param::SignSmoothing => scene.sign_smoothing,
+            Param::Refine => f64::from(scene.refine),
             other => other.read(&scene.avoidance),
         }
     }
@@ -364,6 +424,14 @@ impl Param {
             Param::Delta => {
                 validate_delta(value)?;
                 scene.delta = value;
+            }
+            Param::SignSmoothing => {
+                self.check(value)?;
+                scene.sign_smoothing = value;
+            }
+            Param::Refine => {
+                self.check(value)?;
+                scene.refine = value as u32;
             }
             other => {
                 let mut a = scene.avoidance;

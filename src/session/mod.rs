@@ -21,7 +21,7 @@ use std::sync::Arc;
 use crate::arm::Arm;
 use crate::error::{within, Error, Result};
 use crate::ik::DampingSchedule;
-use crate::networks::{self, Networks, TrainedRange};
+use crate::networks::{self, NetworkSet, Networks, TrainedRange};
 use crate::obstacle::Obstacle;
 use crate::planner::{Method, Planner, Surrogate};
 use crate::scene::{Param, Scene, PAPER_RADIUS, PAPER_TARGET};
@@ -56,12 +56,14 @@ pub fn default_method() -> Method {
     }
 }
 
-/// Networks installed in a session, with what they were trained on.
+/// Networks installed in a session, with what they were trained on and
+/// which shipped set they are (`None`: trained or loaded by the user).
 #[derive(Clone)]
 struct Installed {
     surrogate: Arc<dyn Surrogate>,
     range: TrainedRange,
     networks: Arc<Networks>,
+    set: Option<NetworkSet>,
 }
 
 /// An interactive simulation: see the module documentation.
@@ -226,7 +228,7 @@ impl Session {
     pub fn set_method(&mut self, method: Method) -> Result<()> {
         if method.uses_networks() && self.networks.is_none() {
             let nets = networks::available(self.arm(), None)?;
-            self.set_networks(nets)?;
+            self.install(nets, Some(NetworkSet::Paper))?;
         }
         self.twin.set_method(method)?;
         self.remember_poses();
@@ -236,6 +238,29 @@ impl Session {
     /// Installs trained networks (refused if they are for another arm; the
     /// networks in use stay then).
     pub fn set_networks(&mut self, networks: Arc<Networks>) -> Result<()> {
+        self.install(networks, None)
+    }
+
+    /// Installs a shipped network set ([`NetworkSet`]) for the methods that
+    /// use networks; refused, the networks in use staying, when the set has
+    /// not loaded or was trained for another arm.
+    pub fn use_network_set(&mut self, set: NetworkSet) -> Result<()> {
+        let nets = networks::builtin_set(set)?;
+        if nets.arm() != self.arm() {
+            return Err(Error::NetworksUnavailable(format!(
+                "the shipped '{}' networks were trained for the paper's arm, not for this one",
+                set.name()
+            )));
+        }
+        self.install(nets, Some(set))
+    }
+
+    /// The shipped set in use, if the installed networks are one.
+    pub fn network_set(&self) -> Option<NetworkSet> {
+        self.networks.as_ref().and_then(|n| n.set)
+    }
+
+    fn install(&mut self, networks: Arc<Networks>, set: Option<NetworkSet>) -> Result<()> {
         let range = networks.trained_range();
         let surrogate: Arc<dyn Surrogate> = networks.clone();
         self.twin.set_networks(Some(surrogate.clone()))?;
@@ -243,6 +268,7 @@ impl Session {
             surrogate,
             range,
             networks,
+            set,
         });
         Ok(())
     }
@@ -371,6 +397,9 @@ impl Session {
         };
         scene.arm = arm.clone();
         scene.lambda = old.lambda;
+        scene.avoidance = old.avoidance;
+        scene.sign_smoothing = old.sign_smoothing;
+        scene.refine = old.refine;
         scene.target = old.target;
         if !arm.can_reach(&scene.target_vector()) {
             scene.target = PAPER_TARGET;

@@ -94,6 +94,9 @@ pub struct State<'a> {
     pub networks: bool,
     /// What they were trained on.
     pub trained_range: Option<&'a TrainedRange>,
+    /// The shipped set installed (`paper`, `reach`), or `None` for
+    /// networks trained or loaded by the user (or none installed).
+    pub network_set: Option<&'static str>,
     /// The numerical ghost, in the network cases.
     pub ghost: Option<GhostState>,
     /// Steps since the last reset.
@@ -186,6 +189,7 @@ impl Session {
             handover_steps: summary.handover_steps,
             networks: self.networks_fit(),
             trained_range: self.trained_range(),
+            network_set: self.network_set().map(|n| n.name()),
             ghost: self.ghost().map(|g| GhostState {
                 theta: g.theta().iter().copied().collect(),
                 ee: g.sample().ee,

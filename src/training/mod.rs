@@ -12,11 +12,66 @@ use serde::{Deserialize, Serialize};
 use crate::arm::Arm;
 use crate::error::{Error, Result};
 use crate::networks::file::{self as weights, InputRange, NetEntry, NetKind, Training, Variant};
-use crate::networks::{phi_inputs, v_inputs, Sampling, WeightsFile, MAX_V_INPUTS};
+use crate::networks::inputs::{self, Encoding, MAX_INPUTS};
+use crate::networks::{Sampling, WeightsFile};
 use crate::nn::lm::{self, Dataset, EpochReport, LmOptions};
 use crate::nn::rng::Rng;
 
-pub use sampling::Visited;
+pub use sampling::{Visited, REACH_SIGN_SMOOTHING};
+
+/// A named way of training an arm's networks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Recipe {
+    /// The paper's (section V), as [`TrainSpec::for_arm`] adapts it: raw
+    /// angles, data around the poses the tasks visit.
+    Paper,
+    /// Networks meant to hold over the whole workspace ([`TrainSpec::reach`]):
+    /// angle features, `Phi` over the whole joint torus, `v` from runs
+    /// with obstacles anywhere in the reach, the sign smoothed.
+    Reach,
+}
+
+impl Recipe {
+    /// Every recipe.
+    pub const ALL: [Recipe; 2] = [Recipe::Paper, Recipe::Reach];
+
+    /// The name on the command line and in the page.
+    pub fn name(self) -> &'static str {
+        match self {
+            Recipe::Paper => "paper",
+            Recipe::Reach => "reach",
+        }
+    }
+
+    /// The training spec of this recipe for `arm`, `net` and `seed`.
+    pub fn spec(self, arm: &Arm, net: NetKind, seed: u64) -> TrainSpec {
+        match self {
+            Recipe::Paper => {
+                let variant = match net {
+                    NetKind::Phi => crate::networks::DEFAULT_PHI_VARIANT,
+                    NetKind::V => crate::networks::DEFAULT_V_VARIANT,
+                };
+                TrainSpec::for_arm(arm, net, variant, seed)
+            }
+            Recipe::Reach => TrainSpec::reach(arm, net, seed),
+        }
+    }
+}
+
+impl std::str::FromStr for Recipe {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        Recipe::ALL
+            .into_iter()
+            .find(|r| r.name() == s)
+            .ok_or_else(|| Error::UnknownName {
+                kind: "recipe",
+                name: s.into(),
+                choices: "paper or reach".into(),
+            })
+    }
+}
 
 /// What to train: the arm, the quantity, the variant, the data and the
 /// optimiser.
@@ -28,6 +83,9 @@ pub struct TrainSpec {
     pub net: NetKind,
     /// Input/output mapping.
     pub variant: Variant,
+    /// How the joint angles enter the networks.
+    #[serde(default)]
+    pub encoding: Encoding,
     /// Seed for sampling, split and initial weights.
     pub seed: u64,
     /// Samples to draw.
@@ -48,6 +106,7 @@ impl TrainSpec {
             arm: Arm::paper(),
             net,
             variant,
+            encoding: Encoding::Raw,
             seed,
             samples: 3000,
             hidden: match net {
@@ -68,21 +127,49 @@ impl TrainSpec {
             ..Self::paper(net, variant, seed)
         }
     }
+
+    /// The `reach` recipe for `arm` and `net`: rotation-equivariant
+    /// networks over `(sin, cos)` of the angles, the paper's widths and
+    /// optimiser, sampled as [`Sampling::reach`] says.
+    /// `v` draws 10 000 samples: its states, over many tasks and
+    /// obstacles anywhere, are harder to fit than the paper's (3 000
+    /// stopped at a validation MSE of 1e-2 against 6e-3; `docs/learning.md`).
+    pub fn reach(arm: &Arm, net: NetKind, seed: u64) -> Self {
+        Self {
+            encoding: Encoding::Angles,
+            sampling: Sampling::reach(arm, net),
+            samples: match net {
+                NetKind::Phi => 3000,
+                NetKind::V => 10_000,
+            },
+            ..Self::for_arm(arm, net, Variant::Equivariant, seed)
+        }
+    }
 }
 
 /// Draws `n` samples (poses and obstacle points) as `sampling` describes, from
 /// a generator seeded with `seed`.
 pub fn draw_samples(arm: &Arm, sampling: &Sampling, n: usize, seed: u64) -> Result<Vec<Visited>> {
+    sampling.validate()?;
     let mut rng = Rng::new(seed);
+    if sampling.whole_torus {
+        return sampling.torus(arm, n, &mut rng);
+    }
     let pool = sampling.visited(arm, &mut rng)?;
     sampling.draw(arm, &pool, n, &mut rng)
 }
 
-/// Training sets for `Phi` networks of `variant`: one per network.
-pub fn phi_datasets(arm: &Arm, variant: Variant, samples: &[Visited]) -> Result<Vec<Dataset>> {
+/// Training sets for `Phi` networks of `variant` and `encoding`: one per network.
+pub fn phi_datasets(
+    arm: &Arm,
+    variant: Variant,
+    encoding: Encoding,
+    samples: &[Visited],
+) -> Result<Vec<Dataset>> {
     let n = arm.dof();
-    let (count, n_in, n_out) = weights::shape(NetKind::Phi, variant, n)?;
+    let (count, n_in, n_out) = weights::shape(NetKind::Phi, variant, encoding, n)?;
     let mut sets = vec![Dataset::new(n_in, n_out); count];
+    let mut buf = [0.0; MAX_INPUTS];
     for s in samples {
         check_sample(arm, s)?;
         let theta = &s.theta[..];
@@ -94,7 +181,7 @@ pub fn phi_datasets(arm: &Arm, variant: Variant, samples: &[Visited]) -> Result<
             }
             _ => sampling::phi_target(arm, theta)?,
         };
-        let x = phi_inputs(variant, theta);
+        let x = inputs::phi_inputs(variant, encoding, theta, &mut buf);
         match variant {
             Variant::Rows => {
                 for (i, set) in sets.iter_mut().enumerate() {
@@ -107,22 +194,30 @@ pub fn phi_datasets(arm: &Arm, variant: Variant, samples: &[Visited]) -> Result<
     Ok(sets)
 }
 
-/// Training set for the `v` network of `variant`.
-pub fn v_dataset(arm: &Arm, variant: Variant, samples: &[Visited]) -> Result<Dataset> {
-    let (_, n_in, n_out) = weights::shape(NetKind::V, variant, arm.dof())?;
+/// Training set for the `v` network of `variant` and `encoding`, its
+/// targets' sign smoothed by `eps` ([`crate::obstacle::smoothed_sign`]).
+pub fn v_dataset(
+    arm: &Arm,
+    variant: Variant,
+    encoding: Encoding,
+    eps: f64,
+    samples: &[Visited],
+) -> Result<Dataset> {
+    let (_, n_in, n_out) = weights::shape(NetKind::V, variant, encoding, arm.dof())?;
     let mut set = Dataset::new(n_in, n_out);
-    let mut buf = [0.0; MAX_V_INPUTS];
+    let mut buf = [0.0; MAX_INPUTS];
     for s in samples {
         check_sample(arm, s)?;
-        let x = v_inputs(
+        let x = inputs::v_inputs(
             variant,
+            encoding,
             arm.post(),
             &s.theta,
             s.theta[0].sin_cos(),
             s.obstacle,
             &mut buf,
         );
-        set.push(x, &sampling::v_target(arm, &s.theta, s.obstacle));
+        set.push(x, &sampling::v_target(arm, &s.theta, s.obstacle, eps));
     }
     Ok(set)
 }
@@ -137,20 +232,6 @@ fn check_sample(arm: &Arm, s: &Visited) -> Result<()> {
     crate::error::coordinate("obstacle x", s.obstacle[0])?;
     crate::error::coordinate("obstacle y", s.obstacle[1])?;
     Ok(())
-}
-
-fn input_names(net: NetKind, variant: Variant, n: usize) -> Vec<String> {
-    let thetas = |from: usize| (from..=n).map(|i| format!("theta{i}"));
-    match (net, variant) {
-        (NetKind::Phi, Variant::Equivariant) => thetas(2).collect(),
-        (NetKind::Phi, _) => thetas(1).collect(),
-        (NetKind::V, Variant::Equivariant) => thetas(2)
-            .chain(["o1_rotated".to_string(), "o2_rotated".to_string()])
-            .collect(),
-        (NetKind::V, _) => thetas(1)
-            .chain(["o1".to_string(), "o2".to_string()])
-            .collect(),
-    }
 }
 
 /// Trains the networks `spec` describes for its arm and returns the
@@ -170,8 +251,14 @@ pub fn train_weights(
     let arm = &spec.arm;
     let samples = draw_samples(arm, &spec.sampling, spec.samples, spec.seed)?;
     let sets = match spec.net {
-        NetKind::Phi => phi_datasets(arm, spec.variant, &samples)?,
-        NetKind::V => vec![v_dataset(arm, spec.variant, &samples)?],
+        NetKind::Phi => phi_datasets(arm, spec.variant, spec.encoding, &samples)?,
+        NetKind::V => vec![v_dataset(
+            arm,
+            spec.variant,
+            spec.encoding,
+            spec.sampling.sign_smoothing,
+            &samples,
+        )?],
     };
     let n_in = sets[0].n_in;
     let mut min = vec![f64::INFINITY; n_in];
@@ -197,10 +284,11 @@ pub fn train_weights(
         format: weights::FORMAT.to_string(),
         net: spec.net,
         variant: spec.variant,
+        encoding: spec.encoding,
         tool_version: env!("CARGO_PKG_VERSION").to_string(),
         arm: arm.clone(),
         range: InputRange {
-            names: input_names(spec.net, spec.variant, arm.dof()),
+            names: inputs::input_names(spec.net, spec.variant, spec.encoding, arm.dof()),
             min,
             max,
             sigma_floor: spec.sampling.sigma_floor,

@@ -25,6 +25,11 @@ use crate::obstacle::{self, Obstacle};
 use crate::planner::{Method, Planner};
 use crate::scene::Scene;
 
+/// The smoothing `eps` (m^2) of the sign of eq. (15) in the `reach`
+/// recipe's `v` targets: 0.1, as measured before the recipe was written
+/// (`docs/learning.md`); the paper's arm's triangles have `|D|` up to 4 m^2.
+pub const REACH_SIGN_SMOOTHING: f64 = 0.1;
+
 /// A pose visited by a planner run, with that run's obstacle point.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Visited {
@@ -61,6 +66,85 @@ impl Sampling {
             obstacle_spread: 0.08 * arm.max_reach(),
             ..Self::default()
         }
+    }
+
+    /// The `reach` recipe's sampling for `arm` and `net`, meant to hold
+    /// wherever a run of the arm may go (`docs/learning.md`):
+    /// - `Phi`: poses uniform over the whole joint torus, those with
+    ///   `sigma_min(J)` below 0.15 m (for the paper's 2.05 m reach; scaled
+    ///   by the reach for other arms) rejected;
+    /// - `v`: the poses of numerical runs of random straight-line tasks
+    ///   (and, for the paper's arm, of its two tasks) with obstacles
+    ///   uniform over the whole box of the reach (the atlas's region),
+    ///   each paired with its run's obstacle; the sign of eq. (15)
+    ///   smoothed by [`REACH_SIGN_SMOOTHING`].
+    pub fn reach(arm: &Arm, net: crate::networks::NetKind) -> Self {
+        let paper_reach = Arm::paper().max_reach();
+        let r = arm.max_reach();
+        let post = arm.post();
+        let (obstacle_min, obstacle_max) = ([-r, (post - r).max(0.0)], [r, post + r]);
+        let base = Self {
+            obstacle_min,
+            obstacle_max,
+            modes: vec![Method::NUMERICAL],
+            ..Self::default()
+        };
+        match net {
+            crate::networks::NetKind::Phi => Self {
+                tasks: Vec::new(),
+                obstacles_per_task: 0,
+                theta_noise: 0.0,
+                sigma_floor: 0.15 * r / paper_reach,
+                paired_obstacle_share: 0.0,
+                obstacle_noise: 0.0,
+                whole_torus: true,
+                ..base
+            },
+            crate::networks::NetKind::V => Self {
+                tasks: if arm.dof() == 3 && *arm == Arm::paper() {
+                    vec![1, 2]
+                } else {
+                    Vec::new()
+                },
+                random_tasks: 40,
+                obstacles_per_task: 25,
+                theta_noise: 0.08,
+                sigma_floor: 0.0,
+                paired_obstacle_share: 1.0,
+                obstacle_noise: 0.03,
+                sign_smoothing: REACH_SIGN_SMOOTHING,
+                ..base
+            },
+        }
+    }
+
+    /// `n` poses uniform over the joint torus (`[-pi, pi)` per joint),
+    /// rejected while `sigma_min(J)` is below the floor, each with an
+    /// obstacle point uniform in the region.
+    pub fn torus(&self, arm: &Arm, n: usize, rng: &mut Rng) -> Result<Vec<Visited>> {
+        use std::f64::consts::PI;
+        let mut out = Vec::with_capacity(n);
+        let mut tries = 0usize;
+        while out.len() < n {
+            tries += 1;
+            if tries > 100 * n + 1000 {
+                return Err(Error::Training(format!(
+                    "sampling: sigma floor {} rejects nearly every pose of the torus",
+                    self.sigma_floor
+                )));
+            }
+            let theta: Vec<f64> = (0..arm.dof()).map(|_| rng.range(-PI, PI)).collect();
+            let j = arm.jacobian(&DVector::from_column_slice(&theta));
+            if ik::smallest_singular_value(&j) < self.sigma_floor {
+                continue;
+            }
+            let obstacle = [
+                rng.range(self.obstacle_min[0], self.obstacle_max[0]),
+                rng.range(self.obstacle_min[1], self.obstacle_max[1]),
+            ];
+            out.push(Visited { theta, obstacle });
+        }
+        Ok(out)
     }
 
     /// Every pose `arm` visits in the numerical runs: each paper task with
@@ -206,12 +290,14 @@ pub fn phi_target(arm: &Arm, theta: &[f64]) -> Result<Vec<f64>> {
     Ok(out)
 }
 
-/// The area gradient `g(theta, O)` (`v = lambda / 4 g`, eqs. 14-15).
-pub fn v_target(arm: &Arm, theta: &[f64], o: [f64; 2]) -> Vec<f64> {
-    obstacle::area_gradient(
+/// The area gradient `g(theta, O)` (`v = lambda / 4 g`, eqs. 14-15), its
+/// sign smoothed by `eps` ([`obstacle::smoothed_sign`]; 0 is the paper's).
+pub fn v_target(arm: &Arm, theta: &[f64], o: [f64; 2], eps: f64) -> Vec<f64> {
+    obstacle::area_gradient_smoothed(
         arm,
         &DVector::from_column_slice(theta),
         &Vector2::new(o[0], o[1]),
+        eps,
     )
     .iter()
     .copied()

@@ -106,6 +106,17 @@ impl Demo {
         self.session.set_param(param, value).map_err(js_err)
     }
 
+    /// Installs a shipped network set (`paper` or `reach`; `networkSets()`
+    /// lists them) for the methods that use networks. The page's module
+    /// must have been handed the set's files (`provideBuiltinNetworks`)
+    /// first. Throws, the networks in use staying, when the set is unknown,
+    /// not loaded, or for another arm.
+    #[wasm_bindgen(js_name = useNetworkSet)]
+    pub fn use_network_set(&mut self, name: &str) -> JsResult {
+        let set: crate::networks::NetworkSet = name.parse().map_err(js_err)?;
+        self.session.use_network_set(set).map_err(js_err)
+    }
+
     /// Switches the damping schedule (damped least squares near singular
     /// poses) on or off.
     #[wasm_bindgen(js_name = setDamping)]

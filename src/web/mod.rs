@@ -46,7 +46,7 @@ use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 
 use crate::error::Error;
-use crate::networks;
+use crate::networks::{self, NetworkSet};
 
 #[cfg(feature = "page")]
 pub use demo::Demo;
@@ -87,38 +87,81 @@ pub fn last_panic() -> Option<String> {
     LAST_PANIC.with(|p| p.borrow().clone())
 }
 
-/// Whether the built-in networks load: `null` when they do, else the
-/// reason.
-#[wasm_bindgen(js_name = networksError)]
-pub fn networks_error() -> Option<String> {
-    networks::builtin().err().map(|e| e.to_string())
+/// A shipped network set by name (`paper` when absent).
+fn network_set(set: Option<String>) -> Result<NetworkSet, JsError> {
+    set.as_deref()
+        .map_or(Ok(NetworkSet::Paper), |s| s.parse().map_err(js_err))
 }
 
-/// The weights files of the built-in networks, `[phi, v]` (names in the
-/// repository's `weights/`, which `make web` copies beside the page). A
-/// module built without them (the page's) fetches these at start-up and
-/// hands them to [`provide_builtin_networks`].
+/// Whether a shipped network set (`paper` when absent) loads: `null` when
+/// it does, else the reason.
+#[wasm_bindgen(js_name = networksError)]
+pub fn networks_error(set: Option<String>) -> Result<Option<String>, JsError> {
+    Ok(networks::builtin_set(network_set(set)?)
+        .err()
+        .map(|e| e.to_string()))
+}
+
+/// The shipped network sets, in the order of the menus: `[{ name, label,
+/// files: [phi, v] }]` (file names in the repository's `weights/`, which
+/// `make web` copies beside the page).
+#[wasm_bindgen(js_name = networkSets)]
+pub fn network_sets() -> Result<JsValue, JsError> {
+    #[derive(Serialize)]
+    struct Set {
+        name: &'static str,
+        label: &'static str,
+        files: [&'static str; 2],
+    }
+    let sets: Vec<Set> = NetworkSet::ALL
+        .iter()
+        .map(|s| Set {
+            name: s.name(),
+            label: s.label(),
+            files: s.files(),
+        })
+        .collect();
+    to_js(&sets)
+}
+
+/// The weights files of a shipped set (`paper` when absent), `[phi, v]`. A
+/// module built without them (the page's) fetches these (the paper's at
+/// start-up, the others when first chosen) and hands them to
+/// [`provide_builtin_networks`].
 #[wasm_bindgen(js_name = builtinWeightsFiles)]
-pub fn builtin_weights_files() -> Vec<String> {
-    networks::BUILTIN_FILES
+pub fn builtin_weights_files(set: Option<String>) -> Result<Vec<String>, JsError> {
+    Ok(network_set(set)?
+        .files()
         .iter()
         .map(|f| f.to_string())
-        .collect()
+        .collect())
 }
 
-/// Hands the module the built-in networks: the JSON text of the two files
-/// of [`builtin_weights_files`]. Throws if they do not load (the reason
-/// then stays what [`networks_error`] says). Only the first call counts.
+/// Hands the module a shipped set (`paper` when absent): the JSON text of
+/// the two files of [`builtin_weights_files`]. Throws if they do not load
+/// (the reason then stays what [`networks_error`] says). Only the first
+/// call per set counts.
 #[wasm_bindgen(js_name = provideBuiltinNetworks)]
-pub fn provide_builtin_networks(phi_json: &str, v_json: &str) -> Result<(), JsError> {
-    networks::provide_builtin(Ok((phi_json, v_json))).map_err(js_err)
+pub fn provide_builtin_networks(
+    phi_json: &str,
+    v_json: &str,
+    set: Option<String>,
+) -> Result<(), JsError> {
+    networks::provide_builtin(network_set(set)?, Ok((phi_json, v_json))).map_err(js_err)
 }
 
-/// Tells the module why the built-in networks could not be fetched; the
-/// methods that need them then say so.
+/// Whether a shipped set (`paper` when absent) has been handed over.
+#[wasm_bindgen(js_name = builtinNetworksReady)]
+pub fn builtin_networks_ready(set: Option<String>) -> Result<bool, JsError> {
+    Ok(networks::builtin_ready(network_set(set)?))
+}
+
+/// Tells the module why a shipped set (`paper` when absent) could not be
+/// fetched; the methods that need it then say so.
 #[wasm_bindgen(js_name = builtinNetworksFailed)]
-pub fn builtin_networks_failed(why: &str) {
-    let _ = networks::provide_builtin(Err(why.to_string()));
+pub fn builtin_networks_failed(why: &str, set: Option<String>) -> Result<(), JsError> {
+    let _ = networks::provide_builtin(network_set(set)?, Err(why.to_string()));
+    Ok(())
 }
 
 /// Every method, in the order of the menus: `[{ name, label, description,

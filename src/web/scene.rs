@@ -97,8 +97,10 @@ impl Demo {
     /// Runs a whole task off screen with the current arm, gains, switches
     /// and networks, and returns its summary (the `summary` of `redundant-ik
     /// simulate --json`). `target` (`[x, y]`), `obstacles` (flat, as in
-    /// `setObstacles`), `tf` and `theta0` default to the scene in use. The
-    /// scene on the stage does not change.
+    /// `setObstacles`), `tf`, `theta0`, the closed-loop gain `feedback` and
+    /// the `refine` steps on a learned `Phi` default to the scene in use.
+    /// The scene on the stage does not change.
+    #[allow(clippy::too_many_arguments)] // one optional argument per override, as JavaScript passes them
     pub fn simulate(
         &self,
         mode: &str,
@@ -106,6 +108,8 @@ impl Demo {
         obstacles: Option<Vec<f64>>,
         tf: Option<f64>,
         theta0: Option<Vec<f64>>,
+        feedback: Option<f64>,
+        refine: Option<f64>,
     ) -> JsResult<JsValue> {
         let mode: Method = mode.parse().map_err(js_err)?;
         let mut scene = self.session.planner().scene().clone();
@@ -126,6 +130,15 @@ impl Demo {
         }
         if let Some(t) = theta0 {
             scene.theta0 = t;
+        }
+        if let Some(k) = feedback {
+            crate::scene::validate_gain(k, scene.dt).map_err(js_err)?;
+            scene.feedback_gain = k;
+        }
+        if let Some(k) = refine {
+            crate::scene::Param::Refine
+                .set(&mut scene, k)
+                .map_err(js_err)?;
         }
         scene.validate().map_err(js_err)?;
         let summary = self.session.run_offscreen(scene, mode).map_err(js_err)?;

@@ -58,9 +58,18 @@ struct AtlasOptions {
     region: Option<Vec<f64>>,
     /// The paper task the scene came from, for the report.
     task: Option<u32>,
+    /// Closed-loop gain `K`; the scene's when absent.
+    feedback: Option<f64>,
+    /// Newton-Schulz steps on a learned `Phi`; the scene's when absent.
+    refine: Option<f64>,
+    /// The shipped network set (`paper`, `reach`) for the methods that use
+    /// networks, instead of the weights files given (or the paper's set).
+    networks: Option<String>,
 }
 
-const OPTION_NAMES: [&str; 4] = ["modes", "n", "region", "task"];
+const OPTION_NAMES: [&str; 7] = [
+    "modes", "n", "region", "task", "feedback", "refine", "networks",
+];
 
 /// An atlas being computed in a worker: `new AtlasJob(scene, options,
 /// phiJson, vJson)`, then `advance(cells)` until `done == total`, then
@@ -74,9 +83,11 @@ pub struct AtlasJob {
 #[wasm_bindgen]
 impl AtlasJob {
     /// `scene` is the page's scene (`Demo.scene()`); `options` is
-    /// `{ modes, n, region, task }`, each optional. The methods that use
-    /// networks take the weights files `phi_json` and `v_json` if both are
-    /// given and fit the arm, else the built-in networks where they fit
+    /// `{ modes, n, region, task, feedback, refine, networks }`, each
+    /// optional (`feedback` and `refine` override the scene's). The methods
+    /// that use networks take the shipped set `networks` if named, else the
+    /// weights files `phi_json` and `v_json` if both are given and fit the
+    /// arm, else the built-in networks where they fit
     /// ([`networks::available`]). Throws with the core's message on bad
     /// input.
     #[wasm_bindgen(constructor)]
@@ -86,7 +97,7 @@ impl AtlasJob {
         phi_json: Option<String>,
         v_json: Option<String>,
     ) -> Result<AtlasJob, JsError> {
-        let scene: Scene = serde_wasm_bindgen::from_value(scene)
+        let mut scene: Scene = serde_wasm_bindgen::from_value(scene)
             .map_err(|e| JsError::new(&format!("not a scene: {e}")))?;
         let options: AtlasOptions = if options.is_undefined() || options.is_null() {
             AtlasOptions {
@@ -94,6 +105,9 @@ impl AtlasJob {
                 n: None,
                 region: None,
                 task: None,
+                feedback: None,
+                refine: None,
+                networks: None,
             }
         } else {
             known_fields(&options, &OPTION_NAMES, "atlas options")?;
@@ -136,9 +150,25 @@ impl AtlasJob {
                 .collect::<Result<Vec<_>, Error>>()
                 .map_err(js_err)?,
         };
+        if let Some(k) = options.feedback {
+            crate::scene::validate_gain(k, scene.dt).map_err(js_err)?;
+            scene.feedback_gain = k;
+        }
+        if let Some(k) = options.refine {
+            crate::scene::Param::Refine
+                .set(&mut scene, k)
+                .map_err(js_err)?;
+        }
+        let set = match options.networks.as_deref() {
+            None => None,
+            Some(name) => Some(name.parse::<networks::NetworkSet>().map_err(js_err)?),
+        };
         let networks = if modes.iter().any(|m| m.uses_networks()) {
-            let installed = files(phi_json, v_json)?;
-            Some(networks::available(&scene.arm, installed.as_ref()).map_err(js_err)?)
+            let chosen = match set {
+                Some(set) => Some(networks::builtin_set(set).map_err(js_err)?),
+                None => files(phi_json, v_json)?,
+            };
+            Some(networks::available(&scene.arm, chosen.as_ref()).map_err(js_err)?)
         } else {
             None
         };

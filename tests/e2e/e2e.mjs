@@ -1120,7 +1120,7 @@ test('playground: networks for a 4-link arm trained in the page', async () => {
     const report = await window.demo.train({ net: 'both', preset: 'quick' });
     return { report, seconds: (performance.now() - t0) / 1000, frames: window.__frames };
   });
-  const rows = run.report.random_tasks.map((c) => `${c.mode} K=${c.feedback}: ${c.succeeded}/${c.tasks} ok, ${c.collided} hit`);
+  const rows = run.report.random_tasks.map((c) => `${c.mode} K=${c.feedback} refine ${c.refine}: ${c.succeeded}/${c.tasks} ok, ${c.collided} hit`);
   console.log(`measure: quick preset, 4-link arm in Chromium: ${run.seconds.toFixed(1)} s (goal <= 60 s); Phi median error ${run.report.phi_error.median.toExponential(2)}, v ${run.report.v_error.median.toExponential(2)}; ${rows.join('; ')}`);
   assert.ok(run.seconds <= 300, `took ${run.seconds.toFixed(1)} s (a hang guard; the goal is the measure line)`);
   assert.ok(run.frames > 10 * run.seconds, 'the page kept drawing');

@@ -69,6 +69,17 @@ pub fn scene(data: &[u8]) {
                     rate_limit: num_in(&mut u, 0.05, 5.0),
                 }
             },
+            // Drawn after those, 0 (the paper's) when the input has ended.
+            sign_smoothing: if u.is_empty() {
+                0.0
+            } else {
+                num_in(&mut u, 0.0, 0.5)
+            },
+            refine: if u.is_empty() {
+                0
+            } else {
+                small(&mut u, 4) as u32
+            },
         }
     };
     let networks = (scene.arm == Arm::paper()).then(shipped_surrogate);

@@ -1,7 +1,7 @@
 //! The `trainer` target.
 
 use arbitrary::Unstructured;
-use redundant_ik::networks::{NetKind, Sampling, Variant};
+use redundant_ik::networks::{Encoding, NetKind, Sampling, Variant};
 use redundant_ik::nn::lm::{self, Dataset, LmOptions};
 use redundant_ik::training::{phi_datasets, v_dataset, Visited};
 use redundant_ik::training_job::Request;
@@ -27,13 +27,11 @@ pub fn trainer(data: &[u8]) {
             let Ok(request) = serde_json::from_str::<Request>(&text) else {
                 return;
             };
-            if request.size().is_ok() {
-                for net in [NetKind::Phi, NetKind::V] {
-                    if let Ok(spec) = request.spec(net) {
-                        spec.sampling
-                            .validate()
-                            .expect("a request's sampling validates");
-                    }
+            for net in [NetKind::Phi, NetKind::V] {
+                if let Ok(spec) = request.spec(net) {
+                    spec.sampling
+                        .validate()
+                        .expect("a request's sampling validates");
                 }
             }
         }
@@ -52,11 +50,20 @@ pub fn trainer(data: &[u8]) {
             let variant = *u
                 .choose(&[Variant::Plain, Variant::Rows, Variant::Equivariant])
                 .unwrap_or(&Variant::Plain);
-            for set in phi_datasets(&arm, variant, &samples).into_iter().flatten() {
+            // Drawn last, the paper's when the input has ended, so that
+            // inputs written before angle features make the same sets.
+            let encoding = *u
+                .choose(&[Encoding::Raw, Encoding::Angles])
+                .unwrap_or(&Encoding::Raw);
+            let eps = if u.is_empty() { 0.0 } else { num(&mut u) };
+            for set in phi_datasets(&arm, variant, encoding, &samples)
+                .into_iter()
+                .flatten()
+            {
                 assert_finite("Phi training input", &set.inputs);
                 assert_finite("Phi training target", &set.targets);
             }
-            if let Ok(set) = v_dataset(&arm, variant, &samples) {
+            if let Ok(set) = v_dataset(&arm, variant, encoding, eps, &samples) {
                 assert_finite("v training input", &set.inputs);
                 assert_finite("v training target", &set.targets);
             }

@@ -21,7 +21,7 @@ static ENTRY: Entry = Entry {
         },
         avoids: true,
         colour: "#1f77b4",
-        params: &[Param::Lambda, Param::Delta],
+        params: &[Param::Lambda, Param::Delta, Param::SignSmoothing, Param::Refine],
     },
     rule: |n| paper::rule(n, CASE1, V::Exact, Phi::Network),
 };

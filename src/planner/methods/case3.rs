@@ -21,7 +21,7 @@ static ENTRY: Entry = Entry {
         },
         avoids: true,
         colour: "#ff7f0e",
-        params: &[Param::Lambda, Param::Delta],
+        params: &[Param::Lambda, Param::Delta, Param::Refine],
     },
     rule: |n| paper::rule(n, CASE3, V::Network, Phi::Network),
 };

@@ -18,7 +18,7 @@ static ENTRY: Entry = Entry {
         networks: Needs::NOTHING,
         avoids: true,
         colour: "#000000",
-        params: &[Param::Lambda, Param::Delta],
+        params: &[Param::Lambda, Param::Delta, Param::SignSmoothing],
     },
     rule: |n| paper::rule(n, NUMERICAL, V::Exact, Phi::Exact),
 };

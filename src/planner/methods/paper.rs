@@ -57,7 +57,9 @@ pub(super) fn rule(n: usize, method: Method, v_from: V, phi_from: Phi) -> Box<dy
 
 /// `v` at `pose` into `v`: `(lambda / 4) sum_O sum_k sign(D_k) dD_k/dtheta`
 /// (eqs. 14-15 summed over the obstacles), each obstacle's area gradient
-/// (into the scratch `g`) exact or from the `v` network of `method`.
+/// (into the scratch `g`) exact (its sign smoothed by the scene's
+/// `sign_smoothing`) or from the `v` network of `method` (which learned the
+/// gradient at the smoothing its weights file records).
 pub(super) fn obstacle_vector(
     method: Method,
     from: V,
@@ -69,9 +71,15 @@ pub(super) fn obstacle_vector(
     let scene = cx.scene;
     match from {
         V::Zero => v.iter_mut().for_each(|x| *x = 0.0),
-        V::Exact => {
-            obstacle::null_space_vector_into(&scene.arm, pose, &scene.obstacles, scene.lambda, g, v)
-        }
+        V::Exact => obstacle::null_space_vector_into(
+            &scene.arm,
+            pose,
+            &scene.obstacles,
+            scene.lambda,
+            scene.sign_smoothing,
+            g,
+            v,
+        ),
         V::Network => {
             let nets = cx.networks_for(method)?;
             v.iter_mut().for_each(|x| *x = 0.0);
@@ -91,8 +99,10 @@ pub(super) fn obstacle_vector(
 impl Rule for Paper {
     /// Eq. (18), `(J J^T + delta I) varphi = Xdot - J v`,
     /// `theta_dot = J^T varphi + v`, or eq. (21),
-    /// `theta_dot = Phi (Xdot - J v) + v` with `Phi` from the network, damped
-    /// by a constant `delta` through [`ik::damp_phi`]. Where the damping
+    /// `theta_dot = Phi (Xdot - J v) + v` with `Phi` from the network,
+    /// refined by the scene's `refine` Newton-Schulz steps with the pose's
+    /// `J` ([`ik::refine_phi`]) and damped by a constant `delta` through
+    /// [`ik::damp_phi`]. Where the damping
     /// schedule is active (a near-singular pose, where `Phi` is unbounded and
     /// no network fits it), the exact damped `Phi` of eq. (20) stands in for
     /// the network, and the note says so.
@@ -124,6 +134,7 @@ impl Rule for Paper {
                     ik::phi_into(jac, cx.scene.delta + scheduled, &mut self.phi)?;
                 } else {
                     cx.networks_for(self.method)?.phi(pose, &mut self.phi)?;
+                    ik::refine_phi(&mut self.phi, jac, cx.scene.refine)?;
                     ik::damp_phi(&mut self.phi, cx.scene.delta)?;
                 }
                 ik::theta_dot_network_into(&self.phi, jac, xdot, &self.v, out)?;

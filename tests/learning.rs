@@ -1,0 +1,306 @@
+//! Networks meant to hold over the whole workspace (`docs/learning.md`):
+//! the refinement of a learned `Phi` by the pose's `J`, angle features,
+//! the smoothed sign of the area criterion, and the `reach` recipe's
+//! sampling.
+
+#[cfg(target_arch = "wasm32")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
+
+use std::f64::consts::PI;
+
+use redundant_ik::nalgebra::{DVector, Vector2};
+use redundant_ik::networks::{Encoding, NetKind, Variant, WeightsFile};
+use redundant_ik::nn::rng::Rng;
+use redundant_ik::scene::Param;
+use redundant_ik::training::{self, Recipe, TrainSpec, REACH_SIGN_SMOOTHING};
+use redundant_ik::{ik, obstacle, Arm, Error, Pose, Scene};
+
+/// `J Phi - I` as a row-major 2x2 array (`phi` row-major n x 2, `jac`
+/// column-major 2 x n).
+fn residual(jac: &[f64], phi: &[f64]) -> [[f64; 2]; 2] {
+    let mut e = [[0.0; 2]; 2];
+    for (j, p) in jac.chunks_exact(2).zip(phi.chunks_exact(2)) {
+        for a in 0..2 {
+            for b in 0..2 {
+                e[a][b] += j[a] * p[b];
+            }
+        }
+    }
+    e[0][0] -= 1.0;
+    e[1][1] -= 1.0;
+    e
+}
+
+fn norm(e: &[[f64; 2]; 2]) -> f64 {
+    e.iter().flatten().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+fn square(e: &[[f64; 2]; 2]) -> [[f64; 2]; 2] {
+    let mut s = [[0.0; 2]; 2];
+    for a in 0..2 {
+        for b in 0..2 {
+            s[a][b] = e[a][0] * e[0][b] + e[a][1] * e[1][b];
+        }
+    }
+    s
+}
+
+/// A pose of the paper's arm, its `J` (column-major) and its exact `Phi`
+/// (row-major).
+fn pose(theta: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let arm = Arm::paper();
+    let p = Pose::new(&arm, theta).unwrap();
+    let jac = p.jacobian().to_vec();
+    let phi = training::sampling::phi_target(&arm, theta).unwrap();
+    (jac, phi)
+}
+
+#[test]
+fn a_newton_schulz_step_squares_the_error_of_a_right_inverse() {
+    let mut rng = Rng::new(3);
+    for _ in 0..200 {
+        let theta: Vec<f64> = (0..3).map(|_| rng.range(-PI, PI)).collect();
+        let (jac, exact) = pose(&theta);
+        if exact.iter().any(|x| x.abs() > 20.0) {
+            continue; // near a singular pose
+        }
+        // A learned Phi: the exact one with a relative error of 1-20 %.
+        let scale = rng.range(0.01, 0.2);
+        let mut phi: Vec<f64> = exact
+            .iter()
+            .map(|x| x + scale * x.abs().max(0.1) * rng.normal())
+            .collect();
+        let e0 = residual(&jac, &phi);
+        // J Phi = I + E  ->  J Phi' = I - E^2, exactly (to rounding).
+        ik::refine_phi(&mut phi, &jac, 1).unwrap();
+        let e1 = residual(&jac, &phi);
+        let want = square(&e0);
+        for a in 0..2 {
+            for b in 0..2 {
+                assert!(
+                    (e1[a][b] + want[a][b]).abs() < 1e-12 * (1.0 + norm(&e0)),
+                    "E1 = {e1:?}, -E0^2 = {want:?}"
+                );
+            }
+        }
+        // k steps: |E_k| <= |E_0|^(2^k) (the Frobenius norm is
+        // submultiplicative), while the error is below one.
+        let n0 = norm(&e0);
+        if n0 < 0.9 {
+            let mut phi_k = phi.clone();
+            for k in 2..=3u32 {
+                ik::refine_phi(&mut phi_k, &jac, 1).unwrap();
+                let nk = norm(&residual(&jac, &phi_k));
+                assert!(
+                    nk <= n0.powi(1 << k) * (1.0 + 1e-9) + 1e-14,
+                    "step {k}: |E| = {nk:.3e}, |E0|^(2^k) = {:.3e}",
+                    n0.powi(1 << k)
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn refinement_leaves_an_exact_pseudoinverse_as_it_is() {
+    for theta in [
+        [0.3, 1.2, -0.7],
+        [PI / 12.0, PI / 2.0, -PI / 6.0],
+        [2.0, -1.0, 2.5],
+    ] {
+        let (jac, exact) = pose(&theta);
+        let mut phi = exact.clone();
+        ik::refine_phi(&mut phi, &jac, 4).unwrap();
+        for (a, b) in phi.iter().zip(&exact) {
+            assert!((a - b).abs() <= 1e-12 * b.abs().max(1.0), "{a} vs {b}");
+        }
+    }
+}
+
+#[test]
+fn refinement_refuses_mismatched_sizes_and_reports_a_blow_up() {
+    let (jac, exact) = pose(&[0.3, 1.2, -0.7]);
+    let mut short = exact[..4].to_vec();
+    assert!(matches!(
+        ik::refine_phi(&mut short, &jac, 1),
+        Err(Error::DimensionMismatch { .. })
+    ));
+    // A "Phi" far from any inverse (|E| > 1) diverges: refused, not NaN.
+    let mut wild: Vec<f64> = exact.iter().map(|x| 1e3 * x + 50.0).collect();
+    assert!(ik::refine_phi(&mut wild, &jac, 8).is_err());
+}
+
+#[test]
+fn refine_is_a_whole_number_of_steps_and_scenes_without_it_stay_as_they_were() {
+    let mut scene = Scene::task1();
+    for bad in [-1.0, 1.5, 9.0, f64::NAN] {
+        assert!(Param::Refine.set(&mut scene, bad).is_err(), "{bad}");
+        assert_eq!(scene.refine, 0);
+    }
+    Param::Refine.set(&mut scene, 2.0).unwrap();
+    assert_eq!(scene.refine, 2);
+    // Fields at the paper's values are left out of the JSON, so scenes and
+    // runs written before them read and write as before.
+    let json = serde_json::to_string(&Scene::task1()).unwrap();
+    assert!(!json.contains("refine") && !json.contains("sign_smoothing"));
+    let back: Scene = serde_json::from_str(&json).unwrap();
+    assert_eq!(back, Scene::task1());
+}
+
+/// The smoothed criterion `sum_k sqrt(D_k^2 + eps^2)` (in units where
+/// `v = (lambda / 4) g` is its gradient with `lambda = 4`), by the
+/// triangles' determinants.
+fn smoothed_criterion(arm: &Arm, theta: &[f64], o: [f64; 2], eps: f64) -> f64 {
+    let joints = arm.joints(&DVector::from_column_slice(theta));
+    obstacle::triangle_determinants(&joints, &Vector2::new(o[0], o[1]))
+        .iter()
+        .map(|d| d.hypot(eps))
+        .sum()
+}
+
+#[test]
+fn the_smoothed_sign_is_the_gradient_of_the_smoothed_criterion() {
+    let arm = Arm::paper();
+    let mut rng = Rng::new(11);
+    for _ in 0..100 {
+        let theta: Vec<f64> = (0..3).map(|_| rng.range(-PI, PI)).collect();
+        let o = [rng.range(-1.5, 1.5), rng.range(0.0, 2.0)];
+        let eps = REACH_SIGN_SMOOTHING;
+        let g = obstacle::area_gradient_smoothed(
+            &arm,
+            &DVector::from_column_slice(&theta),
+            &Vector2::new(o[0], o[1]),
+            eps,
+        );
+        for i in 0..3 {
+            let h = 1e-6;
+            let mut plus = theta.clone();
+            let mut minus = theta.clone();
+            plus[i] += h;
+            minus[i] -= h;
+            let fd = (smoothed_criterion(&arm, &plus, o, eps)
+                - smoothed_criterion(&arm, &minus, o, eps))
+                / (2.0 * h);
+            assert!(
+                (g[i] - fd).abs() < 1e-6 * (1.0 + fd.abs()),
+                "joint {i}: {} vs {fd}",
+                g[i]
+            );
+        }
+        // eps = 0 is the paper's sign.
+        let paper = obstacle::area_gradient(
+            &arm,
+            &DVector::from_column_slice(&theta),
+            &Vector2::new(o[0], o[1]),
+        );
+        let zero = obstacle::area_gradient_smoothed(
+            &arm,
+            &DVector::from_column_slice(&theta),
+            &Vector2::new(o[0], o[1]),
+            0.0,
+        );
+        assert_eq!(paper, zero);
+    }
+    assert_eq!(obstacle::smoothed_sign(-2.0, 0.0), -1.0);
+    assert!((obstacle::smoothed_sign(1e-3, 0.1) - 1e-2).abs() < 1e-5);
+}
+
+#[test]
+fn the_reach_recipe_draws_phi_over_the_whole_torus_above_the_floor() {
+    let arm = Arm::paper();
+    let spec = TrainSpec::reach(&arm, NetKind::Phi, 4);
+    assert!(spec.sampling.whole_torus);
+    assert_eq!(
+        (spec.variant, spec.encoding),
+        (Variant::Equivariant, Encoding::Angles)
+    );
+    let floor = spec.sampling.sigma_floor;
+    assert!((floor - 0.15).abs() < 1e-12, "the paper's arm: 0.15 m");
+    let samples = training::draw_samples(&arm, &spec.sampling, 4000, 4).unwrap();
+    // Every sample respects the floor; together they cover the torus: of
+    // 12 x 12 bins of (theta_2, theta_3), all but those the floor empties
+    // (around the stretched and folded poses) hold samples, and theta_1 is
+    // uniform over its four quadrants.
+    let bins = 12;
+    let mut grid = vec![0usize; bins * bins];
+    let mut quadrants = [0usize; 4];
+    let bin = |a: f64| (((a + PI) / (2.0 * PI) * bins as f64) as usize).min(bins - 1);
+    for s in &samples {
+        let j = arm.jacobian(&DVector::from_column_slice(&s.theta));
+        assert!(ik::smallest_singular_value(&j) >= floor);
+        assert!(s.theta.iter().all(|t| (-PI..PI).contains(t)));
+        grid[bin(s.theta[1]) * bins + bin(s.theta[2])] += 1;
+        quadrants[((s.theta[0] + PI) / (PI / 2.0)) as usize % 4] += 1;
+    }
+    let filled = grid.iter().filter(|&&c| c > 0).count();
+    assert!(filled >= 130, "{filled} of 144 bins hold samples");
+    for q in quadrants {
+        assert!((800..1200).contains(&q), "theta_1 quadrants {quadrants:?}");
+    }
+    // Another arm: the floor scales with the reach.
+    let four = Arm::new(0.5, vec![0.6, 0.85, 0.6, 0.4]).unwrap();
+    let spec4 = TrainSpec::reach(&four, NetKind::Phi, 4);
+    let want = 0.15 * four.max_reach() / arm.max_reach();
+    assert!((spec4.sampling.sigma_floor - want).abs() < 1e-12);
+}
+
+#[test]
+fn the_reach_recipe_puts_obstacles_all_over_the_reach() {
+    for arm in [
+        Arm::paper(),
+        Arm::new(0.5, vec![0.6, 0.85, 0.6, 0.4]).unwrap(),
+    ] {
+        let mut spec = TrainSpec::reach(&arm, NetKind::V, 2);
+        assert_eq!(spec.sampling.sign_smoothing, REACH_SIGN_SMOOTHING);
+        spec.sampling.random_tasks = 12;
+        spec.sampling.obstacles_per_task = 10;
+        let samples = training::draw_samples(&arm, &spec.sampling, 2000, 2).unwrap();
+        let r = arm.max_reach();
+        let post = arm.post();
+        // The region is the atlas's: the box of the reach above the floor.
+        assert_eq!(spec.sampling.obstacle_min, [-r, (post - r).max(0.0)]);
+        assert_eq!(spec.sampling.obstacle_max, [r, post + r]);
+        // Obstacles left and right of the post, below and above its top,
+        // and out to most of the reach.
+        let mut sides = [0usize; 4];
+        let mut far = 0.0f64;
+        for s in &samples {
+            let [x, y] = s.obstacle;
+            sides[usize::from(x > 0.0) + 2 * usize::from(y > post)] += 1;
+            far = far.max(x.hypot(y - post));
+        }
+        assert!(sides.iter().all(|&c| c > 100), "{sides:?}");
+        assert!(far > 0.85 * r, "farthest obstacle {far:.2} of {r:.2} m");
+    }
+}
+
+#[test]
+fn weights_files_record_their_encoding_and_old_files_read_as_raw() {
+    let arm = Arm::paper();
+    let mut spec = Recipe::Reach.spec(&arm, NetKind::Phi, 1);
+    spec.samples = 60;
+    spec.hidden = vec![4];
+    spec.options.max_epochs = 2;
+    let file = training::train_weights(&spec, |_, _| true).unwrap();
+    assert_eq!(file.encoding, Encoding::Angles);
+    assert_eq!(file.range.names[..2], ["sin theta2", "cos theta2"]);
+    let json = file.to_json().unwrap();
+    assert!(json.contains("\"encoding\": \"angles\""));
+    assert_eq!(WeightsFile::from_json(&json).unwrap(), file);
+    // The paper's files carry no encoding and read as raw angles.
+    let mut raw = Recipe::Paper.spec(&arm, NetKind::V, 1);
+    raw.samples = 60;
+    raw.hidden = vec![4];
+    raw.options.max_epochs = 2;
+    let old = training::train_weights(&raw, |_, _| true).unwrap();
+    let json = old.to_json().unwrap();
+    assert!(!json.contains("encoding"));
+    assert_eq!(
+        WeightsFile::from_json(&json).unwrap().encoding,
+        Encoding::Raw
+    );
+    // A file whose network does not fit its encoding is refused.
+    let mut wrong = file.clone();
+    wrong.encoding = Encoding::Raw;
+    assert!(matches!(wrong.validate(), Err(Error::Weights(_))));
+}

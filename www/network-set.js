@@ -1,0 +1,70 @@
+// The network-set selector (`#network-set` in `#network-set-field`): which
+// shipped networks Cases 1-3 run, the paper's recipe or the whole-reach
+// recipe (docs/learning.md). The module names the sets and their files;
+// a set other than the paper's is fetched from beside the page when first
+// chosen (module.js, loadNetworkSet), with a plain message if that fails.
+// Networks trained or loaded by the user show as their own entry.
+
+import { describe, loadNetworkSet, networkSets, method, usesNetworks, limits, formatArm } from './module.js';
+
+/** The select's value for networks that are no shipped set. */
+const OWN = 'own';
+
+/**
+ * Wires the selector under `root`, if the page has one. `show(text, kind)`
+ * reports; `changed()` after a switch (the address). Returns
+ * `{ choose(name) -> Promise, sync(state) }`.
+ */
+export function mountNetworkSet(root, demo, { show, changed }) {
+  const field = root.querySelector('#network-set-field');
+  const select = root.querySelector('#network-set');
+  if (select && !select.options.length) {
+    for (const s of networkSets()) select.add(new Option(s.label, s.name));
+    const own = new Option('trained or loaded here', OWN);
+    own.disabled = true;
+    select.add(own);
+  }
+  let pending = null;
+
+  /** Installs the shipped set `name`, fetching it first if need be; rejects with a readable reason. */
+  async function choose(name) {
+    if (!networkSets().some((s) => s.name === name)) {
+      throw new Error(`unknown network set '${name}': use ${networkSets().map((s) => s.name).join(' or ')}`);
+    }
+    pending = name;
+    if (select) select.disabled = true;
+    try {
+      const why = await loadNetworkSet(name);
+      if (why) throw new Error(`the '${name}' networks could not be loaded: ${why}`);
+      demo.useNetworkSet(name);
+      changed?.();
+    } finally {
+      pending = null;
+      if (select) select.disabled = false;
+    }
+  }
+
+  select?.addEventListener('change', () => {
+    const name = select.value;
+    if (name === OWN) return;
+    show?.(`Loading the '${name}' networks…`, 'info');
+    choose(name).then(
+      () => show?.(`Cases 1-3 now run the '${name}' networks.`, 'info'),
+      (e) => show?.(describe(e), 'error'),
+    );
+  });
+
+  return {
+    choose,
+    /** Shows the set in use, and the selector only where networks run and the shipped sets fit the arm. */
+    sync(s) {
+      if (!field || !select) return;
+      const paper = limits().arm_presets[0];
+      const paperArm = formatArm(s.arm.post, s.arm.links) === formatArm(paper.post, paper.links);
+      field.hidden = !usesNetworks(method(s.mode)) || !paperArm;
+      if (pending) return;
+      const value = s.network_set ?? (s.trained_range ? OWN : select.value);
+      if (select.value !== value) select.value = value;
+    },
+  };
+}
