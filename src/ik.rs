@@ -309,24 +309,24 @@ pub fn damp_phi(phi: &mut [f64], delta: f64) -> Result<()> {
 /// this way with the `J` eq. (21) already evaluates, at the cost of two
 /// small products per step (`docs/learning.md`). An exact pseudoinverse is
 /// left as it is (`J Phi = I`). `phi` row-major (`2n`), `jac` column-major.
-#[inline]
 pub fn refine_phi(phi: &mut [f64], jac: &[f64], steps: u32) -> Result<()> {
-    check_lengths(jac, &[("Phi (n x 2)", phi.len() / 2)])?;
+    // Phi (n x 2) and J (2 x n) have as many entries.
+    if phi.len() != jac.len() {
+        return Err(size_error("Phi (n x 2)", jac.len(), phi.len()));
+    }
     for _ in 0..steps {
-        // J Phi, a 2 x 2 matrix.
-        let mut jp = [[0.0; 2]; 2];
+        // M = 2 I - J Phi, row-major 2 x 2.
+        let mut m = [2.0, 0.0, 0.0, 2.0];
         for (j, p) in jac.chunks_exact(2).zip(phi.chunks_exact(2)) {
-            for a in 0..2 {
-                for b in 0..2 {
-                    jp[a][b] += j[a] * p[b];
-                }
-            }
+            m[0] -= j[0] * p[0];
+            m[1] -= j[0] * p[1];
+            m[2] -= j[1] * p[0];
+            m[3] -= j[1] * p[1];
         }
-        let m = [[2.0 - jp[0][0], -jp[0][1]], [-jp[1][0], 2.0 - jp[1][1]]];
         for row in phi.chunks_exact_mut(2) {
             let (x, y) = (row[0], row[1]);
-            row[0] = x * m[0][0] + y * m[1][0];
-            row[1] = x * m[0][1] + y * m[1][1];
+            row[0] = x * m[0] + y * m[2];
+            row[1] = x * m[1] + y * m[3];
         }
     }
     if phi.iter().any(|x| !x.is_finite()) {

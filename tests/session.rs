@@ -408,3 +408,42 @@ fn dragging_moves_the_obstacle_grabbed() {
     assert_eq!(s.obstacles()[0].centre, [0.5, 0.5]);
     s.drag_end([-0.6, 1.4]).unwrap();
 }
+
+#[test]
+fn a_shipped_network_set_is_installed_by_name_and_the_method_settings_survive_a_task() {
+    use redundant_ik::networks::NetworkSet;
+    use redundant_ik::scene::Param;
+    let mut s = Session::new(1).unwrap();
+    s.set_method(Method::CASE3).unwrap();
+    assert_eq!(
+        s.network_set(),
+        Some(NetworkSet::Paper),
+        "the paper's set by default"
+    );
+    s.use_network_set(NetworkSet::Reach).unwrap();
+    assert_eq!(s.state().network_set, Some("reach"));
+    let range = s.state().trained_range.unwrap().clone();
+    assert!(range.phi.names.iter().any(|n| n == "sin theta2"));
+    s.set_param(Param::Refine, 2.0).unwrap();
+    s.set_param(Param::SignSmoothing, 0.05).unwrap();
+    s.load_task(2).unwrap();
+    let st = s.state();
+    assert_eq!(
+        (st.params["refine"], st.params["sign_smoothing"]),
+        (2.0, 0.05)
+    );
+    assert_eq!(st.network_set, Some("reach"), "a task keeps the networks");
+    // Networks the user installs are no shipped set.
+    s.set_networks(Arc::new(Networks::embedded().unwrap()))
+        .unwrap();
+    assert_eq!(s.network_set(), None);
+    // A shipped set is refused for another arm; the networks in use stay.
+    let mut four = Session::new(1).unwrap();
+    four.set_arm(Arm::new(0.5, vec![0.6, 0.85, 0.6, 0.4]).unwrap())
+        .unwrap();
+    assert!(matches!(
+        four.use_network_set(NetworkSet::Reach),
+        Err(Error::NetworksUnavailable(_))
+    ));
+    assert_eq!(four.network_set(), None);
+}

@@ -102,7 +102,7 @@ fn modes_parse_and_bad_names_throw() {
     assert_eq!(state(&d)["mode"], "numerical");
     for m in redundant_ik::planner::methods::ALL {
         let mode = m.name();
-        match (d.set_method(mode), networks_error()) {
+        match (d.set_method(mode), networks_error(None)) {
             (Ok(()), _) => {
                 assert_eq!(state(&d)["mode"], mode);
                 d.step().unwrap();

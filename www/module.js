@@ -13,9 +13,9 @@ import init, {
   builtinWeightsFiles,
   provideBuiltinNetworks,
   builtinNetworksFailed,
-  builtinNetworksReady,
   networksError,
   networkSets as moduleNetworkSets,
+  networkSetLabels,
   palette,
 } from './pkg/redundant_ik.js';
 
@@ -88,7 +88,6 @@ export function loadNetworkSet(set = 'paper') {
     fetchedSets.set(
       set,
       (async () => {
-        if (builtinNetworksReady(set)) return networksError(set) ?? null;
         try {
           const files = builtinWeightsFiles(set);
           const texts = await Promise.all(
@@ -118,9 +117,12 @@ export function loadNetworkSet(set = 'paper') {
 
 let cachedSets = null;
 
-/** The shipped network sets (after loadModule): `[{ name, label, files: [phi, v] }]`. */
+/** The shipped network sets (after loadModule): `[{ name, label }]`. */
 export function networkSets() {
-  cachedSets ??= moduleNetworkSets();
+  if (!cachedSets) {
+    const labels = networkSetLabels();
+    cachedSets = moduleNetworkSets().map((name, i) => ({ name, label: labels[i] }));
+  }
   return cachedSets;
 }
 

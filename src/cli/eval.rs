@@ -115,6 +115,9 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
             (all, chosen)
         }
     };
+    if *task_nets.arm() != redundant_ik::Arm::paper() {
+        return other_arm(&task_nets, args.json);
+    }
     let test =
         evaluation::fresh_samples(&task_nets, NetKind::Phi, args.samples, args.seed).map_err(e)?;
     let v_test =
@@ -276,4 +279,55 @@ fn render(r: &Report) -> String {
         ));
     }
     t
+}
+
+/// `eval` of networks for an arm other than the paper's, which has no
+/// paper tasks: the check the page's training runs (500 fresh samples, and
+/// the fixed random tasks in which the obstacle matters, open and closed
+/// loop, unrefined and refined).
+fn other_arm(nets: &Networks, json: bool) -> Result<(), String> {
+    let r = redundant_ik::training_job::assess(nets, 500).map_err(|e| e.to_string())?;
+    if json {
+        let s = serde_json::to_string_pretty(&r).map_err(|e| e.to_string())?;
+        return super::emit(&(s + "\n"));
+    }
+    let mut t = format!(
+        "Networks for the arm {}: accuracy on {} fresh samples from the trained range\n\n",
+        nets.arm(),
+        r.phi_error.samples
+    );
+    t.push_str("| network | relative error median | p99 | max |\n|---|---|---|---|\n");
+    for (name, e) in [("Phi", &r.phi_error), ("v", &r.v_error)] {
+        t.push_str(&format!(
+            "| {name} | {:.2e} | {:.2e} | {:.2e} |\n",
+            e.median, e.p99, e.max
+        ));
+    }
+    match &r.random_tasks_note {
+        Some(why) => t.push_str(&format!("\nNo check on random tasks: {why}\n")),
+        None => {
+            t.push_str(&format!(
+                "\nRandom tasks in which the obstacle matters (seed {})\n\n",
+                redundant_ik::training_job::CHECK_SEED
+            ));
+            t.push_str("| K | refine | mode | ok | collided | failed | median final error (m) |\n");
+            t.push_str("|---|---|---|---|---|---|---|\n");
+            for row in &r.random_tasks {
+                let c = &row.check;
+                t.push_str(&format!(
+                    "| {} | {} | {} | {}/{} | {} | {} | {} |\n",
+                    row.feedback,
+                    row.refine,
+                    c.mode,
+                    c.succeeded,
+                    c.tasks,
+                    c.collided,
+                    c.failed,
+                    c.median_final_error
+                        .map_or("-".to_string(), |x| format!("{x:.2e}"))
+                ));
+            }
+        }
+    }
+    super::emit(&t)
 }

@@ -174,12 +174,6 @@ pub fn provide_builtin(
     answer
 }
 
-/// Whether a shipped set has been handed over or loaded (a build without
-/// `embedded-weights` fetches a set when it is first chosen).
-pub fn builtin_ready(set: NetworkSet) -> bool {
-    cfg!(feature = "embedded-weights") || BUILTIN[set.index()].get().is_some()
-}
-
 /// The networks `method` runs with on `arm`: none for a method without
 /// networks; else the `installed` ones if they were trained for `arm`, else
 /// the built-in ones if they were (the paper's arm). The one place that

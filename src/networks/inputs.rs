@@ -9,13 +9,13 @@
 //! `[-1, 1]`. The training set and the run time build their inputs here, so
 //! they cannot disagree.
 
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Deserializer, Serialize};
 
 use super::file::{NetKind, Variant};
 use crate::arm::MAX_LINKS;
 
 /// How joint angles enter a network.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Encoding {
     /// Each angle as it is, in radians (the paper's networks).
@@ -61,6 +61,15 @@ impl std::str::FromStr for Encoding {
                 choices: "raw or angles".into(),
             }),
         }
+    }
+}
+
+/// Read by name through [`std::str::FromStr`], as [`crate::Method`] is:
+/// serde's derived enum reader would cost the page's module 1.1 KB.
+impl<'de> Deserialize<'de> for Encoding {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        let name = String::deserialize(d)?;
+        name.parse().map_err(serde::de::Error::custom)
     }
 }
 

@@ -112,6 +112,15 @@ fn paper_scene(task: u32, damping: bool, feedback: f64) -> Result<Scene> {
     Ok(scene)
 }
 
+/// The settings of the methods that a new task or arm keeps from `old`:
+/// the parameters of the methods beyond the paper, the sign smoothing and
+/// the refinement of a learned `Phi` (the task sets the paper's `lambda`).
+fn keep_method_settings(scene: &mut Scene, old: &Scene) {
+    scene.avoidance = old.avoidance;
+    scene.sign_smoothing = old.sign_smoothing;
+    scene.refine = old.refine;
+}
+
 impl Session {
     /// The paper's task `task` (1 or 2) with the numerical route, damping
     /// on, paused at `t = 0`.
@@ -184,6 +193,7 @@ impl Session {
     pub fn load_task(&mut self, task: u32) -> Result<()> {
         let old = self.planner().scene();
         let mut scene = paper_scene(task, old.damping.is_some(), old.feedback_gain)?;
+        keep_method_settings(&mut scene, old);
         if old.arm != scene.arm {
             // Another arm: the paper's target and obstacle from its own start pose.
             scene.theta0 = start_pose(&old.arm);
@@ -397,9 +407,7 @@ impl Session {
         };
         scene.arm = arm.clone();
         scene.lambda = old.lambda;
-        scene.avoidance = old.avoidance;
-        scene.sign_smoothing = old.sign_smoothing;
-        scene.refine = old.refine;
+        keep_method_settings(&mut scene, &old);
         scene.target = old.target;
         if !arm.can_reach(&scene.target_vector()) {
             scene.target = PAPER_TARGET;

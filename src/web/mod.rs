@@ -94,47 +94,38 @@ fn network_set(set: Option<String>) -> Result<NetworkSet, JsError> {
 }
 
 /// Whether a shipped network set (`paper` when absent) loads: `null` when
-/// it does, else the reason.
+/// it does, else the reason (an unknown set's name included).
 #[wasm_bindgen(js_name = networksError)]
-pub fn networks_error(set: Option<String>) -> Result<Option<String>, JsError> {
-    Ok(networks::builtin_set(network_set(set)?)
+pub fn networks_error(set: Option<String>) -> Option<String> {
+    let set = set.as_deref().map_or(Ok(NetworkSet::Paper), str::parse);
+    set.and_then(networks::builtin_set)
         .err()
-        .map(|e| e.to_string()))
+        .map(|e| e.to_string())
 }
 
-/// The shipped network sets, in the order of the menus: `[{ name, label,
-/// files: [phi, v] }]` (file names in the repository's `weights/`, which
-/// `make web` copies beside the page).
+/// The shipped network sets' names, in the order of the menus
+/// (`builtinWeightsFiles(name)` names their files).
 #[wasm_bindgen(js_name = networkSets)]
-pub fn network_sets() -> Result<JsValue, JsError> {
-    #[derive(Serialize)]
-    struct Set {
-        name: &'static str,
-        label: &'static str,
-        files: [&'static str; 2],
-    }
-    let sets: Vec<Set> = NetworkSet::ALL
-        .iter()
-        .map(|s| Set {
-            name: s.name(),
-            label: s.label(),
-            files: s.files(),
-        })
-        .collect();
-    to_js(&sets)
+pub fn network_sets() -> Vec<String> {
+    NetworkSet::ALL.iter().map(|s| s.name().into()).collect()
+}
+
+/// What a menu says of each shipped set, in the order of [`network_sets`].
+#[wasm_bindgen(js_name = networkSetLabels)]
+pub fn network_set_labels() -> Vec<String> {
+    NetworkSet::ALL.iter().map(|s| s.label().into()).collect()
 }
 
 /// The weights files of a shipped set (`paper` when absent), `[phi, v]`. A
 /// module built without them (the page's) fetches these (the paper's at
 /// start-up, the others when first chosen) and hands them to
 /// [`provide_builtin_networks`].
+/// An unknown set has none.
 #[wasm_bindgen(js_name = builtinWeightsFiles)]
-pub fn builtin_weights_files(set: Option<String>) -> Result<Vec<String>, JsError> {
-    Ok(network_set(set)?
-        .files()
-        .iter()
-        .map(|f| f.to_string())
-        .collect())
+pub fn builtin_weights_files(set: Option<String>) -> Vec<String> {
+    network_set(set)
+        .map(|s| s.files().iter().map(|f| f.to_string()).collect())
+        .unwrap_or_default()
 }
 
 /// Hands the module a shipped set (`paper` when absent): the JSON text of
@@ -150,18 +141,13 @@ pub fn provide_builtin_networks(
     networks::provide_builtin(network_set(set)?, Ok((phi_json, v_json))).map_err(js_err)
 }
 
-/// Whether a shipped set (`paper` when absent) has been handed over.
-#[wasm_bindgen(js_name = builtinNetworksReady)]
-pub fn builtin_networks_ready(set: Option<String>) -> Result<bool, JsError> {
-    Ok(networks::builtin_ready(network_set(set)?))
-}
-
 /// Tells the module why a shipped set (`paper` when absent) could not be
 /// fetched; the methods that need it then say so.
 #[wasm_bindgen(js_name = builtinNetworksFailed)]
-pub fn builtin_networks_failed(why: &str, set: Option<String>) -> Result<(), JsError> {
-    let _ = networks::provide_builtin(network_set(set)?, Err(why.to_string()));
-    Ok(())
+pub fn builtin_networks_failed(why: &str, set: Option<String>) {
+    if let Ok(set) = network_set(set) {
+        let _ = networks::provide_builtin(set, Err(why.to_string()));
+    }
 }
 
 /// Every method, in the order of the menus: `[{ name, label, description,

@@ -24,6 +24,7 @@
 //! audit in one place) and the wasm SIMD kernel (`wasm.rs`); the
 //! activation is [`crate::nn::activation`].
 
+#[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
 mod portable;
 #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
 mod wasm;
@@ -31,6 +32,7 @@ mod wasm;
 mod x86;
 
 use crate::nn::mlp::{MapMinMax, Mlp};
+#[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
 use portable::forward_portable;
 
 /// Widths are padded to a multiple of this many neurons (four `f64` = one
@@ -180,9 +182,16 @@ impl Kernel {
     #[inline]
     pub fn forward(&self, x: &[f64], y: &mut [f64]) {
         #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-        if self.widest <= STACK_WIDTH {
-            return wasm::forward(self, x, y);
-        }
+        wasm::forward(self, x, y);
+        #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
+        self.forward_buffered(x, y);
+    }
+
+    /// The portable (and AVX2) forward pass, on the stack up to
+    /// [`STACK_WIDTH`] neurons, through a heap buffer per call beyond.
+    #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
+    #[inline]
+    fn forward_buffered(&self, x: &[f64], y: &mut [f64]) {
         if self.widest <= STACK_WIDTH {
             let mut a = [0.0; STACK_WIDTH];
             let mut b = [0.0; STACK_WIDTH];
@@ -194,6 +203,7 @@ impl Kernel {
         }
     }
 
+    #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
     #[inline]
     fn dispatch(&self, x: &[f64], y: &mut [f64], a: &mut [f64], b: &mut [f64]) {
         #[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]

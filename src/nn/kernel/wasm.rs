@@ -52,10 +52,20 @@ impl Layer {
     }
 }
 
+/// The forward pass: on the stack up to [`STACK_WIDTH`] neurons, through
+/// a heap buffer per call beyond (so the SIMD build needs no portable
+/// kernel: 1 KB of the page's gzipped module).
 pub(super) fn forward(k: &Kernel, x: &[f64], y: &mut [f64]) {
     let zero = f64x2_splat(0.0);
-    let mut a = [zero; PAIRS];
-    let mut b = [zero; PAIRS];
+    if k.widest <= STACK_WIDTH {
+        forward_in(k, x, y, &mut [zero; PAIRS], &mut [zero; PAIRS]);
+    } else {
+        let pairs = k.widest.div_ceil(2);
+        forward_in(k, x, y, &mut vec![zero; pairs], &mut vec![zero; pairs]);
+    }
+}
+
+fn forward_in(k: &Kernel, x: &[f64], y: &mut [f64], a: &mut [v128], b: &mut [v128]) {
     // The raw inputs, two per v128 (the rest zero).
     for (i, xi) in x.iter().take(k.n_in).enumerate() {
         a[i / 2] = if i % 2 == 0 {
@@ -64,7 +74,7 @@ pub(super) fn forward(k: &Kernel, x: &[f64], y: &mut [f64]) {
             f64x2_replace_lane::<1>(a[i / 2], *xi)
         };
     }
-    let (mut cur, mut next) = (&mut a, &mut b);
+    let (mut cur, mut next) = (a, b);
     for layer in &k.simd {
         let z = &mut next[..layer.width / 2];
         let (mut o0, mut w0) = (0, 0);
