@@ -3,8 +3,10 @@
 //! the smoothed sign of the area criterion, and the `reach` recipe's
 //! sampling.
 
-#[cfg(target_arch = "wasm32")]
+#[cfg(target_family = "wasm")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
+#[cfg(target_family = "wasm")]
+wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 
 use std::f64::consts::PI;
 

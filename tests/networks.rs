@@ -515,6 +515,33 @@ fn the_run_time_kernels_move_the_shipped_networks_outputs_by_less_than_1e_9() {
 }
 
 #[test]
+fn networks_wider_than_the_stack_buffers_run_the_same_kernel_through_the_heap() {
+    // The whole-reach networks may be wide (Adam trains 96-96): the kernels
+    // take them through a heap buffer (the SIMD build too, which carries no
+    // portable kernel), with the same results.
+    let mut rng = Rng::new(9);
+    for sizes in [vec![4, 96, 96, 6], vec![3, 130, 2], vec![70, 8, 3]] {
+        let n_in = sizes[0];
+        let n_out = *sizes.last().unwrap();
+        let input_map = MapMinMax::fit(&vec![-1.0, 1.0].repeat(n_in), n_in);
+        let output_map = MapMinMax::fit(&vec![-2.0, 3.0].repeat(n_out), n_out);
+        let mlp = Mlp::nguyen_widrow(&sizes, input_map, output_map, &mut rng).unwrap();
+        let kernel = Kernel::new(&mlp);
+        let mut y = vec![0.0; n_out];
+        for _ in 0..200 {
+            let x: Vec<f64> = (0..n_in).map(|_| rng.range(-1.2, 1.2)).collect();
+            kernel.forward(&x, &mut y);
+            for (a, b) in y.iter().zip(&reference_forward(&mlp, &x)) {
+                assert!(
+                    (a - b).abs() <= 1e-9 * (1.0 + b.abs()),
+                    "{sizes:?}: {a} vs {b}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
 fn tansig_is_within_5e_16_of_tanh() {
     let mut worst = 0.0f64;
     let n = 400_000;
