@@ -17,7 +17,7 @@ use crate::atlas;
 use crate::error::{Error, Result};
 use crate::nalgebra::Vector2;
 use crate::networks::Networks;
-use crate::networks::{Encoding, Sampling, Variant};
+use crate::networks::{Encoding, NetworkSet, Sampling, Variant};
 use crate::nn::lm::{LmOptions, LmTrainer};
 use crate::nn::mlp::{MapMinMax, Mlp};
 use crate::nn::Rng;
@@ -48,6 +48,13 @@ pub struct Options {
     /// The methods to time (the paper's five by default).
     #[serde(default = "paper_methods")]
     pub methods: Vec<Method>,
+    /// The shipped network set the network methods run (the paper's by
+    /// default).
+    #[serde(default)]
+    pub networks: NetworkSet,
+    /// Newton-Schulz steps on the learned `Phi` (0, the paper's, by default).
+    #[serde(default)]
+    pub refine: u32,
 }
 
 fn paper_methods() -> Vec<Method> {
@@ -63,6 +70,8 @@ impl Default for Options {
             paper_variants: true,
             atlas: true,
             methods: paper_methods(),
+            networks: NetworkSet::Paper,
+            refine: 0,
         }
     }
 }
@@ -206,8 +215,15 @@ fn median(v: &mut [f64]) -> f64 {
     }
 }
 
-fn shipped() -> Result<Arc<dyn Surrogate>> {
-    Ok(Arc::new(Networks::embedded()?))
+fn shipped(opts: &Options) -> Result<Arc<dyn Surrogate>> {
+    Ok(crate::networks::builtin_set(opts.networks)?)
+}
+
+/// Task 1 with the refinement the options ask for.
+fn scene(opts: &Options) -> Result<Scene> {
+    let mut scene = Scene::task1();
+    crate::scene::Param::Refine.set(&mut scene, f64::from(opts.refine))?;
+    Ok(scene)
 }
 
 /// Task 1's line velocity, the `Xdot` of every `theta_dot` measured.
@@ -219,7 +235,7 @@ fn task1_xdot() -> Vector2<f64> {
 
 /// One `theta_dot` of `mode` at Task 1's start pose (ns).
 pub fn theta_dot_ns(mode: Method, opts: &Options, probes: &Probes) -> Result<f64> {
-    let mut p = Planner::new(Scene::task1(), mode, Some(shipped()?))?;
+    let mut p = Planner::new(scene(opts)?, mode, Some(shipped(opts)?))?;
     let th: Vec<f64> = p.theta().iter().copied().collect();
     let xdot = task1_xdot();
     let xdot = [xdot[0], xdot[1]];
@@ -234,7 +250,7 @@ pub fn theta_dot_ns(mode: Method, opts: &Options, probes: &Probes) -> Result<f64
 /// One RK4 step of Task 1 in `mode`, sample included (ns); the task restarts
 /// every 100 steps.
 pub fn step_ns(mode: Method, opts: &Options, probes: &Probes) -> Result<f64> {
-    let mut p = Planner::new(Scene::task1(), mode, Some(shipped()?))?;
+    let mut p = Planner::new(scene(opts)?, mode, Some(shipped(opts)?))?;
     let n = p.scene().steps();
     let mut k = 0;
     time_ns(opts, probes, || {
@@ -250,8 +266,8 @@ pub fn step_ns(mode: Method, opts: &Options, probes: &Probes) -> Result<f64> {
 
 /// Heap allocations per RK4 step of Task 1 in `mode`, over one whole run,
 /// once the planner exists.
-pub fn allocs_per_step(mode: Method, count: &dyn Fn() -> u64) -> Result<f64> {
-    let mut p = Planner::new(Scene::task1(), mode, Some(shipped()?))?;
+pub fn allocs_per_step(mode: Method, opts: &Options, count: &dyn Fn() -> u64) -> Result<f64> {
+    let mut p = Planner::new(scene(opts)?, mode, Some(shipped(opts)?))?;
     let n = p.scene().steps();
     let before = count();
     for _ in 0..n {
@@ -370,7 +386,7 @@ pub fn run(opts: &Options, probes: &Probes) -> Result<Report> {
     };
     let allocs = match probes.allocations {
         Some(count) => Some(PerMethod::from_fn(&opts.methods, |m| {
-            allocs_per_step(m, count)
+            allocs_per_step(m, opts, count)
         })?),
         None => None,
     };

@@ -32,6 +32,12 @@ pub struct BenchArgs {
     /// paper's five, `all` for every method.
     #[arg(long, default_value = "paper")]
     pub modes: String,
+    /// The shipped network set the network methods run: paper or reach.
+    #[arg(long, default_value = "paper", value_parser = ["paper", "reach"])]
+    pub networks: String,
+    /// Newton-Schulz steps on the learned Phi (Cases 1 and 3; 0 = the paper's).
+    #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=8))]
+    pub refine: u32,
     /// Run the networks on the portable x86-64 baseline kernels instead of
     /// the AVX2 + FMA ones chosen at run time (to measure what that choice buys).
     #[arg(long)]
@@ -53,6 +59,8 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         paper_variants: true,
         atlas: !args.no_atlas,
         methods: Method::parse_list(&args.modes).map_err(|e| e.to_string())?,
+        networks: args.networks.parse().map_err(|e: redundant_ik::Error| e.to_string())?,
+        refine: args.refine,
     };
     redundant_ik::nn::kernel::set_runtime_dispatch(!args.baseline_kernels);
     #[allow(clippy::disallowed_methods)] // the native CLI has a clock
