@@ -14,12 +14,23 @@ impl Planner {
         &self.sample
     }
 
-    /// Refreshes the sample after a change of setting (same state, same step).
+    /// Refreshes the sample after a change of setting (same state, same
+    /// step), and the summary with it: before the first step the run is its
+    /// start alone, so the summary starts afresh from the new sample; later
+    /// the new distance and collision join the run's smallest distance and
+    /// its collision flag (the obstacle moved next to the arm is the closest
+    /// it came).
     pub(super) fn resample(&mut self) {
         self.refresh_sample(Note {
             handover: self.sample.phi_handover,
             relaxed: self.sample.relaxed,
         });
+        if self.step_index == 0 {
+            self.stats = super::record::Stats::new();
+            self.stats.record(&self.sample);
+        } else {
+            self.stats.observe(&self.sample);
+        }
     }
 
     /// Rewrites the sample in place from the current pose; `note` is what

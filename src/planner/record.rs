@@ -201,10 +201,7 @@ impl Stats {
     }
 
     pub(super) fn record(&mut self, s: &Sample) {
-        if let Some(d) = s.distance {
-            self.min_distance = Some(self.min_distance.map_or(d, |m| m.min(d)));
-        }
-        self.collided |= s.collision;
+        self.observe(s);
         self.max_tracking_error = self.max_tracking_error.max(s.tracking_error);
         if !s.in_range {
             self.out_of_range_steps += 1;
@@ -216,5 +213,14 @@ impl Stats {
         if s.relaxed {
             self.relaxed_steps += 1;
         }
+    }
+
+    /// Folds a sample's distance and collision into the run's (a change of
+    /// setting between steps: no step is counted).
+    pub(super) fn observe(&mut self, s: &Sample) {
+        if let Some(d) = s.distance {
+            self.min_distance = Some(self.min_distance.map_or(d, |m| m.min(d)));
+        }
+        self.collided |= s.collision;
     }
 }

@@ -29,7 +29,7 @@ use crate::twin::Twin;
 
 pub use clock::MAX_STEPS_PER_FRAME;
 pub use compare::MethodRun;
-pub use history::{Point, STROBE_EVERY};
+pub use history::{below_floor, Point, STROBE_EVERY};
 pub use pointer::{Handle, DRAG_LINE_SPEED, MIN_LINE_DURATION, NUDGE};
 pub use state::{GhostState, State};
 
@@ -71,7 +71,9 @@ pub struct Session {
     networks: Option<Installed>,
     task: u32,
     running: bool,
-    stop_at: Option<f64>,
+    /// Whether the first obstacle is the paper's (placed by a task; the
+    /// others are the user's, which the task buttons keep).
+    paper_first: bool,
     speed: f64,
     backlog: f64,
     prev_theta: Vec<f64>,
@@ -120,7 +122,7 @@ impl Session {
             networks: None,
             task,
             running: false,
-            stop_at: None,
+            paper_first: true,
             speed: 2.0,
             backlog: 0.0,
             prev_theta: Vec::new(),
@@ -175,25 +177,47 @@ impl Session {
         networks::available(self.arm(), self.installed()).is_ok()
     }
 
-    /// Loads the paper's scene `task` (obstacle, start pose, target and
-    /// `lambda = 4`), keeping the method, the damping switch and the
-    /// feedback gain, and runs it from `t = 0` to `tf`. With an arm other
-    /// than the paper's, the arm stays and starts from [`start_pose`].
+    /// Loads the paper's scene `task` (start pose, target, `lambda = 4` and
+    /// the paper's obstacle in place of the first), keeping the obstacles
+    /// the user added, the method, the damping switch and the feedback
+    /// gain, and runs it from `t = 0` to `tf`. With an arm other than the
+    /// paper's, the arm stays and starts from [`start_pose`] (obstacles that
+    /// would overlap its post are left out).
     pub fn load_task(&mut self, task: u32) -> Result<()> {
         let old = self.planner().scene();
         let mut scene = paper_scene(task, old.damping.is_some(), old.feedback_gain)?;
+        let paper = scene.obstacles[0];
+        let mut obstacles = old.obstacles.clone();
+        if self.paper_first && !obstacles.is_empty() {
+            obstacles[0] = paper;
+        } else {
+            obstacles.insert(0, paper);
+            obstacles.truncate(MAX_OBSTACLES);
+        }
+        scene.obstacles = obstacles;
         if old.arm != scene.arm {
             // Another arm: the paper's target and obstacle from its own start pose.
             scene.theta0 = start_pose(&old.arm);
             scene.arm = old.arm.clone();
             scene.obstacles.retain(|o| o.validate(&scene.arm).is_ok());
         }
+        let paper_first = scene.obstacles.first() == Some(&paper);
         let planner = Planner::new(scene, self.planner().method(), self.networks().cloned())?;
         self.twin.replace(planner);
         self.task = task;
+        self.paper_first = paper_first;
         self.restart();
         self.run_to_end();
         Ok(())
+    }
+
+    /// After a change to the scene: a run that has ended replays from
+    /// `t = 0`, so the change shows (while a run goes on, or waits at
+    /// `t = 0`, it takes effect at the next step).
+    fn after_change(&mut self) {
+        if self.ended() && !self.running && self.drag.is_none() {
+            self.run_task();
+        }
     }
 
     /// Back to `t = 0` of the current scene, paused, histories cleared.
@@ -210,7 +234,6 @@ impl Session {
 
     fn restart(&mut self) {
         self.running = false;
-        self.stop_at = None;
         self.backlog = 0.0;
         self.error = None;
         self.drag = None;
@@ -230,6 +253,7 @@ impl Session {
         }
         self.twin.set_method(method)?;
         self.remember_poses();
+        self.after_change();
         Ok(())
     }
 
@@ -249,24 +273,30 @@ impl Session {
 
     /// Sets `lambda`, the gain of the obstacle vector (eq. 14).
     pub fn set_lambda(&mut self, lambda: f64) -> Result<()> {
-        self.twin.apply(|p| p.set_lambda(lambda))
+        self.set_param(Param::Lambda, lambda)
     }
 
     /// Sets a parameter of the methods ([`Param`]), for the planner and the
     /// ghost; refused, changing nothing, when out of its bounds.
     pub fn set_param(&mut self, param: Param, value: f64) -> Result<()> {
-        self.twin.apply(|p| p.set_param(param, value))
+        self.twin.apply(|p| p.set_param(param, value))?;
+        self.after_change();
+        Ok(())
     }
 
     /// Switches the damping schedule on or off.
     pub fn set_damping(&mut self, on: bool) -> Result<()> {
         self.twin
-            .apply(|p| p.set_damping(on.then(DampingSchedule::default)))
+            .apply(|p| p.set_damping(on.then(DampingSchedule::default)))?;
+        self.after_change();
+        Ok(())
     }
 
     /// Closed-loop gain `K` (1/s), for the planner and the ghost.
     pub fn set_feedback(&mut self, gain: f64) -> Result<()> {
-        self.twin.apply(|p| p.set_feedback_gain(gain))
+        self.twin.apply(|p| p.set_feedback_gain(gain))?;
+        self.after_change();
+        Ok(())
     }
 
     /// Simulated seconds per real second (0.05 to 50).
@@ -280,9 +310,9 @@ impl Session {
     /// none; refused, leaving it where it was, on the base post.
     pub fn set_obstacle(&mut self, centre: [f64; 2]) -> Result<()> {
         if self.obstacles().is_empty() {
-            return self
-                .add_obstacle(Obstacle::new(centre[0], centre[1], PAPER_RADIUS))
-                .map(|_| ());
+            self.add_obstacle(Obstacle::new(centre[0], centre[1], PAPER_RADIUS))?;
+            self.paper_first = true;
+            return Ok(());
         }
         self.move_obstacle(0, centre)
     }
@@ -293,8 +323,16 @@ impl Session {
     }
 
     /// Moves obstacle `index` to `centre`, keeping its radius; refused,
-    /// leaving it where it was, on the base post.
+    /// leaving it where it was, on the base post. A run that has ended
+    /// replays with it there.
     pub fn move_obstacle(&mut self, index: usize, centre: [f64; 2]) -> Result<()> {
+        self.place_obstacle(index, centre)?;
+        self.after_change();
+        Ok(())
+    }
+
+    /// Moves obstacle `index` without replaying (while it is dragged).
+    fn place_obstacle(&mut self, index: usize, centre: [f64; 2]) -> Result<()> {
         self.twin.apply(|p| p.move_obstacle(index, centre))
     }
 
@@ -309,7 +347,10 @@ impl Session {
                 max: MAX_OBSTACLES as f64,
             });
         }
-        self.twin.apply(|p| p.set_obstacles(obstacles.clone()))
+        self.twin.apply(|p| p.set_obstacles(obstacles.clone()))?;
+        self.paper_first &= !self.obstacles().is_empty();
+        self.after_change();
+        Ok(())
     }
 
     /// Adds an obstacle; returns its index. Refused beyond
@@ -337,7 +378,9 @@ impl Session {
         if self.drag == Some(Handle::Obstacle(index)) {
             self.drag = None;
         }
-        self.set_obstacles(all)
+        self.set_obstacles(all)?;
+        self.paper_first &= index != 0;
+        Ok(())
     }
 
     /// The arm.
@@ -390,7 +433,9 @@ impl Session {
             m if m.uses_networks() && nets.is_none() => Method::NUMERICAL,
             m => m,
         };
+        let paper_first = self.paper_first && scene.obstacles.first() == old.obstacles.first();
         let planner = Planner::new(scene, method, nets.as_ref().map(|n| n.surrogate.clone()))?;
+        self.paper_first = paper_first;
         self.networks = nets;
         self.twin.replace(planner);
         self.restart();
