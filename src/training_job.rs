@@ -156,6 +156,94 @@ pub struct Report {
     /// The networks are kept all the same.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub random_tasks_note: Option<String>,
+    /// Whether the networks pass this check ([`Verdict`]).
+    pub verdict: Verdict,
+}
+
+/// Share of the tasks the numerical route succeeds on that a network case
+/// must succeed on too (with the drift corrected) to pass the check.
+pub const PASS_SHARE: f64 = 0.5;
+
+/// Whether trained networks pass their own check: on the paper's arm, the
+/// network cases that use them reach both of the paper's targets without
+/// collision (the tasks the paper's arm is trained on); on another arm,
+/// each of those cases succeeds, with the drift corrected, on at least
+/// [`PASS_SHARE`] of the random tasks the numerical route succeeds on.
+/// Networks that fail it are not swapped in unless the user asks.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Verdict {
+    /// Whether they pass.
+    pub passed: bool,
+    /// What was checked.
+    pub checked: String,
+    /// What failed, one sentence each (empty when they pass).
+    pub failures: Vec<String>,
+}
+
+impl Verdict {
+    /// The verdict on `report` for networks `which` were trained.
+    pub fn of(report: &Report, which: Which) -> Self {
+        let cases: &[Method] = match which {
+            Which::Both => &[Method::CASE1, Method::CASE2, Method::CASE3],
+            Which::Phi => &[Method::CASE1, Method::CASE3],
+            Which::V => &[Method::CASE2, Method::CASE3],
+        };
+        let labels = cases
+            .iter()
+            .map(|m| m.label())
+            .collect::<Vec<_>>()
+            .join(", ");
+        let mut failures = Vec::new();
+        let checked = if !report.paper_tasks.is_empty() {
+            for t in &report.paper_tasks {
+                if cases.contains(&t.mode) && !t.success() {
+                    failures.push(format!(
+                        "{} misses Task {} ({}, {:.1} mm from the target)",
+                        t.mode.label(),
+                        t.task,
+                        if t.collided {
+                            "collides"
+                        } else {
+                            "no collision"
+                        },
+                        t.final_error * 1000.0
+                    ));
+                }
+            }
+            format!("{labels} on the paper's Tasks 1 and 2")
+        } else if let Some(numerical) = report
+            .random_tasks
+            .iter()
+            .find(|r| r.feedback > 0.0 && r.check.mode == Method::NUMERICAL.name())
+        {
+            let wanted = (PASS_SHARE * numerical.check.succeeded as f64).ceil() as usize;
+            for r in &report.random_tasks {
+                let Some(case) = cases.iter().find(|m| m.name() == r.check.mode) else {
+                    continue;
+                };
+                if r.feedback > 0.0 && r.check.succeeded < wanted.max(1) {
+                    failures.push(format!(
+                        "{} succeeds on {} of {} random tasks with the drift corrected (the numerical route on {})",
+                        case.label(),
+                        r.check.succeeded,
+                        r.check.tasks,
+                        numerical.check.succeeded
+                    ));
+                }
+            }
+            format!(
+                "{labels} on {} random tasks of this arm, with the drift corrected",
+                numerical.check.tasks
+            )
+        } else {
+            "nothing: this arm has no task in which the obstacle matters".into()
+        };
+        Self {
+            passed: failures.is_empty(),
+            checked,
+            failures,
+        }
+    }
 }
 
 /// One line of the task check.
@@ -276,6 +364,7 @@ pub fn train(
     let mut report = assess(&nets, samples)?;
     report.phi = phi_report;
     report.v = v_report;
+    report.verdict = Verdict::of(&report, request.net);
     Ok(Trained { phi, v, report })
 }
 
@@ -327,7 +416,7 @@ pub fn assess(nets: &Networks, samples: usize) -> Result<Report> {
             });
         }
     }
-    Ok(Report {
+    let mut report = Report {
         samples,
         phi: None,
         v: None,
@@ -336,5 +425,12 @@ pub fn assess(nets: &Networks, samples: usize) -> Result<Report> {
         paper_tasks,
         random_tasks,
         random_tasks_note,
-    })
+        verdict: Verdict {
+            passed: true,
+            checked: String::new(),
+            failures: Vec::new(),
+        },
+    };
+    report.verdict = Verdict::of(&report, Which::Both);
+    Ok(report)
 }

@@ -158,6 +158,43 @@ fn training_for_a_four_link_arm_gives_networks_the_planner_takes() {
             assert_eq!(row.check.succeeded, training_job::CHECK_TASKS);
         }
     }
+    // Four epochs are not enough: the networks fail their own check, and
+    // the verdict names each case that fails and the numbers.
+    let case3 = r
+        .random_tasks
+        .iter()
+        .find(|row| row.feedback > 0.0 && row.check.mode == "case3")
+        .unwrap();
+    assert!(case3.check.succeeded < 5, "{}", case3.check.succeeded);
+    assert!(!r.verdict.passed);
+    assert!(
+        r.verdict.checked.contains("10 random tasks"),
+        "{}",
+        r.verdict.checked
+    );
+    let line = r
+        .verdict
+        .failures
+        .iter()
+        .find(|f| f.starts_with("Case 3"))
+        .unwrap();
+    assert!(
+        line.contains(&format!("succeeds on {} of 10", case3.check.succeeded)),
+        "{line}"
+    );
+    let json = serde_json::to_value(r).unwrap();
+    assert_eq!(json["verdict"]["passed"], false);
+}
+
+#[test]
+fn the_shipped_networks_pass_their_own_check() {
+    let r = training_job::assess(&Networks::embedded().unwrap(), 3000).unwrap();
+    assert!(r.verdict.passed, "{:?}", r.verdict.failures);
+    assert!(
+        r.verdict.checked.contains("Tasks 1 and 2"),
+        "{}",
+        r.verdict.checked
+    );
 }
 
 #[test]
@@ -233,4 +270,6 @@ fn an_arm_without_avoidance_tasks_still_gets_its_networks_and_the_report_says_wh
     assert!(note.contains("where the obstacle matters"), "{note}");
     let json = serde_json::to_value(&trained.report).unwrap();
     assert_eq!(json["random_tasks_note"], note);
+    assert!(trained.report.verdict.passed, "nothing to fail");
+    assert!(trained.report.verdict.checked.starts_with("nothing"));
 }
