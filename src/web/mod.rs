@@ -37,6 +37,8 @@ mod style;
 #[cfg(feature = "page")]
 mod surface;
 #[cfg(feature = "worker")]
+mod takeaway;
+#[cfg(feature = "worker")]
 mod worker;
 
 use std::cell::RefCell;
@@ -50,6 +52,8 @@ use crate::networks;
 
 #[cfg(feature = "page")]
 pub use demo::Demo;
+#[cfg(feature = "worker")]
+pub use takeaway::*;
 #[cfg(feature = "worker")]
 pub use worker::*;
 
