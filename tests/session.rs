@@ -657,3 +657,46 @@ fn a_link_below_the_floor_is_reported() {
     tick_until_stopped(&mut s, 10_000);
     assert_eq!(s.state().below_floor_steps, 0);
 }
+
+#[test]
+fn a_run_of_its_own_starts_where_its_address_says() {
+    let mut s = Session::new(1).unwrap();
+    assert!(!s.state().own_start);
+    let pose = vec![0.3, 1.4, -0.2];
+    s.set_start(pose.clone(), 3.0).unwrap();
+    let st = s.state();
+    assert_eq!(
+        (st.theta0, st.tf, st.own_start, st.t),
+        (pose.as_slice(), 3.0, true, 0.0)
+    );
+    assert_eq!(st.theta, pose.as_slice());
+    assert!(
+        s.set_start(vec![0.3, 1.4], 3.0).is_err(),
+        "one angle per joint"
+    );
+    assert!(s.set_start(pose.clone(), 3.05).is_err(), "whole steps");
+    assert!(s.set_start(vec![f64::NAN, 1.4, -0.2], 3.0).is_err());
+    assert_eq!(s.state().tf, 3.0, "refusals change nothing");
+    s.load_task(2).unwrap();
+    assert!(!s.state().own_start, "a task starts from its own pose");
+}
+
+#[test]
+fn the_comparison_says_when_a_hit_is_unavoidable() {
+    let mut s = Session::new(1).unwrap();
+    assert!(s.compare_methods().iter().all(|r| r.unavoidable.is_none()));
+    // On the straight line from the hand to the target.
+    let line = s.state().line;
+    let mid = [
+        (line.start[0] + line.end[0]) / 2.0,
+        (line.start[1] + line.end[1]) / 2.0,
+    ];
+    s.set_obstacle(mid).unwrap();
+    let rows = s.compare_methods();
+    assert!(rows.iter().all(|r| r.unavoidable == Some("path_blocked")));
+    // Every method hits it or stops short of the target (the QP's dampers).
+    assert!(rows
+        .iter()
+        .filter_map(|r| r.summary.as_ref())
+        .all(|m| m.collided || !m.reached));
+}

@@ -11,6 +11,7 @@
 //! can report progress and cancel between them: a progress bar in the
 //! command-line tool, a Web Worker's messages in the page.
 
+mod geometry;
 mod grid;
 mod read;
 mod summary;
@@ -20,12 +21,12 @@ use std::sync::Arc;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
-use crate::geometry::segment_distance_squared;
-use crate::kinematics::Pose;
 use crate::networks::Networks;
 use crate::planner::{methods, Method, Planner, Surrogate};
 use crate::scene::Scene;
 
+pub use geometry::unavoidable;
+use geometry::Geometry;
 pub use grid::{Grid, DEFAULT_GRID, MAX_GRID};
 pub use summary::{Agreement, Clearance, ModeSummary, Rate};
 
@@ -221,44 +222,6 @@ impl Atlas {
     /// The summary of `mode`.
     pub fn summary_of(&self, mode: Method) -> Option<&ModeSummary> {
         self.summary.iter().find(|s| s.mode == mode)
-    }
-}
-
-/// The start pose and the path, which decide `start_overlap` and
-/// `path_blocked` for every mode at once.
-#[derive(Debug, Clone)]
-struct Geometry {
-    start: Pose,
-    post_top: [f64; 2],
-    path: [[f64; 2]; 2],
-    radius: f64,
-}
-
-impl Geometry {
-    fn new(scene: &Scene, radius: f64) -> Result<Self> {
-        let start = Pose::new(&scene.arm, &scene.theta0)?;
-        let path = [start.end_effector(), scene.target];
-        Ok(Self {
-            post_top: [0.0, scene.arm.post()],
-            start,
-            path,
-            radius,
-        })
-    }
-
-    /// `start_overlap`, `path_blocked` or neither (`None`) for a centre.
-    /// "Touches" and "covers" use the planner's collision test, distance
-    /// below the radius; the post as [`crate::Obstacle::validate`] does.
-    fn classify(&self, o: [f64; 2]) -> Option<Class> {
-        let r2 = self.radius * self.radius;
-        let post = segment_distance_squared(o, [0.0, 0.0], self.post_top);
-        if post <= r2 || self.start.clearance(o) < self.radius {
-            Some(Class::StartOverlap)
-        } else if segment_distance_squared(o, self.path[0], self.path[1]) < r2 {
-            Some(Class::PathBlocked)
-        } else {
-            None
-        }
     }
 }
 

@@ -5,10 +5,7 @@
 
 use std::fmt::Write as _;
 
-use nalgebra::Vector2;
-
 use crate::atlas::Atlas;
-use crate::obstacle;
 use crate::planner::Sample;
 use crate::scene::Scene;
 
@@ -39,19 +36,11 @@ pub fn run_csv(scene: &Scene, steps: &[Sample]) -> String {
         let _ = write!(out, ",{c}");
     }
     out.push('\n');
-    let mut joints = Vec::with_capacity(n + 1);
     for s in steps {
         let _ = write!(out, "{:?}", s.t);
         for th in &s.theta {
             let _ = write!(out, ",{th:?}");
         }
-        joints.clear();
-        joints.extend(s.joints.iter().map(|p| Vector2::new(p[0], p[1])));
-        let clearance = scene
-            .obstacles
-            .iter()
-            .map(|o| obstacle::clearance(&joints, &o.point()) - o.radius)
-            .min_by(f64::total_cmp);
         let _ = write!(
             out,
             ",{:?},{:?},{:?},{:?},{:?},{},{}",
@@ -60,7 +49,7 @@ pub fn run_csv(scene: &Scene, steps: &[Sample]) -> String {
             s.reference[0],
             s.reference[1],
             s.tracking_error,
-            clearance.map_or(String::new(), |c| format!("{c:?}")),
+            s.clearance.map_or(String::new(), |c| format!("{c:?}")),
             u8::from(s.collision)
         );
         out.push('\n');

@@ -74,6 +74,9 @@ pub struct Session {
     /// Whether the first obstacle is the paper's (placed by a task; the
     /// others are the user's, which the task buttons keep).
     paper_first: bool,
+    /// Whether the run starts from a pose of its own (a line dropped from
+    /// where the hand was), not from the task's start pose.
+    own_start: bool,
     speed: f64,
     backlog: f64,
     prev_theta: Vec<f64>,
@@ -123,6 +126,7 @@ impl Session {
             task,
             running: false,
             paper_first: true,
+            own_start: false,
             speed: 2.0,
             backlog: 0.0,
             prev_theta: Vec::new(),
@@ -206,17 +210,27 @@ impl Session {
         self.twin.replace(planner);
         self.task = task;
         self.paper_first = paper_first;
+        self.own_start = false;
         self.restart();
         self.run_to_end();
         Ok(())
     }
 
     /// After a change to the scene: a run that has ended replays from
-    /// `t = 0`, so the change shows (while a run goes on, or waits at
-    /// `t = 0`, it takes effect at the next step).
+    /// `t = 0`, so the change shows; while a run goes on (or waits at
+    /// `t = 0`) it takes effect at the next step, and the readouts of the
+    /// run take in the distance it makes now.
     fn after_change(&mut self) {
-        if self.ended() && !self.running && self.drag.is_none() {
+        if self.drag.is_some() {
+            return;
+        }
+        if self.ended() && !self.running {
             self.run_task();
+        } else {
+            let _ = self.twin.apply(|p| {
+                p.observe_now();
+                Ok(())
+            });
         }
     }
 
@@ -436,6 +450,7 @@ impl Session {
         let paper_first = self.paper_first && scene.obstacles.first() == old.obstacles.first();
         let planner = Planner::new(scene, method, nets.as_ref().map(|n| n.surrogate.clone()))?;
         self.paper_first = paper_first;
+        self.own_start = false;
         self.networks = nets;
         self.twin.replace(planner);
         self.restart();

@@ -59,6 +59,22 @@ impl Session {
         scene.tf = (duration / scene.dt - 1e-9).ceil().max(1.0) * scene.dt;
         let planner = Planner::new(scene, p.method(), p.networks().cloned())?;
         self.twin.replace(planner);
+        self.own_start = true;
+        self.restart();
+        Ok(())
+    }
+
+    /// Starts the run from the pose `theta0` and ends it at `tf` (the
+    /// page's address of a run whose line was dropped from another pose),
+    /// paused at `t = 0`; refused, changing nothing, on a bad pose or time.
+    pub fn set_start(&mut self, theta0: Vec<f64>, tf: f64) -> Result<()> {
+        let p = self.planner();
+        let mut scene = p.scene().clone();
+        scene.theta0 = theta0;
+        scene.tf = tf;
+        let planner = Planner::new(scene, p.method(), p.networks().cloned())?;
+        self.twin.replace(planner);
+        self.own_start = true;
         self.restart();
         Ok(())
     }

@@ -30,6 +30,11 @@ pub struct State<'a> {
     pub ended: bool,
     /// The run's final time, where its line ends (s).
     pub tf: f64,
+    /// Its start pose, and whether that is its own (a line dropped from
+    /// where the hand was) rather than the task's.
+    pub theta0: &'a [f64],
+    /// See `theta0`.
+    pub own_start: bool,
     /// Simulated seconds per real second.
     pub speed: f64,
     /// Gain of the obstacle vector.
@@ -161,6 +166,8 @@ impl Session {
             running: self.running,
             ended: self.ended(),
             tf: scene.tf,
+            theta0: &scene.theta0,
+            own_start: self.own_start,
             speed: self.speed,
             lambda: scene.lambda,
             params: Param::ALL
