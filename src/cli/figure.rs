@@ -34,8 +34,8 @@ pub struct FigureArgs {
     /// error and joint angles over time (the page's plots).
     #[arg(long, conflicts_with = "all")]
     pub plots: bool,
-    /// Draw the arm every this many steps.
-    #[arg(long, default_value_t = 5)]
+    /// Draw the arm every this many steps (the page's stroboscopic trace).
+    #[arg(long, default_value_t = redundant_ik::session::STROBE_EVERY)]
     pub every: usize,
 }
 

@@ -16,6 +16,7 @@ use crate::figure;
 use crate::networks;
 use crate::planner::{Method, Planner};
 use crate::scene::Scene;
+use crate::session::STROBE_EVERY;
 
 /// The files of one run.
 #[derive(Serialize)]
@@ -34,14 +35,14 @@ struct RunFiles {
 /// `mode` from `t = 0` to `tf`, as the page does, with the networks of the
 /// weights files `phi_json` and `v_json` if both are given and fit the
 /// arm, else the built-in ones where they fit; returns `{ json, csv,
-/// figure, plots }` (the figures as SVG, the arm drawn every `every`th
-/// step). Throws with the core's message on bad input.
+/// figure, plots }` (the figures as SVG, the arm drawn every
+/// [`STROBE_EVERY`]th step, as on the stage). Throws with the core's
+/// message on bad input.
 #[wasm_bindgen(js_name = runFiles)]
 pub fn run_files(
     scene: JsValue,
     mode: &str,
     task: u32,
-    every: usize,
     phi_json: Option<String>,
     v_json: Option<String>,
 ) -> Result<JsValue, JsError> {
@@ -52,7 +53,7 @@ pub fn run_files(
     let installed = files(phi_json, v_json)?;
     let nets = networks::for_method(method, &scene.arm, installed.as_ref()).map_err(js_err)?;
     let run = Planner::run(scene.clone(), method, nets).map_err(js_err)?;
-    let figure = figure::arm_svg(task, &scene, &run, every).map_err(js_err)?;
+    let figure = figure::arm_svg(task, &scene, &run, STROBE_EVERY).map_err(js_err)?;
     let plots = figure::series_svg(task, &scene, &run).map_err(js_err)?;
     let csv = export::run_csv(&scene, &run.steps);
     let json = RunFile::new(task, scene, run).to_json();
