@@ -67,15 +67,21 @@ function describeArm(s) {
   }
 }
 
-/** Keeps --stage-top (where the sticky stage column starts on screen) for stage.css. */
+/** Keeps --stage-top and --stage-top0 (where the sticky stage column starts on screen, now and unscrolled) for stage.css. */
 function followLayout() {
   const demo = document.querySelector('.demo');
   if (!demo) return;
   let queued = false;
   const apply = () => {
     queued = false;
-    const top = Math.max(8, demo.getBoundingClientRect().top);
-    document.documentElement.style.setProperty('--stage-top', `${Math.round(top)}px`);
+    const top = demo.getBoundingClientRect().top;
+    const style = document.documentElement.style;
+    // Where the column starts now (it grows as the header scrolls away:
+    // the plots take the room), and where it starts unscrolled (the
+    // drawing's height depends on that only, so it never rescales while
+    // the page scrolls or a note appears).
+    style.setProperty('--stage-top', `${Math.round(Math.max(8, top))}px`);
+    style.setProperty('--stage-top0', `${Math.round(top + scrollY)}px`);
   };
   const queue = () => {
     if (!queued) requestAnimationFrame(apply);
