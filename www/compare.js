@@ -83,7 +83,7 @@ function compareRow(r) {
     cell(s.min_clearance === null ? '–' : `${s.min_clearance.toFixed(3)} m`, 'num');
     if (s.collided && r.unavoidable) {
       tr.dataset.unavoidable = r.unavoidable;
-      cell('yes, unavoidable', 'unavoidable').title = WHY[r.unavoidable] ?? r.unavoidable;
+      cell('unavoidable', 'unavoidable').title = `hit: ${WHY[r.unavoidable] ?? r.unavoidable}`;
     } else {
       cell(s.collided ? 'yes' : 'no', s.collided ? 'bad' : 'ok');
     }

@@ -94,7 +94,7 @@ export function mountTour(root, controller) {
         panel.open = true;
         for (const box of panel.querySelectorAll('#atlas-modes input')) box.checked = ['numerical', 'case3'].includes(box.value);
         $('atlas-n').value = '21';
-        panel.scrollIntoView({ block: 'nearest' });
+        // The map is drawn under the arm; the tour card stays in view.
         await controller.atlas({});
       },
       result: () => {

@@ -230,7 +230,8 @@ impl Frame {
     }
 
     /// Entry `index` of `count` of the panel's legend, right-aligned in the
-    /// title row.
+    /// title row, or in the plot's top row where the title leaves too
+    /// little room (a narrow panel, many joints).
     fn key(
         &self,
         ctx: &CanvasRenderingContext2d,
@@ -240,7 +241,13 @@ impl Frame {
         colour: &str,
     ) {
         let x = self.right - 40.0 * (count - 1 - index.min(count - 1)) as f64 - 18.0;
-        let y = self.top - 12.0;
+        // The title ("joint angles (rad)") takes about 125 px.
+        let cramped = self.right - 40.0 * count as f64 - 10.0 < self.left + 125.0;
+        let y = if cramped {
+            self.top + 8.0
+        } else {
+            self.top - 12.0
+        };
         ctx.set_stroke_style_str(colour);
         ctx.set_line_width(2.0);
         polyline(ctx, None, &[[x - 16.0, y], [x - 4.0, y]]);

@@ -19,6 +19,7 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) -> u32 {
     surface.begin();
     if let Some(layer) = layer {
         layer.draw(ctx, view);
+        drawn |= bit::ATLAS;
     }
     grid(ctx, view, surface.width, surface.height);
 

@@ -71,13 +71,13 @@ pub struct Entry {
     /// The colour, with the alpha it is drawn with.
     pub swatch: String,
     /// How the swatch looks: `thick`, `line`, `thin`, `dashed`, `disc`,
-    /// `region`, `dot` or `target`.
+    /// `region`, `dot`, `target` or `square`.
     pub kind: &'static str,
 }
 
 /// The legend's entries: key, label, colour, alpha, kind. Their order is
 /// that of the bits of [`super::stage::draw`]'s mask of what it drew.
-const LEGEND: [(&str, &str, &str, f64, &str); 11] = [
+const LEGEND: [(&str, &str, &str, f64, &str); 12] = [
     ("arm", "arm", ARM, 1.0, "thick"),
     ("strobe", "", ARM, STROBE_ALPHA, "thin"),
     (
@@ -125,6 +125,13 @@ const LEGEND: [(&str, &str, &str, f64, &str); 11] = [
         1.0,
         "thick",
     ),
+    (
+        "atlas",
+        "atlas map under the arm (its colours: the Atlas panel)",
+        "",
+        0.0,
+        "square",
+    ),
 ];
 
 /// The bit of each legend entry in [`super::stage::draw`]'s mask.
@@ -140,6 +147,7 @@ pub mod bit {
     pub const REGION: u32 = 1 << 8;
     pub const DAMPERS: u32 = 1 << 9;
     pub const FLOOR: u32 = 1 << 10;
+    pub const ATLAS: u32 = 1 << 11;
 }
 
 /// The legend of the stage, in the order of the bits of
@@ -155,7 +163,15 @@ pub fn legend() -> Vec<Entry> {
             } else {
                 label.into()
             },
-            swatch: rgba(colour, alpha),
+            // The atlas layer's swatch: a cell where the method succeeds.
+            swatch: if colour.is_empty() {
+                rgba(
+                    crate::atlas::Class::Success.colour(),
+                    super::layer::LAYER_ALPHA,
+                )
+            } else {
+                rgba(colour, alpha)
+            },
             kind,
         })
         .collect()

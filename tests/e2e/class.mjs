@@ -422,6 +422,7 @@ export function classTests(h) {
     await page.click('#atlas-run');
     await page.waitForSelector('#atlas-result:not([hidden])', { timeout: 60000 });
     assert.equal(await page.inputValue('#atlas-show'), 'case3', 'the map of the method in use');
+    await page.waitForSelector('#legend li[data-key="atlas"]:not([hidden])');
     const heads = await page.$$eval('#atlas-table th', (ths) => ths.map((th) => th.textContent));
     assert.deepEqual(heads, ['method', 'success', 'where it mattered', 'in v box', 'outside', 'smallest clearance']);
     assert.match(await page.textContent('#atlas-counts'), /not on the path, not on the start arm/);
@@ -444,6 +445,10 @@ export function classTests(h) {
     const png = await download(page, '#atlas-figure-png');
     assert.deepEqual(pngSize(png.bytes), fig.size.map((v) => 2 * v));
     await page.screenshot({ path: join(shots, 'class-atlas.png') });
+    // Hidden: off the legend too.
+    await page.click('#atlas-hide');
+    await page.waitForSelector('#legend li[data-key="atlas"][hidden]', { state: 'attached' });
+    await page.selectOption('#atlas-show', 'case3');
     // The comparison: an obstacle on the path makes every hit unavoidable.
     await page.click('#compare-panel summary');
     const s = await state(page);
