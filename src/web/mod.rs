@@ -260,7 +260,7 @@ pub fn atlas_classes() -> Result<JsValue, JsError> {
             name: c.name(),
             label: c.label(),
             colour: c.colour(),
-            swatch: style::rgba(c.colour(), layer::LAYER_ALPHA),
+            swatch: style::rgba(c.colour(), style::LAYER_ALPHA),
         })
         .collect();
     to_js(&all)

@@ -32,6 +32,8 @@ pub const OBSTACLE_ALPHA: f64 = 0.16;
 pub const HIT_ALPHA: f64 = 0.55;
 /// Opacity of the influence-distance circles.
 pub const INFLUENCE_ALPHA: f64 = 0.6;
+/// Opacity of an atlas layer's cells.
+pub const LAYER_ALPHA: f64 = 0.42;
 
 /// Every named colour, for the page's CSS custom properties.
 pub const PALETTE: [(&str, &str); 13] = [
@@ -165,10 +167,7 @@ pub fn legend() -> Vec<Entry> {
             },
             // The atlas layer's swatch: a cell where the method succeeds.
             swatch: if colour.is_empty() {
-                rgba(
-                    crate::atlas::Class::Success.colour(),
-                    super::layer::LAYER_ALPHA,
-                )
+                rgba(crate::atlas::Class::Success.colour(), LAYER_ALPHA)
             } else {
                 rgba(colour, alpha)
             },
