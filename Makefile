@@ -68,6 +68,8 @@ lint: setup
 
 test-native:
 	cargo test
+	# The number reader as the page's module is built (without exact-floats).
+	cargo test --lib --no-default-features --features page arm::
 
 test-wasm: setup
 	CHROMEDRIVER=/usr/bin/chromedriver $(WASM_ENV) wasm-pack test --headless --chrome

@@ -36,7 +36,7 @@ LAYERS = [
     ["planner"],
     ["networks", "twin"],
     ["training", "atlas"],
-    ["evaluation", "session"],
+    ["evaluation", "session", "export", "figure"],
     ["training_job", "bench"],
     ["web"],
 ]

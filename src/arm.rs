@@ -193,10 +193,12 @@ impl fmt::Display for Arm {
 /// notation, an optional sign, digits on either side of the point (`.5`,
 /// `5.` and `+5` read as people mean them).
 ///
-/// Read by serde_json's number parser (exact, with its `float_roundtrip`)
-/// rather than `str::parse`: the page's module carries serde_json's for the
-/// weights files anyway, and core's own costs it 13.5 KB gzipped
-/// (178.8 -> 165.2 KB, measured with `make web`).
+/// Read by serde_json's number parser rather than `str::parse`: the page's
+/// module carries serde_json's for the weights files anyway, and core's own
+/// costs it 13.5 KB gzipped (178.8 -> 165.2 KB, measured with `make web`).
+/// Exact with the feature `exact-floats`; without it (the page's module)
+/// exact for decimals of up to 15 significant digits (Clinger's fast path),
+/// which is what people type, and within a unit in the last place beyond.
 pub(crate) fn number(text: &str) -> std::result::Result<f64, String> {
     let t = text.trim();
     let refused = || format!("'{}' is not a finite number", clip(t));
@@ -302,16 +304,48 @@ mod tests {
             ("2.5E2", 250.0),
             ("5.e1", 50.0),
             ("0.1", 0.1),
-            ("0.30000000000000004", 0.30000000000000004),
             ("1e308", 1e308),
         ] {
             assert_eq!(number(text), Ok(value), "{text}");
+        }
+        if cfg!(feature = "exact-floats") {
+            let x = 0.30000000000000004;
+            assert_eq!(number("0.30000000000000004"), Ok(x));
         }
         for text in [
             "", "abc", "1,5", "NaN", "inf", "-", "+", ".", "1e999", "--1", "+-1", "0x10", "1 2",
             "e5",
         ] {
             assert!(number(text).is_err(), "{text} is refused");
+        }
+    }
+
+    /// What people type (up to 15 significant digits, modest exponents)
+    /// reads to the same `f64` as core's exact parser, with and without
+    /// `exact-floats` (`make test-native` runs this without it too, as the
+    /// page's module is built).
+    #[test]
+    fn short_decimals_read_exactly_with_or_without_exact_floats() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        for _ in 0..20_000 {
+            let digits = 1 + next() % 15;
+            let mantissa = next() % 10u64.pow(digits as u32);
+            let point = next() % (digits + 1);
+            let exponent = (next() % 21) as i32 - 10;
+            let mut text = mantissa.to_string();
+            while text.len() < point as usize + 1 {
+                text.insert(0, '0');
+            }
+            text.insert(text.len() - point as usize, '.');
+            let text = format!("{text}e{exponent}");
+            let want: f64 = text.parse().unwrap();
+            assert_eq!(number(&text), Ok(want), "{text}");
         }
     }
 }

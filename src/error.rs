@@ -174,6 +174,8 @@ pub enum Error {
     /// Training options or data that cannot work (too few samples, a split
     /// that leaves nothing to train on, a sampling region that yields no pose).
     Training(String),
+    /// A figure that could not be drawn.
+    Figure(String),
 }
 
 /// Result alias used throughout the crate.
@@ -295,6 +297,7 @@ impl fmt::Display for Error {
                 "region x {x0}..{x1}, y {y0}..{y1} is empty: it needs x0 < x1 and y0 < y1"
             ),
             Error::Training(msg) => write!(f, "cannot train: {msg}"),
+            Error::Figure(msg) => write!(f, "cannot draw the figure: {msg}"),
         }
     }
 }

@@ -101,6 +101,9 @@ pub struct TaskOutcome {
     pub obstacle: [f64; 2],
     /// Closed-loop gain `K` (0 = open loop).
     pub feedback_gain: f64,
+    /// Newton-Schulz steps on the learned `Phi` (absent: none, the paper's).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub refine: u32,
     /// Smallest link-to-obstacle-centre distance.
     pub min_distance: f64,
     /// Whether a link entered the obstacle disc.
@@ -159,6 +162,7 @@ pub fn run_task_refined(
         mode,
         obstacle: centre,
         feedback_gain,
+        refine,
         min_distance: f64::NAN,
         collided: false,
         final_error: f64::NAN,
@@ -212,3 +216,7 @@ pub const GENERALISATION_SCENES: [(u32, [f64; 2]); 10] = [
     (2, [0.60, 0.70]),
     (2, [0.65, 0.65]),
 ];
+
+fn is_zero(k: &u32) -> bool {
+    *k == 0
+}

@@ -11,6 +11,9 @@ pub mod clearance;
 pub mod error;
 #[cfg(feature = "eval")]
 pub mod evaluation;
+pub mod export;
+#[cfg(feature = "figure")]
+pub mod figure;
 pub mod geometry;
 pub mod ik;
 pub mod kinematics;

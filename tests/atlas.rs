@@ -421,3 +421,55 @@ fn moving_an_obstacle_onto_the_post_or_past_the_list_is_refused_and_changes_noth
     assert_eq!(p.scene().obstacles[0].centre, [0.9, 0.4]);
     assert_eq!(p.scene().obstacles[0].radius, before.obstacles[0].radius);
 }
+
+#[test]
+fn an_atlas_read_back_from_its_json_is_the_same_atlas() {
+    let a = small();
+    let text = serde_json::to_string(a).unwrap();
+    let back: Atlas = serde_json::from_str(&text).unwrap();
+    assert_eq!(&back, a);
+    // A file with a cell missing, or a mode missing from a cell, is refused.
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v["cells"].as_array_mut().unwrap().pop();
+    assert!(serde_json::from_value::<Atlas>(v).is_err());
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v["cells"][3]["outcomes"]
+        .as_object_mut()
+        .unwrap()
+        .remove("case3");
+    assert!(serde_json::from_value::<Atlas>(v).is_err());
+}
+
+#[test]
+fn where_avoidance_mattered_is_where_the_arm_without_it_collides() {
+    let a = small();
+    let none = a
+        .modes
+        .iter()
+        .position(|&m| m == Method::NO_AVOIDANCE)
+        .unwrap();
+    for c in &a.cells {
+        let o = &c.outcomes[none];
+        match c.avoidance_needed {
+            Some(needed) => {
+                assert!(o.class.avoidable());
+                assert_eq!(needed, o.class == Class::Collision);
+            }
+            None => assert!(!o.class.avoidable()),
+        }
+    }
+    let s = a.summary_of(Method::NO_AVOIDANCE).unwrap();
+    assert_eq!(
+        s.mattered.successes, 0,
+        "without avoidance it never succeeds there"
+    );
+    assert!(s.mattered.cells > 0 && s.mattered.cells < s.avoidable.cells);
+    // Without `none` among the modes the atlas still knows where it matters.
+    let mut spec = Spec::task(1).unwrap();
+    spec.grid = a.grid;
+    spec.modes = vec![Method::NUMERICAL];
+    let alone = Atlas::run(spec, None).unwrap();
+    for (x, y) in alone.cells.iter().zip(&a.cells) {
+        assert_eq!(x.avoidance_needed, y.avoidance_needed);
+    }
+}

@@ -828,3 +828,104 @@ fn the_reach_recipe_and_network_set_through_the_command_line() {
     ]);
     assert!(text.contains("feedback K = 1, refine 2"), "{text}");
 }
+
+#[test]
+fn a_run_file_is_read_back_by_simulate_and_figure_and_csv_has_a_line_per_step() {
+    // What `simulate --json` writes (and the page's "Download run") is a
+    // scene `--from` replays: the same steps and summary, and the method.
+    let file = scratch("run-from.json");
+    let text = ok(&[
+        "simulate",
+        "--task",
+        "2",
+        "--mode",
+        "case3",
+        "--feedback",
+        "1",
+        "--target",
+        "0.7,0.3",
+        "--json",
+    ]);
+    std::fs::write(&file, &text).unwrap();
+    let path = file.to_str().unwrap();
+    let again = ok(&["simulate", "--from", path, "--json"]);
+    assert_eq!(again, text, "the same run, byte for byte");
+    let v: Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(
+        (v["task"].as_u64(), v["mode"].as_str()),
+        (Some(2), Some("case3"))
+    );
+    // Another method on the same scene.
+    let other: Value = json(&["simulate", "--from", path, "--mode", "numerical", "--json"]);
+    assert_eq!(other["mode"], "numerical");
+    assert_eq!(other["scene"], v["scene"]);
+    // The CSV: a header and one line per sample, in the file's numbers.
+    let csv = ok(&["simulate", "--from", path, "--csv"]);
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(
+        lines[0],
+        "t,theta1,theta2,theta3,x,y,ref_x,ref_y,tracking_error,clearance,collision"
+    );
+    let steps = v["steps"].as_array().unwrap();
+    assert_eq!(lines.len(), steps.len() + 1);
+    let last: Vec<f64> = lines[lines.len() - 1]
+        .split(',')
+        .map(|x| x.parse().unwrap())
+        .collect();
+    let s = &steps[steps.len() - 1];
+    assert_eq!(last[0], s["t"].as_f64().unwrap());
+    assert_eq!(last[3], s["theta"][2].as_f64().unwrap());
+    assert_eq!(last[4], s["ee"][0].as_f64().unwrap());
+    let clearance = s["distance"].as_f64().unwrap() - 0.05;
+    assert!(
+        (last[9] - clearance).abs() < 1e-12,
+        "{} vs {clearance}",
+        last[9]
+    );
+    // The figures of the file's run.
+    for (flag, marker) in [(None, "polyline"), (Some("--plots"), "joint angles")] {
+        let out = scratch("from.svg");
+        let mut args = vec!["figure", "--from", path, "--out", out.to_str().unwrap()];
+        args.extend(flag);
+        ok(&args);
+        let svg = std::fs::read_to_string(&out).unwrap();
+        assert!(svg.starts_with("<svg") && svg.contains(marker), "{flag:?}");
+        assert!(svg.contains("Case 3 · Task 2 · λ = 4"), "the caption line");
+        assert!(svg.contains("closed loop K = 1"), "the caption line");
+    }
+    // A file is the whole scene, and a bad file is one readable error.
+    refused(&["simulate", "--from", path, "--lambda", "3"], "--lambda");
+    std::fs::write(&file, "{\"task\": 1}").unwrap();
+    refused(&["simulate", "--from", path], "run file");
+    refused(
+        &["simulate", "--from", "/nonexistent/run.json"],
+        "cannot read",
+    );
+}
+
+#[test]
+fn atlas_csv_has_a_line_per_cell_and_says_where_avoidance_mattered() {
+    let csv = ok(&["atlas", "--grid", "5", "--modes", "numerical", "--csv"]);
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(
+        lines[0],
+        "x,y,avoidance_needed,numerical_class,numerical_clearance,numerical_final_error"
+    );
+    assert_eq!(lines.len(), 26);
+    let v = json(&["atlas", "--grid", "5", "--modes", "numerical", "--json"]);
+    for (line, cell) in lines[1..].iter().zip(v["cells"].as_array().unwrap()) {
+        let f: Vec<&str> = line.split(',').collect();
+        assert_eq!(f[0].parse::<f64>().unwrap(), cell["x"].as_f64().unwrap());
+        assert_eq!(
+            f[3],
+            cell["outcomes"]["numerical"]["class"].as_str().unwrap()
+        );
+        let needed = match cell["avoidance_needed"].as_bool() {
+            Some(true) => "1",
+            Some(false) => "0",
+            None => "",
+        };
+        assert_eq!(f[2], needed);
+    }
+    assert!(v["summary"]["numerical"]["mattered"]["cells"].is_u64());
+}

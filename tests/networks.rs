@@ -523,8 +523,8 @@ fn networks_wider_than_the_stack_buffers_run_the_same_kernel_through_the_heap() 
     for sizes in [vec![4, 96, 96, 6], vec![3, 130, 2], vec![70, 8, 3]] {
         let n_in = sizes[0];
         let n_out = *sizes.last().unwrap();
-        let input_map = MapMinMax::fit(&vec![-1.0, 1.0].repeat(n_in), n_in);
-        let output_map = MapMinMax::fit(&vec![-2.0, 3.0].repeat(n_out), n_out);
+        let input_map = MapMinMax::fit(&[-1.0, 1.0].repeat(n_in), n_in);
+        let output_map = MapMinMax::fit(&[-2.0, 3.0].repeat(n_out), n_out);
         let mlp = Mlp::nguyen_widrow(&sizes, input_map, output_map, &mut rng).unwrap();
         let kernel = Kernel::new(&mlp);
         let mut y = vec![0.0; n_out];

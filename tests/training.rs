@@ -174,6 +174,44 @@ fn training_for_a_four_link_arm_gives_networks_the_planner_takes() {
             assert_eq!(row.check.succeeded, training_job::CHECK_TASKS);
         }
     }
+    // Four epochs are not enough: the networks fail their own check in
+    // every loop, and the verdict names each case that fails in the last
+    // (drift corrected, refined) and the numbers.
+    let case3 = r
+        .random_tasks
+        .iter()
+        .find(|row| row.feedback > 0.0 && row.refine == 2 && row.check.mode == "case3")
+        .unwrap();
+    assert!(case3.check.succeeded < 5, "{}", case3.check.succeeded);
+    assert!(!r.verdict.passed);
+    assert!(
+        r.verdict.checked.contains("10 random tasks"),
+        "{}",
+        r.verdict.checked
+    );
+    let line = r
+        .verdict
+        .failures
+        .iter()
+        .find(|f| f.starts_with("Case 3"))
+        .unwrap();
+    assert!(
+        line.contains(&format!("succeeds on {} of 10", case3.check.succeeded)),
+        "{line}"
+    );
+    let json = serde_json::to_value(r).unwrap();
+    assert_eq!(json["verdict"]["passed"], false);
+}
+
+#[test]
+fn the_shipped_networks_pass_their_own_check() {
+    let r = training_job::assess(&Networks::embedded().unwrap(), 3000).unwrap();
+    assert!(r.verdict.passed, "{:?}", r.verdict.failures);
+    assert!(
+        r.verdict.checked.contains("Tasks 1 and 2"),
+        "{}",
+        r.verdict.checked
+    );
 }
 
 #[test]
@@ -183,7 +221,20 @@ fn training_one_network_keeps_the_other_and_needs_it_for_this_arm() {
     assert_eq!(&t.phi, embedded.phi_file(), "Phi kept");
     assert_ne!(&t.v, embedded.v_file());
     assert!(t.report.phi.is_none() && t.report.v.is_some());
-    assert_eq!(t.report.paper_tasks.len(), 6, "Cases 1-3 on Tasks 1 and 2");
+    assert_eq!(
+        t.report.paper_tasks.len(),
+        20,
+        "Cases 1-3 on Tasks 1 and 2, open and closed loop; Cases 1 and 3 refined twice, open and closed"
+    );
+    assert_eq!(
+        t.report
+            .paper_tasks
+            .iter()
+            .filter(|o| o.refine == 2 && o.mode == Method::CASE2)
+            .count(),
+        0,
+        "Case 2 has nothing to refine"
+    );
     // The built-in networks are for the paper's arm, not this one.
     let err = training_job::train(&small(four_links(), Which::Phi), Some(&embedded), |_| true)
         .unwrap_err();
@@ -252,4 +303,6 @@ fn an_arm_without_avoidance_tasks_still_gets_its_networks_and_the_report_says_wh
     assert!(note.contains("where the obstacle matters"), "{note}");
     let json = serde_json::to_value(&trained.report).unwrap();
     assert_eq!(json["random_tasks_note"], note);
+    assert!(trained.report.verdict.passed, "nothing to fail");
+    assert!(trained.report.verdict.checked.starts_with("nothing"));
 }

@@ -532,3 +532,35 @@ fn an_atlas_layer_is_checked_then_drawn_and_finds_the_cell_under_the_pointer() {
     let xy = d.world_to_canvas(0.5, 0.5).unwrap();
     assert_eq!(d.atlas_cell_at(xy[0], xy[1]), None);
 }
+
+#[wasm_bindgen_test]
+fn the_legend_lists_what_the_stage_drew() {
+    use redundant_ik::web::legend;
+    let keys: Vec<String> = json_of(legend().unwrap())
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e["key"].as_str().unwrap().to_string())
+        .collect();
+    let drawn = |d: &Demo| -> Vec<String> {
+        keys.iter()
+            .enumerate()
+            .filter(|(i, _)| d.drawn() & (1 << i) != 0)
+            .map(|(_, k)| k.clone())
+            .collect()
+    };
+    let mut d = demo(1);
+    d.draw();
+    assert_eq!(
+        drawn(&d),
+        ["arm", "path", "reference", "target", "obstacle"]
+    );
+    d.set_method("case3").unwrap();
+    d.run_until(10.0).unwrap();
+    d.draw();
+    let now = drawn(&d);
+    for k in ["strobe", "trail", "ghost", "region"] {
+        assert!(now.iter().any(|x| x == k), "{k} in {now:?}");
+    }
+    assert!(!now.iter().any(|x| x == "dampers" || x == "floor"));
+}

@@ -1,12 +1,12 @@
 // The page's address: what `?task=2&mode=case3&lambda=4&target=…&obstacle=…
-// &obstacles=…&arm=…&feedback=1&networks=reach` asks for, and the state written back into
-// it. The arm and obstacle syntax is the module's (parseArm, parseObstacles,
+// &obstacles=…&arm=…&feedback=1&damping=0&theta0=…&tf=…&influence=…&networks=reach` asks
+// for, and the state written back into it (what "Copy link" copies). The arm and obstacle syntax is the module's (parseArm, parseObstacles,
 // formatArm: the command line's too). Every parameter that does not parse
 // is reported once the page runs (with the core's refusals of those that
 // parse but make no sense), never dropped silently; the page then starts
 // from its defaults for it.
 
-import { parseArm, parseObstacles, formatArm, limits, methods, defaultMethod, networkSets, params as moduleParams } from './module.js';
+import { parseArm, parseObstacles, formatArm, limits, methods, params as allParams, defaultMethod, networkSets } from './module.js';
 import { formatObstacles } from './arm-designer.js';
 
 /** A number from text: blank is not zero (as `Number('')` is). */
@@ -14,11 +14,22 @@ const number = (x) => (x.trim() === '' ? NaN : Number(x));
 /** Text a message quotes, cut to 40 characters (an address can be megabytes long). */
 const clip = (text) => (String(text).length > 40 ? `${String(text).slice(0, 40)}…` : String(text));
 
+/** A coordinate in millimetres where that is exact, else in full (a dragged one). */
+const exact = (v) => {
+  const mm = v.toFixed(3);
+  return Number(mm) === v ? mm : String(v);
+};
+
+/** The parameters the address carries by name (λ has its own). */
+const named = () => allParams().filter((p) => p.name !== 'lambda');
+
 /**
  * The `mount()` options an address asks for (after loadModule): task,
  * mode (the module's defaultMethod() where it names none), lambda,
- * feedback, target, obstacle, obstacles (flat), arm, and `problems`: what
- * did not parse, each as `name: why`.
+ * feedback, target, obstacle, obstacles (flat), arm, damping, start
+ * ({ theta0, tf }: a run's own start pose and final time), params (the
+ * methods' parameters by name), networks (a shipped network set), and
+ * `problems`: what did not parse, each as `name: why`.
  */
 export function readAddress(search) {
   const params = new URLSearchParams(search);
@@ -46,6 +57,21 @@ export function readAddress(search) {
       return x;
     });
   const names = methods().map((m) => m.name);
+  const theta0 = parsed('theta0', (v) => {
+    const a = v.split(',').map(number);
+    if (!a.length || !a.every(Number.isFinite)) throw new Error(`expected joint angles a,b,c in radians, got '${clip(v)}'`);
+    return a;
+  });
+  const tf = num('tf');
+  const start = theta0 && tf !== undefined ? { theta0, tf } : undefined;
+  if ((theta0 === undefined) !== (tf === undefined) && !problems.some((p) => /^(theta0|tf):/.test(p))) {
+    problems.push('theta0: goes with tf (a run of its own needs both)');
+  }
+  const values = {};
+  for (const p of named()) {
+    const x = num(p.name);
+    if (x !== undefined) values[p.name] = x;
+  }
   return {
     task:
       parsed('task', (v) => {
@@ -63,15 +89,14 @@ export function readAddress(search) {
     obstacle: pair('obstacle'),
     obstacles: parsed('obstacles', parseObstacles),
     arm: parsed('arm', parseArm),
-    // The methods' other parameters (refine, influence, ...) by their names.
-    params: Object.fromEntries(
-      moduleParams()
-        .filter((p) => p.name !== 'lambda' && params.has(p.name))
-        .map((p) => [p.name, num(p.name)])
-        .filter(([, v]) => v !== undefined),
-    ),
+    damping: parsed('damping', (v) => {
+      if (v !== '0' && v !== '1') throw new Error(`expected 0 or 1, got '${clip(v)}'`);
+      return v === '1';
+    }),
+    start,
+    params: values,
     networks: parsed('networks', (v) => {
-      const sets = networkSets().map((s) => s.name);
+      const sets = networkSets().map((n) => n.name);
       if (!sets.includes(v)) throw new Error(`unknown network set '${clip(v)}': use ${sets.join(' or ')}`);
       return v;
     }),
@@ -84,27 +109,35 @@ export function readAddress(search) {
  * method, λ, the target; the arm where it is not the page's first (the
  * paper's, the first of the core's presets); the obstacles as a list where
  * there are several or one of another radius than the default, else the one
- * obstacle's centre; the drift gain where it is on.
+ * obstacle's centre; the drift gain where it is on; the damping switch
+ * where it is off; the methods' parameters that differ from their
+ * defaults; a shipped network set other than the paper's; and a run's own start pose and final time (a line dropped
+ * from where the hand was), in full. Returns the address.
  */
 export function writeAddress(s) {
   const q = new URLSearchParams();
   q.set('task', String(s.task));
   q.set('mode', s.mode);
   q.set('lambda', String(s.lambda));
-  q.set('target', s.target.map((v) => v.toFixed(3)).join(','));
+  q.set('target', s.target.map(exact).join(','));
   const { arm_presets: presets, default_radius: radius } = limits();
   const arm = formatArm(s.arm.post, s.arm.links);
   if (arm !== formatArm(presets[0].post, presets[0].links)) q.set('arm', arm);
   if (s.obstacles.length !== 1 || s.obstacles[0].radius !== radius) {
     q.set('obstacles', formatObstacles(s.obstacles));
   } else if (s.obstacle) {
-    q.set('obstacle', s.obstacle.map((v) => v.toFixed(3)).join(','));
+    q.set('obstacle', s.obstacle.map(exact).join(','));
   }
   if (s.feedback > 0) q.set('feedback', String(s.feedback));
+  if (!s.damping) q.set('damping', '0');
   if (s.network_set && s.network_set !== 'paper') q.set('networks', s.network_set);
-  for (const p of moduleParams()) {
-    const v = s.params[p.name];
-    if (p.name !== 'lambda' && v !== undefined && v !== p.default) q.set(p.name, String(v));
+  for (const p of named()) {
+    if (s.params[p.name] !== undefined && s.params[p.name] !== p.default) q.set(p.name, String(s.params[p.name]));
+  }
+  if (s.own_start) {
+    q.set('theta0', s.theta0.map(String).join(','));
+    q.set('tf', String(s.tf));
   }
   history.replaceState(null, '', `${location.pathname}?${q}`);
+  return location.href;
 }

@@ -25,7 +25,8 @@ export function flatObstacles(list) {
 
 /** `x,y,r;x,y,r` of the obstacles in the state (what parseObstacles reads). */
 export function formatObstacles(obstacles) {
-  return obstacles.map((o) => [...o.centre, o.radius].map((v) => +v.toFixed(3)).join(',')).join(';');
+  const exact = (v) => (+v.toFixed(3) === v ? +v.toFixed(3) : v);
+  return obstacles.map((o) => [...o.centre, o.radius].map(exact).join(',')).join(';');
 }
 
 const armText = (arm) => formatArm(arm.post, arm.links);
@@ -96,21 +97,21 @@ export function mountArmDesigner(root, demo, { setArm, attempt, show, changed })
 
   el.preset?.addEventListener('change', () => {
     const p = presets.find((p) => p.key === el.preset.value);
-    if (p) attempt(() => setArm(p));
+    if (p) attempt(() => setArm(p), 'error', el.preset);
   });
-  const applyForm = () => attempt(() => setArm(formArm()));
+  const applyForm = () => attempt(() => setArm(formArm()), 'error', el.apply);
   el.apply?.addEventListener('click', applyForm);
   el.links?.addEventListener('change', applyForm);
   el.post?.addEventListener('change', applyForm);
   el.linkAdd?.addEventListener('click', () => {
     const a = formArm();
-    if (a.links.length >= most) return show(`At most ${most} links.`, 'warn');
-    attempt(() => setArm({ post: a.post, links: [...a.links, a.links[a.links.length - 1] ?? 0.4] }));
+    if (a.links.length >= most) return show(`At most ${most} links.`, 'warn', false, el.linkAdd);
+    attempt(() => setArm({ post: a.post, links: [...a.links, a.links[a.links.length - 1] ?? 0.4] }), 'error', el.linkAdd);
   });
   el.linkRemove?.addEventListener('click', () => {
     const a = formArm();
-    if (a.links.length <= fewest) return show(`At least ${fewest} links.`, 'warn');
-    attempt(() => setArm({ post: a.post, links: a.links.slice(0, -1) }));
+    if (a.links.length <= fewest) return show(`At least ${fewest} links.`, 'warn', false, el.linkRemove);
+    attempt(() => setArm({ post: a.post, links: a.links.slice(0, -1) }), 'error', el.linkRemove);
   });
 
   // ---- obstacles -------------------------------------------------------
@@ -123,12 +124,12 @@ export function mountArmDesigner(root, demo, { setArm, attempt, show, changed })
     }
   }
   el.obstacleAdd?.addEventListener('click', () => {
-    if (demo.state().obstacles.length >= mostObstacles) return show(`At most ${mostObstacles} obstacles.`, 'warn');
+    if (demo.state().obstacles.length >= mostObstacles) return show(`At most ${mostObstacles} obstacles.`, 'warn', false, el.obstacleAdd);
     setAdding(!adding);
   });
   el.obstacleRemove?.addEventListener('click', () => {
     const n = demo.state().obstacles.length;
-    if (n === 0) return show('There is no obstacle to remove.', 'warn');
+    if (n === 0) return show('There is no obstacle to remove.', 'warn', false, el.obstacleRemove);
     attempt(() => removeObstacle(n - 1));
   });
 

@@ -17,6 +17,7 @@
 import { limits, methods, methodGroups, atlasClasses, describe } from './module.js';
 import { runWorker, nativeFigures, showBusy } from './jobs.js';
 import { metres, percent, row } from './format.js';
+import { saveBlob, saveText, svgToPng } from './download.js';
 
 /** Points per side the panel offers (with the core's default, selected). */
 export const RESOLUTIONS = [11, 21, 41, 61];
@@ -37,6 +38,10 @@ export function mountAtlas(root, demo, { weights, changed }) {
     body: $('atlas-body'),
     agreement: $('atlas-agreement'),
     tip: $('atlas-tip'),
+    figure: $('atlas-figure'),
+    figurePng: $('atlas-figure-png'),
+    csv: $('atlas-csv'),
+    json: $('atlas-json'),
   };
   const CLASSES = atlasClasses(); // [{ name, label, colour, swatch }], the layer's indices
   const code = Object.fromEntries(CLASSES.map((c, i) => [c.name, i]));
@@ -70,11 +75,12 @@ export function mountAtlas(root, demo, { weights, changed }) {
   let shown = null; // the mode drawn on the stage
   let running = null; // AbortController of the job under way
   let sceneKey = null; // the scene the atlas was computed on
+  let sceneUsed = null; // that scene itself (Demo.scene()), for the figure
 
   const status = (text) => el.status && (el.status.textContent = text);
 
   /** What the atlas depends on, from the state (not the moved obstacle). */
-  const keyOf = (s) => JSON.stringify([s.task, s.target, s.params, s.damping, s.feedback]);
+  const keyOf = (s) => JSON.stringify([s.task, s.target, s.params, s.damping, s.feedback, s.arm, s.line.start]);
 
   function show(mode) {
     if (!atlas) return;
@@ -117,9 +123,11 @@ export function mountAtlas(root, demo, { weights, changed }) {
       el.body.replaceChildren(
         ...atlas.modes.map((m) => {
           const s = atlas.summary[m];
+          const mattered = s.mattered?.cells ? `${percent(s.mattered.rate)} of ${s.mattered.cells}` : '–';
           const tr = row([
             label[m],
             percent(s.success_rate),
+            mattered,
             percent(s.inside_trained_region?.rate),
             percent(s.outside_trained_region?.rate),
             s.clearance ? `${metres(s.clearance.median)} / ${metres(s.clearance.p5)}` : '–',
@@ -146,9 +154,10 @@ export function mountAtlas(root, demo, { weights, changed }) {
     }
   }
 
-  function accept(result, ms, state) {
+  function accept(result, ms, state, scene) {
     atlas = result;
     sceneKey = keyOf(state);
+    sceneUsed = scene;
     if (el.status) el.status.dataset.stale = 'false';
     if (el.show) {
       el.show.replaceChildren(new Option('(hidden)', ''));
@@ -170,7 +179,13 @@ export function mountAtlas(root, demo, { weights, changed }) {
         if (nat?.atlas_ms && atlas === result) status(text(` (native, one core: ${(nat.atlas_ms / 1000).toFixed(2)} s)`));
       });
     }
-    const preferred = atlas.modes.includes(shown) ? shown : atlas.modes.find((m) => avoids[m]) ?? atlas.modes[0];
+    // The map of the method in use, where it was mapped.
+    const selected = demo.state().mode;
+    const preferred = atlas.modes.includes(selected)
+      ? selected
+      : atlas.modes.includes(shown)
+        ? shown
+        : (atlas.modes.find((m) => avoids[m]) ?? atlas.modes[0]);
     show(preferred);
   }
 
@@ -218,7 +233,7 @@ export function mountAtlas(root, demo, { weights, changed }) {
           },
         },
       );
-      accept(result, ms, state);
+      accept(result, ms, state, scene);
       return result;
     } catch (e) {
       status(e.name === 'AbortError' ? 'Cancelled.' : `The atlas failed: ${describe(e)}`);
@@ -230,6 +245,30 @@ export function mountAtlas(root, demo, { weights, changed }) {
   }
 
   el.run?.addEventListener('click', () => run().catch(() => {}));
+
+  // The atlas's files: its JSON (the command line's), its cells as CSV,
+  // and the map shown as the figure `redundant-ik atlas --out` draws.
+  async function files(button) {
+    const { result } = await runWorker({ kind: 'atlas-files', atlas, scene: sceneUsed, modes: shown ? [shown] : [] });
+    return result;
+  }
+  const stemOf = () => `atlas-task${atlas.task ?? 0}-${atlas.grid.n}x${atlas.grid.n}${shown ? `-${shown}` : ''}`;
+  const saving = (button, save) =>
+    button?.addEventListener('click', async () => {
+      if (!atlas) return;
+      button.disabled = true;
+      try {
+        await save(await files(button));
+      } catch (e) {
+        status(`Could not save: ${describe(e)}`);
+      } finally {
+        button.disabled = false;
+      }
+    });
+  saving(el.figure, (f) => saveText(`${stemOf()}.svg`, f.figure, 'image/svg+xml'));
+  saving(el.figurePng, async (f) => saveBlob(`${stemOf()}.png`, await svgToPng(f.figure)));
+  saving(el.csv, (f) => saveText(`${stemOf()}.csv`, f.csv, 'text/csv'));
+  saving(el.json, (f) => saveText(`${stemOf()}.json`, f.json + '\n', 'application/json'));
   el.cancel?.addEventListener('click', () => running && running.abort());
   el.show?.addEventListener('change', () => (el.show.value ? show(el.show.value) : hide()));
   el.hide?.addEventListener('click', hide);
@@ -253,7 +292,10 @@ export function mountAtlas(root, demo, { weights, changed }) {
     for (const m of atlas.modes) {
       const o = c.outcomes[m];
       const cls = CLASSES[code[o.class]].label;
-      const nums = o.min_distance === null ? '' : `, closest ${metres(o.min_distance)}, error ${metres(o.final_error)}`;
+      const nums =
+        o.min_distance === null
+          ? ''
+          : `, smallest link-to-obstacle clearance ${metres(Math.max(0, o.min_distance - atlas.radius))}${o.min_distance < atlas.radius ? ' (inside)' : ''}, ${metres(o.final_error)} from the target`;
       lines.push(`${label[m]}: ${cls}${nums}`);
     }
     el.tip.textContent = lines.join('\n');

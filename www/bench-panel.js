@@ -6,10 +6,15 @@
 import { describe, method, moduleBuild } from './module.js';
 import { bench, nativeFigures, showBusy } from './jobs.js';
 import { nanoseconds, row } from './format.js';
+import { csv, saveText } from './download.js';
 
 const verdictText = (x) => (x >= 1 ? `${x.toFixed(1)}× slower` : `${(1 / x).toFixed(1)}× faster`);
 
-/** Wires `#bench`, `#bench-cancel`, `#bench-progress`, `#bench-table`, `#bench-body` and `#bench-result` under `root`. */
+/**
+ * Wires `#bench`, `#bench-cancel`, `#bench-progress`, `#bench-table`,
+ * `#bench-body`, `#bench-result` and `#bench-csv` (the figures as CSV)
+ * under `root`.
+ */
 export function mountBenchPanel(root) {
   const $ = (id) => root.querySelector('#' + id);
   const button = $('bench');
@@ -18,7 +23,17 @@ export function mountBenchPanel(root) {
   const table = $('bench-table');
   const body = $('bench-body');
   const result = $('bench-result');
+  const download = $('bench-csv');
   if (!button || !result) return;
+  let last = null; // { r, nat, build }
+  download?.addEventListener('click', () => {
+    if (!last) return;
+    const { r, nat, build } = last;
+    const rows = Object.keys(r.step_ns).map((m) => [m, build, r.theta_dot_ns[m], r.step_ns[m], nat?.step_ns?.[m]]);
+    rows.push(['forward phi', build, '', r.forward_ns.phi, '']);
+    rows.push(['forward v', build, '', r.forward_ns.v, '']);
+    saveText('benchmark.csv', csv(['method', 'build', 'theta_dot_ns', 'step_ns', 'native_step_ns'], rows), 'text/csv');
+  });
   const controls = { run: button, cancel, progress };
   let abort = null;
   cancel?.addEventListener('click', () => abort && abort.abort());
@@ -42,6 +57,8 @@ export function mountBenchPanel(root) {
         ),
       );
       if (table) table.hidden = false;
+      last = { r, nat, build: moduleBuild() };
+      if (download) download.hidden = false;
       const [learned, exact] = r.verdict;
       const [L, E] = [method(learned), method(exact)];
       const ratio = r.step_ns[learned] / r.step_ns[exact];

@@ -1,21 +1,68 @@
 // The comparison panel: the scene as it is now, run from t = 0 with every
 // method off screen (Demo.compareModes(), one row per method of
-// methods()), tabulated: closest approach, hit, final error.
+// methods()), tabulated: the smallest link-to-obstacle clearance, hit,
+// final error. A hit the obstacle makes unavoidable (on the path the hand
+// must follow, or on the arm at the start: the atlas's classes) says so;
+// the table greys out when the scene changes after it was computed; its
+// rows download as CSV.
 
 import { metres } from './format.js';
+import { csv, saveText } from './download.js';
 
-/** Wires `#compare` and `#compare-body` under `root`, if there. */
+/** What the table depends on, from the state. */
+const keyOf = (s) => JSON.stringify([s.task, s.target, s.obstacles, s.params, s.damping, s.feedback, s.arm, s.line.start, s.tf]);
+
+const WHY = {
+  path_blocked: 'an obstacle covers the path the hand must follow: no method can follow the line and miss it',
+  start_overlap: 'an obstacle touches the arm at t = 0: every method starts inside it',
+};
+
+/**
+ * Wires `#compare`, `#compare-body`, `#compare-table`, `#compare-status`
+ * and `#compare-csv` under `root`, if there. Returns `check(state)` for
+ * the animation loop (greys the table out when the scene changed).
+ */
 export function mountCompare(root, demo, { attempt }) {
-  const button = root.querySelector('#compare');
-  const body = root.querySelector('#compare-body');
+  const $ = (id) => root.querySelector('#' + id);
+  const button = $('compare');
+  const body = $('compare-body');
+  const table = $('compare-table');
+  const status = $('compare-status');
+  const download = $('compare-csv');
+  let rows = null;
+  let key = null;
   button?.addEventListener('click', () => {
-    let rows = null;
-    if (!attempt(() => (rows = demo.compareModes()))) return;
+    let result = null;
+    if (!attempt(() => (result = demo.compareModes()), 'error', button)) return;
+    rows = result;
+    key = keyOf(demo.state());
     body?.replaceChildren(...rows.map(compareRow));
+    if (table) table.dataset.stale = 'false';
+    const blocked = rows[0]?.unavoidable;
+    if (status) status.textContent = blocked ? `Unavoidable: ${WHY[blocked] ?? blocked}.` : '';
+    if (download) download.disabled = false;
   });
+  download?.addEventListener('click', () => {
+    if (!rows) return;
+    const s = demo.state();
+    const header = ['method', 'label', 'min_clearance_m', 'collided', 'unavoidable', 'final_error_m', 'reached', 'error'];
+    const lines = rows.map((r) => {
+      const m = r.summary;
+      return [r.mode, r.label, m?.min_clearance, m?.collided, r.unavoidable ?? '', m?.final_error, m?.reached, r.error ?? ''];
+    });
+    saveText(`compare-task${s.task}.csv`, csv(header, lines), 'text/csv');
+  });
+  return function check(s) {
+    if (!rows || !table) return;
+    const stale = keyOf(s) !== key;
+    if (String(stale) !== table.dataset.stale) {
+      table.dataset.stale = String(stale);
+      if (status && stale) status.textContent = 'The scene changed since this comparison: press Compare to run it again.';
+    }
+  };
 }
 
-/** One method's row: `{ mode, label, summary, error }`. */
+/** One method's row: `{ mode, label, summary, error, unavoidable }`. */
 function compareRow(r) {
   const tr = document.createElement('tr');
   tr.dataset.mode = r.mode;
@@ -32,8 +79,14 @@ function compareRow(r) {
     tr.dataset.collided = String(s.collided);
     tr.dataset.minDistance = String(s.min_distance);
     tr.dataset.finalError = String(s.final_error);
-    cell(s.min_distance === null ? '–' : `${s.min_distance.toFixed(3)} m`, 'num');
-    cell(s.collided ? 'yes' : 'no', s.collided ? 'bad' : 'ok');
+    tr.dataset.minClearance = String(s.min_clearance);
+    cell(s.min_clearance === null ? '–' : `${s.min_clearance.toFixed(3)} m`, 'num');
+    if (s.collided && r.unavoidable) {
+      tr.dataset.unavoidable = r.unavoidable;
+      cell('unavoidable', 'unavoidable').title = `hit: ${WHY[r.unavoidable] ?? r.unavoidable}`;
+    } else {
+      cell(s.collided ? 'yes' : 'no', s.collided ? 'bad' : 'ok');
+    }
     cell(metres(s.final_error), s.reached ? 'num' : 'num warn');
   } else {
     tr.dataset.error = r.error;

@@ -14,7 +14,7 @@
 // `[data-readout]` elements): the page's document, or the shadow root of a
 // <redundant-ik-demo> element, so several demos on one page stay independent.
 
-import { Demo, loadModule, describe, methodGroups, limits, legend } from './module.js';
+import { Demo, loadModule, describe, method, methodGroups, limits, legend, usesNetworks } from './module.js';
 import { fixed, metres } from './format.js';
 import { mountAtlas } from './atlas.js';
 import { mountPlayground } from './playground.js';
@@ -24,6 +24,9 @@ import { mountWeightsUpload } from './weights-upload.js';
 import { wireStage } from './stage-input.js';
 import { mountMethodParams } from './method-params.js';
 import { mountNetworkSet } from './network-set.js';
+import { messenger } from './messages.js';
+import { mountTakeaway } from './takeaway.js';
+import { mountNotes } from './notes.js';
 
 /**
  * Fills a `<select>` with the methods, grouped ("The paper", "Beyond the
@@ -40,7 +43,10 @@ function fillModes(select) {
   }
 }
 
-/** Fills a legend list from the module's legend (the renderer's colours). */
+/**
+ * Fills a legend list from the module's legend (the renderer's colours);
+ * each entry is shown only while the drawing draws it (`syncLegend`).
+ */
 function fillLegend(list) {
   if (!list || list.children.length) return;
   for (const e of legend()) {
@@ -52,6 +58,15 @@ function fillLegend(list) {
     li.append(key, e.label);
     list.append(li);
   }
+}
+
+/** Shows the legend's entries whose bit is set in `mask` (Demo.drawn()). */
+function syncLegend(list, mask) {
+  if (!list) return;
+  [...list.children].forEach((li, i) => {
+    const hide = !(mask & (1 << i));
+    if (li.hidden !== hide) li.hidden = hide;
+  });
 }
 
 const READOUTS = {
@@ -74,8 +89,12 @@ const READOUTS = {
  * methods' other parameters: refine, influence, ...), speed,
  * autoplay (default true), keyboard (element that receives key presses;
  * default none), onChange(state) (after user changes, e.g. to update the
- * URL), problems (what the caller could not parse, shown with the settings
- * the core refuses under problemsLabel; default 'Not applied').
+ * URL), onArm(state) (when the arm changes, e.g. to rewrite the page's prose),
+ * problems (what the caller could not parse, shown with the settings
+ * the core refuses under problemsLabel; default 'Not applied'), start
+ * { theta0, tf } (a run's own start pose and final time, from an address),
+ * params { name: value } (the methods' parameters), link(state, scene)
+ * (the address of the scene, for "Copy link"; default the page's).
  * Returns a controller with state(), worldToClient(x, y), runUntil(t), demo.
  */
 export async function mount(root, options = {}) {
@@ -94,8 +113,6 @@ export async function mount(root, options = {}) {
     feedback: $('feedback'),
     speed: $('speed'),
     message: $('message'),
-    warning: $('range-warning'),
-    handover: $('handover-note'),
     loading: $('loading'),
   };
   const readouts = [...root.querySelectorAll('[data-readout]')];
@@ -105,28 +122,11 @@ export async function mount(root, options = {}) {
   fillLegend(el.legend);
   const demo = new Demo(stage, plots ?? undefined, options.task === 2 ? 2 : 1);
 
-  // ---- messages -------------------------------------------------------
-  let messageTimer = 0;
-  function show(text, kind = 'error', sticky = false) {
-    if (!el.message) return;
-    el.message.textContent = text;
-    el.message.dataset.kind = kind;
-    el.message.hidden = false;
-    clearTimeout(messageTimer);
-    if (!sticky) messageTimer = setTimeout(() => (el.message.hidden = true), 6000);
-  }
-  function clearMessage() {
-    if (el.message) el.message.hidden = true;
-  }
-  function attempt(fn, kind = 'error') {
-    try {
-      fn();
-      return true;
-    } catch (e) {
-      show(describe(e), kind);
-      return false;
-    }
-  }
+  // ---- messages, next to what caused them (messages.js) ---------------
+  const messages = messenger(root);
+  const show = messages.show;
+  const clearMessage = messages.clear;
+  const attempt = (fn, kind = 'error', near = undefined) => messages.attempt(fn, kind, near, describe);
 
   const changed = () => options.onChange && options.onChange(controller.state());
 
@@ -159,11 +159,12 @@ export async function mount(root, options = {}) {
   if (options.lambda !== undefined && options.lambda !== null) {
     initial('lambda', () => demo.setLambda(options.lambda));
   }
-  for (const [name, value] of Object.entries(options.params ?? {})) initial(name, () => demo.setParam(name, value));
   if (options.obstacle && !options.obstacles) {
     initial('obstacle', () => demo.setObstacle(options.obstacle[0], options.obstacle[1]));
   }
   if (options.target) initial('target', () => demo.setTarget(options.target[0], options.target[1], 10));
+  if (options.start) initial('theta0', () => demo.setStart(Float64Array.from(options.start.theta0), options.start.tf));
+  for (const [name, value] of Object.entries(options.params ?? {})) initial(name, () => demo.setParam(name, value));
   // A shipped set other than the paper's is fetched first: it comes in when it arrives.
   if (options.networks && options.networks !== demo.state().network_set) {
     networkSet.choose(options.networks).catch((e) => show(`networks: ${describe(e)}`, 'warn', true));
@@ -174,10 +175,6 @@ export async function mount(root, options = {}) {
   // ---- controls -------------------------------------------------------
   function syncControls(s) {
     if (el.mode && el.mode.value !== s.mode) el.mode.value = s.mode;
-    if (el.play) {
-      el.play.textContent = s.running ? 'Pause' : 'Play';
-      el.play.setAttribute('aria-pressed', String(s.running));
-    }
     syncParams(s);
     if (el.damping) el.damping.checked = s.damping;
     if (el.feedback) el.feedback.checked = s.feedback > 0;
@@ -185,7 +182,8 @@ export async function mount(root, options = {}) {
 
   el.mode?.addEventListener('change', () => {
     const wanted = el.mode.value;
-    if (attempt(() => demo.setMode(wanted))) {
+    chosenMode = wanted;
+    if (attempt(() => demo.setMode(wanted), 'error', el.mode)) {
       clearMessage();
       changed();
     } else {
@@ -201,14 +199,14 @@ export async function mount(root, options = {}) {
     clearMessage();
   };
   el.play?.addEventListener('click', togglePlay);
-  el.step?.addEventListener('click', () => attempt(() => demo.step()));
+  el.step?.addEventListener('click', () => attempt(() => demo.step(), 'error', el.step));
   el.reset?.addEventListener('click', reset);
   for (const [button, task] of [
     [el.task1, 1],
     [el.task2, 2],
   ]) {
     button?.addEventListener('click', () => {
-      if (attempt(() => demo.loadTask(task))) {
+      if (attempt(() => demo.loadTask(task), 'error', button)) {
         clearMessage();
         changed();
       }
@@ -216,16 +214,21 @@ export async function mount(root, options = {}) {
   }
   // λ and the parameters of the method in use (www/method-params.js).
   const syncParams = mountMethodParams(root, demo, { attempt, changed });
-  el.damping?.addEventListener('change', () => attempt(() => demo.setDamping(el.damping.checked)));
+  el.damping?.addEventListener('change', () => attempt(() => demo.setDamping(el.damping.checked), 'error', el.damping));
   // "Correct drift": the core's gain K (1/s) of Xdot + K (X_ref - X).
   el.feedback?.addEventListener('change', () => {
-    if (attempt(() => demo.setFeedback(el.feedback.checked ? limits().drift_gain : 0))) changed();
+    if (attempt(() => demo.setFeedback(el.feedback.checked ? limits().drift_gain : 0), 'error', el.feedback)) changed();
   });
-  el.speed?.addEventListener('change', () => attempt(() => demo.setSpeed(Number(el.speed.value))));
+  el.speed?.addEventListener('change', () => attempt(() => demo.setSpeed(Number(el.speed.value)), 'error', el.speed));
   if (el.speed) attempt(() => demo.setSpeed(Number(el.speed.value)));
 
   // ---- the panels around the stage --------------------------------------
-  mountCompare(root, demo, { attempt });
+  const compare = mountCompare(root, demo, { attempt });
+  const takeaway = mountTakeaway(root, demo, {
+    show,
+    weights: () => playground.files(),
+    link: () => (options.link ? options.link(controller.state(), demo.scene()) : location.href),
+  });
   const atlas = mountAtlas(root, demo, { weights: () => playground.files(), changed: () => changed() });
   mountWeightsUpload(root, { attempt, show, install: playground.installNetworks });
   wireStage(stage, demo, { attempt, changed, togglePlay, reset, atlas, playground, keyboard: options.keyboard });
@@ -243,9 +246,30 @@ export async function mount(root, options = {}) {
   if (plots) fit(plots, (w, h, d) => demo.resizePlots(w, h, d));
 
   // ---- readouts and the loop -------------------------------------------
+  const syncNotes = mountNotes(root);
   let autoDampingShown = false;
+  let chosenMode = null; // the method the user picked last
+  let shownMode = null;
+  let shownArm = null;
+  let drawnMask = -1;
   function update() {
     const s = demo.state();
+    const mask = demo.drawn();
+    if (mask !== drawnMask) syncLegend(el.legend, (drawnMask = mask));
+    syncNotes(s);
+    // A switch of method the page made by itself (a new arm without
+    // networks for it, networks forgotten) is announced at the menu.
+    const [was, now] = [method(shownMode), method(s.mode)];
+    if (shownMode !== null && s.mode !== chosenMode && usesNetworks(was) && !usesNetworks(now)) {
+      show(`${was?.label ?? shownMode} needs networks trained for this arm, which it has not: the page switched to ${now?.label ?? s.mode}.`, 'warn', true, el.mode);
+    }
+    shownMode = s.mode;
+    chosenMode = s.mode;
+    const armKey = `${s.arm.post}:${s.arm.links.join(',')}`;
+    if (armKey !== shownArm) {
+      shownArm = armKey;
+      if (options.onArm) options.onArm(s);
+    }
     for (const r of readouts) {
       const f = READOUTS[r.dataset.readout];
       if (f) {
@@ -254,23 +278,13 @@ export async function mount(root, options = {}) {
       }
       if (r.dataset.readout === 'collision') r.dataset.level = s.collision ? 'bad' : s.collided ? 'warn' : 'ok';
     }
-    // The core says whether the networks in use are inside their trained
-    // range (always, for a method without networks).
-    if (el.warning) el.warning.hidden = s.in_range;
-    if (el.handover) {
-      const on = s.handover_steps > 0 && s.uses.phi;
-      if (on) {
-        const text = `Near a singular pose the exact damped Φ stood in for the Φ network (${s.handover_steps} step${s.handover_steps === 1 ? '' : 's'} so far${s.phi_handover ? ', now too' : ''}).`;
-        if (el.handover.textContent !== text) el.handover.textContent = text;
-      }
-      el.handover.hidden = !on;
-    }
     if (s.auto_damping && !autoDampingShown) {
       show('The target is out of reach: damping switched on so the joint rates stay finite.', 'warn');
     }
     autoDampingShown = s.auto_damping;
     syncControls(s);
     atlas.check(s);
+    compare?.(s);
     playground.check(s);
     networkSet.sync(s);
     return s;
@@ -307,6 +321,8 @@ export async function mount(root, options = {}) {
       return update();
     },
     show,
+    attempt,
+    files: () => takeaway.files(),
     atlas: (options) => atlas.run(options),
     useNetworks: (name) => networkSet.choose(name),
     playground,

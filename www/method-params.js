@@ -32,7 +32,7 @@ export function mountMethodParams(root, demo, { attempt, changed }) {
     const [min, max, step] = info.lambda.slider;
     Object.assign(lambda, { min: String(min), max: String(max), step: String(step) });
     lambda.addEventListener('input', () => {
-      if (attempt(() => demo.setParam('lambda', Number(lambda.value)))) changed();
+      if (attempt(() => demo.setParam('lambda', Number(lambda.value)), 'error', lambda)) changed();
     });
   }
 
@@ -64,7 +64,7 @@ export function mountMethodParams(root, demo, { attempt, changed }) {
         const toValue = (x) => (log ? 10 ** x : x);
         const toSlider = (v) => (log ? Math.log10(v) : v);
         input.addEventListener('input', () => {
-          if (attempt(() => demo.setParam(p, toValue(Number(input.value))))) changed();
+          if (attempt(() => demo.setParam(p, toValue(Number(input.value))), 'error', input)) changed();
         });
         sliders.set(p, { input, output, step: log ? 1 : step, toSlider });
         field.append(l, input);

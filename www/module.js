@@ -25,6 +25,8 @@ import init, {
 import { describeError } from './errors.js';
 
 export { parseArm, formatArm, parseObstacles, legend, atlasClasses, Demo } from './pkg/redundant_ik.js';
+/** The built-in networks' weights files, `[phi, v]` (served in weights/). */
+export { builtinWeightsFiles };
 
 /** The two builds of the module (make web): with wasm SIMD, and without. */
 const BUILDS = {

@@ -47,10 +47,10 @@ export function mountNetworkSet(root, demo, { show, changed }) {
   select?.addEventListener('change', () => {
     const name = select.value;
     if (name === OWN) return;
-    show?.(`Loading the '${name}' networks…`, 'info');
+    show?.(`Loading the '${name}' networks…`, 'info', false, select);
     choose(name).then(
-      () => show?.(`Cases 1-3 now run the '${name}' networks.`, 'info'),
-      (e) => show?.(describe(e), 'error'),
+      () => show?.(`Cases 1-3 now run the '${name}' networks.`, 'info', false, select),
+      (e) => show?.(describe(e), 'error', true, select),
     );
   });
 

@@ -1,11 +1,14 @@
 // The full page (index.html): loads the module, fills the prose the module
-// knows (the methods explained, the limits quoted), mounts the demo on the
-// document with the settings of the address (address.js), wires the
-// benchmark panel (bench-panel.js) and exposes `window.demo` for scripts
-// and tests. If the module cannot start, the page says so and disables its
-// controls instead of showing a blank stage.
+// knows (the methods explained, the limits quoted, the arm described as it
+// is now), mounts the demo on the document with the settings of the
+// address (address.js), wires the benchmark panel (bench-panel.js) and the
+// tour (tour.js), keeps the stage column's top for the layout (stage.css)
+// and exposes `window.demo` for scripts and tests. If the module cannot
+// start, the page says so and disables its controls instead of showing a
+// blank stage.
 
-import { loadModule, describe, methods, methodGroups, fillLimits, moduleBuild, moduleMemoryBytes } from './module.js';
+import { loadModule, describe, methods, methodGroups, fillLimits, moduleBuild, moduleMemoryBytes, limits, networkMethodLabels } from './module.js';
+import { mountTour } from './tour.js';
 import { bench } from './jobs.js';
 import { mount } from './demo.js';
 import { readAddress, writeAddress } from './address.js';
@@ -29,12 +32,75 @@ function explainMethods(list) {
   }
 }
 
+const WORDS = ['no', 'one', 'two', 'three', 'four', 'five', 'six', 'seven', 'eight'];
+const word = (n) => WORDS[n] ?? String(n);
+const cap = (s) => s[0].toUpperCase() + s.slice(1);
+
+/** The prose that describes the arm, rewritten for the arm in `s`. */
+function describeArm(s) {
+  const n = s.arm.links.length;
+  const spare = n - 2;
+  const links = s.arm.links.map(String);
+  const list = links.length > 1 ? `${links.slice(0, -1).join(', ')} and ${links.at(-1)}` : links[0];
+  for (const el of document.querySelectorAll('[data-arm="links"]')) el.textContent = word(n);
+  for (const el of document.querySelectorAll('[data-arm="spare"]')) el.textContent = spare === 1 ? 'spare degree' : `${word(spare)} spare degrees`;
+  const see = document.getElementById('what-you-see');
+  if (see) {
+    const use =
+      spare > 0
+        ? `${cap(word(n))} joints for a two-dimensional task leave ${spare === 1 ? 'one degree of freedom' : `${word(spare)} degrees of freedom`} spare: the planner spends ${spare === 1 ? 'it' : 'them'} on the null-space vector <i>v</i>, which grows the triangles between each link and the obstacle centre, pushing the links away from it.`
+        : `${cap(word(n))} joints for a two-dimensional task leave none spare: there is no null space, so the arm cannot bend away from an obstacle while its hand follows the line.`;
+    see.innerHTML = `The arm stands on a ${s.arm.post} m post and has links of ${list} m. Its end effector follows the dashed straight line at constant speed (the grey dot is where it should be now). ${use}`;
+  }
+  const note = document.getElementById('network-note');
+  const paper = limits().arm_presets[0];
+  const isPaper = s.arm.post === paper.post && s.arm.links.join() === paper.links.join();
+  if (note) {
+    note.dataset.arm = isPaper ? 'paper' : 'other';
+    if (!isPaper) {
+      note.textContent =
+        `The networks shipped with the page were trained for the paper's arm, not this one: ${networkMethodLabels()} need networks trained for this arm ` +
+        '("Train the networks for this arm"). The training report, and a warning beside the drawing when they fail their own check, say how well they do.';
+    } else if (note.dataset.original) {
+      note.innerHTML = note.dataset.original;
+    }
+  }
+}
+
+/** Keeps --stage-top and --stage-top0 (where the sticky stage column starts on screen, now and unscrolled) for stage.css. */
+function followLayout() {
+  const demo = document.querySelector('.demo');
+  if (!demo) return;
+  let queued = false;
+  const apply = () => {
+    queued = false;
+    const top = demo.getBoundingClientRect().top;
+    const style = document.documentElement.style;
+    // Where the column starts now (it grows as the header scrolls away:
+    // the plots take the room), and where it starts unscrolled (the
+    // drawing's height depends on that only, so it never rescales while
+    // the page scrolls or a note appears).
+    style.setProperty('--stage-top', `${Math.round(Math.max(8, top))}px`);
+    style.setProperty('--stage-top0', `${Math.round(top + scrollY)}px`);
+  };
+  const queue = () => {
+    if (!queued) requestAnimationFrame(apply);
+    queued = true;
+  };
+  addEventListener('scroll', queue, { passive: true });
+  addEventListener('resize', queue);
+  apply();
+}
+
 async function start() {
   const loading = document.getElementById('loading');
   try {
     await loadModule();
     explainMethods(document.getElementById('modes-explained'));
     fillLimits(document);
+    const note = document.getElementById('network-note');
+    if (note) note.dataset.original = note.innerHTML;
+    followLayout();
     const { problems, ...settings } = readAddress(location.search);
     const controller = await mount(document, {
       ...settings,
@@ -42,7 +108,10 @@ async function start() {
       problemsLabel: 'Ignored in the address',
       keyboard: document,
       onChange: writeAddress,
+      onArm: describeArm,
+      link: (s) => writeAddress(s),
     });
+    const tour = mountTour(document, controller);
     window.demo = {
       state: () => controller.state(),
       worldToClient: (x, y) => controller.worldToClient(x, y),
@@ -56,12 +125,15 @@ async function start() {
       removeObstacle: (i) => controller.playground.removeObstacle(i),
       obstacles: () => controller.playground.obstacles(),
       train: (options) => controller.playground.train(options),
+      lastTraining: () => controller.playground.lastTraining(),
       exportWeights: () => controller.playground.exportWeights(),
       simulate: (options) => controller.playground.simulate(options),
       methods: () => structuredClone(methods()),
       build: moduleBuild(),
       wasmMemoryBytes: () => moduleMemoryBytes(),
       controller,
+      tour,
+      files: () => controller.files(),
       readyMs: performance.now(),
     };
     document.body.dataset.ready = 'true';

@@ -118,6 +118,7 @@ export function mountPlayground(root, demo, { attempt, show, changed }) {
     removeObstacle: designer.removeObstacle,
     obstacles: () => demo.state().obstacles.map((o) => ({ x: o.centre[0], y: o.centre[1], r: o.radius })),
     train: training.train,
+    lastTraining: training.last,
     exportWeights: training.exportWeights,
     wantsClick: designer.wantsClick,
     click: designer.click,

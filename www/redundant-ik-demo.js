@@ -24,6 +24,7 @@ const STYLE = `
   background: #fff;
   padding: 8px;
   contain: content;
+  min-width: 0;
 }
 :host(:focus-visible) { outline: 2px solid #6ea0dc; outline-offset: 2px; }
 .wrap { position: relative; }
@@ -36,6 +37,7 @@ const STYLE = `
 #loading[hidden] { display: none; }
 #loading.failed { color: var(--danger); }
 .bar { display: flex; flex-wrap: wrap; gap: 6px; align-items: center; margin-top: 6px; }
+#mode { flex: 1 1 12em; min-width: 0; max-width: 100%; text-overflow: ellipsis; }
 select, button { font: inherit; font-size: 13px; color: var(--ink); border: 1px solid #cdd5de;
   border-radius: 6px; background: #fff; padding: 4px 9px; min-height: 30px; cursor: pointer; }
 button:hover, select:hover { background: #f8fafc; border-color: #aab5c2; }

@@ -4,7 +4,7 @@
 // and forgetting them. The networks trained are installed and kept through
 // the playground's hooks.
 
-import { describe, limits, networkMethodLabels, formatArm } from './module.js';
+import { describe, limits, networkMethodLabels, formatArm, builtinWeightsUrl, builtinWeightsFiles } from './module.js';
 import { runWorker, showBusy } from './jobs.js';
 import { metres, sci, seconds as fmtS, row } from './format.js';
 
@@ -52,8 +52,11 @@ function drawCurves(canvas, series) {
     ctx.stroke();
     ctx.fillText(`1e${d}`, 4, y(10 ** d) + 4);
   }
-  ctx.fillText(`epoch ${maxEpoch}`, W - pad.r - 60, H - 5);
-  let legendX = pad.l + 4;
+  // The epoch axis; the key of the curves is under the chart (.train-key).
+  ctx.textAlign = 'right';
+  ctx.fillText(`epoch ${maxEpoch}`, W - pad.r, H - 5);
+  ctx.textAlign = 'left';
+  ctx.fillText('0', pad.l, H - 5);
   for (const [name, points] of Object.entries(series)) {
     for (const [key, dashed] of [
       ['train_mse', false],
@@ -73,9 +76,6 @@ function drawCurves(canvas, series) {
       ctx.stroke();
     }
     ctx.setLineDash([]);
-    ctx.fillStyle = colours[name] ?? ink;
-    ctx.fillText(`${name === 'phi' ? 'Φ' : 'v'}: train —, validation - -`, legendX, H - 5);
-    legendX += 150;
   }
 }
 
@@ -88,7 +88,8 @@ function reportTable(report) {
   const body = document.createElement('tbody');
   for (const t of report.paper_tasks) {
     const ok = !t.error && !t.collided && t.final_error <= tolerance;
-    body.append(row([`Task ${t.task}`, t.mode, ok ? 'yes' : 'no', t.collided ? 'yes' : 'no', metres(t.final_error)]));
+    const loop = `${t.feedback_gain ? `, K = ${t.feedback_gain}` : ''}${t.refine ? `, refine ${t.refine}` : ''}`;
+    body.append(row([`Task ${t.task}${loop}`, t.mode, ok ? 'yes' : 'no', t.collided ? 'yes' : 'no', metres(t.final_error)]));
   }
   for (const c of report.random_tasks) {
     const tr = row([
@@ -109,7 +110,10 @@ function reportTable(report) {
  * Wires the training panel's elements under `root` that exist
  * (`#train-panel`, `#train-preset`, `#train-net`, `#train-run`,
  * `#train-cancel`, `#train-progress`, `#train-status`, `#train-curves`,
- * `#train-report`, `#train-download`, `#train-forget`, `#train-for-arm`).
+ * `#train-report`, `#train-download`, `#train-forget`, `#train-for-arm`,
+ * and beside the drawing `#verdict-warning`, `#verdict-text`,
+ * `#verdict-use`, `#verdict-dismiss`: networks that fail their own check
+ * are not swapped in unless the user asks).
  * Hooks: `files()` (the weights files in use, or null), `install(phi, v)`,
  * `keep(arm, entry)` (whether kept), `forget()`, `attempt(fn)`, `show(text,
  * kind)`, `changed()`. Returns `{ train(options), exportWeights(),
@@ -130,7 +134,13 @@ export function mountTraining(root, demo, { files, install, keep, forget, attemp
     download: $('train-download'),
     forget: $('train-forget'),
     forArm: $('train-for-arm'),
+    verdict: $('verdict-warning'),
+    verdictText: $('verdict-text'),
+    verdictUse: $('verdict-use'),
+    verdictDismiss: $('verdict-dismiss'),
   };
+  let pending = null; // trained networks that failed their check: { arm, entry }
+  let last = null; // the last training's report
 
   let training = null; // AbortController of the job under way
   let curves = {};
@@ -205,16 +215,24 @@ export function mountTraining(root, demo, { files, install, keep, forget, attemp
         { kind: 'train', request, phi: current?.phi, v: current?.v },
         { signal: training.signal, onProgress: follower(t0, options.onProgress) },
       );
-      // Swap the networks in; on failure the ones in use stay.
-      install(result.phi, result.v);
-      const kept = keep(demo.state().arm, { phi: result.phi, v: result.v, report: result.report, saved: new Date().toISOString() });
       const seconds = (performance.now() - t0) / 1000;
+      const entry = { phi: result.phi, v: result.v, report: result.report, saved: new Date().toISOString() };
+      showReport(result.report, performance.now() - t0);
+      last = result.report;
+      const verdict = result.report.verdict;
+      if (!verdict.passed) {
+        // Networks that fail their own check stay out unless the user asks.
+        pending = { arm: formatArm(request.arm.post, request.arm.links), entry };
+        warnVerdict(verdict);
+        status(`Done in ${fmtS(seconds)}, but these networks fail their own check: the networks in use are unchanged (see the warning beside the drawing).`);
+        return { ...result.report, seconds, worker_ms: ms, stored: false, installed: false };
+      }
+      // Swap the networks in; on failure the ones in use stay.
+      const kept = use(entry);
       status(
         `Done in ${fmtS(seconds)}; ${networkMethodLabels()} now use these networks${kept ? ', kept in this browser for this arm' : ' (not kept: browser storage unavailable)'}.`,
       );
-      showReport(result.report, performance.now() - t0);
-      changed();
-      return { ...result.report, seconds, worker_ms: ms, stored: kept };
+      return { ...result.report, seconds, worker_ms: ms, stored: kept, installed: true };
     } catch (e) {
       status(e.name === 'AbortError' ? 'Cancelled; the networks in use are unchanged.' : `Training failed: ${describe(e)}. The networks in use are unchanged.`);
       throw e;
@@ -223,6 +241,42 @@ export function mountTraining(root, demo, { files, install, keep, forget, attemp
       showBusy(el, false);
     }
   }
+
+  /** Installs and keeps trained networks; whether they were kept. */
+  function use(entry) {
+    install(entry.phi, entry.v);
+    const kept = keep(demo.state().arm, entry);
+    hideVerdict();
+    changed();
+    return kept;
+  }
+
+  function warnVerdict(verdict) {
+    if (!el.verdict) return;
+    el.verdictText.textContent =
+      `The networks just trained for this arm fail their own check (${verdict.checked}): ${verdict.failures.join('; ')}. ` +
+      `The networks in use stay; ${networkMethodLabels()} would extrapolate with these.`;
+    el.verdict.hidden = false;
+  }
+  function hideVerdict() {
+    pending = null;
+    if (el.verdict) el.verdict.hidden = true;
+  }
+  el.verdictUse?.addEventListener('click', () => {
+    if (!pending) return;
+    if (pending.arm !== formatArm(demo.state().arm.post, demo.state().arm.links)) {
+      hideVerdict();
+      return show('Those networks were trained for another arm.', 'warn', false, el.verdictUse);
+    }
+    const entry = pending.entry;
+    if (!attempt(() => use(entry), 'error', el.verdictUse)) return;
+    status(`${networkMethodLabels()} now use the networks just trained, although they fail their own check.`);
+    show('In use although they fail their check: compare with the dashed numerical ghost.', 'warn', false, el.verdictUse);
+  });
+  el.verdictDismiss?.addEventListener('click', () => {
+    hideVerdict();
+    status('The networks just trained were set aside; the networks in use are unchanged.');
+  });
 
   // The empty plot says what will appear once the panel is open (a closed panel has no size).
   el.panel?.addEventListener('toggle', () => el.panel.open && drawCurves(el.curves, curves));
@@ -238,26 +292,42 @@ export function mountTraining(root, demo, { files, install, keep, forget, attemp
 
   function exportWeights() {
     const f = files();
-    if (!f) throw new Error('no networks trained or loaded for this arm to export (the built-in ones ship as weights/*.json)');
+    if (!f) throw new Error('no networks trained or loaded for this arm to export');
     return f;
   }
 
-  el.download?.addEventListener('click', () =>
-    attempt(() => {
-      const weights = exportWeights();
-      const { post, links } = demo.state().arm;
-      const tag = formatArm(post, links).replace(/[:,]/g, '_');
-      for (const [name, text] of Object.entries(weights)) {
-        const a = document.createElement('a');
-        a.href = URL.createObjectURL(new Blob([text + '\n'], { type: 'application/json' }));
-        a.download = `${name}-${tag}.json`;
-        document.body.append(a);
-        a.click();
-        a.remove();
-        setTimeout(() => URL.revokeObjectURL(a.href), 1000);
+  const save = (name, text) => {
+    const a = document.createElement('a');
+    a.href = URL.createObjectURL(new Blob([text.endsWith('\n') ? text : text + '\n'], { type: 'application/json' }));
+    a.download = name;
+    document.body.append(a);
+    a.click();
+    a.remove();
+    setTimeout(() => URL.revokeObjectURL(a.href), 1000);
+  };
+  el.download?.addEventListener('click', async () => {
+    const { post, links } = demo.state().arm;
+    const tag = formatArm(post, links).replace(/[:,]/g, '_');
+    const own = files();
+    if (own) {
+      for (const [name, text] of Object.entries(own)) save(`${name}-${tag}.json`, text);
+      return;
+    }
+    // The built-in networks, where they run: the files served beside the page.
+    if (!demo.state().networks) {
+      return show('No networks for this arm yet: train them first.', 'warn', false, el.download);
+    }
+    try {
+      for (const name of builtinWeightsFiles()) {
+        const r = await fetch(builtinWeightsUrl(name));
+        if (!r.ok) throw new Error(`HTTP ${r.status} for weights/${name}`);
+        save(name, await r.text());
       }
-    }),
-  );
+      show("The paper's networks, as shipped: the files redundant-ik train writes.", 'info', false, el.download);
+    } catch (e) {
+      show(`Could not fetch the built-in networks: ${describe(e)}`, 'error', false, el.download);
+    }
+  });
   el.forget?.addEventListener('click', () =>
     attempt(() => {
       forget();
@@ -272,5 +342,5 @@ export function mountTraining(root, demo, { files, install, keep, forget, attemp
     if (el.forArm) el.forArm.hidden = s.networks;
   }
 
-  return { train, exportWeights, showReport, check };
+  return { train, exportWeights, showReport, check, last: () => last };
 }

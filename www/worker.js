@@ -13,6 +13,10 @@
 //   { kind: 'train', wasm, request: { arm, net, preset, samples, epochs, seed }, phi, v }
 //       Levenberg-Marquardt training of the networks for an arm, a progress
 //       message per epoch (with the epoch's numbers in `epoch`)
+//   { kind: 'run-files', wasm, scene, mode, task, phi, v }
+//       a run as the JSON of `simulate --json`, CSV, and its figures as SVG
+//   { kind: 'atlas-files', wasm, atlas, scene, modes }
+//       an atlas's JSON, the CSV of its cells, and its maps (of `modes`) as SVG
 // Messages out:
 //   { type: 'progress', done, total, label }
 //   { type: 'done', result, ms }
@@ -26,6 +30,8 @@ import init, {
   benchForward,
   benchMethods,
   benchVerdict,
+  runFiles,
+  atlasFiles,
   lastPanic,
 } from './pkg/redundant_ik_worker.js';
 import { describeError } from './errors.js';
@@ -87,6 +93,8 @@ self.onmessage = async ({ data }) => {
     if (data.kind === 'bench') result = bench(data);
     else if (data.kind === 'atlas') result = atlas(data);
     else if (data.kind === 'train') result = train(data);
+    else if (data.kind === 'run-files') result = runFiles(data.scene, data.mode, data.task, data.phi ?? undefined, data.v ?? undefined);
+    else if (data.kind === 'atlas-files') result = atlasFiles(data.atlas, data.scene, data.modes ?? []);
     else throw new Error(`unknown job '${data.kind}'`);
     self.postMessage({ type: 'done', result, ms: performance.now() - t0 });
   } catch (e) {

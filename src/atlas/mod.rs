@@ -11,7 +11,9 @@
 //! can report progress and cancel between them: a progress bar in the
 //! command-line tool, a Web Worker's messages in the page.
 
+mod geometry;
 mod grid;
+mod read;
 mod summary;
 
 use std::sync::Arc;
@@ -19,12 +21,12 @@ use std::sync::Arc;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
-use crate::geometry::segment_distance_squared;
-use crate::kinematics::Pose;
 use crate::networks::Networks;
 use crate::planner::{methods, Method, Planner, Surrogate};
 use crate::scene::Scene;
 
+pub use geometry::unavoidable;
+use geometry::Geometry;
 pub use grid::{Grid, DEFAULT_GRID, MAX_GRID};
 pub use summary::{Agreement, Clearance, ModeSummary, Rate};
 
@@ -142,6 +144,11 @@ pub struct Cell {
     pub y: f64,
     /// One outcome per mode.
     pub outcomes: Vec<Outcome>,
+    /// Where avoidance is possible (neither `start_overlap` nor
+    /// `path_blocked`): whether it matters here, i.e. whether the arm
+    /// without avoidance (`none`) collides; `None` elsewhere. Far from the
+    /// arm every method succeeds, avoiding or not.
+    pub avoidance_needed: Option<bool>,
 }
 
 /// What to map: a scene (whose first obstacle is moved), a grid and modes.
@@ -218,44 +225,6 @@ impl Atlas {
     }
 }
 
-/// The start pose and the path, which decide `start_overlap` and
-/// `path_blocked` for every mode at once.
-#[derive(Debug, Clone)]
-struct Geometry {
-    start: Pose,
-    post_top: [f64; 2],
-    path: [[f64; 2]; 2],
-    radius: f64,
-}
-
-impl Geometry {
-    fn new(scene: &Scene, radius: f64) -> Result<Self> {
-        let start = Pose::new(&scene.arm, &scene.theta0)?;
-        let path = [start.end_effector(), scene.target];
-        Ok(Self {
-            post_top: [0.0, scene.arm.post()],
-            start,
-            path,
-            radius,
-        })
-    }
-
-    /// `start_overlap`, `path_blocked` or neither (`None`) for a centre.
-    /// "Touches" and "covers" use the planner's collision test, distance
-    /// below the radius; the post as [`crate::Obstacle::validate`] does.
-    fn classify(&self, o: [f64; 2]) -> Option<Class> {
-        let r2 = self.radius * self.radius;
-        let post = segment_distance_squared(o, [0.0, 0.0], self.post_top);
-        if post <= r2 || self.start.clearance(o) < self.radius {
-            Some(Class::StartOverlap)
-        } else if segment_distance_squared(o, self.path[0], self.path[1]) < r2 {
-            Some(Class::PathBlocked)
-        } else {
-            None
-        }
-    }
-}
-
 /// An atlas being computed, a chunk of cells at a time.
 #[derive(Debug, Clone)]
 pub struct Job {
@@ -263,7 +232,9 @@ pub struct Job {
     geometry: Geometry,
     steps: usize,
     networks: Option<Arc<Networks>>,
-    /// One planner per mode, reused for every cell.
+    /// One planner per mode, reused for every cell; then one without
+    /// avoidance if `none` is not among the modes (it says where avoidance
+    /// matters).
     planners: Vec<Planner>,
     cells: Vec<Cell>,
 }
@@ -297,7 +268,7 @@ impl Job {
             .radius;
         let geometry = Geometry::new(&spec.scene, radius)?;
         let surrogate = networks.clone().map(|n| n as Arc<dyn Surrogate>);
-        let planners = spec
+        let mut planners = spec
             .modes
             .iter()
             .map(|&m| {
@@ -305,6 +276,13 @@ impl Job {
                 Planner::new(spec.scene.clone(), m, nets.flatten())
             })
             .collect::<Result<Vec<_>>>()?;
+        if !spec.modes.contains(&Method::NO_AVOIDANCE) {
+            planners.push(Planner::new(
+                spec.scene.clone(),
+                Method::NO_AVOIDANCE,
+                None,
+            )?);
+        }
         let steps = spec.scene.steps();
         let cells = Vec::with_capacity(spec.grid.cells());
         Ok(Self {
@@ -339,6 +317,7 @@ impl Job {
         for index in self.done()..end {
             let cell = run_cell(
                 &mut self.planners,
+                self.spec.modes.len(),
                 &self.geometry,
                 self.steps,
                 self.spec.grid.point(index),
@@ -357,11 +336,12 @@ impl Job {
         let end = self.done().saturating_add(cells).min(self.total());
         let (planners, geometry, steps, grid) =
             (&self.planners, &self.geometry, self.steps, &self.spec.grid);
+        let modes = self.spec.modes.len();
         let new: Vec<Cell> = (self.done()..end)
             .into_par_iter()
             .map_init(
                 || planners.clone(),
-                |p, index| run_cell(p, geometry, steps, grid.point(index)),
+                |p, index| run_cell(p, modes, geometry, steps, grid.point(index)),
             )
             .collect();
         self.cells.extend(new);
@@ -406,19 +386,36 @@ impl Job {
     }
 }
 
-/// Runs every mode with the obstacle centred on `o`.
-fn run_cell(planners: &mut [Planner], geometry: &Geometry, steps: usize, o: [f64; 2]) -> Cell {
-    let outcomes = match geometry.classify(o) {
+/// Runs every planner with the obstacle centred on `o`: the first `modes`
+/// are the atlas's modes, a further one the arm without avoidance.
+fn run_cell(
+    planners: &mut [Planner],
+    modes: usize,
+    geometry: &Geometry,
+    steps: usize,
+    o: [f64; 2],
+) -> Cell {
+    let class = geometry.classify(o);
+    let mut outcomes: Vec<Outcome> = match class {
         Some(Class::StartOverlap) => planners.iter().map(|_| Outcome::not_run()).collect(),
         blocked => planners
             .iter_mut()
             .map(|p| run_one(p, steps, o, blocked.is_some()))
             .collect(),
     };
+    let bare = planners
+        .iter()
+        .position(|p| p.method() == Method::NO_AVOIDANCE);
+    let avoidance_needed = match (class, bare) {
+        (None, Some(k)) => Some(outcomes[k].class == Class::Collision),
+        _ => None,
+    };
+    outcomes.truncate(modes);
     Cell {
         x: o[0],
         y: o[1],
         outcomes,
+        avoidance_needed,
     }
 }
 

@@ -77,6 +77,9 @@ pub struct ModeSummary {
     /// Success over the cells where avoidance is possible (neither
     /// `start_overlap` nor `path_blocked`).
     pub avoidable: Rate,
+    /// The same over those of them where avoidance matters: the arm
+    /// without avoidance collides there ([`Cell::avoidance_needed`]).
+    pub mattered: Rate,
     /// The same inside the `v` network's trained obstacle region.
     pub inside_trained_region: Option<Rate>,
     /// The same outside it.
@@ -121,6 +124,7 @@ pub(super) fn summarise(
         .map(|(k, &mode)| {
             let mut counts = [0; 6];
             let (mut all, mut ins, mut outs) = ((0, 0), (0, 0), (0, 0));
+            let mut mattered = (0, 0);
             let mut clearances = Vec::new();
             let mut agree = Agreement {
                 both: 0,
@@ -138,6 +142,9 @@ pub(super) fn summarise(
                 if o.class.avoidable() {
                     let won = usize::from(success(o));
                     all = (all.0 + 1, all.1 + won);
+                    if cell.avoidance_needed == Some(true) {
+                        mattered = (mattered.0 + 1, mattered.1 + won);
+                    }
                     if let Some(r) = region {
                         let bucket = if inside(r, cell) { &mut ins } else { &mut outs };
                         *bucket = (bucket.0 + 1, bucket.1 + won);
@@ -157,6 +164,7 @@ pub(super) fn summarise(
                 mode,
                 counts,
                 avoidable: Rate::of(all.0, all.1),
+                mattered: Rate::of(mattered.0, mattered.1),
                 inside_trained_region: region.map(|_| Rate::of(ins.0, ins.1)),
                 outside_trained_region: region.map(|_| Rate::of(outs.0, outs.1)),
                 agreement: (learned && numerical.is_some()).then_some(agree),
@@ -202,10 +210,11 @@ struct CellJson<'a> {
 
 impl Serialize for CellJson<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        let mut st = s.serialize_struct("Cell", 3)?;
+        let mut st = s.serialize_struct("Cell", 4)?;
         st.serialize_field("x", &self.cell.x)?;
         st.serialize_field("y", &self.cell.y)?;
         st.serialize_field("outcomes", &ByMode(self.modes, &self.cell.outcomes))?;
+        st.serialize_field("avoidance_needed", &self.cell.avoidance_needed)?;
         st.end()
     }
 }
@@ -237,10 +246,11 @@ impl Serialize for SummaryJson<'_> {
 
 impl Serialize for ModeSummary {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        let mut st = s.serialize_struct("ModeSummary", 7)?;
+        let mut st = s.serialize_struct("ModeSummary", 8)?;
         st.serialize_field("success_rate", &self.success_rate())?;
         st.serialize_field("counts", &Counts(&self.counts))?;
         st.serialize_field("avoidable", &self.avoidable)?;
+        st.serialize_field("mattered", &self.mattered)?;
         st.serialize_field("inside_trained_region", &self.inside_trained_region)?;
         st.serialize_field("outside_trained_region", &self.outside_trained_region)?;
         st.serialize_field("agreement", &self.agreement)?;

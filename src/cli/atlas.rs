@@ -34,8 +34,13 @@ pub struct AtlasArgs {
     #[arg(long, default_value = "paper")]
     pub modes: String,
     /// Print the whole atlas as one JSON object instead of the table.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "csv")]
     pub json: bool,
+    /// Print the cells as CSV instead of the table: x, y, whether
+    /// avoidance matters there, then each mode's class, clearance and
+    /// final error.
+    #[arg(long)]
+    pub csv: bool,
     /// Write the heat maps, one per mode, as SVG.
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -75,7 +80,7 @@ pub fn run(args: &AtlasArgs) -> Result<(), String> {
         scene: scene.clone(),
         grid,
         modes,
-        task: Some(args.scene.task),
+        task: Some(args.scene.task()?),
     };
     let threads = match args.threads {
         Some(0) => return Err("--threads must be at least 1".into()),
@@ -89,8 +94,12 @@ pub fn run(args: &AtlasArgs) -> Result<(), String> {
     let seconds = start.elapsed().as_secs_f64();
 
     if let Some(path) = &args.out {
-        super::atlas_figure::draw(path, &atlas, &scene)?;
+        let svg = redundant_ik::figure::atlas_svg(&atlas, &scene).map_err(|e| e.to_string())?;
+        std::fs::write(path, svg).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         eprintln!("wrote {}", path.display());
+    }
+    if args.csv {
+        return emit(&redundant_ik::export::atlas_csv(&atlas));
     }
     if args.json {
         let json = serde_json::to_string(&atlas).map_err(|e| e.to_string())?;

@@ -59,7 +59,10 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         paper_variants: true,
         atlas: !args.no_atlas,
         methods: Method::parse_list(&args.modes).map_err(|e| e.to_string())?,
-        networks: args.networks.parse().map_err(|e: redundant_ik::Error| e.to_string())?,
+        networks: args
+            .networks
+            .parse()
+            .map_err(|e: redundant_ik::Error| e.to_string())?,
         refine: args.refine,
     };
     redundant_ik::nn::kernel::set_runtime_dispatch(!args.baseline_kernels);

@@ -10,7 +10,6 @@ use redundant_ik::obstacle::Placement;
 use redundant_ik::{Arm, Method, Surrogate};
 
 pub mod atlas;
-pub mod atlas_figure;
 pub mod bench;
 pub mod eval;
 pub mod figure;

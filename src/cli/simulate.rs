@@ -1,6 +1,9 @@
 //! `redundant-ik simulate`: one planning run, as a readable summary or JSON.
 
+use std::path::PathBuf;
+
 use clap::Args;
+use redundant_ik::export::{self, RunFile};
 use redundant_ik::{Arm, DampingSchedule, Method, Planner, Scene, Trajectory};
 
 use std::fmt::Write as _;
@@ -14,6 +17,11 @@ use super::{emit, method_help, parse_arm, parse_list, parse_method, parse_obstac
 /// Scene options shared by `simulate`, `figure` and `atlas`.
 #[derive(Args, Debug, Clone)]
 pub struct SceneArgs {
+    /// A run file (the JSON of `simulate --json`, or of the page's
+    /// "Download run"): its scene, task and, unless --mode is given, its
+    /// method. No other scene option goes with it.
+    #[arg(long)]
+    pub from: Option<PathBuf>,
     /// Paper task (1 or 2) that provides the defaults.
     #[arg(long, default_value_t = 1)]
     pub task: u32,
@@ -91,8 +99,71 @@ pub struct SceneArgs {
 }
 
 impl SceneArgs {
+    /// The run file of `--from`, read and checked, if given.
+    pub fn run_file(&self) -> Result<Option<RunFile>, String> {
+        let Some(path) = &self.from else {
+            return Ok(None);
+        };
+        let size = std::fs::metadata(path)
+            .map_err(|e| format!("cannot read {}: {e}", path.display()))?
+            .len();
+        if size > export::MAX_RUN_FILE_BYTES as u64 {
+            return Err(format!(
+                "{}: {size} bytes, more than the {} a run file may have",
+                path.display(),
+                export::MAX_RUN_FILE_BYTES
+            ));
+        }
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        let run = RunFile::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+        // The file is the whole scene: an option beside it would be ignored.
+        let given = [
+            ("--arm", self.arm.is_some()),
+            ("--obstacle", !self.obstacle.is_empty()),
+            ("--radius", self.radius.is_some()),
+            ("--lambda", self.lambda.is_some()),
+            ("--delta", self.delta.is_some()),
+            ("--damping", self.damping),
+            ("--dt", self.dt.is_some()),
+            ("--tf", self.tf.is_some()),
+            ("--target", self.target.is_some()),
+            ("--theta0", self.theta0.is_some()),
+            ("--feedback", self.feedback.is_some()),
+            ("--influence", self.influence.is_some()),
+            ("--stop-distance", self.stop_distance.is_some()),
+            ("--damper-gain", self.damper_gain.is_some()),
+            ("--slack-weight", self.slack_weight.is_some()),
+            ("--distance-gain", self.distance_gain.is_some()),
+            ("--escape-speed", self.escape_speed.is_some()),
+            ("--rate-limit", self.rate_limit.is_some()),
+        ];
+        if let Some((flag, _)) = given.iter().find(|(_, set)| *set) {
+            return Err(format!(
+                "--from gives the whole scene; {flag} cannot change it"
+            ));
+        }
+        Ok(Some(run))
+    }
+
+    /// The paper task: `--task`, or the run file's.
+    pub fn task(&self) -> Result<u32, String> {
+        Ok(self.run_file()?.map_or(self.task, |r| r.task))
+    }
+
+    /// The method: `--mode`, else the run file's, else `numerical`.
+    pub fn method(&self, arg: &MethodArg) -> Result<Method, String> {
+        Ok(match arg.method {
+            Some(m) => m,
+            None => self.run_file()?.map_or(Method::NUMERICAL, |r| r.mode),
+        })
+    }
+
     /// The scene these options describe, validated.
     pub fn scene(&self) -> Result<Scene, String> {
+        if let Some(run) = self.run_file()? {
+            return Ok(run.scene);
+        }
         let mut s = Scene::task(self.task).map_err(|e| e.to_string())?;
         if let Some(arm) = &self.arm {
             if *arm != s.arm {
@@ -170,11 +241,12 @@ impl SceneArgs {
     }
 }
 
-/// The `--mode` option of `simulate` and `figure`.
+/// The `--mode` option of `simulate` and `figure` (default: the run
+/// file's method with `--from`, else `numerical`).
 #[derive(Args, Debug, Clone)]
 pub struct MethodArg {
-    #[arg(long = "mode", default_value = "numerical", value_parser = parse_method, help = method_help())]
-    pub method: Method,
+    #[arg(long = "mode", value_parser = parse_method, help = method_help())]
+    pub method: Option<Method>,
 }
 
 /// Options of `redundant-ik simulate`.
@@ -184,36 +256,40 @@ pub struct SimulateArgs {
     pub scene: SceneArgs,
     #[command(flatten)]
     pub method: MethodArg,
-    /// Print one JSON object (every step and the summary) instead of text.
-    #[arg(long)]
+    /// Print one JSON object (every step and the summary) instead of text:
+    /// what `--from` reads back.
+    #[arg(long, conflicts_with = "csv")]
     pub json: bool,
+    /// Print the run as CSV instead of text: t, each joint angle, the hand,
+    /// the reference point, the tracking error, the smallest
+    /// link-to-obstacle clearance and the collision flag, one line per step.
+    #[arg(long)]
+    pub csv: bool,
 }
 
 /// Runs `redundant-ik simulate`.
 pub fn run(args: &SimulateArgs) -> Result<(), String> {
-    let (scene, traj) = args.scene.run(args.method.method)?;
+    let method = args.scene.method(&args.method)?;
+    let task = args.scene.task()?;
+    let (scene, traj) = args.scene.run(method)?;
     let mut out = String::new();
     macro_rules! w {
         ($o:ident, $($arg:tt)*) => {{
             let _ = writeln!($o, $($arg)*);
         }};
     }
+    if args.csv {
+        return emit(&export::run_csv(&scene, &traj.steps));
+    }
     if args.json {
-        let json = serde_json::json!({
-            "task": args.scene.task,
-            "mode": traj.method,
-            "scene": scene,
-            "steps": traj.steps,
-            "summary": traj.summary,
-        });
-        return emit(&format!("{json}\n"));
+        return emit(&format!("{}\n", RunFile::new(task, scene, traj).to_json()));
     }
     let s = &traj.summary;
     let first = &traj.steps[0];
     w!(
         out,
         "Task {} | mode {} | lambda {} | delta {}{} | dt {} s | tf {} s{}",
-        args.scene.task,
+        task,
         traj.method,
         scene.lambda,
         scene.delta,

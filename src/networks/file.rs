@@ -4,15 +4,13 @@
 //! drawn, [`Sampling`], as plain data) and the input range they were
 //! trained on. Schema documented in `docs/networks.md`.
 
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Deserializer, Serialize};
 
 use crate::arm::Arm;
 use crate::error::{Error, Result};
 use crate::nn::lm::{LmOptions, TrainReport};
 use crate::nn::mlp::Mlp;
 use crate::planner::Method;
-
-pub use super::inputs::Encoding;
 
 /// Value of the `format` field this version reads and writes.
 pub const FORMAT: &str = "redundant-ik-weights/1";
@@ -68,6 +66,65 @@ impl std::str::FromStr for Variant {
                 choices: "plain, rows or equivariant".into(),
             }),
         }
+    }
+}
+
+/// How joint angles enter a network (`networks::inputs` builds the inputs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Encoding {
+    /// Each angle as it is, in radians (the paper's networks).
+    #[default]
+    Raw,
+    /// Each angle as `(sin theta_i, cos theta_i)`: periodic, bounded.
+    Angles,
+}
+
+impl Encoding {
+    /// The name in weights files and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Encoding::Raw => "raw",
+            Encoding::Angles => "angles",
+        }
+    }
+
+    /// Whether this is the paper's encoding (the weights file then omits
+    /// the field, so files written before it existed stay as they were).
+    pub fn is_raw(&self) -> bool {
+        *self == Encoding::Raw
+    }
+
+    /// Inputs that `angles` joint angles become.
+    pub fn width(self, angles: usize) -> usize {
+        match self {
+            Encoding::Raw => angles,
+            Encoding::Angles => 2 * angles,
+        }
+    }
+}
+
+impl std::str::FromStr for Encoding {
+    type Err = crate::error::Error;
+    fn from_str(s: &str) -> crate::error::Result<Self> {
+        match s {
+            "raw" => Ok(Encoding::Raw),
+            "angles" => Ok(Encoding::Angles),
+            other => Err(crate::error::Error::UnknownName {
+                kind: "encoding",
+                name: other.into(),
+                choices: "raw or angles".into(),
+            }),
+        }
+    }
+}
+
+/// Read by name through [`std::str::FromStr`], as [`crate::Method`] is:
+/// serde's derived enum reader would cost the page's module 1.1 KB.
+impl<'de> Deserialize<'de> for Encoding {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        let name = String::deserialize(d)?;
+        name.parse().map_err(serde::de::Error::custom)
     }
 }
 

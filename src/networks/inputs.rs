@@ -9,69 +9,8 @@
 //! `[-1, 1]`. The training set and the run time build their inputs here, so
 //! they cannot disagree.
 
-use serde::{Deserialize, Deserializer, Serialize};
-
-use super::file::{NetKind, Variant};
+use super::file::{Encoding, NetKind, Variant};
 use crate::arm::MAX_LINKS;
-
-/// How joint angles enter a network.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Encoding {
-    /// Each angle as it is, in radians (the paper's networks).
-    #[default]
-    Raw,
-    /// Each angle as `(sin theta_i, cos theta_i)`: periodic, bounded.
-    Angles,
-}
-
-impl Encoding {
-    /// The name in weights files and on the command line.
-    pub fn name(self) -> &'static str {
-        match self {
-            Encoding::Raw => "raw",
-            Encoding::Angles => "angles",
-        }
-    }
-
-    /// Whether this is the paper's encoding (the weights file then omits
-    /// the field, so files written before it existed stay as they were).
-    pub fn is_raw(&self) -> bool {
-        *self == Encoding::Raw
-    }
-
-    /// Inputs that `angles` joint angles become.
-    pub fn width(self, angles: usize) -> usize {
-        match self {
-            Encoding::Raw => angles,
-            Encoding::Angles => 2 * angles,
-        }
-    }
-}
-
-impl std::str::FromStr for Encoding {
-    type Err = crate::error::Error;
-    fn from_str(s: &str) -> crate::error::Result<Self> {
-        match s {
-            "raw" => Ok(Encoding::Raw),
-            "angles" => Ok(Encoding::Angles),
-            other => Err(crate::error::Error::UnknownName {
-                kind: "encoding",
-                name: other.into(),
-                choices: "raw or angles".into(),
-            }),
-        }
-    }
-}
-
-/// Read by name through [`std::str::FromStr`], as [`crate::Method`] is:
-/// serde's derived enum reader would cost the page's module 1.1 KB.
-impl<'de> Deserialize<'de> for Encoding {
-    fn deserialize<D: Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
-        let name = String::deserialize(d)?;
-        name.parse().map_err(serde::de::Error::custom)
-    }
-}
 
 /// Most inputs a network of an arm with [`MAX_LINKS`] links takes: the
 /// `v` network's `2n + 2` with encoded angles.

@@ -24,9 +24,10 @@ use crate::planner::Surrogate;
 
 pub use builtin::*;
 pub use file::{
-    InputRange, NetEntry, NetKind, Sampling, Training, Variant, WeightsFile, MAX_FILE_BYTES,
+    Encoding, InputRange, NetEntry, NetKind, Sampling, Training, Variant, WeightsFile,
+    MAX_FILE_BYTES,
 };
-pub use inputs::{Encoding, MAX_INPUTS};
+pub use inputs::MAX_INPUTS;
 
 /// A `Phi` network family and a `v` network for the same arm.
 #[derive(Debug, Clone, PartialEq)]

@@ -14,12 +14,27 @@ impl Planner {
         &self.sample
     }
 
-    /// Refreshes the sample after a change of setting (same state, same step).
+    /// Refreshes the sample after a change of setting (same state, same
+    /// step). Before the first step the run is its start alone, so the
+    /// summary starts afresh from the new sample; later the next step
+    /// records it (or [`Planner::observe_now`]).
     pub(super) fn resample(&mut self) {
         self.refresh_sample(Note {
             handover: self.sample.phi_handover,
             relaxed: self.sample.relaxed,
         });
+        if self.step_index == 0 {
+            self.stats = super::record::Stats::new();
+            self.stats.record(&self.sample);
+        }
+    }
+
+    /// Folds the current sample's distance and collision into the run's
+    /// summary without a step: after a change between steps (an obstacle
+    /// dropped next to the arm while the clock is paused is the closest the
+    /// run came to it).
+    pub fn observe_now(&mut self) {
+        self.stats.observe(&self.sample);
     }
 
     /// Rewrites the sample in place from the current pose; `note` is what
@@ -36,11 +51,14 @@ impl Planner {
         s.reference = [reference[0], reference[1]];
         s.tracking_error = distance(ee, [reference[0], reference[1]]);
         s.distance = None;
+        s.clearance = None;
         s.collision = false;
         for ob in &self.scene.obstacles {
             let d = pose.clearance(ob.centre);
             s.collision |= d < ob.radius;
             s.distance = Some(s.distance.map_or(d, |m| m.min(d)));
+            let c = d - ob.radius;
+            s.clearance = Some(s.clearance.map_or(c, |m| m.min(c)));
         }
         s.delta = self.scene.delta
             + self
@@ -74,6 +92,7 @@ impl Planner {
             steps: self.stats.steps,
             t: self.t,
             min_distance: self.stats.min_distance,
+            min_clearance: self.stats.min_clearance,
             collided: self.stats.collided,
             final_error,
             max_tracking_error: self.stats.max_tracking_error,

@@ -73,6 +73,11 @@ pub struct Sample {
     pub tracking_error: f64,
     /// Smallest distance from an obstacle centre to a moving link (none without obstacles).
     pub distance: Option<f64>,
+    /// Smallest clearance between a moving link and an obstacle disc: the
+    /// distance from the link to the disc's edge, negative inside it (none
+    /// without obstacles; absent from files written before it was kept).
+    #[serde(default)]
+    pub clearance: Option<f64>,
     /// Whether a link is inside an obstacle disc now.
     pub collision: bool,
     /// Damping `delta` in force at this pose.
@@ -113,6 +118,7 @@ impl Sample {
             reference: ee,
             tracking_error: 0.0,
             distance: None,
+            clearance: None,
             collision: false,
             delta: 0.0,
             manipulability: 0.0,
@@ -135,6 +141,10 @@ pub struct Summary {
     pub t: f64,
     /// Smallest obstacle-centre-to-link distance over all steps (none without obstacles).
     pub min_distance: Option<f64>,
+    /// Smallest link-to-obstacle clearance over all steps (see
+    /// [`Sample::clearance`]).
+    #[serde(default)]
+    pub min_clearance: Option<f64>,
     /// Whether a link entered an obstacle disc at any step.
     pub collided: bool,
     /// Distance from the end effector to the target now.
@@ -178,6 +188,7 @@ pub struct Trajectory {
 pub(super) struct Stats {
     pub(super) steps: usize,
     pub(super) min_distance: Option<f64>,
+    pub(super) min_clearance: Option<f64>,
     pub(super) collided: bool,
     pub(super) max_tracking_error: f64,
     pub(super) out_of_range_steps: usize,
@@ -191,6 +202,7 @@ impl Stats {
         Self {
             steps: 0,
             min_distance: None,
+            min_clearance: None,
             collided: false,
             max_tracking_error: 0.0,
             out_of_range_steps: 0,
@@ -201,10 +213,7 @@ impl Stats {
     }
 
     pub(super) fn record(&mut self, s: &Sample) {
-        if let Some(d) = s.distance {
-            self.min_distance = Some(self.min_distance.map_or(d, |m| m.min(d)));
-        }
-        self.collided |= s.collision;
+        self.observe(s);
         self.max_tracking_error = self.max_tracking_error.max(s.tracking_error);
         if !s.in_range {
             self.out_of_range_steps += 1;
@@ -216,5 +225,18 @@ impl Stats {
         if s.relaxed {
             self.relaxed_steps += 1;
         }
+    }
+
+    /// Folds a sample's distance and collision into the run's (a change of
+    /// setting between steps: no step is counted).
+    pub(super) fn observe(&mut self, s: &Sample) {
+        let min = |m: Option<f64>, d: f64| Some(m.map_or(d, |m: f64| m.min(d)));
+        if let Some(d) = s.distance {
+            self.min_distance = min(self.min_distance, d);
+        }
+        if let Some(c) = s.clearance {
+            self.min_clearance = min(self.min_clearance, c);
+        }
+        self.collided |= s.collision;
     }
 }

@@ -1,5 +1,6 @@
-//! The clock: real time turned into RK4 steps at the chosen speed, a task
-//! that stops at its final time, and the step-by-step controls.
+//! The clock: real time turned into RK4 steps at the chosen speed, a run
+//! that ends where its line ends (the scene's final time `tf`: the clock
+//! stops there and the arm holds still), and the step-by-step controls.
 
 use super::Session;
 use crate::error::{finite, Result};
@@ -10,19 +11,22 @@ pub const MAX_STEPS_PER_FRAME: usize = 40;
 impl Session {
     pub(super) fn run_to_end(&mut self) {
         self.running = true;
-        self.stop_at = Some(self.planner().scene().tf);
     }
 
-    /// Starts or pauses the clock. Starting after a task run continues
-    /// without a stop time.
+    /// Whether the run has ended: its line ends at the scene's final time
+    /// `tf`, and there the clock stops and the arm holds still.
+    pub fn ended(&self) -> bool {
+        let p = self.planner();
+        p.time() >= p.scene().tf - 1e-9
+    }
+
+    /// Starts or pauses the clock. Starting a run that has ended replays it
+    /// from `t = 0`: no clock runs on with nothing to do.
     pub fn set_running(&mut self, running: bool) {
         if running && !self.running {
             self.backlog = 0.0;
-            if self
-                .stop_at
-                .is_some_and(|s| self.planner().time() >= s - 1e-9)
-            {
-                self.stop_at = None;
+            if self.ended() {
+                self.reset();
             }
         }
         self.running = running;
@@ -33,23 +37,23 @@ impl Session {
         self.running
     }
 
-    /// One RK4 step; pauses the clock.
+    /// One RK4 step; pauses the clock. Nothing at the end of the run.
     pub fn step(&mut self) -> Result<()> {
         self.running = false;
         self.backlog = 0.0;
-        let r = self.advance(1);
+        let r = self.advance(self.steps_left().min(1));
         self.remember_poses();
         r
     }
 
-    /// Steps until `t >= time`, honouring a task's stop time; at most 100 000 steps.
+    /// Steps until `t >= time` or the end of the run, whichever comes
+    /// first.
     pub fn run_until(&mut self, time: f64) -> Result<()> {
         finite("time", time)?;
         let dt = self.planner().scene().dt;
-        let end = self.stop_at.map_or(time, |s| s.min(time));
-        let n = ((end - self.planner().time()) / dt - 1e-9)
+        let n = ((time - self.planner().time()) / dt - 1e-9)
             .ceil()
-            .clamp(0.0, 100_000.0) as usize;
+            .clamp(0.0, self.steps_left() as f64) as usize;
         let r = self.advance(n);
         self.remember_poses();
         self.check_stop();
@@ -66,22 +70,25 @@ impl Session {
         }
         let dt = self.planner().scene().dt;
         self.backlog += elapsed_ms.min(250.0) / 1000.0 * self.speed / dt;
-        let mut n = (self.backlog.floor() as usize).min(MAX_STEPS_PER_FRAME);
-        if let Some(stop) = self.stop_at {
-            let left = ((stop - self.planner().time()) / dt - 1e-9).ceil().max(0.0) as usize;
-            n = n.min(left);
-        }
+        let n = (self.backlog.floor() as usize)
+            .min(MAX_STEPS_PER_FRAME)
+            .min(self.steps_left());
         self.backlog = (self.backlog - n as f64).clamp(0.0, 1.0);
         let r = self.advance(n);
         self.check_stop();
         r
     }
 
+    /// Steps from now to the end of the run.
+    fn steps_left(&self) -> usize {
+        let p = self.planner();
+        ((p.scene().tf - p.time()) / p.scene().dt - 1e-9)
+            .ceil()
+            .max(0.0) as usize
+    }
+
     fn check_stop(&mut self) {
-        if self
-            .stop_at
-            .is_some_and(|stop| self.planner().time() >= stop - 1e-9)
-        {
+        if self.ended() {
             self.running = false;
             self.backlog = 0.0;
         }

@@ -5,6 +5,7 @@
 use serde::Serialize;
 
 use super::Session;
+use crate::atlas;
 use crate::error::Result;
 use crate::networks;
 use crate::planner::{methods, Method, Planner, Summary};
@@ -21,6 +22,10 @@ pub struct MethodRun {
     pub summary: Option<Summary>,
     /// Why it did not.
     pub error: Option<String>,
+    /// Whether a hit is unavoidable in this scene, whatever the method: an
+    /// obstacle on the arm at `t = 0` (`"start_overlap"`) or on the path
+    /// the hand must follow (`"path_blocked"`), as the atlas classes them.
+    pub unavoidable: Option<&'static str>,
 }
 
 impl Session {
@@ -34,6 +39,12 @@ impl Session {
     /// Runs the current scene from `t = 0` with every method, off screen.
     pub fn compare_methods(&self) -> Vec<MethodRun> {
         let scene = self.planner().scene();
+        let unavoidable = scene
+            .obstacles
+            .iter()
+            .filter_map(|o| atlas::unavoidable(scene, o))
+            .min()
+            .map(|c| c.name());
         methods::ALL
             .iter()
             .map(|&m| {
@@ -46,6 +57,7 @@ impl Session {
                     label: m.label(),
                     summary,
                     error,
+                    unavoidable,
                 }
             })
             .collect()

@@ -38,6 +38,15 @@ pub(super) struct Histories {
     /// [`STROBE_EVERY`]th joins it).
     strobe_count: usize,
     pub(super) points: VecDeque<Point>,
+    /// Samples recorded with a link below the floor.
+    pub(super) below_floor: usize,
+}
+
+/// Whether a link of the arm with joints `P(0)..P(n)` reaches below the
+/// floor (`y < 0`): a real arm would hit the ground there. `P(0)`, the top
+/// of the post, never does.
+pub fn below_floor(joints: &[[f64; 2]]) -> bool {
+    joints.iter().skip(1).any(|p| p[1] < 0.0)
 }
 
 /// Appends `value`, dropping the oldest entry when `deque` holds `cap`.
@@ -54,6 +63,7 @@ impl Histories {
         self.trail.clear();
         self.clear_strobe();
         self.points.clear();
+        self.below_floor = 0;
     }
 
     /// The stroboscopic trace cleared (a new line).
@@ -65,6 +75,7 @@ impl Histories {
     /// Records a sample.
     pub(super) fn record(&mut self, s: &Sample) {
         push_capped(&mut self.trail, MAX_TRAIL, s.ee);
+        self.below_floor += usize::from(below_floor(&s.joints));
         if self.strobe_count.is_multiple_of(STROBE_EVERY) {
             push_capped(&mut self.strobe, MAX_STROBE, s.joints.clone());
         }

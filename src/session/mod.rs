@@ -13,27 +13,27 @@
 mod clock;
 mod compare;
 mod history;
+mod installed;
 mod pointer;
 mod state;
-
-use std::sync::Arc;
 
 use crate::arm::Arm;
 use crate::error::{within, Error, Result};
 use crate::ik::DampingSchedule;
-use crate::networks::{self, NetworkSet, Networks, TrainedRange};
+use crate::networks::{self, NetworkSet};
 use crate::obstacle::Obstacle;
-use crate::planner::{Method, Planner, Surrogate};
+use crate::planner::{Method, Planner};
 use crate::scene::{Param, Scene, PAPER_RADIUS, PAPER_TARGET};
 use crate::twin::Twin;
 
 pub use clock::MAX_STEPS_PER_FRAME;
 pub use compare::MethodRun;
-pub use history::{Point, STROBE_EVERY};
+pub use history::{below_floor, Point, STROBE_EVERY};
 pub use pointer::{Handle, DRAG_LINE_SPEED, MIN_LINE_DURATION, NUDGE};
 pub use state::{GhostState, State};
 
 use history::Histories;
+use installed::Installed;
 
 /// Most obstacles a session holds.
 pub const MAX_OBSTACLES: usize = 8;
@@ -56,16 +56,6 @@ pub fn default_method() -> Method {
     }
 }
 
-/// Networks installed in a session, with what they were trained on and
-/// which shipped set they are (`None`: trained or loaded by the user).
-#[derive(Clone)]
-struct Installed {
-    surrogate: Arc<dyn Surrogate>,
-    range: TrainedRange,
-    networks: Arc<Networks>,
-    set: Option<NetworkSet>,
-}
-
 /// An interactive simulation: see the module documentation.
 #[derive(Clone)]
 pub struct Session {
@@ -73,7 +63,12 @@ pub struct Session {
     networks: Option<Installed>,
     task: u32,
     running: bool,
-    stop_at: Option<f64>,
+    /// Whether the first obstacle is the paper's (placed by a task; the
+    /// others are the user's, which the task buttons keep).
+    paper_first: bool,
+    /// Whether the run starts from a pose of its own (a line dropped from
+    /// where the hand was), not from the task's start pose.
+    own_start: bool,
     speed: f64,
     backlog: f64,
     prev_theta: Vec<f64>,
@@ -131,7 +126,8 @@ impl Session {
             networks: None,
             task,
             running: false,
-            stop_at: None,
+            paper_first: true,
+            own_start: false,
             speed: 2.0,
             backlog: 0.0,
             prev_theta: Vec::new(),
@@ -165,47 +161,58 @@ impl Session {
         self.twin.ghost()
     }
 
-    /// What the installed networks were trained on.
-    pub fn trained_range(&self) -> Option<&TrainedRange> {
-        self.networks.as_ref().map(|n| &n.range)
-    }
-
-    /// The networks installed, with their weights files.
-    pub fn installed(&self) -> Option<&Arc<Networks>> {
-        self.networks.as_ref().map(|n| &n.networks)
-    }
-
-    /// The networks installed, if any.
-    pub fn networks(&self) -> Option<&Arc<dyn Surrogate>> {
-        self.networks.as_ref().map(|n| &n.surrogate)
-    }
-
-    /// Whether the methods that use networks can run with this arm: networks
-    /// installed for it, or built-in ones trained for it.
-    pub fn networks_fit(&self) -> bool {
-        networks::available(self.arm(), self.installed()).is_ok()
-    }
-
-    /// Loads the paper's scene `task` (obstacle, start pose, target and
-    /// `lambda = 4`), keeping the method, the damping switch and the
-    /// feedback gain, and runs it from `t = 0` to `tf`. With an arm other
-    /// than the paper's, the arm stays and starts from [`start_pose`].
+    /// Loads the paper's scene `task` (start pose, target, `lambda = 4` and
+    /// the paper's obstacle in place of the first), keeping the obstacles
+    /// the user added, the method, the damping switch and the feedback
+    /// gain, and runs it from `t = 0` to `tf`. With an arm other than the
+    /// paper's, the arm stays and starts from [`start_pose`] (obstacles that
+    /// would overlap its post are left out).
     pub fn load_task(&mut self, task: u32) -> Result<()> {
         let old = self.planner().scene();
         let mut scene = paper_scene(task, old.damping.is_some(), old.feedback_gain)?;
         keep_method_settings(&mut scene, old);
+        let paper = scene.obstacles[0];
+        let mut obstacles = old.obstacles.clone();
+        if self.paper_first && !obstacles.is_empty() {
+            obstacles[0] = paper;
+        } else {
+            obstacles.insert(0, paper);
+            obstacles.truncate(MAX_OBSTACLES);
+        }
+        scene.obstacles = obstacles;
         if old.arm != scene.arm {
             // Another arm: the paper's target and obstacle from its own start pose.
             scene.theta0 = start_pose(&old.arm);
             scene.arm = old.arm.clone();
             scene.obstacles.retain(|o| o.validate(&scene.arm).is_ok());
         }
+        let paper_first = scene.obstacles.first() == Some(&paper);
         let planner = Planner::new(scene, self.planner().method(), self.networks().cloned())?;
         self.twin.replace(planner);
         self.task = task;
+        self.paper_first = paper_first;
+        self.own_start = false;
         self.restart();
         self.run_to_end();
         Ok(())
+    }
+
+    /// After a change to the scene: a run that has ended replays from
+    /// `t = 0`, so the change shows; while a run goes on (or waits at
+    /// `t = 0`) it takes effect at the next step, and the readouts of the
+    /// run take in the distance it makes now.
+    fn after_change(&mut self) {
+        if self.drag.is_some() {
+            return;
+        }
+        if self.ended() && !self.running {
+            self.run_task();
+        } else {
+            let _ = self.twin.apply(|p| {
+                p.observe_now();
+                Ok(())
+            });
+        }
     }
 
     /// Back to `t = 0` of the current scene, paused, histories cleared.
@@ -222,7 +229,6 @@ impl Session {
 
     fn restart(&mut self) {
         self.running = false;
-        self.stop_at = None;
         self.backlog = 0.0;
         self.error = None;
         self.drag = None;
@@ -242,67 +248,36 @@ impl Session {
         }
         self.twin.set_method(method)?;
         self.remember_poses();
-        Ok(())
-    }
-
-    /// Installs trained networks (refused if they are for another arm; the
-    /// networks in use stay then).
-    pub fn set_networks(&mut self, networks: Arc<Networks>) -> Result<()> {
-        self.install(networks, None)
-    }
-
-    /// Installs a shipped network set ([`NetworkSet`]) for the methods that
-    /// use networks; refused, the networks in use staying, when the set has
-    /// not loaded or was trained for another arm.
-    pub fn use_network_set(&mut self, set: NetworkSet) -> Result<()> {
-        let nets = networks::builtin_set(set)?;
-        if nets.arm() != self.arm() {
-            return Err(Error::NetworksUnavailable(format!(
-                "the shipped '{}' networks were trained for the paper's arm, not for this one",
-                set.name()
-            )));
-        }
-        self.install(nets, Some(set))
-    }
-
-    /// The shipped set in use, if the installed networks are one.
-    pub fn network_set(&self) -> Option<NetworkSet> {
-        self.networks.as_ref().and_then(|n| n.set)
-    }
-
-    fn install(&mut self, networks: Arc<Networks>, set: Option<NetworkSet>) -> Result<()> {
-        let range = networks.trained_range();
-        let surrogate: Arc<dyn Surrogate> = networks.clone();
-        self.twin.set_networks(Some(surrogate.clone()))?;
-        self.networks = Some(Installed {
-            surrogate,
-            range,
-            networks,
-            set,
-        });
+        self.after_change();
         Ok(())
     }
 
     /// Sets `lambda`, the gain of the obstacle vector (eq. 14).
     pub fn set_lambda(&mut self, lambda: f64) -> Result<()> {
-        self.twin.apply(|p| p.set_lambda(lambda))
+        self.set_param(Param::Lambda, lambda)
     }
 
     /// Sets a parameter of the methods ([`Param`]), for the planner and the
     /// ghost; refused, changing nothing, when out of its bounds.
     pub fn set_param(&mut self, param: Param, value: f64) -> Result<()> {
-        self.twin.apply(|p| p.set_param(param, value))
+        self.twin.apply(|p| p.set_param(param, value))?;
+        self.after_change();
+        Ok(())
     }
 
     /// Switches the damping schedule on or off.
     pub fn set_damping(&mut self, on: bool) -> Result<()> {
         self.twin
-            .apply(|p| p.set_damping(on.then(DampingSchedule::default)))
+            .apply(|p| p.set_damping(on.then(DampingSchedule::default)))?;
+        self.after_change();
+        Ok(())
     }
 
     /// Closed-loop gain `K` (1/s), for the planner and the ghost.
     pub fn set_feedback(&mut self, gain: f64) -> Result<()> {
-        self.twin.apply(|p| p.set_feedback_gain(gain))
+        self.twin.apply(|p| p.set_feedback_gain(gain))?;
+        self.after_change();
+        Ok(())
     }
 
     /// Simulated seconds per real second (0.05 to 50).
@@ -316,9 +291,9 @@ impl Session {
     /// none; refused, leaving it where it was, on the base post.
     pub fn set_obstacle(&mut self, centre: [f64; 2]) -> Result<()> {
         if self.obstacles().is_empty() {
-            return self
-                .add_obstacle(Obstacle::new(centre[0], centre[1], PAPER_RADIUS))
-                .map(|_| ());
+            self.add_obstacle(Obstacle::new(centre[0], centre[1], PAPER_RADIUS))?;
+            self.paper_first = true;
+            return Ok(());
         }
         self.move_obstacle(0, centre)
     }
@@ -329,8 +304,16 @@ impl Session {
     }
 
     /// Moves obstacle `index` to `centre`, keeping its radius; refused,
-    /// leaving it where it was, on the base post.
+    /// leaving it where it was, on the base post. A run that has ended
+    /// replays with it there.
     pub fn move_obstacle(&mut self, index: usize, centre: [f64; 2]) -> Result<()> {
+        self.place_obstacle(index, centre)?;
+        self.after_change();
+        Ok(())
+    }
+
+    /// Moves obstacle `index` without replaying (while it is dragged).
+    fn place_obstacle(&mut self, index: usize, centre: [f64; 2]) -> Result<()> {
         self.twin.apply(|p| p.move_obstacle(index, centre))
     }
 
@@ -345,7 +328,10 @@ impl Session {
                 max: MAX_OBSTACLES as f64,
             });
         }
-        self.twin.apply(|p| p.set_obstacles(obstacles.clone()))
+        self.twin.apply(|p| p.set_obstacles(obstacles.clone()))?;
+        self.paper_first &= !self.obstacles().is_empty();
+        self.after_change();
+        Ok(())
     }
 
     /// Adds an obstacle; returns its index. Refused beyond
@@ -373,7 +359,9 @@ impl Session {
         if self.drag == Some(Handle::Obstacle(index)) {
             self.drag = None;
         }
-        self.set_obstacles(all)
+        self.set_obstacles(all)?;
+        self.paper_first &= index != 0;
+        Ok(())
     }
 
     /// The arm.
@@ -427,20 +415,13 @@ impl Session {
             m if m.uses_networks() && nets.is_none() => Method::NUMERICAL,
             m => m,
         };
+        let paper_first = self.paper_first && scene.obstacles.first() == old.obstacles.first();
         let planner = Planner::new(scene, method, nets.as_ref().map(|n| n.surrogate.clone()))?;
+        self.paper_first = paper_first;
+        self.own_start = false;
         self.networks = nets;
         self.twin.replace(planner);
         self.restart();
-        Ok(())
-    }
-
-    /// Sets the networks aside (after an arm change, or to use others).
-    pub fn clear_networks(&mut self) -> Result<()> {
-        if self.planner().method().uses_networks() {
-            self.twin.set_method(Method::NUMERICAL)?;
-        }
-        self.twin.set_networks(None)?;
-        self.networks = None;
         Ok(())
     }
 }

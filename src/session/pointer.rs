@@ -3,7 +3,8 @@
 //! arrow keys.
 
 use super::Session;
-use crate::error::{finite, Result};
+use crate::error::{finite, positive, Result};
+use crate::planner::Planner;
 
 /// Speed (m/s) of the straight line planned when the user drops the target.
 pub const DRAG_LINE_SPEED: f64 = 0.25;
@@ -32,20 +33,49 @@ impl Handle {
 }
 
 impl Session {
-    /// Plans a new straight line from the current end effector to `target`,
-    /// lasting `duration` seconds (default: at [`DRAG_LINE_SPEED`], at least
-    /// [`MIN_LINE_DURATION`]).
+    /// Plans a new run: a straight line from the current end effector to
+    /// `target`, lasting `duration` seconds (default: at
+    /// [`DRAG_LINE_SPEED`], at least [`MIN_LINE_DURATION`]; rounded up to
+    /// whole steps). The run's scene starts from the pose the arm has now
+    /// at `t = 0` and ends with the line (`tf`), so it is a scene like any
+    /// other: [`Session::reset`] goes back to where the line began, and
+    /// `redundant-ik simulate` replays it from the page's file. Paused at
+    /// `t = 0`, histories and readouts cleared; refused, changing nothing,
+    /// on a bad target or duration.
     pub fn set_target(&mut self, target: [f64; 2], duration: Option<f64>) -> Result<()> {
+        let p = self.planner();
         let duration = match duration {
             Some(d) => d,
             None => {
-                let ee = self.planner().sample().ee;
+                let ee = p.sample().ee;
                 let dist = (target[0] - ee[0]).hypot(target[1] - ee[1]);
                 (dist / DRAG_LINE_SPEED).max(MIN_LINE_DURATION)
             }
         };
-        self.twin.apply(|p| p.set_target(target, duration))?;
-        self.histories.clear_strobe();
+        positive("line duration", duration)?;
+        let mut scene = p.scene().clone();
+        scene.theta0 = p.theta().as_slice().to_vec();
+        scene.target = target;
+        scene.tf = (duration / scene.dt - 1e-9).ceil().max(1.0) * scene.dt;
+        let planner = Planner::new(scene, p.method(), p.networks().cloned())?;
+        self.twin.replace(planner);
+        self.own_start = true;
+        self.restart();
+        Ok(())
+    }
+
+    /// Starts the run from the pose `theta0` and ends it at `tf` (the
+    /// page's address of a run whose line was dropped from another pose),
+    /// paused at `t = 0`; refused, changing nothing, on a bad pose or time.
+    pub fn set_start(&mut self, theta0: Vec<f64>, tf: f64) -> Result<()> {
+        let p = self.planner();
+        let mut scene = p.scene().clone();
+        scene.theta0 = theta0;
+        scene.tf = tf;
+        let planner = Planner::new(scene, p.method(), p.networks().cloned())?;
+        self.twin.replace(planner);
+        self.own_start = true;
+        self.restart();
         Ok(())
     }
 
@@ -78,22 +108,26 @@ impl Session {
                 self.drag_point = Some(point);
                 Ok(())
             }
-            Some(Handle::Obstacle(i)) => self.move_obstacle(i, point),
+            Some(Handle::Obstacle(i)) => self.place_obstacle(i, point),
             None => Ok(()),
         }
     }
 
-    /// Ends a drag at `point`. Releasing the target plans a new straight line
-    /// from the current end effector and starts the clock.
+    /// Ends a drag at `point`. Releasing the target plans a new run (a
+    /// straight line from the current end effector) and starts the clock;
+    /// releasing an obstacle in a run that has ended replays the run.
     pub fn drag_end(&mut self, point: [f64; 2]) -> Result<()> {
         let moved = self.drag_to(point);
         let handle = self.drag.take();
         let point = self.drag_point.take();
         moved?;
-        if let (Some(Handle::Target), Some(p)) = (handle, point) {
-            self.set_target(p, None)?;
-            self.stop_at = None;
-            self.set_running(true);
+        match (handle, point) {
+            (Some(Handle::Target), Some(p)) => {
+                self.set_target(p, None)?;
+                self.set_running(true);
+            }
+            (Some(Handle::Obstacle(_)), _) => self.after_change(),
+            _ => {}
         }
         Ok(())
     }

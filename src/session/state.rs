@@ -25,6 +25,16 @@ pub struct State<'a> {
     pub uses: Needs,
     /// Whether the clock runs.
     pub running: bool,
+    /// Whether the run has ended (`t = tf`: the clock stopped there and the
+    /// arm holds still; play replays it).
+    pub ended: bool,
+    /// The run's final time, where its line ends (s).
+    pub tf: f64,
+    /// Its start pose, and whether that is its own (a line dropped from
+    /// where the hand was) rather than the task's.
+    pub theta0: &'a [f64],
+    /// See `theta0`.
+    pub own_start: bool,
     /// Simulated seconds per real second.
     pub speed: f64,
     /// Gain of the obstacle vector.
@@ -75,6 +85,10 @@ pub struct State<'a> {
     pub collision: bool,
     /// Whether one was since the last reset.
     pub collided: bool,
+    /// Whether a link reaches below the floor (`y < 0`) now.
+    pub below_floor: bool,
+    /// Steps of this run with a link below the floor.
+    pub below_floor_steps: usize,
     /// Distance from the end effector to the reference.
     pub tracking_error: f64,
     /// Distance from the end effector to the target.
@@ -153,6 +167,10 @@ impl Session {
             mode: p.method().name(),
             uses: p.method().networks(),
             running: self.running,
+            ended: self.ended(),
+            tf: scene.tf,
+            theta0: &scene.theta0,
+            own_start: self.own_start,
             speed: self.speed,
             lambda: scene.lambda,
             params: Param::ALL
@@ -180,6 +198,8 @@ impl Session {
             min_distance: summary.min_distance,
             collision: s.collision,
             collided: summary.collided,
+            below_floor: super::history::below_floor(&s.joints),
+            below_floor_steps: self.histories.below_floor,
             tracking_error: s.tracking_error,
             final_error: summary.final_error,
             manipulability: s.manipulability,

@@ -20,6 +20,8 @@ pub struct Demo {
     pub(super) stage: Surface,
     plots: Option<Surface>,
     layer: Option<Layer>,
+    /// What the last frame drew ([`stage::draw`]'s mask).
+    drawn: std::cell::Cell<u32>,
 }
 
 pub(super) type JsResult<T = ()> = Result<T, JsError>;
@@ -46,6 +48,7 @@ impl Demo {
             stage: Surface::new(stage)?,
             plots: plots.map(Surface::new).transpose()?,
             layer: None,
+            drawn: std::cell::Cell::new(0),
         })
     }
 
@@ -142,6 +145,14 @@ impl Demo {
     #[wasm_bindgen(js_name = setTarget)]
     pub fn set_target(&mut self, x: f64, y: f64, duration: Option<f64>) -> JsResult {
         self.session.set_target([x, y], duration).map_err(js_err)
+    }
+
+    /// Starts the run from the joint angles `theta0` (rad) and ends it at
+    /// `tf` (s, whole steps): a run shared by its address. Throws, changing
+    /// nothing, on a bad pose or time.
+    #[wasm_bindgen(js_name = setStart)]
+    pub fn set_start(&mut self, theta0: Vec<f64>, tf: f64) -> JsResult {
+        self.session.set_start(theta0, tf).map_err(js_err)
     }
 
     /// Moves the obstacle centre to `(x, y)` (takes effect at the next step).
@@ -322,9 +333,16 @@ impl Demo {
         Ok(true)
     }
 
+    /// Which entries of `legend()` the last frame drew: bit `i` for entry
+    /// `i` (the page's legend shows only those).
+    pub fn drawn(&self) -> u32 {
+        self.drawn.get()
+    }
+
     /// Redraws the stage and the plots.
     pub fn draw(&self) {
-        stage::draw(&self.session, &self.stage, self.layer.as_ref());
+        let drawn = stage::draw(&self.session, &self.stage, self.layer.as_ref());
+        self.drawn.set(drawn);
         if let Some(p) = &self.plots {
             plots::draw(&self.session, p);
         }

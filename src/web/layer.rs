@@ -4,13 +4,10 @@
 
 use web_sys::CanvasRenderingContext2d;
 
-use super::style::INK;
+use super::style::{INK, LAYER_ALPHA};
 use super::surface::View;
 use crate::atlas::{Class, Grid};
 use crate::error::{Error, Result};
-
-/// Opacity of the layer's cells.
-pub const LAYER_ALPHA: f64 = 0.42;
 
 /// The classes of one mode's atlas, cell by cell.
 pub struct Layer {

@@ -37,6 +37,8 @@ mod style;
 #[cfg(feature = "page")]
 mod surface;
 #[cfg(feature = "worker")]
+mod takeaway;
+#[cfg(feature = "worker")]
 mod worker;
 
 use std::cell::RefCell;
@@ -50,6 +52,8 @@ use crate::networks::{self, NetworkSet};
 
 #[cfg(feature = "page")]
 pub use demo::Demo;
+#[cfg(feature = "worker")]
+pub use takeaway::*;
 #[cfg(feature = "worker")]
 pub use worker::*;
 
@@ -285,7 +289,7 @@ pub fn atlas_classes() -> Result<JsValue, JsError> {
             name: c.name(),
             label: c.label(),
             colour: c.colour(),
-            swatch: style::rgba(c.colour(), layer::LAYER_ALPHA),
+            swatch: style::rgba(c.colour(), style::LAYER_ALPHA),
         })
         .collect();
     to_js(&all)

@@ -46,7 +46,14 @@ pub fn draw(s: &Session, surface: &Surface) {
         (Some(a), Some(b)) => (a.t, b.t.max(a.t + 10.0)),
         _ => (0.0, 10.0),
     };
-    let h = surface.height / 3.0;
+    // Three panels: side by side on a wide, short canvas, else stacked.
+    let wide = surface.width >= 3.0 * surface.height;
+    let (w, h) = if wide {
+        (surface.width / 3.0, surface.height)
+    } else {
+        (surface.width, surface.height / 3.0)
+    };
+    let at = |k: f64| if wide { (k * w, 0.0) } else { (0.0, k * h) };
     let radius = s.planner().scene().obstacles.first().map(|o| o.radius);
 
     let distance: Vec<[f64; 2]> = history
@@ -57,7 +64,7 @@ pub fn draw(s: &Session, surface: &Surface) {
         .iter()
         .map(|p| p[1])
         .fold(radius.unwrap_or(0.0) * 2.0, f64::max);
-    let frame = Frame::new(surface.width, 0.0, h, (t0, t1), (0.0, dmax * 1.1));
+    let frame = Frame::new(at(0.0), w, h, (t0, t1), (0.0, dmax * 1.1));
     frame.axes(ctx, "distance to obstacle (m)");
     if let Some(r) = radius {
         ctx.set_stroke_style_str(DANGER);
@@ -80,7 +87,7 @@ pub fn draw(s: &Session, surface: &Surface) {
 
     let error: Vec<[f64; 2]> = history.iter().map(|p| [p.t, p.error]).collect();
     let emax = error.iter().map(|p| p[1]).fold(1e-3, f64::max);
-    let frame = Frame::new(surface.width, h, h, (t0, t1), (0.0, emax * 1.1));
+    let frame = Frame::new(at(1.0), w, h, (t0, t1), (0.0, emax * 1.1));
     frame.axes(ctx, "tracking error (m)");
     frame.series(ctx, ACCENT, 1.75, &error);
 
@@ -93,7 +100,7 @@ pub fn draw(s: &Session, surface: &Surface) {
         (lo, hi) = (-PI, PI);
     }
     let pad = ((hi - lo) * 0.1).max(0.1);
-    let frame = Frame::new(surface.width, 2.0 * h, h, (t0, t1), (lo - pad, hi + pad));
+    let frame = Frame::new(at(2.0), w, h, (t0, t1), (lo - pad, hi + pad));
     frame.axes(ctx, "joint angles (rad)");
     let joints = history.front().map_or(0, |p| p.theta.len());
     for i in 0..joints {
@@ -126,11 +133,11 @@ struct Frame {
 }
 
 impl Frame {
-    fn new(width: f64, y0: f64, height: f64, tx: (f64, f64), vy: (f64, f64)) -> Self {
+    fn new((x0, y0): (f64, f64), width: f64, height: f64, tx: (f64, f64), vy: (f64, f64)) -> Self {
         let span = (vy.1 - vy.0).abs().max(1e-12);
         Self {
-            left: 44.0,
-            right: width - 10.0,
+            left: x0 + 44.0,
+            right: x0 + width - 10.0,
             top: y0 + 22.0,
             bottom: y0 + height - 18.0,
             tx,
@@ -223,7 +230,8 @@ impl Frame {
     }
 
     /// Entry `index` of `count` of the panel's legend, right-aligned in the
-    /// title row.
+    /// title row, or in the plot's top row where the title leaves too
+    /// little room (a narrow panel, many joints).
     fn key(
         &self,
         ctx: &CanvasRenderingContext2d,
@@ -233,7 +241,13 @@ impl Frame {
         colour: &str,
     ) {
         let x = self.right - 40.0 * (count - 1 - index.min(count - 1)) as f64 - 18.0;
-        let y = self.top - 12.0;
+        // The title ("joint angles (rad)") takes about 125 px.
+        let cramped = self.right - 40.0 * count as f64 - 10.0 < self.left + 125.0;
+        let y = if cramped {
+            self.top + 8.0
+        } else {
+            self.top - 12.0
+        };
         ctx.set_stroke_style_str(colour);
         ctx.set_line_width(2.0);
         polyline(ctx, None, &[[x - 16.0, y], [x - 4.0, y]]);

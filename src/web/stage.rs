@@ -9,13 +9,17 @@ use super::style::*;
 use super::surface::{dash, disc, polyline, text, Surface, View};
 use crate::session::{Handle, Session};
 
-/// Draws the session on the stage, over an atlas layer if one is shown.
-pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) {
+/// Draws the session on the stage, over an atlas layer if one is shown;
+/// returns which entries of the legend it drew (a bit each, in the
+/// legend's order), so that the page's legend lists only those.
+pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) -> u32 {
+    let mut drawn = bit::ARM | bit::PATH | bit::REFERENCE | bit::TARGET;
     let ctx = &surface.ctx;
     let view = surface.view();
     surface.begin();
     if let Some(layer) = layer {
         layer.draw(ctx, view);
+        drawn |= bit::ATLAS;
     }
     grid(ctx, view, surface.width, surface.height);
 
@@ -23,6 +27,11 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) {
     let scene = planner.scene();
     let arm = &scene.arm;
     let base = [0.0, arm.post()];
+
+    // The floor the post stands on, across the stage.
+    let (_, fy) = view.to_px([0.0, 0.0]);
+    ctx.set_fill_style_str(GROUND);
+    ctx.fill_rect(0.0, fy, surface.width, 2.0);
 
     // Workspace boundary: what the end effector can reach.
     ctx.set_stroke_style_str(AXIS);
@@ -35,6 +44,7 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) {
 
     // Where the v network saw obstacles in training (network v modes).
     if let (true, Some(r)) = (planner.method().networks().v, s.trained_range()) {
+        drawn |= bit::REGION;
         let (x0, y0) = view.to_px(r.obstacle_min);
         let (x1, y1) = view.to_px(r.obstacle_max);
         ctx.set_stroke_style_str(REGION);
@@ -58,6 +68,9 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) {
     ctx.set_stroke_style_str(ARM);
     ctx.set_global_alpha(STROBE_ALPHA);
     ctx.set_line_width(1.5);
+    if s.strobe().len() > 1 {
+        drawn |= bit::STROBE;
+    }
     for pose in s.strobe() {
         polyline(ctx, Some(view), pose);
     }
@@ -72,6 +85,9 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) {
     dash(ctx, &[]);
 
     // End-effector trail.
+    if s.trail().len() > 1 {
+        drawn |= bit::TRAIL;
+    }
     ctx.set_stroke_style_str(ACCENT);
     ctx.set_line_width(2.0);
     polyline(ctx, Some(view), s.trail());
@@ -81,6 +97,7 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) {
     // `priority` push apart): a segment from the link's closest point to
     // the disc.
     if let Some((influence, pairs)) = s.near_pairs() {
+        drawn |= bit::DAMPERS;
         ctx.set_stroke_style_str(DAMPER);
         ctx.set_global_alpha(INFLUENCE_ALPHA);
         ctx.set_line_width(1.0);
@@ -109,6 +126,9 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) {
 
     // Obstacle discs, with their points O.
     let hit = planner.sample().collision;
+    if !scene.obstacles.is_empty() {
+        drawn |= bit::OBSTACLE;
+    }
     for (i, ob) in scene.obstacles.iter().enumerate() {
         let (ox, oy) = view.to_px(ob.centre);
         disc(ctx, ox, oy, ob.radius * view.scale);
@@ -148,15 +168,40 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) {
             ctx.set_line_width(2.0);
             ctx.stroke();
         }
+        // What lies below the floor, in red: a real arm would hit the ground.
+        if crate::session::below_floor(&pts) {
+            drawn |= bit::FLOOR;
+            ctx.set_stroke_style_str(DANGER);
+            ctx.set_line_width(7.0);
+            for w in pts.windows(2) {
+                let (a, b) = (w[0], w[1]);
+                // The part of the link a-b with y < 0.
+                let cut = |p: [f64; 2], q: [f64; 2]| {
+                    let s = p[1] / (p[1] - q[1]);
+                    [p[0] + s * (q[0] - p[0]), 0.0]
+                };
+                let part = match (a[1] < 0.0, b[1] < 0.0) {
+                    (true, true) => [a, b],
+                    (true, false) => [a, cut(a, b)],
+                    (false, true) => [cut(a, b), b],
+                    _ => continue,
+                };
+                polyline(ctx, Some(view), &part);
+            }
+        }
     }
 
-    // Ghost, on top: where the numerical route would have the arm.
+    // Ghost, on top and thinner, with a white edge so that it shows on the
+    // arm where the two agree: where the numerical route would have it.
     if let Some(pts) = s.display_joints(true) {
-        ctx.set_global_alpha(GHOST_ALPHA);
-        ctx.set_stroke_style_str(GHOST);
-        ctx.set_line_width(2.0);
+        drawn |= bit::GHOST;
         dash(ctx, &[7.0, 5.0]);
-        polyline(ctx, Some(view), &pts);
+        for (colour, width) in [(PAPER, 4.5), (GHOST, 2.0)] {
+            ctx.set_global_alpha(if colour == GHOST { GHOST_ALPHA } else { 0.9 });
+            ctx.set_stroke_style_str(colour);
+            ctx.set_line_width(width);
+            polyline(ctx, Some(view), &pts);
+        }
         dash(ctx, &[]);
         for p in &pts[1..] {
             let (x, y) = view.to_px(*p);
@@ -174,19 +219,17 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) {
 
     target(ctx, view, s);
 
-    let caption = format!(
-        "t = {:.1} s   ·   {}",
-        planner.sample().t,
-        planner.method().title()
-    );
-    text(
-        ctx,
-        &format!("600 12px {FONT}"),
-        INK,
-        ("left", "top"),
-        (12.0, 10.0),
-        &caption,
-    );
+    // The time and the method; on a narrow stage (at about 7 px a
+    // character) the method's short label.
+    let t = planner.sample().t;
+    let m = planner.method();
+    let mut caption = format!("t = {t:.1} s   ·   {}", m.title());
+    if caption.chars().count() as f64 * 7.0 > surface.width - 24.0 {
+        caption = format!("t = {t:.1} s · {}", m.label());
+    }
+    let font = format!("600 12px {FONT}");
+    text(ctx, &font, INK, ("left", "top"), (12.0, 10.0), &caption);
+    drawn
 }
 
 /// The target marker (at the pointer while it is dragged): a ring and a cross.

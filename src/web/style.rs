@@ -16,7 +16,7 @@ pub const ARM: &str = "#1d4e89";
 pub const ACCENT: &str = "#d9731a";
 pub const DANGER: &str = "#c0392b";
 pub const TEAL: &str = "#2a9d8f";
-pub const GHOST: &str = "#5f6b78";
+pub const GHOST: &str = "#c2185b";
 pub const REGION: &str = "#b9c7d6";
 pub const POST: &str = "#4a5560";
 pub const GROUND: &str = "#dfe4ea";
@@ -27,11 +27,13 @@ pub const FONT: &str = "system-ui, -apple-system, 'Segoe UI', Roboto, sans-serif
 /// Opacity of the stroboscopic trace, of the ghost arm and of the obstacle
 /// disc (when a link is inside it, [`HIT_ALPHA`]).
 pub const STROBE_ALPHA: f64 = 0.16;
-pub const GHOST_ALPHA: f64 = 0.8;
+pub const GHOST_ALPHA: f64 = 0.95;
 pub const OBSTACLE_ALPHA: f64 = 0.16;
 pub const HIT_ALPHA: f64 = 0.55;
 /// Opacity of the influence-distance circles.
 pub const INFLUENCE_ALPHA: f64 = 0.6;
+/// Opacity of an atlas layer's cells.
+pub const LAYER_ALPHA: f64 = 0.42;
 
 /// Every named colour, for the page's CSS custom properties.
 pub const PALETTE: [(&str, &str); 13] = [
@@ -70,46 +72,106 @@ pub struct Entry {
     pub label: String,
     /// The colour, with the alpha it is drawn with.
     pub swatch: String,
-    /// How the swatch looks: `thick`, `line`, `thin`, `dashed`, `disc` or `region`.
+    /// How the swatch looks: `thick`, `line`, `thin`, `dashed`, `disc`,
+    /// `region`, `dot`, `target` or `square`.
     pub kind: &'static str,
 }
 
-/// The legend of the stage.
+/// The legend's entries: key, label, colour, alpha, kind. Their order is
+/// that of the bits of [`super::stage::draw`]'s mask of what it drew.
+const LEGEND: [(&str, &str, &str, f64, &str); 12] = [
+    ("arm", "arm", ARM, 1.0, "thick"),
+    ("strobe", "", ARM, STROBE_ALPHA, "thin"),
+    (
+        "ghost",
+        "numerical route (the same scene solved exactly)",
+        GHOST,
+        GHOST_ALPHA,
+        "dashed",
+    ),
+    ("path", "straight-line task", MUTED, 1.0, "dashed"),
+    ("trail", "end-effector trail", ACCENT, 1.0, "line"),
+    (
+        "reference",
+        "where the hand should be now",
+        MUTED,
+        1.0,
+        "dot",
+    ),
+    ("target", "target (drag it)", ACCENT, 1.0, "target"),
+    (
+        "obstacle",
+        "obstacle (drag it)",
+        DANGER,
+        OBSTACLE_ALPHA,
+        "disc",
+    ),
+    (
+        "region",
+        "obstacle region the v network was trained on",
+        REGION,
+        1.0,
+        "region",
+    ),
+    (
+        "dampers",
+        "influence distance, and the link-obstacle pairs within it",
+        DAMPER,
+        1.0,
+        "line",
+    ),
+    (
+        "floor",
+        "link below the floor (y < 0)",
+        DANGER,
+        1.0,
+        "thick",
+    ),
+    (
+        "atlas",
+        "atlas map under the arm (its colours: the Atlas panel)",
+        "",
+        0.0,
+        "square",
+    ),
+];
+
+/// The bit of each legend entry in [`super::stage::draw`]'s mask.
+pub mod bit {
+    pub const ARM: u32 = 1;
+    pub const STROBE: u32 = 1 << 1;
+    pub const GHOST: u32 = 1 << 2;
+    pub const PATH: u32 = 1 << 3;
+    pub const TRAIL: u32 = 1 << 4;
+    pub const REFERENCE: u32 = 1 << 5;
+    pub const TARGET: u32 = 1 << 6;
+    pub const OBSTACLE: u32 = 1 << 7;
+    pub const REGION: u32 = 1 << 8;
+    pub const DAMPERS: u32 = 1 << 9;
+    pub const FLOOR: u32 = 1 << 10;
+    pub const ATLAS: u32 = 1 << 11;
+}
+
+/// The legend of the stage, in the order of the bits of
+/// [`super::stage::draw`]'s mask of what it drew (the page shows only
+/// those).
 pub fn legend() -> Vec<Entry> {
-    let entry = |key, label: &str, swatch: String, kind| Entry {
-        key,
-        label: label.to_string(),
-        swatch,
-        kind,
-    };
-    vec![
-        entry("arm", "arm", rgba(ARM, 1.0), "thick"),
-        entry(
-            "strobe",
-            &format!("every {STROBE_EVERY}th pose"),
-            rgba(ARM, STROBE_ALPHA),
-            "thin",
-        ),
-        entry(
-            "ghost",
-            "numerical route (network cases)",
-            rgba(GHOST, GHOST_ALPHA),
-            "dashed",
-        ),
-        entry("path", "straight-line task", rgba(MUTED, 1.0), "dashed"),
-        entry("trail", "end-effector trail", rgba(ACCENT, 1.0), "line"),
-        entry("obstacle", "obstacle", rgba(DANGER, OBSTACLE_ALPHA), "disc"),
-        entry(
-            "region",
-            "obstacle region the v network was trained on (Cases 2, 3)",
-            rgba(REGION, 1.0),
-            "region",
-        ),
-        entry(
-            "dampers",
-            "link-obstacle pairs within the influence distance (distance, priority, qp)",
-            rgba(DAMPER, 1.0),
-            "line",
-        ),
-    ]
+    LEGEND
+        .iter()
+        .map(|&(key, label, colour, alpha, kind)| Entry {
+            key,
+            label: if label.is_empty() {
+                format!("every {STROBE_EVERY}th pose")
+            } else {
+                label.into()
+            },
+            // The atlas layer's swatch: a cell where the method succeeds.
+            swatch: if colour.is_empty() {
+                rgba(crate::atlas::Class::Success.colour(), LAYER_ALPHA)
+            } else {
+                rgba(colour, alpha)
+            },
+            kind,
+        })
+        .collect()
 }

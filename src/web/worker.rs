@@ -33,7 +33,7 @@ fn known_fields(value: &JsValue, names: &[&str], what: &str) -> Result<(), JsErr
 }
 
 /// The networks of a pair of weights files, if both are given.
-fn files(
+pub(super) fn files(
     phi_json: Option<String>,
     v_json: Option<String>,
 ) -> Result<Option<Arc<Networks>>, JsError> {

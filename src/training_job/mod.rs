@@ -17,6 +17,9 @@ use crate::nn::lm::EpochReport;
 use crate::planner::{Method, Surrogate};
 use crate::training::{tasks, train_weights, Recipe, TrainSpec};
 
+mod verdict;
+pub use verdict::{Verdict, PASS_SHARE};
+
 /// How big a training job is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -172,6 +175,8 @@ pub struct Report {
     /// The networks are kept all the same.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub random_tasks_note: Option<String>,
+    /// Whether the networks pass this check ([`Verdict`]).
+    pub verdict: Verdict,
 }
 
 /// The loops the task check runs in, `(K, refine)`: open and closed, each
@@ -307,6 +312,7 @@ pub fn train(
     let mut report = assess(&nets, samples)?;
     report.phi = phi_report;
     report.v = v_report;
+    report.verdict = Verdict::of(&report, request.net);
     Ok(Trained { phi, v, report })
 }
 
@@ -321,9 +327,17 @@ pub fn assess(nets: &Networks, samples: usize) -> Result<Report> {
     let arm = nets.arm();
     let mut paper_tasks = Vec::new();
     if *arm == Arm::paper() {
-        for task in [1, 2] {
-            for mode in [Method::CASE1, Method::CASE2, Method::CASE3] {
-                paper_tasks.push(evaluation::run_task(nets, task, mode, None, 0.0)?);
+        for (feedback, refine) in CHECK_LOOPS {
+            for task in [1, 2] {
+                for mode in [Method::CASE1, Method::CASE2, Method::CASE3] {
+                    // Case 2 runs the exact Phi: nothing to refine.
+                    if refine > 0 && !mode.networks().phi {
+                        continue;
+                    }
+                    paper_tasks.push(evaluation::run_task_refined(
+                        nets, task, mode, None, feedback, refine,
+                    )?);
+                }
             }
         }
     }
@@ -367,7 +381,7 @@ pub fn assess(nets: &Networks, samples: usize) -> Result<Report> {
             });
         }
     }
-    Ok(Report {
+    let mut report = Report {
         samples,
         phi: None,
         v: None,
@@ -376,5 +390,12 @@ pub fn assess(nets: &Networks, samples: usize) -> Result<Report> {
         paper_tasks,
         random_tasks,
         random_tasks_note,
-    })
+        verdict: Verdict {
+            passed: true,
+            checked: String::new(),
+            failures: Vec::new(),
+        },
+    };
+    report.verdict = Verdict::of(&report, Which::Both);
+    Ok(report)
 }

@@ -1,0 +1,57 @@
+//! Where a hit is unavoidable whatever the method: the disc on the arm at
+//! `t = 0` (or on the post), or on the straight line the hand must follow.
+
+use super::Class;
+use crate::error::Result;
+use crate::geometry::segment_distance_squared;
+use crate::kinematics::Pose;
+use crate::scene::Scene;
+
+/// Whether a link must hit `obstacle` in `scene` whatever the method:
+/// [`Class::StartOverlap`] when the disc touches the arm at `t = 0` (or the
+/// post), [`Class::PathBlocked`] when it covers a point of the straight
+/// line the hand must follow; `None` when avoidance is possible. What the
+/// atlas decides for each cell, for the page's comparison of the methods.
+pub fn unavoidable(scene: &Scene, obstacle: &crate::obstacle::Obstacle) -> Option<Class> {
+    Geometry::new(scene, obstacle.radius)
+        .ok()
+        .and_then(|g| g.classify(obstacle.centre))
+}
+
+/// The start pose and the path, which decide `start_overlap` and
+/// `path_blocked` for every mode at once.
+#[derive(Debug, Clone)]
+pub(super) struct Geometry {
+    start: Pose,
+    post_top: [f64; 2],
+    path: [[f64; 2]; 2],
+    pub(super) radius: f64,
+}
+
+impl Geometry {
+    pub(super) fn new(scene: &Scene, radius: f64) -> Result<Self> {
+        let start = Pose::new(&scene.arm, &scene.theta0)?;
+        let path = [start.end_effector(), scene.target];
+        Ok(Self {
+            post_top: [0.0, scene.arm.post()],
+            start,
+            path,
+            radius,
+        })
+    }
+
+    /// `start_overlap`, `path_blocked` or neither (`None`) for a centre.
+    /// "Touches" and "covers" use the planner's collision test, distance
+    /// below the radius; the post as [`crate::Obstacle::validate`] does.
+    pub(super) fn classify(&self, o: [f64; 2]) -> Option<Class> {
+        let r2 = self.radius * self.radius;
+        let post = segment_distance_squared(o, [0.0, 0.0], self.post_top);
+        if post <= r2 || self.start.clearance(o) < self.radius {
+            Some(Class::StartOverlap)
+        } else if segment_distance_squared(o, self.path[0], self.path[1]) < r2 {
+            Some(Class::PathBlocked)
+        } else {
+            None
+        }
+    }
+}

@@ -1,0 +1,86 @@
+//! Runs and atlases as comma-separated values, one header line and one
+//! line per step (or cell). Numbers are written in full (Rust's shortest
+//! form that reads back to the same `f64`), so a spreadsheet and a
+//! script see what the program computed.
+
+use std::fmt::Write as _;
+
+use crate::atlas::Atlas;
+use crate::planner::Sample;
+use crate::scene::Scene;
+
+/// The columns of a run's CSV after the joint angles `theta1..thetaN`,
+/// which follow `t`: the hand, the reference point on the line, the
+/// tracking error, the smallest link-to-obstacle clearance (distance from
+/// a link to the nearest disc's edge, negative inside it; empty without
+/// obstacles) and whether a link is inside a disc (0 or 1).
+pub const RUN_CSV_FIXED: [&str; 7] = [
+    "x",
+    "y",
+    "ref_x",
+    "ref_y",
+    "tracking_error",
+    "clearance",
+    "collision",
+];
+
+/// A run as CSV: `t, theta1..thetaN, x, y, ref_x, ref_y, tracking_error,
+/// clearance, collision`, one line per sample.
+pub fn run_csv(scene: &Scene, steps: &[Sample]) -> String {
+    let n = scene.arm.dof();
+    let mut out = String::from("t");
+    for i in 1..=n {
+        let _ = write!(out, ",theta{i}");
+    }
+    for c in RUN_CSV_FIXED {
+        let _ = write!(out, ",{c}");
+    }
+    out.push('\n');
+    for s in steps {
+        let _ = write!(out, "{:?}", s.t);
+        for th in &s.theta {
+            let _ = write!(out, ",{th:?}");
+        }
+        let _ = write!(
+            out,
+            ",{:?},{:?},{:?},{:?},{:?},{},{}",
+            s.ee[0],
+            s.ee[1],
+            s.reference[0],
+            s.reference[1],
+            s.tracking_error,
+            s.clearance.map_or(String::new(), |c| format!("{c:?}")),
+            u8::from(s.collision)
+        );
+        out.push('\n');
+    }
+    out
+}
+
+/// An atlas's cells as CSV: `x, y, avoidance_needed`, then for each mode
+/// its class, the run's smallest link-to-obstacle clearance (m) and its
+/// final distance to the target (m); empty where nothing was run.
+pub fn atlas_csv(atlas: &Atlas) -> String {
+    let mut out = String::from("x,y,avoidance_needed");
+    for m in &atlas.modes {
+        let _ = write!(out, ",{m}_class,{m}_clearance,{m}_final_error");
+    }
+    out.push('\n');
+    let num = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:?}"));
+    for c in &atlas.cells {
+        let needed = c.avoidance_needed.map_or("", |b| if b { "1" } else { "0" });
+        let _ = write!(out, "{:?},{:?},{needed}", c.x, c.y);
+        for o in &c.outcomes {
+            let clearance = o.min_distance.map(|d| d - atlas.radius);
+            let _ = write!(
+                out,
+                ",{},{},{}",
+                o.class.name(),
+                num(clearance),
+                num(o.final_error)
+            );
+        }
+        out.push('\n');
+    }
+    out
+}

@@ -1,0 +1,12 @@
+//! What leaves the program as files, one place for each format, shared by
+//! the command-line tool and the page's workers so that both write the
+//! same bytes: a run as JSON (what `redundant-ik simulate --json` prints,
+//! the page's "Download run" saves and `simulate --from` reads back) and
+//! as CSV, and the cells of an atlas as CSV (its JSON is the atlas's own,
+//! [`crate::atlas::Atlas`]).
+
+mod csv;
+mod run;
+
+pub use csv::{atlas_csv, run_csv, RUN_CSV_FIXED};
+pub use run::{RunFile, MAX_RUN_FILE_BYTES};

@@ -1,0 +1,288 @@
+//! The figures as SVG, drawn with plotters, one code for the command-line
+//! tool (`redundant-ik figure`, `redundant-ik atlas --out`) and the page
+//! (its workers' module draws the very same figure for "Save figure"):
+//! the paper's stroboscopic drawing of a run (`arm`), a run's time series
+//! (`series`: the page's plots, and every method over time) and the
+//! atlas's maps (`atlas`). Feature `figure` (on with the tool and the
+//! workers' module; the page's own module carries none of it).
+//!
+//! Text is laid out here, not by plotters' fonts: in WebAssembly plotters
+//! measures text through the document, which a Web Worker does not have
+//! (it would panic), and natively it guesses from the byte count. The
+//! [`Measured`] backend measures with one table of glyph widths on both,
+//! so the command line and the page write the same bytes, and the legends
+//! are drawn here too (plotters' own legend measures through the fonts).
+
+mod arm;
+mod atlas;
+mod series;
+
+use plotters::prelude::*;
+use plotters_backend::{
+    BackendColor, BackendCoord, BackendStyle, BackendTextStyle, DrawingErrorKind,
+};
+
+use crate::error::{Error, Result};
+use crate::planner::Method;
+use crate::scene::Scene;
+
+pub use arm::arm_svg;
+pub use atlas::atlas_svg;
+pub use series::{compare_svg, series_svg};
+
+/// Colours of the figures.
+pub(crate) mod colour {
+    use plotters::style::RGBColor;
+    pub const INK: RGBColor = RGBColor(31, 41, 51);
+    pub const MUTED: RGBColor = RGBColor(95, 107, 120);
+    pub const ARM: RGBColor = RGBColor(29, 78, 137);
+    pub const ACCENT: RGBColor = RGBColor(217, 115, 26);
+    pub const DANGER: RGBColor = RGBColor(192, 57, 43);
+    pub const TEAL: RGBColor = RGBColor(42, 157, 143);
+    pub const LIGHT: RGBColor = RGBColor(246, 246, 246);
+    pub const BOLD: RGBColor = RGBColor(215, 215, 215);
+    pub const FRAME: RGBColor = RGBColor(200, 200, 200);
+}
+
+/// Width of a glyph of the sans-serif fonts, in ems (Helvetica's metrics,
+/// rounded): enough to lay out labels and legends the same everywhere.
+fn glyph_width(c: char) -> f64 {
+    match c {
+        'i' | 'j' | 'l' | '.' | ',' | ':' | ';' | '\'' | '|' | '!' | ' ' | 'I' => 0.28,
+        'f' | 't' | 'r' | '(' | ')' | '[' | ']' | '-' | '/' => 0.34,
+        'm' | 'w' | 'M' | 'W' | '@' => 0.84,
+        '0'..='9' | 'a'..='z' | '+' | '=' | '<' | '>' | '_' | '~' => 0.56,
+        'A'..='Z' | '%' | '&' => 0.68,
+        _ => 0.62,
+    }
+}
+
+/// The size in pixels of `text` at a plotters font size `size` (the SVG
+/// backend writes `font-size: size / 1.24`).
+pub(crate) fn text_size(text: &str, size: f64) -> (u32, u32) {
+    let em = size / 1.24;
+    let width: f64 = text.chars().map(glyph_width).sum::<f64>() * em;
+    (width.ceil() as u32, (em * 1.2).ceil() as u32)
+}
+
+/// The SVG backend with text measured by [`text_size`] (see the module
+/// documentation); everything else is the SVG backend's.
+pub(crate) struct Measured<'a>(SVGBackend<'a>);
+
+type Failure = DrawingErrorKind<std::io::Error>;
+
+impl DrawingBackend for Measured<'_> {
+    type ErrorType = std::io::Error;
+    fn get_size(&self) -> (u32, u32) {
+        self.0.get_size()
+    }
+    fn ensure_prepared(&mut self) -> std::result::Result<(), Failure> {
+        self.0.ensure_prepared()
+    }
+    fn present(&mut self) -> std::result::Result<(), Failure> {
+        self.0.present()
+    }
+    fn draw_pixel(&mut self, p: BackendCoord, c: BackendColor) -> std::result::Result<(), Failure> {
+        self.0.draw_pixel(p, c)
+    }
+    fn draw_line<S: BackendStyle>(
+        &mut self,
+        from: BackendCoord,
+        to: BackendCoord,
+        style: &S,
+    ) -> std::result::Result<(), Failure> {
+        self.0.draw_line(from, to, style)
+    }
+    fn draw_rect<S: BackendStyle>(
+        &mut self,
+        a: BackendCoord,
+        b: BackendCoord,
+        style: &S,
+        fill: bool,
+    ) -> std::result::Result<(), Failure> {
+        self.0.draw_rect(a, b, style, fill)
+    }
+    fn draw_path<S: BackendStyle, I: IntoIterator<Item = BackendCoord>>(
+        &mut self,
+        path: I,
+        style: &S,
+    ) -> std::result::Result<(), Failure> {
+        self.0.draw_path(path, style)
+    }
+    fn draw_circle<S: BackendStyle>(
+        &mut self,
+        centre: BackendCoord,
+        radius: u32,
+        style: &S,
+        fill: bool,
+    ) -> std::result::Result<(), Failure> {
+        self.0.draw_circle(centre, radius, style, fill)
+    }
+    fn fill_polygon<S: BackendStyle, I: IntoIterator<Item = BackendCoord>>(
+        &mut self,
+        vert: I,
+        style: &S,
+    ) -> std::result::Result<(), Failure> {
+        self.0.fill_polygon(vert, style)
+    }
+    fn draw_text<T: BackendTextStyle>(
+        &mut self,
+        text: &str,
+        style: &T,
+        pos: BackendCoord,
+    ) -> std::result::Result<(), Failure> {
+        self.0.draw_text(text, style, pos)
+    }
+    fn estimate_text_size<T: BackendTextStyle>(
+        &self,
+        text: &str,
+        style: &T,
+    ) -> std::result::Result<(u32, u32), Failure> {
+        Ok(text_size(text, style.size()))
+    }
+}
+
+/// The drawing area figures are drawn on.
+pub(crate) type Area<'a> = DrawingArea<Measured<'a>, plotters::coord::Shift>;
+
+/// Draws a figure of `size` pixels with `draw` and returns its SVG text.
+pub(crate) fn svg(
+    size: (u32, u32),
+    draw: impl FnOnce(&Area<'_>) -> std::result::Result<(), String>,
+) -> Result<String> {
+    let mut out = String::new();
+    {
+        let root = Measured(SVGBackend::with_string(&mut out, size)).into_drawing_area();
+        root.fill(&WHITE).map_err(fail)?;
+        draw(&root).map_err(Error::Figure)?;
+        root.present().map_err(fail)?;
+    }
+    Ok(out)
+}
+
+/// A plotters error as the crate's.
+pub(crate) fn fail(e: impl std::fmt::Display) -> Error {
+    Error::Figure(e.to_string())
+}
+
+/// A plotters error as text, inside a figure's drawing.
+pub(crate) fn why(e: impl std::fmt::Display) -> String {
+    e.to_string()
+}
+
+/// The caption line under a run's figures: what was run, with which
+/// settings, so that a figure in a report says how it was made.
+pub fn caption(task: u32, scene: &Scene, method: Method) -> String {
+    let mut parts = vec![method.label().to_string(), format!("Task {task}")];
+    if scene.arm != crate::arm::Arm::paper() {
+        parts.push(format!("arm {}", scene.arm));
+    }
+    parts.push(format!("λ = {}", scene.lambda));
+    parts.push(format!(
+        "δ = {}{}",
+        scene.delta,
+        if scene.damping.is_some() {
+            " + damping near singular poses"
+        } else {
+            ""
+        }
+    ));
+    match scene.obstacles.len() {
+        0 => parts.push("no obstacle".into()),
+        1 => parts.push(format!("radius {} m", scene.obstacles[0].radius)),
+        k => parts.push(format!(
+            "{k} obstacles, radius {} m",
+            scene.obstacles[0].radius
+        )),
+    }
+    parts.push(if scene.feedback_gain > 0.0 {
+        format!("closed loop K = {} 1/s", scene.feedback_gain)
+    } else {
+        "open loop".into()
+    });
+    parts.push(format!("dt = {} s, tf = {} s", scene.dt, scene.tf));
+    parts.join(" · ")
+}
+
+/// Draws a caption line at the bottom of `area`, `height` pixels high.
+pub(crate) fn draw_caption(area: &Area<'_>, text: &str) -> std::result::Result<(), String> {
+    let (_, h) = area.dim_in_pixel();
+    area.draw(&Text::new(
+        text.to_string(),
+        (12, h as i32 - 20),
+        ("sans-serif", 13).into_font().color(&colour::MUTED),
+    ))
+    .map_err(why)
+}
+
+/// How a legend entry's swatch looks.
+#[derive(Clone, Copy)]
+pub(crate) enum Swatch {
+    /// A line of this colour and width.
+    Line(RGBColor, u32),
+    /// A dashed line.
+    Dashed(RGBColor, u32),
+}
+
+/// Draws a legend (a framed box of swatches and labels) in `area`'s pixel
+/// coordinates, its top-left or top-right corner at `at` (`right`: `at`
+/// is the top-right corner).
+pub(crate) fn draw_legend(
+    area: &Area<'_>,
+    entries: &[(Swatch, String)],
+    at: (i32, i32),
+    right: bool,
+) -> std::result::Result<(), String> {
+    const SIZE: f64 = 13.0;
+    let line = 17;
+    let width = entries
+        .iter()
+        .map(|(_, l)| text_size(l, SIZE).0 as i32)
+        .max()
+        .unwrap_or(0)
+        + 44;
+    let height = line * entries.len() as i32 + 10;
+    let x0 = if right { at.0 - width } else { at.0 };
+    let y0 = at.1;
+    area.draw(&Rectangle::new(
+        [(x0, y0), (x0 + width, y0 + height)],
+        WHITE.mix(0.9).filled(),
+    ))
+    .map_err(why)?;
+    area.draw(&Rectangle::new(
+        [(x0, y0), (x0 + width, y0 + height)],
+        colour::FRAME,
+    ))
+    .map_err(why)?;
+    let font = ("sans-serif", SIZE).into_font().color(&colour::INK);
+    for (k, (swatch, label)) in entries.iter().enumerate() {
+        let y = y0 + 6 + line * k as i32 + line / 2;
+        let (a, b) = ((x0 + 8, y), (x0 + 30, y));
+        match *swatch {
+            Swatch::Line(c, w) => area
+                .draw(&PathElement::new(
+                    vec![a, b],
+                    ShapeStyle::from(&c).stroke_width(w),
+                ))
+                .map_err(why)?,
+            Swatch::Dashed(c, w) => {
+                for s in [0, 9, 18] {
+                    area.draw(&PathElement::new(
+                        vec![(a.0 + s, y), ((a.0 + s + 5).min(b.0), y)],
+                        ShapeStyle::from(&c).stroke_width(w),
+                    ))
+                    .map_err(why)?;
+                }
+            }
+        }
+        area.draw(&Text::new(label.clone(), (x0 + 36, y - 8), font.clone()))
+            .map_err(why)?;
+    }
+    Ok(())
+}
+
+/// `#rrggbb` as a plotters colour.
+pub(crate) fn hex(s: &str) -> RGBColor {
+    let channel = |i: usize| u8::from_str_radix(s.get(i..i + 2).unwrap_or("00"), 16).unwrap_or(0);
+    RGBColor(channel(1), channel(3), channel(5))
+}

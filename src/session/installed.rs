@@ -1,0 +1,94 @@
+//! The networks a session's methods run: installed from training or a
+//! file, or a shipped set ([`NetworkSet`]), with what they were trained on.
+
+use std::sync::Arc;
+
+use super::Session;
+use crate::error::{Error, Result};
+use crate::networks::{self, NetworkSet, Networks, TrainedRange};
+use crate::planner::{Method, Surrogate};
+
+/// Networks installed in a session, with what they were trained on and
+/// which shipped set they are (`None`: trained or loaded by the user).
+#[derive(Clone)]
+pub(super) struct Installed {
+    pub(super) surrogate: Arc<dyn Surrogate>,
+    pub(super) range: TrainedRange,
+    pub(super) networks: Arc<Networks>,
+    pub(super) set: Option<NetworkSet>,
+}
+
+impl Session {
+    /// What the installed networks were trained on.
+    pub fn trained_range(&self) -> Option<&TrainedRange> {
+        self.networks.as_ref().map(|n| &n.range)
+    }
+
+    /// The networks installed, with their weights files.
+    pub fn installed(&self) -> Option<&Arc<Networks>> {
+        self.networks.as_ref().map(|n| &n.networks)
+    }
+
+    /// The networks installed, if any.
+    pub fn networks(&self) -> Option<&Arc<dyn Surrogate>> {
+        self.networks.as_ref().map(|n| &n.surrogate)
+    }
+
+    /// Whether the methods that use networks can run with this arm: networks
+    /// installed for it, or built-in ones trained for it.
+    pub fn networks_fit(&self) -> bool {
+        networks::available(self.arm(), self.installed()).is_ok()
+    }
+
+    /// Installs trained networks (refused if they are for another arm; the
+    /// networks in use stay then).
+    pub fn set_networks(&mut self, networks: Arc<Networks>) -> Result<()> {
+        self.install(networks, None)
+    }
+
+    /// Installs a shipped network set ([`NetworkSet`]) for the methods that
+    /// use networks; refused, the networks in use staying, when the set has
+    /// not loaded or was trained for another arm.
+    pub fn use_network_set(&mut self, set: NetworkSet) -> Result<()> {
+        let nets = networks::builtin_set(set)?;
+        if nets.arm() != self.arm() {
+            return Err(Error::NetworksUnavailable(format!(
+                "the shipped '{}' networks were trained for the paper's arm, not for this one",
+                set.name()
+            )));
+        }
+        self.install(nets, Some(set))
+    }
+
+    /// The shipped set in use, if the installed networks are one.
+    pub fn network_set(&self) -> Option<NetworkSet> {
+        self.networks.as_ref().and_then(|n| n.set)
+    }
+
+    pub(super) fn install(
+        &mut self,
+        networks: Arc<Networks>,
+        set: Option<NetworkSet>,
+    ) -> Result<()> {
+        let range = networks.trained_range();
+        let surrogate: Arc<dyn Surrogate> = networks.clone();
+        self.twin.set_networks(Some(surrogate.clone()))?;
+        self.networks = Some(Installed {
+            surrogate,
+            range,
+            networks,
+            set,
+        });
+        Ok(())
+    }
+
+    /// Sets the networks aside (after an arm change, or to use others).
+    pub fn clear_networks(&mut self) -> Result<()> {
+        if self.planner().method().uses_networks() {
+            self.twin.set_method(Method::NUMERICAL)?;
+        }
+        self.twin.set_networks(None)?;
+        self.networks = None;
+        Ok(())
+    }
+}
