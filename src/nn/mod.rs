@@ -9,13 +9,17 @@
 
 pub mod activation;
 pub mod cholesky;
+pub mod data;
 pub mod kernel;
 pub mod kronecker;
 pub mod lm;
 pub mod mlp;
+pub mod report;
 pub mod rng;
 
+pub use data::Dataset;
 pub use kernel::Kernel;
-pub use lm::{Dataset, EpochReport, LmOptions, LmTrainer, StopReason, TrainReport};
+pub use lm::{LmOptions, LmTrainer};
 pub use mlp::{MapMinMax, Mlp};
+pub use report::{EpochReport, StopReason, TrainReport};
 pub use rng::Rng;
