@@ -390,7 +390,8 @@ mod workload {
     /// whole torus, 20,000 samples, held-out error on 2,000 fresh ones.
     /// `cargo test --release --test adam -- --ignored --nocapture`; the
     /// recipe is read from `ADAM_HIDDEN` (96,96), `ADAM_EPOCHS`, `ADAM_BATCH`,
-    /// `ADAM_LR`, `ADAM_FLOOR`, `ADAM_SEED`, `ADAM_SAMPLES`; `ADAM_LM=1` trains
+    /// `ADAM_LR`, `ADAM_FLOOR` (cosine) or `ADAM_STEP=every,factor`, `ADAM_SEED`,
+    /// `ADAM_SAMPLES`; `ADAM_LM=1` trains
     /// by Levenberg-Marquardt instead (for 35,14).
     #[test]
     #[ignore = "a workload of minutes: run with --release -- --ignored --nocapture"]
@@ -417,8 +418,14 @@ mod workload {
                 max_epochs: env("ADAM_EPOCHS", defaults.max_epochs),
                 batch: env("ADAM_BATCH", defaults.batch),
                 learning_rate: env("ADAM_LR", defaults.learning_rate),
-                decay: Decay::Cosine {
-                    floor: env("ADAM_FLOOR", 0.01),
+                decay: match env("ADAM_STEP", String::new()).split_once(',') {
+                    Some((every, factor)) => Decay::Step {
+                        every: every.parse().unwrap(),
+                        factor: factor.parse().unwrap(),
+                    },
+                    None => Decay::Cosine {
+                        floor: env("ADAM_FLOOR", 0.01),
+                    },
                 },
                 patience: env("ADAM_EPOCHS", defaults.max_epochs),
                 ..defaults

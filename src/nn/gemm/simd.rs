@@ -32,6 +32,22 @@ pub(super) struct Packed {
 }
 
 pub(super) fn gemm(alpha: f64, a: Mat, b: Mat, beta: f64, c: &mut MatMut, packed: &mut Packed) {
+    if c.cols > c.rows {
+        // Packing B (each value splat) costs more per entry than packing
+        // A, so B gets the smaller side: C^T = B^T A^T.
+        let mut ct = MatMut {
+            data: &mut *c.data,
+            rows: c.cols,
+            cols: c.rows,
+            rs: c.cs,
+            cs: c.rs,
+        };
+        return blocked(alpha, b.t(), a.t(), beta, &mut ct, packed);
+    }
+    blocked(alpha, a, b, beta, c, packed)
+}
+
+fn blocked(alpha: f64, a: Mat, b: Mat, beta: f64, c: &mut MatMut, packed: &mut Packed) {
     let (m, n, k) = (c.rows, c.cols, a.cols);
     if beta != 1.0 {
         for j in 0..n {
@@ -164,6 +180,14 @@ fn store(
             col[1] += alpha * lanes[1];
             col[2] += alpha * lanes[2];
             col[3] += alpha * lanes[3];
+        } else if c.cs == 1 && rows == MR {
+            // A transposed product: the tile's columns run along C's rows.
+            let rs = c.rs;
+            let col = &mut c.data[base..base + 3 * rs + 1];
+            col[0] += alpha * lanes[0];
+            col[rs] += alpha * lanes[1];
+            col[2 * rs] += alpha * lanes[2];
+            col[3 * rs] += alpha * lanes[3];
         } else {
             let mut i = 0;
             while i < rows {
