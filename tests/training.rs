@@ -306,3 +306,39 @@ fn an_arm_without_avoidance_tasks_still_gets_its_networks_and_the_report_says_wh
     assert!(trained.report.verdict.passed, "nothing to fail");
     assert!(trained.report.verdict.checked.starts_with("nothing"));
 }
+
+/// The page's training job natively (`docs/speed.md`, "Training in the
+/// page"): both networks for the paper's arm, seed 1, the preset of
+/// `JOB_PRESET` (quick by default), wall time of `training_job::train` with
+/// its report, as `window.demo.train({net: 'both', preset, seed: 1})`
+/// runs it. `cargo test --release --test training -- --ignored --nocapture`.
+#[cfg(not(target_arch = "wasm32"))]
+#[test]
+#[ignore = "a timing, not a check: run with --release -- --ignored --nocapture"]
+fn the_page_training_job_natively() {
+    let preset = match std::env::var("JOB_PRESET").as_deref() {
+        Ok("thorough") => Preset::Thorough,
+        _ => Preset::Quick,
+    };
+    let request = Request {
+        arm: Arm::paper(),
+        net: Which::Both,
+        preset,
+        samples: None,
+        epochs: None,
+        seed: Some(1),
+    };
+    #[allow(clippy::disallowed_methods)] // a native timing
+    let start = std::time::Instant::now();
+    let mut epochs = 0;
+    let trained = training_job::train(&request, None, |_| {
+        epochs += 1;
+        true
+    })
+    .unwrap();
+    println!(
+        "{preset:?}: {:.2} s, {epochs} epochs, Phi median {:.3e}",
+        start.elapsed().as_secs_f64(),
+        trained.report.phi_error.median
+    );
+}

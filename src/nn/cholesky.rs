@@ -12,6 +12,9 @@
 
 use nalgebra::{DMatrix, DVector};
 
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+use crate::nn::gemm::{gemm, Mat, MatMut, Scratch};
+
 /// Width of the diagonal blocks.
 const BLOCK: usize = 64;
 
@@ -24,6 +27,8 @@ pub fn factor(a: &mut DMatrix<f64>) -> bool {
     if a.ncols() != n {
         return false;
     }
+    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+    let mut scratch = Scratch::default();
     let mut k = 0;
     while k < n {
         let kb = BLOCK.min(n - k);
@@ -54,11 +59,42 @@ pub fn factor(a: &mut DMatrix<f64>) -> bool {
         let mut j = end;
         while j < n {
             let jb = BLOCK.min(n - j);
-            let (panel, mut rest) = a.columns_range_pair_mut(k..end, j..j + jb);
-            let lhs = panel.rows(j, n - j);
-            let rhs_t = panel.rows(j, jb).transpose();
-            let mut target = rest.rows_mut(j, n - j);
-            target.gemm(-1.0, &lhs, &rhs_t, 1.0);
+            #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
+            {
+                let (panel, mut rest) = a.columns_range_pair_mut(k..end, j..j + jb);
+                let lhs = panel.rows(j, n - j);
+                let rhs_t = panel.rows(j, jb).transpose();
+                let mut target = rest.rows_mut(j, n - j);
+                target.gemm(-1.0, &lhs, &rhs_t, 1.0);
+            }
+            // matrixmultiply's scalar kernel in wasm: the SIMD one instead.
+            #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+            {
+                let (left, right) = a.as_mut_slice().split_at_mut(j * n);
+                let panel = &left[k * n + j..];
+                let lhs = Mat {
+                    data: panel,
+                    rows: n - j,
+                    cols: kb,
+                    rs: 1,
+                    cs: n,
+                };
+                let rhs_t = Mat {
+                    data: panel,
+                    rows: kb,
+                    cols: jb,
+                    rs: n,
+                    cs: 1,
+                };
+                let mut target = MatMut {
+                    data: &mut right[j..],
+                    rows: n - j,
+                    cols: jb,
+                    rs: 1,
+                    cs: n,
+                };
+                gemm(-1.0, lhs, rhs_t, 1.0, &mut target, &mut scratch);
+            }
             j += jb;
         }
         k = end;

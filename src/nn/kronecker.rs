@@ -18,11 +18,17 @@
 //! sample *and output* when `J^T J` is summed over `J`'s rows: 8 times fewer
 //! for the paper's 2-35-14-6 network (6 outputs; 0.80e9 against 6.2e9 per
 //! epoch on 2,100 samples), in large products that `matrixmultiply` runs
-//! near the machine's peak. Only the blocks `l >= k` are computed; the
+//! near the machine's peak (in the page's SIMD build, [`crate::nn::gemm`]'s
+//! wasm kernel instead). Only the blocks `l >= k` are computed; the
 //! matrix is then filled symmetrically.
 
-use nalgebra::{DMatrix, DVector, Dyn, MatrixView, U1};
+use nalgebra::{DMatrix, DVector};
+#[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
+use nalgebra::{Dyn, MatrixView, U1};
 
+use crate::nn::gemm::Scratch;
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+use crate::nn::gemm::{gemm, Mat, MatMut};
 use crate::nn::mlp::{Activations, Mlp};
 
 /// Largest `W` buffer (entries): the sample block shrinks for wide layers so
@@ -51,6 +57,12 @@ pub struct Normal {
     /// (`(r_l + 1)(r_k + 1) x s_l s_k`).
     pairs: Vec<(usize, usize)>,
     z: Vec<DMatrix<f64>>,
+    /// Packing space of the SIMD build's products.
+    #[cfg_attr(
+        not(all(target_arch = "wasm32", target_feature = "simd128")),
+        allow(dead_code)
+    )]
+    scratch: Scratch,
 }
 
 impl Normal {
@@ -83,6 +95,7 @@ impl Normal {
                 .map(|&(l, k)| DMatrix::zeros(r(l) * r(k), s(l) * s(k)))
                 .collect(),
             pairs,
+            scratch: Scratch::default(),
         }
     }
 
@@ -178,21 +191,34 @@ impl Normal {
                 }
                 // Z (cw x cd) += W^T (cw x n) D (n x cd). W row-major n x cw
                 // is W^T column-major; D row-major n x cd is a strided view.
-                let wt = MatrixView::<f64, Dyn, Dyn, U1, Dyn>::from_slice_with_strides_generic(
-                    &self.w[..n * cw],
-                    Dyn(cw),
-                    Dyn(n),
-                    U1,
-                    Dyn(cw),
+                #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
+                {
+                    let wt = MatrixView::<f64, Dyn, Dyn, U1, Dyn>::from_slice_with_strides_generic(
+                        &self.w[..n * cw],
+                        Dyn(cw),
+                        Dyn(n),
+                        U1,
+                        Dyn(cw),
+                    );
+                    let dm = MatrixView::<f64, Dyn, Dyn, Dyn, U1>::from_slice_with_strides_generic(
+                        &self.d[..n * cd],
+                        Dyn(n),
+                        Dyn(cd),
+                        Dyn(cd),
+                        U1,
+                    );
+                    z.gemm(1.0, &wt, &dm, 1.0);
+                }
+                // matrixmultiply's scalar kernel in wasm: the SIMD one instead.
+                #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+                gemm(
+                    1.0,
+                    Mat::col_major(&self.w[..n * cw], cw, n),
+                    Mat::row_major(&self.d[..n * cd], n, cd),
+                    1.0,
+                    &mut MatMut::col_major(z.as_mut_slice(), cw, cd),
+                    &mut self.scratch,
                 );
-                let dm = MatrixView::<f64, Dyn, Dyn, Dyn, U1>::from_slice_with_strides_generic(
-                    &self.d[..n * cd],
-                    Dyn(n),
-                    Dyn(cd),
-                    Dyn(cd),
-                    U1,
-                );
-                z.gemm(1.0, &wt, &dm, 1.0);
             }
         }
         // Scatter Z_lk into J^T J in the parameter order of `Mlp::params`:

@@ -20,49 +20,11 @@ use crate::nn::kronecker::Normal;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
-use crate::nn::mlp::{Activations, MapMinMax, Mlp};
+pub use crate::nn::data::Dataset;
+use crate::nn::data::{fresh_network, Prepared};
+use crate::nn::mlp::{Activations, Mlp};
+pub use crate::nn::report::{EpochReport, StopReason, TrainReport};
 use crate::nn::rng::Rng;
-
-/// Training samples: `inputs` and `targets` row-major, one row per sample.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Dataset {
-    /// Inputs per sample.
-    pub n_in: usize,
-    /// Targets per sample.
-    pub n_out: usize,
-    /// `len() * n_in` raw inputs.
-    pub inputs: Vec<f64>,
-    /// `len() * n_out` raw targets.
-    pub targets: Vec<f64>,
-}
-
-impl Dataset {
-    /// An empty set with the given widths.
-    pub fn new(n_in: usize, n_out: usize) -> Self {
-        Self {
-            n_in,
-            n_out,
-            inputs: Vec::new(),
-            targets: Vec::new(),
-        }
-    }
-
-    /// Appends one sample.
-    pub fn push(&mut self, input: &[f64], target: &[f64]) {
-        self.inputs.extend_from_slice(&input[..self.n_in]);
-        self.targets.extend_from_slice(&target[..self.n_out]);
-    }
-
-    /// Number of samples.
-    pub fn len(&self) -> usize {
-        self.inputs.len().checked_div(self.n_in).unwrap_or(0)
-    }
-
-    /// Whether there are no samples.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-}
 
 /// `trainlm`'s parameters; the defaults are Matlab's except `max_epochs`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -149,57 +111,12 @@ impl LmOptions {
     }
 }
 
-/// What one epoch did; passed to the per-epoch callback.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct EpochReport {
-    /// Epoch number, from 1.
-    pub epoch: usize,
-    /// Mean squared error on the training set (in mapminmax units).
-    pub train_mse: f64,
-    /// Mean squared error on the validation set.
-    pub val_mse: f64,
-    /// `mu` after this epoch.
-    pub mu: f64,
-    /// Norm of the gradient of the training sum of squares, `2 |J^T e|`.
-    pub gradient: f64,
-}
-
-/// Why training stopped.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum StopReason {
-    /// `max_epochs` reached.
-    MaxEpochs,
-    /// Gradient below `min_grad`.
-    MinGradient,
-    /// `mu` grew above `mu_max`.
-    MuMax,
-    /// `max_fail` consecutive validation failures.
-    ValidationStop,
-    /// Training MSE reached `goal`.
-    Goal,
-    /// The callback asked to stop.
-    Cancelled,
-}
-
-/// Outcome of a training run. The returned network has the weights of the
-/// epoch with the best validation error (as Matlab keeps them).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct TrainReport {
-    /// Epochs run.
-    pub epochs: usize,
-    /// Epoch whose weights were kept (best validation error).
-    pub best_epoch: usize,
-    /// Why training stopped.
-    pub stop: StopReason,
-    /// Training MSE of the kept weights (mapminmax units).
-    pub train_mse: f64,
-    /// Validation MSE of the kept weights.
-    pub val_mse: f64,
-    /// Test MSE of the kept weights.
-    pub test_mse: f64,
-    /// Samples in the training, validation and test sets.
-    pub split: [usize; 3],
+/// One of the three sets of the split.
+#[derive(Debug, Clone, Copy)]
+enum Set {
+    Train,
+    Val,
+    Test,
 }
 
 /// A Levenberg-Marquardt run that can be advanced one epoch at a time (so a
@@ -209,14 +126,8 @@ pub struct TrainReport {
 pub struct LmTrainer {
     mlp: Mlp,
     opts: LmOptions,
-    n_in: usize,
-    n_out: usize,
-    /// Scaled inputs and targets, row-major.
-    x: Vec<f64>,
-    t: Vec<f64>,
-    train: Vec<usize>,
-    val: Vec<usize>,
-    test: Vec<usize>,
+    /// The scaled data and its split.
+    data: Prepared,
     params: DVector<f64>,
     mu: f64,
     perf: f64,
@@ -235,77 +146,15 @@ impl LmTrainer {
     /// `rng`) into training, validation and test sets and evaluates the
     /// starting weights.
     pub fn new(mlp: Mlp, data: &Dataset, opts: LmOptions, rng: &mut Rng) -> Result<Self> {
-        mlp.validate()?;
-        if data.n_in != mlp.inputs() || data.n_out != mlp.outputs() {
-            return Err(Error::Training(format!(
-                "data has {} inputs and {} targets, the network {} and {}",
-                data.n_in,
-                data.n_out,
-                mlp.inputs(),
-                mlp.outputs()
-            )));
-        }
-        if data
-            .inputs
-            .iter()
-            .chain(&data.targets)
-            .any(|v| !v.is_finite())
-        {
-            return Err(Error::NonFinite {
-                what: "training data".into(),
-            });
-        }
-        let n = data.len();
-        let [ftrain, fval] = opts.split;
-        let ok = ftrain > 0.0 && fval >= 0.0 && ftrain + fval <= 1.0;
-        if !ok {
-            return Err(Error::Training(format!(
-                "split fractions {ftrain} / {fval} must be positive and sum to at most 1"
-            )));
-        }
-        let n_train = ((n as f64) * ftrain).round() as usize;
-        let n_val = ((n as f64) * fval).round() as usize;
-        if n_train == 0 || n_train + n_val > n {
-            return Err(Error::Training(format!(
-                "{n} samples are too few to split {ftrain} / {fval}"
-            )));
-        }
         opts.validate()?;
-        let mut idx: Vec<usize> = (0..n).collect();
-        rng.shuffle(&mut idx);
-        let train = idx[..n_train].to_vec();
-        let val = idx[n_train..n_train + n_val].to_vec();
-        let test = idx[n_train + n_val..].to_vec();
-        let (n_in, n_out) = (data.n_in, data.n_out);
-        let mut x = Vec::with_capacity(data.inputs.len());
-        for row in data.inputs.chunks_exact(n_in) {
-            x.extend(
-                row.iter()
-                    .enumerate()
-                    .map(|(i, &v)| mlp.input_map.apply(i, v)),
-            );
-        }
-        let mut t = Vec::with_capacity(data.targets.len());
-        for row in data.targets.chunks_exact(n_out) {
-            t.extend(
-                row.iter()
-                    .enumerate()
-                    .map(|(i, &v)| mlp.output_map.apply(i, v)),
-            );
-        }
+        let data = Prepared::new(&mlp, data, opts.split, rng)?;
         let params = DVector::from_vec(mlp.params());
         let acts = Activations::new(&mlp.sizes);
-        let normal = Normal::new(&mlp.sizes, opts.chunk.min(n_train));
+        let normal = Normal::new(&mlp.sizes, opts.chunk.min(data.train.len()));
         let mut tr = Self {
             mu: opts.mu,
             opts,
-            n_in,
-            n_out,
-            x,
-            t,
-            train,
-            val,
-            test,
+            data,
             best_params: params.clone(),
             params,
             perf: f64::INFINITY,
@@ -318,43 +167,31 @@ impl LmTrainer {
             normal,
             mlp,
         };
-        tr.perf = tr.mse(&tr.train.clone());
-        tr.best_val = if tr.val.is_empty() {
+        tr.perf = tr.mse(Set::Train);
+        tr.best_val = if tr.data.val.is_empty() {
             f64::INFINITY
         } else {
-            tr.mse(&tr.val.clone())
+            tr.mse(Set::Val)
         };
         Ok(tr)
     }
 
-    /// Mean squared error (scaled units) of the current weights on the samples `idx`.
-    fn mse(&mut self, idx: &[usize]) -> f64 {
-        if idx.is_empty() {
-            return 0.0;
-        }
-        let mut sse = 0.0;
-        for &i in idx {
-            self.mlp
-                .forward_scaled(&self.x[i * self.n_in..(i + 1) * self.n_in], &mut self.acts);
-            let y = self.acts.output();
-            sse += y
-                .iter()
-                .zip(&self.t[i * self.n_out..(i + 1) * self.n_out])
-                .map(|(a, b)| (b - a) * (b - a))
-                .sum::<f64>();
-        }
-        sse / (idx.len() * self.n_out) as f64
+    /// Mean squared error (scaled units) of the current weights on one set.
+    fn mse(&mut self, set: Set) -> f64 {
+        let idx = match set {
+            Set::Train => &self.data.train,
+            Set::Val => &self.data.val,
+            Set::Test => &self.data.test,
+        };
+        self.data.mse(&self.mlp, idx, &mut self.acts)
     }
 
     /// `J^T J` and `J^T e` over the training set, `J = dy/dparams`, `e = t - y`,
     /// from the layer structure of `J` (see [`Normal`]).
     fn normal_equations(&mut self) -> (DMatrix<f64>, DVector<f64>) {
-        let mut normal = std::mem::take(&mut self.normal);
-        let train = std::mem::take(&mut self.train);
-        let out = normal.accumulate(&self.mlp, &self.x, &self.t, &train, &mut self.acts);
-        self.train = train;
-        self.normal = normal;
-        out
+        let d = &self.data;
+        self.normal
+            .accumulate(&self.mlp, &d.x, &d.t, &d.train, &mut self.acts)
     }
 
     /// One `trainlm` epoch: build the normal equations, then try
@@ -372,7 +209,6 @@ impl LmTrainer {
             self.stopped = Some(StopReason::MinGradient);
             return (self.report(gradient), self.stopped);
         }
-        let train = self.train.clone();
         let mut improved = false;
         while self.mu <= self.opts.mu_max {
             let mut a = jtj.clone();
@@ -382,7 +218,7 @@ impl LmTrainer {
             if let Some(dx) = cholesky::solve_spd(a, &jte) {
                 let trial = &self.params + dx;
                 self.mlp.set_params(trial.as_slice());
-                let perf = self.mse(&train);
+                let perf = self.mse(Set::Train);
                 if perf < self.perf {
                     self.params = trial;
                     self.perf = perf;
@@ -402,12 +238,12 @@ impl LmTrainer {
             self.stopped = Some(StopReason::MuMax);
             return (self.report(gradient), self.stopped);
         }
-        let val_mse = if self.val.is_empty() {
+        let val_mse = if self.data.val.is_empty() {
             f64::INFINITY
         } else {
-            self.mse(&self.val.clone())
+            self.mse(Set::Val)
         };
-        if self.val.is_empty() || val_mse < self.best_val {
+        if self.data.val.is_empty() || val_mse < self.best_val {
             self.best_val = val_mse;
             self.best_params = self.params.clone();
             self.best_epoch = self.epoch;
@@ -442,14 +278,14 @@ impl LmTrainer {
     /// The network with the best-validation weights, and the run's figures.
     pub fn finish(mut self) -> (Mlp, TrainReport) {
         let stop = self.stopped.unwrap_or(StopReason::Cancelled);
-        if self.best_epoch > 0 || !self.val.is_empty() {
+        if self.best_epoch > 0 || !self.data.val.is_empty() {
             self.mlp.set_params(self.best_params.as_slice());
         } else {
             self.mlp.set_params(self.params.as_slice());
         }
-        let train_mse = self.mse(&self.train.clone());
-        let val_mse = self.mse(&self.val.clone());
-        let test_mse = self.mse(&self.test.clone());
+        let train_mse = self.mse(Set::Train);
+        let val_mse = self.mse(Set::Val);
+        let test_mse = self.mse(Set::Test);
         let report = TrainReport {
             epochs: self.epoch,
             best_epoch: self.best_epoch,
@@ -457,7 +293,7 @@ impl LmTrainer {
             train_mse,
             val_mse,
             test_mse,
-            split: [self.train.len(), self.val.len(), self.test.len()],
+            split: self.data.split(),
         };
         (self.mlp, report)
     }
@@ -474,16 +310,8 @@ pub fn train(
     seed: u64,
     mut on_epoch: impl FnMut(&EpochReport) -> bool,
 ) -> Result<(Mlp, TrainReport)> {
-    if sizes.first() != Some(&data.n_in) || sizes.last() != Some(&data.n_out) {
-        return Err(Error::Training(format!(
-            "layer sizes {sizes:?} do not fit data with {} inputs and {} targets",
-            data.n_in, data.n_out
-        )));
-    }
     let mut rng = Rng::new(seed);
-    let input_map = MapMinMax::fit(&data.inputs, data.n_in);
-    let output_map = MapMinMax::fit(&data.targets, data.n_out);
-    let mlp = Mlp::nguyen_widrow(sizes, input_map, output_map, &mut rng)?;
+    let mlp = fresh_network(sizes, data, &mut rng)?;
     let mut trainer = LmTrainer::new(mlp, data, opts, &mut rng)?;
     loop {
         let (report, stop) = trainer.epoch();
