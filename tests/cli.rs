@@ -794,6 +794,46 @@ fn the_reach_recipe_and_network_set_through_the_command_line() {
             .clone()
     };
     assert_eq!(numerical("paper"), numerical("reach"));
+    // `--optimiser adam` trains by Adam and records its options; Adam's
+    // settings without it are refused rather than ignored.
+    let adam_out = scratch("tiny-adam-phi.json");
+    let adam_path = adam_out.to_str().unwrap();
+    ok(&[
+        "train",
+        "--net",
+        "phi",
+        "--samples",
+        "200",
+        "--epochs",
+        "2",
+        "--hidden",
+        "6",
+        "--optimiser",
+        "adam",
+        "--batch",
+        "32",
+        "--learning-rate",
+        "0.01",
+        "--quiet",
+        "--out",
+        adam_path,
+    ]);
+    let file: Value = serde_json::from_str(&std::fs::read_to_string(&adam_out).unwrap()).unwrap();
+    assert_eq!(file["training"]["adam"]["batch"], 32);
+    assert_eq!(file["training"]["adam"]["max_epochs"], 2);
+    assert_eq!(file["nets"][0]["report"]["epochs"].as_u64(), Some(2));
+    refused(
+        &[
+            "train",
+            "--net",
+            "phi",
+            "--batch",
+            "32",
+            "--out",
+            "/dev/null",
+        ],
+        "--optimiser adam",
+    );
     refused(&["simulate", "--networks", "nope"], "networks");
     refused(&["simulate", "--refine", "1.5"], "refine");
     refused(&["simulate", "--refine", "9"], "refine");

@@ -282,7 +282,7 @@ fn weights_files_record_their_encoding_and_old_files_read_as_raw() {
     let mut spec = Recipe::Reach.spec(&arm, NetKind::Phi, 1);
     spec.samples = 60;
     spec.hidden = vec![4];
-    spec.options.max_epochs = 2;
+    spec.set_max_epochs(2);
     let file = training::train_weights(&spec, |_, _| true).unwrap();
     assert_eq!(file.encoding, Encoding::Angles);
     assert_eq!(file.range.names[..2], ["sin theta2", "cos theta2"]);
@@ -293,7 +293,7 @@ fn weights_files_record_their_encoding_and_old_files_read_as_raw() {
     let mut raw = Recipe::Paper.spec(&arm, NetKind::V, 1);
     raw.samples = 60;
     raw.hidden = vec![4];
-    raw.options.max_epochs = 2;
+    raw.set_max_epochs(2);
     let old = training::train_weights(&raw, |_, _| true).unwrap();
     let json = old.to_json().unwrap();
     assert!(!json.contains("encoding"));
@@ -305,4 +305,37 @@ fn weights_files_record_their_encoding_and_old_files_read_as_raw() {
     let mut wrong = file.clone();
     wrong.encoding = Encoding::Raw;
     assert!(matches!(wrong.validate(), Err(Error::Weights(_))));
+}
+
+#[test]
+fn the_reach_recipe_trains_phi_by_adam_and_the_file_says_so() {
+    let arm = Arm::paper();
+    // Phi: a network too wide for Levenberg-Marquardt's J^T J, by Adam.
+    let phi = Recipe::Reach.spec(&arm, NetKind::Phi, 1);
+    assert_eq!(phi.hidden, [96, 96]);
+    let adam = phi.adam.expect("the reach recipe trains Phi by Adam");
+    assert_eq!(phi.max_epochs(), adam.max_epochs);
+    // v keeps the paper's widths and optimiser.
+    let v = Recipe::Reach.spec(&arm, NetKind::V, 1);
+    assert!(v.adam.is_none());
+    assert_eq!(v.max_epochs(), v.options.max_epochs);
+
+    let mut small = phi.clone();
+    small.samples = 200;
+    small.hidden = vec![8];
+    small.set_max_epochs(3);
+    let mut epochs = 0;
+    let file = training::train_weights(&small, |_, _| {
+        epochs += 1;
+        true
+    })
+    .unwrap();
+    assert_eq!(epochs, 3, "Adam runs the epochs it is given");
+    let recorded = file.training.adam.expect("the file records Adam's options");
+    assert_eq!(recorded.max_epochs, 3);
+    let json = file.to_json().unwrap();
+    assert_eq!(WeightsFile::from_json(&json).unwrap(), file);
+    // The same seed gives the same weights through the whole recipe.
+    let again = training::train_weights(&small, |_, _| true).unwrap();
+    assert_eq!(again.nets[0].mlp, file.nets[0].mlp);
 }

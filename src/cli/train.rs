@@ -45,9 +45,20 @@ pub struct TrainArgs {
     /// for v by reach).
     #[arg(long)]
     pub samples: Option<usize>,
-    /// Maximum Levenberg-Marquardt epochs. Default: the recipe's (400).
+    /// Maximum epochs. Default: the recipe's (400 for Levenberg-Marquardt,
+    /// 600 for Adam).
     #[arg(long)]
     pub epochs: Option<usize>,
+    /// The optimiser: lm (Levenberg-Marquardt, the paper's) or adam (with
+    /// minibatches, for networks too wide for LM). Default: the recipe's.
+    #[arg(long, value_parser = ["lm", "adam"])]
+    pub optimiser: Option<String>,
+    /// Adam's minibatch size (default 64).
+    #[arg(long)]
+    pub batch: Option<usize>,
+    /// Adam's first learning rate (default 2e-3).
+    #[arg(long)]
+    pub learning_rate: Option<f64>,
     /// Hidden layer widths, e.g. 35,14 (default: 35,14 for phi, 25,14 for v).
     #[arg(long)]
     pub hidden: Option<String>,
@@ -104,6 +115,23 @@ pub fn run(args: &TrainArgs) -> Result<(), String> {
         spec.sampling.sign_smoothing = eps;
     }
     let variant = spec.variant;
+    match args.optimiser.as_deref() {
+        Some("adam") => spec.adam = Some(spec.adam.unwrap_or_default()),
+        Some(_) => spec.adam = None,
+        None => {}
+    }
+    if args.batch.is_some() || args.learning_rate.is_some() {
+        let a = spec
+            .adam
+            .as_mut()
+            .ok_or("--batch and --learning-rate are Adam's: add --optimiser adam")?;
+        if let Some(b) = args.batch {
+            a.batch = b;
+        }
+        if let Some(r) = args.learning_rate {
+            a.learning_rate = r;
+        }
+    }
     if let Some(n) = args.samples {
         spec.samples = n;
     }
@@ -111,9 +139,9 @@ pub fn run(args: &TrainArgs) -> Result<(), String> {
         if n == 0 {
             return Err("--epochs must be at least 1".into());
         }
-        spec.options.max_epochs = n;
+        spec.set_max_epochs(n);
     }
-    let epochs = spec.options.max_epochs;
+    let epochs = spec.max_epochs();
     if let Some(h) = &args.hidden {
         spec.hidden = parse_hidden(h)?;
     }

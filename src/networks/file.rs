@@ -8,6 +8,7 @@ use serde::{Deserialize, Deserializer, Serialize};
 
 use crate::arm::Arm;
 use crate::error::{Error, Result};
+use crate::nn::adam::AdamOptions;
 use crate::nn::lm::{LmOptions, TrainReport};
 use crate::nn::mlp::Mlp;
 use crate::planner::Method;
@@ -164,8 +165,12 @@ pub struct Training {
     pub samples: usize,
     /// Hidden layer widths.
     pub hidden: Vec<usize>,
-    /// Levenberg-Marquardt options.
+    /// Levenberg-Marquardt options (unused when `adam` is set).
     pub options: LmOptions,
+    /// Adam's options, when Adam trained the networks instead of
+    /// Levenberg-Marquardt; absent in older files.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub adam: Option<AdamOptions>,
     /// How the samples were drawn.
     pub sampling: Sampling,
     /// Wall-clock training time in seconds, when the trainer could measure it.

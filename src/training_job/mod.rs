@@ -52,7 +52,7 @@ impl Preset {
         }
     }
 
-    /// Most Levenberg-Marquardt epochs per network, where the preset sets
+    /// Most epochs per network, where the preset sets
     /// them (else the recipe's).
     pub fn epochs(self) -> Option<usize> {
         match self {
@@ -220,7 +220,7 @@ impl Request {
             spec.samples = n;
         }
         if let Some(n) = self.epochs.or(self.preset.epochs()) {
-            spec.options.max_epochs = n;
+            spec.set_max_epochs(n);
         }
         within(
             "training samples",
@@ -230,7 +230,7 @@ impl Request {
         )?;
         within(
             "training epochs",
-            spec.options.max_epochs as f64,
+            spec.max_epochs() as f64,
             1.0,
             MAX_EPOCHS as f64,
         )?;
@@ -279,7 +279,7 @@ pub fn train(
             NetKind::Phi => "phi",
             NetKind::V => "v",
         };
-        let max_epochs = spec.options.max_epochs;
+        let max_epochs = spec.max_epochs();
         train_weights(&spec, |_, report| {
             on_epoch(&Progress {
                 net: name,
