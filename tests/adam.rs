@@ -248,6 +248,29 @@ fn options_read_from_json_refuse_unknown_fields() {
         serde_json::from_str::<AdamOptions>(r#"{"decay": {"kind": "cosine", "flor": 0.1}}"#)
             .is_err()
     );
+    // A decay's own fields are required and no other's are taken.
+    for bad in [
+        r#"{"kind": "cosine"}"#,
+        r#"{"kind": "step", "every": 10}"#,
+        r#"{"kind": "constant", "floor": 0.1}"#,
+        r#"{"kind": "cosine", "floor": 0.1, "factor": 0.5}"#,
+        r#"{"kind": "linear"}"#,
+    ] {
+        assert!(serde_json::from_str::<Decay>(bad).is_err(), "{bad}");
+    }
+    // Every decay writes and reads back as itself.
+    for d in [
+        Decay::Constant,
+        Decay::Cosine { floor: 0.01 },
+        Decay::Step { every: 250, factor: 0.3 },
+    ] {
+        let json = serde_json::to_string(&d).unwrap();
+        assert_eq!(serde_json::from_str::<Decay>(&json).unwrap(), d, "{json}");
+    }
+    assert_eq!(
+        serde_json::to_string(&Decay::Cosine { floor: 0.01 }).unwrap(),
+        r#"{"kind":"cosine","floor":0.01}"#
+    );
 }
 
 #[test]

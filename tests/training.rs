@@ -8,8 +8,8 @@ use wasm_bindgen_test::wasm_bindgen_test as test;
 use std::sync::Arc;
 
 use redundant_ik::nalgebra::DVector;
-use redundant_ik::networks::Networks;
 use redundant_ik::networks::{Encoding, NetKind, Sampling, Variant};
+use redundant_ik::networks::{NetworkSet, Networks};
 use redundant_ik::nn::rng::Rng;
 use redundant_ik::training::{self, tasks};
 use redundant_ik::training_job::{self, Preset, Request, Which};
@@ -341,4 +341,29 @@ fn the_page_training_job_natively() {
         start.elapsed().as_secs_f64(),
         trained.report.phi_error.median
     );
+}
+
+#[test]
+fn the_job_in_pieces_gives_the_same_networks_and_report() {
+    // The page trains both networks at once in two workers, then checks
+    // them in a third: the same files and report as the one-piece job.
+    let request = small(Arm::paper(), Which::Both);
+    let whole = training_job::train(&request, None, |_| true).unwrap();
+    let phi = training_job::train_net(&request, NetKind::Phi, |_| true).unwrap();
+    let v = training_job::train_net(&request, NetKind::V, |_| true).unwrap();
+    let pieces = training_job::conclude(&request, phi, v).unwrap();
+    assert_eq!(pieces, whole);
+    // Files of another arm than the request's are refused.
+    let other = small(four_links(), Which::Both);
+    let err = training_job::conclude(&other, whole.phi.clone(), whole.v.clone()).unwrap_err();
+    assert!(err.to_string().contains("another arm"), "{err}");
+}
+
+#[test]
+fn the_shipped_reach_set_passes_its_own_check() {
+    let nets = Networks::embedded_set(NetworkSet::Reach).unwrap();
+    let r = training_job::assess(&nets, 20_000).unwrap();
+    assert!(r.verdict.passed, "{:?}", r.verdict.failures);
+    // Over the whole torus its Phi is within 1% (median) of the exact one.
+    assert!(r.phi_error.median < 1e-2, "{}", r.phi_error.median);
 }

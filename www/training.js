@@ -211,10 +211,10 @@ export function mountTraining(root, demo, { files, install, keep, forget, attemp
     status('Sampling the numerical route…');
     drawCurves(el.curves, curves);
     try {
-      const { result, ms } = await runWorker(
-        { kind: 'train', request, phi: current?.phi, v: current?.v },
-        { signal: training.signal, onProgress: follower(t0, options.onProgress) },
-      );
+      const follow = follower(t0, options.onProgress);
+      const { result, ms } = parallel(request)
+        ? await trainBothAtOnce(request, training.signal, follow)
+        : await runWorker({ kind: 'train', request, phi: current?.phi, v: current?.v }, { signal: training.signal, onProgress: follow });
       const seconds = (performance.now() - t0) / 1000;
       const entry = { phi: result.phi, v: result.v, report: result.report, saved: new Date().toISOString() };
       showReport(result.report, performance.now() - t0);
@@ -239,6 +239,46 @@ export function mountTraining(root, demo, { files, install, keep, forget, attemp
     } finally {
       training = null;
       showBusy(el, false);
+    }
+  }
+
+  /**
+   * Both networks at once where the browser has two cores or more: each in
+   * its own worker, then the check in a third (`docs/learning.md`,
+   * "Training in the page"). The networks and the report are those of the
+   * one-worker job (each network's seed depends on the request alone).
+   */
+  function parallel(request) {
+    return request.net === 'both' && (navigator.hardwareConcurrency ?? 1) >= 2;
+  }
+
+  async function trainBothAtOnce(request, signal, follow) {
+    // One failure stops the other worker too.
+    const both = new AbortController();
+    const stop = () => both.abort();
+    signal.addEventListener('abort', stop);
+    let first = null; // the error that stopped the job, not the abort it caused
+    const parts = {};
+    const progress = (net) => (p) => {
+      parts[net] = p;
+      const done = Object.values(parts).reduce((a, q) => a + q.done, 0);
+      const total = Object.values(parts).reduce((a, q) => a + q.total, 0);
+      follow({ ...p, done: done / Object.keys(parts).length, total: total / Object.keys(parts).length });
+    };
+    try {
+      const jobs = ['phi', 'v'].map((net) =>
+        runWorker({ kind: 'train-net', request, net }, { signal: both.signal, onProgress: progress(net) }).catch((e) => {
+          first ??= e;
+          both.abort();
+          throw first;
+        }),
+      );
+      const [phi, v] = await Promise.all(jobs);
+      status('Checking the networks on the tasks…');
+      const check = await runWorker({ kind: 'conclude', request, phi: phi.result, v: v.result }, { signal: both.signal });
+      return { result: check.result, ms: Math.max(phi.ms, v.ms) + check.ms };
+    } finally {
+      signal.removeEventListener('abort', stop);
     }
   }
 

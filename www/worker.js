@@ -11,8 +11,13 @@
 //   { kind: 'atlas', wasm, scene, options: { modes, n, region, task, feedback, refine, networks }, phi, v }
 //       the atlas of `redundant-ik atlas`, one row of cells per chunk
 //   { kind: 'train', wasm, request: { arm, net, preset, samples, epochs, seed }, phi, v }
-//       Levenberg-Marquardt training of the networks for an arm, a progress
+//       training of the networks for an arm and their check, a progress
 //       message per epoch (with the epoch's numbers in `epoch`)
+//   { kind: 'train-net', wasm, request, net }
+//       one network of such a request alone ('phi' or 'v'; the page runs
+//       both at once in two workers): its weights file as JSON text
+//   { kind: 'conclude', wasm, request, phi, v }
+//       the check and report of a request whose networks were trained so
 //   { kind: 'run-files', wasm, scene, mode, task, phi, v }
 //       a run as the JSON of `simulate --json`, CSV, and its figures as SVG
 //   { kind: 'atlas-files', wasm, atlas, scene, modes }
@@ -25,6 +30,8 @@
 import init, {
   AtlasJob,
   trainNetworks,
+  trainNetwork,
+  concludeTraining,
   benchThetaDot,
   benchStep,
   benchForward,
@@ -70,19 +77,28 @@ function atlas({ scene, options, phi, v }) {
 }
 
 function train({ request, phi, v }) {
-  // Progress: epochs done over the most epochs of the networks asked for.
+  // Progress: epochs done over the most epochs of the networks asked for
+  // (the second network's most epochs known when it starts).
   const nets = request.net === 'both' ? ['phi', 'v'] : [request.net];
   const offsets = {};
-  let max = 0;
+  let before = 0;
   const post = (e) => {
     if (!(e.net in offsets)) {
-      offsets[e.net] = nets.indexOf(e.net) * e.max_epochs;
-      max = nets.length * e.max_epochs;
+      offsets[e.net] = before;
+      before += e.max_epochs;
     }
-    self.postMessage({ type: 'progress', done: offsets[e.net] + e.epoch, total: max, label: e.net, epoch: e });
+    const left = nets.length - Object.keys(offsets).length;
+    const total = before + left * e.max_epochs;
+    self.postMessage({ type: 'progress', done: offsets[e.net] + e.epoch, total, label: e.net, epoch: e });
   };
   self.postMessage({ type: 'progress', done: 0, total: 1, label: 'sampling' });
   return trainNetworks(request, phi ?? undefined, v ?? undefined, post);
+}
+
+function trainNet({ request, net }) {
+  const post = (e) => self.postMessage({ type: 'progress', done: e.epoch, total: e.max_epochs, label: e.net, epoch: e });
+  self.postMessage({ type: 'progress', done: 0, total: 1, label: 'sampling' });
+  return trainNetwork(request, net, post);
 }
 
 self.onmessage = async ({ data }) => {
@@ -93,6 +109,8 @@ self.onmessage = async ({ data }) => {
     if (data.kind === 'bench') result = bench(data);
     else if (data.kind === 'atlas') result = atlas(data);
     else if (data.kind === 'train') result = train(data);
+    else if (data.kind === 'train-net') result = trainNet(data);
+    else if (data.kind === 'conclude') result = concludeTraining(data.request, data.phi, data.v);
     else if (data.kind === 'run-files') result = runFiles(data.scene, data.mode, data.task, data.phi ?? undefined, data.v ?? undefined);
     else if (data.kind === 'atlas-files') result = atlasFiles(data.atlas, data.scene, data.modes ?? []);
     else throw new Error(`unknown job '${data.kind}'`);

@@ -41,9 +41,11 @@ use crate::nn::mlp::{Activations, Mlp};
 use crate::nn::report::{EpochReport, StopReason, TrainReport};
 use crate::nn::rng::Rng;
 
-/// How the learning rate changes from epoch to epoch.
+/// How the learning rate changes from epoch to epoch. In JSON an object
+/// tagged by `kind`: `{"kind": "constant"}`, `{"kind": "cosine", "floor":
+/// 0.01}`, `{"kind": "step", "every": 250, "factor": 0.3}`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case", tag = "kind", deny_unknown_fields)]
+#[serde(try_from = "DecayFields", into = "DecayFields")]
 pub enum Decay {
     /// The same rate every epoch.
     Constant,
@@ -61,6 +63,70 @@ pub enum Decay {
         /// Factor per step.
         factor: f64,
     },
+}
+
+/// [`Decay`] as it reads and writes: one flat object rather than serde's
+/// internally tagged enum, which buffers every value it reads and put
+/// 7.8 KB (gzipped) on the page's module, which reads weights files
+/// (`docs/web.md`).
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct DecayFields {
+    kind: DecayKind,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    floor: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    every: Option<usize>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    factor: Option<f64>,
+}
+
+#[derive(Clone, Copy, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum DecayKind {
+    Constant,
+    Cosine,
+    Step,
+}
+
+impl TryFrom<DecayFields> for Decay {
+    type Error = String;
+
+    fn try_from(f: DecayFields) -> std::result::Result<Self, String> {
+        let missing = |field: &str, kind: &str| format!("decay '{kind}' needs '{field}'");
+        let extra = |kind: &str| format!("decay '{kind}' takes no other fields");
+        match f.kind {
+            DecayKind::Constant if f.floor.is_none() && f.every.is_none() && f.factor.is_none() => {
+                Ok(Decay::Constant)
+            }
+            DecayKind::Constant => Err(extra("constant")),
+            DecayKind::Cosine if f.every.is_some() || f.factor.is_some() => Err(extra("cosine")),
+            DecayKind::Cosine => Ok(Decay::Cosine {
+                floor: f.floor.ok_or_else(|| missing("floor", "cosine"))?,
+            }),
+            DecayKind::Step if f.floor.is_some() => Err(extra("step")),
+            DecayKind::Step => Ok(Decay::Step {
+                every: f.every.ok_or_else(|| missing("every", "step"))?,
+                factor: f.factor.ok_or_else(|| missing("factor", "step"))?,
+            }),
+        }
+    }
+}
+
+impl From<Decay> for DecayFields {
+    fn from(d: Decay) -> Self {
+        let (kind, floor, every, factor) = match d {
+            Decay::Constant => (DecayKind::Constant, None, None, None),
+            Decay::Cosine { floor } => (DecayKind::Cosine, Some(floor), None, None),
+            Decay::Step { every, factor } => (DecayKind::Step, None, Some(every), Some(factor)),
+        };
+        Self {
+            kind,
+            floor,
+            every,
+            factor,
+        }
+    }
 }
 
 /// Adam's parameters. Missing fields take the defaults, unknown ones are

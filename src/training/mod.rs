@@ -149,8 +149,8 @@ impl TrainSpec {
     }
 
     /// The `reach` recipe for `arm` and `net`: rotation-equivariant
-    /// networks over `(sin, cos)` of the angles, the paper's widths and
-    /// optimiser, sampled as [`Sampling::reach`] says.
+    /// networks over `(sin, cos)` of the angles, sampled as
+    /// [`Sampling::reach`] says.
     /// `Phi` is a 96-96 network trained by Adam on 20 000 samples: the
     /// paper's 35-14 by Levenberg-Marquardt reaches a median relative
     /// error of 3.7e-2 over the torus, which two refinement steps cannot

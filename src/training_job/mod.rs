@@ -240,11 +240,17 @@ impl Request {
 
 /// Trains what `request` asks for (by its preset's recipe: for the
 /// paper's, the variants the page uses, the rotation-equivariant `Phi` and
-/// the plain `v`, with the paper's layer sizes), keeps the other network from `current` when only one is
-/// trained, and reports. `on_epoch` sees every epoch; returning `false`
-/// stops that network early (what it learnt so far is kept). Nothing is
-/// installed anywhere: the caller swaps the networks in, so a failed or
-/// abandoned job leaves the ones in use untouched.
+/// the plain `v`, with the paper's layer sizes), keeps the other network
+/// from `current` when only one is trained, and reports. `on_epoch` sees
+/// every epoch; returning `false` stops that network early (what it learnt
+/// so far is kept). Nothing is installed anywhere: the caller swaps the
+/// networks in, so a failed or abandoned job leaves the ones in use
+/// untouched.
+///
+/// The same job in pieces, for callers with several cores (the page's
+/// workers): [`train_net`] for each network, at once, then [`conclude`].
+/// Each network's seed depends on the request alone, not on the order, so
+/// the pieces give the very same networks and report.
 pub fn train(
     request: &Request,
     current: Option<&Networks>,
@@ -252,12 +258,6 @@ pub fn train(
 ) -> Result<Trained> {
     let arm = &request.arm;
     Arm::new(arm.post(), arm.links().to_vec())?;
-    let samples = request
-        .spec(match request.net {
-            Which::V => NetKind::V,
-            _ => NetKind::Phi,
-        })?
-        .samples;
     let kept = |net: NetKind| -> Result<WeightsFile> {
         let nets = current.filter(|n| n.arm() == arm).ok_or_else(|| {
             Error::Training(format!(
@@ -273,41 +273,63 @@ pub fn train(
             NetKind::V => nets.v_file().clone(),
         })
     };
-    let mut run = |net: NetKind| -> Result<WeightsFile> {
-        let spec = request.spec(net)?;
-        let name = match net {
-            NetKind::Phi => "phi",
-            NetKind::V => "v",
-        };
-        let max_epochs = spec.max_epochs();
-        train_weights(&spec, |_, report| {
-            on_epoch(&Progress {
-                net: name,
-                report: *report,
-                max_epochs,
-            })
-        })
-    };
-    let (phi, v, phi_report, v_report) = match request.net {
+    let (phi, v) = match request.net {
         Which::Both => {
-            let phi = run(NetKind::Phi)?;
-            let v = run(NetKind::V)?;
-            let (a, b) = (NetReport::of(&phi), NetReport::of(&v));
-            (phi, v, Some(a), Some(b))
+            let phi = train_net(request, NetKind::Phi, &mut on_epoch)?;
+            (phi, train_net(request, NetKind::V, &mut on_epoch)?)
         }
         Which::Phi => {
             let v = kept(NetKind::V)?;
-            let phi = run(NetKind::Phi)?;
-            let a = NetReport::of(&phi);
-            (phi, v, Some(a), None)
+            (train_net(request, NetKind::Phi, &mut on_epoch)?, v)
         }
         Which::V => {
             let phi = kept(NetKind::Phi)?;
-            let v = run(NetKind::V)?;
-            let b = NetReport::of(&v);
-            (phi, v, None, Some(b))
+            (phi, train_net(request, NetKind::V, &mut on_epoch)?)
         }
     };
+    conclude(request, phi, v)
+}
+
+/// Trains network `net` of `request` alone, as [`train`] does.
+pub fn train_net(
+    request: &Request,
+    net: NetKind,
+    mut on_epoch: impl FnMut(&Progress) -> bool,
+) -> Result<WeightsFile> {
+    let spec = request.spec(net)?;
+    let name = match net {
+        NetKind::Phi => "phi",
+        NetKind::V => "v",
+    };
+    let max_epochs = spec.max_epochs();
+    train_weights(&spec, |_, report| {
+        on_epoch(&Progress {
+            net: name,
+            report: *report,
+            max_epochs,
+        })
+    })
+}
+
+/// The end of a job whose networks are trained: `phi` and `v` (the one
+/// `request` did not train kept from before) checked and reported as
+/// [`train`] reports them. Refuses files of another arm than the request's.
+pub fn conclude(request: &Request, phi: WeightsFile, v: WeightsFile) -> Result<Trained> {
+    let arm = &request.arm;
+    if phi.arm != *arm || v.arm != *arm {
+        return Err(Error::Training(
+            "the networks to check were trained for another arm than the request's".into(),
+        ));
+    }
+    let samples = request
+        .spec(match request.net {
+            Which::V => NetKind::V,
+            _ => NetKind::Phi,
+        })?
+        .samples;
+    let trained = |yes: bool, file: &WeightsFile| yes.then(|| NetReport::of(file));
+    let phi_report = trained(request.net != Which::V, &phi);
+    let v_report = trained(request.net != Which::Phi, &v);
     let nets = Networks::new(phi.clone(), v.clone())?;
     let mut report = assess(&nets, samples)?;
     report.phi = phi_report;

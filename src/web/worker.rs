@@ -219,6 +219,38 @@ impl AtlasJob {
 
 const TRAIN_FIELDS: [&str; 6] = ["arm", "net", "preset", "samples", "epochs", "seed"];
 
+/// The training request as the page passes it, checked.
+fn training_request(request: JsValue) -> Result<crate::training_job::Request, JsError> {
+    if !request.is_object() {
+        return Err(JsError::new("training request: expected an object"));
+    }
+    known_fields(&request, &TRAIN_FIELDS, "training request")?;
+    serde_wasm_bindgen::from_value(request)
+        .map_err(|e| JsError::new(&format!("training request: {e}")))
+}
+
+/// Forwards each epoch's progress to `on_epoch`; the job never stops early.
+fn forward_epochs(
+    on_epoch: &js_sys::Function,
+) -> impl FnMut(&crate::training_job::Progress) -> bool + '_ {
+    move |p| {
+        if let Ok(v) = to_js(p) {
+            let _ = on_epoch.call1(&JsValue::NULL, &v);
+        }
+        true
+    }
+}
+
+/// `{ phi, v, report }` of a finished job.
+fn trained_js(trained: &crate::training_job::Trained) -> Result<JsValue, JsError> {
+    let out = serde_json::json!({
+        "phi": trained.phi.to_json().map_err(js_err)?,
+        "v": trained.v.to_json().map_err(js_err)?,
+        "report": trained.report,
+    });
+    to_js(&out)
+}
+
 /// Trains networks for an arm (`crate::training_job::train`):
 /// `request` is `{ arm: { post, links }, net: "phi" | "v" | "both", preset:
 /// "quick" | "thorough", samples?, epochs?, seed? }`; `phi_json` and
@@ -234,28 +266,56 @@ pub fn train_networks(
     v_json: Option<String>,
     on_epoch: &js_sys::Function,
 ) -> Result<JsValue, JsError> {
-    use crate::training_job::{self, Request};
-    if !request.is_object() {
-        return Err(JsError::new("training request: expected an object"));
-    }
-    known_fields(&request, &TRAIN_FIELDS, "training request")?;
-    let request: Request = serde_wasm_bindgen::from_value(request)
-        .map_err(|e| JsError::new(&format!("training request: {e}")))?;
+    let request = training_request(request)?;
     let installed = files(phi_json, v_json)?;
     let current = networks::available(&request.arm, installed.as_ref()).ok();
-    let trained = training_job::train(&request, current.as_deref(), |p| {
-        if let Ok(v) = to_js(p) {
-            let _ = on_epoch.call1(&JsValue::NULL, &v);
+    let trained =
+        crate::training_job::train(&request, current.as_deref(), forward_epochs(on_epoch))
+            .map_err(js_err)?;
+    trained_js(&trained)
+}
+
+/// One network of a training request alone (`crate::training_job::train_net`),
+/// `net` `"phi"` or `"v"`, so the page can train both at once in two
+/// workers: returns its weights file as JSON text. `on_epoch` as for
+/// [`train_networks`].
+#[wasm_bindgen(js_name = trainNetwork)]
+pub fn train_network(
+    request: JsValue,
+    net: &str,
+    on_epoch: &js_sys::Function,
+) -> Result<String, JsError> {
+    use crate::networks::NetKind;
+    let request = training_request(request)?;
+    let net = match net {
+        "phi" => NetKind::Phi,
+        "v" => NetKind::V,
+        other => {
+            return Err(JsError::new(&format!(
+                "network '{other}': expected phi or v"
+            )))
         }
-        true
-    })
-    .map_err(js_err)?;
-    let out = serde_json::json!({
-        "phi": trained.phi.to_json().map_err(js_err)?,
-        "v": trained.v.to_json().map_err(js_err)?,
-        "report": trained.report,
-    });
-    to_js(&out)
+    };
+    let file =
+        crate::training_job::train_net(&request, net, forward_epochs(on_epoch)).map_err(js_err)?;
+    file.to_json().map_err(js_err)
+}
+
+/// The end of a training request whose networks [`train_network`] trained
+/// (`crate::training_job::conclude`): the check and the report, as
+/// [`train_networks`] returns them.
+#[wasm_bindgen(js_name = concludeTraining)]
+pub fn conclude_training(
+    request: JsValue,
+    phi_json: &str,
+    v_json: &str,
+) -> Result<JsValue, JsError> {
+    use crate::networks::WeightsFile;
+    let request = training_request(request)?;
+    let phi = WeightsFile::from_json(phi_json).map_err(js_err)?;
+    let v = WeightsFile::from_json(v_json).map_err(js_err)?;
+    let trained = crate::training_job::conclude(&request, phi, v).map_err(js_err)?;
+    trained_js(&trained)
 }
 
 // ---- the benchmark -------------------------------------------------------
