@@ -134,9 +134,10 @@ impl<'de> Deserialize<'de> for PerMethod {
 /// Forward-pass times of the shipped networks (ns).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Forward {
-    /// The default `Phi` network (rotation-equivariant 2-35-14-6).
+    /// The set's `Phi` network (the paper's set: rotation-equivariant
+    /// 2-35-14-6; the reach set: 4-96-96-6).
     pub phi: f64,
-    /// The `v` network (5-25-14-3).
+    /// The set's `v` network (5-25-14-3; 6-25-14-3).
     pub v: f64,
     /// The paper's single `Phi` net (3-35-14-6), when measured.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -276,10 +277,10 @@ pub fn allocs_per_step(mode: Method, opts: &Options, count: &dyn Fn() -> u64) ->
     Ok((count() - before) as f64 / n as f64)
 }
 
-/// Forward passes of the default `Phi` network and the `v` network (ns).
+/// Forward passes of the `Phi` and `v` networks of the options' set (ns).
 pub fn forward_ns(opts: &Options, probes: &Probes) -> Result<Forward> {
     let theta = Scene::task1().theta0;
-    let nets = Networks::embedded()?;
+    let nets = crate::networks::builtin_set(opts.networks)?;
     let mut out = [0.0; 6];
     let phi = time_ns(opts, probes, || {
         nets.phi_into(std::hint::black_box(&theta), &mut out)

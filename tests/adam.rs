@@ -262,7 +262,10 @@ fn options_read_from_json_refuse_unknown_fields() {
     for d in [
         Decay::Constant,
         Decay::Cosine { floor: 0.01 },
-        Decay::Step { every: 250, factor: 0.3 },
+        Decay::Step {
+            every: 250,
+            factor: 0.3,
+        },
     ] {
         let json = serde_json::to_string(&d).unwrap();
         assert_eq!(serde_json::from_str::<Decay>(&json).unwrap(), d, "{json}");

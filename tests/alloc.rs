@@ -12,7 +12,7 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 use std::sync::Arc;
 
-use redundant_ik::networks::Networks;
+use redundant_ik::networks::{NetworkSet, Networks};
 use redundant_ik::planner::methods;
 use redundant_ik::{Arm, DampingSchedule, Obstacle, Planner, Scene, Surrogate};
 
@@ -84,18 +84,30 @@ fn damper_scene() -> Scene {
 
 #[test]
 fn a_step_allocates_nothing_in_any_mode() {
-    let nets: Arc<dyn Surrogate> = Arc::new(Networks::embedded().unwrap());
-    for scene in [Scene::task1(), Scene::task2(), busy_scene(), damper_scene()] {
-        for &mode in methods::ALL {
-            let mut p = Planner::new(scene.clone(), mode, Some(nets.clone())).unwrap();
-            let n = allocations_in(|| {
-                for _ in 0..20 {
-                    p.step().unwrap();
-                }
-            });
-            assert_eq!(n, 0, "{mode}: {n} allocations in 20 steps");
-            let n = allocations_in(|| p.reset());
-            assert_eq!(n, 0, "{mode}: reset allocated {n} times");
+    // Both shipped sets: the reach set's 96-96 Phi is wider than the
+    // paper's networks, and its route refines Phi.
+    for set in NetworkSet::ALL {
+        let nets: Arc<dyn Surrogate> = Arc::new(Networks::embedded_set(set).unwrap());
+        let mut refined = busy_scene();
+        refined.refine = 2;
+        for scene in [
+            Scene::task1(),
+            Scene::task2(),
+            busy_scene(),
+            damper_scene(),
+            refined,
+        ] {
+            for &mode in methods::ALL {
+                let mut p = Planner::new(scene.clone(), mode, Some(nets.clone())).unwrap();
+                let n = allocations_in(|| {
+                    for _ in 0..20 {
+                        p.step().unwrap();
+                    }
+                });
+                assert_eq!(n, 0, "{set:?} {mode}: {n} allocations in 20 steps");
+                let n = allocations_in(|| p.reset());
+                assert_eq!(n, 0, "{set:?} {mode}: reset allocated {n} times");
+            }
         }
     }
 }

@@ -309,15 +309,21 @@ fn an_arm_without_avoidance_tasks_still_gets_its_networks_and_the_report_says_wh
 
 /// The page's training job natively (`docs/speed.md`, "Training in the
 /// page"): both networks for the paper's arm, seed 1, the preset of
-/// `JOB_PRESET` (quick by default), wall time of `training_job::train` with
-/// its report, as `window.demo.train({net: 'both', preset, seed: 1})`
-/// runs it. `cargo test --release --test training -- --ignored --nocapture`.
+/// `JOB_PRESET` (quick by default; thorough, reach), as
+/// `window.demo.train({net: 'both', preset, seed: 1})` runs it: wall times
+/// of each network (`training_job::train_net`) and of the check
+/// (`conclude`), one after the other, and what two cores would take (the
+/// networks at once, as the page does with two workers).
+/// `cargo test --release --test training -- --ignored --nocapture`.
 #[cfg(not(target_arch = "wasm32"))]
 #[test]
 #[ignore = "a timing, not a check: run with --release -- --ignored --nocapture"]
+#[allow(clippy::disallowed_methods)] // a native timing
 fn the_page_training_job_natively() {
+    use std::time::Instant;
     let preset = match std::env::var("JOB_PRESET").as_deref() {
         Ok("thorough") => Preset::Thorough,
+        Ok("reach") => Preset::Reach,
         _ => Preset::Quick,
     };
     let request = Request {
@@ -328,17 +334,20 @@ fn the_page_training_job_natively() {
         epochs: None,
         seed: Some(1),
     };
-    #[allow(clippy::disallowed_methods)] // a native timing
-    let start = std::time::Instant::now();
-    let mut epochs = 0;
-    let trained = training_job::train(&request, None, |_| {
-        epochs += 1;
-        true
-    })
-    .unwrap();
+    let timed = |net| {
+        let start = Instant::now();
+        let file = training_job::train_net(&request, net, |_| true).unwrap();
+        (file, start.elapsed().as_secs_f64())
+    };
+    let (phi, t_phi) = timed(NetKind::Phi);
+    let (v, t_v) = timed(NetKind::V);
+    let start = Instant::now();
+    let trained = training_job::conclude(&request, phi, v).unwrap();
+    let t_check = start.elapsed().as_secs_f64();
     println!(
-        "{preset:?}: {:.2} s, {epochs} epochs, Phi median {:.3e}",
-        start.elapsed().as_secs_f64(),
+        "{preset:?}: Phi {t_phi:.2} s, v {t_v:.2} s, check {t_check:.2} s; one core {:.2} s, two {:.2} s; Phi median {:.3e}",
+        t_phi + t_v + t_check,
+        t_phi.max(t_v) + t_check,
         trained.report.phi_error.median
     );
 }

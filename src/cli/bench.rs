@@ -79,10 +79,16 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         let json = serde_json::to_string(&report).map_err(|e| e.to_string())?;
         return emit(&format!("{json}\n"));
     }
-    emit(&table(&report))
+    let nets = redundant_ik::networks::builtin_set(opts.networks).map_err(|e| e.to_string())?;
+    let sizes = |f: &redundant_ik::networks::WeightsFile| {
+        let s: Vec<String> = f.nets[0].mlp.sizes.iter().map(|n| n.to_string()).collect();
+        format!("{} {}", f.variant.name(), s.join("-"))
+    };
+    emit(&table(&report, [sizes(nets.phi_file()), sizes(nets.v_file())]))
 }
 
-fn table(r: &Report) -> String {
+/// The report as a table; `layers` names the set's `Phi` and `v` networks.
+fn table(r: &Report, layers: [String; 2]) -> String {
     let mut s = format!(
         "median of timed batches after a warm-up; Task 1, start pose; network kernels: {}\n\n\
          mode        theta_dot      RK4 step   allocs/step\n",
@@ -105,8 +111,8 @@ fn table(r: &Report) -> String {
     }
     let f = &r.forward_ns;
     s.push_str(&format!(
-        "\nforward pass: Phi equivariant 2-35-14-6 {:.1} ns, v 5-25-14-3 {:.1} ns\n",
-        f.phi, f.v
+        "\nforward pass: Phi {} {:.1} ns, v {} {:.1} ns\n",
+        layers[0], f.phi, layers[1], f.v
     ));
     if let (Some(plain), Some(rows)) = (f.phi_plain, f.phi_rows) {
         s.push_str(&format!(

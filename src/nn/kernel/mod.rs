@@ -11,7 +11,8 @@
 //!   registers while the inputs stream by, which vectorises over neurons
 //!   with no horizontal sums;
 //! - the hidden activations live in two stack buffers for layers up to
-//!   [`STACK_WIDTH`] (padded) wide: no allocation per call.
+//!   [`STACK_WIDTH`] (padded) wide, or [`WIDE_STACK_WIDTH`] for the wide
+//!   networks of the `reach` recipe: no allocation per call.
 //!
 //! On x86-64 the same code is also compiled for AVX2 + FMA and chosen at run
 //! time when the CPU has them ([`Kernel::forward`], [`set_runtime_dispatch`]);
@@ -39,9 +40,15 @@ use portable::forward_portable;
 /// AVX2 register, two SSE2 or wasm `simd128` registers).
 pub const LANES: usize = 4;
 
-/// Widest padded layer handled with stack buffers; wider networks work
-/// through a heap buffer per call.
+/// Widest padded layer handled with the small stack buffers (the paper's
+/// networks: zeroing them is part of every call's cost).
 pub const STACK_WIDTH: usize = 64;
+
+/// Widest padded layer handled with stack buffers at all (the 96-96 `Phi`
+/// of the `reach` recipe, `docs/learning.md`); wider networks work through
+/// a heap buffer per call. Measured with `redundant-ik bench --networks
+/// reach`: the heap path made 8 allocations per RK4 step.
+pub const WIDE_STACK_WIDTH: usize = 128;
 
 #[derive(Debug, Clone, PartialEq)]
 struct Layer {
@@ -178,7 +185,7 @@ impl Kernel {
 
     /// Forward pass on raw values. Reads `min(x.len(), inputs)` inputs (the
     /// rest count as zero) and writes `min(y.len(), outputs)` outputs.
-    /// Allocation-free for layers up to [`STACK_WIDTH`] wide.
+    /// Allocation-free for layers up to [`WIDE_STACK_WIDTH`] wide.
     #[inline]
     pub fn forward(&self, x: &[f64], y: &mut [f64]) {
         #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
@@ -188,13 +195,17 @@ impl Kernel {
     }
 
     /// The portable (and AVX2) forward pass, on the stack up to
-    /// [`STACK_WIDTH`] neurons, through a heap buffer per call beyond.
+    /// [`WIDE_STACK_WIDTH`] neurons, through a heap buffer per call beyond.
     #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
     #[inline]
     fn forward_buffered(&self, x: &[f64], y: &mut [f64]) {
         if self.widest <= STACK_WIDTH {
             let mut a = [0.0; STACK_WIDTH];
             let mut b = [0.0; STACK_WIDTH];
+            self.dispatch(x, y, &mut a, &mut b);
+        } else if self.widest <= WIDE_STACK_WIDTH {
+            let mut a = [0.0; WIDE_STACK_WIDTH];
+            let mut b = [0.0; WIDE_STACK_WIDTH];
             self.dispatch(x, y, &mut a, &mut b);
         } else {
             let mut a = vec![0.0; self.widest];

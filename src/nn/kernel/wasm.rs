@@ -6,10 +6,11 @@
 //! sums run in another order than there: results agree to rounding.
 use core::arch::wasm32::*;
 
-use super::{Kernel, Layer as Plain, LANES, STACK_WIDTH};
+use super::{Kernel, Layer as Plain, LANES, STACK_WIDTH, WIDE_STACK_WIDTH};
 use crate::nn::activation::TANSIG_CLAMP;
 
 const PAIRS: usize = STACK_WIDTH / 2;
+const WIDE_PAIRS: usize = WIDE_STACK_WIDTH / 2;
 
 /// A layer's weights and biases as `v128` pairs of neurons, in the
 /// portable layer's block order.
@@ -52,13 +53,15 @@ impl Layer {
     }
 }
 
-/// The forward pass: on the stack up to [`STACK_WIDTH`] neurons, through
+/// The forward pass: on the stack up to [`WIDE_STACK_WIDTH`] neurons, through
 /// a heap buffer per call beyond (so the SIMD build needs no portable
 /// kernel: 1 KB of the page's gzipped module).
 pub(super) fn forward(k: &Kernel, x: &[f64], y: &mut [f64]) {
     let zero = f64x2_splat(0.0);
     if k.widest <= STACK_WIDTH {
         forward_in(k, x, y, &mut [zero; PAIRS], &mut [zero; PAIRS]);
+    } else if k.widest <= WIDE_STACK_WIDTH {
+        forward_in(k, x, y, &mut [zero; WIDE_PAIRS], &mut [zero; WIDE_PAIRS]);
     } else {
         let pairs = k.widest.div_ceil(2);
         forward_in(k, x, y, &mut vec![zero; pairs], &mut vec![zero; pairs]);
