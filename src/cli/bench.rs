@@ -84,7 +84,10 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         let s: Vec<String> = f.nets[0].mlp.sizes.iter().map(|n| n.to_string()).collect();
         format!("{} {}", f.variant.name(), s.join("-"))
     };
-    emit(&table(&report, [sizes(nets.phi_file()), sizes(nets.v_file())]))
+    emit(&table(
+        &report,
+        [sizes(nets.phi_file()), sizes(nets.v_file())],
+    ))
 }
 
 /// The report as a table; `layers` names the set's `Phi` and `v` networks.
