@@ -1490,6 +1490,7 @@ test('network sets: the whole-reach networks fetched when chosen, refined and dr
   assert.equal(run.params.refine, 2);
   assert.equal(run.collided, false);
   assert.ok(run.final_error < 5e-3, `final error ${run.final_error} m`);
+  await page.screenshot({ path: join(shots, 'reach-set.png') });
   await selectMode(page, 'case2');
   assert.equal(await page.$('#param-refine'), null, 'Case 2 runs the exact Φ: nothing to refine');
   await selectMode(page, 'case3');
