@@ -834,6 +834,10 @@ fn the_reach_recipe_and_network_set_through_the_command_line() {
         ],
         "--optimiser adam",
     );
+    // A network too wide for Levenberg-Marquardt's J^T J is refused with
+    // the way out, not an allocation that kills the process.
+    let wide = "train --net phi --samples 100 --hidden 96,96 --optimiser lm --out /dev/null";
+    refused(&wide.split(' ').collect::<Vec<_>>(), "--optimiser adam");
     refused(&["simulate", "--networks", "nope"], "networks");
     refused(&["simulate", "--refine", "1.5"], "refine");
     refused(&["simulate", "--refine", "9"], "refine");

@@ -141,12 +141,27 @@ pub struct LmTrainer {
     normal: Normal,
 }
 
+/// Most weights a network trained by Levenberg-Marquardt may have: its
+/// `J^T J` holds the square of them in `f64`s, and each trial factors a
+/// copy (6 000 weights: 288 MB each). Wider networks are Adam's
+/// ([`crate::nn::adam`]); the paper's have 699 (`Phi`) and 559 (`v`).
+pub const MAX_LM_WEIGHTS: usize = 6_000;
+
 impl LmTrainer {
     /// Scales the data with `mlp`'s maps, splits it at random (seeded by
     /// `rng`) into training, validation and test sets and evaluates the
     /// starting weights.
     pub fn new(mlp: Mlp, data: &Dataset, opts: LmOptions, rng: &mut Rng) -> Result<Self> {
         opts.validate()?;
+        let n = mlp.params().len();
+        if n > MAX_LM_WEIGHTS {
+            return Err(Error::Training(format!(
+                "a network of {n} weights is too wide for Levenberg-Marquardt (its J^T J alone \
+                 would take {:.0} MB; at most {MAX_LM_WEIGHTS} weights): train it by Adam \
+                 (--optimiser adam)",
+                (n * n * 8) as f64 / 1e6
+            )));
+        }
         let data = Prepared::new(&mlp, data, opts.split, rng)?;
         let params = DVector::from_vec(mlp.params());
         let acts = Activations::new(&mlp.sizes);
