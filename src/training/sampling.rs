@@ -127,21 +127,12 @@ impl Sampling {
         let mut tries = 0usize;
         while out.len() < n {
             tries += 1;
-            if tries > 100 * n + 1000 {
-                return Err(Error::Training(format!(
-                    "sampling: sigma floor {} rejects nearly every pose of the torus",
-                    self.sigma_floor
-                )));
-            }
+            self.give_up_after(tries, n, "every pose of the torus")?;
             let theta: Vec<f64> = (0..arm.dof()).map(|_| rng.range(-PI, PI)).collect();
-            let j = arm.jacobian(&DVector::from_column_slice(&theta));
-            if ik::smallest_singular_value(&j) < self.sigma_floor {
+            if self.below_floor(arm, &theta) {
                 continue;
             }
-            let obstacle = [
-                rng.range(self.obstacle_min[0], self.obstacle_max[0]),
-                rng.range(self.obstacle_min[1], self.obstacle_max[1]),
-            ];
+            let obstacle = self.uniform_obstacle(rng);
             out.push(Visited { theta, obstacle });
         }
         Ok(out)
@@ -192,10 +183,7 @@ impl Sampling {
                             a[1] + s * (b[1] - a[1]) + self.obstacle_spread * rng.normal(),
                         ]
                     }
-                    None => [
-                        rng.range(self.obstacle_min[0], self.obstacle_max[0]),
-                        rng.range(self.obstacle_min[1], self.obstacle_max[1]),
-                    ],
+                    None => self.uniform_obstacle(rng),
                 });
             }
             for o in obstacles {
@@ -244,20 +232,14 @@ impl Sampling {
         let mut tries = 0usize;
         while out.len() < n {
             tries += 1;
-            if tries > 100 * n + 1000 {
-                return Err(Error::Training(format!(
-                    "sampling: sigma floor {} rejects nearly every pose",
-                    self.sigma_floor
-                )));
-            }
+            self.give_up_after(tries, n, "every pose")?;
             let v = &pool[rng.below(pool.len())];
             let theta: Vec<f64> = v
                 .theta
                 .iter()
                 .map(|t| t + self.theta_noise * rng.normal())
                 .collect();
-            let j = arm.jacobian(&DVector::from_column_slice(&theta));
-            if ik::smallest_singular_value(&j) < self.sigma_floor {
+            if self.below_floor(arm, &theta) {
                 continue;
             }
             let obstacle = if rng.uniform() < self.paired_obstacle_share {
@@ -268,14 +250,39 @@ impl Sampling {
                         .clamp(self.obstacle_min[1], self.obstacle_max[1]),
                 ]
             } else {
-                [
-                    rng.range(self.obstacle_min[0], self.obstacle_max[0]),
-                    rng.range(self.obstacle_min[1], self.obstacle_max[1]),
-                ]
+                self.uniform_obstacle(rng)
             };
             out.push(Visited { theta, obstacle });
         }
         Ok(out)
+    }
+
+    /// An obstacle point uniform in the region.
+    fn uniform_obstacle(&self, rng: &mut Rng) -> [f64; 2] {
+        [
+            rng.range(self.obstacle_min[0], self.obstacle_max[0]),
+            rng.range(self.obstacle_min[1], self.obstacle_max[1]),
+        ]
+    }
+
+    /// Whether `J`'s smallest singular value at the pose is below the floor
+    /// (the samples' rejection rule).
+    fn below_floor(&self, arm: &Arm, theta: &[f64]) -> bool {
+        let j = arm.jacobian(&DVector::from_column_slice(theta));
+        ik::smallest_singular_value(&j) < self.sigma_floor
+    }
+
+    /// The end of a rejection loop that has made `tries` proposals for `n`
+    /// samples: an error after `100 n + 1000`, when the floor rejects
+    /// nearly `what` it draws from.
+    fn give_up_after(&self, tries: usize, n: usize, what: &str) -> Result<()> {
+        if tries > 100 * n + 1000 {
+            return Err(Error::Training(format!(
+                "sampling: sigma floor {} rejects nearly {what}",
+                self.sigma_floor
+            )));
+        }
+        Ok(())
     }
 }
 
