@@ -407,6 +407,32 @@ pub(crate) fn non_negative(what: &str, value: f64) -> Result<f64> {
     }
 }
 
+/// Names for a message: `"a, b or c"`.
+pub(crate) fn choices(names: &[&str]) -> String {
+    match names.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+        _ => names.join(""),
+    }
+}
+
+/// The one of `all` whose `name` is `text`, or [`Error::UnknownName`] of
+/// `kind` listing every name (the `FromStr` of the crate's named choices).
+pub(crate) fn by_name<T: Copy>(
+    kind: &'static str,
+    text: &str,
+    all: &[T],
+    name: impl Fn(T) -> &'static str,
+) -> Result<T> {
+    all.iter()
+        .copied()
+        .find(|&t| name(t) == text)
+        .ok_or_else(|| Error::UnknownName {
+            kind,
+            name: text.into(),
+            choices: choices(&all.iter().map(|&t| name(t)).collect::<Vec<_>>()),
+        })
+}
+
 #[cfg(test)]
 mod tests {
     use super::Num;

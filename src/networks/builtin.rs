@@ -100,14 +100,7 @@ impl NetworkSet {
 impl std::str::FromStr for NetworkSet {
     type Err = Error;
     fn from_str(s: &str) -> Result<Self> {
-        NetworkSet::ALL
-            .into_iter()
-            .find(|n| n.name() == s)
-            .ok_or_else(|| Error::UnknownName {
-                kind: "network set",
-                name: s.into(),
-                choices: "paper or reach".into(),
-            })
+        crate::error::by_name("network set", s, &NetworkSet::ALL, NetworkSet::name)
     }
 }
 

@@ -64,14 +64,7 @@ impl Recipe {
 impl std::str::FromStr for Recipe {
     type Err = Error;
     fn from_str(s: &str) -> Result<Self> {
-        Recipe::ALL
-            .into_iter()
-            .find(|r| r.name() == s)
-            .ok_or_else(|| Error::UnknownName {
-                kind: "recipe",
-                name: s.into(),
-                choices: "paper or reach".into(),
-            })
+        crate::error::by_name("recipe", s, &Recipe::ALL, Recipe::name)
     }
 }
 

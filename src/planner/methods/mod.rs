@@ -269,11 +269,7 @@ impl Method {
 
     /// The names of [`ALL`], for messages: `"none, numerical, ... or case3"`.
     pub fn names() -> String {
-        let names: Vec<_> = ALL.iter().map(|m| m.name()).collect();
-        match names.split_last() {
-            Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
-            _ => names.join(""),
-        }
+        crate::error::choices(&ALL.iter().map(|m| m.name()).collect::<Vec<_>>())
     }
 
     /// A list of method names separated by commas, or `all` (every
@@ -316,14 +312,7 @@ impl fmt::Display for Method {
 impl FromStr for Method {
     type Err = Error;
     fn from_str(s: &str) -> Result<Self> {
-        ALL.iter()
-            .copied()
-            .find(|m| m.name() == s)
-            .ok_or_else(|| Error::UnknownName {
-                kind: "mode",
-                name: s.into(),
-                choices: Method::names(),
-            })
+        crate::error::by_name("mode", s, ALL, Method::name)
     }
 }
 
