@@ -781,6 +781,24 @@ fn the_reach_recipe_and_network_set_through_the_command_line() {
     assert_eq!(refined["scene"]["refine"], 2);
     assert!(refined["summary"]["final_error"].as_f64().unwrap() < 5e-3);
     assert_ne!(plain["summary"], refined["summary"]);
+    // A figure of the refined run says so in its caption.
+    let fig = scratch("refined-case3.svg");
+    ok(&[
+        "figure",
+        "--mode",
+        "case3",
+        "--networks",
+        "reach",
+        "--refine",
+        "2",
+        "--out",
+        fig.to_str().unwrap(),
+    ]);
+    let svg = std::fs::read_to_string(&fig).unwrap();
+    assert!(
+        svg.contains("Φ refined by 2 Newton-Schulz steps"),
+        "caption of {fig:?}"
+    );
     // The exact route is the same with either set (it runs no network).
     let numerical = |set: &str| {
         json(&[

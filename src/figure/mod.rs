@@ -200,6 +200,14 @@ pub fn caption(task: u32, scene: &Scene, method: Method) -> String {
     } else {
         "open loop".into()
     });
+    // The settings of the whole-reach networks (docs/learning.md), where
+    // they change the run.
+    if scene.refine > 0 && method.networks().phi {
+        parts.push(format!("Φ refined by {} Newton-Schulz steps", scene.refine));
+    }
+    if scene.sign_smoothing > 0.0 {
+        parts.push(format!("sign smoothing ε = {}", scene.sign_smoothing));
+    }
     parts.push(format!("dt = {} s, tf = {} s", scene.dt, scene.tf));
     parts.join(" · ")
 }
