@@ -223,7 +223,7 @@ fn shipped(opts: &Options) -> Result<Arc<dyn Surrogate>> {
 /// Task 1 with the refinement the options ask for.
 fn scene(opts: &Options) -> Result<Scene> {
     let mut scene = Scene::task1();
-    crate::scene::Param::Refine.set(&mut scene, f64::from(opts.refine))?;
+    scene.set_param(&crate::planner::methods::REFINE, f64::from(opts.refine))?;
     Ok(scene)
 }
 

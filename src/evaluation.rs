@@ -146,7 +146,7 @@ pub fn run_task_refined(
     refine: u32,
 ) -> Result<TaskOutcome> {
     let mut scene = Scene::task(task)?;
-    crate::scene::Param::Refine.set(&mut scene, f64::from(refine))?;
+    scene.set_param(&crate::planner::methods::REFINE, f64::from(refine))?;
     if let Some(o) = obstacle {
         for ob in &mut scene.obstacles {
             ob.centre = o;

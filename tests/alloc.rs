@@ -89,7 +89,7 @@ fn a_step_allocates_nothing_in_any_mode() {
     for set in NetworkSet::ALL {
         let nets: Arc<dyn Surrogate> = Arc::new(Networks::embedded_set(set).unwrap());
         let mut refined = busy_scene();
-        refined.refine = 2;
+        refined.set_param(&methods::REFINE, 2.0).unwrap();
         for scene in [
             Scene::task1(),
             Scene::task2(),

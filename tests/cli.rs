@@ -778,7 +778,7 @@ fn the_reach_recipe_and_network_set_through_the_command_line() {
         ])
     };
     let (plain, refined) = (run("0"), run("2"));
-    assert_eq!(refined["scene"]["refine"], 2);
+    assert_eq!(refined["scene"]["params"]["refine"], 2.0);
     assert!(refined["summary"]["final_error"].as_f64().unwrap() < 5e-3);
     assert_ne!(plain["summary"], refined["summary"]);
     // A figure of the refined run says so in its caption.

@@ -15,7 +15,8 @@ use redundant_ik::ik::{self, DampingSchedule, Weights};
 use redundant_ik::kinematics;
 use redundant_ik::nalgebra::{DMatrix, DVector, Vector2};
 use redundant_ik::obstacle::{self, Obstacle};
-use redundant_ik::planner::methods;
+use redundant_ik::planner::methods::{self, DELTA, LAMBDA};
+use redundant_ik::scene::Param;
 use redundant_ik::{Arm, Error, Method, Planner, Pose, Scene};
 
 /// Small deterministic generator so that the same "random" poses are checked
@@ -505,31 +506,10 @@ fn bad_input_is_rejected_with_an_error_naming_the_problem() {
         (Box::new(|s| s.tf = 1e8), |e| {
             matches!(e, TooManySteps { .. })
         }),
-        (
-            Box::new(|s| s.lambda = f64::NAN),
-            |e| matches!(e, NonFinite { what } if what == "lambda"),
-        ),
-        (
-            Box::new(|s| s.lambda = -1.0),
-            |e| matches!(e, Negative { what, .. } if what == "lambda"),
-        ),
-        // Gains so large that the first step overflows.
-        (
-            Box::new(|s| s.lambda = 1e308),
-            |e| matches!(e, OutOfRange { what, max, .. } if what == "lambda" && *max == 1000.0),
-        ),
-        (
-            Box::new(|s| s.delta = 1e308),
-            |e| matches!(e, OutOfRange { what, .. } if what.contains("delta")),
-        ),
         // Finite angles and lengths whose sums overflow (found by fuzzing).
         (
             Box::new(|s| s.theta0 = vec![1e308, 1e308, 0.0]),
             |e| matches!(e, TooLarge { what, unit: "rad", .. } if what == "theta_1"),
-        ),
-        (
-            Box::new(|s| s.delta = -1.0),
-            |e| matches!(e, Negative { what, .. } if what.contains("delta")),
         ),
         (
             Box::new(|s| s.feedback_gain = -1.0),
@@ -557,6 +537,47 @@ fn bad_input_is_rejected_with_an_error_naming_the_problem() {
         assert!(expected(&err), "unexpected error: {err:?}");
         // Every message is a sentence a user can act on.
         assert!(err.to_string().len() > 20, "{err}");
+    }
+    // The parameters are checked where they are set, a refused value
+    // changing nothing.
+    type Case = (&'static Param, f64, fn(&Error) -> bool);
+    let params: Vec<Case> = vec![
+        (
+            &LAMBDA,
+            f64::NAN,
+            |e| matches!(e, NonFinite { what } if what == "lambda"),
+        ),
+        (
+            &LAMBDA,
+            -1.0,
+            |e| matches!(e, Negative { what, .. } if what == "lambda"),
+        ),
+        // Gains so large that the first step overflows.
+        (
+            &LAMBDA,
+            1e308,
+            |e| matches!(e, OutOfRange { what, max, .. } if what == "lambda" && *max == 1000.0),
+        ),
+        (
+            &DELTA,
+            1e308,
+            |e| matches!(e, OutOfRange { what, .. } if what.contains("delta")),
+        ),
+        (
+            &DELTA,
+            -1.0,
+            |e| matches!(e, Negative { what, .. } if what.contains("delta")),
+        ),
+    ];
+    for (param, value, expected) in params {
+        let mut s = Scene::task1();
+        let err = s.set_param(param, value).unwrap_err();
+        assert!(
+            expected(&err),
+            "{param} = {value}: unexpected error: {err:?}"
+        );
+        assert!(err.to_string().len() > 20, "{err}");
+        assert_eq!(s, Scene::task1(), "a refused value changes nothing");
     }
     // The messages name the problem.
     let mut s = Scene::task1();

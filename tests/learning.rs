@@ -13,7 +13,7 @@ use std::f64::consts::PI;
 use redundant_ik::nalgebra::{DVector, Vector2};
 use redundant_ik::networks::{Encoding, NetKind, Variant, WeightsFile};
 use redundant_ik::nn::rng::Rng;
-use redundant_ik::scene::Param;
+use redundant_ik::planner::methods::REFINE;
 use redundant_ik::training::{self, Recipe, TrainSpec, REACH_SIGN_SMOOTHING};
 use redundant_ik::{ik, obstacle, Arm, Error, Pose, Scene};
 
@@ -136,16 +136,16 @@ fn refinement_refuses_mismatched_sizes_and_reports_a_blow_up() {
 fn refine_is_a_whole_number_of_steps_and_scenes_without_it_stay_as_they_were() {
     let mut scene = Scene::task1();
     for bad in [-1.0, 1.5, 9.0, f64::NAN] {
-        assert!(Param::Refine.set(&mut scene, bad).is_err(), "{bad}");
-        assert_eq!(scene.refine, 0);
+        assert!(scene.set_param(&REFINE, bad).is_err(), "{bad}");
+        assert_eq!(scene.param(&REFINE), 0.0);
     }
-    Param::Refine.set(&mut scene, 2.0).unwrap();
-    assert_eq!(scene.refine, 2);
-    // Fields at the paper's values are left out of the JSON, so scenes and
-    // runs written before them read and write as before.
-    let json = serde_json::to_string(&Scene::task1()).unwrap();
-    assert!(!json.contains("refine") && !json.contains("sign_smoothing"));
-    let back: Scene = serde_json::from_str(&json).unwrap();
+    scene.set_param(&REFINE, 2.0).unwrap();
+    assert_eq!(scene.params.count(&REFINE), 2);
+    // A scene written before the parameter existed reads as the paper's.
+    let mut json = serde_json::to_value(Scene::task1()).unwrap();
+    assert_eq!(json["params"]["refine"], 0.0);
+    json.as_object_mut().unwrap().remove("params");
+    let back: Scene = serde_json::from_value(json).unwrap();
     assert_eq!(back, Scene::task1());
 }
 

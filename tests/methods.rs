@@ -11,8 +11,12 @@ use redundant_ik::clearance::{Pair, Pairs};
 use redundant_ik::nalgebra::{DVector, Vector2};
 use redundant_ik::nn::Rng;
 use redundant_ik::planner::methods::{self, DISTANCE, PRIORITY, QP};
-use redundant_ik::scene::{Avoidance, Param};
-use redundant_ik::{Arm, Error, Method, Obstacle, Planner, Pose, Scene};
+use redundant_ik::planner::methods::{
+    DAMPER_GAIN, DISTANCE_GAIN, INFLUENCE, RATE_LIMIT, SLACK_WEIGHT, STOP_DISTANCE,
+};
+use redundant_ik::planner::params;
+use redundant_ik::scene::Param;
+use redundant_ik::{Arm, Method, Obstacle, Planner, Pose, Scene};
 
 fn random_arm(rng: &mut Rng) -> Arm {
     let n = 2 + rng.below(5);
@@ -133,29 +137,25 @@ fn with_no_obstacle_within_the_influence_distance_each_method_is_the_route_witho
     // qp: eq. (5) with damped least squares, delta = 1 / w, and the paper's
     // area vector: theta_dot = v + J^T (J J^T + I / w)^-1 (Xdot - J v).
     let p = Planner::new(scene.clone(), QP, None).unwrap();
-    let numerical = Planner::new(
-        Scene {
-            delta: 1.0 / scene.avoidance.slack_weight,
-            ..scene.clone()
-        },
-        Method::NUMERICAL,
-        None,
-    )
-    .unwrap();
+    let mut damped = scene.clone();
+    damped
+        .set_param(&methods::DELTA, 1.0 / scene.param(&SLACK_WEIGHT))
+        .unwrap();
+    let numerical = Planner::new(damped, Method::NUMERICAL, None).unwrap();
     let mut rng = Rng::new(3);
     for _ in 0..50 {
         let theta = DVector::from_vec(random_theta(&mut rng, 3));
         let xdot = Vector2::new(rng.range(-0.2, 0.2), rng.range(-0.2, 0.2));
         let pose = Pose::new(&scene.arm, theta.as_slice()).unwrap();
         let mut pairs = Pairs::default();
-        pairs.update(&pose, &scene.obstacles, scene.avoidance.influence);
+        pairs.update(&pose, &scene.obstacles, scene.param(&INFLUENCE));
         if !pairs.is_empty() {
             continue;
         }
         let a = p.theta_dot(&theta, &xdot).unwrap();
         let b = numerical.theta_dot(&theta, &xdot).unwrap();
         // Within the rate limit the box constraints are inactive too.
-        if b.amax() < scene.avoidance.rate_limit {
+        if b.amax() < scene.param(&RATE_LIMIT) {
             assert!((&a - &b).amax() < 1e-12, "{a} vs {b}");
         }
     }
@@ -194,19 +194,16 @@ fn every_velocity_damper_holds_at_the_qp_solution() {
             continue;
         };
         let rates = p.theta_dot(&theta, &xdot).unwrap();
-        let a = &scene.avoidance;
+        let (influence, stop) = (scene.param(&INFLUENCE), scene.param(&STOP_DISTANCE));
+        let gain = scene.param(&DAMPER_GAIN);
         let mut pairs = Pairs::default();
-        pairs.update(&pose, &scene.obstacles, a.influence);
+        pairs.update(&pose, &scene.obstacles, influence);
         let mut row = vec![0.0; 3];
-        let relaxed = pairs
-            .as_slice()
-            .iter()
-            .any(|q| q.clearance < a.stop_distance);
+        let relaxed = pairs.as_slice().iter().any(|q| q.clearance < stop);
         for q in pairs.as_slice() {
             q.rate_row(&pose, &mut row);
             let rate: f64 = row.iter().zip(rates.iter()).map(|(r, t)| r * t).sum();
-            let mut bound =
-                -a.damper_gain * (q.clearance - a.stop_distance) / (a.influence - a.stop_distance);
+            let mut bound = -gain * (q.clearance - stop) / (influence - stop);
             if relaxed {
                 // Where they may conflict the bounds are capped at 0.
                 bound = bound.min(0.0);
@@ -214,7 +211,7 @@ fn every_velocity_damper_holds_at_the_qp_solution() {
             assert!(rate >= bound - 1e-9, "pair {q:?}: {rate} < {bound}");
             binding += usize::from((rate - bound).abs() < 1e-9);
         }
-        assert!(rates.amax() <= a.rate_limit + 1e-9, "{rates}");
+        assert!(rates.amax() <= scene.param(&RATE_LIMIT) + 1e-9, "{rates}");
     }
     assert!(
         binding > 20,
@@ -245,34 +242,33 @@ fn beside_the_line_the_qp_keeps_clear_where_the_numerical_route_collides() {
 #[test]
 fn the_new_parameters_are_checked_like_the_others() {
     let mut s = Scene::task1();
-    let bad: [(Param, f64, &str); 8] = [
-        (Param::Influence, f64::NAN, "finite"),
-        (Param::Influence, -0.1, "between"),
-        (Param::StopDistance, -0.01, "between"),
-        (Param::StopDistance, 0.5, "below the influence distance"),
-        (Param::DamperGain, 0.0, "between"),
-        (Param::SlackWeight, 0.5, "between"),
-        (Param::DistanceGain, f64::INFINITY, "finite"),
-        (Param::RateLimit, -1.0, "between"),
+    let bad: [(&'static Param, f64, &str); 9] = [
+        (&INFLUENCE, f64::NAN, "finite"),
+        (&INFLUENCE, -0.1, "between"),
+        (&INFLUENCE, 0.01, "below the influence distance"),
+        (&STOP_DISTANCE, -0.01, "negative"),
+        (&STOP_DISTANCE, 0.5, "below the influence distance"),
+        (&DAMPER_GAIN, 0.0, "between"),
+        (&SLACK_WEIGHT, 0.5, "between"),
+        (&DISTANCE_GAIN, f64::INFINITY, "finite"),
+        (&RATE_LIMIT, -1.0, "between"),
     ];
     for (param, value, says) in bad {
         let before = s.clone();
-        let err = param.set(&mut s, value).unwrap_err();
-        assert!(err.to_string().contains(says), "{param:?} = {value}: {err}");
+        let err = s.set_param(param, value).unwrap_err();
+        assert!(err.to_string().contains(says), "{param} = {value}: {err}");
         assert_eq!(s, before, "a refused value changes nothing");
     }
-    // A scene that carries them is checked as a whole.
-    s.avoidance = Avoidance {
-        stop_distance: 0.4,
-        ..Avoidance::default()
-    };
-    assert!(matches!(s.validate(), Err(Error::OutOfRange { .. })));
+    // A scene file that carries them is checked as a whole.
+    let mut json = serde_json::to_value(&s).unwrap();
+    json["params"]["stop_distance"] = 0.4.into();
+    assert!(serde_json::from_value::<Scene>(json).is_err());
     // Every parameter a method reads exists, with its bounds.
     for m in methods::ALL {
-        for p in m.info().params {
-            let (lo, hi) = p.bounds();
-            assert!(lo < hi, "{m}: {p:?}");
-            assert_eq!(p.name().parse::<Param>().unwrap(), *p);
+        for &p in m.params() {
+            let (lo, hi) = p.bounds;
+            assert!(lo < hi, "{m}: {p}");
+            assert!(std::ptr::eq(params::by_name(p.name).unwrap(), p));
         }
     }
 }

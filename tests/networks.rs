@@ -588,7 +588,7 @@ fn a_constant_delta_damps_the_network_phi_instead_of_replacing_it() {
     let exact: Arc<dyn Surrogate> = Arc::new(ExactPhi(Networks::embedded().unwrap()));
     let nets: Arc<dyn Surrogate> = Arc::new(Networks::embedded().unwrap());
     let mut scene = Scene::task1();
-    scene.delta = 0.001;
+    scene.set_param(&methods::DELTA, 0.001).unwrap();
     let numerical = Planner::run(scene.clone(), Method::NUMERICAL, None).unwrap();
     // With an exact Phi, Case 1 with delta is the damped numerical route ...
     let case1_exact = Planner::run(scene.clone(), Method::CASE1, Some(exact)).unwrap();
@@ -611,7 +611,7 @@ fn a_constant_delta_damps_the_network_phi_instead_of_replacing_it() {
     assert!(!s.collided);
     assert_eq!(s.handover_steps, 0, "a constant delta is no hand-over");
     // delta = 0 gives the undamped network route.
-    scene.delta = 0.0;
+    scene.set_param(&methods::DELTA, 0.0).unwrap();
     let undamped = Planner::run(scene, Method::CASE1, Some(nets)).unwrap();
     assert_ne!(undamped.summary.final_error, s.final_error);
 }

@@ -112,7 +112,7 @@ fn the_network_cases_need_networks_and_bring_a_numerical_ghost() {
     s.set_feedback(1.0).unwrap();
     s.set_obstacle([0.7, 0.8]).unwrap();
     let g = s.ghost().unwrap().scene();
-    assert_eq!((g.lambda, g.feedback_gain), (6.0, 1.0));
+    assert_eq!((g.param(&methods::LAMBDA), g.feedback_gain), (6.0, 1.0));
     assert_eq!(g.obstacles[0].centre, [0.7, 0.8]);
     s.run_until(3.0).unwrap();
     assert_eq!(s.ghost().unwrap().time(), s.planner().time());
@@ -412,7 +412,6 @@ fn dragging_moves_the_obstacle_grabbed() {
 #[test]
 fn a_shipped_network_set_is_installed_by_name_and_the_method_settings_survive_a_task() {
     use redundant_ik::networks::NetworkSet;
-    use redundant_ik::scene::Param;
     let mut s = Session::new(1).unwrap();
     s.set_method(Method::CASE3).unwrap();
     assert_eq!(
@@ -424,8 +423,8 @@ fn a_shipped_network_set_is_installed_by_name_and_the_method_settings_survive_a_
     assert_eq!(s.state().network_set, Some("reach"));
     let range = s.state().trained_range.unwrap().clone();
     assert!(range.phi.names.iter().any(|n| n == "sin theta2"));
-    s.set_param(Param::Refine, 2.0).unwrap();
-    s.set_param(Param::SignSmoothing, 0.05).unwrap();
+    s.set_param(&methods::REFINE, 2.0).unwrap();
+    s.set_param(&methods::SIGN_SMOOTHING, 0.05).unwrap();
     s.load_task(2).unwrap();
     let st = s.state();
     assert_eq!(

@@ -47,7 +47,8 @@ export function mountMethodParams(root, demo, { attempt, changed }) {
     const names = (m?.params ?? []).filter((p) => !ELSEWHERE.includes(p));
     box.replaceChildren(
       ...names.map((p) => {
-        const { label, unit, slider, log_slider: log } = info[p];
+        const { label, unit, slider, scale } = info[p];
+        const log = scale === 'log';
         const [min, max, step] = slider;
         const field = document.createElement('div');
         field.className = 'field';

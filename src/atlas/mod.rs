@@ -377,7 +377,7 @@ impl Job {
             task: self.spec.task,
             grid: self.spec.grid,
             radius: self.geometry.radius,
-            lambda: self.spec.scene.lambda,
+            lambda: self.spec.scene.param(&crate::planner::methods::LAMBDA),
             modes: self.spec.modes,
             cells: self.cells,
             trained_region,

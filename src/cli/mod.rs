@@ -13,6 +13,7 @@ pub mod atlas;
 pub mod bench;
 pub mod eval;
 pub mod figure;
+pub mod params;
 pub mod simulate;
 pub mod train;
 

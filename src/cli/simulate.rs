@@ -9,14 +9,19 @@ use redundant_ik::{Arm, DampingSchedule, Method, Planner, Scene, Trajectory};
 use std::fmt::Write as _;
 
 use redundant_ik::obstacle::Placement;
-use redundant_ik::scene::Param;
+use redundant_ik::planner::methods::{DELTA, LAMBDA};
 
+use super::params::{Given, ParamArgs};
 use super::NetworkArgs;
 use super::{emit, method_help, parse_arm, parse_list, parse_method, parse_obstacle, parse_pair};
 
 /// Scene options shared by `simulate`, `figure` and `atlas`.
 #[derive(Args, Debug, Clone)]
 pub struct SceneArgs {
+    /// Which arguments the command line gave (first, so that it sees them
+    /// all before the other fields take theirs).
+    #[command(flatten)]
+    pub given: Given,
     /// A run file (the JSON of `simulate --json`, or of the page's
     /// "Download run"): its scene, task and, unless --mode is given, its
     /// method. No other scene option goes with it.
@@ -36,12 +41,6 @@ pub struct SceneArgs {
     /// Radius of the obstacles given without one, in metres.
     #[arg(long, allow_hyphen_values = true)]
     pub radius: Option<f64>,
-    /// Gain lambda of the obstacle vector, eq. (14).
-    #[arg(long, allow_hyphen_values = true)]
-    pub lambda: Option<f64>,
-    /// Constant damping factor delta, eqs. (6), (17).
-    #[arg(long, allow_hyphen_values = true)]
-    pub delta: Option<f64>,
     /// Switch on the damping schedule near singular poses.
     #[arg(long)]
     pub damping: bool,
@@ -61,39 +60,10 @@ pub struct SceneArgs {
     /// Closed-loop gain K in Xdot + K (X_ref - X); 0 is the paper's open loop.
     #[arg(long, allow_hyphen_values = true)]
     pub feedback: Option<f64>,
-    /// Influence distance d_i (m) of distance, priority and qp: link-obstacle
-    /// pairs closer than this count (default 0.3).
-    #[arg(long, allow_hyphen_values = true)]
-    pub influence: Option<f64>,
-    /// Stop distance d_s (m) of the velocity dampers (qp) and of the escape
-    /// speed (priority); floors the clearance of distance (default 0.02).
-    #[arg(long, allow_hyphen_values = true)]
-    pub stop_distance: Option<f64>,
-    /// Damper gain xi (m/s): the approach speed allowed at d_i (qp;
-    /// default 1).
-    #[arg(long, allow_hyphen_values = true)]
-    pub damper_gain: Option<f64>,
-    /// Weight w of the task slack (qp; default 1e6).
-    #[arg(long, allow_hyphen_values = true)]
-    pub slack_weight: Option<f64>,
-    /// Gain lambda_d of the clearance potential (distance; default 1e-3).
-    #[arg(long, allow_hyphen_values = true)]
-    pub distance_gain: Option<f64>,
-    /// Escape speed (m/s) of the point closest to an obstacle at d_s
-    /// (priority; default 0.1).
-    #[arg(long, allow_hyphen_values = true)]
-    pub escape_speed: Option<f64>,
-    /// Limit of every joint's rate in rad/s (qp; default 1.5).
-    #[arg(long, allow_hyphen_values = true)]
-    pub rate_limit: Option<f64>,
-    /// Smoothing eps (m^2) of the sign in eq. (15) of the exact obstacle
-    /// vector (numerical, Case 1; default 0, the paper's).
-    #[arg(long, allow_hyphen_values = true)]
-    pub sign_smoothing: Option<f64>,
-    /// Newton-Schulz steps refining the learned Phi with the pose's J
-    /// (Cases 1 and 3; default 0, the paper's).
-    #[arg(long, allow_hyphen_values = true)]
-    pub refine: Option<f64>,
+    /// The methods' parameters, one flag each (`--lambda`, `--delta`,
+    /// `--influence`, ...), from their declarations.
+    #[command(flatten)]
+    pub params: ParamArgs,
     #[command(flatten)]
     pub networks: NetworkArgs,
 }
@@ -118,32 +88,26 @@ impl SceneArgs {
             .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
         let run = RunFile::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))?;
         // The file is the whole scene: an option beside it would be ignored.
-        let given = [
-            ("--arm", self.arm.is_some()),
-            ("--obstacle", !self.obstacle.is_empty()),
-            ("--radius", self.radius.is_some()),
-            ("--lambda", self.lambda.is_some()),
-            ("--delta", self.delta.is_some()),
-            ("--damping", self.damping),
-            ("--dt", self.dt.is_some()),
-            ("--tf", self.tf.is_some()),
-            ("--target", self.target.is_some()),
-            ("--theta0", self.theta0.is_some()),
-            ("--feedback", self.feedback.is_some()),
-            ("--influence", self.influence.is_some()),
-            ("--stop-distance", self.stop_distance.is_some()),
-            ("--damper-gain", self.damper_gain.is_some()),
-            ("--slack-weight", self.slack_weight.is_some()),
-            ("--distance-gain", self.distance_gain.is_some()),
-            ("--escape-speed", self.escape_speed.is_some()),
-            ("--rate-limit", self.rate_limit.is_some()),
-        ];
-        if let Some((flag, _)) = given.iter().find(|(_, set)| *set) {
+        if let Some(flag) = self.beside_from().first() {
             return Err(format!(
                 "--from gives the whole scene; {flag} cannot change it"
             ));
         }
         Ok(Some(run))
+    }
+
+    /// The scene's flags given on the command line besides `--from`
+    /// (every argument of [`SceneArgs`] but `--from` and the networks,
+    /// which the run needs from outside the file), as `--flag`.
+    pub fn beside_from(&self) -> Vec<String> {
+        let cmd = <SceneArgs as clap::Args>::augment_args(clap::Command::new("scene"));
+        let networks = <NetworkArgs as clap::Args>::augment_args(clap::Command::new("networks"));
+        cmd.get_arguments()
+            .filter(|a| a.get_id() != "from")
+            .filter(|a| networks.get_arguments().all(|n| n.get_id() != a.get_id()))
+            .filter(|a| self.given.has(a.get_id().as_str()))
+            .map(|a| format!("--{}", a.get_long().unwrap_or(a.get_id().as_str())))
+            .collect()
     }
 
     /// The paper task: `--task`, or the run file's.
@@ -179,12 +143,6 @@ impl SceneArgs {
                 o.radius = radius;
             }
         }
-        if let Some(v) = self.lambda {
-            s.lambda = v;
-        }
-        if let Some(v) = self.delta {
-            s.delta = v;
-        }
         if self.damping {
             s.damping = Some(DampingSchedule::default());
         }
@@ -204,30 +162,9 @@ impl SceneArgs {
             s.feedback_gain = v;
         }
         // All at once, then checked together (d_s < d_i whatever the order).
-        let a = &mut s.avoidance;
-        for (field, value) in [
-            (&mut a.influence, self.influence),
-            (&mut a.stop_distance, self.stop_distance),
-            (&mut a.damper_gain, self.damper_gain),
-            (&mut a.slack_weight, self.slack_weight),
-            (&mut a.distance_gain, self.distance_gain),
-            (&mut a.rate_limit, self.rate_limit),
-            (&mut a.escape_speed, self.escape_speed),
-        ] {
-            if let Some(v) = value {
-                *field = v;
-            }
-        }
-        for (param, value) in [
-            (Param::SignSmoothing, self.sign_smoothing),
-            (Param::Refine, self.refine),
-        ] {
-            if let Some(v) = value {
-                param
-                    .set(&mut s, v)
-                    .map_err(|e| format!("{}: {e}", param.info().flag))?;
-            }
-        }
+        s.params
+            .set_all(&self.params.values)
+            .map_err(|e| e.to_string())?;
         s.validate().map_err(|e| e.to_string())?;
         Ok(s)
     }
@@ -291,8 +228,8 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         "Task {} | mode {} | lambda {} | delta {}{} | dt {} s | tf {} s{}",
         task,
         traj.method,
-        scene.lambda,
-        scene.delta,
+        scene.param(&LAMBDA),
+        scene.param(&DELTA),
         if scene.damping.is_some() {
             " + schedule"
         } else {

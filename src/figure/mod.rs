@@ -177,10 +177,11 @@ pub fn caption(task: u32, scene: &Scene, method: Method) -> String {
     if scene.arm != crate::arm::Arm::paper() {
         parts.push(format!("arm {}", scene.arm));
     }
-    parts.push(format!("λ = {}", scene.lambda));
+    use crate::planner::methods::{DELTA, LAMBDA, REFINE, SIGN_SMOOTHING};
+    parts.push(format!("λ = {}", scene.param(&LAMBDA)));
     parts.push(format!(
         "δ = {}{}",
-        scene.delta,
+        scene.param(&DELTA),
         if scene.damping.is_some() {
             " + damping near singular poses"
         } else {
@@ -202,11 +203,13 @@ pub fn caption(task: u32, scene: &Scene, method: Method) -> String {
     });
     // The settings of the whole-reach networks (docs/learning.md), where
     // they change the run.
-    if scene.refine > 0 && method.networks().phi {
-        parts.push(format!("Φ refined by {} Newton-Schulz steps", scene.refine));
+    let refine = scene.params.count(&REFINE);
+    if refine > 0 && method.networks().phi {
+        parts.push(format!("Φ refined by {refine} Newton-Schulz steps"));
     }
-    if scene.sign_smoothing > 0.0 {
-        parts.push(format!("sign smoothing ε = {}", scene.sign_smoothing));
+    let eps = scene.param(&SIGN_SMOOTHING);
+    if eps > 0.0 {
+        parts.push(format!("sign smoothing ε = {eps}"));
     }
     parts.push(format!("dt = {} s, tf = {} s", scene.dt, scene.tf));
     parts.join(" · ")

@@ -12,7 +12,7 @@ impl Planner {
     /// Damping `delta` in force at Jacobian `j`: the constant `delta` plus the
     /// schedule's share.
     pub fn delta_at(&self, j: &Matrix2xX<f64>) -> f64 {
-        self.scene.delta + self.scene.damping.map_or(0.0, |d| d.delta(j))
+        self.scene.param(&super::methods::DELTA) + self.scene.damping.map_or(0.0, |d| d.delta(j))
     }
 
     fn context(&self) -> Context<'_> {

@@ -18,6 +18,7 @@
 mod integrate;
 pub mod methods;
 mod observe;
+pub mod params;
 mod record;
 mod settings;
 mod surrogate;

@@ -60,7 +60,7 @@ impl Planner {
             let c = d - ob.radius;
             s.clearance = Some(s.clearance.map_or(c, |m| m.min(c)));
         }
-        s.delta = self.scene.delta
+        s.delta = self.scene.param(&super::methods::DELTA)
             + self
                 .scene
                 .damping

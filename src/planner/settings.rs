@@ -4,6 +4,7 @@
 
 use std::sync::Arc;
 
+use super::methods::{DELTA, LAMBDA};
 use super::{check_networks, needs_auto_damping, Line, Method, Planner, Surrogate};
 use crate::error::{coordinate, positive, Error, Result};
 use crate::ik::DampingSchedule;
@@ -90,21 +91,21 @@ impl Planner {
 
     /// Sets a parameter of the methods ([`Param`]); refused, changing
     /// nothing, when out of its bounds.
-    pub fn set_param(&mut self, param: Param, value: f64) -> Result<()> {
-        param.set(&mut self.scene, value)?;
+    pub fn set_param(&mut self, param: &'static Param, value: f64) -> Result<()> {
+        self.scene.set_param(param, value)?;
         self.resample();
         Ok(())
     }
 
     /// Sets `lambda`, the gain of the obstacle vector.
     pub fn set_lambda(&mut self, lambda: f64) -> Result<()> {
-        self.set_param(Param::Lambda, lambda)
+        self.set_param(&LAMBDA, lambda)
     }
 
     /// Sets the constant damping `delta` (eqs. 6, 17, 20). In Cases 1 and 3
     /// it damps the network's `Phi` through [`crate::ik::damp_phi`].
     pub fn set_delta(&mut self, delta: f64) -> Result<()> {
-        self.set_param(Param::Delta, delta)
+        self.set_param(&DELTA, delta)
     }
 
     /// Switches the damping schedule on (`Some`) or off (`None`).

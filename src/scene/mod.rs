@@ -5,6 +5,7 @@ use nalgebra::{DVector, Vector2};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
+mod file;
 mod params;
 
 use crate::arm::Arm;
@@ -12,21 +13,22 @@ use crate::error::{coordinate, positive, Error, Result};
 use crate::ik::DampingSchedule;
 use crate::obstacle::Obstacle;
 
-pub(crate) use params::{validate_delta, validate_gain, validate_lambda};
-pub use params::{
-    Avoidance, Param, MAX_DAMPER_GAIN, MAX_DELTA, MAX_DISTANCE_GAIN, MAX_GAIN_STEP, MAX_INFLUENCE,
-    MAX_LAMBDA, MAX_RATE_LIMIT, MAX_REFINE, MAX_SIGN_SMOOTHING, MAX_SLACK_WEIGHT, MIN_SLACK_WEIGHT,
-};
+pub use file::{ParamMap, SceneFile};
+pub(crate) use params::validate_gain;
+pub use params::{Param, Params, Scale, MAX_GAIN_STEP};
 
 /// The paper's final end-effector position for both tasks, `Xf = (0.60, 0.20)`.
 pub const PAPER_TARGET: [f64; 2] = [0.60, 0.20];
 /// Obstacle radius (our choice, `docs/conventions.md`: the paper gives none).
 pub const PAPER_RADIUS: f64 = 0.05;
-/// Gain of the obstacle vector in the paper's runs, `lambda = 4.0`.
-pub const PAPER_LAMBDA: f64 = 4.0;
-
 /// Everything that defines one planning run.
+///
+/// Written and read as a [`SceneFile`]: its parameters by name, every
+/// declared one written (the planner's list, `crate::planner::params`),
+/// and the fields of older files (`lambda`, `delta`, `avoidance`,
+/// `sign_smoothing`, `refine`) read into them.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(into = "SceneFile", try_from = "SceneFile")]
 pub struct Scene {
     /// The manipulator.
     pub arm: Arm,
@@ -36,10 +38,6 @@ pub struct Scene {
     pub target: [f64; 2],
     /// Obstacle discs; their centres are the points `O` of eq. (16).
     pub obstacles: Vec<Obstacle>,
-    /// Gain `lambda` of the null-space vector, eq. (14) (`v` is scaled by `lambda / 4`).
-    pub lambda: f64,
-    /// Constant damping factor `delta` of eqs. (6), (17), (20); the paper uses 0.
-    pub delta: f64,
     /// Optional damping schedule added to `delta` near singular poses.
     pub damping: Option<DampingSchedule>,
     /// Runge-Kutta step (s).
@@ -48,36 +46,16 @@ pub struct Scene {
     pub tf: f64,
     /// Closed-loop gain `K` in `Xdot + K (X_ref - X)`; 0 is the paper's open loop.
     pub feedback_gain: f64,
-    /// The parameters of the methods beyond the paper (influence distance,
-    /// stop distance, damper gain, slack weight, distance gain); absent in
-    /// scenes written before they existed, hence the defaults.
-    #[serde(default)]
-    pub avoidance: Avoidance,
-    /// The smoothing `eps` (m^2) of the sign in eq. (15)
-    /// ([`crate::obstacle::smoothed_sign`]); 0, the paper's, leaves the
-    /// sign as it is. Absent in scenes written before it, and left out of
-    /// written scenes while 0.
-    #[serde(default, skip_serializing_if = "is_zero")]
-    pub sign_smoothing: f64,
-    /// Newton-Schulz steps that refine a learned `Phi` with the pose's `J`
-    /// (Cases 1 and 3, [`crate::ik::refine_phi`]); 0, the paper's, uses the
-    /// network's `Phi` as it is. Left out of written scenes while 0.
-    #[serde(default, skip_serializing_if = "is_zero_count")]
-    pub refine: u32,
-}
-
-fn is_zero(x: &f64) -> bool {
-    *x == 0.0
-}
-
-fn is_zero_count(k: &u32) -> bool {
-    *k == 0
+    /// The values of the methods' parameters (the paper's gain `lambda`
+    /// and damping `delta` among them) that differ from their defaults.
+    pub params: Params,
 }
 
 impl Scene {
     /// Task 1 of section VI: `theta0 = [pi/12, pi/2, -pi/6]` (start
     /// `(1.555883, 1.014850)`), straight line to `(0.60, 0.20)` in 10 s, RK4 with
-    /// `dt = 0.1`, `delta = 0`, `lambda = 4`, obstacle disc at `(0.5, 0.5)` with
+    /// `dt = 0.1`, every parameter at its default (the paper's `delta = 0`,
+    /// `lambda = 4`), obstacle disc at `(0.5, 0.5)` with
     /// radius 0.05 (our choice: the paper gives neither).
     pub fn task1() -> Self {
         Self::paper_task(vec![PI / 12.0, PI / 2.0, -PI / 6.0], [0.5, 0.5])
@@ -106,15 +84,11 @@ impl Scene {
             theta0,
             target: PAPER_TARGET,
             obstacles: vec![Obstacle::new(obstacle[0], obstacle[1], PAPER_RADIUS)],
-            lambda: PAPER_LAMBDA,
-            delta: 0.0,
             damping: None,
             dt: 0.1,
             tf: 10.0,
             feedback_gain: 0.0,
-            avoidance: Avoidance::default(),
-            sign_smoothing: 0.0,
-            refine: 0,
+            params: Params::default(),
         }
     }
 
@@ -126,6 +100,18 @@ impl Scene {
     /// The target as a vector.
     pub fn target_vector(&self) -> Vector2<f64> {
         Vector2::new(self.target[0], self.target[1])
+    }
+
+    /// The value of parameter `p` in this scene.
+    #[inline]
+    pub fn param(&self, p: &'static Param) -> f64 {
+        self.params.get(p)
+    }
+
+    /// Sets parameter `p`; refused, changing nothing, when out of its
+    /// bounds.
+    pub fn set_param(&mut self, p: &'static Param, value: f64) -> Result<()> {
+        self.params.set(p, value)
     }
 
     /// Number of RK4 steps, `tf / dt`.
@@ -143,14 +129,10 @@ impl Scene {
         for ob in &self.obstacles {
             ob.validate(&self.arm)?;
         }
-        validate_lambda(self.lambda)?;
-        validate_delta(self.delta)?;
+        self.params.validate()?;
         if let Some(d) = &self.damping {
             d.validate()?;
         }
-        self.avoidance.validate()?;
-        Param::SignSmoothing.check(self.sign_smoothing)?;
-        Param::Refine.check(f64::from(self.refine))?;
         positive("time step dt", self.dt)?;
         validate_gain(self.feedback_gain, self.dt)?;
         positive("final time tf", self.tf)?;

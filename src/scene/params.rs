@@ -1,60 +1,22 @@
-//! The numbers of a scene that the methods read, each with its bounds: the
-//! paper's gain `lambda` and damping `delta`, and the parameters of the
-//! methods beyond the paper ([`Avoidance`], `docs/methods.md`). The command
-//! line, the page's controls and the checks all read them from [`Param`].
+//! The numbers a method reads from its scene, each declared once by the
+//! method (or constraint) that reads it ([`Param`], next to its
+//! `MethodInfo`), and their values in a scene ([`Params`]), checked against
+//! those declarations. Everything that shows or takes a parameter (the
+//! command line's flags and help, the `--from` guard, the page's sliders,
+//! the address, a run's JSON and the checks) reads the declarations; the
+//! list of every declared parameter is the methods'
+//! ([`crate::planner::methods::params`]).
 
-use serde::{Deserialize, Serialize};
+use std::fmt;
 
-use super::Scene;
+use serde::Serialize;
+
 use crate::error::{finite, non_negative, within, Error, Result};
-
-/// Largest gain `lambda` accepted: 250 times the paper's 4 (the page's
-/// slider ends at 12). Far larger gains only make the first RK4 step
-/// overflow (`lambda = 1e308` did, found by the hostile-URL test).
-pub const MAX_LAMBDA: f64 = 1000.0;
-
-/// Largest constant damping `delta` accepted (m^2): with `J J^T` of order
-/// 1 m^2 it already stops the arm; larger values say nothing more.
-pub const MAX_DELTA: f64 = 1000.0;
-
-/// Largest influence distance `d_i` accepted (m): beyond any arm's reach.
-pub const MAX_INFLUENCE: f64 = 100.0;
-/// Largest damper gain `xi` accepted (m/s).
-pub const MAX_DAMPER_GAIN: f64 = 100.0;
-/// Smallest and largest task-slack weight `w` accepted: below 1 the task
-/// hardly counts; above 1e12 `1 / w` drowns in the rounding of `J J^T`.
-pub const MIN_SLACK_WEIGHT: f64 = 1.0;
-/// See [`MIN_SLACK_WEIGHT`].
-pub const MAX_SLACK_WEIGHT: f64 = 1e12;
-/// Largest gain `lambda_d` of the clearance potential accepted.
-pub const MAX_DISTANCE_GAIN: f64 = 1000.0;
-/// Largest joint-rate limit accepted (rad/s).
-pub const MAX_RATE_LIMIT: f64 = 1000.0;
-
-/// Largest smoothing `eps` of the sign in eq. (15) accepted (m^2): the
-/// paper's arm's triangles have `|D| < 4 m^2`, so beyond this the
-/// criterion is flat everywhere.
-pub const MAX_SIGN_SMOOTHING: f64 = 100.0;
-
-/// Most Newton-Schulz steps on a learned `Phi`: each squares the error
-/// `J Phi - I`, so after 8 steps any error below 0.9 is below 1e-5 and
-/// further steps change nothing a run can see.
-pub const MAX_REFINE: u32 = 8;
 
 /// Largest `K dt` accepted for the closed-loop gain. The tracking error then
 /// obeys `e' = -K e`, which classical RK4 integrates stably only for
 /// `K dt < 2.785`; 2.5 leaves a margin for the arm's nonlinearity.
 pub const MAX_GAIN_STEP: f64 = 2.5;
-
-pub(crate) fn validate_lambda(lambda: f64) -> Result<()> {
-    non_negative("lambda", lambda)?;
-    within("lambda", lambda, 0.0, MAX_LAMBDA).map(|_| ())
-}
-
-pub(crate) fn validate_delta(delta: f64) -> Result<()> {
-    non_negative("damping factor delta", delta)?;
-    within("damping factor delta", delta, 0.0, MAX_DELTA).map(|_| ())
-}
 
 pub(crate) fn validate_gain(gain: f64, dt: f64) -> Result<()> {
     non_negative("feedback gain", gain)?;
@@ -69,312 +31,88 @@ pub(crate) fn validate_gain(gain: f64, dt: f64) -> Result<()> {
     Ok(())
 }
 
-/// The parameters of the methods beyond the paper (`docs/methods.md`).
-/// Link-obstacle pairs with a clearance of at least `influence` are
-/// ignored by all three.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Avoidance {
-    /// Influence distance `d_i` (m): pairs closer than this count.
-    pub influence: f64,
-    /// Stop distance `d_s` (m) of the velocity dampers (`qp`) and of the
-    /// escape speed (`priority`): the clearance they keep.
-    pub stop_distance: f64,
-    /// Damper gain `xi` (m/s): how fast a link may approach at the
-    /// influence distance (`qp`).
-    pub damper_gain: f64,
-    /// Weight `w` of the task slack (`qp`): with no damper active the rates
-    /// are eq. (5) with damped least squares, `delta = 1 / w`.
-    pub slack_weight: f64,
-    /// Gain `lambda_d` of the clearance potential (`distance`).
-    pub distance_gain: f64,
-    /// The escape speed (m/s) of task priority's obstacle-avoidance point
-    /// at the stop distance (`priority`); absent in older scenes.
-    #[serde(default = "default_escape_speed")]
-    pub escape_speed: f64,
-    /// The joints' rate limit (rad/s) of the quadratic program (`qp`), as
-    /// NEO bounds a robot's joint velocities: without it, where a damper
-    /// and the task pull apart the program buys the task with unbounded
-    /// rates. Absent in scenes written before it, hence the default.
-    #[serde(default = "default_rate_limit")]
-    pub rate_limit: f64,
+/// How a parameter's slider moves.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Scale {
+    /// In steps of the value itself.
+    Linear,
+    /// In powers of ten (`log10` of the value): a weight that spans orders
+    /// of magnitude.
+    Log,
 }
 
-fn default_rate_limit() -> f64 {
-    Avoidance::default().rate_limit
-}
-
-fn default_escape_speed() -> f64 {
-    Avoidance::default().escape_speed
-}
-
-impl Default for Avoidance {
-    /// `d_i = 0.3 m`, `d_s = 0.02 m`, `xi = 1 m/s`, `w = 1e6` (NEO's and
-    /// mink's orders of magnitude, scaled to this arm), joint rates within
-    /// 1.5 rad/s (the paper's tasks need 0.54), `lambda_d = 1e-3` and an
-    /// escape speed of 0.1 m/s, chosen on the atlas (`docs/methods.md`).
-    fn default() -> Self {
-        Self {
-            influence: 0.3,
-            stop_distance: 0.02,
-            damper_gain: 1.0,
-            slack_weight: 1e6,
-            distance_gain: 1e-3,
-            escape_speed: 0.1,
-            rate_limit: 1.5,
-        }
-    }
-}
-
-impl Avoidance {
-    /// Checks every number and that `d_s < d_i`.
-    pub fn validate(&self) -> Result<()> {
-        for p in [
-            Param::Influence,
-            Param::StopDistance,
-            Param::DamperGain,
-            Param::SlackWeight,
-            Param::DistanceGain,
-            Param::EscapeSpeed,
-            Param::RateLimit,
-        ] {
-            let (lo, hi) = p.bounds();
-            within(p.what(), p.read(self), lo, hi)?;
-        }
-        if self.stop_distance >= self.influence {
-            return Err(Error::OutOfRange {
-                what: "stop distance d_s (below the influence distance)".into(),
-                value: self.stop_distance,
-                min: 0.0,
-                max: self.influence,
-            });
-        }
-        Ok(())
-    }
-}
-
-/// A number of the scene that a method reads ([`crate::planner::MethodInfo::params`]):
-/// its name on the command line and in the page, its bounds, and how to
-/// read and set it with the scene's checks.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Param {
-    /// Gain `lambda` of the obstacle vector, eq. (14).
-    Lambda,
-    /// Constant damping `delta` of eqs. (6), (17), (20).
-    Delta,
-    /// Influence distance `d_i` ([`Avoidance::influence`]).
-    Influence,
-    /// Stop distance `d_s` ([`Avoidance::stop_distance`]).
-    StopDistance,
-    /// Damper gain `xi` ([`Avoidance::damper_gain`]).
-    DamperGain,
-    /// Task-slack weight `w` ([`Avoidance::slack_weight`]).
-    SlackWeight,
-    /// Gain `lambda_d` of the clearance potential ([`Avoidance::distance_gain`]).
-    DistanceGain,
-    /// The escape speed of task priority ([`Avoidance::escape_speed`]).
-    EscapeSpeed,
-    /// The joints' rate limit ([`Avoidance::rate_limit`]).
-    RateLimit,
-    /// The smoothing of the sign in eq. (15) ([`Scene::sign_smoothing`]).
-    SignSmoothing,
-    /// Newton-Schulz steps on a learned `Phi` ([`Scene::refine`]).
-    Refine,
-}
-
-/// What the page and the command line show of a parameter.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct ParamInfo {
+/// A number of the scene that a method reads, declared as a `static` in
+/// the file of the method or constraint that reads it and listed in its
+/// `MethodInfo::params`. Compared by identity (its address): two
+/// declarations are two parameters, even with equal fields.
+#[derive(Debug, Serialize)]
+pub struct Param {
     /// The name in URLs and JSON (`lambda`, `influence`, ...).
     pub name: &'static str,
     /// The command line's flag (`--lambda`, `--influence`, ...).
     pub flag: &'static str,
     /// What a control is labelled.
     pub label: &'static str,
+    /// What a message calls it (ASCII: `damping factor delta`).
+    #[serde(skip)]
+    pub what: &'static str,
+    /// What it does, for the command line's help (the default is printed
+    /// after it from [`Param::default`]).
+    #[serde(skip)]
+    pub help: &'static str,
     /// Its unit, if any.
     pub unit: &'static str,
     /// Smallest and largest value accepted.
     pub bounds: (f64, f64),
-    /// The span and step of a slider for it: `(min, max, step)`; in powers
-    /// of ten (`log10` of the value) when `log_slider`.
-    pub slider: (f64, f64, f64),
-    /// Whether its slider moves in powers of ten (a weight that spans
-    /// orders of magnitude).
-    pub log_slider: bool,
-    /// Its value in the paper's tasks.
+    /// Its value where a scene does not set it (the paper's, for the
+    /// paper's own parameters).
     pub default: f64,
+    /// The span and step of a slider for it, `(min, max, step)`, in the
+    /// slider's [`Scale`].
+    pub slider: (f64, f64, f64),
+    /// How the slider moves.
+    pub scale: Scale,
+    /// Whether it counts something (a whole number).
+    pub count: bool,
+    /// A parameter it must stay strictly below (the stop distance below
+    /// the influence distance); that one names this in [`Param::above`].
+    #[serde(skip)]
+    pub below: Option<&'static Param>,
+    /// The parameter that must stay strictly below this one.
+    #[serde(skip)]
+    pub above: Option<&'static Param>,
+}
+
+impl PartialEq for Param {
+    fn eq(&self, other: &Self) -> bool {
+        std::ptr::eq(self, other)
+    }
+}
+
+impl Eq for Param {}
+
+impl fmt::Display for Param {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name)
+    }
 }
 
 impl Param {
-    /// Every parameter.
-    pub const ALL: [Param; 11] = [
-        Param::Lambda,
-        Param::Delta,
-        Param::Influence,
-        Param::StopDistance,
-        Param::DamperGain,
-        Param::SlackWeight,
-        Param::DistanceGain,
-        Param::EscapeSpeed,
-        Param::RateLimit,
-        Param::SignSmoothing,
-        Param::Refine,
-    ];
-
-    /// What the page and the command line show of it.
-    pub fn info(self) -> ParamInfo {
-        let d = Avoidance::default();
-        let (name, flag, label, unit, slider, default) = match self {
-            Param::Lambda => (
-                "lambda",
-                "--lambda",
-                "Obstacle gain λ",
-                "",
-                (0.0, 12.0, 0.5),
-                4.0,
-            ),
-            Param::Delta => (
-                "delta",
-                "--delta",
-                "Damping δ",
-                "m²",
-                (0.0, 0.05, 0.001),
-                0.0,
-            ),
-            Param::Influence => (
-                "influence",
-                "--influence",
-                "Influence distance dᵢ",
-                "m",
-                (0.05, 0.8, 0.01),
-                d.influence,
-            ),
-            Param::StopDistance => (
-                "stop_distance",
-                "--stop-distance",
-                "Stop distance dₛ",
-                "m",
-                (0.0, 0.2, 0.005),
-                d.stop_distance,
-            ),
-            Param::DamperGain => (
-                "damper_gain",
-                "--damper-gain",
-                "Damper gain ξ",
-                "m/s",
-                (0.1, 5.0, 0.1),
-                d.damper_gain,
-            ),
-            Param::SlackWeight => (
-                "slack_weight",
-                "--slack-weight",
-                "Slack weight w",
-                "",
-                (2.0, 8.0, 0.5),
-                d.slack_weight,
-            ),
-            Param::DistanceGain => (
-                "distance_gain",
-                "--distance-gain",
-                "Distance gain λd",
-                "",
-                (0.0, 0.01, 1e-4),
-                d.distance_gain,
-            ),
-            Param::EscapeSpeed => (
-                "escape_speed",
-                "--escape-speed",
-                "Escape speed",
-                "m/s",
-                (0.0, 1.0, 0.01),
-                d.escape_speed,
-            ),
-            Param::RateLimit => (
-                "rate_limit",
-                "--rate-limit",
-                "Joint rate limit",
-                "rad/s",
-                (0.2, 10.0, 0.1),
-                d.rate_limit,
-            ),
-            Param::SignSmoothing => (
-                "sign_smoothing",
-                "--sign-smoothing",
-                "Sign smoothing ε",
-                "m²",
-                (0.0, 0.3, 0.01),
-                0.0,
-            ),
-            Param::Refine => (
-                "refine",
-                "--refine",
-                "Refinement steps",
-                "",
-                (0.0, 4.0, 1.0),
-                0.0,
-            ),
-        };
-        ParamInfo {
-            name,
-            flag,
-            label,
-            unit,
-            bounds: self.bounds(),
-            slider,
-            log_slider: self == Param::SlackWeight,
-            default,
-        }
-    }
-
-    /// The name on the command line (`--lambda`) and in the page.
-    pub fn name(self) -> &'static str {
-        self.info().name
-    }
-
-    /// What a message calls it.
-    fn what(self) -> &'static str {
-        match self {
-            Param::Lambda => "lambda",
-            Param::Delta => "damping factor delta",
-            Param::Influence => "influence distance d_i",
-            Param::StopDistance => "stop distance d_s",
-            Param::DamperGain => "damper gain xi",
-            Param::SlackWeight => "slack weight w",
-            Param::DistanceGain => "distance gain lambda_d",
-            Param::EscapeSpeed => "escape speed",
-            Param::RateLimit => "joint rate limit",
-            Param::SignSmoothing => "sign smoothing eps",
-            Param::Refine => "refinement steps",
-        }
-    }
-
-    /// Smallest and largest value accepted.
-    pub fn bounds(self) -> (f64, f64) {
-        match self {
-            Param::Lambda => (0.0, MAX_LAMBDA),
-            Param::Delta => (0.0, MAX_DELTA),
-            Param::Influence => (1e-3, MAX_INFLUENCE),
-            Param::StopDistance => (0.0, MAX_INFLUENCE),
-            Param::DamperGain => (1e-3, MAX_DAMPER_GAIN),
-            Param::SlackWeight => (MIN_SLACK_WEIGHT, MAX_SLACK_WEIGHT),
-            Param::DistanceGain => (0.0, MAX_DISTANCE_GAIN),
-            Param::EscapeSpeed => (0.0, MAX_DAMPER_GAIN),
-            Param::RateLimit => (1e-3, MAX_RATE_LIMIT),
-            Param::SignSmoothing => (0.0, MAX_SIGN_SMOOTHING),
-            Param::Refine => (0.0, f64::from(MAX_REFINE)),
-        }
-    }
-
     /// Checks a value against the bounds (and, for a count, that it is
     /// whole), changing nothing.
-    pub(crate) fn check(self, value: f64) -> Result<()> {
-        finite(self.what(), value)?;
-        let (lo, hi) = self.bounds();
-        within(self.what(), value, lo, hi)?;
-        if self.is_count() && value.fract() != 0.0 {
+    pub fn check(&self, value: f64) -> Result<()> {
+        finite(self.what, value)?;
+        let (lo, hi) = self.bounds;
+        if lo == 0.0 {
+            // "must not be negative" says more than a range (and, for a
+            // gain, why).
+            non_negative(self.what, value)?;
+        }
+        within(self.what, value, lo, hi)?;
+        if self.count && value.fract() != 0.0 {
             return Err(Error::OutOfRange {
-                what: format!("{} (a whole number)", self.what()),
+                what: format!("{} (a whole number)", self.what),
                 value,
                 min: lo,
                 max: hi,
@@ -383,85 +121,111 @@ impl Param {
         Ok(())
     }
 
-    /// Whether it counts something (a whole number).
-    pub fn is_count(self) -> bool {
-        self == Param::Refine
-    }
-
-    fn read(self, a: &Avoidance) -> f64 {
-        match self {
-            Param::Influence => a.influence,
-            Param::StopDistance => a.stop_distance,
-            Param::DamperGain => a.damper_gain,
-            Param::SlackWeight => a.slack_weight,
-            Param::DistanceGain => a.distance_gain,
-            Param::EscapeSpeed => a.escape_speed,
-            Param::RateLimit => a.rate_limit,
-            Param::Lambda | Param::Delta | Param::SignSmoothing | Param::Refine => f64::NAN,
-        }
-    }
-
-    /// Its value in `scene`.
-    pub fn get(self, scene: &Scene) -> f64 {
-        match self {
-            Param::Lambda => scene.lambda,
-            Param::Delta => scene.delta,
-            Param::SignSmoothing => scene.sign_smoothing,
-            Param::Refine => f64::from(scene.refine),
-            other => other.read(&scene.avoidance),
-        }
-    }
-
-    /// Sets it in `scene`; refused, changing nothing, when out of its
-    /// bounds (or, for the stop distance, not below the influence distance).
-    pub fn set(self, scene: &mut Scene, value: f64) -> Result<()> {
-        finite(self.what(), value)?;
-        match self {
-            Param::Lambda => {
-                validate_lambda(value)?;
-                scene.lambda = value;
-            }
-            Param::Delta => {
-                validate_delta(value)?;
-                scene.delta = value;
-            }
-            Param::SignSmoothing => {
-                self.check(value)?;
-                scene.sign_smoothing = value;
-            }
-            Param::Refine => {
-                self.check(value)?;
-                scene.refine = value as u32;
-            }
-            other => {
-                let mut a = scene.avoidance;
-                match other {
-                    Param::Influence => a.influence = value,
-                    Param::StopDistance => a.stop_distance = value,
-                    Param::DamperGain => a.damper_gain = value,
-                    Param::SlackWeight => a.slack_weight = value,
-                    Param::RateLimit => a.rate_limit = value,
-                    Param::EscapeSpeed => a.escape_speed = value,
-                    _ => a.distance_gain = value,
-                }
-                a.validate()?;
-                scene.avoidance = a;
-            }
-        }
-        Ok(())
+    /// The command line's help: what it does and its default.
+    pub fn help_text(&self) -> String {
+        let unit = if self.unit.is_empty() {
+            String::new()
+        } else {
+            format!(" {}", ascii_unit(self.unit))
+        };
+        format!("{} [default: {}{unit}]", self.help, self.default)
     }
 }
 
-impl std::str::FromStr for Param {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<Self> {
-        Param::ALL
-            .into_iter()
-            .find(|p| p.name() == s)
-            .ok_or_else(|| Error::UnknownName {
-                kind: "parameter",
-                name: s.into(),
-                choices: Param::ALL.map(Param::name).join(", "),
-            })
+/// A unit as a terminal prints it (`m²` -> `m^2`).
+fn ascii_unit(unit: &str) -> String {
+    unit.replace('²', "^2")
+}
+
+/// The values of the parameters a scene sets; every other declared
+/// parameter has its [`Param::default`]. Only values that differ from the
+/// default are kept, so two scenes that run alike compare equal.
+///
+/// Reading a value is a scan of at most a dozen addresses (no hashing, no
+/// string compare, no allocation): what the methods do at every RK4 stage.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Params(Vec<(&'static Param, f64)>);
+
+impl Params {
+    /// The value of `p`: the one set, else its default.
+    #[inline]
+    pub fn get(&self, p: &'static Param) -> f64 {
+        self.0
+            .iter()
+            .find(|(q, _)| std::ptr::eq(*q, p))
+            .map_or(p.default, |(_, v)| *v)
+    }
+
+    /// The value of a count parameter.
+    #[inline]
+    pub fn count(&self, p: &'static Param) -> u32 {
+        self.get(p) as u32
+    }
+
+    /// Sets `p`; refused, changing nothing, when out of its bounds or
+    /// breaking its order with another parameter.
+    pub fn set(&mut self, p: &'static Param, value: f64) -> Result<()> {
+        p.check(value)?;
+        let mut next = self.clone();
+        next.put(p, value);
+        next.check_order(p)?;
+        *self = next;
+        Ok(())
+    }
+
+    /// Sets several at once, then checks them together (a stop distance
+    /// and an influence distance given together, whatever their order).
+    pub fn set_all(&mut self, values: &[(&'static Param, f64)]) -> Result<()> {
+        let mut next = self.clone();
+        for &(p, v) in values {
+            p.check(v)?;
+            next.put(p, v);
+        }
+        for &(p, _) in values {
+            next.check_order(p)?;
+        }
+        *self = next;
+        Ok(())
+    }
+
+    fn put(&mut self, p: &'static Param, value: f64) {
+        self.0.retain(|(q, _)| !std::ptr::eq(*q, p));
+        if value != p.default {
+            self.0.push((p, value));
+        }
+    }
+
+    /// The order of `p` with the parameters it is declared below or above.
+    fn check_order(&self, p: &'static Param) -> Result<()> {
+        let (low, high) = match (p.below, p.above) {
+            (Some(high), _) => (p, high),
+            (None, Some(low)) => (low, p),
+            (None, None) => return Ok(()),
+        };
+        let (lo, hi) = (self.get(low), self.get(high));
+        if lo >= hi {
+            return Err(Error::OutOfRange {
+                what: format!("{} (below the {})", low.what, high.what),
+                value: lo,
+                min: low.bounds.0,
+                max: hi,
+            });
+        }
+        Ok(())
+    }
+
+    /// Checks every value set (a scene read from a file bypasses
+    /// [`Params::set`]).
+    pub fn validate(&self) -> Result<()> {
+        for &(p, v) in &self.0 {
+            p.check(v)?;
+            self.check_order(p)?;
+        }
+        Ok(())
+    }
+
+    /// The values set, in the order they were set.
+    pub fn iter(&self) -> impl Iterator<Item = (&'static Param, f64)> + '_ {
+        self.0.iter().copied()
     }
 }

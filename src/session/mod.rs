@@ -22,6 +22,7 @@ use crate::error::{within, Error, Result};
 use crate::ik::DampingSchedule;
 use crate::networks::{self, NetworkSet};
 use crate::obstacle::Obstacle;
+use crate::planner::methods::{DELTA, LAMBDA};
 use crate::planner::{Method, Planner};
 use crate::scene::{Param, Scene, PAPER_RADIUS, PAPER_TARGET};
 use crate::twin::Twin;
@@ -108,12 +109,14 @@ fn paper_scene(task: u32, damping: bool, feedback: f64) -> Result<Scene> {
 }
 
 /// The settings of the methods that a new task or arm keeps from `old`:
-/// the parameters of the methods beyond the paper, the sign smoothing and
-/// the refinement of a learned `Phi` (the task sets the paper's `lambda`).
+/// every parameter but the paper's `lambda` and `delta`, which come with
+/// the task.
 fn keep_method_settings(scene: &mut Scene, old: &Scene) {
-    scene.avoidance = old.avoidance;
-    scene.sign_smoothing = old.sign_smoothing;
-    scene.refine = old.refine;
+    let task = [&LAMBDA, &DELTA].map(|p| (p, scene.param(p)));
+    scene.params = old.params.clone();
+    // The values came from valid scenes; the order checks cannot fail on
+    // them (neither is ordered against another parameter).
+    let _ = scene.params.set_all(&task);
 }
 
 impl Session {
@@ -254,12 +257,12 @@ impl Session {
 
     /// Sets `lambda`, the gain of the obstacle vector (eq. 14).
     pub fn set_lambda(&mut self, lambda: f64) -> Result<()> {
-        self.set_param(Param::Lambda, lambda)
+        self.set_param(&LAMBDA, lambda)
     }
 
     /// Sets a parameter of the methods ([`Param`]), for the planner and the
     /// ghost; refused, changing nothing, when out of its bounds.
-    pub fn set_param(&mut self, param: Param, value: f64) -> Result<()> {
+    pub fn set_param(&mut self, param: &'static Param, value: f64) -> Result<()> {
         self.twin.apply(|p| p.set_param(param, value))?;
         self.after_change();
         Ok(())
@@ -394,7 +397,7 @@ impl Session {
             }
         };
         scene.arm = arm.clone();
-        scene.lambda = old.lambda;
+        let _ = scene.params.set(&LAMBDA, old.param(&LAMBDA));
         keep_method_settings(&mut scene, &old);
         scene.target = old.target;
         if !arm.can_reach(&scene.target_vector()) {

@@ -9,8 +9,9 @@ use crate::arm::Arm;
 use crate::clearance::{Pair, Pairs};
 use crate::networks::TrainedRange;
 use crate::obstacle::{self, Obstacle};
+use crate::planner::methods::{INFLUENCE, LAMBDA};
+use crate::planner::params;
 use crate::planner::{Line, Needs};
-use crate::scene::Param;
 
 /// The snapshot the page reads every frame.
 #[derive(Debug, Serialize)]
@@ -144,10 +145,10 @@ impl Session {
     /// draws as the active dampers).
     pub fn near_pairs(&self) -> Option<(f64, Pairs)> {
         let p = self.planner();
-        if !p.method().info().params.contains(&Param::Influence) {
+        if !p.method().reads(&INFLUENCE) {
             return None;
         }
-        let influence = p.scene().avoidance.influence;
+        let influence = p.scene().param(&INFLUENCE);
         let mut pairs = Pairs::default();
         pairs.update(p.pose(), &p.scene().obstacles, influence);
         Some((influence, pairs))
@@ -172,12 +173,12 @@ impl Session {
             theta0: &scene.theta0,
             own_start: self.own_start,
             speed: self.speed,
-            lambda: scene.lambda,
-            params: Param::ALL
+            lambda: scene.param(&LAMBDA),
+            params: params::all()
                 .iter()
-                .map(|q| (q.name(), q.get(scene)))
+                .map(|q| (q.name, scene.param(q)))
                 .collect(),
-            reads: p.method().info().params.iter().map(|q| q.name()).collect(),
+            reads: p.method().params().iter().map(|q| q.name).collect(),
             influence: near.as_ref().map(|(d, _)| *d),
             dampers: near.map_or_else(Vec::new, |(_, pairs)| pairs.as_slice().to_vec()),
             damping: scene.damping.is_some(),

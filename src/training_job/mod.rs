@@ -14,6 +14,7 @@ use crate::error::{within, Error, Result};
 use crate::evaluation::{self, ErrorStats};
 use crate::networks::{NetKind, Networks, WeightsFile};
 use crate::nn::lm::EpochReport;
+use crate::planner::methods::REFINE;
 use crate::planner::{Method, Surrogate};
 use crate::training::{tasks, train_weights, Recipe, TrainSpec};
 
@@ -382,7 +383,8 @@ pub fn assess(nets: &Networks, samples: usize) -> Result<Report> {
             .cloned()
             .map(|mut s| {
                 s.feedback_gain = feedback;
-                s.refine = refine;
+                // Refine is a count within its bounds (CHECK_LOOPS).
+                let _ = s.set_param(&REFINE, f64::from(refine));
                 s
             })
             .collect();

@@ -105,7 +105,7 @@ impl Demo {
     /// Throws, changing nothing, on an unknown name or a value out of bounds.
     #[wasm_bindgen(js_name = setParam)]
     pub fn set_param(&mut self, name: &str, value: f64) -> JsResult {
-        let param: crate::scene::Param = name.parse().map_err(js_err)?;
+        let param = crate::planner::params::by_name(name).map_err(js_err)?;
         self.session.set_param(param, value).map_err(js_err)
     }
 

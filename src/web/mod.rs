@@ -167,12 +167,12 @@ pub fn methods() -> Result<JsValue, JsError> {
 }
 
 /// Every parameter of the methods: `[{ name, flag, label, unit, bounds,
-/// slider: [min, max, step], default }]` ([`crate::scene::Param`]), for the
-/// page's controls.
+/// default, slider: [min, max, step], scale: 'linear' | 'log', count }]`
+/// ([`crate::scene::Param`], declared by the methods), for the page's
+/// controls and address.
 #[wasm_bindgen]
 pub fn params() -> Result<JsValue, JsError> {
-    let all: Vec<_> = crate::scene::Param::ALL.iter().map(|p| p.info()).collect();
-    to_js(&all)
+    to_js(&crate::planner::params::all())
 }
 
 /// The method a page starts with where its address names none
@@ -212,7 +212,7 @@ pub fn limits() -> Result<JsValue, JsError> {
         default_grid: crate::atlas::DEFAULT_GRID,
         max_grid: crate::atlas::MAX_GRID,
         drift_gain: crate::session::DRIFT_GAIN,
-        max_lambda: crate::scene::MAX_LAMBDA,
+        max_lambda: crate::planner::methods::LAMBDA.bounds.1,
         arm_presets: &crate::arm::PRESETS,
     })
 }

@@ -136,8 +136,8 @@ impl Demo {
             scene.feedback_gain = k;
         }
         if let Some(k) = refine {
-            crate::scene::Param::Refine
-                .set(&mut scene, k)
+            scene
+                .set_param(&crate::planner::methods::REFINE, k)
                 .map_err(js_err)?;
         }
         scene.validate().map_err(js_err)?;

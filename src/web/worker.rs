@@ -155,8 +155,8 @@ impl AtlasJob {
             scene.feedback_gain = k;
         }
         if let Some(k) = options.refine {
-            crate::scene::Param::Refine
-                .set(&mut scene, k)
+            scene
+                .set_param(&crate::planner::methods::REFINE, k)
                 .map_err(js_err)?;
         }
         let set = match options.networks.as_deref() {

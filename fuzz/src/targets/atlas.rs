@@ -24,7 +24,8 @@ pub fn atlas(data: &[u8]) {
     };
     // Perturb the scene as the page's controls do.
     if u.ratio(1u8, 2u8).unwrap_or(false) {
-        scene.lambda = num(&mut u);
+        // Refused values leave the scene as it was, as in the page.
+        let _ = scene.set_param(&redundant_ik::planner::methods::LAMBDA, num(&mut u));
         scene.feedback_gain = num_in(&mut u, 0.0, 3.0);
         scene.damping = u
             .arbitrary()

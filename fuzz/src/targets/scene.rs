@@ -2,8 +2,9 @@
 
 use arbitrary::Unstructured;
 use redundant_ik::ik::DampingSchedule;
+use redundant_ik::planner::methods as m;
 use redundant_ik::planner::{methods, Planner};
-use redundant_ik::scene::Avoidance;
+use redundant_ik::scene::Params;
 use redundant_ik::{Arm, Obstacle, Scene};
 
 use super::checks::{shipped_surrogate, step_checked, Snapshot};
@@ -40,46 +41,50 @@ pub fn scene(data: &[u8]) {
             let _ = o.validate(&arm);
         }
         let dt = num_in(&mut u, 0.01, 0.2);
+        let target = point(&mut u);
+        let (lambda, delta) = (num_in(&mut u, 0.0, 10.0), num_in(&mut u, 0.0, 0.1));
+        let damping = u
+            .ratio(1u8, 2u8)
+            .unwrap_or(false)
+            .then(DampingSchedule::default);
+        let tf = dt * small(&mut u, 30) as f64;
+        let feedback_gain = num_in(&mut u, 0.0, 5.0);
+        let mut values = vec![(&m::LAMBDA, lambda), (&m::DELTA, delta)];
+        // Drawn last, and the defaults when the input has ended, so that
+        // inputs written before they existed make the same scene.
+        if !u.is_empty() {
+            values.extend([
+                (&m::INFLUENCE, num_in(&mut u, 0.05, 0.6)),
+                (&m::STOP_DISTANCE, num_in(&mut u, 0.0, 0.04)),
+                (&m::DAMPER_GAIN, num_in(&mut u, 0.1, 3.0)),
+                (&m::ESCAPE_SPEED, num_in(&mut u, 0.0, 1.0)),
+                (&m::SLACK_WEIGHT, num_in(&mut u, 1.0, 1e7)),
+                (&m::DISTANCE_GAIN, num_in(&mut u, 0.0, 0.01)),
+                (&m::RATE_LIMIT, num_in(&mut u, 0.05, 5.0)),
+            ]);
+        }
+        // Drawn after those, 0 (the paper's) when the input has ended.
+        if !u.is_empty() {
+            values.push((&m::SIGN_SMOOTHING, num_in(&mut u, 0.0, 0.5)));
+        }
+        if !u.is_empty() {
+            values.push((&m::REFINE, small(&mut u, 4) as f64));
+        }
+        let mut params = Params::default();
+        if params.set_all(&values).is_err() {
+            // Refused where it is set; nothing to plan.
+            return;
+        }
         Scene {
             arm,
             theta0,
-            target: point(&mut u),
+            target,
             obstacles,
-            lambda: num_in(&mut u, 0.0, 10.0),
-            delta: num_in(&mut u, 0.0, 0.1),
-            damping: u
-                .ratio(1u8, 2u8)
-                .unwrap_or(false)
-                .then(DampingSchedule::default),
+            damping,
             dt,
-            tf: dt * small(&mut u, 30) as f64,
-            feedback_gain: num_in(&mut u, 0.0, 5.0),
-            // Drawn last, and the defaults when the input has ended, so
-            // that inputs written before it existed make the same scene.
-            avoidance: if u.is_empty() {
-                Avoidance::default()
-            } else {
-                Avoidance {
-                    influence: num_in(&mut u, 0.05, 0.6),
-                    stop_distance: num_in(&mut u, 0.0, 0.04),
-                    damper_gain: num_in(&mut u, 0.1, 3.0),
-                    escape_speed: num_in(&mut u, 0.0, 1.0),
-                    slack_weight: num_in(&mut u, 1.0, 1e7),
-                    distance_gain: num_in(&mut u, 0.0, 0.01),
-                    rate_limit: num_in(&mut u, 0.05, 5.0),
-                }
-            },
-            // Drawn after those, 0 (the paper's) when the input has ended.
-            sign_smoothing: if u.is_empty() {
-                0.0
-            } else {
-                num_in(&mut u, 0.0, 0.5)
-            },
-            refine: if u.is_empty() {
-                0
-            } else {
-                small(&mut u, 4) as u32
-            },
+            tf,
+            feedback_gain,
+            params,
         }
     };
     let networks = (scene.arm == Arm::paper()).then(shipped_surrogate);

@@ -3,7 +3,6 @@
 use std::sync::Arc;
 
 use arbitrary::Unstructured;
-use redundant_ik::scene::Param;
 use redundant_ik::session::{Handle, Session};
 use redundant_ik::{Arm, Obstacle};
 
@@ -116,7 +115,8 @@ pub fn session(data: &[u8]) {
             }
             25 => {
                 // Any parameter of any method, to any number.
-                let param = *u.choose(&Param::ALL).unwrap_or(&Param::Lambda);
+                let all = redundant_ik::planner::params::all();
+                let param = *u.choose(all).unwrap_or(&all[0]);
                 s.set_param(param, num(&mut u))
             }
             _ => {

@@ -1,9 +1,8 @@
 //! The paper's Case 1: `Phi` by the `Phi` network, `v` exact, eq. (21)
 //! (Figs. 4 and 9).
 
-use super::paper::{self, Phi, V};
+use super::paper::{self, Phi, V, DELTA, LAMBDA, REFINE, SIGN_SMOOTHING};
 use super::{Entry, Group, Method, MethodInfo, Needs};
-use crate::scene::Param;
 
 /// Case 1 (`case1`).
 pub const CASE1: Method = Method::new(&ENTRY);
@@ -21,7 +20,7 @@ static ENTRY: Entry = Entry {
         },
         avoids: true,
         colour: "#1f77b4",
-        params: &[Param::Lambda, Param::Delta, Param::SignSmoothing, Param::Refine],
+        params: &[&LAMBDA, &DELTA, &SIGN_SMOOTHING, &REFINE],
     },
     rule: |n| paper::rule(n, CASE1, V::Exact, Phi::Network),
 };

@@ -1,9 +1,8 @@
 //! The paper's Case 2: `Phi` exact, `v` by the `v` network, eq. (18)
 //! (Figs. 5 and 10).
 
-use super::paper::{self, Phi, V};
+use super::paper::{self, Phi, V, DELTA, LAMBDA};
 use super::{Entry, Group, Method, MethodInfo, Needs};
-use crate::scene::Param;
 
 /// Case 2 (`case2`).
 pub const CASE2: Method = Method::new(&ENTRY);
@@ -21,7 +20,7 @@ static ENTRY: Entry = Entry {
         },
         avoids: true,
         colour: "#2ca02c",
-        params: &[Param::Lambda, Param::Delta],
+        params: &[&LAMBDA, &DELTA],
     },
     rule: |n| paper::rule(n, CASE2, V::Network, Phi::Exact),
 };

@@ -1,9 +1,8 @@
 //! The paper's Case 3: both `Phi` and `v` by the networks, eq. (21)
 //! (Figs. 6 and 11).
 
-use super::paper::{self, Phi, V};
+use super::paper::{self, Phi, V, DELTA, LAMBDA, REFINE};
 use super::{Entry, Group, Method, MethodInfo, Needs};
-use crate::scene::Param;
 
 /// Case 3 (`case3`).
 pub const CASE3: Method = Method::new(&ENTRY);
@@ -21,7 +20,7 @@ static ENTRY: Entry = Entry {
         },
         avoids: true,
         colour: "#ff7f0e",
-        params: &[Param::Lambda, Param::Delta, Param::Refine],
+        params: &[&LAMBDA, &DELTA, &REFINE],
     },
     rule: |n| paper::rule(n, CASE3, V::Network, Phi::Network),
 };

@@ -17,7 +17,27 @@ use crate::clearance::Pairs;
 use crate::error::Result;
 use crate::ik;
 use crate::kinematics::Pose;
-use crate::scene::Param;
+use super::influence::{INFLUENCE, STOP_DISTANCE};
+use super::paper::DELTA;
+use crate::scene::{Param, Scale};
+
+/// Gain `lambda_d` of the clearance potential, chosen on the atlas
+/// (`docs/methods.md`).
+pub static DISTANCE_GAIN: Param = Param {
+    name: "distance_gain",
+    flag: "--distance-gain",
+    label: "Distance gain λd",
+    what: "distance gain lambda_d",
+    help: "Gain lambda_d of the clearance potential (distance)",
+    unit: "",
+    bounds: (0.0, 1000.0),
+    default: 1e-3,
+    slider: (0.0, 0.01, 1e-4),
+    scale: Scale::Linear,
+    count: false,
+    below: None,
+    above: None,
+};
 
 /// Gradient projection on the clearance potential (`distance`).
 pub const DISTANCE: Method = Method::new(&ENTRY);
@@ -32,12 +52,7 @@ static ENTRY: Entry = Entry {
         networks: Needs::NOTHING,
         avoids: true,
         colour: "#9467bd",
-        params: &[
-            Param::DistanceGain,
-            Param::Influence,
-            Param::StopDistance,
-            Param::Delta,
-        ],
+        params: &[&DISTANCE_GAIN, &INFLUENCE, &STOP_DISTANCE, &DELTA],
     },
     rule: |n| {
         Box::new(Distance {
@@ -58,13 +73,14 @@ struct Distance {
 /// `v = lambda_d sum (1/c - 1/d_i) / c^2 J_p^T n` over the pairs closer than
 /// `d_i` (see the module documentation).
 fn potential_gradient(cx: &Context<'_>, pose: &Pose, pairs: &mut Pairs, row: &mut [f64], v: &mut [f64]) {
-    let a = &cx.scene.avoidance;
-    pairs.update(pose, &cx.scene.obstacles, a.influence);
+    let s = cx.scene;
+    let (influence, gain) = (s.param(&INFLUENCE), s.param(&DISTANCE_GAIN));
+    pairs.update(pose, &s.obstacles, influence);
     v.iter_mut().for_each(|x| *x = 0.0);
-    let floor = a.stop_distance.max(1e-3);
+    let floor = s.param(&STOP_DISTANCE).max(1e-3);
     for pair in pairs.as_slice() {
         let c = pair.clearance.max(floor);
-        let coef = a.distance_gain * (1.0 / c - 1.0 / a.influence) / (c * c);
+        let coef = gain * (1.0 / c - 1.0 / influence) / (c * c);
         pair.rate_row(pose, row);
         for (vi, ri) in v.iter_mut().zip(row.iter()) {
             *vi += coef * ri;
@@ -81,7 +97,7 @@ impl Rule for Distance {
         out: &mut [f64],
     ) -> Result<Note> {
         potential_gradient(cx, pose, &mut self.pairs, &mut self.row, &mut self.v);
-        let delta = cx.scene.delta + cx.scheduled_delta(pose);
+        let delta = cx.scene.param(&DELTA) + cx.scheduled_delta(pose);
         ik::theta_dot_symmetric_into(pose.jacobian(), xdot, &self.v, delta, out)?;
         Ok(Note::default())
     }

@@ -16,7 +16,14 @@
 //! paper's section VI, which the published tables default to, so they do
 //! not change when a method is added).
 
+mod influence;
 mod paper;
+
+pub use distance::DISTANCE_GAIN;
+pub use influence::{INFLUENCE, STOP_DISTANCE};
+pub use paper::{DELTA, LAMBDA, REFINE, SIGN_SMOOTHING};
+pub use priority::ESCAPE_SPEED;
+pub use qp::{DAMPER_GAIN, RATE_LIMIT, SLACK_WEIGHT};
 
 use std::fmt;
 use std::hash::{Hash, Hasher};
@@ -105,8 +112,18 @@ pub struct MethodInfo {
     pub avoids: bool,
     /// Its colour in comparison figures and tables, `#rrggbb`.
     pub colour: &'static str,
-    /// The scene's parameters it reads.
-    pub params: &'static [Param],
+    /// The scene's parameters it reads, each declared (`static`) in the
+    /// file of the method or constraint that reads it.
+    #[serde(serialize_with = "param_names")]
+    pub params: &'static [&'static Param],
+}
+
+/// A method's parameters as the page reads them: their names.
+fn param_names<S: Serializer>(
+    params: &&'static [&'static Param],
+    s: S,
+) -> std::result::Result<S::Ok, S::Error> {
+    s.collect_seq(params.iter().map(|p| p.name))
 }
 
 /// What a method's rule reads besides the pose: the scene (arm,
@@ -260,6 +277,16 @@ impl Method {
             2 => Some(figs[1]),
             _ => None,
         }
+    }
+
+    /// The scene's parameters it reads.
+    pub fn params(self) -> &'static [&'static Param] {
+        self.0.info.params
+    }
+
+    /// Whether it reads parameter `p`.
+    pub fn reads(self, p: &'static Param) -> bool {
+        self.0.info.params.iter().any(|q| std::ptr::eq(*q, p))
     }
 
     /// Its rule for an `n`-joint arm, with its scratch space.

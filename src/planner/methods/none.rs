@@ -1,9 +1,8 @@
 //! No provision for obstacle avoidance: `v = 0` in eqs. (17)-(18), the
 //! minimum-norm joint rates of the task alone (the paper's Figs. 2 and 7).
 
-use super::paper::{self, Phi, V};
+use super::paper::{self, Phi, V, DELTA};
 use super::{Entry, Group, Method, MethodInfo, Needs};
-use crate::scene::Param;
 
 /// No avoidance (`none`).
 pub const NO_AVOIDANCE: Method = Method::new(&ENTRY);
@@ -18,7 +17,7 @@ static ENTRY: Entry = Entry {
         networks: Needs::NOTHING,
         avoids: false,
         colour: "#d62728",
-        params: &[Param::Delta],
+        params: &[&DELTA],
     },
     rule: |n| paper::rule(n, NO_AVOIDANCE, V::Zero, Phi::Exact),
 };

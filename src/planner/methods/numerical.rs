@@ -1,9 +1,8 @@
 //! The paper's numerical approach: eqs. (17)-(18) with the exact obstacle
 //! vector `v` of eqs. (14)-(16) (Figs. 3 and 8).
 
-use super::paper::{self, Phi, V};
+use super::paper::{self, Phi, V, DELTA, LAMBDA, SIGN_SMOOTHING};
 use super::{Entry, Group, Method, MethodInfo, Needs};
-use crate::scene::Param;
 
 /// Numerical (`numerical`).
 pub const NUMERICAL: Method = Method::new(&ENTRY);
@@ -18,7 +17,7 @@ static ENTRY: Entry = Entry {
         networks: Needs::NOTHING,
         avoids: true,
         colour: "#000000",
-        params: &[Param::Lambda, Param::Delta, Param::SignSmoothing],
+        params: &[&LAMBDA, &DELTA, &SIGN_SMOOTHING],
     },
     rule: |n| paper::rule(n, NUMERICAL, V::Exact, Phi::Exact),
 };

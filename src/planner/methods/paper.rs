@@ -9,6 +9,86 @@ use crate::error::Result;
 use crate::ik;
 use crate::kinematics::Pose;
 use crate::obstacle;
+use crate::scene::{Param, Scale};
+
+/// Gain `lambda` of the obstacle vector, eq. (14) (`v` is scaled by
+/// `lambda / 4`; the paper's runs use 4). At most 250 times the paper's:
+/// far larger gains only make the first RK4 step overflow (`lambda =
+/// 1e308` did, found by the hostile-URL test).
+pub static LAMBDA: Param = Param {
+    name: "lambda",
+    flag: "--lambda",
+    label: "Obstacle gain λ",
+    what: "lambda",
+    help: "Gain lambda of the obstacle vector, eq. (14)",
+    unit: "",
+    bounds: (0.0, 1000.0),
+    default: 4.0,
+    slider: (0.0, 12.0, 0.5),
+    scale: Scale::Linear,
+    count: false,
+    below: None,
+    above: None,
+};
+
+/// Constant damping `delta` (m^2) of eqs. (6), (17), (20); the paper's 0.
+/// With `J J^T` of order 1 m^2, 1000 already stops the arm.
+pub static DELTA: Param = Param {
+    name: "delta",
+    flag: "--delta",
+    label: "Damping δ",
+    what: "damping factor delta",
+    help: "Constant damping factor delta, eqs. (6), (17), (20)",
+    unit: "m²",
+    bounds: (0.0, 1000.0),
+    default: 0.0,
+    slider: (0.0, 0.05, 0.001),
+    scale: Scale::Linear,
+    count: false,
+    below: None,
+    above: None,
+};
+
+/// The smoothing `eps` (m^2) of the sign in eq. (15)
+/// ([`crate::obstacle::smoothed_sign`]); the paper's 0 leaves the sign as
+/// it is. The paper's arm's triangles have `|D| < 4 m^2`, so beyond 100
+/// the criterion is flat everywhere.
+pub static SIGN_SMOOTHING: Param = Param {
+    name: "sign_smoothing",
+    flag: "--sign-smoothing",
+    label: "Sign smoothing ε",
+    what: "sign smoothing eps",
+    help: "Smoothing eps of the sign in eq. (15) of the exact obstacle vector (numerical, Case 1)",
+    unit: "m²",
+    bounds: (0.0, 100.0),
+    default: 0.0,
+    slider: (0.0, 0.3, 0.01),
+    scale: Scale::Linear,
+    count: false,
+    below: None,
+    above: None,
+};
+
+/// Newton-Schulz steps that refine a learned `Phi` with the pose's `J`
+/// (Cases 1 and 3, [`ik::refine_phi`]); the paper's 0 uses the network's
+/// `Phi` as it is. Each step squares the error `J Phi - I`, so after 8 any
+/// error below 0.9 is below 1e-5 and further steps change nothing a run
+/// can see.
+pub static REFINE: Param = Param {
+    name: "refine",
+    flag: "--refine",
+    label: "Refinement steps",
+    what: "refinement steps",
+    help: "Newton-Schulz steps refining the learned Phi with the pose's J (Cases 1 and 3)",
+    unit: "",
+    bounds: (0.0, 8.0),
+    default: 0.0,
+    slider: (0.0, 4.0, 1.0),
+    scale: Scale::Linear,
+    count: true,
+    below: None,
+    above: None,
+};
 
 /// Where `v` comes from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -75,8 +155,8 @@ pub(super) fn obstacle_vector(
             &scene.arm,
             pose,
             &scene.obstacles,
-            scene.lambda,
-            scene.sign_smoothing,
+            scene.param(&LAMBDA),
+            scene.param(&SIGN_SMOOTHING),
             g,
             v,
         ),
@@ -89,7 +169,7 @@ pub(super) fn obstacle_vector(
                     *vi += gi;
                 }
             }
-            let scale = scene.lambda / 4.0;
+            let scale = scene.param(&LAMBDA) / 4.0;
             v.iter_mut().for_each(|x| *x *= scale);
         }
     }
@@ -123,19 +203,20 @@ impl Rule for Paper {
         obstacle_vector(*method, *v_from, cx, pose, g, v)?;
         let scheduled = cx.scheduled_delta(pose);
         let jac = pose.jacobian();
+        let delta = cx.scene.param(&DELTA);
         match self.phi_from {
             Phi::Exact => {
-                ik::theta_dot_symmetric_into(jac, xdot, &self.v, cx.scene.delta + scheduled, out)?;
+                ik::theta_dot_symmetric_into(jac, xdot, &self.v, delta + scheduled, out)?;
                 Ok(Note::default())
             }
             Phi::Network => {
                 let handover = scheduled > 0.0;
                 if handover {
-                    ik::phi_into(jac, cx.scene.delta + scheduled, &mut self.phi)?;
+                    ik::phi_into(jac, delta + scheduled, &mut self.phi)?;
                 } else {
                     cx.networks_for(self.method)?.phi(pose, &mut self.phi)?;
-                    ik::refine_phi(&mut self.phi, jac, cx.scene.refine)?;
-                    ik::damp_phi(&mut self.phi, cx.scene.delta)?;
+                    ik::refine_phi(&mut self.phi, jac, cx.scene.params.count(&REFINE))?;
+                    ik::damp_phi(&mut self.phi, delta)?;
                 }
                 ik::theta_dot_network_into(&self.phi, jac, xdot, &self.v, out)?;
                 Ok(Note {

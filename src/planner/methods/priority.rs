@@ -23,7 +23,27 @@ use crate::clearance::Pairs;
 use crate::error::Result;
 use crate::ik;
 use crate::kinematics::{jjt, Pose};
-use crate::scene::Param;
+use super::influence::{INFLUENCE, STOP_DISTANCE};
+use super::paper::DELTA;
+use crate::scene::{Param, Scale};
+
+/// The escape speed `v_e` (m/s) of the point closest to an obstacle at
+/// the stop distance, chosen on the atlas (`docs/methods.md`).
+pub static ESCAPE_SPEED: Param = Param {
+    name: "escape_speed",
+    flag: "--escape-speed",
+    label: "Escape speed",
+    what: "escape speed",
+    help: "Escape speed of the point closest to an obstacle at d_s (priority)",
+    unit: "m/s",
+    bounds: (0.0, 100.0),
+    default: 0.1,
+    slider: (0.0, 1.0, 0.01),
+    scale: Scale::Linear,
+    count: false,
+    below: None,
+    above: None,
+};
 
 /// The damping `mu` (m^2) of the pseudoinverse of the `1 x n` row
 /// `J_o (I - J^+ J)`: its gain is at most `1 / (2 sqrt(mu))`, 16 rad per m.
@@ -42,12 +62,7 @@ static ENTRY: Entry = Entry {
         networks: Needs::NOTHING,
         avoids: true,
         colour: "#8c564b",
-        params: &[
-            Param::Influence,
-            Param::StopDistance,
-            Param::EscapeSpeed,
-            Param::Delta,
-        ],
+        params: &[&INFLUENCE, &STOP_DISTANCE, &ESCAPE_SPEED, &DELTA],
     },
     rule: |n| {
         Box::new(Priority {
@@ -75,17 +90,19 @@ impl Rule for Priority {
         xdot: [f64; 2],
         out: &mut [f64],
     ) -> Result<Note> {
-        let delta = cx.scene.delta + cx.scheduled_delta(pose);
+        let s = cx.scene;
+        let delta = s.param(&DELTA) + cx.scheduled_delta(pose);
         let jac = pose.jacobian();
         // The task: J^+ Xdot.
         ik::theta_dot_symmetric_into(jac, xdot, &self.zero, delta, out)?;
-        let a = &cx.scene.avoidance;
-        self.pairs.update(pose, &cx.scene.obstacles, a.influence);
+        let influence = s.param(&INFLUENCE);
+        self.pairs.update(pose, &s.obstacles, influence);
         let Some(pair) = self.pairs.closest().copied() else {
             return Ok(Note::default());
         };
         pair.rate_row(pose, &mut self.jo);
-        let escape = a.escape_speed * (a.influence - pair.clearance) / (a.influence - a.stop_distance);
+        let escape = s.param(&ESCAPE_SPEED) * (influence - pair.clearance)
+            / (influence - s.param(&STOP_DISTANCE));
         // J_o J^+ = (J_o J^T) (J J^T + delta I)^-1, a 1 x 2 row.
         let (mut p0, mut p1) = (0.0, 0.0);
         for (col, joi) in jac.chunks_exact(2).zip(&self.jo) {

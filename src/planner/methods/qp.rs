@@ -36,7 +36,65 @@ use crate::error::{Error, Result};
 use crate::ik;
 use crate::kinematics::Pose;
 use crate::qp as solver;
-use crate::scene::Param;
+use super::influence::{INFLUENCE, STOP_DISTANCE};
+use super::paper::{DELTA, LAMBDA};
+use crate::scene::{Param, Scale};
+
+/// Damper gain `xi` (m/s): how fast a link may approach an obstacle at the
+/// influence distance (NEO's order of magnitude).
+pub static DAMPER_GAIN: Param = Param {
+    name: "damper_gain",
+    flag: "--damper-gain",
+    label: "Damper gain ξ",
+    what: "damper gain xi",
+    help: "Damper gain xi: the approach speed allowed at d_i (qp)",
+    unit: "m/s",
+    bounds: (1e-3, 100.0),
+    default: 1.0,
+    slider: (0.1, 5.0, 0.1),
+    scale: Scale::Linear,
+    count: false,
+    below: None,
+    above: None,
+};
+
+/// Weight `w` of the task slack: with no damper active the rates are
+/// eq. (5) with damped least squares, `delta = 1 / w`. Below 1 the task
+/// hardly counts; above 1e12 `1 / w` drowns in the rounding of `J J^T`.
+pub static SLACK_WEIGHT: Param = Param {
+    name: "slack_weight",
+    flag: "--slack-weight",
+    label: "Slack weight w",
+    what: "slack weight w",
+    help: "Weight w of the task slack (qp)",
+    unit: "",
+    bounds: (1.0, 1e12),
+    default: 1e6,
+    slider: (2.0, 8.0, 0.5),
+    scale: Scale::Log,
+    count: false,
+    below: None,
+    above: None,
+};
+
+/// The joints' rate limit (rad/s), as NEO bounds a robot's joint
+/// velocities: without it, where a damper and the task pull apart the
+/// program buys the task with unbounded rates. The paper's tasks need 0.54.
+pub static RATE_LIMIT: Param = Param {
+    name: "rate_limit",
+    flag: "--rate-limit",
+    label: "Joint rate limit",
+    what: "joint rate limit",
+    help: "Limit of every joint's rate (qp)",
+    unit: "rad/s",
+    bounds: (1e-3, 1000.0),
+    default: 1.5,
+    slider: (0.2, 10.0, 0.1),
+    scale: Scale::Linear,
+    count: false,
+    below: None,
+    above: None,
+};
 
 /// The QP with velocity dampers (`qp`).
 pub const QP: Method = Method::new(&ENTRY);
@@ -52,13 +110,13 @@ static ENTRY: Entry = Entry {
         avoids: true,
         colour: "#17becf",
         params: &[
-            Param::Lambda,
-            Param::Influence,
-            Param::StopDistance,
-            Param::DamperGain,
-            Param::SlackWeight,
-            Param::RateLimit,
-            Param::Delta,
+            &LAMBDA,
+            &INFLUENCE,
+            &STOP_DISTANCE,
+            &DAMPER_GAIN,
+            &SLACK_WEIGHT,
+            &RATE_LIMIT,
+            &DELTA,
         ],
     },
     rule: |n| Box::new(Qp::new(n)),
@@ -108,13 +166,15 @@ impl Rule for Qp {
     ) -> Result<Note> {
         let n = pose.dof();
         obstacle_vector(QP, V::Exact, cx, pose, &mut self.g, &mut self.v)?;
-        let av = &cx.scene.avoidance;
-        let damping = 1.0 / av.slack_weight + cx.scene.delta + cx.scheduled_delta(pose);
+        let s = cx.scene;
+        let (influence, stop) = (s.param(&INFLUENCE), s.param(&STOP_DISTANCE));
+        let damper_gain = s.param(&DAMPER_GAIN);
+        let damping = 1.0 / s.param(&SLACK_WEIGHT) + s.param(&DELTA) + cx.scheduled_delta(pose);
         let jac = pose.jacobian();
         // The unconstrained minimum: eq. (5) with damped least squares.
         ik::theta_dot_symmetric_into(jac, xdot, &self.v, damping, out)?;
         // The dampers of the pairs within the influence distance.
-        self.pairs.update(pose, &cx.scene.obstacles, av.influence);
+        self.pairs.update(pose, &s.obstacles, influence);
         self.a.clear();
         self.b.clear();
         let mut broken = false;
@@ -122,14 +182,13 @@ impl Rule for Qp {
             let at = self.a.len();
             self.a.resize(at + n, 0.0);
             pair.rate_row(pose, &mut self.a[at..]);
-            let bound = -av.damper_gain * (pair.clearance - av.stop_distance)
-                / (av.influence - av.stop_distance);
+            let bound = -damper_gain * (pair.clearance - stop) / (influence - stop);
             let rate: f64 = self.a[at..].iter().zip(out.iter()).map(|(r, t)| r * t).sum();
             broken |= rate < bound;
             self.b.push(bound);
         }
         // The joints' rate limits, as rows +-e_i.
-        let limit = av.rate_limit;
+        let limit = s.param(&RATE_LIMIT);
         for (i, &rate) in out.iter().enumerate() {
             for sign in [1.0, -1.0] {
                 let at = self.a.len();
