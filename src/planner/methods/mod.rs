@@ -50,6 +50,10 @@ register! {
     qp::QP,
 }
 
+/// The constraints of the `qp` method's program, one file each
+/// (`qp/constraints/`): the velocity dampers and the joint-rate limit.
+pub use qp::constraints;
+
 /// The five methods of the paper's section VI, in its order (Figs. 2-6 and
 /// 7-11). The atlas, `bench` and `eval` default to these.
 pub const PAPER: [Method; 5] = [NO_AVOIDANCE, NUMERICAL, CASE1, CASE2, CASE3];

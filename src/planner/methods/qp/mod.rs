@@ -5,33 +5,37 @@
 //!
 //! minimise `(1/2) |theta_dot - v|^2 + (w/2) |s|^2`
 //! subject to `J theta_dot + s = Xdot` (the commanded task velocity, the
-//! feedback term included) and, for every link-obstacle pair closer than
-//! the influence distance `d_i` ([`crate::clearance`]), the velocity damper
-//! `n^T J_p theta_dot >= -xi (c - d_s) / (d_i - d_s)`.
+//! feedback term included) and the rows `G theta_dot <= h` of every
+//! constraint of [`constraints::ALL`], one file each: the velocity dampers
+//! (`constraints/damper.rs`) and the joint-rate limit
+//! (`constraints/rate_limit.rs`).
 //!
-//! `v` is the paper's area vector (eq. 14 with its gain `lambda`; `lambda = 0`
-//! gives the minimum-norm rates, NEO's setting without its manipulability
-//! term). With no damper active the solution is
-//! `v + J^T (J J^T + I / w)^-1 (Xdot - J v)`: eq. (5) with damped least
-//! squares, `delta = 1 / w`. The scene's `delta` and the damping schedule add
-//! to that damping (`1 / w` becomes `1 / w + delta`), so the task slack
-//! grows near singular poses as in the other methods.
+//! This file is the program they are assembled into. `v` is the paper's
+//! area vector (eq. 14 with its gain `lambda`; `lambda = 0` gives the
+//! minimum-norm rates, NEO's setting without its manipulability term). With
+//! no row binding the solution is `v + J^T (J J^T + I / w)^-1 (Xdot - J v)`:
+//! eq. (5) with damped least squares, `delta = 1 / w`. The scene's `delta`
+//! and the damping schedule add to that damping (`1 / w` becomes
+//! `1 / w + delta`), so the task slack grows near singular poses as in the
+//! other methods.
 //!
 //! Eliminating `s = Xdot - J theta_dot` leaves `n` variables:
 //! `H = I + w' J^T J`, `g = v + w' J^T Xdot`, `w' = 1 / (1 / w + delta)`,
-//! solved by [`crate::qp::solve`] (Goldfarb-Idnani) only when the
-//! unconstrained solution breaks a damper.
+//! solved by [`crate::qp::solve`] (Goldfarb-Idnani, rows `A x >= b`, so
+//! `A = -G`, `b = -h`) only when the unconstrained solution breaks a row.
 //!
-//! Where no rate satisfies every damper (an arm already inside `d_s` of
-//! obstacles on both sides), the dampers' bounds are relaxed to
-//! `min(bound, 0)`: no link may approach an obstacle, none is required to
-//! move away. `theta_dot = 0` satisfies that, so the relaxed program always
-//! has a solution; the step's note (and the run's summary) say when it was
-//! needed.
+//! Where no rate satisfies every row (an arm already inside `d_s` of
+//! obstacles on both sides), every bound is relaxed to `max(h, 0)`: no link
+//! may approach an obstacle, none is required to move away; the rate
+//! limit's bounds `h = L > 0` are unchanged. `theta_dot = 0` satisfies that,
+//! so the relaxed program has a solution; the step's note (and the run's
+//! summary) say when it was needed.
+
+pub mod constraints;
 
 use super::paper::{obstacle_vector, V};
 use super::{Context, Entry, Group, Method, MethodInfo, Needs, Note, Rule};
-use crate::clearance::Pairs;
+use constraints::{Constraint, Rows};
 use crate::error::{Error, Result};
 use crate::ik;
 use crate::kinematics::Pose;
@@ -64,18 +68,21 @@ static ENTRY: Entry = Entry {
     rule: |n| Box::new(Qp::new(n)),
 };
 
-/// The rule's scratch space, sized for an `n`-joint arm and grown (once)
-/// when more dampers appear than ever before.
+/// The program's scratch space, sized for an `n`-joint arm and grown
+/// (once) when more rows appear than ever before.
 #[derive(Clone)]
 struct Qp {
-    pairs: Pairs,
+    /// The constraints of [`constraints::ALL`], each with its scratch space.
+    constraints: Vec<Box<dyn Constraint>>,
+    /// Their rows at the current pose, in the order of the constraints.
+    rows: Rows,
     /// The area vector `v`, and one obstacle's gradient.
     v: Vec<f64>,
     g: Vec<f64>,
     /// `H` (row-major `n x n`) and the linear term.
     h: Vec<f64>,
     lin: Vec<f64>,
-    /// Damper rows `n^T J_p` (row-major) and their bounds.
+    /// The rows as the solver takes them, `A x >= b`: `A = -G`, `b = -h`.
     a: Vec<f64>,
     b: Vec<f64>,
     ws: solver::Workspace,
@@ -86,7 +93,8 @@ impl Qp {
         // Dampers for 8 obstacles per link, and the rate limits.
         let m = 8 * n + 2 * n;
         Self {
-            pairs: Pairs::with_capacity(m),
+            constraints: constraints::ALL.iter().map(|c| (c.build)(n)).collect(),
+            rows: Rows::with_capacity(n, m),
             v: vec![0.0; n],
             g: vec![0.0; n],
             h: vec![0.0; n * n],
@@ -95,6 +103,20 @@ impl Qp {
             b: Vec::with_capacity(m),
             ws: solver::Workspace::with_capacity(n, m),
         }
+    }
+
+    /// The rows into the solver's form `A x >= b` (`A = -G`, `b = -h`).
+    fn solver_rows(&mut self) {
+        self.a.clear();
+        self.a.extend(self.rows.g().iter().map(|g| -g));
+        self.b.clear();
+        self.b.extend(self.rows.h().iter().map(|h| -h));
+    }
+
+    /// Solves the program over the current rows into `out`.
+    fn solve(&mut self, out: &mut [f64]) -> Result<solver::Solution> {
+        self.solver_rows();
+        solver::solve(&mut self.ws, &self.h, &self.lin, &self.a, &self.b, out)
     }
 }
 
@@ -113,36 +135,15 @@ impl Rule for Qp {
         let jac = pose.jacobian();
         // The unconstrained minimum: eq. (5) with damped least squares.
         ik::theta_dot_symmetric_into(jac, xdot, &self.v, damping, out)?;
-        // The dampers of the pairs within the influence distance.
-        self.pairs.update(pose, &cx.scene.obstacles, av.influence);
-        self.a.clear();
-        self.b.clear();
-        let mut broken = false;
-        for pair in self.pairs.as_slice() {
-            let at = self.a.len();
-            self.a.resize(at + n, 0.0);
-            pair.rate_row(pose, &mut self.a[at..]);
-            let bound = -av.damper_gain * (pair.clearance - av.stop_distance)
-                / (av.influence - av.stop_distance);
-            let rate: f64 = self.a[at..].iter().zip(out.iter()).map(|(r, t)| r * t).sum();
-            broken |= rate < bound;
-            self.b.push(bound);
+        // Every constraint's rows at this pose.
+        self.rows.clear(n);
+        for constraint in &mut self.constraints {
+            constraint.rows(cx, pose, &mut self.rows)?;
         }
-        // The joints' rate limits, as rows +-e_i.
-        let limit = av.rate_limit;
-        for (i, &rate) in out.iter().enumerate() {
-            for sign in [1.0, -1.0] {
-                let at = self.a.len();
-                self.a.resize(at + n, 0.0);
-                self.a[at + i] = sign;
-                self.b.push(-limit);
-                broken |= sign * rate < -limit;
-            }
-        }
-        if !broken {
+        if !self.rows.broken_by(out) {
             return Ok(Note::default());
         }
-        // Some damper binds: the program over theta_dot,
+        // Some row binds: the program over theta_dot,
         // H = I + w' J^T J, g = v + w' J^T Xdot.
         let w = 1.0 / damping;
         for r in 0..n {
@@ -153,13 +154,13 @@ impl Rule for Qp {
             }
             self.lin[r] = self.v[r] + w * (jr0 * xdot[0] + jr1 * xdot[1]);
         }
-        match solver::solve(&mut self.ws, &self.h, &self.lin, &self.a, &self.b, out) {
+        match self.solve(out) {
             Ok(_) => Ok(Note::default()),
             Err(Error::Infeasible { .. }) => {
                 // No link may approach; none must move away (see the module
                 // documentation): theta_dot = 0 is feasible.
-                self.b.iter_mut().for_each(|b| *b = b.min(0.0));
-                solver::solve(&mut self.ws, &self.h, &self.lin, &self.a, &self.b, out)?;
+                self.rows.h_mut().iter_mut().for_each(|h| *h = h.max(0.0));
+                self.solve(out)?;
                 Ok(Note {
                     relaxed: true,
                     ..Note::default()
