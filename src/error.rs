@@ -146,6 +146,14 @@ pub enum Error {
         /// The method's name.
         method: &'static str,
     },
+    /// The quadratic program solver ([`crate::qp::solve`]) could not solve a
+    /// program for a reason other than infeasibility: a Hessian that is not
+    /// positive definite, active constraints that depend on each other, or no
+    /// convergence (degenerate constraints).
+    QpFailed {
+        /// Why, e.g. `"its Hessian H is not positive definite"`.
+        reason: &'static str,
+    },
     /// A quadratic program whose constraints no point satisfies at once.
     Infeasible {
         /// Constraints of the program.
@@ -272,6 +280,9 @@ impl fmt::Display for Error {
             ),
             Error::NoNullSpace { method } => {
                 write!(f, "method {method} has no null-space vector v")
+            }
+            Error::QpFailed { reason } => {
+                write!(f, "the quadratic program of the joint rates could not be solved: {reason}")
             }
             Error::Infeasible {
                 constraints,

@@ -107,9 +107,9 @@ fn cholesky(a: &mut [f64], n: usize) -> Result<()> {
             d -= a[j * n + k] * a[j * n + k];
         }
         if !(d > 0.0 && d.is_finite()) {
-            return Err(Error::Singular(
-                "the quadratic program's Hessian is not positive definite".into(),
-            ));
+            return Err(Error::QpFailed {
+                reason: "its Hessian H is not positive definite",
+            });
         }
         let d = d.sqrt();
         a[j * n + j] = d;
@@ -201,7 +201,9 @@ fn polish(ws: &mut Workspace, a: &[f64], b: &[f64], x: &mut [f64]) {
 /// (row-major `m x n`) and `b` their bounds (`m` entries). Fails with
 /// [`Error::Infeasible`] when no `x` satisfies every constraint (the
 /// workspace then holds the constraints that were active when that was
-/// found), and with [`Error::Singular`] when `H` is not positive definite.
+/// found), and with [`Error::QpFailed`] when `H` is not positive definite,
+/// the active constraints turn out dependent, or the iterations do not
+/// converge.
 pub fn solve(
     ws: &mut Workspace,
     h: &[f64],
@@ -278,9 +280,9 @@ pub fn solve(
         loop {
             iterations += 1;
             if iterations > max_iterations {
-                return Err(Error::Singular(
-                    "the quadratic program did not converge (degenerate constraints)".into(),
-                ));
+                return Err(Error::QpFailed {
+                    reason: "the active-set iterations did not converge (degenerate constraints)",
+                });
             }
             let k = ws.active.len();
             let hp = &mut ws.hp[..n];
@@ -298,10 +300,8 @@ pub fn solve(
                     }
                     r[i] = dot(row(wi), hp);
                 }
-                cholesky(s, k).map_err(|_| {
-                    Error::Singular(
-                        "the quadratic program's active constraints are dependent".into(),
-                    )
+                cholesky(s, k).map_err(|_| Error::QpFailed {
+                    reason: "its active constraints depend on each other",
                 })?;
                 cholesky_solve(s, k, r);
             }

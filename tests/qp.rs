@@ -288,7 +288,22 @@ fn contradictory_constraints_are_infeasible_and_say_so() {
     );
     // A Hessian that is not positive definite is refused.
     let err = qp::solve(&mut ws, &[-1.0], &[0.0], &[], &[], &mut x).unwrap_err();
-    assert!(matches!(err, Error::Singular(_)));
+    assert!(matches!(err, Error::QpFailed { .. }), "{err:?}");
+}
+
+#[test]
+fn a_failed_program_says_the_program_failed_and_why_not_that_the_pose_is_singular() {
+    // A Hessian that is not positive definite: the solver's failure, not
+    // the arm's pose.
+    let mut ws = Workspace::default();
+    let mut x = [0.0; 2];
+    let h = [1.0, 2.0, 2.0, 1.0]; // eigenvalues 3 and -1
+    let err = qp::solve(&mut ws, &h, &[0.0, 0.0], &[], &[], &mut x).unwrap_err();
+    let message = err.to_string();
+    assert!(matches!(err, Error::QpFailed { .. }), "{err:?}");
+    assert!(!message.contains("singular pose"), "{message}");
+    assert!(message.contains("quadratic program"), "{message}");
+    assert!(message.contains("not positive definite"), "{message}");
 }
 
 #[test]

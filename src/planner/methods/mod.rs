@@ -23,7 +23,8 @@ pub use distance::DISTANCE_GAIN;
 pub use influence::{INFLUENCE, STOP_DISTANCE};
 pub use paper::{DELTA, LAMBDA, REFINE, SIGN_SMOOTHING};
 pub use priority::ESCAPE_SPEED;
-pub use qp::{DAMPER_GAIN, RATE_LIMIT, SLACK_WEIGHT};
+pub use qp::constraints::{DAMPER_GAIN, RATE_LIMIT};
+pub use qp::SLACK_WEIGHT;
 
 use std::fmt;
 use std::hash::{Hash, Hasher};
@@ -56,6 +57,10 @@ register! {
     priority::PRIORITY,
     qp::QP,
 }
+
+/// The constraints of the `qp` method's program, one file each
+/// (`qp/constraints/`): the velocity dampers and the joint-rate limit.
+pub use qp::constraints;
 
 /// The five methods of the paper's section VI, in its order (Figs. 2-6 and
 /// 7-11). The atlas, `bench` and `eval` default to these.

@@ -5,33 +5,39 @@
 //!
 //! minimise `(1/2) |theta_dot - v|^2 + (w/2) |s|^2`
 //! subject to `J theta_dot + s = Xdot` (the commanded task velocity, the
-//! feedback term included) and, for every link-obstacle pair closer than
-//! the influence distance `d_i` ([`crate::clearance`]), the velocity damper
-//! `n^T J_p theta_dot >= -xi (c - d_s) / (d_i - d_s)`.
+//! feedback term included) and the rows `G theta_dot <= h` of every
+//! constraint of [`constraints::ALL`], one file each: the velocity dampers
+//! (`constraints/damper.rs`) and the joint-rate limit
+//! (`constraints/rate_limit.rs`).
 //!
-//! `v` is the paper's area vector (eq. 14 with its gain `lambda`; `lambda = 0`
-//! gives the minimum-norm rates, NEO's setting without its manipulability
-//! term). With no damper active the solution is
-//! `v + J^T (J J^T + I / w)^-1 (Xdot - J v)`: eq. (5) with damped least
-//! squares, `delta = 1 / w`. The scene's `delta` and the damping schedule add
-//! to that damping (`1 / w` becomes `1 / w + delta`), so the task slack
-//! grows near singular poses as in the other methods.
+//! This file is the program they are assembled into. `v` is the paper's
+//! area vector (eq. 14 with its gain `lambda`; `lambda = 0` gives the
+//! minimum-norm rates, NEO's setting without its manipulability term). With
+//! no row binding the solution is `v + J^T (J J^T + I / w)^-1 (Xdot - J v)`:
+//! eq. (5) with damped least squares, `delta = 1 / w`. The scene's `delta`
+//! and the damping schedule add to that damping (`1 / w` becomes
+//! `1 / w + delta`), so the task slack grows near singular poses as in the
+//! other methods.
 //!
 //! Eliminating `s = Xdot - J theta_dot` leaves `n` variables:
 //! `H = I + w' J^T J`, `g = v + w' J^T Xdot`, `w' = 1 / (1 / w + delta)`,
-//! solved by [`crate::qp::solve`] (Goldfarb-Idnani) only when the
-//! unconstrained solution breaks a damper.
+//! solved by [`crate::qp::solve`] (Goldfarb-Idnani, rows `A x >= b`, so
+//! `A = -G`, `b = -h`) only when the unconstrained solution breaks a row.
 //!
-//! Where no rate satisfies every damper (an arm already inside `d_s` of
-//! obstacles on both sides), the dampers' bounds are relaxed to
-//! `min(bound, 0)`: no link may approach an obstacle, none is required to
-//! move away. `theta_dot = 0` satisfies that, so the relaxed program always
-//! has a solution; the step's note (and the run's summary) say when it was
-//! needed.
+//! Where no rate satisfies every row (an arm already inside `d_s` of
+//! obstacles on both sides), every bound is relaxed to `max(h, 0)`: no link
+//! may approach an obstacle, none is required to move away; the rate
+//! limit's bounds `h = L > 0` are unchanged. `theta_dot = 0` satisfies that,
+//! so the relaxed program is feasible; the step's note (and the run's
+//! summary) say when it was needed. (The solver can still fail on nearly
+//! opposite damper rows, an arm between two obstacles that face each other
+//! across a link: `tests/constraints.rs` keeps that case, ignored.)
+
+pub mod constraints;
 
 use super::paper::{obstacle_vector, V};
 use super::{Context, Entry, Group, Method, MethodInfo, Needs, Note, Rule};
-use crate::clearance::Pairs;
+use constraints::{Constraint, Rows};
 use crate::error::{Error, Result};
 use crate::ik;
 use crate::kinematics::Pose;
@@ -39,28 +45,11 @@ use crate::qp as solver;
 use super::influence::{INFLUENCE, STOP_DISTANCE};
 use super::paper::{DELTA, LAMBDA};
 use crate::scene::{Param, Scale};
+use constraints::{DAMPER_GAIN, RATE_LIMIT};
 
-/// Damper gain `xi` (m/s): how fast a link may approach an obstacle at the
-/// influence distance (NEO's order of magnitude).
-pub static DAMPER_GAIN: Param = Param {
-    name: "damper_gain",
-    flag: "--damper-gain",
-    label: "Damper gain ξ",
-    what: "damper gain xi",
-    help: "Damper gain xi: the approach speed allowed at d_i (qp)",
-    unit: "m/s",
-    bounds: (1e-3, 100.0),
-    default: 1.0,
-    slider: (0.1, 5.0, 0.1),
-    scale: Scale::Linear,
-    count: false,
-    below: None,
-    above: None,
-};
-
-/// Weight `w` of the task slack: with no damper active the rates are
-/// eq. (5) with damped least squares, `delta = 1 / w`. Below 1 the task
-/// hardly counts; above 1e12 `1 / w` drowns in the rounding of `J J^T`.
+/// Weight `w` of the task slack: with no row binding the rates are eq. (5)
+/// with damped least squares, `delta = 1 / w`. Below 1 the task hardly
+/// counts; above 1e12 `1 / w` drowns in the rounding of `J J^T`.
 pub static SLACK_WEIGHT: Param = Param {
     name: "slack_weight",
     flag: "--slack-weight",
@@ -72,25 +61,6 @@ pub static SLACK_WEIGHT: Param = Param {
     default: 1e6,
     slider: (2.0, 8.0, 0.5),
     scale: Scale::Log,
-    count: false,
-    below: None,
-    above: None,
-};
-
-/// The joints' rate limit (rad/s), as NEO bounds a robot's joint
-/// velocities: without it, where a damper and the task pull apart the
-/// program buys the task with unbounded rates. The paper's tasks need 0.54.
-pub static RATE_LIMIT: Param = Param {
-    name: "rate_limit",
-    flag: "--rate-limit",
-    label: "Joint rate limit",
-    what: "joint rate limit",
-    help: "Limit of every joint's rate (qp)",
-    unit: "rad/s",
-    bounds: (1e-3, 1000.0),
-    default: 1.5,
-    slider: (0.2, 10.0, 0.1),
-    scale: Scale::Linear,
     count: false,
     below: None,
     above: None,
@@ -109,6 +79,8 @@ static ENTRY: Entry = Entry {
         networks: Needs::NOTHING,
         avoids: true,
         colour: "#17becf",
+        // The program's own and its constraints' (tests/constraints.rs
+        // checks that every constraint's are here).
         params: &[
             &LAMBDA,
             &INFLUENCE,
@@ -122,18 +94,21 @@ static ENTRY: Entry = Entry {
     rule: |n| Box::new(Qp::new(n)),
 };
 
-/// The rule's scratch space, sized for an `n`-joint arm and grown (once)
-/// when more dampers appear than ever before.
+/// The program's scratch space, sized for an `n`-joint arm and grown
+/// (once) when more rows appear than ever before.
 #[derive(Clone)]
 struct Qp {
-    pairs: Pairs,
+    /// The constraints of [`constraints::ALL`], each with its scratch space.
+    constraints: Vec<Box<dyn Constraint>>,
+    /// Their rows at the current pose, in the order of the constraints.
+    rows: Rows,
     /// The area vector `v`, and one obstacle's gradient.
     v: Vec<f64>,
     g: Vec<f64>,
     /// `H` (row-major `n x n`) and the linear term.
     h: Vec<f64>,
     lin: Vec<f64>,
-    /// Damper rows `n^T J_p` (row-major) and their bounds.
+    /// The rows as the solver takes them, `A x >= b`: `A = -G`, `b = -h`.
     a: Vec<f64>,
     b: Vec<f64>,
     ws: solver::Workspace,
@@ -144,7 +119,8 @@ impl Qp {
         // Dampers for 8 obstacles per link, and the rate limits.
         let m = 8 * n + 2 * n;
         Self {
-            pairs: Pairs::with_capacity(m),
+            constraints: constraints::ALL.iter().map(|c| (c.build)(n)).collect(),
+            rows: Rows::with_capacity(n, m),
             v: vec![0.0; n],
             g: vec![0.0; n],
             h: vec![0.0; n * n],
@@ -153,6 +129,20 @@ impl Qp {
             b: Vec::with_capacity(m),
             ws: solver::Workspace::with_capacity(n, m),
         }
+    }
+
+    /// The rows into the solver's form `A x >= b` (`A = -G`, `b = -h`).
+    fn solver_rows(&mut self) {
+        self.a.clear();
+        self.a.extend(self.rows.g().iter().map(|g| -g));
+        self.b.clear();
+        self.b.extend(self.rows.h().iter().map(|h| -h));
+    }
+
+    /// Solves the program over the current rows into `out`.
+    fn solve(&mut self, out: &mut [f64]) -> Result<solver::Solution> {
+        self.solver_rows();
+        solver::solve(&mut self.ws, &self.h, &self.lin, &self.a, &self.b, out)
     }
 }
 
@@ -167,41 +157,19 @@ impl Rule for Qp {
         let n = pose.dof();
         obstacle_vector(QP, V::Exact, cx, pose, &mut self.g, &mut self.v)?;
         let s = cx.scene;
-        let (influence, stop) = (s.param(&INFLUENCE), s.param(&STOP_DISTANCE));
-        let damper_gain = s.param(&DAMPER_GAIN);
         let damping = 1.0 / s.param(&SLACK_WEIGHT) + s.param(&DELTA) + cx.scheduled_delta(pose);
         let jac = pose.jacobian();
         // The unconstrained minimum: eq. (5) with damped least squares.
         ik::theta_dot_symmetric_into(jac, xdot, &self.v, damping, out)?;
-        // The dampers of the pairs within the influence distance.
-        self.pairs.update(pose, &s.obstacles, influence);
-        self.a.clear();
-        self.b.clear();
-        let mut broken = false;
-        for pair in self.pairs.as_slice() {
-            let at = self.a.len();
-            self.a.resize(at + n, 0.0);
-            pair.rate_row(pose, &mut self.a[at..]);
-            let bound = -damper_gain * (pair.clearance - stop) / (influence - stop);
-            let rate: f64 = self.a[at..].iter().zip(out.iter()).map(|(r, t)| r * t).sum();
-            broken |= rate < bound;
-            self.b.push(bound);
+        // Every constraint's rows at this pose.
+        self.rows.clear(n);
+        for constraint in &mut self.constraints {
+            constraint.rows(cx, pose, &mut self.rows)?;
         }
-        // The joints' rate limits, as rows +-e_i.
-        let limit = s.param(&RATE_LIMIT);
-        for (i, &rate) in out.iter().enumerate() {
-            for sign in [1.0, -1.0] {
-                let at = self.a.len();
-                self.a.resize(at + n, 0.0);
-                self.a[at + i] = sign;
-                self.b.push(-limit);
-                broken |= sign * rate < -limit;
-            }
-        }
-        if !broken {
+        if !self.rows.broken_by(out) {
             return Ok(Note::default());
         }
-        // Some damper binds: the program over theta_dot,
+        // Some row binds: the program over theta_dot,
         // H = I + w' J^T J, g = v + w' J^T Xdot.
         let w = 1.0 / damping;
         for r in 0..n {
@@ -212,13 +180,13 @@ impl Rule for Qp {
             }
             self.lin[r] = self.v[r] + w * (jr0 * xdot[0] + jr1 * xdot[1]);
         }
-        match solver::solve(&mut self.ws, &self.h, &self.lin, &self.a, &self.b, out) {
+        match self.solve(out) {
             Ok(_) => Ok(Note::default()),
             Err(Error::Infeasible { .. }) => {
                 // No link may approach; none must move away (see the module
                 // documentation): theta_dot = 0 is feasible.
-                self.b.iter_mut().for_each(|b| *b = b.min(0.0));
-                solver::solve(&mut self.ws, &self.h, &self.lin, &self.a, &self.b, out)?;
+                self.rows.h_mut().iter_mut().for_each(|h| *h = h.max(0.0));
+                self.solve(out)?;
                 Ok(Note {
                     relaxed: true,
                     ..Note::default()

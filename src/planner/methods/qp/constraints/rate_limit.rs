@@ -1,0 +1,110 @@
+//! The joint-rate limit `L`: `|theta_dot_i| <= L` for every joint, as NEO
+//! (Haviland and Corke 2021) bounds a robot's joint velocities and mink's
+//! `VelocityLimit` does. This implementation's addition to the program:
+//! without it, where a damper and the task pull apart, the program buys the
+//! task with unbounded rates (`docs/methods.md` has the atlases that chose
+//! `L`). As rows `G theta_dot <= h`, two per joint `i`, in the joints'
+//! order: `-e_i` (`theta_dot_i >= -L`), then `+e_i` (`theta_dot_i <= L`),
+//! each with `h = L`.
+
+use super::{Constraint, ConstraintInfo, Entry, Rows};
+use crate::error::Result;
+use crate::kinematics::Pose;
+use crate::planner::methods::Context;
+use crate::scene::{Param, Scale, Scene};
+
+/// The joint-rate limit (`rate_limit`).
+pub static RATE_BOUNDS: Entry = Entry {
+    info: ConstraintInfo {
+        name: "rate_limit",
+        label: "joint-rate limit",
+        description: "−L ≤ θ̇_i ≤ L for every joint",
+        params: PARAMS,
+    },
+    build: |_| Box::new(RateLimit),
+};
+
+/// The joints' rate limit (rad/s), as NEO bounds a robot's joint
+/// velocities: without it, where a damper and the task pull apart the
+/// program buys the task with unbounded rates. The paper's tasks need 0.54.
+pub static RATE_LIMIT: Param = Param {
+    name: "rate_limit",
+    flag: "--rate-limit",
+    label: "Joint rate limit",
+    what: "joint rate limit",
+    help: "Limit of every joint's rate (qp)",
+    unit: "rad/s",
+    bounds: (1e-3, 1000.0),
+    default: 1.5,
+    slider: (0.2, 10.0, 0.1),
+    scale: Scale::Linear,
+    count: false,
+    below: None,
+    above: None,
+};
+
+/// The scene's parameters the limit reads: [`limit_of`] reads them.
+const PARAMS: &[&Param] = &[&RATE_LIMIT];
+
+/// The limit `L` (rad/s) of [`PARAMS`] in `scene`.
+fn limit_of(scene: &Scene) -> f64 {
+    scene.param(&RATE_LIMIT)
+}
+
+/// The limit has no scratch space: its rows depend on the arm's joints only.
+#[derive(Clone, Copy)]
+struct RateLimit;
+
+impl Constraint for RateLimit {
+    fn rows(&mut self, cx: &Context<'_>, pose: &Pose, rows: &mut Rows) -> Result<()> {
+        let limit = limit_of(cx.scene);
+        for i in 0..pose.dof() {
+            for sign in [-1.0, 1.0] {
+                rows.push(limit)[i] = sign;
+            }
+        }
+        Ok(())
+    }
+
+    fn boxed_clone(&self) -> Box<dyn Constraint> {
+        Box::new(*self)
+    }
+
+    fn info(&self) -> &'static ConstraintInfo {
+        &RATE_BOUNDS.info
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_joint_gets_the_rows_minus_e_i_and_plus_e_i_bounded_by_the_limit() {
+        let mut scene = Scene::task1();
+        scene.set_param(&RATE_LIMIT, 0.7).unwrap();
+        let pose = Pose::new(&scene.arm, &scene.theta0).unwrap();
+        let cx = Context {
+            scene: &scene,
+            networks: None,
+        };
+        let mut rows = Rows::default();
+        rows.clear(3);
+        RateLimit.rows(&cx, &pose, &mut rows).unwrap();
+        assert_eq!(rows.len(), 6);
+        for i in 0..3 {
+            for (k, sign) in [-1.0, 1.0].into_iter().enumerate() {
+                let (g, h) = rows.row(2 * i + k);
+                let mut e = [0.0; 3];
+                e[i] = sign;
+                assert_eq!(g, e, "row {}", 2 * i + k);
+                assert_eq!(h, 0.7);
+            }
+        }
+        // Within the limit no row is broken; beyond it in either direction
+        // one is.
+        assert!(!rows.broken_by(&[0.7, -0.7, 0.0]));
+        assert!(rows.broken_by(&[0.0, 0.71, 0.0]));
+        assert!(rows.broken_by(&[0.0, 0.0, -0.71]));
+    }
+}
