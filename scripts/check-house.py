@@ -35,6 +35,7 @@ LAYERS = [
     ["scene"],
     ["planner"],
     ["networks", "twin"],
+    ["run"],
     ["training", "atlas"],
     ["evaluation", "session", "export", "figure"],
     ["training_job", "bench"],

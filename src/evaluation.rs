@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::Result;
 use crate::networks::{NetKind, Networks};
-use crate::planner::{methods, Method, Planner, Surrogate, REACH_TOLERANCE};
+use crate::planner::{methods, Method, Planner, Surrogate};
 use crate::scene::Scene;
 use crate::training::{self, sampling, Visited};
 
@@ -114,12 +114,17 @@ pub struct TaskOutcome {
     pub out_of_range_steps: usize,
     /// Error message when the run failed.
     pub error: Option<String>,
+    /// Ran to the end, no collision and final error within
+    /// [`crate::planner::REACH_TOLERANCE`] (the run's
+    /// [`crate::planner::Summary::success`]).
+    #[serde(default)]
+    pub success: bool,
 }
 
 impl TaskOutcome {
-    /// No collision and final error within [`REACH_TOLERANCE`] (5 mm).
+    /// Whether the run succeeded ([`TaskOutcome::success`]).
     pub fn success(&self) -> bool {
-        self.error.is_none() && !self.collided && self.final_error <= REACH_TOLERANCE
+        self.success
     }
 }
 
@@ -168,6 +173,7 @@ pub fn run_task_refined(
         final_error: f64::NAN,
         out_of_range_steps: 0,
         error: None,
+        success: false,
     };
     match Planner::run(scene, mode, Some(surrogate)) {
         Ok(run) => {
@@ -176,6 +182,7 @@ pub fn run_task_refined(
             out.collided = s.collided;
             out.final_error = s.final_error;
             out.out_of_range_steps = s.out_of_range_steps;
+            out.success = s.success;
         }
         Err(e) => out.error = Some(e.to_string()),
     }

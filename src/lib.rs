@@ -22,6 +22,7 @@ pub mod nn;
 pub mod obstacle;
 pub mod planner;
 pub mod qp;
+pub mod run;
 pub mod scene;
 pub mod session;
 pub mod training;

@@ -6,7 +6,7 @@
 // parse but make no sense), never dropped silently; the page then starts
 // from its defaults for it.
 
-import { parseArm, parseObstacles, formatArm, limits, methods, params as allParams, defaultMethod, networkSets } from './module.js';
+import { parseArm, parseObstacles, limits, methods, params as allParams, defaultMethod, networkSets } from './module.js';
 import { formatObstacles } from './arm-designer.js';
 
 /** A number from text: blank is not zero (as `Number('')` is). */
@@ -120,9 +120,8 @@ export function writeAddress(s) {
   q.set('mode', s.mode);
   q.set('lambda', String(s.lambda));
   q.set('target', s.target.map(exact).join(','));
-  const { arm_presets: presets, default_radius: radius } = limits();
-  const arm = formatArm(s.arm.post, s.arm.links);
-  if (arm !== formatArm(presets[0].post, presets[0].links)) q.set('arm', arm);
+  const { default_radius: radius } = limits();
+  if (!s.paper_arm) q.set('arm', s.arm_text);
   if (s.obstacles.length !== 1 || s.obstacles[0].radius !== radius) {
     q.set('obstacles', formatObstacles(s.obstacles));
   } else if (s.obstacle) {
@@ -130,7 +129,7 @@ export function writeAddress(s) {
   }
   if (s.feedback > 0) q.set('feedback', String(s.feedback));
   if (!s.damping) q.set('damping', '0');
-  if (s.network_set && s.network_set !== 'paper') q.set('networks', s.network_set);
+  if (s.network_set && s.network_set !== networkSets()[0].name) q.set('networks', s.network_set);
   for (const p of named()) {
     if (s.params[p.name] !== undefined && s.params[p.name] !== p.default) q.set(p.name, String(s.params[p.name]));
   }

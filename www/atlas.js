@@ -8,8 +8,9 @@
 // (`#atlas-modes`, `#atlas-n`, `#atlas-run`, `#atlas-cancel`,
 // `#atlas-progress`, `#atlas-status`, `#atlas-result`, `#atlas-show`,
 // `#atlas-hide`, `#atlas-legend`, `#atlas-body`, `#atlas-agreement`,
-// `#atlas-tip`); hooks: `weights()` (the weights files in use, or null) and
-// `changed()` (after the obstacle moved). Returns
+// `#atlas-tip`); hook: `changed()` (after the obstacle moved). The job
+// takes the module's run (`Demo.run()`: scene and networks in use) and the
+// atlas is stale when the state's `revision.atlas` moves on. Returns
 // `{ run(options), hover(x, y), click(x, y), result() }` for the page's
 // pointer handlers and for `window.demo.atlas()`. The methods, their labels
 // and the default grid come from the module.
@@ -22,7 +23,7 @@ import { saveBlob, saveText, svgToPng } from './download.js';
 /** Points per side the panel offers (with the core's default, selected). */
 export const RESOLUTIONS = [11, 21, 41, 61];
 
-export function mountAtlas(root, demo, { weights, changed }) {
+export function mountAtlas(root, demo, { changed }) {
   const $ = (id) => root.querySelector('#' + id);
   const el = {
     modes: $('atlas-modes'),
@@ -74,13 +75,12 @@ export function mountAtlas(root, demo, { weights, changed }) {
   let atlas = null; // the last result (the JSON shape of `redundant-ik atlas --json`)
   let shown = null; // the mode drawn on the stage
   let running = null; // AbortController of the job under way
-  let sceneKey = null; // the scene the atlas was computed on
+  let atlasRevision = null; // the state's revision.atlas it was computed at
   let sceneUsed = null; // that scene itself (Demo.scene()), for the figure
 
   const status = (text) => el.status && (el.status.textContent = text);
 
   /** What the atlas depends on, from the state (not the moved obstacle). */
-  const keyOf = (s) => JSON.stringify([s.task, s.target, s.params, s.damping, s.feedback, s.arm, s.line.start]);
 
   function show(mode) {
     if (!atlas) return;
@@ -156,7 +156,7 @@ export function mountAtlas(root, demo, { weights, changed }) {
 
   function accept(result, ms, state, scene) {
     atlas = result;
-    sceneKey = keyOf(state);
+    atlasRevision = state.revision.atlas;
     sceneUsed = scene;
     if (el.status) el.status.dataset.stale = 'false';
     if (el.show) {
@@ -213,17 +213,15 @@ export function mountAtlas(root, demo, { weights, changed }) {
     const ticked = el.modes ? [...el.modes.querySelectorAll('input:checked')].map((b) => b.value) : [];
     const modes = options.modes ?? (ticked.length ? ticked : methods().map((m) => m.name));
     const n = options.n ?? (el.n ? Number(el.n.value) : defaultGrid);
-    const scene = demo.scene();
+    const run = demo.run();
+    const scene = run.scene;
     const state = demo.state();
-    const task = state.task;
-    const networks = options.networks ?? state.network_set ?? undefined;
-    const w = networks ? null : weights();
-    const { feedback, refine } = options;
+    const { feedback, refine, networks } = options;
     showBusy(el, true);
     status('Computing…');
     try {
       const { result, ms } = await runWorker(
-        { kind: 'atlas', scene, options: { modes, n, region: options.region, task, feedback, refine, networks }, phi: w?.phi, v: w?.v },
+        { kind: 'atlas', run, options: { modes, n, region: options.region, feedback, refine, networks } },
         {
           signal: controller.signal,
           onProgress: (p) => {
@@ -330,7 +328,7 @@ export function mountAtlas(root, demo, { weights, changed }) {
   /** Says so when the task changed since the atlas was computed (per frame, cheap). */
   function check(state) {
     if (!atlas || !el.status || running) return;
-    const stale = keyOf(state) !== sceneKey;
+    const stale = state.revision.atlas !== atlasRevision;
     if (stale !== (el.status.dataset.stale === 'true')) {
       el.status.dataset.stale = String(stale);
       if (stale) status('The task changed since this atlas was computed (target, a parameter or a switch): compute it again to map the new one.');

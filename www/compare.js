@@ -9,9 +9,6 @@
 import { metres } from './format.js';
 import { csv, saveText } from './download.js';
 
-/** What the table depends on, from the state. */
-const keyOf = (s) => JSON.stringify([s.task, s.target, s.obstacles, s.params, s.damping, s.feedback, s.arm, s.line.start, s.tf]);
-
 const WHY = {
   path_blocked: 'an obstacle covers the path the hand must follow: no method can follow the line and miss it',
   start_overlap: 'an obstacle touches the arm at t = 0: every method starts inside it',
@@ -35,7 +32,8 @@ export function mountCompare(root, demo, { attempt }) {
     let result = null;
     if (!attempt(() => (result = demo.compareModes()), 'error', button)) return;
     rows = result;
-    key = keyOf(demo.state());
+    // What the table depends on: everything but the method in use.
+    key = demo.state().revision.scene;
     body?.replaceChildren(...rows.map(compareRow));
     if (table) table.dataset.stale = 'false';
     const blocked = rows[0]?.unavoidable;
@@ -54,7 +52,7 @@ export function mountCompare(root, demo, { attempt }) {
   });
   return function check(s) {
     if (!rows || !table) return;
-    const stale = keyOf(s) !== key;
+    const stale = s.revision.scene !== key;
     if (String(stale) !== table.dataset.stale) {
       table.dataset.stale = String(stale);
       if (status && stale) status.textContent = 'The scene changed since this comparison: press Compare to run it again.';

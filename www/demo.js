@@ -226,10 +226,9 @@ export async function mount(root, options = {}) {
   const compare = mountCompare(root, demo, { attempt });
   const takeaway = mountTakeaway(root, demo, {
     show,
-    weights: () => playground.files(),
     link: () => (options.link ? options.link(controller.state(), demo.scene()) : location.href),
   });
-  const atlas = mountAtlas(root, demo, { weights: () => playground.files(), changed: () => changed() });
+  const atlas = mountAtlas(root, demo, { changed: () => changed() });
   mountWeightsUpload(root, { attempt, show, install: playground.installNetworks });
   wireStage(stage, demo, { attempt, changed, togglePlay, reset, atlas, playground, keyboard: options.keyboard });
 

@@ -49,8 +49,8 @@ export async function svgToPng(svg, scale = 2) {
 }
 
 /** A file name's stem for the scene in `state`: `task1-case3` (the arm where it is not the paper's). */
-export function stem(state, armText) {
-  const arm = armText && armText !== '0.5:0.6,0.85,0.6' ? `-arm${armText.replace(/[:,]/g, '_')}` : '';
+export function stem(state) {
+  const arm = state.paper_arm ? '' : `-arm${state.arm_text.replace(/[:,]/g, '_')}`;
   return `task${state.task}-${state.mode}${arm}`;
 }
 

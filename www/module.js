@@ -85,7 +85,7 @@ const fetchedSets = new Map();
  * reason; a failure leaves the page running, and the methods that need
  * networks then say why.
  */
-export function loadNetworkSet(set = 'paper') {
+export function loadNetworkSet(set = moduleNetworkSets()[0]) {
   if (!fetchedSets.has(set)) {
     fetchedSets.set(
       set,
@@ -102,9 +102,10 @@ export function loadNetworkSet(set = 'paper') {
           provideBuiltinNetworks(texts[0], texts[1], set);
         } catch (e) {
           const why = e && e.message ? e.message : String(e);
-          // The paper's set is what the network methods start with: its
-          // failure is kept as their reason. Another set may be tried again.
-          if (set === 'paper') builtinNetworksFailed(why, set);
+          // The first set (the paper's) is what the network methods start
+          // with: its failure is kept as their reason. Another set may be
+          // tried again.
+          if (set === moduleNetworkSets()[0]) builtinNetworksFailed(why, set);
           else {
             fetchedSets.delete(set);
             return why;
@@ -161,7 +162,7 @@ export function loadModule() {
         }
       }
       if (!started) await start('baseline');
-      await loadNetworkSet('paper');
+      await loadNetworkSet();
     })();
   }
   return module;

@@ -5,7 +5,7 @@
 // chosen (module.js, loadNetworkSet), with a plain message if that fails.
 // Networks trained or loaded by the user show as their own entry.
 
-import { describe, loadNetworkSet, networkSets, method, usesNetworks, limits, formatArm } from './module.js';
+import { describe, loadNetworkSet, networkSets, method, usesNetworks } from './module.js';
 
 /** The select's value for networks that are no shipped set. */
 const OWN = 'own';
@@ -59,9 +59,9 @@ export function mountNetworkSet(root, demo, { show, changed }) {
     /** Shows the set in use, and the selector only where networks run and the shipped sets fit the arm. */
     sync(s) {
       if (!field || !select) return;
-      const paper = limits().arm_presets[0];
-      const paperArm = formatArm(s.arm.post, s.arm.links) === formatArm(paper.post, paper.links);
-      field.hidden = !usesNetworks(method(s.mode)) || !paperArm;
+      // The shipped sets run where they were trained for the arm (the core says which).
+      const fits = Object.values(s.set_fits).some(Boolean);
+      field.hidden = !usesNetworks(method(s.mode)) || !fits;
       if (pending) return;
       const value = s.network_set ?? (s.trained_range ? OWN : select.value);
       if (select.value !== value) select.value = value;

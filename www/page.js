@@ -53,8 +53,7 @@ function describeArm(s) {
     see.innerHTML = `The arm stands on a ${s.arm.post} m post and has links of ${list} m. Its end effector follows the dashed straight line at constant speed (the grey dot is where it should be now). ${use}`;
   }
   const note = document.getElementById('network-note');
-  const paper = limits().arm_presets[0];
-  const isPaper = s.arm.post === paper.post && s.arm.links.join() === paper.links.join();
+  const isPaper = s.paper_arm;
   if (note) {
     note.dataset.arm = isPaper ? 'paper' : 'other';
     if (!isPaper) {

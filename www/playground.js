@@ -1,8 +1,10 @@
 // The playground: the arm designer and the obstacles (arm-designer.js),
 // networks trained for the arm in the page (training.js), weights kept in
 // the browser per arm (weights-store.js), and whole runs off screen. This
-// file holds what they share: the weights files of the networks installed,
-// and the arm change that restores the networks kept for the new arm.
+// file holds what they share: the arm change that restores the networks
+// kept for the new arm. The networks in use are the module's (its run
+// names them: a shipped set, or the weights files' text); no copy is kept
+// here.
 //
 // `mountPlayground(root, demo, hooks)` wires the elements of `root` that
 // exist and returns the controller `window.demo` uses: setArm, addObstacle,
@@ -10,25 +12,19 @@
 // click/wantsClick for the stage, check(state) for the animation loop,
 // restore() at start-up, installNetworks() and files().
 
-import { describe, formatArm, methods, usesNetworks } from './module.js';
+import { describe, methods, usesNetworks } from './module.js';
 import { storedWeights, storeWeights, forgetWeights } from './weights-store.js';
 import { mountArmDesigner, flatObstacles } from './arm-designer.js';
 import { mountTraining } from './training.js';
 
-const armText = (arm) => formatArm(arm.post, arm.links);
-
 export function mountPlayground(root, demo, { attempt, show, changed }) {
-  // The weights files of the networks installed (trained, uploaded or
-  // restored), for the workers and the download; the module keeps only
-  // their run-time form. Tied to the arm they were installed for.
-  let installed = null; // { arm: formatArm text, phi, v }
   function installNetworks(phi, v) {
     demo.loadNetworks(phi, v);
-    installed = { arm: armText(demo.state().arm), phi, v };
   }
+  /** The user's weights files in use (trained, uploaded or restored), from the module's run: `{ phi, v }` or null. */
   function files() {
-    if (!installed || installed.arm !== armText(demo.state().arm)) return null;
-    return { phi: installed.phi, v: installed.v };
+    const n = demo.run().networks;
+    return n?.phi ? { phi: n.phi, v: n.v } : null;
   }
 
   /** Networks kept in the browser for this arm, installed if they load: the kept entry, or null. */
@@ -68,7 +64,6 @@ export function mountPlayground(root, demo, { attempt, show, changed }) {
     forget() {
       forgetWeights(demo.state().arm);
       demo.clearNetworks();
-      installed = null;
     },
     attempt,
     show,

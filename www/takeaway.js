@@ -6,7 +6,6 @@
 // run of the scene as it is now, from t = 0 to the end of its line, the
 // very run the drawing shows unless the scene was changed while it ran.
 
-import { formatArm } from './module.js';
 import { runWorker } from './jobs.js';
 import { saveBlob, saveText, svgToPng, stem } from './download.js';
 
@@ -14,21 +13,19 @@ import { saveBlob, saveText, svgToPng, stem } from './download.js';
  * Wires `#save-figure-svg`, `#save-figure-png`, `#save-plots-svg`,
  * `#save-plots-png`, `#save-run-csv`, `#save-run-json`, `#copy-link` and
  * `#link-text` under `root`. Hooks: `show(text, kind, sticky, near)`,
- * `weights()` (the weights files in use, or null), `link()` (the address
+ * `link()` (the address
  * of the scene). Returns `{ files() }`: a Promise of `{ json, csv, figure,
  * plots }` for the scene as it is now.
  */
-export function mountTakeaway(root, demo, { show, weights, link }) {
+export function mountTakeaway(root, demo, { show, link }) {
   const $ = (id) => root.querySelector('#' + id);
   let cache = null; // { key, files }
 
   async function files() {
-    const s = demo.state();
-    const scene = demo.scene();
-    const w = weights();
-    const key = JSON.stringify([scene, s.mode, s.task, w ? w.phi.length + w.v.length : 0]);
+    // The module's run (its scene, method and networks), cached by its revision.
+    const key = demo.state().revision.run;
     if (cache?.key === key) return cache.files;
-    const { result } = await runWorker({ kind: 'run-files', scene, mode: s.mode, task: s.task, phi: w?.phi, v: w?.v });
+    const { result } = await runWorker({ kind: 'run-files', run: demo.run() });
     cache = { key, files: result };
     return result;
   }
@@ -51,7 +48,7 @@ export function mountTakeaway(root, demo, { show, weights, link }) {
 
   const name = (ext) => {
     const s = demo.state();
-    return `${stem(s, formatArm(s.arm.post, s.arm.links))}.${ext}`;
+    return `${stem(s)}.${ext}`;
   };
   const saving = (id, save) => {
     const button = $(id);

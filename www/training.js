@@ -4,7 +4,7 @@
 // and forgetting them. The networks trained are installed and kept through
 // the playground's hooks.
 
-import { describe, limits, networkMethodLabels, formatArm, builtinWeightsUrl, builtinWeightsFiles } from './module.js';
+import { describe, limits, networkMethodLabels, formatArm, builtinWeightsUrl, builtinWeightsFiles, networkSets } from './module.js';
 import { runWorker, showBusy } from './jobs.js';
 import { metres, sci, seconds as fmtS, row } from './format.js';
 
@@ -81,13 +81,12 @@ function drawCurves(canvas, series) {
 
 /** The report's table: the paper's tasks, then the random tasks' counts. */
 function reportTable(report) {
-  const tolerance = limits().reach_tolerance;
   const table = document.createElement('table');
   table.className = 'compare';
   table.innerHTML = '<thead><tr><th>check</th><th>method</th><th>ok</th><th>hit</th><th>median error</th></tr></thead>';
   const body = document.createElement('tbody');
   for (const t of report.paper_tasks) {
-    const ok = !t.error && !t.collided && t.final_error <= tolerance;
+    const ok = t.success;
     const loop = `${t.feedback_gain ? `, K = ${t.feedback_gain}` : ''}${t.refine ? `, refine ${t.refine}` : ''}`;
     body.append(row([`Task ${t.task}${loop}`, t.mode, ok ? 'yes' : 'no', t.collided ? 'yes' : 'no', metres(t.final_error)]));
   }
@@ -203,7 +202,6 @@ export function mountTraining(root, demo, { files, install, keep, forget, attemp
       preset: options.preset ?? el.preset?.value ?? 'quick',
     };
     for (const k of ['samples', 'epochs', 'seed']) if (options[k] !== undefined) request[k] = options[k];
-    const current = files();
     training = new AbortController();
     curves = {};
     const t0 = performance.now();
@@ -214,7 +212,7 @@ export function mountTraining(root, demo, { files, install, keep, forget, attemp
       const follow = follower(t0, options.onProgress);
       const { result, ms } = parallel(request)
         ? await trainBothAtOnce(request, training.signal, follow)
-        : await runWorker({ kind: 'train', request, phi: current?.phi, v: current?.v }, { signal: training.signal, onProgress: follow });
+        : await runWorker({ kind: 'train', request, run: demo.run() }, { signal: training.signal, onProgress: follow });
       const seconds = (performance.now() - t0) / 1000;
       const entry = { phi: result.phi, v: result.v, report: result.report, saved: new Date().toISOString() };
       showReport(result.report, performance.now() - t0);
@@ -304,7 +302,7 @@ export function mountTraining(root, demo, { files, install, keep, forget, attemp
   }
   el.verdictUse?.addEventListener('click', () => {
     if (!pending) return;
-    if (pending.arm !== formatArm(demo.state().arm.post, demo.state().arm.links)) {
+    if (pending.arm !== demo.state().arm_text) {
       hideVerdict();
       return show('Those networks were trained for another arm.', 'warn', false, el.verdictUse);
     }
@@ -346,8 +344,7 @@ export function mountTraining(root, demo, { files, install, keep, forget, attemp
     setTimeout(() => URL.revokeObjectURL(a.href), 1000);
   };
   el.download?.addEventListener('click', async () => {
-    const { post, links } = demo.state().arm;
-    const tag = formatArm(post, links).replace(/[:,]/g, '_');
+    const tag = demo.state().arm_text.replace(/[:,]/g, '_');
     const own = files();
     if (own) {
       for (const [name, text] of Object.entries(own)) save(`${name}-${tag}.json`, text);
@@ -357,13 +354,16 @@ export function mountTraining(root, demo, { files, install, keep, forget, attemp
     if (!demo.state().networks) {
       return show('No networks for this arm yet: train them first.', 'warn', false, el.download);
     }
+    // The shipped set in use (the paper's where none was chosen).
+    const set = demo.run().networks?.set ?? networkSets()[0].name;
+    const label = networkSets().find((s) => s.name === set)?.label ?? set;
     try {
-      for (const name of builtinWeightsFiles()) {
+      for (const name of builtinWeightsFiles(set)) {
         const r = await fetch(builtinWeightsUrl(name));
         if (!r.ok) throw new Error(`HTTP ${r.status} for weights/${name}`);
         save(name, await r.text());
       }
-      show("The paper's networks, as shipped: the files redundant-ik train writes.", 'info', false, el.download);
+      show(`The shipped networks in use (${label}): the files redundant-ik train writes.`, 'info', false, el.download);
     } catch (e) {
       show(`Could not fetch the built-in networks: ${describe(e)}`, 'error', false, el.download);
     }

@@ -8,9 +8,9 @@
 //   { kind: 'bench', wasm, batchMs }
 //       the code behind `redundant-ik bench`, one figure per call, over the
 //       methods of benchMethods(); the result names benchVerdict()'s pair
-//   { kind: 'atlas', wasm, scene, options: { modes, n, region, task, feedback, refine, networks }, phi, v }
+//   { kind: 'atlas', wasm, run, options: { modes, n, region, task, feedback, refine, networks } }
 //       the atlas of `redundant-ik atlas`, one row of cells per chunk
-//   { kind: 'train', wasm, request: { arm, net, preset, samples, epochs, seed }, phi, v }
+//   { kind: 'train', wasm, request: { arm, net, preset, samples, epochs, seed }, run }
 //       training of the networks for an arm and their check, a progress
 //       message per epoch (with the epoch's numbers in `epoch`)
 //   { kind: 'train-net', wasm, request, net }
@@ -18,7 +18,7 @@
 //       both at once in two workers): its weights file as JSON text
 //   { kind: 'conclude', wasm, request, phi, v }
 //       the check and report of a request whose networks were trained so
-//   { kind: 'run-files', wasm, scene, mode, task, phi, v }
+//   { kind: 'run-files', wasm, run }
 //       a run as the JSON of `simulate --json`, CSV, and its figures as SVG
 //   { kind: 'atlas-files', wasm, atlas, scene, modes }
 //       an atlas's JSON, the CSV of its cells, and its maps (of `modes`) as SVG
@@ -60,8 +60,8 @@ function bench({ batchMs = 20 }) {
   return result;
 }
 
-function atlas({ scene, options, phi, v }) {
-  const job = new AtlasJob(scene, options ?? {}, phi ?? undefined, v ?? undefined);
+function atlas({ run, options }) {
+  const job = new AtlasJob(run, options ?? {});
   try {
     const total = job.total;
     const chunk = job.row;
@@ -76,7 +76,7 @@ function atlas({ scene, options, phi, v }) {
   }
 }
 
-function train({ request, phi, v }) {
+function train({ request, run }) {
   // Progress: epochs done over the most epochs of the networks asked for
   // (the second network's most epochs known when it starts).
   const nets = request.net === 'both' ? ['phi', 'v'] : [request.net];
@@ -92,7 +92,7 @@ function train({ request, phi, v }) {
     self.postMessage({ type: 'progress', done: offsets[e.net] + e.epoch, total, label: e.net, epoch: e });
   };
   self.postMessage({ type: 'progress', done: 0, total: 1, label: 'sampling' });
-  return trainNetworks(request, phi ?? undefined, v ?? undefined, post);
+  return trainNetworks(request, run, post);
 }
 
 function trainNet({ request, net }) {
@@ -111,7 +111,7 @@ self.onmessage = async ({ data }) => {
     else if (data.kind === 'train') result = train(data);
     else if (data.kind === 'train-net') result = trainNet(data);
     else if (data.kind === 'conclude') result = concludeTraining(data.request, data.phi, data.v);
-    else if (data.kind === 'run-files') result = runFiles(data.scene, data.mode, data.task, data.phi ?? undefined, data.v ?? undefined);
+    else if (data.kind === 'run-files') result = runFiles(data.run);
     else if (data.kind === 'atlas-files') result = atlasFiles(data.atlas, data.scene, data.modes ?? []);
     else throw new Error(`unknown job '${data.kind}'`);
     self.postMessage({ type: 'done', result, ms: performance.now() - t0 });

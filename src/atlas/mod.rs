@@ -439,12 +439,12 @@ fn run_one(p: &mut Planner, steps: usize, o: [f64; 2], path_blocked: bool) -> Ou
         Class::PathBlocked
     } else if error.is_some() {
         Class::Failed
+    } else if s.success {
+        Class::Success
     } else if s.collided {
         Class::Collision
-    } else if !s.reached {
-        Class::Missed
     } else {
-        Class::Success
+        Class::Missed
     };
     Outcome {
         class,

@@ -72,7 +72,8 @@ pub fn run(args: &AtlasArgs) -> Result<(), String> {
     }
     .map_err(|e| e.to_string())?;
     let networks = if modes.iter().any(|m| m.uses_networks()) {
-        Some(Arc::new(args.scene.networks.load()?))
+        let run = args.scene.spec(Method::NUMERICAL)?;
+        Some(run.load_networks().map_err(|e| e.to_string())?)
     } else {
         None
     };

@@ -61,7 +61,8 @@ pub fn run(args: &FigureArgs) -> Result<(), String> {
         );
     }
     if !args.all {
-        let (scene, traj) = args.scene.run(args.scene.method(&args.method)?)?;
+        let (run, traj) = args.scene.run(args.scene.method(&args.method)?)?;
+        let scene = run.scene;
         let svg = if args.plots {
             figure::series_svg(task, &scene, &traj)
         } else {
@@ -94,7 +95,10 @@ pub fn run(args: &FigureArgs) -> Result<(), String> {
 fn run_all_modes(sa: &SceneArgs, scene: &Scene) -> Result<Vec<Trajectory>, String> {
     let mut runs = Vec::new();
     for &mode in methods::ALL {
-        let nets = match sa.networks.for_method(mode) {
+        let nets = match sa
+            .spec(mode)
+            .and_then(|run| run.surrogate_for(mode).map_err(|e| e.to_string()))
+        {
             Ok(n) => n,
             Err(e) => {
                 eprintln!("skipping {mode}: {e}");

@@ -2,12 +2,11 @@
 //! returns `Err(message)` on bad input; `main` prints it on one line and exits
 //! with status 2.
 
-use std::sync::Arc;
-
 use clap::{Parser, Subcommand};
-use redundant_ik::networks::{self, NetworkSet, Networks, Variant};
+use redundant_ik::networks::{self, NetworkSet, Variant};
 use redundant_ik::obstacle::Placement;
-use redundant_ik::{Arm, Method, Surrogate};
+use redundant_ik::run::NetworkChoice;
+use redundant_ik::{Arm, Method};
 
 pub mod atlas;
 pub mod bench;
@@ -152,9 +151,29 @@ pub struct NetworkArgs {
 }
 
 impl NetworkArgs {
-    /// Loads the selected networks: each of the two from the user's file if
-    /// given, else the embedded one.
-    pub fn load(&self) -> Result<Networks, String> {
+    /// Whether any of these options was given (not left at its default).
+    pub fn given(&self, given: &params::Given) -> Option<String> {
+        let cmd = <NetworkArgs as clap::Args>::augment_args(clap::Command::new("networks"));
+        let flag = cmd
+            .get_arguments()
+            .find(|a| given.has(a.get_id().as_str()))
+            .map(|a| format!("--{}", a.get_long().unwrap_or(a.get_id().as_str())));
+        flag
+    }
+
+    /// The networks these options choose, as a run names them: the shipped
+    /// set, or, where a file or the paper set's other `Phi` is asked for,
+    /// the weights files themselves (a run file then replays without them).
+    pub fn choice(&self) -> Result<NetworkChoice, String> {
+        if self.phi_weights.is_none() && self.v_weights.is_none() && self.phi_variant.is_none() {
+            return Ok(NetworkChoice::Set(self.networks));
+        }
+        let (phi, v) = self.texts()?;
+        Ok(NetworkChoice::Files { phi, v })
+    }
+
+    /// The JSON text of the selected weights files.
+    fn texts(&self) -> Result<(String, String), String> {
         let (phi_shipped, v_shipped) = match (self.networks, self.phi_variant) {
             (NetworkSet::Paper, variant) => (
                 networks::embedded_phi_json(variant.unwrap_or(networks::DEFAULT_PHI_VARIANT)),
@@ -174,16 +193,7 @@ impl NetworkArgs {
             Some(f) => read_weights_file(f)?,
             None => v_shipped.to_owned(),
         };
-        Networks::from_json(&phi, &v).map_err(|e| e.to_string())
-    }
-
-    /// The networks a method needs, or `None` for a method without
-    /// networks (the planner refuses networks trained for another arm).
-    pub fn for_method(&self, method: Method) -> Result<Option<Arc<dyn Surrogate>>, String> {
-        if !method.uses_networks() {
-            return Ok(None);
-        }
-        Ok(Some(Arc::new(self.load()?)))
+        Ok((phi, v))
     }
 }
 

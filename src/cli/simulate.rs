@@ -4,6 +4,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use redundant_ik::export::{self, RunFile};
+use redundant_ik::run::Run;
 use redundant_ik::{Arm, DampingSchedule, Method, Planner, Scene, Trajectory};
 
 use std::fmt::Write as _;
@@ -119,7 +120,34 @@ impl SceneArgs {
     pub fn method(&self, arg: &MethodArg) -> Result<Method, String> {
         Ok(match arg.method {
             Some(m) => m,
-            None => self.run_file()?.map_or(Method::NUMERICAL, |r| r.mode),
+            None => self.run_file()?.map_or(Method::NUMERICAL, |r| r.method),
+        })
+    }
+
+    /// The run these options describe with `method`: the run file's (its
+    /// networks, where it names them; the network options then cannot
+    /// change them), else the scene of the options with the networks they
+    /// choose.
+    pub fn spec(&self, method: Method) -> Result<Run, String> {
+        if let Some(file) = self.run_file()? {
+            let mut run = file.run();
+            run.method = method;
+            match (&run.networks, self.networks.given(&self.given)) {
+                (Some(_), Some(flag)) => {
+                    return Err(format!(
+                        "--from names the networks its run used; {flag} cannot change them"
+                    ))
+                }
+                (None, _) => run.networks = Some(self.networks.choice()?),
+                (Some(_), None) => {}
+            }
+            return Ok(run);
+        }
+        Ok(Run {
+            task: self.task,
+            method,
+            scene: self.scene()?,
+            networks: Some(self.networks.choice()?),
         })
     }
 
@@ -169,12 +197,12 @@ impl SceneArgs {
         Ok(s)
     }
 
-    /// Runs the scene with `method`.
-    pub fn run(&self, method: Method) -> Result<(Scene, Trajectory), String> {
-        let scene = self.scene()?;
-        let nets = self.networks.for_method(method)?;
-        let traj = Planner::run(scene.clone(), method, nets).map_err(|e| e.to_string())?;
-        Ok((scene, traj))
+    /// Runs the scene with `method`: the run and what it did.
+    pub fn run(&self, method: Method) -> Result<(Run, Trajectory), String> {
+        let run = self.spec(method)?;
+        let nets = run.surrogate_for(method).map_err(|e| e.to_string())?;
+        let traj = Planner::run(run.scene.clone(), method, nets).map_err(|e| e.to_string())?;
+        Ok((run, traj))
     }
 }
 
@@ -208,7 +236,8 @@ pub struct SimulateArgs {
 pub fn run(args: &SimulateArgs) -> Result<(), String> {
     let method = args.scene.method(&args.method)?;
     let task = args.scene.task()?;
-    let (scene, traj) = args.scene.run(method)?;
+    let (run, traj) = args.scene.run(method)?;
+    let scene = run.scene.clone();
     let mut out = String::new();
     macro_rules! w {
         ($o:ident, $($arg:tt)*) => {{
@@ -219,7 +248,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         return emit(&export::run_csv(&scene, &traj.steps));
     }
     if args.json {
-        return emit(&format!("{}\n", RunFile::new(task, scene, traj).to_json()));
+        return emit(&format!("{}\n", RunFile::new(run, traj).to_json()));
     }
     let s = &traj.summary;
     let first = &traj.steps[0];

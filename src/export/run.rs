@@ -4,23 +4,30 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::planner::{Method, Sample, Summary, Trajectory};
+use crate::run::{NetworkChoice, Run};
 use crate::scene::Scene;
 
 /// Largest run file read (bytes): a run of the longest scene (10 000
 /// steps of a 6-link arm) is about 6 MB.
 pub const MAX_RUN_FILE_BYTES: usize = 16 << 20;
 
-/// One run: `{ task, mode, scene, steps, summary }`, the JSON of
-/// `redundant-ik simulate --json` and of the page's "Download run".
+/// One run: `{ task, method, scene, networks, steps, summary }`, the JSON
+/// of `redundant-ik simulate --json` and of the page's "Download run": the
+/// [`Run`] and what it did. Files written before read too (`mode` for
+/// `method`, no `networks`: the paper's set).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RunFile {
     /// The paper task the scene came from (its start pose and target may
     /// have been changed since: the scene says what was run).
     pub task: u32,
     /// The method.
-    pub mode: Method,
-    /// Everything that defines the run.
+    #[serde(alias = "mode")]
+    pub method: Method,
+    /// Everything that defines the motion.
     pub scene: Scene,
+    /// The networks the method ran with (absent for a method without).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub networks: Option<NetworkChoice>,
     /// One sample per RK4 step, the start first.
     pub steps: Vec<Sample>,
     /// The outcome.
@@ -28,14 +35,27 @@ pub struct RunFile {
 }
 
 impl RunFile {
-    /// The file of a run of `scene` (from paper task `task`).
-    pub fn new(task: u32, scene: Scene, run: Trajectory) -> Self {
+    /// The file of `run` and what it did: the networks are kept for a
+    /// method that uses them only.
+    pub fn new(run: Run, traj: Trajectory) -> Self {
+        let networks = run.networks.filter(|_| traj.method.uses_networks());
         Self {
-            task,
-            mode: run.method,
-            scene,
-            steps: run.steps,
-            summary: run.summary,
+            task: run.task,
+            method: traj.method,
+            scene: run.scene,
+            networks,
+            steps: traj.steps,
+            summary: traj.summary,
+        }
+    }
+
+    /// The run it replays.
+    pub fn run(&self) -> Run {
+        Run {
+            task: self.task,
+            method: self.method,
+            scene: self.scene.clone(),
+            networks: self.networks.clone(),
         }
     }
 
@@ -61,6 +81,8 @@ impl RunFile {
         let run: Self = serde_json::from_str(text)
             .map_err(|e| refuse(format!("not the JSON of simulate --json: {e}")))?;
         run.scene.validate()?;
+        let mut run = run;
+        run.summary.success = !run.summary.collided && run.summary.reached;
         Ok(run)
     }
 }

@@ -97,6 +97,7 @@ impl Planner {
             final_error,
             max_tracking_error: self.stats.max_tracking_error,
             reached: final_error <= REACH_TOLERANCE,
+            success: !self.stats.collided && final_error <= REACH_TOLERANCE,
             target_reachable: self.scene.arm.can_reach(&self.scene.target_vector()),
             out_of_range_steps: self.stats.out_of_range_steps,
             max_delta: self.stats.max_delta,

@@ -153,6 +153,13 @@ pub struct Summary {
     pub max_tracking_error: f64,
     /// `final_error <= REACH_TOLERANCE`.
     pub reached: bool,
+    /// The run's success, the one test every report uses (the atlas's
+    /// `success`, the training check, `eval`): clear of every obstacle
+    /// throughout and [`Summary::reached`]. Absent in files written before
+    /// it (read as `false`; [`crate::export::RunFile::from_json`] sets it
+    /// from the other fields).
+    #[serde(default)]
+    pub success: bool,
     /// Whether the target lies in the arm's workspace at all.
     pub target_reachable: bool,
     /// Steps at which a network's input left its trained range.

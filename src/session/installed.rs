@@ -7,15 +7,17 @@ use super::Session;
 use crate::error::{Error, Result};
 use crate::networks::{self, NetworkSet, Networks, TrainedRange};
 use crate::planner::{Method, Surrogate};
+use crate::run::NetworkChoice;
 
 /// Networks installed in a session, with what they were trained on and
-/// which shipped set they are (`None`: trained or loaded by the user).
+/// what they are: a shipped set, or the user's files (their text, so that
+/// a run says which networks made it; the page keeps no copy).
 #[derive(Clone)]
 pub(super) struct Installed {
     pub(super) surrogate: Arc<dyn Surrogate>,
     pub(super) range: TrainedRange,
     pub(super) networks: Arc<Networks>,
-    pub(super) set: Option<NetworkSet>,
+    pub(super) choice: NetworkChoice,
 }
 
 impl Session {
@@ -43,7 +45,23 @@ impl Session {
     /// Installs trained networks (refused if they are for another arm; the
     /// networks in use stay then).
     pub fn set_networks(&mut self, networks: Arc<Networks>) -> Result<()> {
-        self.install(networks, None)
+        let choice = NetworkChoice::Files {
+            phi: networks.phi_file().to_json()?,
+            v: networks.v_file().to_json()?,
+        };
+        self.install(networks, choice)
+    }
+
+    /// Installs the networks of a pair of weights files (JSON text),
+    /// refused, the networks in use staying, when they do not load or are
+    /// for another arm.
+    pub fn load_networks(&mut self, phi_json: &str, v_json: &str) -> Result<()> {
+        let networks = Arc::new(Networks::from_json(phi_json, v_json)?);
+        let choice = NetworkChoice::Files {
+            phi: phi_json.to_string(),
+            v: v_json.to_string(),
+        };
+        self.install(networks, choice)
     }
 
     /// Installs a shipped network set ([`NetworkSet`]) for the methods that
@@ -57,27 +75,29 @@ impl Session {
                 set.name()
             )));
         }
-        self.install(nets, Some(set))
+        self.install(nets, NetworkChoice::Set(set))
     }
 
     /// The shipped set in use, if the installed networks are one.
     pub fn network_set(&self) -> Option<NetworkSet> {
-        self.networks.as_ref().and_then(|n| n.set)
+        self.networks.as_ref().and_then(|n| n.choice.set())
     }
 
-    pub(super) fn install(
-        &mut self,
-        networks: Arc<Networks>,
-        set: Option<NetworkSet>,
-    ) -> Result<()> {
+    /// What the installed networks are, if any.
+    pub fn network_choice(&self) -> Option<&NetworkChoice> {
+        self.networks.as_ref().map(|n| &n.choice)
+    }
+
+    pub(super) fn install(&mut self, networks: Arc<Networks>, choice: NetworkChoice) -> Result<()> {
         let range = networks.trained_range();
         let surrogate: Arc<dyn Surrogate> = networks.clone();
         self.twin.set_networks(Some(surrogate.clone()))?;
+        self.networks_installed += 1;
         self.networks = Some(Installed {
             surrogate,
             range,
             networks,
-            set,
+            choice,
         });
         Ok(())
     }
@@ -89,6 +109,7 @@ impl Session {
         }
         self.twin.set_networks(None)?;
         self.networks = None;
+        self.networks_installed += 1;
         Ok(())
     }
 }

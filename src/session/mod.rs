@@ -15,6 +15,7 @@ mod compare;
 mod history;
 mod installed;
 mod pointer;
+mod revision;
 mod state;
 
 use crate::arm::Arm;
@@ -24,6 +25,7 @@ use crate::networks::{self, NetworkSet};
 use crate::obstacle::Obstacle;
 use crate::planner::methods::{DELTA, LAMBDA};
 use crate::planner::{Method, Planner};
+use crate::run::Run;
 use crate::scene::{Param, Scene, PAPER_RADIUS, PAPER_TARGET};
 use crate::twin::Twin;
 
@@ -31,6 +33,7 @@ pub use clock::MAX_STEPS_PER_FRAME;
 pub use compare::MethodRun;
 pub use history::{below_floor, Point, STROBE_EVERY};
 pub use pointer::{Handle, DRAG_LINE_SPEED, MIN_LINE_DURATION, NUDGE};
+pub use revision::Revision;
 pub use state::{GhostState, State};
 
 use history::Histories;
@@ -82,6 +85,9 @@ pub struct Session {
     solver_ms_per_step: f64,
     error: Option<String>,
     clock: fn() -> f64,
+    /// Counts installs and removals of networks (for [`Revision`]).
+    networks_installed: u64,
+    revisions: revision::Revisions,
 }
 
 fn no_clock() -> f64 {
@@ -143,6 +149,8 @@ impl Session {
             solver_ms_per_step: 0.0,
             error: None,
             clock: no_clock,
+            networks_installed: 0,
+            revisions: revision::Revisions::default(),
         };
         s.restart();
         Ok(s)
@@ -247,12 +255,32 @@ impl Session {
     pub fn set_method(&mut self, method: Method) -> Result<()> {
         if method.uses_networks() && self.networks.is_none() {
             let nets = networks::available(self.arm(), None)?;
-            self.install(nets, Some(NetworkSet::Paper))?;
+            self.install(nets, crate::run::NetworkChoice::Set(NetworkSet::Paper))?;
         }
         self.twin.set_method(method)?;
         self.remember_poses();
         self.after_change();
         Ok(())
+    }
+
+    /// What runs: the task, the scene, the method and the networks
+    /// installed (absent: none installed, so the paper's set where a method
+    /// needs them). What the page's workers and its run file take.
+    pub fn run(&self) -> Run {
+        let p = self.planner();
+        Run {
+            task: self.task,
+            method: p.method(),
+            scene: p.scene().clone(),
+            networks: self.network_choice().cloned(),
+        }
+    }
+
+    /// The revisions of what results depend on ([`Revision`]).
+    pub fn revision(&self) -> Revision {
+        let p = self.planner();
+        self.revisions
+            .observe(self.task, p.method(), p.scene(), self.networks_installed)
     }
 
     /// Sets `lambda`, the gain of the obstacle vector (eq. 14).

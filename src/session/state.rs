@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 use super::{Handle, Session};
 use crate::arm::Arm;
 use crate::clearance::{Pair, Pairs};
-use crate::networks::TrainedRange;
+use crate::networks::{self, NetworkSet, TrainedRange};
 use crate::obstacle::{self, Obstacle};
 use crate::planner::methods::{INFLUENCE, LAMBDA};
 use crate::planner::params;
@@ -112,6 +112,16 @@ pub struct State<'a> {
     /// The shipped set installed (`paper`, `reach`), or `None` for
     /// networks trained or loaded by the user (or none installed).
     pub network_set: Option<&'static str>,
+    /// Whether each shipped set was trained for this arm, by name.
+    pub set_fits: BTreeMap<&'static str, bool>,
+    /// The arm as the command line and the address write it
+    /// (`0.5:0.6,0.85,0.6`).
+    pub arm_text: String,
+    /// Whether the arm is the paper's (the page's first preset).
+    pub paper_arm: bool,
+    /// The revisions of what results depend on: a result made at another
+    /// revision is stale ([`super::Revision`]).
+    pub revision: super::Revision,
     /// The numerical ghost, in the network cases.
     pub ghost: Option<GhostState>,
     /// Steps since the last reset.
@@ -211,6 +221,13 @@ impl Session {
             networks: self.networks_fit(),
             trained_range: self.trained_range(),
             network_set: self.network_set().map(|n| n.name()),
+            set_fits: NetworkSet::ALL
+                .iter()
+                .map(|s| (s.name(), networks::builtin_fits(&scene.arm)))
+                .collect(),
+            arm_text: scene.arm.to_string(),
+            paper_arm: scene.arm == Arm::paper(),
+            revision: self.revision(),
             ghost: self.ghost().map(|g| GhostState {
                 theta: g.theta().iter().copied().collect(),
                 ee: g.sample().ee,

@@ -147,7 +147,7 @@ pub fn random_obstacle(arm: &Arm, min: [f64; 2], max: [f64; 2], rng: &mut Rng) -
 /// Whether a run ended clear of every obstacle and within
 /// [`crate::planner::REACH_TOLERANCE`] of its target: the atlas's `success`.
 pub fn succeeded(summary: &crate::planner::Summary) -> bool {
-    !summary.collided && summary.final_error <= crate::planner::REACH_TOLERANCE
+    summary.success
 }
 
 /// `count` random tasks of `arm`, each with one obstacle in `[min, max]`

@@ -9,7 +9,6 @@ use super::layer::Layer;
 use super::surface::Surface;
 use super::{input, js_err, now_ms, plots, stage, to_js};
 use crate::atlas::Grid;
-use crate::networks::Networks;
 use crate::planner::Method;
 use crate::session::Session;
 
@@ -88,10 +87,7 @@ impl Demo {
     /// for another arm; the networks in use stay then.
     #[wasm_bindgen(js_name = loadNetworks)]
     pub fn load_networks(&mut self, phi_json: &str, v_json: &str) -> JsResult {
-        let nets = Networks::from_json(phi_json, v_json).map_err(js_err)?;
-        self.session
-            .set_networks(std::sync::Arc::new(nets))
-            .map_err(js_err)
+        self.session.load_networks(phi_json, v_json).map_err(js_err)
     }
 
     /// Sets `lambda`, the gain of the obstacle vector (eq. 14); at least 0.
@@ -211,9 +207,18 @@ impl Demo {
     }
 
     /// The scene as a plain object (arm, start pose, target, obstacles,
-    /// gains, time step): what an atlas worker maps (`AtlasJob`).
+    /// parameters, time step).
     pub fn scene(&self) -> JsResult<JsValue> {
         to_js(self.session.planner().scene())
+    }
+
+    /// What runs, as a plain object `{ task, method, scene, networks }`
+    /// (`networks`: `{ set }` for a shipped set, `{ phi, v }` with the
+    /// weights files' text for the user's, absent when none is installed):
+    /// what the workers' jobs take (`AtlasJob`, `runFiles`, the training's
+    /// check) and what a run file records.
+    pub fn run(&self) -> JsResult<JsValue> {
+        to_js(&self.session.run())
     }
 
     /// Shows an atlas under the arm: `region` `[x0, x1, y0, y1]`, `n` points

@@ -8,13 +8,12 @@
 use serde::Serialize;
 use wasm_bindgen::prelude::*;
 
-use super::worker::files;
+use super::worker::read_run;
 use super::{js_err, to_js};
 use crate::atlas::Atlas;
 use crate::export::{self, RunFile};
 use crate::figure;
-use crate::networks;
-use crate::planner::{Method, Planner};
+use crate::planner::Planner;
 use crate::scene::Scene;
 use crate::session::STROBE_EVERY;
 
@@ -31,32 +30,22 @@ struct RunFiles {
     plots: String,
 }
 
-/// Runs `scene` (the page's `Demo.scene()`, from paper task `task`) with
-/// `mode` from `t = 0` to `tf`, as the page does, with the networks of the
-/// weights files `phi_json` and `v_json` if both are given and fit the
-/// arm, else the built-in ones where they fit; returns `{ json, csv,
+/// Runs `run` (the page's `Demo.run()`: its task, scene, method and
+/// networks) from `t = 0` to `tf`, as the page does; returns `{ json, csv,
 /// figure, plots }` (the figures as SVG, the arm drawn every
-/// [`STROBE_EVERY`]th step, as on the stage). Throws with the core's
+/// [`STROBE_EVERY`]th step, as on the stage; the JSON names the networks,
+/// so `simulate --from` replays it with them). Throws with the core's
 /// message on bad input.
 #[wasm_bindgen(js_name = runFiles)]
-pub fn run_files(
-    scene: JsValue,
-    mode: &str,
-    task: u32,
-    phi_json: Option<String>,
-    v_json: Option<String>,
-) -> Result<JsValue, JsError> {
-    let scene: Scene = serde_wasm_bindgen::from_value(scene)
-        .map_err(|e| JsError::new(&format!("not a scene: {e}")))?;
-    scene.validate().map_err(js_err)?;
-    let method: Method = mode.parse().map_err(js_err)?;
-    let installed = files(phi_json, v_json)?;
-    let nets = networks::for_method(method, &scene.arm, installed.as_ref()).map_err(js_err)?;
-    let run = Planner::run(scene.clone(), method, nets).map_err(js_err)?;
-    let figure = figure::arm_svg(task, &scene, &run, STROBE_EVERY).map_err(js_err)?;
-    let plots = figure::series_svg(task, &scene, &run).map_err(js_err)?;
-    let csv = export::run_csv(&scene, &run.steps);
-    let json = RunFile::new(task, scene, run).to_json();
+pub fn run_files(run: JsValue) -> Result<JsValue, JsError> {
+    let run = read_run(run)?;
+    let (task, scene, method) = (run.task, run.scene.clone(), run.method);
+    let nets = run.surrogate_for(method).map_err(js_err)?;
+    let traj = Planner::run(scene.clone(), method, nets).map_err(js_err)?;
+    let figure = figure::arm_svg(task, &scene, &traj, STROBE_EVERY).map_err(js_err)?;
+    let plots = figure::series_svg(task, &scene, &traj).map_err(js_err)?;
+    let csv = export::run_csv(&scene, &traj.steps);
+    let json = RunFile::new(run, traj).to_json();
     to_js(&RunFiles {
         json,
         csv,

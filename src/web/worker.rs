@@ -4,8 +4,6 @@
 //! benchmark, one figure per call. The page's own module carries none of
 //! them.
 
-use std::sync::Arc;
-
 use serde::Deserialize;
 use wasm_bindgen::prelude::*;
 
@@ -13,9 +11,9 @@ use super::{js_err, now_ms, to_js};
 use crate::atlas::{Grid, Job, Spec, DEFAULT_GRID};
 use crate::bench;
 use crate::error::{self, Error};
-use crate::networks::{self, Networks};
+use crate::networks;
 use crate::planner::{methods, Method};
-use crate::scene::Scene;
+use crate::run::{NetworkChoice, Run};
 
 /// Refuses a field of `value` not in `names`: serde-wasm-bindgen reads only
 /// the fields it knows, so a misspelt one would quietly become a default.
@@ -32,17 +30,12 @@ fn known_fields(value: &JsValue, names: &[&str], what: &str) -> Result<(), JsErr
     Ok(())
 }
 
-/// The networks of a pair of weights files, if both are given.
-pub(super) fn files(
-    phi_json: Option<String>,
-    v_json: Option<String>,
-) -> Result<Option<Arc<Networks>>, JsError> {
-    match (phi_json, v_json) {
-        (Some(phi), Some(v)) => Ok(Some(Arc::new(
-            Networks::from_json(&phi, &v).map_err(js_err)?,
-        ))),
-        _ => Ok(None),
-    }
+/// A run as the page passes it (`Demo.run()`), checked.
+pub(super) fn read_run(run: JsValue) -> Result<Run, JsError> {
+    let run: Run = serde_wasm_bindgen::from_value(run)
+        .map_err(|e| JsError::new(&format!("not a run: {e}")))?;
+    run.validate().map_err(js_err)?;
+    Ok(run)
 }
 
 // ---- the atlas -----------------------------------------------------------
@@ -71,9 +64,9 @@ const OPTION_NAMES: [&str; 7] = [
     "modes", "n", "region", "task", "feedback", "refine", "networks",
 ];
 
-/// An atlas being computed in a worker: `new AtlasJob(scene, options,
-/// phiJson, vJson)`, then `advance(cells)` until `done == total`, then
-/// `finish()` for the result (the JSON shape of `redundant-ik atlas --json`).
+/// An atlas being computed in a worker: `new AtlasJob(run, options)`, then
+/// `advance(cells)` until `done == total`, then `finish()` for the result
+/// (the JSON shape of `redundant-ik atlas --json`).
 #[wasm_bindgen]
 pub struct AtlasJob {
     job: Job,
@@ -82,23 +75,17 @@ pub struct AtlasJob {
 
 #[wasm_bindgen]
 impl AtlasJob {
-    /// `scene` is the page's scene (`Demo.scene()`); `options` is
-    /// `{ modes, n, region, task, feedback, refine, networks }`, each
-    /// optional (`feedback` and `refine` override the scene's). The methods
-    /// that use networks take the shipped set `networks` if named, else the
-    /// weights files `phi_json` and `v_json` if both are given and fit the
-    /// arm, else the built-in networks where they fit
-    /// ([`networks::available`]). Throws with the core's message on bad
+    /// `run` is the page's run (`Demo.run()`: its scene and networks);
+    /// `options` is `{ modes, n, region, task, feedback, refine, networks
+    /// }`, each optional (`feedback` and `refine` override the scene's,
+    /// `task` the run's, and `networks` names a shipped set instead of the
+    /// run's networks). The methods that use networks take those, or the
+    /// built-in ones where none are named and they fit the arm
+    /// ([`Run::load_networks`]). Throws with the core's message on bad
     /// input.
     #[wasm_bindgen(constructor)]
-    pub fn new(
-        scene: JsValue,
-        options: JsValue,
-        phi_json: Option<String>,
-        v_json: Option<String>,
-    ) -> Result<AtlasJob, JsError> {
-        let mut scene: Scene = serde_wasm_bindgen::from_value(scene)
-            .map_err(|e| JsError::new(&format!("not a scene: {e}")))?;
+    pub fn new(run: JsValue, options: JsValue) -> Result<AtlasJob, JsError> {
+        let mut run = read_run(run)?;
         let options: AtlasOptions = if options.is_undefined() || options.is_null() {
             AtlasOptions {
                 modes: None,
@@ -133,7 +120,7 @@ impl AtlasJob {
             }
         };
         let grid = match options.region.as_deref() {
-            None => Grid::around_reach(&scene.arm, n),
+            None => Grid::around_reach(&run.scene.arm, n),
             Some(&[x0, x1, y0, y1]) => Grid::new([x0, x1, y0, y1], n).map_err(js_err)?,
             Some(other) => {
                 return Err(JsError::new(&format!(
@@ -151,32 +138,28 @@ impl AtlasJob {
                 .map_err(js_err)?,
         };
         if let Some(k) = options.feedback {
-            crate::scene::validate_gain(k, scene.dt).map_err(js_err)?;
-            scene.feedback_gain = k;
+            crate::scene::validate_gain(k, run.scene.dt).map_err(js_err)?;
+            run.scene.feedback_gain = k;
         }
         if let Some(k) = options.refine {
-            scene
+            run.scene
                 .set_param(&crate::planner::methods::REFINE, k)
                 .map_err(js_err)?;
         }
-        let set = match options.networks.as_deref() {
-            None => None,
-            Some(name) => Some(name.parse::<networks::NetworkSet>().map_err(js_err)?),
-        };
+        if let Some(name) = options.networks.as_deref() {
+            let set = name.parse::<networks::NetworkSet>().map_err(js_err)?;
+            run.networks = Some(NetworkChoice::Set(set));
+        }
         let networks = if modes.iter().any(|m| m.uses_networks()) {
-            let chosen = match set {
-                Some(set) => Some(networks::builtin_set(set).map_err(js_err)?),
-                None => files(phi_json, v_json)?,
-            };
-            Some(networks::available(&scene.arm, chosen.as_ref()).map_err(js_err)?)
+            Some(run.load_networks().map_err(js_err)?)
         } else {
             None
         };
         let spec = Spec {
-            scene,
+            scene: run.scene,
             grid,
             modes,
-            task: options.task,
+            task: Some(options.task.unwrap_or(run.task)),
         };
         Ok(AtlasJob {
             job: Job::new(spec, networks).map_err(js_err)?,
@@ -253,21 +236,25 @@ fn trained_js(trained: &crate::training_job::Trained) -> Result<JsValue, JsError
 
 /// Trains networks for an arm (`crate::training_job::train`):
 /// `request` is `{ arm: { post, links }, net: "phi" | "v" | "both", preset:
-/// "quick" | "thorough", samples?, epochs?, seed? }`; `phi_json` and
-/// `v_json` are the weights files in use (the network not trained is kept
-/// from them). `on_epoch(progress)` is called after every epoch with `{ net,
+/// "quick" | "thorough", samples?, epochs?, seed? }`; `run` is the page's
+/// run (`Demo.run()`), whose networks, where they fit the arm, give the
+/// network not trained (else the built-in ones where they fit). `on_epoch(progress)` is called after every epoch with `{ net,
 /// epoch, train_mse, val_mse, mu, gradient, max_epochs }`. Returns `{ phi,
 /// v, report }`: both weights files as JSON text and the report. Throws
 /// with the core's message on bad input; nothing is installed anywhere.
 #[wasm_bindgen(js_name = trainNetworks)]
 pub fn train_networks(
     request: JsValue,
-    phi_json: Option<String>,
-    v_json: Option<String>,
+    run: JsValue,
     on_epoch: &js_sys::Function,
 ) -> Result<JsValue, JsError> {
     let request = training_request(request)?;
-    let installed = files(phi_json, v_json)?;
+    let run = read_run(run)?;
+    let installed = run
+        .networks
+        .as_ref()
+        .and_then(|c| c.load().ok())
+        .filter(|n| n.arm() == &request.arm);
     let current = networks::available(&request.arm, installed.as_ref()).ok();
     let trained =
         crate::training_job::train(&request, current.as_deref(), forward_epochs(on_epoch))

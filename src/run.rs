@@ -1,0 +1,161 @@
+//! What a run is: a scene (from a paper task), a method, and the networks
+//! the method uses (a shipped set by name, or the user's own weights
+//! files). The session produces it ([`crate::session::Session::run`]); the
+//! page's workers (atlas, files to take away, training check) and the run
+//! file take it, so a run made with the whole-reach networks is saved,
+//! mapped and replayed with them (`simulate --from`).
+
+use std::sync::Arc;
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::networks::{self, NetworkSet, Networks};
+use crate::planner::{Method, Surrogate};
+use crate::scene::Scene;
+
+/// The networks of a run: a shipped set, or a pair of weights files.
+/// Written `{"set": "reach"}` or `{"phi": "<weights file>", "v": "<weights
+/// file>"}` (the files' JSON text, so a run file replays without them).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "ChoiceFields", into = "ChoiceFields")]
+pub enum NetworkChoice {
+    /// A shipped set ([`networks::builtin_set`]).
+    Set(NetworkSet),
+    /// The user's weights files (trained in the page or by `train`, or
+    /// loaded), as JSON text.
+    Files {
+        /// The `Phi` network's file.
+        phi: String,
+        /// The `v` network's file.
+        v: String,
+    },
+}
+
+/// The JSON form of a [`NetworkChoice`]: one flat object (serde's enum
+/// machinery costs the page's module kilobytes).
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ChoiceFields {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    set: Option<NetworkSet>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    phi: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    v: Option<String>,
+}
+
+impl TryFrom<ChoiceFields> for NetworkChoice {
+    type Error = Error;
+    fn try_from(f: ChoiceFields) -> Result<Self> {
+        match f {
+            ChoiceFields {
+                set: Some(set),
+                phi: None,
+                v: None,
+            } => Ok(NetworkChoice::Set(set)),
+            ChoiceFields {
+                set: None,
+                phi: Some(phi),
+                v: Some(v),
+            } => Ok(NetworkChoice::Files { phi, v }),
+            _ => Err(Error::Syntax {
+                what: "networks of a run",
+                text: String::new(),
+                expected: "either a shipped set ({\"set\": \"reach\"}) or both weights files ({\"phi\": ..., \"v\": ...})".into(),
+            }),
+        }
+    }
+}
+
+impl From<NetworkChoice> for ChoiceFields {
+    fn from(c: NetworkChoice) -> Self {
+        match c {
+            NetworkChoice::Set(set) => ChoiceFields {
+                set: Some(set),
+                phi: None,
+                v: None,
+            },
+            NetworkChoice::Files { phi, v } => ChoiceFields {
+                set: None,
+                phi: Some(phi),
+                v: Some(v),
+            },
+        }
+    }
+}
+
+impl NetworkChoice {
+    /// The networks chosen, loaded (a shipped set is loaded once and
+    /// shared); or why they cannot be.
+    pub fn load(&self) -> Result<Arc<Networks>> {
+        match self {
+            NetworkChoice::Set(set) => networks::builtin_set(*set),
+            NetworkChoice::Files { phi, v } => Ok(Arc::new(Networks::from_json(phi, v)?)),
+        }
+    }
+
+    /// The shipped set, if the choice is one.
+    pub fn set(&self) -> Option<NetworkSet> {
+        match self {
+            NetworkChoice::Set(set) => Some(*set),
+            NetworkChoice::Files { .. } => None,
+        }
+    }
+}
+
+/// One run: everything a result depends on.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Run {
+    /// The paper task the scene came from (its start pose, target and
+    /// obstacles may have been changed since: the scene says what runs).
+    pub task: u32,
+    /// The method (`mode` in files written before this name).
+    #[serde(alias = "mode")]
+    pub method: Method,
+    /// Everything that defines the motion.
+    pub scene: Scene,
+    /// The networks of the methods that use them; absent: the paper's set
+    /// (what runs written before this field used).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub networks: Option<NetworkChoice>,
+}
+
+impl Run {
+    /// The networks the run's methods use, loaded and checked against the
+    /// arm: the chosen ones, or the paper's set where none is chosen; an
+    /// error where they were trained for another arm.
+    pub fn load_networks(&self) -> Result<Arc<Networks>> {
+        let chosen = self
+            .networks
+            .as_ref()
+            .map(NetworkChoice::load)
+            .transpose()?;
+        if let Some(n) = &chosen {
+            if n.arm() != &self.scene.arm {
+                return Err(Error::NetworksUnavailable(format!(
+                    "the networks of this run were trained for the arm {}, not for {}",
+                    n.arm(),
+                    self.scene.arm
+                )));
+            }
+        }
+        networks::available(&self.scene.arm, chosen.as_ref())
+    }
+
+    /// The networks `method` runs with: none for a method without networks,
+    /// else [`Run::load_networks`].
+    pub fn surrogate_for(&self, method: Method) -> Result<Option<Arc<dyn Surrogate>>> {
+        if !method.uses_networks() {
+            return Ok(None);
+        }
+        Ok(Some(self.load_networks()? as Arc<dyn Surrogate>))
+    }
+
+    /// Checks the scene (a run is user input where it comes from a file or
+    /// the page).
+    pub fn validate(&self) -> Result<()> {
+        self.scene.validate()
+    }
+}
