@@ -256,7 +256,9 @@ fn trained_js(trained: &crate::training_job::Trained) -> Result<JsValue, JsError
 /// "quick" | "thorough", samples?, epochs?, seed? }`; `phi_json` and
 /// `v_json` are the weights files in use (the network not trained is kept
 /// from them). `on_epoch(progress)` is called after every epoch with `{ net,
-/// epoch, train_mse, val_mse, mu, gradient, max_epochs }`. Returns `{ phi,
+/// optimiser, epoch, train_mse, val_mse, mu, gradient, max_epochs }`
+/// (`optimiser` is `"lm"` or `"adam"`; `mu` is LM's damping or Adam's
+/// learning rate). Returns `{ phi,
 /// v, report }`: both weights files as JSON text and the report. Throws
 /// with the core's message on bad input; nothing is installed anywhere.
 #[wasm_bindgen(js_name = trainNetworks)]
