@@ -50,7 +50,7 @@ pub(super) fn files(
 /// The options of an atlas as the page passes them.
 #[derive(Deserialize)]
 struct AtlasOptions {
-    /// Method names; all five when absent.
+    /// Method names; the paper's five when absent.
     modes: Option<Vec<String>>,
     /// Points per side; 41 when absent.
     n: Option<f64>,
