@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # End-to-end browser test of the demo: serves www/ on a free 127.0.0.1 port,
-# drives Debian's Chromium with playwright-core (tests/e2e/e2e.mjs), and exits
-# non-zero on any failure. Assumes www/pkg is built (make web).
+# drives Debian's Chromium with playwright-core (tests/e2e/e2e.mjs, which runs
+# the test files beside it), and exits non-zero on any failure. Assumes
+# www/pkg is built (make web).
 #
 #   scripts/e2e.sh              # all tests
 #   CHROMIUM=/path/to/chromium scripts/e2e.sh

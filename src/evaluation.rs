@@ -189,7 +189,7 @@ pub fn run_task_refined(
     Ok(out)
 }
 
-/// All five modes on both paper tasks with their canonical obstacles,
+/// The paper's five methods on both paper tasks with their canonical obstacles,
 /// `refine` steps on the learned `Phi`.
 pub fn task_outcomes(nets: &Networks, feedback_gain: f64, refine: u32) -> Result<Vec<TaskOutcome>> {
     let mut out = Vec::new();

@@ -143,6 +143,7 @@ fn with_no_obstacle_within_the_influence_distance_each_method_is_the_route_witho
         .unwrap();
     let numerical = Planner::new(damped, Method::NUMERICAL, None).unwrap();
     let mut rng = Rng::new(3);
+    let mut compared = 0;
     for _ in 0..50 {
         let theta = DVector::from_vec(random_theta(&mut rng, 3));
         let xdot = Vector2::new(rng.range(-0.2, 0.2), rng.range(-0.2, 0.2));
@@ -157,8 +158,16 @@ fn with_no_obstacle_within_the_influence_distance_each_method_is_the_route_witho
         // Within the rate limit the box constraints are inactive too.
         if b.amax() < scene.param(&RATE_LIMIT) {
             assert!((&a - &b).amax() < 1e-12, "{a} vs {b}");
+            compared += 1;
         }
     }
+    // Seed 3 compares 47 of the 50 poses (the other 3 are within the
+    // influence distance of the far obstacle or beyond the rate limit); far
+    // fewer means the skips grew and the comparison says little.
+    assert!(
+        compared >= 40,
+        "only {compared} of 50 random poses were compared"
+    );
 }
 
 #[test]

@@ -216,39 +216,80 @@ fn the_planner_never_panics_and_never_returns_nan() {
     );
 }
 
-proptest! {
-    #![proptest_config(ProptestConfig::with_cases(300))]
-
-    /// A damaged weights file (bytes overwritten, or cut short) is refused with
-    /// an error, or, if it still parses and fits, gives finite outputs or an
-    /// error: never a panic.
-    #[test]
-    fn a_damaged_weights_file_never_panics(
-        edits in prop::collection::vec((any::<prop::sample::Index>(), prop::sample::select(
-            vec!["0", "-", "1e999", "NaN", "null", "]", "[", ",", "\"", "}", " "])), 1..4),
-        cut in prop::option::weighted(0.2, any::<prop::sample::Index>()),
-    ) {
-        use redundant_ik::networks::{Networks, PHI_EQUIVARIANT_JSON, V_PLAIN_JSON};
-        let mut text = PHI_EQUIVARIANT_JSON.to_string();
-        for (at, with) in &edits {
-            let mut i = at.index(text.len());
-            while !text.is_char_boundary(i) {
-                i -= 1;
+/// A damaged weights file (bytes overwritten, or cut short) is refused with
+/// an error, or, if it still parses and fits, gives finite outputs or an
+/// error: never a panic. Half the cases overwrite only digits, damage that
+/// keeps the file readable; the test counts the damaged files that still
+/// load and give an output, and requires many, so that the finite-output
+/// check runs rather than the test passing on refusals alone.
+#[test]
+fn a_damaged_weights_file_never_panics() {
+    use proptest::test_runner::{Config, TestRunner};
+    use redundant_ik::networks::{Networks, PHI_EQUIVARIANT_JSON, V_PLAIN_JSON};
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    const CASES: u32 = 300;
+    let digit = prop::sample::select(vec!["0", "1", "3", "5", "7", "9"]);
+    let strategy = (
+        any::<bool>(),
+        prop::collection::vec((any::<prop::sample::Index>(), digit), 1..4),
+        prop::collection::vec(
+            (
+                any::<prop::sample::Index>(),
+                prop::sample::select(vec![
+                    "0", "-", "1e999", "NaN", "null", "]", "[", ",", "\"", "}", " ",
+                ]),
+            ),
+            1..4,
+        ),
+        prop::option::weighted(0.2, any::<prop::sample::Index>()),
+    );
+    let (loaded, finite) = (AtomicUsize::new(0), AtomicUsize::new(0));
+    let mut runner = TestRunner::new(Config::with_cases(CASES));
+    runner
+        .run(&strategy, |(on_digits, digits, edits, cut)| {
+            let mut text = PHI_EQUIVARIANT_JSON.to_string();
+            if on_digits {
+                // Digits overwritten by digits: the file still parses.
+                for (at, with) in &digits {
+                    let start = at.index(text.len());
+                    if let Some(i) = text[start..].find(|c: char| c.is_ascii_digit()) {
+                        text.replace_range(start + i..start + i + 1, with);
+                    }
+                }
             }
-            text.replace_range(i..(i + 1).min(text.len()), with);
-        }
-        if let Some(cut) = cut {
-            let mut i = cut.index(text.len());
-            while !text.is_char_boundary(i) {
-                i -= 1;
+            for (at, with) in edits.iter().filter(|_| !on_digits) {
+                let mut i = at.index(text.len());
+                while !text.is_char_boundary(i) {
+                    i -= 1;
+                }
+                text.replace_range(i..(i + 1).min(text.len()), with);
             }
-            text.truncate(i);
-        }
-        if let Ok(nets) = Networks::from_json(&text, V_PLAIN_JSON) {
-            let mut phi = [0.0; 6];
-            if nets.phi_into(&[0.3, 1.2, -0.4], &mut phi).is_ok() {
-                prop_assert!(phi.iter().all(|x| x.is_finite()));
+            if let Some(cut) = cut.filter(|_| !on_digits) {
+                let mut i = cut.index(text.len());
+                while !text.is_char_boundary(i) {
+                    i -= 1;
+                }
+                text.truncate(i);
             }
-        }
-    }
+            if let Ok(nets) = Networks::from_json(&text, V_PLAIN_JSON) {
+                loaded.fetch_add(1, Ordering::Relaxed);
+                let mut phi = [0.0; 6];
+                if nets.phi_into(&[0.3, 1.2, -0.4], &mut phi).is_ok() {
+                    prop_assert!(phi.iter().all(|x| x.is_finite()));
+                    finite.fetch_add(1, Ordering::Relaxed);
+                }
+            }
+            Ok(())
+        })
+        .unwrap();
+    let (loaded, finite) = (loaded.into_inner(), finite.into_inner());
+    eprintln!("{loaded} of {CASES} damaged files loaded, {finite} gave an output");
+    // Nearly all of the digit half loads (a digit of the format name or of
+    // a layer size is refused), the other half a few times in a hundred:
+    // 155, 149 and 150 of 300 in three runs. A quarter is far below that and
+    // still means the finite check ran in earnest.
+    assert!(
+        finite >= CASES as usize / 4,
+        "only {finite} of {CASES} damaged files gave an output: the finite check barely ran"
+    );
 }

@@ -274,6 +274,27 @@ fn bad_training_requests_are_refused_with_a_reason() {
 }
 
 #[test]
+fn every_epoch_names_its_optimiser_whose_rate_it_reports() {
+    // The page labels `mu` by it: LM's damping, or Adam's learning rate.
+    let optimiser = |preset, net| {
+        let mut r = small(Arm::paper(), Which::Both);
+        r.preset = preset;
+        let mut seen = Vec::new();
+        training_job::train_net(&r, net, |p| {
+            seen.push(p.optimiser);
+            false
+        })
+        .unwrap();
+        assert_eq!(seen.len(), 1, "the callback's false stops after one epoch");
+        seen[0]
+    };
+    assert_eq!(optimiser(Preset::Quick, NetKind::Phi), "lm");
+    assert_eq!(optimiser(Preset::Quick, NetKind::V), "lm");
+    assert_eq!(optimiser(Preset::Reach, NetKind::Phi), "adam");
+    assert_eq!(optimiser(Preset::Reach, NetKind::V), "lm");
+}
+
+#[test]
 fn stopping_early_keeps_what_was_learnt() {
     let mut r = small(four_links(), Which::Both);
     r.epochs = Some(50);

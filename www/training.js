@@ -181,7 +181,7 @@ export function mountTraining(root, demo, { files, install, keep, forget, attemp
       const perEpoch = (performance.now() - tFirstEpoch) / 1000 / Math.max(1, p.done - 1);
       const left = Math.max(0, (p.total - p.done) * perEpoch);
       status(
-        `${e.net === 'phi' ? 'Φ' : 'v'} network: epoch ${e.epoch} of at most ${e.max_epochs}, μ ${sci(e.mu)}, train ${sci(e.train_mse)}, validation ${sci(e.val_mse)} · ${fmtS(elapsed)} elapsed, at most ${fmtS(left)} left`,
+        `${e.net === 'phi' ? 'Φ' : 'v'} network: epoch ${e.epoch} of at most ${e.max_epochs}, ${e.optimiser === 'adam' ? 'learning rate η' : 'μ'} ${sci(e.mu)}, train ${sci(e.train_mse)}, validation ${sci(e.val_mse)} · ${fmtS(elapsed)} elapsed, at most ${fmtS(left)} left`,
       );
       if (el.status) Object.assign(el.status.dataset, { epoch: String(e.epoch), net: e.net });
       drawCurves(el.curves, curves);

@@ -167,7 +167,7 @@ pub struct Spec {
 
 impl Spec {
     /// The paper's task `task` on the default grid ([`Grid::around_reach`],
-    /// [`DEFAULT_GRID`] points per side) in all five modes.
+    /// [`DEFAULT_GRID`] points per side) in the paper's five methods.
     pub fn task(task: u32) -> Result<Self> {
         let scene = Scene::task(task)?;
         let grid = Grid::around_reach(&scene.arm, DEFAULT_GRID);

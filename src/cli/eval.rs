@@ -1,6 +1,6 @@
 //! `redundant-ik eval`: accuracy of the embedded (or given) networks on a
-//! fresh test set from their trained range, and the outcome of all five
-//! modes on both paper tasks.
+//! fresh test set from their trained range, and the outcome of the paper's
+//! five methods on both paper tasks.
 
 use clap::Args;
 use serde::Serialize;

@@ -16,11 +16,13 @@ pub mod params;
 pub mod simulate;
 pub mod train;
 
-/// Motion planning for a redundant planar 3-link arm: damped-least-squares
-/// inverse kinematics with a null-space obstacle-avoidance vector, and the
-/// neural networks that replace them (Cases 1-3 of the paper).
+/// Motion planning for redundant planar arms (2 to 32 links; the paper's is
+/// 3): damped-least-squares inverse kinematics with a null-space
+/// obstacle-avoidance vector, the neural networks that replace them (Cases
+/// 1-3 of the paper, trained by Levenberg-Marquardt or Adam), and methods
+/// beyond the paper.
 #[derive(Parser, Debug)]
-#[command(name = "redundant-ik", version, about, long_about = None)]
+#[command(name = "redundant-ik", version, long_about = None)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -32,13 +34,13 @@ enum Command {
     Simulate(simulate::SimulateArgs),
     /// Draw the paper-style stroboscopic figure(s) as SVG.
     Figure(figure::FigureArgs),
-    /// Train a network by Levenberg-Marquardt and write a weights file.
+    /// Train a network (Levenberg-Marquardt or Adam) and write a weights file.
     Train(train::TrainArgs),
     /// Evaluate the embedded networks: accuracy and task outcomes.
     Eval(eval::EvalArgs),
     /// Map where each mode keeps the arm clear: the obstacle on every cell of a grid.
     Atlas(atlas::AtlasArgs),
-    /// Measure theta_dot, RK4 steps, forward passes, an LM epoch and allocations per step.
+    /// Measure theta_dot, RK4 steps, forward passes, an LM epoch, an atlas and allocations per step.
     Bench(bench::BenchArgs),
 }
 

@@ -1,6 +1,7 @@
-//! `redundant-ik train`: draws a training set from the numerical route,
-//! trains a network by Levenberg-Marquardt (Matlab `trainlm` semantics) with a
-//! progress bar, and writes a weights file.
+//! `redundant-ik train`: draws a training set (from the numerical route, or
+//! over the joint torus by the `reach` recipe), trains a network by
+//! Levenberg-Marquardt (Matlab `trainlm` semantics) or Adam with a progress
+//! bar, and writes a weights file.
 
 use std::time::Instant;
 

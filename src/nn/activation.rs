@@ -30,7 +30,7 @@ pub(crate) const TANSIG_CLAMP: f64 = 20.0;
 ///
 /// Largest error against the C library's `tanh`, measured on 4 million
 /// points of `[-25, 25]` and near zero: below `5e-16` absolute (tested in
-/// `tests/networks.rs`).
+/// `tests/networks/`).
 #[inline]
 pub fn tansig(z: f64) -> f64 {
     tansig_with::<false>(z)

@@ -112,6 +112,9 @@ pub struct Request {
 pub struct Progress {
     /// `"phi"` or `"v"`.
     pub net: &'static str,
+    /// The optimiser: `"lm"` (its `mu` is the damping) or `"adam"` (its
+    /// `mu` is the learning rate).
+    pub optimiser: &'static str,
     /// The epoch's numbers (MSE in mapminmax units).
     #[serde(flatten)]
     pub report: EpochReport,
@@ -303,9 +306,11 @@ pub fn train_net(
         NetKind::V => "v",
     };
     let max_epochs = spec.max_epochs();
+    let optimiser = if spec.adam.is_some() { "adam" } else { "lm" };
     train_weights(&spec, |_, report| {
         on_epoch(&Progress {
             net: name,
+            optimiser,
             report: *report,
             max_epochs,
         })

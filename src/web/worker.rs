@@ -43,7 +43,7 @@ pub(super) fn read_run(run: JsValue) -> Result<Run, JsError> {
 /// The options of an atlas as the page passes them.
 #[derive(Deserialize)]
 struct AtlasOptions {
-    /// Method names; all five when absent.
+    /// Method names; the paper's five when absent.
     modes: Option<Vec<String>>,
     /// Points per side; 41 when absent.
     n: Option<f64>,
@@ -238,8 +238,11 @@ fn trained_js(trained: &crate::training_job::Trained) -> Result<JsValue, JsError
 /// `request` is `{ arm: { post, links }, net: "phi" | "v" | "both", preset:
 /// "quick" | "thorough", samples?, epochs?, seed? }`; `run` is the page's
 /// run (`Demo.run()`), whose networks, where they fit the arm, give the
-/// network not trained (else the built-in ones where they fit). `on_epoch(progress)` is called after every epoch with `{ net,
-/// epoch, train_mse, val_mse, mu, gradient, max_epochs }`. Returns `{ phi,
+/// network not trained (else the built-in ones where they fit).
+/// `on_epoch(progress)` is called after every epoch with `{ net,
+/// optimiser, epoch, train_mse, val_mse, mu, gradient, max_epochs }`
+/// (`optimiser` is `"lm"` or `"adam"`; `mu` is LM's damping or Adam's
+/// learning rate). Returns `{ phi,
 /// v, report }`: both weights files as JSON text and the report. Throws
 /// with the core's message on bad input; nothing is installed anywhere.
 #[wasm_bindgen(js_name = trainNetworks)]

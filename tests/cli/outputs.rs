@@ -1,0 +1,132 @@
+//! `figure`, `eval` and `bench`: what each writes or prints.
+
+use super::*;
+
+#[test]
+fn figure_writes_an_svg_and_all_writes_every_task_and_mode() {
+    let one = scratch("task1.svg");
+    ok(&["figure", "--task", "1", "--out", one.to_str().unwrap()]);
+    let svg = std::fs::read_to_string(&one).unwrap();
+    assert!(svg.starts_with("<svg") || svg.contains("<svg"), "an SVG");
+    assert!(
+        svg.contains("<circle") || svg.contains("<path"),
+        "with shapes"
+    );
+
+    let dir = scratch("all");
+    ok(&["figure", "--all", "--out", dir.to_str().unwrap()]);
+    let count = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter(|e| {
+            e.as_ref()
+                .is_ok_and(|e| e.path().extension().is_some_and(|x| x == "svg"))
+        })
+        .count();
+    assert_eq!(
+        count,
+        2 * (methods::ALL.len() + 1),
+        "2 tasks x every method, and a comparison per task"
+    );
+
+    let cmp = scratch("compare.svg");
+    ok(&[
+        "figure",
+        "--compare",
+        "--task",
+        "2",
+        "--out",
+        cmp.to_str().unwrap(),
+    ]);
+    let svg = std::fs::read_to_string(&cmp).unwrap();
+    // The legends use the methods' labels (Method::label, as the page does).
+    for label in methods::ALL.iter().map(|m| m.label()) {
+        assert!(
+            svg.contains(&format!("\n{label}, min ")),
+            "{label} in the legend"
+        );
+    }
+    assert!(svg.contains("min 0.2193 m"), "Task 2's numerical clearance");
+}
+
+#[test]
+fn eval_reports_accuracy_and_all_five_modes_on_both_tasks() {
+    let report = json(&["eval", "--samples", "100", "--json"]);
+    let outcomes = report["outcomes"].as_array().unwrap();
+    assert_eq!(outcomes.len(), 10, "2 tasks x 5 modes");
+    assert!(report["v"]["median"].as_f64().unwrap() < 0.1);
+    assert!(
+        report["phi"][0]["relative_error"]["median"]
+            .as_f64()
+            .unwrap()
+            < 1e-3
+    );
+    assert_eq!(report["case3_avoided"], 10);
+}
+
+#[test]
+fn bench_reports_every_figure_and_no_allocation_per_step() {
+    // Short batches: this checks the report, not the speed.
+    let bench = |extra: &[&str]| {
+        let mut args = vec![
+            "bench",
+            "--json",
+            "--batch-ms",
+            "1",
+            "--batches",
+            "5",
+            "--no-lm",
+            "--no-atlas",
+        ];
+        args.extend_from_slice(extra);
+        json(&args)
+    };
+    let v = bench(&[]);
+    // By default the paper's five methods, one key each.
+    for key in ["theta_dot_ns", "step_ns", "allocs_per_step"] {
+        let mut names: Vec<&str> = v[key]
+            .as_object()
+            .unwrap()
+            .keys()
+            .map(String::as_str)
+            .collect();
+        let mut paper: Vec<&str> = methods::PAPER.iter().map(|m| m.name()).collect();
+        names.sort();
+        paper.sort();
+        assert_eq!(names, paper, "{key}");
+    }
+    for m in methods::PAPER {
+        let mode = m.name();
+        for key in ["theta_dot_ns", "step_ns"] {
+            let x = v[key][mode].as_f64().unwrap_or(f64::NAN);
+            assert!(x.is_finite() && x > 0.0, "{key}.{mode} = {}", v[key][mode]);
+        }
+        assert_eq!(v["allocs_per_step"][mode], 0.0, "{mode} allocates");
+    }
+    for net in ["phi", "v"] {
+        assert!(v["forward_ns"][net].as_f64().is_some_and(|x| x > 0.0));
+    }
+    assert!(v["lm_epoch_ms"].is_null(), "--no-lm skips the epoch");
+    assert!(v["atlas_ms"].is_null(), "--no-atlas skips the atlas");
+    let kernels = v["kernels"].as_str().unwrap_or_default().to_string();
+    assert!(
+        ["avx2+fma", "fma", "portable"].contains(&kernels.as_str()),
+        "{kernels}"
+    );
+    // The run-time choice of AVX2 can be switched off: the baseline build's
+    // kernels (FMA only where the compile-time target has it).
+    let base = bench(&["--baseline-kernels"]);
+    let expected = if cfg!(target_feature = "fma") {
+        "fma"
+    } else {
+        "portable"
+    };
+    assert_eq!(base["kernels"], expected);
+    // --modes all times every method.
+    let all = bench(&["--modes", "all"]);
+    assert_eq!(
+        all["step_ns"].as_object().unwrap().len(),
+        methods::ALL.len()
+    );
+    refused(&["bench", "--batches", "2"], "batches");
+    refused(&["bench", "--batch-ms", "nan"], "batch-ms");
+}

@@ -1,0 +1,93 @@
+// What every end-to-end test file shares: the browser, the list of tests in
+// the order they are registered, and the helpers that open a page and drive
+// it. e2e.mjs imports this first, then the test files, then runs the list.
+
+import { launchChromium } from './chromium.mjs';
+import { mkdirSync } from 'node:fs';
+import { dirname, join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import assert from 'node:assert/strict';
+
+export const here = dirname(fileURLToPath(import.meta.url));
+export const shots = join(here, 'screenshots');
+mkdirSync(shots, { recursive: true });
+
+export const BASE = process.env.BASE_URL ?? 'http://127.0.0.1:8000/';
+export const browser = await launchChromium();
+export const tests = [];
+export const test = (name, fn) => tests.push({ name, fn });
+
+/** A fresh page that records console errors and page exceptions. */
+export async function open(path = '', contextOptions = {}) {
+  const context = await browser.newContext({ viewport: { width: 1280, height: 900 }, ...contextOptions });
+  const page = await context.newPage();
+  const problems = [];
+  page.on('console', (msg) => {
+    if (msg.type() === 'error') problems.push(`console error: ${msg.text()}`);
+  });
+  page.on('pageerror', (err) => problems.push(`page exception: ${err.message}`));
+  page.problems = problems;
+  page.on('close', () => context.close().catch(() => {}));
+  await page.goto(BASE + path);
+  await page.waitForSelector('body[data-ready="true"]', { timeout: 15000 });
+  return page;
+}
+
+export function clean(page) {
+  assert.deepEqual(page.problems, [], 'no console errors or page exceptions');
+}
+
+export const state = (page) => page.evaluate(() => window.demo.state());
+export const near = (a, b, tol) => Math.hypot(a[0] - b[0], a[1] - b[1]) <= tol;
+
+export async function pause(page) {
+  await page.evaluate(() => window.demo.controller.demo.setRunning(false));
+}
+
+/** Drags with real mouse events from world point `from` to world point `to`. */
+export async function mouseDrag(page, from, to, steps = 12) {
+  const a = await page.evaluate(([x, y]) => window.demo.worldToClient(x, y), from);
+  const b = await page.evaluate(([x, y]) => window.demo.worldToClient(x, y), to);
+  await page.mouse.move(a.x, a.y);
+  await page.mouse.down();
+  await page.mouse.move(b.x, b.y, { steps });
+  await page.mouse.up();
+}
+
+/** A one-finger touch drag through the Chrome DevTools protocol. */
+export async function touchDrag(page, from, to, steps = 10) {
+  const a = await page.evaluate(([x, y]) => window.demo.worldToClient(x, y), from);
+  const b = await page.evaluate(([x, y]) => window.demo.worldToClient(x, y), to);
+  const cdp = await page.context().newCDPSession(page);
+  const point = (x, y) => [{ x, y, id: 1, radiusX: 4, radiusY: 4, force: 1 }];
+  await cdp.send('Input.dispatchTouchEvent', { type: 'touchStart', touchPoints: point(a.x, a.y) });
+  for (let i = 1; i <= steps; i++) {
+    const f = i / steps;
+    await cdp.send('Input.dispatchTouchEvent', {
+      type: 'touchMove',
+      touchPoints: point(a.x + f * (b.x - a.x), a.y + f * (b.y - a.y)),
+    });
+  }
+  await cdp.send('Input.dispatchTouchEvent', { type: 'touchEnd', touchPoints: [] });
+  await cdp.detach();
+}
+
+/** Counts animation frames from now on (window.__frames). */
+export async function countFrames(page) {
+  await page.evaluate(() => {
+    window.__frames = 0;
+    const f = () => {
+      window.__frames += 1;
+      requestAnimationFrame(f);
+    };
+    requestAnimationFrame(f);
+  });
+}
+
+export async function selectMode(page, mode) {
+  await page.selectOption('#mode', mode);
+}
+
+/** The page's methods (the module's methods()). */
+export const methodsOf = (page) => page.evaluate(() => window.demo.methods());
+export const usesNetworks = (m) => m.networks.phi || m.networks.v;

@@ -1,0 +1,154 @@
+// End-to-end tests of the stage: loading, the clock, dragging the target and the obstacle with mouse, keys and touch.
+// Registered in order by e2e.mjs, which runs them (scripts/e2e.sh).
+
+import { join } from 'node:path';
+import assert from 'node:assert/strict';
+import { shots, test, open, clean, state, near, pause, mouseDrag, touchDrag } from './harness.mjs';
+
+test('page loads, draws and exposes window.demo', async () => {
+  const page = await open();
+  const s = await state(page);
+  for (const key of ['t', 'mode', 'theta', 'ee', 'target', 'obstacle', 'radius', 'distance', 'min_distance', 'collided', 'running', 'solver_ms']) {
+    assert.ok(key in s, `state() has ${key}`);
+  }
+  assert.equal(s.theta.length, 3);
+  assert.ok(await page.isHidden('#loading'), 'loading indicator hidden');
+  // The canvas has been drawn on: not a blank white backing store.
+  const inked = await page.evaluate(() => {
+    const c = document.getElementById('stage');
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    let n = 0;
+    for (let i = 0; i < d.length; i += 4 * 31) if (d[i] < 200) n++;
+    return n;
+  });
+  assert.ok(inked > 50, `stage has drawing (${inked} dark samples)`);
+  await page.evaluate(() => window.demo.runUntil(10));
+  await page.screenshot({ path: join(shots, 'index.png'), fullPage: true });
+  clean(page);
+  await page.close();
+});
+
+test('play runs the clock; space pauses; r resets', async () => {
+  const page = await open('?task=1&mode=numerical');
+  await page.waitForFunction(() => window.demo.state().t > 0.3);
+  await page.keyboard.press('Space');
+  const paused = await state(page);
+  assert.equal(paused.running, false);
+  await page.waitForTimeout(200);
+  assert.equal((await state(page)).t, paused.t, 'clock stopped');
+  await page.click('#play');
+  await page.waitForFunction((t) => window.demo.state().t > t + 0.2, paused.t);
+  assert.equal((await state(page)).running, true);
+  await page.keyboard.press('r');
+  const reset = await state(page);
+  assert.equal(reset.t, 0);
+  assert.equal(reset.running, false);
+  await page.click('#step');
+  assert.ok(Math.abs((await state(page)).t - 0.1) < 1e-9, 'one step of 0.1 s');
+  clean(page);
+  await page.close();
+});
+
+test('drag the target with the mouse: new line, the arm follows', async () => {
+  const page = await open('?task=1&mode=numerical');
+  await page.evaluate(() => window.demo.runUntil(3));
+  await pause(page);
+  const before = await state(page);
+  const goal = [1.1, 0.5];
+  await mouseDrag(page, before.target, goal);
+  const after = await state(page);
+  assert.ok(near(after.target, goal, 0.02), `target moved to ${after.target}`);
+  assert.ok(near(after.line.start, before.ee, 1e-9), 'new line starts at the end effector');
+  assert.equal(after.line.t0, 0, 'a new run: its line starts at t = 0');
+  assert.deepEqual(after.theta0, before.theta, 'from the pose at the drop');
+  assert.equal(after.running, true, 'releasing the target starts the clock');
+  assert.ok(Math.abs(after.tf - after.line.duration) < 1e-9, 'the run ends with its line');
+  await page.evaluate((t) => window.demo.runUntil(t), after.t + after.line.duration + 0.5);
+  const end = await state(page);
+  assert.ok(near(end.ee, goal, 0.02), `end effector reached the new target (${end.ee})`);
+  await page.screenshot({ path: join(shots, 'drag-target.png') });
+  clean(page);
+  await page.close();
+});
+
+test('a target out of reach: damping switches on, the arm stretches, nothing breaks', async () => {
+  const page = await open('?task=1&mode=numerical');
+  await pause(page);
+  await page.click('label[for="damping"]');
+  assert.equal((await state(page)).damping, false);
+  const before = await state(page);
+  const goal = [2.0, 1.6]; // 2.4 m from the post top; the reach is 2.05 m
+  await mouseDrag(page, before.target, goal);
+  await page.evaluate(() => window.demo.runUntil(window.demo.state().t + 15));
+  const s = await state(page);
+  assert.equal(s.auto_damping, true, 'the planner switched damping on');
+  assert.equal(s.damping, true);
+  assert.equal(await page.isChecked('#damping'), true, 'the switch shows it');
+  assert.match(await page.textContent('#message'), /out of reach/);
+  assert.ok(s.theta.every(Number.isFinite), `finite joint angles ${s.theta}`);
+  const reach = Math.hypot(s.ee[0], s.ee[1] - 0.5);
+  assert.ok(reach > 2.0, `the arm stretches towards the target (${reach.toFixed(3)} m from the post top)`);
+  clean(page);
+  await page.close();
+});
+
+test('keyboard on the drawing: arrows move the target, Shift+arrows the obstacle', async () => {
+  const page = await open('?task=1&mode=numerical');
+  await pause(page);
+  const before = await state(page);
+  await page.focus('#stage');
+  await page.keyboard.press('ArrowRight');
+  await page.keyboard.press('ArrowUp');
+  const moved = await state(page);
+  assert.ok(near(moved.target, [before.target[0] + 0.05, before.target[1] + 0.05], 1e-9), `target ${moved.target}`);
+  assert.equal(moved.running, true, 'a keyboard move starts the clock like a drag');
+  await page.keyboard.press('Shift+ArrowLeft');
+  const ob = (await state(page)).obstacle;
+  assert.ok(near(ob, [before.obstacle[0] - 0.05, before.obstacle[1]], 1e-9), `obstacle ${ob}`);
+  assert.match(decodeURIComponent(page.url()), /target=0\.650,0\.250/);
+  clean(page);
+  await page.close();
+});
+
+test('drag the obstacle with the mouse: takes effect at once', async () => {
+  const page = await open('?task=1&mode=numerical');
+  await pause(page);
+  const before = await state(page);
+  const goal = [1.0, 1.25];
+  await mouseDrag(page, before.obstacle, goal);
+  const after = await state(page);
+  assert.ok(near(after.obstacle, goal, 0.02), `obstacle moved to ${after.obstacle}`);
+  assert.notEqual(after.distance, before.distance, 'distance follows the obstacle without a step');
+  // The avoidance vector now pushes the links away from the new obstacle.
+  await page.evaluate(() => window.demo.runUntil(10));
+  const end = await state(page);
+  assert.ok(end.min_distance > end.radius, 'no collision with the moved obstacle');
+  clean(page);
+  await page.close();
+});
+
+test('the obstacle cannot be dropped onto the post', async () => {
+  const page = await open('?task=1&mode=numerical');
+  await pause(page);
+  const before = await state(page);
+  await mouseDrag(page, before.obstacle, [0.0, 0.25]);
+  const after = await state(page);
+  assert.ok(Math.hypot(after.obstacle[0], 0) > after.radius, `obstacle stayed off the post (${after.obstacle})`);
+  assert.ok(await page.isVisible('#message'), 'a message says why');
+  assert.match(await page.textContent('#message'), /post/);
+  await page.screenshot({ path: join(shots, 'obstacle-on-post.png') });
+  clean(page);
+  await page.close();
+});
+
+test('touch drag moves the target', async () => {
+  const page = await open('?task=1&mode=numerical', { hasTouch: true });
+  await pause(page);
+  const before = await state(page);
+  const goal = [0.9, 0.3];
+  await touchDrag(page, before.target, goal);
+  const after = await state(page);
+  assert.ok(near(after.target, goal, 0.03), `target moved by touch to ${after.target}`);
+  clean(page);
+  await page.close();
+});

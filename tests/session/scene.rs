@@ -1,0 +1,161 @@
+//! The playground's arms and obstacles, and the shipped network sets.
+
+use super::*;
+#[cfg(target_family = "wasm")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
+
+// ---- the playground: arms and several obstacles ---------------------------
+
+#[test]
+fn a_new_arm_restarts_from_its_own_start_pose_and_the_numerical_modes_run_at_once() {
+    let mut s = Session::new(1).unwrap();
+    s.set_arm(four_links()).unwrap();
+    let st = s.state();
+    assert_eq!(st.arm.links().len(), 4);
+    assert_eq!(st.theta.len(), 4);
+    assert_eq!(st.t, 0.0);
+    assert!(
+        st.joints.iter().all(|p| p[1] > 0.0),
+        "start pose above the ground"
+    );
+    for mode in methods::ALL.iter().copied().filter(|m| !m.uses_networks()) {
+        s.set_method(mode).unwrap();
+        s.run_task();
+        s.run_until(10.0).unwrap();
+        assert!(s.state().final_error < 5e-3, "{mode} reaches the target");
+    }
+}
+
+#[test]
+fn networks_for_another_arm_are_set_aside_and_the_network_cases_fall_back() {
+    let mut s = Session::new(1).unwrap();
+    s.set_networks(Arc::new(Networks::embedded().unwrap()))
+        .unwrap();
+    s.set_method(Method::CASE3).unwrap();
+    s.set_arm(four_links()).unwrap();
+    assert!(s.networks().is_none());
+    assert_eq!(s.state().mode, "numerical");
+    assert!(matches!(
+        s.set_networks(Arc::new(Networks::embedded().unwrap())),
+        Err(Error::NetworksForAnotherArm { .. })
+    ));
+    // Back to the paper's arm: its task, and the networks install again.
+    s.set_arm(Arm::paper()).unwrap();
+    s.set_networks(Arc::new(Networks::embedded().unwrap()))
+        .unwrap();
+    s.set_method(Method::CASE3).unwrap();
+}
+
+#[test]
+fn a_bad_arm_is_refused_and_the_old_one_stays() {
+    let mut s = Session::new(1).unwrap();
+    assert!(Arm::new(0.5, vec![0.6]).is_err());
+    assert!(Arm::new(f64::NAN, vec![0.6, 0.6]).is_err());
+    assert!(Arm::new(0.5, vec![0.6, -0.1]).is_err());
+    assert_eq!(s.state().arm, &Arm::paper());
+    s.set_arm(four_links()).unwrap();
+    assert_eq!(s.state().arm, &four_links());
+}
+
+#[test]
+fn obstacles_can_be_added_moved_and_removed_up_to_eight() {
+    let mut s = Session::new(1).unwrap();
+    assert_eq!(s.obstacles().len(), 1);
+    assert!(matches!(
+        s.add_obstacle(Obstacle::new(0.0, 0.2, 0.05)),
+        Err(Error::ObstacleOnPost { .. })
+    ));
+    for k in 1..MAX_OBSTACLES {
+        let i = s
+            .add_obstacle(Obstacle::new(-0.6 + 0.1 * k as f64, 1.6, 0.04))
+            .unwrap();
+        assert_eq!(i, k);
+    }
+    assert!(matches!(
+        s.add_obstacle(Obstacle::new(0.9, 0.9, 0.05)),
+        Err(Error::OutOfRange { .. })
+    ));
+    assert_eq!(s.obstacles().len(), MAX_OBSTACLES);
+    s.move_obstacle(3, [1.0, 1.7]).unwrap();
+    assert_eq!(s.obstacles()[3].centre, [1.0, 1.7]);
+    assert_eq!(s.obstacles()[3].radius, 0.04, "moving keeps the radius");
+    s.remove_obstacle(0).unwrap();
+    assert_eq!(s.obstacles().len(), MAX_OBSTACLES - 1);
+    assert_eq!(s.obstacles()[2].centre, [1.0, 1.7], "the others shift down");
+    assert!(s.remove_obstacle(99).is_err());
+    assert!(s.add_obstacle(Obstacle::new(0.5, 0.5, -1.0)).is_err());
+    assert!(s.add_obstacle(Obstacle::new(f64::NAN, 0.5, 0.05)).is_err());
+    assert_eq!(
+        s.obstacles().len(),
+        MAX_OBSTACLES - 1,
+        "refusals change nothing"
+    );
+}
+
+#[test]
+fn the_readout_follows_the_nearest_obstacle() {
+    let mut s = Session::new(1).unwrap();
+    // The canonical obstacle at (0.5, 0.5), and one right on the start arm's last link.
+    let joints = s.state().joints.to_vec();
+    let (a, b) = (joints[2], joints[3]);
+    let on = [(a[0] + b[0]) / 2.0 + 0.06, (a[1] + b[1]) / 2.0];
+    s.add_obstacle(Obstacle::new(on[0], on[1], 0.02)).unwrap();
+    s.reset();
+    let st = s.state();
+    assert_eq!(st.nearest, Some(1));
+    assert!(st.distance.unwrap() < 0.07);
+    s.remove_obstacle(1).unwrap();
+    s.reset();
+    assert_eq!(s.state().nearest, Some(0));
+}
+
+#[test]
+fn dragging_moves_the_obstacle_grabbed() {
+    let mut s = Session::new(1).unwrap();
+    s.add_obstacle(Obstacle::new(-0.5, 1.5, 0.05)).unwrap();
+    s.drag_start(Some(Handle::Obstacle(1)));
+    assert_eq!(s.state().dragging, Some("obstacle"));
+    assert_eq!(s.state().dragging_obstacle, Some(1));
+    s.drag_to([-0.6, 1.4]).unwrap();
+    assert_eq!(s.obstacles()[1].centre, [-0.6, 1.4]);
+    assert_eq!(s.obstacles()[0].centre, [0.5, 0.5]);
+    s.drag_end([-0.6, 1.4]).unwrap();
+}
+
+#[test]
+fn a_shipped_network_set_is_installed_by_name_and_the_method_settings_survive_a_task() {
+    use redundant_ik::networks::NetworkSet;
+    let mut s = Session::new(1).unwrap();
+    s.set_method(Method::CASE3).unwrap();
+    assert_eq!(
+        s.network_set(),
+        Some(NetworkSet::Paper),
+        "the paper's set by default"
+    );
+    s.use_network_set(NetworkSet::Reach).unwrap();
+    assert_eq!(s.state().network_set, Some("reach"));
+    let range = s.state().trained_range.unwrap().clone();
+    assert!(range.phi.names.iter().any(|n| n == "sin theta2"));
+    s.set_param(&methods::REFINE, 2.0).unwrap();
+    s.set_param(&methods::SIGN_SMOOTHING, 0.05).unwrap();
+    s.load_task(2).unwrap();
+    let st = s.state();
+    assert_eq!(
+        (st.params["refine"], st.params["sign_smoothing"]),
+        (2.0, 0.05)
+    );
+    assert_eq!(st.network_set, Some("reach"), "a task keeps the networks");
+    // Networks the user installs are no shipped set.
+    s.set_networks(Arc::new(Networks::embedded().unwrap()))
+        .unwrap();
+    assert_eq!(s.network_set(), None);
+    // A shipped set is refused for another arm; the networks in use stay.
+    let mut four = Session::new(1).unwrap();
+    four.set_arm(Arm::new(0.5, vec![0.6, 0.85, 0.6, 0.4]).unwrap())
+        .unwrap();
+    assert!(matches!(
+        four.use_network_set(NetworkSet::Reach),
+        Err(Error::NetworksUnavailable(_))
+    ));
+    assert_eq!(four.network_set(), None);
+}

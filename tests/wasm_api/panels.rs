@@ -1,0 +1,172 @@
+//! Weights, feedback, the benchmark, the comparison, names and colours,
+//! keys.
+
+use super::*;
+use wasm_bindgen_test::wasm_bindgen_test;
+
+#[wasm_bindgen_test]
+fn user_weights_load_or_say_what_is_wrong() {
+    use redundant_ik::networks::{PHI_EQUIVARIANT_JSON, V_PLAIN_JSON};
+    let mut d = demo(1);
+    let err = d.load_networks("{}", V_PLAIN_JSON).err().unwrap();
+    assert!(message(err).contains("bad network weights"));
+    let err = d
+        .load_networks(V_PLAIN_JSON, PHI_EQUIVARIANT_JSON)
+        .err()
+        .unwrap();
+    assert!(message(err).contains("bad network weights"));
+    d.load_networks(PHI_EQUIVARIANT_JSON, V_PLAIN_JSON).unwrap();
+    d.set_method("case3").unwrap();
+    d.load_task(1).unwrap();
+    d.run_until(10.0).unwrap();
+    let s = state(&d);
+    assert_eq!(s["collided"], false);
+    assert!(!s["trained_range"].is_null());
+    assert!(s["final_error"].as_f64().unwrap() < 5e-3);
+}
+
+#[wasm_bindgen_test]
+fn closed_loop_feedback_shrinks_the_networks_drift_and_survives_a_task_load() {
+    let final_error = |d: &Demo| state(d)["final_error"].as_f64().unwrap();
+    let mut d = demo(1);
+    d.set_damping(false).unwrap();
+    d.set_method("case3").unwrap();
+    d.load_task(1).unwrap();
+    d.run_until(10.0).unwrap();
+    let open = final_error(&d);
+    assert_eq!(
+        state(&d)["feedback"],
+        0.0,
+        "the paper's open loop by default"
+    );
+
+    d.set_feedback(1.0).unwrap();
+    d.load_task(1).unwrap();
+    assert_eq!(state(&d)["feedback"], 1.0, "a task load keeps the gain");
+    d.run_until(10.0).unwrap();
+    let closed = final_error(&d);
+    assert_eq!(state(&d)["collided"], false);
+    assert!(
+        closed < 1e-4 && closed < open / 5.0,
+        "open loop {open:.2e} m, closed loop {closed:.2e} m"
+    );
+
+    for bad in [-1.0, f64::NAN, f64::INFINITY] {
+        let err = d.set_feedback(bad).err().unwrap();
+        assert!(message(err).contains("feedback gain"));
+    }
+    assert_eq!(state(&d)["feedback"], 1.0, "a refused gain changes nothing");
+}
+
+#[wasm_bindgen_test]
+fn the_in_browser_benchmark_returns_costs_or_refuses_bad_input() {
+    use redundant_ik::web::{bench_forward, bench_step, bench_theta_dot};
+    for mode in ["numerical", "case3"] {
+        let ns = bench_step(mode, 1.0).unwrap();
+        assert!(ns.is_finite() && ns > 0.0, "{mode}: {ns}");
+        let ns = bench_theta_dot(mode, 1.0).unwrap();
+        assert!(ns.is_finite() && ns > 0.0, "{mode}: {ns}");
+    }
+    let f = json_of(bench_forward(1.0).unwrap());
+    assert!(f["phi"].as_f64().is_some_and(|x| x > 0.0), "{f}");
+    assert!(f["v"].as_f64().is_some_and(|x| x > 0.0), "{f}");
+    assert!(message(bench_step("case9", 1.0).err().unwrap()).contains("unknown mode"));
+    for bad in [0.0, f64::NAN, 1e9] {
+        assert!(message(bench_theta_dot("numerical", bad).err().unwrap()).contains("batch"));
+    }
+}
+
+#[wasm_bindgen_test]
+fn compare_modes_runs_the_current_scene_in_all_five_modes_off_screen() {
+    let mut d = demo(1);
+    d.set_damping(false).unwrap();
+    d.set_obstacle(0.55, 0.45).unwrap();
+    let before = state(&d);
+    let js = d.compare_modes().unwrap();
+    let text: String = js_sys::JSON::stringify(&js).unwrap().into();
+    let rows: Value = serde_json::from_str(&text).unwrap();
+    let rows = rows.as_array().unwrap();
+    let modes: Vec<&str> = rows.iter().map(|r| r["mode"].as_str().unwrap()).collect();
+    let registry: Vec<&str> = redundant_ik::planner::methods::ALL
+        .iter()
+        .map(|m| m.name())
+        .collect();
+    assert_eq!(modes, registry);
+    let collided = |i: usize| rows[i]["summary"]["collided"].as_bool().unwrap();
+    for (i, m) in redundant_ik::planner::methods::ALL.iter().enumerate() {
+        // Without avoidance the arm hits the moved obstacle; every method
+        // that avoids keeps clear of it and reaches the target.
+        assert_eq!(collided(i), !m.avoids(), "{m}");
+        if m.avoids() {
+            assert!(rows[i]["summary"]["final_error"].as_f64().unwrap() < 5e-3);
+        }
+    }
+    assert!(rows.iter().all(|r| r["error"].is_null()));
+    assert_eq!(state(&d), before, "the simulation on screen is untouched");
+}
+
+#[wasm_bindgen_test]
+fn the_state_says_when_the_exact_phi_stood_in_for_the_network() {
+    let mut d = demo(1);
+    d.set_method("case1").unwrap();
+    let s = state(&d);
+    assert_eq!(s["handover_steps"], 0);
+    assert_eq!(s["phi_handover"], false);
+    // Out of reach: the arm stretches, the damping schedule hands Phi over.
+    d.set_target(2.5, 0.8, Some(10.0)).unwrap();
+    d.run_until(10.0).unwrap();
+    let s = state(&d);
+    assert!(s["handover_steps"].as_u64().unwrap() > 10, "{s}");
+}
+
+#[wasm_bindgen_test]
+fn names_colours_and_the_legend_come_from_the_module() {
+    use redundant_ik::planner::methods;
+    use redundant_ik::web::{legend, limits, methods as listed, palette};
+    let m = json_of(listed().unwrap());
+    let names: Vec<&str> = m
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e["name"].as_str().unwrap())
+        .collect();
+    let registry: Vec<&str> = methods::ALL.iter().map(|m| m.name()).collect();
+    assert_eq!(names, registry);
+    assert_eq!(m[3]["label"], "Case 2");
+    assert_eq!(m[3]["networks"]["v"], true);
+    assert_eq!(m[3]["paper_figures"][1], 10);
+    assert!(m[3]["description"]
+        .as_str()
+        .unwrap()
+        .contains("v by a network"));
+    let l = json_of(limits().unwrap());
+    assert_eq!(l["max_links"], redundant_ik::session::MAX_LINKS);
+    assert_eq!(l["max_obstacles"], redundant_ik::session::MAX_OBSTACLES);
+    assert_eq!(l["arm_presets"][1]["links"].as_array().unwrap().len(), 4);
+    let p = json_of(palette().unwrap());
+    assert_eq!(p["arm"], "#1d4e89");
+    let l = json_of(legend().unwrap());
+    let arm = &l[0];
+    assert_eq!(arm["key"], "arm");
+    assert_eq!(
+        arm["swatch"], "rgba(29, 78, 137, 1)",
+        "the palette's arm colour"
+    );
+    assert!(l[1]["label"].as_str().unwrap().contains("every 5th pose"));
+}
+
+#[wasm_bindgen_test]
+fn arrow_keys_move_the_target_and_with_shift_the_obstacle() {
+    let mut d = demo(1);
+    let before = state(&d);
+    assert!(d.key("ArrowRight", false).unwrap());
+    let after = state(&d);
+    assert!((pair(&after["target"])[0] - pair(&before["target"])[0] - 0.05).abs() < 1e-12);
+    assert!(d.key("ArrowDown", true).unwrap());
+    assert!((pair(&state(&d)["obstacle"])[1] - 0.45).abs() < 1e-12);
+    assert!(!d.key("a", false).unwrap(), "other keys are not used");
+    // Onto the post: refused, and the obstacle stays.
+    d.set_obstacle(0.09, 0.3).unwrap();
+    assert!(d.key("ArrowLeft", true).is_err());
+    assert_eq!(pair(&state(&d)["obstacle"]), [0.09, 0.3]);
+}
