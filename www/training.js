@@ -363,7 +363,7 @@ export function mountTraining(root, demo, { files, install, keep, forget, attemp
         if (!r.ok) throw new Error(`HTTP ${r.status} for weights/${name}`);
         save(name, await r.text());
       }
-      show(`The shipped networks in use (${label}): the files redundant-ik train writes.`, 'info', false, el.download);
+      show(`The networks in use (${label}), as shipped: the files redundant-ik train writes.`, 'info', false, el.download);
     } catch (e) {
       show(`Could not fetch the built-in networks: ${describe(e)}`, 'error', false, el.download);
     }

@@ -34,7 +34,7 @@ pub use compare::MethodRun;
 pub use history::{below_floor, Point, STROBE_EVERY};
 pub use pointer::{Handle, DRAG_LINE_SPEED, MIN_LINE_DURATION, NUDGE};
 pub use revision::Revision;
-pub use state::{GhostState, State};
+pub use state::{ByName, GhostState, State};
 
 use history::Histories;
 use installed::Installed;

@@ -2,8 +2,6 @@
 
 use serde::Serialize;
 
-use std::collections::BTreeMap;
-
 use super::{Handle, Session};
 use crate::arm::Arm;
 use crate::clearance::{Pair, Pairs};
@@ -42,7 +40,7 @@ pub struct State<'a> {
     pub lambda: f64,
     /// Every parameter of the methods by name (`lambda`, `delta`,
     /// `influence`, ...; [`Param`]), and which of them the method reads.
-    pub params: BTreeMap<&'static str, f64>,
+    pub params: ByName<f64>,
     /// The names of the parameters the method reads.
     pub reads: Vec<&'static str>,
     /// For a method with an influence distance (`distance`, `priority`,
@@ -113,7 +111,7 @@ pub struct State<'a> {
     /// networks trained or loaded by the user (or none installed).
     pub network_set: Option<&'static str>,
     /// Whether each shipped set was trained for this arm, by name.
-    pub set_fits: BTreeMap<&'static str, bool>,
+    pub set_fits: ByName<bool>,
     /// The arm as the command line and the address write it
     /// (`0.5:0.6,0.85,0.6`).
     pub arm_text: String,
@@ -138,6 +136,25 @@ pub struct State<'a> {
     pub dragging_obstacle: Option<usize>,
     /// The last step's error, if it failed.
     pub error: Option<&'a str>,
+}
+
+/// Values by name in a fixed order, written as one JSON object. (A
+/// `BTreeMap` would sort them on every state: its sort and tree code cost
+/// the page's module about 5 KB, measured with twiggy.)
+#[derive(Debug, Clone, PartialEq)]
+pub struct ByName<T>(pub Vec<(&'static str, T)>);
+
+impl<T> ByName<T> {
+    /// The value of `name`, if there is one.
+    pub fn get(&self, name: &str) -> Option<&T> {
+        self.0.iter().find(|(k, _)| *k == name).map(|(_, v)| v)
+    }
+}
+
+impl<T: Serialize> Serialize for ByName<T> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_map(self.0.iter().map(|(k, v)| (k, v)))
+    }
 }
 
 /// Where the ghost is.
@@ -184,10 +201,12 @@ impl Session {
             own_start: self.own_start,
             speed: self.speed,
             lambda: scene.param(&LAMBDA),
-            params: params::all()
-                .iter()
-                .map(|q| (q.name, scene.param(q)))
-                .collect(),
+            params: ByName(
+                params::all()
+                    .iter()
+                    .map(|q| (q.name, scene.param(q)))
+                    .collect(),
+            ),
             reads: p.method().params().iter().map(|q| q.name).collect(),
             influence: near.as_ref().map(|(d, _)| *d),
             dampers: near.map_or_else(Vec::new, |(_, pairs)| pairs.as_slice().to_vec()),
@@ -221,10 +240,12 @@ impl Session {
             networks: self.networks_fit(),
             trained_range: self.trained_range(),
             network_set: self.network_set().map(|n| n.name()),
-            set_fits: NetworkSet::ALL
-                .iter()
-                .map(|s| (s.name(), networks::builtin_fits(&scene.arm)))
-                .collect(),
+            set_fits: ByName(
+                NetworkSet::ALL
+                    .iter()
+                    .map(|s| (s.name(), networks::builtin_fits(&scene.arm)))
+                    .collect(),
+            ),
             arm_text: scene.arm.to_string(),
             paper_arm: scene.arm == Arm::paper(),
             revision: self.revision(),

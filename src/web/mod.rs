@@ -257,8 +257,7 @@ pub fn parse_obstacles(text: &str) -> Result<Vec<f64>, JsError> {
 /// as CSS custom properties (`--arm`, ...), so the stylesheet has no copy.
 #[wasm_bindgen]
 pub fn palette() -> Result<JsValue, JsError> {
-    let map: std::collections::BTreeMap<&str, &str> = style::PALETTE.iter().copied().collect();
-    to_js(&map)
+    to_js(&crate::session::ByName(style::PALETTE.to_vec()))
 }
 
 /// The legend of the drawing: `[{ key, label, swatch, kind }]`, each swatch

@@ -39,7 +39,7 @@ test('atlas: computed in a worker while the page draws, equal to the module comp
     const m = await import('./pkg/redundant_ik_worker.js');
     const wasm = window.demo.build === 'simd' ? 'redundant_ik_worker_simd_bg.wasm' : 'redundant_ik_worker_bg.wasm';
     await m.default({ module_or_path: `./pkg/${wasm}` });
-    const job = new m.AtlasJob(window.demo.controller.demo.scene(), { modes, n: 11, task: 1 });
+    const job = new m.AtlasJob(window.demo.controller.demo.run(), { modes, n: 11, task: 1 });
     job.advance(1e6);
     const direct = job.finish();
     job.free();

@@ -122,8 +122,9 @@ export function classTests(h) {
     const json = await download(page, '#save-run-json');
     assert.match(json.name, /^task1-case3\.json$/);
     const run = JSON.parse(json.text);
-    assert.deepEqual(Object.keys(run), ['task', 'mode', 'scene', 'steps', 'summary']);
+    assert.deepEqual(Object.keys(run), ['task', 'mode', 'scene', 'networks', 'steps', 'summary']);
     assert.equal(run.mode, 'case3');
+    assert.deepEqual(run.networks, { set: 'paper' }, 'the run names its networks');
     assert.deepEqual(run.scene, await page.evaluate(() => window.demo.controller.demo.scene()), 'the page scene');
     const last = run.steps.at(-1);
     s.theta.forEach((v, i) => close(last.theta[i], v, 1e-12, `theta${i + 1}: the file's run is the drawing's`));

@@ -13,7 +13,7 @@
 //
 // The tests live in one file per part of the page, registered in this order:
 // stage.mjs, methods.mjs, page.mjs, atlas.mjs, module.mjs, playground.mjs,
-// hostile.mjs, reach.mjs, then the page for a class (class.mjs); harness.mjs
+// hostile.mjs, reach.mjs, runs.mjs, then the page for a class (class.mjs); harness.mjs
 // holds the browser and the helpers they share.
 
 import { browser, tests, test, open, clean, state, shots, mouseDrag, touchDrag, selectMode, methodsOf, usesNetworks, BASE, near, pause, countFrames } from './harness.mjs';
@@ -25,6 +25,7 @@ import './module.mjs';
 import './playground.mjs';
 import './hostile.mjs';
 import './reach.mjs';
+import './runs.mjs';
 import { classTests } from './class.mjs';
 
 classTests({ test, open, clean, state, shots, mouseDrag, touchDrag, selectMode, methodsOf, usesNetworks, browser, BASE, near, pause, countFrames });

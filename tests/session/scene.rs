@@ -141,8 +141,8 @@ fn a_shipped_network_set_is_installed_by_name_and_the_method_settings_survive_a_
     s.load_task(2).unwrap();
     let st = s.state();
     assert_eq!(
-        (st.params["refine"], st.params["sign_smoothing"]),
-        (2.0, 0.05)
+        (st.params.get("refine"), st.params.get("sign_smoothing")),
+        (Some(&2.0), Some(&0.05))
     );
     assert_eq!(st.network_set, Some("reach"), "a task keeps the networks");
     // Networks the user installs are no shipped set.

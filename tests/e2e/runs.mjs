@@ -1,0 +1,76 @@
+// End-to-end tests of what a run is (the module's Demo.run(): scene,
+// method and networks): the files to take away and the weights download
+// follow the network set in use, and the atlas and the comparison tell
+// staleness by the state's revisions. Registered by e2e.mjs.
+
+import assert from 'node:assert/strict';
+import { test, open, clean, state, pause, mouseDrag } from './harness.mjs';
+import { cli, download, close } from './class-helpers.mjs';
+
+test('runs: with networks=reach the run file names the reach set and the CLI replays it with them; Download weights gives the reach files', async () => {
+  const page = await open('?task=1&mode=case3&networks=reach&refine=2&feedback=1');
+  await page.waitForFunction(() => window.demo.state().network_set === 'reach');
+  await page.selectOption('#speed', '8');
+  await page.click('#task1');
+  await page.waitForFunction(() => window.demo.state().ended && !window.demo.state().running, null, { timeout: 60000 });
+  const s = await state(page);
+  const json = await download(page, '#save-run-json');
+  const run = JSON.parse(json.text);
+  assert.deepEqual(run.networks, { set: 'reach' }, 'the file names the set in use');
+  assert.equal(run.scene.params.refine, 2);
+  s.theta.forEach((v, i) => close(run.steps.at(-1).theta[i], v, 1e-12, `theta${i + 1}: the file's run is the drawing's`));
+  // The command line replays it with the reach networks, as it ran.
+  const back = JSON.parse(cli(['simulate', '--from', json.path, '--json']));
+  assert.deepEqual(back.networks, { set: 'reach' });
+  back.steps.forEach((st, k) => st.theta.forEach((v, i) => close(v, run.steps[k].theta[i], 1e-9, `step ${k} theta${i + 1}`)));
+  // With the paper's networks it would be another run: the files differ.
+  const paper = JSON.parse(cli(['simulate', '--mode', 'case3', '--refine', '2', '--feedback', '1', '--json']));
+  assert.notEqual(paper.summary.final_error, run.summary.final_error);
+  // The weights download gives the set in use.
+  await page.click('#train-panel summary');
+  const got = [];
+  page.on('download', (d) => got.push(d));
+  await page.click('#train-download');
+  await page.waitForFunction(() => /as shipped/.test(document.getElementById('message').textContent));
+  for (let k = 0; k < 50 && got.length < 2; k++) await page.waitForTimeout(100);
+  assert.deepEqual(got.map((d) => d.suggestedFilename()).sort(), ['phi-reach.json', 'v-reach.json']);
+  assert.match(await page.textContent('#message'), /whole/i, 'the message names the set');
+  clean(page);
+  await page.close();
+});
+
+test('runs: moving a second obstacle marks the atlas and the comparison stale; choosing a cell (the first obstacle) leaves the atlas current', async () => {
+  const page = await open('?task=1&mode=numerical&obstacles=0.5,0.5,0.05;1.0,1.3,0.05');
+  await pause(page);
+  await page.evaluate(() => document.querySelectorAll('details').forEach((d) => (d.open = true)));
+  await page.evaluate(() => window.demo.atlas({ n: 5, modes: ['numerical'] }));
+  await page.click('#compare');
+  const stale = () =>
+    page.evaluate(() => ({
+      atlas: document.getElementById('atlas-status').dataset.stale,
+      compare: document.getElementById('compare-table').dataset.stale,
+    }));
+  await page.waitForTimeout(100);
+  assert.deepEqual(await stale(), { atlas: 'false', compare: 'false' });
+  const r0 = (await state(page)).revision;
+  // The first obstacle is what the atlas moves over its grid.
+  await mouseDrag(page, [0.5, 0.5], [0.55, 0.45]);
+  await page.waitForTimeout(100);
+  const r1 = (await state(page)).revision;
+  assert.equal(r1.atlas, r0.atlas, 'the atlas does not depend on the first obstacle');
+  assert.ok(r1.scene > r0.scene && r1.run > r0.run);
+  assert.deepEqual(await stale(), { atlas: 'false', compare: 'true' });
+  // The second obstacle: every cell changed.
+  await mouseDrag(page, [1.0, 1.3], [1.1, 1.2]);
+  await page.waitForTimeout(100);
+  assert.ok((await state(page)).revision.atlas > r1.atlas);
+  assert.deepEqual(await stale(), { atlas: 'true', compare: 'true' });
+  // The method is not a result's input for either.
+  await page.evaluate(() => window.demo.atlas({ n: 5, modes: ['numerical'] }));
+  await page.click('#compare');
+  await page.selectOption('#mode', 'qp');
+  await page.waitForTimeout(100);
+  assert.deepEqual(await stale(), { atlas: 'false', compare: 'false' });
+  clean(page);
+  await page.close();
+});
