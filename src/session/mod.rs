@@ -388,7 +388,7 @@ impl Session {
             });
         }
         let old = self.planner().scene().clone();
-        let mut scene = if arm == Arm::paper() {
+        let mut scene = if arm.same_geometry(&Arm::paper()) {
             paper_scene(1, old.damping.is_some(), old.feedback_gain)?
         } else {
             Scene {
@@ -412,7 +412,7 @@ impl Session {
         let nets = self
             .networks
             .as_ref()
-            .filter(|n| n.surrogate.arm() == &arm)
+            .filter(|n| n.surrogate.arm().same_geometry(&arm))
             .cloned();
         let method = match self.planner().method() {
             m if m.uses_networks() && nets.is_none() => Method::NUMERICAL,
