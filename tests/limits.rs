@@ -173,8 +173,8 @@ fn a_start_pose_outside_the_limits_is_refused_naming_joint_angle_and_limits() {
         "{text}"
     );
     // The bounds themselves are inside.
-    scene.arm = limited(Some("0:0.2618,1:1.5708,-0.5236:0"), None);
-    scene.theta0 = vec![0.2618, 1.5708, -0.5236];
+    scene.arm = limited(Some("0:0.25,1:1.5,-0.5:0"), None);
+    scene.theta0 = vec![0.25, 1.5, -0.5];
     scene
         .validate()
         .expect("a pose on its bounds is within them");
@@ -245,6 +245,33 @@ fn every_preset_is_a_valid_arm_with_the_limits_it_declares() {
     );
 }
 
+#[test]
+fn the_page_session_sets_limits_keeping_its_scene_or_refuses_changing_nothing() {
+    let mut s = redundant_ik::session::Session::new(2).unwrap();
+    let before = s.planner().scene().clone();
+    s.set_arm_limits(Some(limits(LIMITS)), Some(rates("1,1,1")))
+        .unwrap();
+    let scene = s.planner().scene();
+    assert_eq!(scene.theta0, before.theta0, "Task 2's start pose stays");
+    assert_eq!(scene.arm.joint_limits().unwrap().to_string(), LIMITS);
+    let e = s
+        .set_arm_limits(Some(limits("-1:1,-1:1,-1:1")), None)
+        .unwrap_err();
+    assert!(e.to_string().contains("joint 2's limits"), "{e}");
+    assert_eq!(
+        s.planner().scene().arm.rate_limits().unwrap().to_string(),
+        "1,1,1"
+    );
+    // Another task of the paper's arm keeps the arm's limits.
+    s.load_task(1).unwrap();
+    assert_eq!(
+        s.planner().scene().arm.joint_limits().unwrap().to_string(),
+        LIMITS
+    );
+    s.set_arm_limits(None, None).unwrap();
+    assert_eq!(s.planner().scene().arm, Arm::paper());
+}
+
 // ---- the command line -----------------------------------------------------
 
 #[cfg(not(target_family = "wasm"))]
@@ -304,6 +331,15 @@ mod cli {
         assert!(plain["scene"]["arm"].get("rate_limits").is_none());
         let text = ok(&["simulate", LIMITS]);
         assert!(text.contains("joint limits -2.0944:2.0944,"), "{text}");
+    }
+
+    #[test]
+    fn the_paper_networks_still_fit_a_limited_paper_arm() {
+        for mode in ["case1", "case2", "case3"] {
+            let run: Value =
+                serde_json::from_str(&ok(&["simulate", "--mode", mode, LIMITS, "--json"])).unwrap();
+            assert!(run["scene"]["arm"]["joint_limits"].is_array(), "{mode}");
+        }
     }
 
     #[test]

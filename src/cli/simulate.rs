@@ -151,10 +151,10 @@ impl SceneArgs {
         }
         let mut s = Scene::task(self.task).map_err(|e| e.to_string())?;
         if let Some(arm) = &self.arm {
-            if *arm != s.arm {
+            if !arm.same_geometry(&s.arm) {
                 s.theta0 = redundant_ik::session::start_pose(arm);
-                s.arm = arm.clone();
             }
+            s.arm = arm.clone();
         }
         if self.joint_limits.is_some() || self.rate_limits.is_some() {
             let arm = s.arm.clone();

@@ -17,7 +17,7 @@ mod installed;
 mod pointer;
 mod state;
 
-use crate::arm::Arm;
+use crate::arm::{Arm, JointLimits, RateLimits};
 use crate::error::{within, Error, Result};
 use crate::ik::DampingSchedule;
 use crate::networks::{self, NetworkSet};
@@ -183,11 +183,14 @@ impl Session {
             obstacles.truncate(MAX_OBSTACLES);
         }
         scene.obstacles = obstacles;
-        if old.arm != scene.arm {
+        if !old.arm.same_geometry(&scene.arm) {
             // Another arm: the paper's target and obstacle from its own start pose.
             scene.theta0 = start_pose(&old.arm);
             scene.arm = old.arm.clone();
             scene.obstacles.retain(|o| o.validate(&scene.arm).is_ok());
+        } else {
+            // The paper's, with its limits (if any).
+            scene.arm = old.arm.clone();
         }
         let paper_first = scene.obstacles.first() == Some(&paper);
         let planner = Planner::new(scene, self.planner().method(), self.networks().cloned())?;
@@ -370,6 +373,21 @@ impl Session {
     /// The arm.
     pub fn arm(&self) -> &Arm {
         &self.planner().scene().arm
+    }
+
+    /// Gives the arm other joint limits (`None`: unlimited), for the
+    /// planner and the ghost, keeping the scene and the run; refused,
+    /// changing nothing, when their count does not match the links or the
+    /// start pose lies outside them.
+    pub fn set_arm_limits(
+        &mut self,
+        joint: Option<JointLimits>,
+        rate: Option<RateLimits>,
+    ) -> Result<()> {
+        self.twin
+            .apply(|p| p.set_arm_limits(joint.clone(), rate.clone()))?;
+        self.after_change();
+        Ok(())
     }
 
     /// Replaces the arm (2 to [`MAX_LINKS`] links). The paper's arm gets

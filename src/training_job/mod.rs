@@ -319,7 +319,7 @@ pub fn train_net(
 /// [`train`] reports them. Refuses files of another arm than the request's.
 pub fn conclude(request: &Request, phi: WeightsFile, v: WeightsFile) -> Result<Trained> {
     let arm = &request.arm;
-    if phi.arm != *arm || v.arm != *arm {
+    if !phi.arm.same_geometry(arm) || !v.arm.same_geometry(arm) {
         return Err(Error::Training(
             "the networks to check were trained for another arm than the request's".into(),
         ));
