@@ -13,6 +13,7 @@
 
 import { launchChromium } from './chromium.mjs';
 import { classTests } from './class.mjs';
+import { limitsTests } from './limits.mjs';
 import { mkdirSync, writeFileSync, mkdtempSync, readFileSync } from 'node:fs';
 import { spawnSync } from 'node:child_process';
 import { tmpdir } from 'node:os';
@@ -1583,6 +1584,7 @@ test('a short whole-reach training in the page swaps angle-feature networks in',
 });
 
 classTests({ test, open, clean, state, shots, mouseDrag, touchDrag, selectMode, methodsOf, usesNetworks, browser, BASE, near, pause, countFrames });
+limitsTests({ test, open, clean, state, shots });
 
 // E2E_ONLY=text runs only the tests whose name contains it (for development).
 const only = process.env.E2E_ONLY;
