@@ -13,6 +13,10 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{clip, coordinate, non_negative, positive, Error, Result};
 
+mod limits;
+
+pub use limits::{JointLimits, RateLimits};
+
 /// Fewest links an [`Arm`] may have: two, to position a planar end effector.
 pub const MIN_LINKS: usize = 2;
 
@@ -30,13 +34,22 @@ pub const MAX_ANGLE: f64 = 1.0e6;
 /// A planar arm on a vertical base post of length `post`, with revolute links of
 /// lengths `links[0..n]` (the paper's `L0` and `L1..L3`).
 ///
-/// An arm deserialises through [`Arm::new`], so a scene or a weights file
-/// cannot carry an arm that the constructor would refuse.
+/// It may carry per-joint position and rate limits ([`JointLimits`],
+/// [`RateLimits`]); absent, a joint is unlimited (the paper's arm). They are
+/// written as `joint_limits` and `rate_limits` only when present, so an
+/// unlimited arm's JSON is as before.
+///
+/// An arm deserialises through [`Arm::new`] and [`Arm::with_limits`], so a
+/// scene or a weights file cannot carry an arm that they would refuse.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(try_from = "ArmFields")]
 pub struct Arm {
     post: f64,
     links: Vec<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    joint_limits: Option<JointLimits>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rate_limits: Option<RateLimits>,
 }
 
 impl Arm {
@@ -61,15 +74,76 @@ impl Arm {
             positive(&what, l)?;
             coordinate(&what, l)?;
         }
-        Ok(Self { post, links })
+        Ok(Self {
+            post,
+            links,
+            joint_limits: None,
+            rate_limits: None,
+        })
+    }
+
+    /// This arm with the given position and rate limits (`None`:
+    /// unlimited), refused when either has not one entry per link.
+    pub fn with_limits(
+        mut self,
+        joint_limits: Option<JointLimits>,
+        rate_limits: Option<RateLimits>,
+    ) -> Result<Self> {
+        let count = |what: &str, found: usize| match found == self.dof() {
+            true => Ok(()),
+            false => Err(Error::DimensionMismatch {
+                what: what.into(),
+                expected: self.dof(),
+                found,
+            }),
+        };
+        if let Some(l) = &joint_limits {
+            count("joint limits", l.ranges().len())?;
+        }
+        if let Some(r) = &rate_limits {
+            count("rate limits", r.rates().len())?;
+        }
+        self.joint_limits = joint_limits;
+        self.rate_limits = rate_limits;
+        Ok(self)
+    }
+
+    /// Each joint's position range, if the arm has limits.
+    pub fn joint_limits(&self) -> Option<&JointLimits> {
+        self.joint_limits.as_ref()
+    }
+
+    /// Each joint's largest rate, if the arm has rate limits.
+    pub fn rate_limits(&self) -> Option<&RateLimits> {
+        self.rate_limits.as_ref()
+    }
+
+    /// Checks that the pose `theta` (`what` names it in the message) lies
+    /// within the joints' position limits; any pose does when there are none.
+    pub fn check_within_limits(&self, what: &str, theta: &[f64]) -> Result<()> {
+        self.joint_limits
+            .as_ref()
+            .map_or(Ok(()), |l| l.check(what, theta))
+    }
+
+    /// Whether `other` has the same post and links, whatever the limits of
+    /// either: the kinematics are the same, so networks trained for one fit
+    /// the other.
+    pub fn same_geometry(&self, other: &Arm) -> bool {
+        self.post == other.post && self.links == other.links
+    }
+
+    /// Checks every field again (what [`Arm::new`] and
+    /// [`Arm::with_limits`] checked).
+    pub fn validate(&self) -> Result<()> {
+        Arm::new(self.post, self.links.clone())?
+            .with_limits(self.joint_limits.clone(), self.rate_limits.clone())
+            .map(|_| ())
     }
 
     /// The paper's arm (section VI): `L0 = 0.5`, `L1 = 0.6`, `L2 = 0.85`, `L3 = 0.6` m.
     pub fn paper() -> Self {
-        Self {
-            post: 0.5,
-            links: vec![0.6, 0.85, 0.6],
-        }
+        PRESETS[0].arm()
     }
 
     /// Number of joints `n`.
@@ -147,12 +221,16 @@ impl Arm {
 struct ArmFields {
     post: f64,
     links: Vec<f64>,
+    #[serde(default)]
+    joint_limits: Option<JointLimits>,
+    #[serde(default)]
+    rate_limits: Option<RateLimits>,
 }
 
 impl TryFrom<ArmFields> for Arm {
     type Error = Error;
     fn try_from(f: ArmFields) -> Result<Self> {
-        Arm::new(f.post, f.links)
+        Arm::new(f.post, f.links)?.with_limits(f.joint_limits, f.rate_limits)
     }
 }
 
@@ -249,6 +327,10 @@ pub struct Preset {
     pub post: f64,
     /// Link lengths (m).
     pub links: &'static [f64],
+    /// Each joint's position range `[lo, hi]` (rad), if limited.
+    pub joint_limits: Option<&'static [[f64; 2]]>,
+    /// Each joint's largest rate (rad/s), if limited.
+    pub rate_limits: Option<&'static [f64]>,
 }
 
 /// The named arms: the paper's and two longer ones.
@@ -258,27 +340,40 @@ pub const PRESETS: [Preset; 3] = [
         label: "The paper's arm (3 links)",
         post: 0.5,
         links: &[0.6, 0.85, 0.6],
+        joint_limits: None,
+        rate_limits: None,
     },
     Preset {
         key: "four",
         label: "4 links",
         post: 0.5,
         links: &[0.6, 0.85, 0.6, 0.4],
+        joint_limits: None,
+        rate_limits: None,
     },
     Preset {
         key: "five",
         label: "5 links",
         post: 0.5,
         links: &[0.5, 0.6, 0.5, 0.4, 0.3],
+        joint_limits: None,
+        rate_limits: None,
     },
 ];
 
 impl Preset {
-    /// The arm.
+    /// The arm, with the preset's limits if it has any (each preset is
+    /// checked by a test to pass [`Arm::new`] and [`Arm::with_limits`]).
     pub fn arm(&self) -> Arm {
         Arm {
             post: self.post,
             links: self.links.to_vec(),
+            joint_limits: self
+                .joint_limits
+                .map(|l| JointLimits::from_checked(l.to_vec())),
+            rate_limits: self
+                .rate_limits
+                .map(|r| RateLimits::from_checked(r.to_vec())),
         }
     }
 }

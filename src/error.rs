@@ -124,6 +124,13 @@ pub enum Error {
         /// Entries found.
         found: usize,
     },
+    /// A joint's position limits with `lo >= hi`: no angle lies within.
+    EmptyRange {
+        /// The joint, from 1.
+        joint: usize,
+        /// Its limits `[lo, hi]` (rad).
+        range: [f64; 2],
+    },
     /// The obstacle disc overlaps the fixed base post, where the arm cannot avoid it.
     ObstacleOnPost {
         /// Obstacle centre x.
@@ -269,6 +276,12 @@ impl fmt::Display for Error {
                 expected,
                 found,
             } => write!(f, "{what} has {found} entries, expected {expected}"),
+            Error::EmptyRange { joint, range } => write!(
+                f,
+                "joint {joint}'s limits {}:{} are empty: the lower must be below the upper",
+                Num(range[0]),
+                Num(range[1])
+            ),
             Error::ObstacleOnPost { x, y, radius } => write!(
                 f,
                 "obstacle at ({x}, {y}) with radius {radius} overlaps the fixed base post; move it away from the post"

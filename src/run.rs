@@ -133,7 +133,7 @@ impl Run {
             .map(NetworkChoice::load)
             .transpose()?;
         if let Some(n) = &chosen {
-            if n.arm() != &self.scene.arm {
+            if !n.arm().same_geometry(&self.scene.arm) {
                 return Err(Error::NetworksUnavailable(format!(
                     "the networks of this run were trained for the arm {}, not for {}",
                     n.arm(),

@@ -1,12 +1,13 @@
 // The page's address: what `?task=2&mode=case3&lambda=4&target=…&obstacle=…
-// &obstacles=…&arm=…&feedback=1&damping=0&theta0=…&tf=…&influence=…&networks=reach` asks
-// for, and the state written back into it (what "Copy link" copies). The arm and obstacle syntax is the module's (parseArm, parseObstacles,
-// formatArm: the command line's too). Every parameter that does not parse
+// &obstacles=…&arm=…&limits=…&rates=…&feedback=1&damping=0&theta0=…&tf=…&influence=…&networks=reach` asks
+// for, and the state written back into it (what "Copy link" copies). The arm, limits and obstacle syntax is the module's (parseArm, parseObstacles,
+// formatArm, parseJointLimits, formatJointLimits, parseRateLimits,
+// formatRateLimits: the command line's too). Every parameter that does not parse
 // is reported once the page runs (with the core's refusals of those that
 // parse but make no sense), never dropped silently; the page then starts
 // from its defaults for it.
 
-import { parseArm, parseObstacles, limits, methods, params as allParams, defaultMethod, networkSets } from './module.js';
+import { parseArm, parseObstacles, parseJointLimits, formatJointLimits, parseRateLimits, formatRateLimits, limits, methods, params as allParams, defaultMethod, networkSets } from './module.js';
 import { formatObstacles } from './arm-designer.js';
 
 /** A number from text: blank is not zero (as `Number('')` is). */
@@ -26,7 +27,8 @@ const named = () => allParams().filter((p) => p.name !== 'lambda');
 /**
  * The `mount()` options an address asks for (after loadModule): task,
  * mode (the module's defaultMethod() where it names none), lambda,
- * feedback, target, obstacle, obstacles (flat), arm, damping, start
+ * feedback, target, obstacle, obstacles (flat), arm, limits (the arm's
+ * joint limits, flat [lo1, hi1, ...]), rates (its rate limits), damping, start
  * ({ theta0, tf }: a run's own start pose and final time), params (the
  * methods' parameters by name), networks (a shipped network set), and
  * `problems`: what did not parse, each as `name: why`.
@@ -89,6 +91,8 @@ export function readAddress(search) {
     obstacle: pair('obstacle'),
     obstacles: parsed('obstacles', parseObstacles),
     arm: parsed('arm', parseArm),
+    limits: parsed('limits', parseJointLimits),
+    rates: parsed('rates', parseRateLimits),
     damping: parsed('damping', (v) => {
       if (v !== '0' && v !== '1') throw new Error(`expected 0 or 1, got '${clip(v)}'`);
       return v === '1';
@@ -107,7 +111,8 @@ export function readAddress(search) {
 /**
  * Writes the state into the address (history.replaceState): the task, the
  * method, λ, the target; the arm where it is not the page's first (the
- * paper's, the first of the core's presets); the obstacles as a list where
+ * paper's, the first of the core's presets); its joint and rate limits
+ * where it has them (limits=, rates=); the obstacles as a list where
  * there are several or one of another radius than the default, else the one
  * obstacle's centre; the drift gain where it is on; the damping switch
  * where it is off; the methods' parameters that differ from their
@@ -122,6 +127,8 @@ export function writeAddress(s) {
   q.set('target', s.target.map(exact).join(','));
   const { default_radius: radius } = limits();
   if (!s.paper_arm) q.set('arm', s.arm_text);
+  if (s.arm.joint_limits) q.set('limits', formatJointLimits(Float64Array.from(s.arm.joint_limits.flat())));
+  if (s.arm.rate_limits) q.set('rates', formatRateLimits(Float64Array.from(s.arm.rate_limits)));
   if (s.obstacles.length !== 1 || s.obstacles[0].radius !== radius) {
     q.set('obstacles', formatObstacles(s.obstacles));
   } else if (s.obstacle) {

@@ -1,9 +1,10 @@
 // The arm designer and the obstacle list: the "Arm and obstacles" panel.
 // Presets and bounds come from the module's limits(); the core checks every
-// arm and obstacle (Demo.setArm, addObstacle, setObstacles) and this file
-// shows its refusals.
+// arm, its joint and rate limits (their syntax too: parseJointLimits,
+// parseRateLimits, Demo.setArmLimits) and obstacle (Demo.setArm,
+// addObstacle, setObstacles) and this file shows its refusals.
 
-import { limits, formatArm } from './module.js';
+import { limits, formatArm, parseJointLimits, formatJointLimits, parseRateLimits, formatRateLimits } from './module.js';
 
 /**
  * `[[x, y, r?], ...]` (or `{ x, y, r }` each) flat as the module takes it:
@@ -30,6 +31,10 @@ export function formatObstacles(obstacles) {
 }
 
 const armText = (arm) => formatArm(arm.post, arm.links);
+/** The arm's joint limits as `LO:HI,...`, '' when it has none. */
+const limitsText = (arm) => (arm.joint_limits ? formatJointLimits(Float64Array.from(arm.joint_limits.flat())) : '');
+/** The arm's rate limits as `R,...`, '' when it has none. */
+const ratesText = (arm) => (arm.rate_limits ? formatRateLimits(Float64Array.from(arm.rate_limits)) : '');
 
 /** A number field: `min`, `max`, `step` and `value`, named for screen readers by `label`. */
 function numberInput(min, max, step, value, label) {
@@ -42,7 +47,7 @@ function numberInput(min, max, step, value, label) {
 
 /**
  * Wires the elements of `root` that exist (`#arm-preset`, `#arm-post`,
- * `#arm-links`, `#link-add`, `#link-remove`, `#arm-apply`,
+ * `#arm-links`, `#arm-limits`, `#arm-rates`, `#link-add`, `#link-remove`, `#arm-apply`,
  * `#obstacle-add`, `#obstacle-remove`, `#obstacle-list`). Hooks:
  * `setArm(arm)` (the playground's, which also restores kept networks),
  * `attempt(fn)`, `show(text, kind)`, `changed()`. Returns `{ addObstacle,
@@ -54,6 +59,8 @@ export function mountArmDesigner(root, demo, { setArm, attempt, show, changed })
     preset: $('arm-preset'),
     post: $('arm-post'),
     links: $('arm-links'),
+    limits: $('arm-limits'),
+    rates: $('arm-rates'),
     linkAdd: $('link-add'),
     linkRemove: $('link-remove'),
     apply: $('arm-apply'),
@@ -93,13 +100,29 @@ export function mountArmDesigner(root, demo, { setArm, attempt, show, changed })
     const shown = formArm().links;
     if (shown.length !== arm.links.length || shown.some((l, i) => l !== arm.links[i])) linkInputs(arm.links);
     if (el.preset) el.preset.value = presets.find((p) => armText(p) === armText(arm))?.key ?? 'custom';
+    if (el.limits && document.activeElement !== el.limits) el.limits.value = limitsText(arm);
+    if (el.rates && document.activeElement !== el.rates) el.rates.value = ratesText(arm);
   }
+
+  // The limits' fields, in the core's syntax (blank: unlimited), applied
+  // together to the arm as it is; a refusal shows next to the field.
+  const parsedField = (field, parse) => (field && field.value.trim() !== '' ? parse(field.value) : undefined);
+  const applyLimits = (field) => {
+    const ok = attempt(() => demo.setArmLimits(parsedField(el.limits, parseJointLimits), parsedField(el.rates, parseRateLimits)), 'error', field);
+    if (ok) changed();
+  };
+  el.limits?.addEventListener('change', () => applyLimits(el.limits));
+  el.rates?.addEventListener('change', () => applyLimits(el.rates));
 
   el.preset?.addEventListener('change', () => {
     const p = presets.find((p) => p.key === el.preset.value);
     if (p) attempt(() => setArm(p), 'error', el.preset);
   });
-  const applyForm = () => attempt(() => setArm(formArm()), 'error', el.apply);
+  // Other lengths keep the arm's limits (the same joints).
+  const applyForm = () => {
+    const { joint_limits, rate_limits } = demo.state().arm;
+    attempt(() => setArm({ ...formArm(), joint_limits, rate_limits }), 'error', el.apply);
+  };
   el.apply?.addEventListener('click', applyForm);
   el.links?.addEventListener('change', applyForm);
   el.post?.addEventListener('change', applyForm);
@@ -181,7 +204,7 @@ export function mountArmDesigner(root, demo, { setArm, attempt, show, changed })
   let armShown = '';
   /** Follows the state (per frame, cheap): the form and the list. */
   function check(s) {
-    const key = armText(s.arm);
+    const key = `${armText(s.arm)}|${JSON.stringify([s.arm.joint_limits, s.arm.rate_limits])}`;
     if (key !== armShown) {
       armShown = key;
       syncForm(s.arm);

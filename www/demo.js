@@ -150,6 +150,7 @@ export async function mount(root, options = {}) {
   if (options.feedback) initial('feedback', () => demo.setFeedback(options.feedback));
   if (options.speed) initial('speed', () => demo.setSpeed(options.speed));
   if (options.arm) initial('arm', () => demo.setArm(options.arm.post, Float64Array.from(options.arm.links)));
+  if (options.limits || options.rates) initial(options.limits ? 'limits' : 'rates', () => demo.setArmLimits(options.limits, options.rates));
   if (options.obstacles) initial('obstacles', () => demo.setObstacles(flatObstacles(options.obstacles)));
   // Networks kept in this browser for the arm, before the mode that may need them.
   playground.restore();

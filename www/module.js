@@ -19,12 +19,25 @@ import init, {
   palette,
 } from './pkg/redundant_ik.js';
 
-// The arm and obstacle syntax (`parseArm(text)`, `formatArm(post, links)`,
-// `parseObstacles(text)`), the legend, the atlas classes and the Demo, as
-// the module exports them.
+// The arm, limits and obstacle syntax (`parseArm(text)`, `formatArm(post,
+// links)`, `parseJointLimits(text)` and `formatJointLimits(flat)` for
+// `LO:HI,...`, `parseRateLimits(text)` and `formatRateLimits(rates)` for
+// `R,...`, `parseObstacles(text)`), the legend, the atlas classes and the
+// Demo, as the module exports them.
 import { describeError } from './errors.js';
 
-export { parseArm, formatArm, parseObstacles, legend, atlasClasses, Demo } from './pkg/redundant_ik.js';
+export {
+  parseArm,
+  formatArm,
+  parseJointLimits,
+  formatJointLimits,
+  parseRateLimits,
+  formatRateLimits,
+  parseObstacles,
+  legend,
+  atlasClasses,
+  Demo,
+} from './pkg/redundant_ik.js';
 /** The built-in networks' weights files, `[phi, v]` (served in weights/). */
 export { builtinWeightsFiles };
 

@@ -44,12 +44,17 @@ export function mountPlayground(root, demo, { attempt, show, changed }) {
     }
   }
 
-  /** A new arm `{ post, links }` (the core checks it), with the networks kept for it. */
+  /**
+   * A new arm `{ post, links, joint_limits?, rate_limits? }` (as the state
+   * and the presets write it; the core checks it), with the networks kept
+   * for it.
+   */
   function setArm(arm) {
     if (!arm || typeof arm !== 'object' || !Array.isArray(arm.links)) {
       throw new Error('setArm expects { post, links: [L1, L2, ...] }');
     }
-    demo.setArm(Number(arm.post), Float64Array.from(arm.links, Number));
+    const flat = (list) => (Array.isArray(list) ? Float64Array.from(list.flat(), Number) : undefined);
+    demo.setLimitedArm(Number(arm.post), Float64Array.from(arm.links, Number), flat(arm.joint_limits), flat(arm.rate_limits));
     restoreWeights(demo.state().arm);
     designer.syncForm(demo.state().arm);
     changed();

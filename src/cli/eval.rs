@@ -115,7 +115,7 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
             (all, chosen)
         }
     };
-    if *task_nets.arm() != redundant_ik::Arm::paper() {
+    if !task_nets.arm().same_geometry(&redundant_ik::Arm::paper()) {
         return other_arm(&task_nets, args.json);
     }
     let test =

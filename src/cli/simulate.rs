@@ -9,12 +9,23 @@ use redundant_ik::{Arm, DampingSchedule, Method, Planner, Scene, Trajectory};
 
 use std::fmt::Write as _;
 
+use redundant_ik::arm::{JointLimits, RateLimits};
 use redundant_ik::obstacle::Placement;
 use redundant_ik::planner::methods::{DELTA, LAMBDA};
 
 use super::params::{Given, ParamArgs};
 use super::NetworkArgs;
 use super::{emit, method_help, parse_arm, parse_list, parse_method, parse_obstacle, parse_pair};
+
+/// Parses `--joint-limits` (the core's syntax, `LO:HI,...`).
+fn parse_joint_limits(s: &str) -> Result<JointLimits, String> {
+    s.parse().map_err(|e: redundant_ik::Error| e.to_string())
+}
+
+/// Parses `--rate-limits` (the core's syntax, `R,...`).
+fn parse_rate_limits(s: &str) -> Result<RateLimits, String> {
+    s.parse().map_err(|e: redundant_ik::Error| e.to_string())
+}
 
 /// Scene options shared by `simulate`, `figure` and `atlas`.
 #[derive(Args, Debug, Clone)]
@@ -35,6 +46,16 @@ pub struct SceneArgs {
     /// default, 0.5:0.6,0.85,0.6), four or five.
     #[arg(long, value_parser = parse_arm, allow_hyphen_values = true)]
     pub arm: Option<Arm>,
+    /// Position limits of the arm's joints, LO:HI,LO:HI,... in radians,
+    /// one pair per link (e.g. -2.0944:2.0944,-2.0944:2.0944,-2.0944:2.0944);
+    /// the start pose must lie within them. Default: unlimited (or the
+    /// preset's).
+    #[arg(long, value_parser = parse_joint_limits, allow_hyphen_values = true)]
+    pub joint_limits: Option<JointLimits>,
+    /// Rate limits of the arm's joints, R,R,... in rad/s, one per link.
+    /// Default: unlimited (or the preset's).
+    #[arg(long, value_parser = parse_rate_limits, allow_hyphen_values = true)]
+    pub rate_limits: Option<RateLimits>,
     /// Obstacle centre X,Y in metres, with its own radius X,Y,R (repeat for
     /// several obstacles).
     #[arg(long, value_parser = parse_obstacle, allow_hyphen_values = true)]
@@ -158,10 +179,19 @@ impl SceneArgs {
         }
         let mut s = Scene::task(self.task).map_err(|e| e.to_string())?;
         if let Some(arm) = &self.arm {
-            if *arm != s.arm {
+            if !arm.same_geometry(&s.arm) {
                 s.theta0 = redundant_ik::session::start_pose(arm);
-                s.arm = arm.clone();
             }
+            s.arm = arm.clone();
+        }
+        if self.joint_limits.is_some() || self.rate_limits.is_some() {
+            let arm = s.arm.clone();
+            s.arm = arm
+                .with_limits(
+                    self.joint_limits.clone().or(s.arm.joint_limits().cloned()),
+                    self.rate_limits.clone().or(s.arm.rate_limits().cloned()),
+                )
+                .map_err(|e| e.to_string())?;
         }
         let radius = self.radius.unwrap_or(s.obstacles[0].radius);
         if !self.obstacle.is_empty() {
@@ -289,6 +319,12 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         scene.target[0],
         scene.target[1]
     );
+    if let Some(l) = scene.arm.joint_limits() {
+        w!(out, "joint limits {l} rad");
+    }
+    if let Some(r) = scene.arm.rate_limits() {
+        w!(out, "rate limits  {r} rad/s");
+    }
     for ob in &scene.obstacles {
         w!(
             out,

@@ -174,8 +174,14 @@ pub(crate) fn why(e: impl std::fmt::Display) -> String {
 /// settings, so that a figure in a report says how it was made.
 pub fn caption(task: u32, scene: &Scene, method: Method) -> String {
     let mut parts = vec![method.label().to_string(), format!("Task {task}")];
-    if scene.arm != crate::arm::Arm::paper() {
+    if !scene.arm.same_geometry(&crate::arm::Arm::paper()) {
         parts.push(format!("arm {}", scene.arm));
+    }
+    if let Some(l) = scene.arm.joint_limits() {
+        parts.push(format!("joint limits {l}"));
+    }
+    if let Some(r) = scene.arm.rate_limits() {
+        parts.push(format!("rate limits {r}"));
     }
     use crate::planner::methods::{DELTA, LAMBDA, REFINE, SIGN_SMOOTHING};
     parts.push(format!("λ = {}", scene.param(&LAMBDA)));

@@ -186,7 +186,7 @@ pub fn for_method(
 /// The networks for `arm`: the `installed` ones if they fit it, else the
 /// built-in ones (the paper's set) if they do; else why there are none.
 pub fn available(arm: &Arm, installed: Option<&Arc<Networks>>) -> Result<Arc<Networks>> {
-    if let Some(n) = installed.filter(|n| n.arm() == arm) {
+    if let Some(n) = installed.filter(|n| n.arm().same_geometry(arm)) {
         return Ok(n.clone());
     }
     if builtin_fits(arm) {
@@ -199,7 +199,7 @@ pub fn available(arm: &Arm, installed: Option<&Arc<Networks>>) -> Result<Arc<Net
 
 /// Whether the built-in networks were trained for `arm` (the paper's).
 pub fn builtin_fits(arm: &Arm) -> bool {
-    *arm == Arm::paper()
+    arm.same_geometry(&Arm::paper())
 }
 
 impl Networks {

@@ -79,7 +79,7 @@ impl Networks {
                 "the second file holds Phi networks, expected the v network".into(),
             ));
         }
-        if phi.arm != v.arm {
+        if !phi.arm.same_geometry(&v.arm) {
             return Err(Error::Weights(
                 "the Phi and v files were trained for different arms".into(),
             ));

@@ -248,7 +248,7 @@ fn check_networks(method: Method, networks: &Option<Arc<dyn Surrogate>>, arm: &A
         None if method.uses_networks() => Err(Error::NetworksUnavailable(format!(
             "mode {method} needs trained networks and none are loaded"
         ))),
-        Some(n) if n.arm() != arm => {
+        Some(n) if !n.arm().same_geometry(arm) => {
             let spec = |a: &Arm| (a.post(), a.links().to_vec());
             Err(Error::NetworksForAnotherArm {
                 trained: spec(n.arm()),

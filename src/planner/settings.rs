@@ -6,6 +6,7 @@ use std::sync::Arc;
 
 use super::methods::{DELTA, LAMBDA};
 use super::{check_networks, needs_auto_damping, Line, Method, Planner, Surrogate};
+use crate::arm::{JointLimits, RateLimits};
 use crate::error::{coordinate, positive, Error, Result};
 use crate::ik::DampingSchedule;
 use crate::obstacle::Obstacle;
@@ -115,6 +116,21 @@ impl Planner {
         }
         self.scene.damping = damping;
         self.resample();
+        Ok(())
+    }
+
+    /// Gives the arm other joint limits (position and rate; `None`:
+    /// unlimited), keeping the rest of the scene. Refused, changing nothing,
+    /// when their count does not match the links or the start pose lies
+    /// outside them.
+    pub fn set_arm_limits(
+        &mut self,
+        joint: Option<JointLimits>,
+        rate: Option<RateLimits>,
+    ) -> Result<()> {
+        let arm = self.scene.arm.clone().with_limits(joint, rate)?;
+        arm.check_within_limits("start pose theta0", &self.scene.theta0)?;
+        self.scene.arm = arm;
         Ok(())
     }
 

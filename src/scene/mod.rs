@@ -121,9 +121,10 @@ impl Scene {
 
     /// Checks every field; the first problem found is returned.
     pub fn validate(&self) -> Result<()> {
-        // Re-check the arm: a deserialised scene bypasses `Arm::new`.
-        Arm::new(self.arm.post(), self.arm.links().to_vec())?;
+        self.arm.validate()?;
         self.arm.check_theta(&self.theta0_vector())?;
+        self.arm
+            .check_within_limits("start pose theta0", &self.theta0)?;
         coordinate("target x", self.target[0])?;
         coordinate("target y", self.target[1])?;
         for ob in &self.obstacles {

@@ -69,7 +69,7 @@ impl Session {
     /// not loaded or was trained for another arm.
     pub fn use_network_set(&mut self, set: NetworkSet) -> Result<()> {
         let nets = networks::builtin_set(set)?;
-        if nets.arm() != self.arm() {
+        if !nets.arm().same_geometry(self.arm()) {
             return Err(Error::NetworksUnavailable(format!(
                 "the shipped '{}' networks were trained for the paper's arm, not for this one",
                 set.name()

@@ -18,7 +18,7 @@ mod pointer;
 mod revision;
 mod state;
 
-use crate::arm::Arm;
+use crate::arm::{Arm, JointLimits, RateLimits};
 use crate::error::{within, Error, Result};
 use crate::ik::DampingSchedule;
 use crate::networks::{self, NetworkSet};
@@ -191,11 +191,14 @@ impl Session {
             obstacles.truncate(MAX_OBSTACLES);
         }
         scene.obstacles = obstacles;
-        if old.arm != scene.arm {
+        if !old.arm.same_geometry(&scene.arm) {
             // Another arm: the paper's target and obstacle from its own start pose.
             scene.theta0 = start_pose(&old.arm);
             scene.arm = old.arm.clone();
             scene.obstacles.retain(|o| o.validate(&scene.arm).is_ok());
+        } else {
+            // The paper's, with its limits (if any).
+            scene.arm = old.arm.clone();
         }
         let paper_first = scene.obstacles.first() == Some(&paper);
         let planner = Planner::new(scene, self.planner().method(), self.networks().cloned())?;
@@ -400,6 +403,21 @@ impl Session {
         &self.planner().scene().arm
     }
 
+    /// Gives the arm other joint limits (`None`: unlimited), for the
+    /// planner and the ghost, keeping the scene and the run; refused,
+    /// changing nothing, when their count does not match the links or the
+    /// start pose lies outside them.
+    pub fn set_arm_limits(
+        &mut self,
+        joint: Option<JointLimits>,
+        rate: Option<RateLimits>,
+    ) -> Result<()> {
+        self.twin
+            .apply(|p| p.set_arm_limits(joint.clone(), rate.clone()))?;
+        self.after_change();
+        Ok(())
+    }
+
     /// Replaces the arm (2 to [`MAX_LINKS`] links). The paper's arm gets
     /// Task 1's start pose; any other a pose of the same shape
     /// ([`start_pose`]). The target stays if the new arm reaches it, else it
@@ -416,7 +434,7 @@ impl Session {
             });
         }
         let old = self.planner().scene().clone();
-        let mut scene = if arm == Arm::paper() {
+        let mut scene = if arm.same_geometry(&Arm::paper()) {
             paper_scene(1, old.damping.is_some(), old.feedback_gain)?
         } else {
             Scene {
@@ -440,7 +458,7 @@ impl Session {
         let nets = self
             .networks
             .as_ref()
-            .filter(|n| n.surrogate.arm() == &arm)
+            .filter(|n| n.surrogate.arm().same_geometry(&arm))
             .cloned();
         let method = match self.planner().method() {
             m if m.uses_networks() && nets.is_none() => Method::NUMERICAL,

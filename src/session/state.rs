@@ -247,7 +247,7 @@ impl Session {
                     .collect(),
             ),
             arm_text: scene.arm.to_string(),
-            paper_arm: scene.arm == Arm::paper(),
+            paper_arm: scene.arm.same_geometry(&Arm::paper()),
             revision: self.revision(),
             ghost: self.ghost().map(|g| GhostState {
                 theta: g.theta().iter().copied().collect(),

@@ -50,7 +50,7 @@ impl Sampling {
     /// arm, where the area criterion keeps turning the joints (the areas
     /// grow with distance), and would spread the poses over several turns.
     pub fn for_arm(arm: &Arm) -> Self {
-        if *arm == Arm::paper() {
+        if arm.same_geometry(&Arm::paper()) {
             return Self::default();
         }
         let (obstacle_min, obstacle_max) = super::tasks::obstacle_region(arm);
@@ -101,7 +101,7 @@ impl Sampling {
                 ..base
             },
             crate::networks::NetKind::V => Self {
-                tasks: if arm.dof() == 3 && *arm == Arm::paper() {
+                tasks: if arm.dof() == 3 && arm.same_geometry(&Arm::paper()) {
                     vec![1, 2]
                 } else {
                     Vec::new()

@@ -261,17 +261,19 @@ pub fn train(
     mut on_epoch: impl FnMut(&Progress) -> bool,
 ) -> Result<Trained> {
     let arm = &request.arm;
-    Arm::new(arm.post(), arm.links().to_vec())?;
+    arm.validate()?;
     let kept = |net: NetKind| -> Result<WeightsFile> {
-        let nets = current.filter(|n| n.arm() == arm).ok_or_else(|| {
-            Error::Training(format!(
-                "training only the {} network needs the other one for this arm: train both",
-                match net {
-                    NetKind::Phi => "v",
-                    NetKind::V => "Φ",
-                }
-            ))
-        })?;
+        let nets = current
+            .filter(|n| n.arm().same_geometry(arm))
+            .ok_or_else(|| {
+                Error::Training(format!(
+                    "training only the {} network needs the other one for this arm: train both",
+                    match net {
+                        NetKind::Phi => "v",
+                        NetKind::V => "Φ",
+                    }
+                ))
+            })?;
         Ok(match net {
             NetKind::Phi => nets.phi_file().clone(),
             NetKind::V => nets.v_file().clone(),
@@ -322,7 +324,7 @@ pub fn train_net(
 /// [`train`] reports them. Refuses files of another arm than the request's.
 pub fn conclude(request: &Request, phi: WeightsFile, v: WeightsFile) -> Result<Trained> {
     let arm = &request.arm;
-    if phi.arm != *arm || v.arm != *arm {
+    if !phi.arm.same_geometry(arm) || !v.arm.same_geometry(arm) {
         return Err(Error::Training(
             "the networks to check were trained for another arm than the request's".into(),
         ));
@@ -354,7 +356,7 @@ pub fn assess(nets: &Networks, samples: usize) -> Result<Report> {
     let v_error = ErrorStats::of(evaluation::v_relative_errors(nets, &fresh(NetKind::V)?)?);
     let arm = nets.arm();
     let mut paper_tasks = Vec::new();
-    if *arm == Arm::paper() {
+    if arm.same_geometry(&Arm::paper()) {
         for (feedback, refine) in CHECK_LOOPS {
             for task in [1, 2] {
                 for mode in [Method::CASE1, Method::CASE2, Method::CASE3] {

@@ -235,6 +235,52 @@ pub fn format_arm(post: f64, links: Vec<f64>) -> Result<String, JsError> {
         .to_string())
 }
 
+/// Parses joint limits written `LO:HI,LO:HI,...` in radians (the
+/// address's `limits=`, the command line's `--joint-limits`): flat as
+/// `[lo1, hi1, lo2, hi2, ...]`, as `setLimitedArm` takes them, or an
+/// exception saying what is wrong. Their count is checked with the arm.
+#[wasm_bindgen(js_name = parseJointLimits)]
+pub fn parse_joint_limits(text: &str) -> Result<Vec<f64>, JsError> {
+    let limits: crate::arm::JointLimits = text.parse().map_err(js_err)?;
+    Ok(limits.ranges().iter().flatten().copied().collect())
+}
+
+/// Joint limits given flat `[lo1, hi1, ...]` as `LO:HI,LO:HI,...`, what
+/// [`parse_joint_limits`] reads back.
+#[wasm_bindgen(js_name = formatJointLimits)]
+pub fn format_joint_limits(flat: Vec<f64>) -> Result<String, JsError> {
+    Ok(joint_limits_from(&flat)?.to_string())
+}
+
+/// Parses rate limits written `R,R,...` in rad/s (the address's `rates=`,
+/// the command line's `--rate-limits`), or an exception saying what is
+/// wrong.
+#[wasm_bindgen(js_name = parseRateLimits)]
+pub fn parse_rate_limits(text: &str) -> Result<Vec<f64>, JsError> {
+    let rates: crate::arm::RateLimits = text.parse().map_err(js_err)?;
+    Ok(rates.rates().to_vec())
+}
+
+/// Rate limits as `R,R,...`, what [`parse_rate_limits`] reads back.
+#[wasm_bindgen(js_name = formatRateLimits)]
+pub fn format_rate_limits(rates: Vec<f64>) -> Result<String, JsError> {
+    Ok(crate::arm::RateLimits::new(rates)
+        .map_err(js_err)?
+        .to_string())
+}
+
+/// Joint limits from a flat `[lo1, hi1, lo2, hi2, ...]`, checked.
+fn joint_limits_from(flat: &[f64]) -> Result<crate::arm::JointLimits, JsError> {
+    if !flat.len().is_multiple_of(2) {
+        return Err(JsError::new(&format!(
+            "joint limits: expected lo, hi for each joint, got {} numbers",
+            flat.len()
+        )));
+    }
+    let ranges = flat.chunks_exact(2).map(|p| [p[0], p[1]]).collect();
+    crate::arm::JointLimits::new(ranges).map_err(js_err)
+}
+
 /// Parses obstacles written `x,y,r;x,y,r` (each radius optional, the
 /// paper's 0.05 m by default), as the address's `obstacles=` and the
 /// command line's `--obstacle` write them: `[x0, y0, r0, x1, y1, r1, ...]`,

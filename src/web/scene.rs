@@ -50,6 +50,49 @@ impl Demo {
         self.session.set_arm(arm).map_err(js_err)
     }
 
+    /// Replaces the arm as [`Demo::set_arm`] does, with its joints'
+    /// position limits flat as `[lo1, hi1, lo2, hi2, ...]` (rad) and rate
+    /// limits (rad/s), each `undefined` for none. Throws, keeping the arm,
+    /// when a limit is bad, their count does not match the links, or the
+    /// new start pose lies outside them.
+    #[wasm_bindgen(js_name = setLimitedArm)]
+    pub fn set_limited_arm(
+        &mut self,
+        post: f64,
+        links: Vec<f64>,
+        limits: Option<Vec<f64>>,
+        rates: Option<Vec<f64>>,
+    ) -> JsResult {
+        let limits = limits.map(|f| super::joint_limits_from(&f)).transpose()?;
+        let rates = rates
+            .map(crate::arm::RateLimits::new)
+            .transpose()
+            .map_err(js_err)?;
+        let arm = Arm::new(post, links)
+            .and_then(|a| a.with_limits(limits, rates))
+            .map_err(js_err)?;
+        self.session.set_arm(arm).map_err(js_err)
+    }
+
+    /// Gives the arm joint position limits, flat as `[lo1, hi1, lo2, hi2,
+    /// ...]` (rad), and rate limits (rad/s), each `undefined` for none,
+    /// keeping the scene. Throws, changing nothing, when a limit is bad,
+    /// their count does not match the links, or the start pose lies
+    /// outside them.
+    #[wasm_bindgen(js_name = setArmLimits)]
+    pub fn set_arm_limits(
+        &mut self,
+        limits: Option<Vec<f64>>,
+        rates: Option<Vec<f64>>,
+    ) -> JsResult {
+        let limits = limits.map(|f| super::joint_limits_from(&f)).transpose()?;
+        let rates = rates
+            .map(crate::arm::RateLimits::new)
+            .transpose()
+            .map_err(js_err)?;
+        self.session.set_arm_limits(limits, rates).map_err(js_err)
+    }
+
     /// Adds an obstacle at `(x, y)` with radius `r` (default 0.05 m);
     /// returns its index. Throws beyond 8 obstacles, on the post, or with a
     /// bad radius; nothing changes then.

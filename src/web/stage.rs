@@ -1,6 +1,8 @@
 //! The stage: the arm, its ghost, the obstacle, the line, the target and the
 //! traces, over a metric grid.
 
+use std::f64::consts::{FRAC_PI_2, PI};
+
 use web_sys::CanvasRenderingContext2d;
 
 use super::layer::Layer;
@@ -154,8 +156,12 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) -> u32 {
     polyline(ctx, Some(view), &[[0.0, 0.0], base]);
     ctx.set_line_cap("round");
 
-    // The arm.
+    // The arm, over each joint's range where it has limits.
     if let Some(pts) = s.display_joints(false) {
+        if let Some(limits) = arm.joint_limits() {
+            drawn |= bit::LIMITS;
+            joint_ranges(ctx, view, &pts, limits.ranges(), arm.links());
+        }
         ctx.set_stroke_style_str(ARM);
         ctx.set_line_width(7.0);
         polyline(ctx, Some(view), &pts);
@@ -233,6 +239,42 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) -> u32 {
 }
 
 /// The target marker (at the pointer while it is dragged): a ring and a cross.
+/// Each joint's range `[lo, hi]` as a thin wedge at the joint: joint `k`
+/// at `P(k-1)` may turn link `k` to the absolute angles `phi_(k-1) + lo ..
+/// phi_(k-1) + hi` (`phi_0 = 0`, the post; angles from the vertical towards
+/// `+X1`, which is clockwise on the canvas, so a canvas angle is `phi -
+/// pi/2`). The radius is a quarter of the link, kept between 10 and 26 px.
+fn joint_ranges(
+    ctx: &CanvasRenderingContext2d,
+    view: View,
+    pts: &[[f64; 2]],
+    ranges: &[[f64; 2]],
+    links: &[f64],
+) {
+    ctx.set_stroke_style_str(LIMIT);
+    ctx.set_line_width(1.5);
+    let mut phi = 0.0;
+    for (i, (&[lo, hi], &length)) in ranges.iter().zip(links).enumerate() {
+        let (Some(p), Some(q)) = (pts.get(i), pts.get(i + 1)) else {
+            break;
+        };
+        let (x, y) = view.to_px(*p);
+        let r = (0.25 * length * view.scale).clamp(10.0, 26.0);
+        let (a, b) = (phi + lo - FRAC_PI_2, phi + hi - FRAC_PI_2);
+        ctx.begin_path();
+        ctx.move_to(x + r * a.cos(), y + r * a.sin());
+        let _ = ctx.arc(x, y, r, a, b);
+        if hi - lo < 2.0 * PI {
+            ctx.move_to(x + 0.6 * r * a.cos(), y + 0.6 * r * a.sin());
+            ctx.line_to(x + r * a.cos(), y + r * a.sin());
+            ctx.move_to(x + 0.6 * r * b.cos(), y + 0.6 * r * b.sin());
+            ctx.line_to(x + r * b.cos(), y + r * b.sin());
+        }
+        ctx.stroke();
+        phi = (q[0] - p[0]).atan2(q[1] - p[1]);
+    }
+}
+
 fn target(ctx: &CanvasRenderingContext2d, view: View, s: &Session) {
     let (tx, ty) = view.to_px(s.target_marker());
     ctx.set_stroke_style_str(ACCENT);

@@ -21,6 +21,8 @@ pub const REGION: &str = "#b9c7d6";
 pub const POST: &str = "#4a5560";
 pub const GROUND: &str = "#dfe4ea";
 pub const DAMPER: &str = "#17becf";
+/// The joints' position limits (their ranges drawn at the joints).
+pub const LIMIT: &str = "#8e6bbf";
 pub const PAPER: &str = "#ffffff";
 pub const FONT: &str = "system-ui, -apple-system, 'Segoe UI', Roboto, sans-serif";
 
@@ -36,7 +38,7 @@ pub const INFLUENCE_ALPHA: f64 = 0.6;
 pub const LAYER_ALPHA: f64 = 0.42;
 
 /// Every named colour, for the page's CSS custom properties.
-pub const PALETTE: [(&str, &str); 13] = [
+pub const PALETTE: [(&str, &str); 14] = [
     ("ink", INK),
     ("muted", MUTED),
     ("grid", GRID),
@@ -50,6 +52,7 @@ pub const PALETTE: [(&str, &str); 13] = [
     ("post", POST),
     ("ground", GROUND),
     ("damper", DAMPER),
+    ("limit", LIMIT),
 ];
 
 /// `#rrggbb` with an alpha, as a CSS colour.
@@ -79,7 +82,7 @@ pub struct Entry {
 
 /// The legend's entries: key, label, colour, alpha, kind. Their order is
 /// that of the bits of [`super::stage::draw`]'s mask of what it drew.
-const LEGEND: [(&str, &str, &str, f64, &str); 12] = [
+const LEGEND: [(&str, &str, &str, f64, &str); 13] = [
     ("arm", "arm", ARM, 1.0, "thick"),
     ("strobe", "", ARM, STROBE_ALPHA, "thin"),
     (
@@ -134,6 +137,13 @@ const LEGEND: [(&str, &str, &str, f64, &str); 12] = [
         0.0,
         "square",
     ),
+    (
+        "limits",
+        "each joint's range (its position limits)",
+        LIMIT,
+        1.0,
+        "line",
+    ),
 ];
 
 /// The bit of each legend entry in [`super::stage::draw`]'s mask.
@@ -150,6 +160,7 @@ pub mod bit {
     pub const DAMPERS: u32 = 1 << 9;
     pub const FLOOR: u32 = 1 << 10;
     pub const ATLAS: u32 = 1 << 11;
+    pub const LIMITS: u32 = 1 << 12;
 }
 
 /// The legend of the stage, in the order of the bits of

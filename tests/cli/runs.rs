@@ -86,6 +86,8 @@ fn from_refuses_every_scene_flag_beside_it_and_applies_the_rest() {
         "--tf" => Some("1"),
         "--theta0" => Some("0.1,0.2,0.3"),
         "--feedback" => Some("1"),
+        "--joint-limits" => Some("-2:2,-2:2,-2:2"),
+        "--rate-limits" => Some("1,1,1"),
         _ => None,
     };
     // What goes with --from: the method, the output and the networks

@@ -13,7 +13,8 @@
 //
 // The tests live in one file per part of the page, registered in this order:
 // stage.mjs, methods.mjs, page.mjs, atlas.mjs, module.mjs, playground.mjs,
-// hostile.mjs, reach.mjs, runs.mjs, then the page for a class (class.mjs); harness.mjs
+// hostile.mjs, reach.mjs, runs.mjs, then the page for a class (class.mjs)
+// and the arm's joint limits (limits.mjs); harness.mjs
 // holds the browser and the helpers they share.
 
 import { browser, tests, test, open, clean, state, shots, mouseDrag, touchDrag, selectMode, methodsOf, usesNetworks, BASE, near, pause, countFrames } from './harness.mjs';
@@ -27,8 +28,10 @@ import './hostile.mjs';
 import './reach.mjs';
 import './runs.mjs';
 import { classTests } from './class.mjs';
+import { limitsTests } from './limits.mjs';
 
 classTests({ test, open, clean, state, shots, mouseDrag, touchDrag, selectMode, methodsOf, usesNetworks, browser, BASE, near, pause, countFrames });
+limitsTests({ test, open, clean, state, shots });
 
 // E2E_ONLY=text runs only the tests whose name contains it (for development).
 const only = process.env.E2E_ONLY;
