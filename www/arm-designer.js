@@ -166,45 +166,53 @@ export function mountArmDesigner(root, demo, { setArm, attempt, show, changed })
     changed();
   }
 
-  function obstacleItem(o, i) {
+  /** Obstacle `i`'s entry: its centre (text kept in step by `syncObstacles`), its radius, a remove button. */
+  function obstacleItem(i) {
     const li = document.createElement('li');
     li.dataset.index = String(i);
-    const text = `#${i + 1} (${o.centre[0].toFixed(2)}, ${o.centre[1].toFixed(2)})`;
-    const r = numberInput(0.01, 1, 0.01, o.radius, `Radius of obstacle ${i + 1} (m)`);
+    const where = document.createElement('span');
+    const r = numberInput(0.01, 1, 0.01, 0.05, `Radius of obstacle ${i + 1} (m)`);
     r.addEventListener('change', () => {
-      const all = demo.state().obstacles.map((b) => [...b.centre, b.radius]);
-      all[i][2] = Number(r.value);
-      if (attempt(() => demo.setObstacles(flatObstacles(all)))) changed();
+      if (attempt(() => demo.setObstacleRadius(i, Number(r.value)), 'error', r)) changed();
     });
     const del = document.createElement('button');
     del.type = 'button';
     del.textContent = '×';
     del.title = `Remove obstacle ${i + 1}`;
     del.addEventListener('click', () => attempt(() => removeObstacle(i)));
-    li.append(text, ' r ', r, ' ', del);
-    return li;
+    li.append(where, ' r ', r, ' ', del);
+    return { li, where, r, text: '', radius: NaN };
   }
 
-  let listKey = '';
+  // The entries, rebuilt only when the obstacles come or go; their text
+  // and radius follow the state in place (a drag changes no element).
+  let items = [];
+  let nearestShown = null;
   function syncObstacles(s) {
     if (!el.obstacleList) return;
-    const key = formatObstacles(s.obstacles) + `|${s.nearest}`;
-    if (key === listKey) return;
-    listKey = key;
-    el.obstacleList.replaceChildren(
-      ...s.obstacles.map((o, i) => {
-        const li = obstacleItem(o, i);
-        if (s.nearest === i) li.classList.add('nearest');
-        return li;
-      }),
-    );
+    if (items.length !== s.obstacles.length) {
+      items = s.obstacles.map((_, i) => obstacleItem(i));
+      el.obstacleList.replaceChildren(...items.map((it) => it.li));
+      nearestShown = null;
+    }
+    s.obstacles.forEach((o, i) => {
+      const it = items[i];
+      const text = `#${i + 1} (${o.centre[0].toFixed(2)}, ${o.centre[1].toFixed(2)})`;
+      if (it.text !== text) it.where.textContent = it.text = text;
+      if (it.radius !== o.radius && document.activeElement !== it.r) it.r.value = String((it.radius = o.radius));
+    });
+    if (s.nearest !== nearestShown) {
+      items.forEach((it, i) => it.li.classList.toggle('nearest', s.nearest === i));
+      nearestShown = s.nearest;
+    }
   }
 
   // ---- the loop --------------------------------------------------------
   let armShown = '';
   /** Follows the state (per frame, cheap): the form and the list. */
   function check(s) {
-    const key = `${armText(s.arm)}|${JSON.stringify([s.arm.joint_limits, s.arm.rate_limits])}`;
+    const { joint_limits: jl, rate_limits: rl } = s.arm;
+    const key = jl || rl ? `${s.arm_text}|${jl ?? ''}|${rl ?? ''}` : s.arm_text;
     if (key !== armShown) {
       armShown = key;
       syncForm(s.arm);
@@ -221,8 +229,9 @@ export function mountArmDesigner(root, demo, { setArm, attempt, show, changed })
     /** A click on the drawing while adding: an obstacle there. */
     click(x, y) {
       setAdding(false);
-      const [wx, wy] = demo.canvasToWorld(x, y);
-      return addObstacle(wx, wy);
+      const i = demo.addObstacleAt(x, y);
+      changed();
+      return i;
     },
   };
 }

@@ -252,9 +252,9 @@ export async function mount(root, options = {}) {
   let shownMode = null;
   let shownArm = null;
   let drawnMask = -1;
-  function update() {
-    const s = demo.state();
-    const mask = demo.drawn();
+  /** Follows the state `s` (the frame's, else asked for now): one state per frame, nothing else asked of the module. */
+  function update(s = demo.state()) {
+    const mask = s.drawn;
     if (mask !== drawnMask) syncLegend(el.legend, (drawnMask = mask));
     syncNotes(s);
     // A switch of method the page made by itself (a new arm without
@@ -265,9 +265,8 @@ export async function mount(root, options = {}) {
     }
     shownMode = s.mode;
     chosenMode = s.mode;
-    const armKey = `${s.arm.post}:${s.arm.links.join(',')}`;
-    if (armKey !== shownArm) {
-      shownArm = armKey;
+    if (s.arm_text !== shownArm) {
+      shownArm = s.arm_text;
       if (options.onArm) options.onArm(s);
     }
     for (const r of readouts) {
@@ -296,12 +295,13 @@ export async function mount(root, options = {}) {
     if (stopped) return;
     const elapsed = now - last;
     last = now;
+    let s;
     try {
-      demo.frame(elapsed);
+      s = demo.frame(elapsed);
     } catch (e) {
       show(describe(e), 'error', true);
     }
-    update();
+    update(s);
     requestAnimationFrame(tick);
   }
 

@@ -103,8 +103,7 @@ export function wireStage(stage, demo, { attempt, changed, togglePlay, reset, at
   });
   stage.addEventListener('dblclick', (e) => {
     const [x, y] = local(e);
-    const i = demo.obstacleAt(x, y, 4);
-    if (i !== undefined) attempt(() => playground.removeObstacle(i));
+    attempt(() => demo.removeObstacleAt(x, y, 4) !== undefined && changed());
   });
   const release = (e) => {
     cancelLongPress();

@@ -378,6 +378,28 @@ impl Session {
         Ok(index)
     }
 
+    /// Sets the radius of obstacle `index`, keeping its centre; refused,
+    /// changing nothing, with a bad radius or index (or one that reaches
+    /// the post).
+    pub fn set_obstacle_radius(&mut self, index: usize, radius: f64) -> Result<()> {
+        let mut all = self.obstacles().to_vec();
+        let count = all.len();
+        let Some(ob) = all.get_mut(index) else {
+            return Err(Error::OutOfRange {
+                what: "obstacle index".into(),
+                value: index as f64,
+                min: 0.0,
+                max: count.saturating_sub(1) as f64,
+            });
+        };
+        ob.radius = radius;
+        let paper_first = self.paper_first;
+        self.set_obstacles(all)?;
+        // The paper's first obstacle stays the task's, whatever its size.
+        self.paper_first = paper_first;
+        Ok(())
+    }
+
     /// Removes obstacle `index`.
     pub fn remove_obstacle(&mut self, index: usize) -> Result<()> {
         let mut all = self.obstacles().to_vec();

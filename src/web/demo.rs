@@ -25,7 +25,7 @@ pub struct Demo {
 
 pub(super) type JsResult<T = ()> = Result<T, JsError>;
 
-fn finite(what: &str, value: f64) -> JsResult<f64> {
+pub(super) fn finite(what: &str, value: f64) -> JsResult<f64> {
     crate::error::finite(what, value).map_err(js_err)
 }
 
@@ -185,10 +185,14 @@ impl Demo {
     /// Advances the clock by `elapsed_ms` of real time (scaled by the speed)
     /// and draws the frame. Throws if a step fails; the clock is then paused
     /// and the state is the last good one.
-    pub fn frame(&mut self, elapsed_ms: f64) -> JsResult {
+    ///
+    /// Returns the state after it (as [`Demo::state`]), so that a frame is
+    /// one call into the module (and a drag's pointer move the other).
+    pub fn frame(&mut self, elapsed_ms: f64) -> JsResult<JsValue> {
         let stepped = self.session.tick(elapsed_ms);
         self.draw();
-        stepped.map_err(js_err)
+        stepped.map_err(js_err)?;
+        self.state()
     }
 
     /// Runs the current scene from `t = 0` to `tf` with every method, off
@@ -203,7 +207,11 @@ impl Demo {
     /// `networks` says whether the methods that use networks can run
     /// (networks loaded, or built-in ones trained for the arm).
     pub fn state(&self) -> JsResult<JsValue> {
-        to_js(&self.session.state())
+        let state = to_js(&self.session.state())?;
+        // What the last frame drew (`drawn()`), so the page needs no
+        // second call for the legend.
+        let _ = js_sys::Reflect::set(&state, &"drawn".into(), &self.drawn.get().into());
+        Ok(state)
     }
 
     /// The scene as a plain object (arm, start pose, target, obstacles,

@@ -5,7 +5,7 @@
 
 use wasm_bindgen::prelude::*;
 
-use super::demo::{Demo, JsResult};
+use super::demo::{finite, Demo, JsResult};
 use super::{input, js_err, to_js};
 use crate::arm::Arm;
 use crate::error::Error;
@@ -100,6 +100,35 @@ impl Demo {
     pub fn add_obstacle(&mut self, x: f64, y: f64, r: Option<f64>) -> JsResult<usize> {
         let ob = Obstacle::new(x, y, r.unwrap_or(PAPER_RADIUS));
         self.session.add_obstacle(ob).map_err(js_err)
+    }
+
+    /// Adds an obstacle of the default radius at canvas CSS pixel `(x, y)`
+    /// (a click on the drawing); returns its index. Throws as
+    /// [`Demo::add_obstacle`].
+    #[wasm_bindgen(js_name = addObstacleAt)]
+    pub fn add_obstacle_at(&mut self, x: f64, y: f64) -> JsResult<usize> {
+        let [wx, wy] = self.stage.view().to_world(finite("x", x)?, finite("y", y)?);
+        self.add_obstacle(wx, wy, None)
+    }
+
+    /// Removes the obstacle under canvas CSS pixel `(x, y)` (`slop` extra
+    /// pixels of tolerance), if any: its index, or `undefined`.
+    #[wasm_bindgen(js_name = removeObstacleAt)]
+    pub fn remove_obstacle_at(&mut self, x: f64, y: f64, slop: f64) -> JsResult<Option<usize>> {
+        let Some(i) = input::obstacle_at(&self.session, &self.stage, x, y, slop) else {
+            return Ok(None);
+        };
+        self.session.remove_obstacle(i).map_err(js_err)?;
+        Ok(Some(i))
+    }
+
+    /// Sets the radius of obstacle `i` (m), keeping its centre; throws,
+    /// changing nothing, on a bad radius or index.
+    #[wasm_bindgen(js_name = setObstacleRadius)]
+    pub fn set_obstacle_radius(&mut self, i: f64, r: f64) -> JsResult {
+        self.session
+            .set_obstacle_radius(index(i)?, r)
+            .map_err(js_err)
     }
 
     /// Removes obstacle `i`; throws if there is none.

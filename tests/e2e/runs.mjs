@@ -6,6 +6,7 @@
 import assert from 'node:assert/strict';
 import { test, open, clean, state, pause, mouseDrag } from './harness.mjs';
 import { cli, download, close } from './class-helpers.mjs';
+import { dragCost } from './frame-cost.mjs';
 
 test('runs: with networks=reach the run file names the reach set and the CLI replays it with them; Download weights gives the reach files', async () => {
   const page = await open('?task=1&mode=case3&networks=reach&refine=2&feedback=1');
@@ -71,6 +72,36 @@ test('runs: moving a second obstacle marks the atlas and the comparison stale; c
   await page.selectOption('#mode', 'qp');
   await page.waitForTimeout(100);
   assert.deepEqual(await stale(), { atlas: 'false', compare: 'false' });
+  clean(page);
+  await page.close();
+});
+
+test('page actions: a drag costs at most two calls into the module per frame and rebuilds no list; a radius typed changes that obstacle alone', async () => {
+  const page = await open('?task=1&mode=numerical&obstacles=0.5,0.5,0.05;1.0,1.3,0.05');
+  await pause(page);
+  await page.evaluate(() => document.querySelectorAll('details').forEach((d) => (d.open = true)));
+  const items = () => page.$$('#obstacle-list li');
+  const before = await items();
+  const cost = await dragCost(page, { from: [1.0, 1.3], seconds: 2 });
+  console.log(`measure: dragging an obstacle: ${cost.callsPerFrame.toFixed(2)} calls into the module per frame (${JSON.stringify(cost.calls)}), ${(cost.heapBytesPerFrame / 1024).toFixed(1)} KB of JS heap per frame, ${cost.frames} frames`);
+  assert.ok(cost.frames > 30, `${cost.frames} frames drawn`);
+  assert.ok(cost.callsPerFrame <= 2, `${cost.callsPerFrame} calls per frame: ${JSON.stringify(cost.calls)}`);
+  const after = await items();
+  assert.equal(after.length, 2);
+  for (let i = 0; i < 2; i++) assert.ok(await page.evaluate(([a, b]) => a === b, [before[i], after[i]]), `entry ${i + 1} kept, not rebuilt`);
+  const moved = (await state(page)).obstacles[1].centre;
+  assert.match(await after[1].textContent(), new RegExp(`\\(${moved[0].toFixed(2)}, ${moved[1].toFixed(2)}\\)`), 'its text follows the drag');
+  // The second obstacle's radius, typed: that one changes, in the module.
+  await page.fill('#obstacle-list li[data-index="1"] input', '0.12');
+  await page.press('#obstacle-list li[data-index="1"] input', 'Enter');
+  await page.waitForFunction(() => window.demo.state().obstacles[1].radius === 0.12);
+  const s = await state(page);
+  assert.deepEqual(s.obstacles.map((o) => o.radius), [0.05, 0.12]);
+  assert.deepEqual(s.obstacles[1].centre, moved, 'its centre stays');
+  // Out of bounds: refused next to the field, nothing changed.
+  await page.fill('#obstacle-list li[data-index="0"] input', '-1');
+  await page.press('#obstacle-list li[data-index="0"] input', 'Enter');
+  assert.equal((await state(page)).obstacles[0].radius, 0.05);
   clean(page);
   await page.close();
 });
