@@ -60,6 +60,7 @@ test: lint test-native test-wasm test-e2e test-fuzz test-soak
 lint: setup
 	python3 scripts/check-house.py
 	python3 scripts/check-docs-paths.py
+	python3 scripts/check-page-facts.py
 	cargo fmt --check
 	cargo clippy --all-targets -- -D warnings
 	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --tests -- -D warnings

@@ -397,3 +397,29 @@ fn the_shipped_reach_set_passes_its_own_check() {
     // Over the whole torus its Phi is within 1% (median) of the exact one.
     assert!(r.phi_error.median < 1e-2, "{}", r.phi_error.median);
 }
+
+#[test]
+fn each_training_preset_says_the_sizes_it_trains_with() {
+    use redundant_ik::training::Preset;
+    for p in Preset::ALL {
+        let label = p.label();
+        let thousands = |n: usize| match n / 1000 {
+            0 => n.to_string(),
+            k => format!("{k} {:03}", n % 1000),
+        };
+        if let Some(s) = p.samples() {
+            assert!(
+                label.contains(&format!("{} samples", thousands(s))),
+                "{label}"
+            );
+        }
+        if let Some(e) = p.epochs() {
+            assert!(label.contains(&format!("≤ {e} epochs")), "{label}");
+        }
+        assert_eq!(
+            serde_json::to_value(p).unwrap(),
+            p.name(),
+            "the request's name"
+        );
+    }
+}

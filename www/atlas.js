@@ -15,7 +15,7 @@
 // pointer handlers and for `window.demo.atlas()`. The methods, their labels
 // and the default grid come from the module.
 
-import { limits, methods, methodGroups, atlasClasses, describe } from './module.js';
+import { limits, methods, methodGroups, atlasClasses, describe, paperMethods } from './module.js';
 import { runWorker, nativeFigures, showBusy } from './jobs.js';
 import { metres, percent, row } from './format.js';
 import { saveBlob, saveText, svgToPng } from './download.js';
@@ -173,7 +173,7 @@ export function mountAtlas(root, demo, { changed }) {
     if (el.status) el.status.dataset.ms = String(ms);
     // The default atlas (Task 1, the default grid, the paper's methods) is
     // also timed natively (`make bench-native`).
-    const paper = methods().filter((m) => m.group === 'paper').map((m) => m.name);
+    const paper = paperMethods();
     if (atlas.grid.n === defaultGrid && atlas.task === 1 && atlas.modes.join() === paper.join()) {
       nativeFigures().then((nat) => {
         if (nat?.atlas_ms && atlas === result) status(text(` (native, one core: ${(nat.atlas_ms / 1000).toFixed(2)} s)`));

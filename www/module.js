@@ -17,6 +17,7 @@ import init, {
   networkSets as moduleNetworkSets,
   networkSetLabels,
   palette,
+  methodGroupLabels as moduleGroupLabels,
 } from './pkg/redundant_ik.js';
 
 // The arm, limits and obstacle syntax (`parseArm(text)`, `formatArm(post,
@@ -36,6 +37,8 @@ export {
   parseObstacles,
   legend,
   atlasClasses,
+  trainingPresets,
+  paperMethods,
   Demo,
 } from './pkg/redundant_ik.js';
 /** The built-in networks' weights files, `[phi, v]` (served in weights/). */
@@ -196,7 +199,7 @@ export function params() {
 
 /** The groups of methods in menu order: `[{ group, label, methods }]`. */
 export function methodGroups() {
-  const labels = { paper: 'The paper', beyond: 'Beyond the paper' };
+  const labels = Object.fromEntries(moduleGroupLabels());
   const groups = [];
   for (const m of methods()) {
     let g = groups.find((x) => x.group === m.group);

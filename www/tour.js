@@ -4,7 +4,7 @@
 // skipped or closed at any step, and the page keeps working meanwhile.
 // The step's outcome is read from the run itself, not written here.
 
-import { limits } from './module.js';
+import { limits, methods, paperMethods } from './module.js';
 import { metres } from './format.js';
 
 /** Step 4's obstacle: left of the arm, outside the box the v network saw
@@ -50,9 +50,7 @@ export function mountTour(root, controller) {
     select.dispatchEvent(new Event('change'));
   };
   const paperArm = () => {
-    const paper = limits().arm_presets[0];
-    const arm = demo.state().arm;
-    if (arm.post !== paper.post || arm.links.join() !== paper.links.join()) controller.playground.setArm(paper);
+    if (!demo.state().paper_arm) controller.playground.setArm(limits().arm_presets[0]);
   };
   const task1 = (mode) => {
     paperArm();
@@ -60,27 +58,34 @@ export function mountTour(root, controller) {
     $('task1').click();
   };
 
+  // The paper's methods the tour shows, by what they are (the module names
+  // them): the one without avoidance, the exact route, both networks.
+  const papers = paperMethods().map((name) => methods().find((m) => m.name === name));
+  const BARE = papers.find((m) => !m.avoids).name;
+  const EXACT = papers.find((m) => m.avoids && !m.networks.phi && !m.networks.v).name;
+  const LEARNED = papers.find((m) => m.networks.phi && m.networks.v).name;
+
   const STEPS = [
     {
       title: 'Without avoidance the arm hits the obstacle',
       text: 'Task 1 of the paper with v = 0: the hand follows the straight line exactly, and the links sweep through the red disc. Watch the collision readout turn red.',
-      show: () => task1('none'),
+      show: () => task1(BARE),
     },
     {
       title: 'The numerical route goes around it',
       text: 'The null-space vector v bends the elbow away from the obstacle while the hand follows the same line. The links keep clear and the hand still reaches the target.',
-      show: () => task1('numerical'),
+      show: () => task1(EXACT),
     },
     {
       title: 'Case 3 matches it inside the trained box',
       text: 'Both networks replace the exact Φ and v; the dashed pink arm is the numerical route, for comparison. The obstacle sits inside the dashed box where the v network saw obstacles in training, and the two arms agree.',
-      show: () => task1('case3'),
+      show: () => task1(LEARNED),
     },
     {
       title: 'Move the obstacle outside the box',
       text: 'The obstacle now sits left of the arm, outside the box the v network was trained on, so the networks extrapolate and the range warning says so. Compare the network arm with the numerical ghost.',
       show: () => {
-        task1('case3');
+        task1(LEARNED);
         demo.setObstacle(OUTSIDE[0], OUTSIDE[1]);
         demo.runTask();
       },
@@ -89,10 +94,10 @@ export function mountTour(root, controller) {
       title: 'The atlas shows why',
       text: 'The atlas runs the task with the obstacle on every cell of a grid, for the numerical route and Case 3. Green cells succeed; Case 3 fails mostly outside the dashed box, where its v network never saw an obstacle.',
       show: async () => {
-        task1('case3');
+        task1(LEARNED);
         const panel = $('atlas-panel');
         panel.open = true;
-        for (const box of panel.querySelectorAll('#atlas-modes input')) box.checked = ['numerical', 'case3'].includes(box.value);
+        for (const box of panel.querySelectorAll('#atlas-modes input')) box.checked = [EXACT, LEARNED].includes(box.value);
         $('atlas-n').value = '21';
         // The map is drawn under the arm; the tour card stays in view.
         await controller.atlas({});

@@ -4,7 +4,7 @@
 // and forgetting them. The networks trained are installed and kept through
 // the playground's hooks.
 
-import { describe, limits, networkMethodLabels, formatArm, builtinWeightsUrl, builtinWeightsFiles, networkSets } from './module.js';
+import { describe, limits, networkMethodLabels, formatArm, builtinWeightsUrl, builtinWeightsFiles, networkSets, trainingPresets } from './module.js';
 import { runWorker, showBusy } from './jobs.js';
 import { metres, sci, seconds as fmtS, row } from './format.js';
 
@@ -138,6 +138,11 @@ export function mountTraining(root, demo, { files, install, keep, forget, attemp
     verdictUse: $('verdict-use'),
     verdictDismiss: $('verdict-dismiss'),
   };
+  // The presets and their sizes are the core's; the first is the default.
+  const presets = trainingPresets();
+  if (el.preset && !el.preset.options.length) {
+    for (const p of presets) el.preset.add(new Option(p.label, p.name));
+  }
   let pending = null; // trained networks that failed their check: { arm, entry }
   let last = null; // the last training's report
 
@@ -199,7 +204,7 @@ export function mountTraining(root, demo, { files, install, keep, forget, attemp
     const request = {
       arm: demo.state().arm,
       net: options.net ?? el.net?.value ?? 'both',
-      preset: options.preset ?? el.preset?.value ?? 'quick',
+      preset: options.preset ?? el.preset?.value ?? presets[0].name,
     };
     for (const k of ['samples', 'epochs', 'seed']) if (options[k] !== undefined) request[k] = options[k];
     training = new AbortController();

@@ -58,7 +58,8 @@ pub struct Param {
     #[serde(skip)]
     pub what: &'static str,
     /// What it does, for the command line's help (the default is printed
-    /// after it from [`Param::default`]).
+    /// after it from [`Param::default`]); only the tool carries it.
+    #[cfg(feature = "cli")]
     #[serde(skip)]
     pub help: &'static str,
     /// Its unit, if any.
@@ -122,6 +123,7 @@ impl Param {
     }
 
     /// The command line's help: what it does and its default.
+    #[cfg(feature = "cli")]
     pub fn help_text(&self) -> String {
         let unit = if self.unit.is_empty() {
             String::new()
@@ -133,6 +135,7 @@ impl Param {
 }
 
 /// A unit as a terminal prints it (`m²` -> `m^2`).
+#[cfg(feature = "cli")]
 fn ascii_unit(unit: &str) -> String {
     unit.replace('²', "^2")
 }

@@ -4,6 +4,7 @@
 //! [`crate::nn::lm`] and writes a weights file. Kept apart from the run-time
 //! networks ([`crate::networks`]): the page's simulation needs none of it.
 
+mod preset;
 pub mod sampling;
 pub mod tasks;
 
@@ -19,6 +20,7 @@ use crate::nn::adam::{self, AdamOptions};
 use crate::nn::lm::{self, Dataset, EpochReport, LmOptions};
 use crate::nn::rng::Rng;
 
+pub use preset::Preset;
 pub use sampling::{Visited, REACH_SIGN_SMOOTHING};
 
 /// A named way of training an arm's networks.

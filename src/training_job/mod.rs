@@ -16,53 +16,12 @@ use crate::networks::{NetKind, Networks, WeightsFile};
 use crate::nn::lm::EpochReport;
 use crate::planner::methods::REFINE;
 use crate::planner::{Method, Surrogate};
-use crate::training::{tasks, train_weights, Recipe, TrainSpec};
+use crate::training::{tasks, train_weights, TrainSpec};
 
 mod verdict;
 pub use verdict::{Verdict, PASS_SHARE};
 
-/// How big a training job is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Preset {
-    /// 1 000 samples, at most 100 epochs: seconds for the paper's arm.
-    Quick,
-    /// The paper's 3 000 samples and at most 400 epochs: the shipped files.
-    Thorough,
-    /// The `reach` recipe ([`Recipe::Reach`]): networks meant to hold over
-    /// the whole workspace, at the recipe's sizes (the shipped `reach` set
-    /// for the paper's arm).
-    Reach,
-}
-
-impl Preset {
-    /// The recipe it trains by.
-    pub fn recipe(self) -> Recipe {
-        match self {
-            Preset::Quick | Preset::Thorough => Recipe::Paper,
-            Preset::Reach => Recipe::Reach,
-        }
-    }
-
-    /// Samples drawn, where the preset sets them (else the recipe's).
-    pub fn samples(self) -> Option<usize> {
-        match self {
-            Preset::Quick => Some(1000),
-            Preset::Thorough => Some(3000),
-            Preset::Reach => None,
-        }
-    }
-
-    /// Most epochs per network, where the preset sets
-    /// them (else the recipe's).
-    pub fn epochs(self) -> Option<usize> {
-        match self {
-            Preset::Quick => Some(100),
-            Preset::Thorough => Some(400),
-            Preset::Reach => None,
-        }
-    }
-}
+pub use crate::training::Preset;
 
 /// Which networks to train.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

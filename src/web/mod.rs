@@ -175,6 +175,47 @@ pub fn params() -> Result<JsValue, JsError> {
     to_js(&crate::planner::params::all())
 }
 
+/// The groups of the method menu, in order: `[{ name, label }]`
+/// ([`crate::planner::Group`]).
+#[wasm_bindgen(js_name = methodGroupLabels)]
+pub fn method_group_labels() -> Result<JsValue, JsError> {
+    let all: Vec<[&str; 2]> = crate::planner::Group::ALL
+        .iter()
+        .map(|g| [g.name(), g.label()])
+        .collect();
+    to_js(&all)
+}
+
+/// The paper's five methods in its order (Figs. 2-6): what the atlas, the
+/// benchmark and `eval` default to.
+#[wasm_bindgen(js_name = paperMethods)]
+pub fn paper_methods() -> Vec<String> {
+    crate::planner::methods::PAPER
+        .iter()
+        .map(|m| m.name().to_string())
+        .collect()
+}
+
+/// The Training panel's presets, in menu order (the first is the
+/// default): `[{ name, label }]`, the label made from the preset's sizes
+/// ([`crate::training::Preset`]).
+#[wasm_bindgen(js_name = trainingPresets)]
+pub fn training_presets() -> Result<JsValue, JsError> {
+    #[derive(Serialize)]
+    struct Entry {
+        name: &'static str,
+        label: &'static str,
+    }
+    let all: Vec<Entry> = crate::training::Preset::ALL
+        .iter()
+        .map(|p| Entry {
+            name: p.name(),
+            label: p.label(),
+        })
+        .collect();
+    to_js(&all)
+}
+
 /// The method a page starts with where its address names none
 /// ([`crate::session::default_method`]).
 #[wasm_bindgen(js_name = defaultMethod)]

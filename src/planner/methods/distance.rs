@@ -28,6 +28,7 @@ pub static DISTANCE_GAIN: Param = Param {
     flag: "--distance-gain",
     label: "Distance gain λd",
     what: "distance gain lambda_d",
+    #[cfg(feature = "cli")]
     help: "Gain lambda_d of the clearance potential (distance)",
     unit: "",
     bounds: (0.0, 1000.0),

@@ -13,6 +13,7 @@ pub static INFLUENCE: Param = Param {
     flag: "--influence",
     label: "Influence distance dᵢ",
     what: "influence distance d_i",
+    #[cfg(feature = "cli")]
     help: "Influence distance d_i of distance, priority and qp: link-obstacle pairs closer than this count",
     unit: "m",
     bounds: (1e-3, 100.0),
@@ -32,6 +33,7 @@ pub static STOP_DISTANCE: Param = Param {
     flag: "--stop-distance",
     label: "Stop distance dₛ",
     what: "stop distance d_s",
+    #[cfg(feature = "cli")]
     help: "Stop distance d_s of the velocity dampers (qp) and of the escape speed (priority); floors the clearance of distance",
     unit: "m",
     bounds: (0.0, 100.0),

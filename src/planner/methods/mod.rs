@@ -76,6 +76,27 @@ pub enum Group {
     Beyond,
 }
 
+impl Group {
+    /// Every group, in the order of the menus.
+    pub const ALL: [Group; 2] = [Group::Paper, Group::Beyond];
+
+    /// The name in `methods()` and JSON (`paper`, `beyond`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Group::Paper => "paper",
+            Group::Beyond => "beyond",
+        }
+    }
+
+    /// What a menu heads it with.
+    pub fn label(self) -> &'static str {
+        match self {
+            Group::Paper => "The paper",
+            Group::Beyond => "Beyond the paper",
+        }
+    }
+}
+
 /// Which of the paper's networks a method runs (section V).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub struct Needs {

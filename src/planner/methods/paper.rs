@@ -20,6 +20,7 @@ pub static LAMBDA: Param = Param {
     flag: "--lambda",
     label: "Obstacle gain λ",
     what: "lambda",
+    #[cfg(feature = "cli")]
     help: "Gain lambda of the obstacle vector, eq. (14)",
     unit: "",
     bounds: (0.0, 1000.0),
@@ -38,6 +39,7 @@ pub static DELTA: Param = Param {
     flag: "--delta",
     label: "Damping δ",
     what: "damping factor delta",
+    #[cfg(feature = "cli")]
     help: "Constant damping factor delta, eqs. (6), (17), (20)",
     unit: "m²",
     bounds: (0.0, 1000.0),
@@ -58,6 +60,7 @@ pub static SIGN_SMOOTHING: Param = Param {
     flag: "--sign-smoothing",
     label: "Sign smoothing ε",
     what: "sign smoothing eps",
+    #[cfg(feature = "cli")]
     help: "Smoothing eps of the sign in eq. (15) of the exact obstacle vector (numerical, Case 1)",
     unit: "m²",
     bounds: (0.0, 100.0),
@@ -79,6 +82,7 @@ pub static REFINE: Param = Param {
     flag: "--refine",
     label: "Refinement steps",
     what: "refinement steps",
+    #[cfg(feature = "cli")]
     help: "Newton-Schulz steps refining the learned Phi with the pose's J (Cases 1 and 3)",
     unit: "",
     bounds: (0.0, 8.0),

@@ -34,6 +34,7 @@ pub static ESCAPE_SPEED: Param = Param {
     flag: "--escape-speed",
     label: "Escape speed",
     what: "escape speed",
+    #[cfg(feature = "cli")]
     help: "Escape speed of the point closest to an obstacle at d_s (priority)",
     unit: "m/s",
     bounds: (0.0, 100.0),

@@ -55,6 +55,7 @@ pub static SLACK_WEIGHT: Param = Param {
     flag: "--slack-weight",
     label: "Slack weight w",
     what: "slack weight w",
+    #[cfg(feature = "cli")]
     help: "Weight w of the task slack (qp)",
     unit: "",
     bounds: (1.0, 1e12),

@@ -38,6 +38,7 @@ pub static DAMPER_GAIN: Param = Param {
     flag: "--damper-gain",
     label: "Damper gain ξ",
     what: "damper gain xi",
+    #[cfg(feature = "cli")]
     help: "Damper gain xi: the approach speed allowed at d_i (qp)",
     unit: "m/s",
     bounds: (1e-3, 100.0),

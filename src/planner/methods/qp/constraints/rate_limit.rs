@@ -32,6 +32,7 @@ pub static RATE_LIMIT: Param = Param {
     flag: "--rate-limit",
     label: "Joint rate limit",
     what: "joint rate limit",
+    #[cfg(feature = "cli")]
     help: "Limit of every joint's rate (qp)",
     unit: "rad/s",
     bounds: (1e-3, 1000.0),
