@@ -105,3 +105,20 @@ test('page actions: a drag costs at most two calls into the module per frame and
   clean(page);
   await page.close();
 });
+
+test('controls a method does not read are hidden: the network-set selector for a method without networks, the gain λ for one that reads none', async () => {
+  const page = await open('?task=1&mode=numerical');
+  await pause(page);
+  assert.equal(await page.isVisible('#network-set'), false, 'no networks, no selector');
+  assert.equal(await page.isVisible('#lambda'), true, 'the numerical route reads λ');
+  await page.selectOption('#mode', 'priority');
+  await page.waitForFunction(() => window.demo.state().mode === 'priority');
+  await page.waitForTimeout(100);
+  assert.equal(await page.isVisible('#lambda'), false, 'task priority reads no λ');
+  await page.selectOption('#mode', 'case3');
+  await page.waitForFunction(() => window.demo.state().mode === 'case3');
+  await page.waitForTimeout(100);
+  assert.equal(await page.isVisible('#network-set'), true, 'Case 3 runs networks: the selector shows');
+  clean(page);
+  await page.close();
+});
