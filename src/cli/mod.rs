@@ -155,12 +155,7 @@ pub struct NetworkArgs {
 impl NetworkArgs {
     /// Whether any of these options was given (not left at its default).
     pub fn given(&self, given: &params::Given) -> Option<String> {
-        let cmd = <NetworkArgs as clap::Args>::augment_args(clap::Command::new("networks"));
-        let flag = cmd
-            .get_arguments()
-            .find(|a| given.has(a.get_id().as_str()))
-            .map(|a| format!("--{}", a.get_long().unwrap_or(a.get_id().as_str())));
-        flag
+        given.flags_of::<NetworkArgs>(|_| false).into_iter().next()
     }
 
     /// The networks these options choose, as a run names them: the shipped

@@ -62,6 +62,16 @@ impl Given {
     pub fn has(&self, id: &str) -> bool {
         self.0.iter().any(|g| g == id)
     }
+
+    /// The flags (`--name`) of the arguments of `A` that were given, but
+    /// for those `skip` rejects, in `A`'s order.
+    pub fn flags_of<A: Args>(&self, skip: impl Fn(&clap::Id) -> bool) -> Vec<String> {
+        A::augment_args(Command::new("args"))
+            .get_arguments()
+            .filter(|a| !skip(a.get_id()) && self.has(a.get_id().as_str()))
+            .map(|a| format!("--{}", a.get_long().unwrap_or(a.get_id().as_str())))
+            .collect()
+    }
 }
 
 impl FromArgMatches for Given {

@@ -122,14 +122,10 @@ impl SceneArgs {
     /// (every argument of [`SceneArgs`] but `--from` and the networks,
     /// which the run needs from outside the file), as `--flag`.
     pub fn beside_from(&self) -> Vec<String> {
-        let cmd = <SceneArgs as clap::Args>::augment_args(clap::Command::new("scene"));
         let networks = <NetworkArgs as clap::Args>::augment_args(clap::Command::new("networks"));
-        cmd.get_arguments()
-            .filter(|a| a.get_id() != "from")
-            .filter(|a| networks.get_arguments().all(|n| n.get_id() != a.get_id()))
-            .filter(|a| self.given.has(a.get_id().as_str()))
-            .map(|a| format!("--{}", a.get_long().unwrap_or(a.get_id().as_str())))
-            .collect()
+        self.given.flags_of::<SceneArgs>(|id| {
+            id == "from" || networks.get_arguments().any(|n| n.get_id() == id)
+        })
     }
 
     /// The paper task: `--task`, or the run file's.

@@ -311,6 +311,26 @@ pub fn format_rate_limits(rates: Vec<f64>) -> Result<String, JsError> {
 }
 
 /// Joint limits from a flat `[lo1, hi1, lo2, hi2, ...]`, checked.
+/// An arm's limits as the page passes them (each `undefined` for none):
+/// joint limits flat (see [`joint_limits_from`]) and rate limits.
+pub(super) fn limits_from(
+    limits: Option<Vec<f64>>,
+    rates: Option<Vec<f64>>,
+) -> Result<
+    (
+        Option<crate::arm::JointLimits>,
+        Option<crate::arm::RateLimits>,
+    ),
+    JsError,
+> {
+    let limits = limits.map(|f| joint_limits_from(&f)).transpose()?;
+    let rates = rates
+        .map(crate::arm::RateLimits::new)
+        .transpose()
+        .map_err(js_err)?;
+    Ok((limits, rates))
+}
+
 fn joint_limits_from(flat: &[f64]) -> Result<crate::arm::JointLimits, JsError> {
     if !flat.len().is_multiple_of(2) {
         return Err(JsError::new(&format!(

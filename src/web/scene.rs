@@ -63,11 +63,7 @@ impl Demo {
         limits: Option<Vec<f64>>,
         rates: Option<Vec<f64>>,
     ) -> JsResult {
-        let limits = limits.map(|f| super::joint_limits_from(&f)).transpose()?;
-        let rates = rates
-            .map(crate::arm::RateLimits::new)
-            .transpose()
-            .map_err(js_err)?;
+        let (limits, rates) = super::limits_from(limits, rates)?;
         let arm = Arm::new(post, links)
             .and_then(|a| a.with_limits(limits, rates))
             .map_err(js_err)?;
@@ -85,11 +81,7 @@ impl Demo {
         limits: Option<Vec<f64>>,
         rates: Option<Vec<f64>>,
     ) -> JsResult {
-        let limits = limits.map(|f| super::joint_limits_from(&f)).transpose()?;
-        let rates = rates
-            .map(crate::arm::RateLimits::new)
-            .transpose()
-            .map_err(js_err)?;
+        let (limits, rates) = super::limits_from(limits, rates)?;
         self.session.set_arm_limits(limits, rates).map_err(js_err)
     }
 
