@@ -313,6 +313,7 @@ pub fn format_rate_limits(rates: Vec<f64>) -> Result<String, JsError> {
 /// Joint limits from a flat `[lo1, hi1, lo2, hi2, ...]`, checked.
 /// An arm's limits as the page passes them (each `undefined` for none):
 /// joint limits flat (see [`joint_limits_from`]) and rate limits.
+#[cfg(feature = "page")]
 pub(super) fn limits_from(
     limits: Option<Vec<f64>>,
     rates: Option<Vec<f64>>,
