@@ -229,6 +229,33 @@ impl Pose {
         (a * c - b * b).max(0.0).sqrt()
     }
 
+    /// The gradient of [`Pose::manipulability`] `w = sqrt(det(J J^T))` into
+    /// `out` (`n` entries), analytically: with `T_m = P(n) - P(m)` (the
+    /// hand seen from joint `m + 1`), `J_i = (T_i.y, -T_i.x)` and
+    /// `dJ_i/dtheta_j = -T_max(i,j)`, so
+    /// `d det/dtheta_j = a22 da11 + a11 da22 - 2 a12 da12` with
+    /// `da11 = -2 sum_i J_i.x T_m.x`, `da22 = -2 sum_i J_i.y T_m.y`,
+    /// `da12 = -sum_i (T_m.x J_i.y + J_i.x T_m.y)`, and
+    /// `dw/dtheta_j = (d det/dtheta_j) / (2 w)`. `w` is floored at `floor`
+    /// (m^2): at a singular pose `w` is 0 and not differentiable.
+    pub fn manipulability_gradient_into(&self, floor: f64, out: &mut [f64]) {
+        let n = self.dof();
+        let [a11, a12, a22] = self.jjt();
+        let w = (a11 * a22 - a12 * a12).max(0.0).sqrt().max(floor);
+        let hand = self.joints[n];
+        let tail = |m: usize| [hand[0] - self.joints[m][0], hand[1] - self.joints[m][1]];
+        for (j, o) in out.iter_mut().enumerate().take(n) {
+            let (mut d11, mut d12, mut d22) = (0.0, 0.0, 0.0);
+            for (i, col) in self.jac.chunks_exact(2).enumerate() {
+                let t = tail(i.max(j));
+                d11 -= 2.0 * col[0] * t[0];
+                d22 -= 2.0 * col[1] * t[1];
+                d12 -= t[0] * col[1] + col[0] * t[1];
+            }
+            *o = (a22 * d11 + a11 * d22 - 2.0 * a12 * d12) / (2.0 * w);
+        }
+    }
+
     /// Smallest distance from `o` to the moving link segments `P(k-1)-P(k)`
     /// (the post is not counted).
     pub fn clearance(&self, o: [f64; 2]) -> f64 {

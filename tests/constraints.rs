@@ -2,7 +2,8 @@
 //! (`src/planner/methods/qp/constraints/`), each a file with rows
 //! `G theta_dot <= h`: what each writes for a pose (the velocity damper
 //! `G = -n^T J_p`, `h = xi (c - d_s) / (d_i - d_s)`; the rate limit
-//! `-+e_i`, `h = L`), which scene parameters each reads, and that the
+//! `-+e_i`, `h = L`; the joint-limit damper `+-e_i`,
+//! `h = xi_q (rho - rho_s) / (rho_infl - rho_s)`), which scene parameters each reads, and that the
 //! program's rates keep every row at every step of the paper's tasks and of
 //! scenes where the rows bind (relaxed to `max(h, 0)` only where the step
 //! says so).
@@ -40,9 +41,9 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 }
 
 #[test]
-fn the_program_has_the_damper_and_the_rate_limit_in_that_order() {
+fn the_program_has_the_damper_the_joint_limit_and_the_rate_limit_in_that_order() {
     let names: Vec<_> = constraints::ALL.iter().map(|c| c.info.name).collect();
-    assert_eq!(names, ["damper", "rate_limit"]);
+    assert_eq!(names, ["damper", "joint_limit", "rate_limit"]);
     for entry in constraints::ALL {
         assert_eq!((entry.build)(3).info(), &entry.info);
     }
@@ -129,10 +130,16 @@ fn the_rate_limit_rows_are_minus_and_plus_e_i_bounded_by_l_for_every_joint() {
 
 #[test]
 fn each_constraint_reads_exactly_the_parameters_it_declares_and_qp_declares_them_too() {
-    // The paper's arm straight up, an obstacle 0.1 m beside its second link:
-    // a damper row and the rate rows.
+    // The paper's arm straight up, an obstacle 0.1 m beside its second link,
+    // joint 2 0.5 rad from its upper limit: a damper row, a joint-limit
+    // row and the rate rows.
     let mut scene = Scene::task1();
     scene.obstacles = vec![Obstacle::new(0.15, 1.5, 0.05)];
+    scene.arm = scene
+        .arm
+        .clone()
+        .with_limits(Some("-3:3,-3:0.5,-3:3".parse().unwrap()), None)
+        .unwrap();
     let pose = Pose::new(&scene.arm, &[0.0, 0.0, 0.0]).unwrap();
     for entry in constraints::ALL {
         let declared = entry.info.params;
@@ -176,12 +183,12 @@ fn each_constraint_reads_exactly_the_parameters_it_declares_and_qp_declares_them
 /// keep every constraint's rows: `G theta_dot <= h`, or `<= max(h, 0)` in a
 /// step whose program was relaxed. Returns the rows that bound (held with
 /// equality), per constraint, and the relaxed steps.
-fn rows_hold_at_every_step(name: &str, scene: &Scene) -> ([usize; 2], usize) {
+fn rows_hold_at_every_step(name: &str, scene: &Scene) -> ([usize; 3], usize) {
     assert_eq!(scene.feedback_gain, 0.0, "the line's Xdot is the command");
     let mut p = Planner::new(scene.clone(), QP, None).unwrap();
     let line = p.line();
     let (dt, steps) = (scene.dt, (scene.tf / scene.dt).round() as usize);
-    let (mut binding, mut relaxed_steps) = ([0; 2], 0);
+    let (mut binding, mut relaxed_steps) = ([0; 3], 0);
     for _ in 0..steps {
         let theta: DVector<f64> = p.theta().clone();
         let t_mid = p.time() + 0.5 * dt;
@@ -233,19 +240,33 @@ fn every_row_holds_at_every_step_where_dampers_and_rate_limits_bind() {
     // The paper's tasks need up to 0.54 rad/s.
     let mut slow = Scene::task1();
     slow.set_param(&RATE_LIMIT, 0.3).unwrap();
-    let mut total = [0; 2];
+    // Task 1 with joint 2 limited to 1.6 rad (it turns to 1.80 without),
+    // and joint 3 to 0.9 rad/s by the arm's own rate limit.
+    let mut limited = Scene::task1();
+    limited.arm = limited
+        .arm
+        .clone()
+        .with_limits(
+            Some("-2.0944:2.0944,-2.0944:1.6,-2.0944:2.0944".parse().unwrap()),
+            Some("1.5,1.5,0.2".parse().unwrap()),
+        )
+        .unwrap();
+    let mut total = [0; 3];
     for (name, scene) in [
         ("Task 1 beside the line", beside),
         ("Task 2 next to two obstacles", close),
         ("Task 1 at 0.3 rad/s", slow),
+        ("Task 1 with joint 2 limited", limited),
     ] {
         let (binding, relaxed) = rows_hold_at_every_step(name, &scene);
         assert_eq!(relaxed, 0, "{name}");
-        total[0] += binding[0];
-        total[1] += binding[1];
+        for (t, b) in total.iter_mut().zip(binding) {
+            *t += b;
+        }
     }
     assert!(total[0] > 10, "only {} damper rows bound", total[0]);
-    assert!(total[1] > 10, "only {} rate rows bound", total[1]);
+    assert!(total[1] > 10, "only {} joint-limit rows bound", total[1]);
+    assert!(total[2] > 10, "only {} rate rows bound", total[2]);
 }
 
 #[test]

@@ -70,6 +70,53 @@ impl JointLimits {
     }
 }
 
+/// How close to a limit (as a share of the joint's range) the joint-range
+/// criterion is evaluated at most: at and beyond a limit `H` is unbounded
+/// (its product changes sign), so the distances to the limits are floored
+/// here, which keeps `H` and its gradient finite (about `1e11 / range` at
+/// the floor) and pointing back into the range.
+const RANGE_FLOOR: f64 = 1e-6;
+
+impl JointLimits {
+    /// The distances `(hi - theta, theta - lo)` of joint `i` at `theta`,
+    /// each floored at [`RANGE_FLOOR`] times the range.
+    #[inline]
+    fn margins(&self, i: usize, theta: f64) -> (f64, f64, f64) {
+        let [lo, hi] = self.0[i];
+        let floor = RANGE_FLOOR * (hi - lo);
+        ((hi - theta).max(floor), (theta - lo).max(floor), hi - lo)
+    }
+
+    /// The joint-range criterion of Chan and Dubey (1995, eq. 6),
+    /// `H(theta) = sum_i (hi_i - lo_i)^2 / (4 (hi_i - theta_i)(theta_i - lo_i))`:
+    /// 1 per joint at the middle of its range, growing without bound toward
+    /// either limit (the distances floored at a millionth of the range).
+    pub fn range_criterion(&self, theta: &[f64]) -> f64 {
+        theta
+            .iter()
+            .enumerate()
+            .take(self.0.len())
+            .map(|(i, &t)| {
+                let (up, down, range) = self.margins(i, t);
+                range * range / (4.0 * up * down)
+            })
+            .sum()
+    }
+
+    /// The gradient of [`JointLimits::range_criterion`] into `out` (one
+    /// entry per joint):
+    /// `dH/dtheta_i = (hi_i - lo_i)^2 (2 theta_i - hi_i - lo_i) / (4 (hi_i - theta_i)^2 (theta_i - lo_i)^2)`,
+    /// zero at the middle, positive above it, negative below.
+    pub fn range_gradient_into(&self, theta: &[f64], out: &mut [f64]) {
+        for (i, (o, &t)) in out.iter_mut().zip(theta).enumerate().take(self.0.len()) {
+            let (up, down, range) = self.margins(i, t);
+            // 2 theta - hi - lo = (theta - lo) - (hi - theta), from the
+            // floored distances so the sign holds beyond a limit.
+            *o = range * range * (down - up) / (4.0 * up * up * down * down);
+        }
+    }
+}
+
 impl TryFrom<Vec<[f64; 2]>> for JointLimits {
     type Error = Error;
     fn try_from(ranges: Vec<[f64; 2]>) -> Result<Self> {

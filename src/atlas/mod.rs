@@ -43,6 +43,9 @@ pub enum Class {
     Success,
     /// A link entered the disc.
     Collision,
+    /// No collision, but a joint went past its position limits (only an
+    /// arm with limits).
+    Limit,
     /// No collision, but the end effector ended more than 5 mm from the target.
     Missed,
     /// The run stopped with an error (e.g. diverging at a singular pose).
@@ -50,10 +53,14 @@ pub enum Class {
 }
 
 impl Class {
+    /// How many classes there are.
+    pub const COUNT: usize = 7;
+
     /// Every class, in the order of the legends.
-    pub const ALL: [Class; 6] = [
+    pub const ALL: [Class; Class::COUNT] = [
         Class::Success,
         Class::Collision,
+        Class::Limit,
         Class::Missed,
         Class::Failed,
         Class::PathBlocked,
@@ -67,6 +74,7 @@ impl Class {
             Class::PathBlocked => "path_blocked",
             Class::Success => "success",
             Class::Collision => "collision",
+            Class::Limit => "limit",
             Class::Missed => "missed",
             Class::Failed => "failed",
         }
@@ -79,6 +87,7 @@ impl Class {
             Class::PathBlocked => "on the path: unavoidable",
             Class::Success => "clear, target reached",
             Class::Collision => "collision",
+            Class::Limit => "clear, past a joint limit",
             Class::Missed => "clear, target missed by > 5 mm",
             Class::Failed => "run failed",
         }
@@ -90,6 +99,7 @@ impl Class {
         match self {
             Class::Success => "#5fb89a",
             Class::Collision => "#c0392b",
+            Class::Limit => "#2f6fb5",
             Class::Missed => "#e9a23b",
             Class::Failed => "#7d4e9e",
             Class::PathBlocked => "#8f9aa6",
@@ -443,6 +453,8 @@ fn run_one(p: &mut Planner, steps: usize, o: [f64; 2], path_blocked: bool) -> Ou
         Class::Success
     } else if s.collided {
         Class::Collision
+    } else if s.limit_steps > 0 {
+        Class::Limit
     } else {
         Class::Missed
     };

@@ -73,7 +73,7 @@ pub struct ModeSummary {
     /// The mode.
     pub mode: Method,
     /// Cells of each class, in the order of [`Class::ALL`].
-    pub counts: [usize; 6],
+    pub counts: [usize; Class::COUNT],
     /// Success over the cells where avoidance is possible (neither
     /// `start_overlap` nor `path_blocked`).
     pub avoidable: Rate,
@@ -122,7 +122,7 @@ pub(super) fn summarise(
         .iter()
         .enumerate()
         .map(|(k, &mode)| {
-            let mut counts = [0; 6];
+            let mut counts = [0; Class::COUNT];
             let (mut all, mut ins, mut outs) = ((0, 0), (0, 0), (0, 0));
             let mut mattered = (0, 0);
             let mut clearances = Vec::new();
@@ -259,11 +259,11 @@ impl Serialize for ModeSummary {
     }
 }
 
-struct Counts<'a>(&'a [usize; 6]);
+struct Counts<'a>(&'a [usize; Class::COUNT]);
 
 impl Serialize for Counts<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        let mut map = s.serialize_map(Some(6))?;
+        let mut map = s.serialize_map(Some(Class::COUNT))?;
         for (c, n) in Class::ALL.iter().zip(self.0) {
             map.serialize_entry(c.name(), n)?;
         }

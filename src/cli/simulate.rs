@@ -12,6 +12,7 @@ use std::fmt::Write as _;
 use redundant_ik::arm::{JointLimits, RateLimits};
 use redundant_ik::obstacle::Placement;
 use redundant_ik::planner::methods::{DELTA, LAMBDA};
+use redundant_ik::scene::JointWeighting;
 
 use super::params::{Given, ParamArgs};
 use super::NetworkArgs;
@@ -24,6 +25,11 @@ fn parse_joint_limits(s: &str) -> Result<JointLimits, String> {
 
 /// Parses `--rate-limits` (the core's syntax, `R,...`).
 fn parse_rate_limits(s: &str) -> Result<RateLimits, String> {
+    s.parse().map_err(|e: redundant_ik::Error| e.to_string())
+}
+
+/// Parses `--joint-weighting` (`none` or `wln`).
+fn parse_weighting(s: &str) -> Result<JointWeighting, String> {
     s.parse().map_err(|e: redundant_ik::Error| e.to_string())
 }
 
@@ -56,6 +62,11 @@ pub struct SceneArgs {
     /// Default: unlimited (or the preset's).
     #[arg(long, value_parser = parse_rate_limits, allow_hyphen_values = true)]
     pub rate_limits: Option<RateLimits>,
+    /// How the methods of eq. (5) (none, numerical, Cases 1-3, distance,
+    /// manipulability, jointrange) use the joint limits: none (W = I, the
+    /// paper's) or wln (weighted least norm, W from the limits).
+    #[arg(long, value_parser = parse_weighting, default_value = "none")]
+    pub joint_weighting: JointWeighting,
     /// Obstacle centre X,Y in metres, with its own radius X,Y,R (repeat for
     /// several obstacles).
     #[arg(long, value_parser = parse_obstacle, allow_hyphen_values = true)]
@@ -200,6 +211,7 @@ impl SceneArgs {
         if self.damping {
             s.damping = Some(DampingSchedule::default());
         }
+        s.weighting = self.joint_weighting;
         if let Some(v) = self.dt {
             s.dt = v;
         }

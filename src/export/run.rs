@@ -83,7 +83,8 @@ impl RunFile {
             .map_err(|e| refuse(format!("not the JSON of simulate --json: {e}")))?;
         run.scene.validate()?;
         let mut run = run;
-        run.summary.success = !run.summary.collided && run.summary.reached;
+        run.summary.success =
+            !run.summary.collided && run.summary.limit_steps == 0 && run.summary.reached;
         Ok(run)
     }
 }

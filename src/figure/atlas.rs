@@ -88,7 +88,9 @@ pub fn atlas_svg(atlas: &Atlas, scene: &Scene) -> Result<String> {
     let width = (panel_w * k).max(560) as i32;
     let mut places = Vec::new();
     let (mut x, mut y) = (14, 10);
-    for class in Class::ALL {
+    // The limit class only for an arm with limits (no other can have it).
+    let limited = scene.arm.joint_limits().is_some();
+    for class in Class::ALL.into_iter().filter(|&c| c != Class::Limit || limited) {
         let w = 36 + text_size(class.label(), 13.0).0 as i32;
         if x > 14 && x + w > width - 14 {
             (x, y) = (14, y + 22);

@@ -74,6 +74,15 @@ impl Planner {
         );
         s.phi_handover = note.handover;
         s.relaxed = note.relaxed;
+        s.past_limits.clear();
+        if let Some(limits) = self.scene.arm.joint_limits() {
+            let past = limits.ranges().iter().zip(pose.theta());
+            for (k, (&[lo, hi], &t)) in past.enumerate() {
+                if !(lo..=hi).contains(&t) {
+                    s.past_limits.push(k + 1);
+                }
+            }
+        }
     }
 
     /// Whether the networks the current method uses see inputs inside
@@ -97,13 +106,16 @@ impl Planner {
             final_error,
             max_tracking_error: self.stats.max_tracking_error,
             reached: final_error <= REACH_TOLERANCE,
-            success: !self.stats.collided && final_error <= REACH_TOLERANCE,
+            success: !self.stats.collided
+                && self.stats.limit_steps == 0
+                && final_error <= REACH_TOLERANCE,
             target_reachable: self.scene.arm.can_reach(&self.scene.target_vector()),
             out_of_range_steps: self.stats.out_of_range_steps,
             max_delta: self.stats.max_delta,
             auto_damping: self.auto_damping,
             handover_steps: self.stats.handover_steps,
             relaxed_steps: self.stats.relaxed_steps,
+            limit_steps: self.stats.limit_steps,
         }
     }
 }

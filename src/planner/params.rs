@@ -63,6 +63,7 @@ impl From<Scene> for SceneFile {
             tf: s.tf,
             feedback_gain: s.feedback_gain,
             params,
+            joint_weighting: s.weighting,
             lambda: None,
             delta: None,
             avoidance: None,
@@ -109,6 +110,7 @@ impl TryFrom<SceneFile> for Scene {
             tf: f.tf,
             feedback_gain: f.feedback_gain,
             params,
+            weighting: f.joint_weighting,
         })
     }
 }

@@ -96,6 +96,11 @@ pub struct Sample {
     /// had to be relaxed because no rate satisfied them all (`qp` only).
     #[serde(default, skip_serializing_if = "is_false")]
     pub relaxed: bool,
+    /// The joints (numbered from 1) past their position limits at this
+    /// pose; absent from the JSON when none is (always, for an arm without
+    /// limits).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub past_limits: Vec<usize>,
 }
 
 fn is_false(b: &bool) -> bool {
@@ -125,6 +130,7 @@ impl Sample {
             in_range: true,
             phi_handover: false,
             relaxed: false,
+            past_limits: Vec::with_capacity(n),
         }
     }
 }
@@ -154,8 +160,8 @@ pub struct Summary {
     /// `final_error <= REACH_TOLERANCE`.
     pub reached: bool,
     /// The run's success, the one test every report uses (the atlas's
-    /// `success`, the training check, `eval`): clear of every obstacle
-    /// throughout and [`Summary::reached`]. Absent in files written before
+    /// `success`, the training check, `eval`): clear of every obstacle and
+    /// within the joints' limits throughout, and [`Summary::reached`]. Absent in files written before
     /// it (read as `false`; [`crate::export::RunFile::from_json`] sets it
     /// from the other fields).
     #[serde(default)]
@@ -177,6 +183,11 @@ pub struct Summary {
     /// [`Sample::relaxed`]); absent from the JSON when none was.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub relaxed_steps: usize,
+    /// Samples with a joint past its position limits (see
+    /// [`Sample::past_limits`]); a run with any is no
+    /// [`Summary::success`]. Absent from the JSON when none was.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub limit_steps: usize,
 }
 
 /// A whole run: every sample from `t = 0` to `tf`, and the summary.
@@ -202,6 +213,7 @@ pub(super) struct Stats {
     pub(super) max_delta: f64,
     pub(super) handover_steps: usize,
     pub(super) relaxed_steps: usize,
+    pub(super) limit_steps: usize,
 }
 
 impl Stats {
@@ -216,6 +228,7 @@ impl Stats {
             max_delta: 0.0,
             handover_steps: 0,
             relaxed_steps: 0,
+            limit_steps: 0,
         }
     }
 
@@ -231,6 +244,9 @@ impl Stats {
         }
         if s.relaxed {
             self.relaxed_steps += 1;
+        }
+        if !s.past_limits.is_empty() {
+            self.limit_steps += 1;
         }
     }
 

@@ -15,6 +15,7 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use crate::arm::Arm;
 use crate::ik::DampingSchedule;
 use crate::obstacle::Obstacle;
+use super::JointWeighting;
 
 /// Parameter values by name, in the order of the methods' list; written
 /// and read as one JSON object (a name given twice is refused).
@@ -82,6 +83,9 @@ pub struct SceneFile {
     /// Every declared parameter's value, by name (absent in older files).
     #[serde(default)]
     pub params: ParamMap,
+    /// How the methods of eq. (5) use the joint limits (absent: `none`).
+    #[serde(default, skip_serializing_if = "JointWeighting::is_none")]
+    pub joint_weighting: JointWeighting,
     /// Older files: the gain `lambda`.
     #[serde(default, skip_serializing)]
     pub lambda: Option<f64>,

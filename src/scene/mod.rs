@@ -7,6 +7,7 @@ use std::f64::consts::PI;
 
 mod file;
 mod params;
+mod weighting;
 
 use crate::arm::Arm;
 use crate::error::{coordinate, positive, Error, Result};
@@ -16,6 +17,7 @@ use crate::obstacle::Obstacle;
 pub use file::{ParamMap, SceneFile};
 pub(crate) use params::validate_gain;
 pub use params::{Param, Params, Scale, MAX_GAIN_STEP};
+pub use weighting::JointWeighting;
 
 /// The paper's final end-effector position for both tasks, `Xf = (0.60, 0.20)`.
 pub const PAPER_TARGET: [f64; 2] = [0.60, 0.20];
@@ -49,6 +51,9 @@ pub struct Scene {
     /// The values of the methods' parameters (the paper's gain `lambda`
     /// and damping `delta` among them) that differ from their defaults.
     pub params: Params,
+    /// How the methods of eq. (5) use the arm's joint limits: the paper's
+    /// `W = I`, or weighted least norm.
+    pub weighting: JointWeighting,
 }
 
 impl Scene {
@@ -89,6 +94,7 @@ impl Scene {
             tf: 10.0,
             feedback_gain: 0.0,
             params: Params::default(),
+            weighting: JointWeighting::None,
         }
     }
 

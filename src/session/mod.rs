@@ -123,6 +123,7 @@ fn keep_method_settings(scene: &mut Scene, old: &Scene) {
     // The values came from valid scenes; the order checks cannot fail on
     // them (neither is ordered against another parameter).
     let _ = scene.params.set_all(&task);
+    scene.weighting = old.weighting;
 }
 
 impl Session {

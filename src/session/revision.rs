@@ -56,6 +56,7 @@ fn differ_for_atlas(a: &Scene, b: &Scene) -> bool {
         tf,
         feedback_gain,
         params,
+        weighting,
     } = a;
     let radii_or_rest = obstacles.len() != b.obstacles.len()
         || obstacles
@@ -72,6 +73,7 @@ fn differ_for_atlas(a: &Scene, b: &Scene) -> bool {
         || *tf != b.tf
         || *feedback_gain != b.feedback_gain
         || *params != b.params
+        || *weighting != b.weighting
 }
 
 impl Revisions {

@@ -4,7 +4,8 @@ use arbitrary::Unstructured;
 use redundant_ik::ik::DampingSchedule;
 use redundant_ik::planner::methods as m;
 use redundant_ik::planner::{methods, Planner};
-use redundant_ik::scene::Params;
+use redundant_ik::arm::JointLimits;
+use redundant_ik::scene::{JointWeighting, Params};
 use redundant_ik::{Arm, Obstacle, Scene};
 
 use super::checks::{shipped_surrogate, step_checked, Snapshot};
@@ -70,12 +71,40 @@ pub fn scene(data: &[u8]) {
         if !u.is_empty() {
             values.push((&m::REFINE, small(&mut u, 4) as f64));
         }
+        // The lab's: joint limits around the start (sometimes excluding
+        // it), the weighting and the new methods' and dampers' gains.
+        let mut weighting = JointWeighting::None;
+        let mut arm = arm;
+        if !u.is_empty() {
+            values.extend([
+                (&m::MANIPULABILITY_GAIN, num_in(&mut u, 0.0, 5.0)),
+                (&m::JOINT_RANGE_GAIN, num_in(&mut u, 0.0, 50.0)),
+                (&m::LIMIT_INFLUENCE, num_in(&mut u, 0.1, 1.5)),
+                (&m::LIMIT_STOP, num_in(&mut u, 0.0, 0.09)),
+                (&m::LIMIT_GAIN, num_in(&mut u, 0.1, 3.0)),
+            ]);
+            if u.ratio(1u8, 2u8).unwrap_or(false) {
+                weighting = JointWeighting::Wln;
+            }
+            let ranges = theta0
+                .iter()
+                .map(|&t| [t - num_in(&mut u, -0.1, 3.0), t + num_in(&mut u, -0.1, 3.0)])
+                .collect::<Vec<_>>();
+            let Ok(limits) = JointLimits::new(ranges) else {
+                return;
+            };
+            let Ok(limited) = arm.clone().with_limits(Some(limits), None) else {
+                return;
+            };
+            arm = limited;
+        }
         let mut params = Params::default();
         if params.set_all(&values).is_err() {
             // Refused where it is set; nothing to plan.
             return;
         }
         Scene {
+            weighting,
             arm,
             theta0,
             target,

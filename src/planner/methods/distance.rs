@@ -12,10 +12,10 @@
 //! distance `d_s` (and at 1 mm), so a link that touches or enters a disc
 //! gets a large but finite push out.
 
+use super::weighting::JointWeights;
 use super::{Context, Entry, Group, Method, MethodInfo, Needs, Note, Rule};
 use crate::clearance::Pairs;
 use crate::error::Result;
-use crate::ik;
 use crate::kinematics::Pose;
 use super::influence::{INFLUENCE, STOP_DISTANCE};
 use super::paper::DELTA;
@@ -60,6 +60,7 @@ static ENTRY: Entry = Entry {
             pairs: Pairs::with_capacity(8 * n),
             row: vec![0.0; n],
             v: vec![0.0; n],
+            weights: JointWeights::new(n),
         })
     },
 };
@@ -69,6 +70,7 @@ struct Distance {
     pairs: Pairs,
     row: Vec<f64>,
     v: Vec<f64>,
+    weights: JointWeights,
 }
 
 /// `v = lambda_d sum (1/c - 1/d_i) / c^2 J_p^T n` over the pairs closer than
@@ -99,7 +101,7 @@ impl Rule for Distance {
     ) -> Result<Note> {
         potential_gradient(cx, pose, &mut self.pairs, &mut self.row, &mut self.v);
         let delta = cx.scene.param(&DELTA) + cx.scheduled_delta(pose);
-        ik::theta_dot_symmetric_into(pose.jacobian(), xdot, &self.v, delta, out)?;
+        self.weights.eq18(cx, pose, xdot, &self.v, delta, out)?;
         Ok(Note::default())
     }
 

@@ -18,12 +18,16 @@
 
 mod influence;
 mod paper;
+mod projection;
+mod weighting;
 
 pub use distance::DISTANCE_GAIN;
 pub use influence::{INFLUENCE, STOP_DISTANCE};
+pub use jointrange::JOINT_RANGE_GAIN;
+pub use manipulability::MANIPULABILITY_GAIN;
 pub use paper::{DELTA, LAMBDA, REFINE, SIGN_SMOOTHING};
 pub use priority::ESCAPE_SPEED;
-pub use qp::constraints::{DAMPER_GAIN, RATE_LIMIT};
+pub use qp::constraints::{DAMPER_GAIN, LIMIT_GAIN, LIMIT_INFLUENCE, LIMIT_STOP, RATE_LIMIT};
 pub use qp::SLACK_WEIGHT;
 
 use std::fmt;
@@ -56,6 +60,8 @@ register! {
     distance::DISTANCE,
     priority::PRIORITY,
     qp::QP,
+    manipulability::MANIPULABILITY,
+    jointrange::JOINT_RANGE,
 }
 
 /// The constraints of the `qp` method's program, one file each

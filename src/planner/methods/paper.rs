@@ -4,6 +4,7 @@
 //! joint rates (eq. 18 with the exact `J`, or eq. 21 with `Phi` from the
 //! `Phi` network). Each method's file names its switches; the rule is here.
 
+use super::weighting::JointWeights;
 use super::{Context, Method, Note, Rule};
 use crate::error::Result;
 use crate::ik;
@@ -115,7 +116,8 @@ pub(super) enum Phi {
 }
 
 /// The rule of a paper's method, with its scratch space: `v`, one
-/// obstacle's gradient and `Phi` (row-major `n x 2`).
+/// obstacle's gradient, `Phi` (row-major `n x 2`), the undamped `Phi` kept
+/// for the joint weighting, and the weights.
 #[derive(Debug, Clone)]
 pub(super) struct Paper {
     method: Method,
@@ -124,6 +126,8 @@ pub(super) struct Paper {
     v: Vec<f64>,
     g: Vec<f64>,
     phi: Vec<f64>,
+    phi0: Vec<f64>,
+    weights: JointWeights,
 }
 
 /// The rule of `method` for an `n`-joint arm: `v` from `v_from`, joint
@@ -136,6 +140,8 @@ pub(super) fn rule(n: usize, method: Method, v_from: V, phi_from: Phi) -> Box<dy
         v: vec![0.0; n],
         g: vec![0.0; n],
         phi: vec![0.0; 2 * n],
+        phi0: vec![0.0; 2 * n],
+        weights: JointWeights::new(n),
     })
 }
 
@@ -189,7 +195,10 @@ impl Rule for Paper {
     /// [`ik::damp_phi`]. Where the damping
     /// schedule is active (a near-singular pose, where `Phi` is unbounded and
     /// no network fits it), the exact damped `Phi` of eq. (20) stands in for
-    /// the network, and the note says so.
+    /// the network, and the note says so. With the scene's joint weighting
+    /// (`super::weighting`), eq. (18) becomes its weighted form and the
+    /// network's `Phi` is weighted by [`ik::weight_phi`] (the stand-in by
+    /// [`ik::phi_weighted_into`]) where a joint moves toward a limit.
     fn theta_dot(
         &mut self,
         cx: &Context<'_>,
@@ -210,19 +219,34 @@ impl Rule for Paper {
         let delta = cx.scene.param(&DELTA);
         match self.phi_from {
             Phi::Exact => {
-                ik::theta_dot_symmetric_into(jac, xdot, &self.v, delta + scheduled, out)?;
+                self.weights
+                    .eq18(cx, pose, xdot, &self.v, delta + scheduled, out)?;
                 Ok(Note::default())
             }
             Phi::Network => {
                 let handover = scheduled > 0.0;
+                let weighted = JointWeights::active(cx.scene);
                 if handover {
                     ik::phi_into(jac, delta + scheduled, &mut self.phi)?;
                 } else {
                     cx.networks_for(self.method)?.phi(pose, &mut self.phi)?;
                     ik::refine_phi(&mut self.phi, jac, cx.scene.params.count(&REFINE))?;
+                    if weighted {
+                        self.phi0.copy_from_slice(&self.phi);
+                    }
                     ik::damp_phi(&mut self.phi, delta)?;
                 }
                 ik::theta_dot_network_into(&self.phi, jac, xdot, &self.v, out)?;
+                if weighted && self.weights.update(cx.scene, pose, out) {
+                    let winv = self.weights.inverse();
+                    if handover {
+                        ik::phi_weighted_into(jac, winv, delta + scheduled, &mut self.phi)?;
+                    } else {
+                        self.phi.copy_from_slice(&self.phi0);
+                        ik::weight_phi(&mut self.phi, jac, winv, delta)?;
+                    }
+                    ik::theta_dot_network_weighted_into(&self.phi, jac, winv, xdot, &self.v, out)?;
+                }
                 Ok(Note {
                     handover,
                     ..Note::default()

@@ -45,7 +45,7 @@ use crate::qp as solver;
 use super::influence::{INFLUENCE, STOP_DISTANCE};
 use super::paper::{DELTA, LAMBDA};
 use crate::scene::{Param, Scale};
-use constraints::{DAMPER_GAIN, RATE_LIMIT};
+use constraints::{DAMPER_GAIN, LIMIT_GAIN, LIMIT_INFLUENCE, LIMIT_STOP, RATE_LIMIT};
 
 /// Weight `w` of the task slack: with no row binding the rates are eq. (5)
 /// with damped least squares, `delta = 1 / w`. Below 1 the task hardly
@@ -89,6 +89,9 @@ static ENTRY: Entry = Entry {
             &DAMPER_GAIN,
             &SLACK_WEIGHT,
             &RATE_LIMIT,
+            &LIMIT_INFLUENCE,
+            &LIMIT_STOP,
+            &LIMIT_GAIN,
             &DELTA,
         ],
     },
@@ -117,8 +120,9 @@ struct Qp {
 
 impl Qp {
     fn new(n: usize) -> Self {
-        // Dampers for 8 obstacles per link, and the rate limits.
-        let m = 8 * n + 2 * n;
+        // Dampers for 8 obstacles per link, the joint-limit dampers and
+        // the rate limits.
+        let m = 8 * n + 2 * n + 2 * n;
         Self {
             constraints: constraints::ALL.iter().map(|c| (c.build)(n)).collect(),
             rows: Rows::with_capacity(n, m),

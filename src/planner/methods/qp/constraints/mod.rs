@@ -26,10 +26,12 @@ macro_rules! register {
 
 register! {
     damper::DAMPER,
+    joint_limit::JOINT_LIMIT,
     rate_limit::RATE_BOUNDS,
 }
 
 pub use damper::DAMPER_GAIN;
+pub use joint_limit::{LIMIT_GAIN, LIMIT_INFLUENCE, LIMIT_STOP};
 pub use rate_limit::RATE_LIMIT;
 
 /// What a constraint is, for people and for the code that lists them.

@@ -3,9 +3,13 @@
 //! `VelocityLimit` does. This implementation's addition to the program:
 //! without it, where a damper and the task pull apart, the program buys the
 //! task with unbounded rates (`docs/methods.md` has the atlases that chose
-//! `L`). As rows `G theta_dot <= h`, two per joint `i`, in the joints'
-//! order: `-e_i` (`theta_dot_i >= -L`), then `+e_i` (`theta_dot_i <= L`),
-//! each with `h = L`.
+//! `L`). Where the arm carries its own rate limits `R_i` (a robot's
+//! datasheet, `--rate-limits`), joint `i`'s bound is the smaller,
+//! `L_i = min(L, R_i)`: the program's limit and the robot's are one
+//! constraint, so no two parallel rows meet in the solver's active set. As
+//! rows `G theta_dot <= h`, two per joint `i`, in the joints' order: `-e_i`
+//! (`theta_dot_i >= -L_i`), then `+e_i` (`theta_dot_i <= L_i`), each with
+//! `h = L_i`.
 
 use super::{Constraint, ConstraintInfo, Entry, Rows};
 use crate::error::Result;
@@ -18,7 +22,7 @@ pub static RATE_BOUNDS: Entry = Entry {
     info: ConstraintInfo {
         name: "rate_limit",
         label: "joint-rate limit",
-        description: "−L ≤ θ̇_i ≤ L for every joint",
+        description: "−L_i ≤ θ̇_i ≤ L_i for every joint, L_i = min(L, the arm's rate limit)",
         params: PARAMS,
     },
     build: |_| Box::new(RateLimit),
@@ -59,9 +63,12 @@ struct RateLimit;
 impl Constraint for RateLimit {
     fn rows(&mut self, cx: &Context<'_>, pose: &Pose, rows: &mut Rows) -> Result<()> {
         let limit = limit_of(cx.scene);
+        let arm = cx.scene.arm.rate_limits().map(|r| r.rates());
         for i in 0..pose.dof() {
+            let own = arm.and_then(|r| r.get(i)).copied();
+            let bound = own.map_or(limit, |r| r.min(limit));
             for sign in [-1.0, 1.0] {
-                rows.push(limit)[i] = sign;
+                rows.push(bound)[i] = sign;
             }
         }
         Ok(())
@@ -107,5 +114,23 @@ mod tests {
         assert!(!rows.broken_by(&[0.7, -0.7, 0.0]));
         assert!(rows.broken_by(&[0.0, 0.71, 0.0]));
         assert!(rows.broken_by(&[0.0, 0.0, -0.71]));
+    }
+
+    #[test]
+    fn the_arms_own_rate_limits_tighten_the_bound_joint_by_joint() {
+        let mut scene = Scene::task1();
+        scene.set_param(&RATE_LIMIT, 0.7).unwrap();
+        let rates = "0.5,2,0.7".parse().unwrap();
+        scene.arm = scene.arm.clone().with_limits(None, Some(rates)).unwrap();
+        let pose = Pose::new(&scene.arm, &scene.theta0).unwrap();
+        let cx = Context {
+            scene: &scene,
+            networks: None,
+        };
+        let mut rows = Rows::default();
+        rows.clear(3);
+        RateLimit.rows(&cx, &pose, &mut rows).unwrap();
+        let bounds: Vec<f64> = rows.h().to_vec();
+        assert_eq!(bounds, [0.5, 0.5, 0.7, 0.7, 0.7, 0.7]);
     }
 }

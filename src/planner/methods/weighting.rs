@@ -1,0 +1,100 @@
+//! Weighted least norm (Chan and Dubey 1995), the paper's own `W` of
+//! eq. (7) ("to deal with joint limits"), for the methods built on
+//! eq. (5): `none`, `numerical`, Cases 1-3, `distance`, `manipulability`
+//! and `jointrange`, when the scene asks for it
+//! ([`crate::scene::JointWeighting::Wln`]) and the arm has limits.
+//!
+//! `W = diag(w_i)`, `w_i = 1 + |dH/dtheta_i|` while `|dH/dtheta_i|` grows
+//! (joint `i` moves toward a limit), `w_i = 1` otherwise, with `H` the
+//! joint-range criterion ([`crate::arm::JointLimits::range_criterion`]).
+//!
+//! **Whether `|dH/dtheta_i|` grows.** Chan and Dubey compare its value with
+//! the previous control period's. A rule here is a function of the pose
+//! (an RK4 step evaluates it at four poses, two at one time), so it asks
+//! the derivative instead: `H` is convex in each `theta_i` on its range,
+//! so `d|dH/dtheta_i|/dt = |d^2H/dtheta_i^2| sign(dH/dtheta_i) theta_dot_i`,
+//! which is positive exactly when `dH/dtheta_i theta_dot_i > 0`: the joint
+//! moves away from the middle of its range. `theta_dot` there is the
+//! method's unweighted rate at the same pose (`W = I`), so each stage of a
+//! step decides from its own pose, and a stage whose joints all move toward
+//! the middle keeps the unweighted rates to the last bit. A weighted joint
+//! then moves less toward its limit (`w_i` grows without bound at it); the
+//! weights jump where a joint turns back (a property of the method).
+
+use super::Context;
+use crate::error::Result;
+use crate::ik;
+use crate::kinematics::Pose;
+use crate::scene::Scene;
+
+/// The weights' scratch space: `dH/dtheta` and `W^-1` (`n` entries each).
+#[derive(Debug, Clone)]
+pub(super) struct JointWeights {
+    grad: Vec<f64>,
+    winv: Vec<f64>,
+}
+
+impl JointWeights {
+    /// Room for an `n`-joint arm.
+    pub(super) fn new(n: usize) -> Self {
+        Self {
+            grad: vec![0.0; n],
+            winv: vec![1.0; n],
+        }
+    }
+
+    /// Whether `scene` weights the joints at all: weighted least norm on an
+    /// arm with limits. When not, [`JointWeights::update`] is never needed.
+    #[inline]
+    pub(super) fn active(scene: &Scene) -> bool {
+        !scene.weighting.is_none() && scene.arm.joint_limits().is_some()
+    }
+
+    /// `W^-1` at `pose` for the unweighted rates `rates` (see the module
+    /// documentation); `false` when every weight is 1 (the rates stand).
+    pub(super) fn update(&mut self, scene: &Scene, pose: &Pose, rates: &[f64]) -> bool {
+        if scene.weighting.is_none() {
+            return false;
+        }
+        let Some(limits) = scene.arm.joint_limits() else {
+            return false;
+        };
+        limits.range_gradient_into(pose.theta(), &mut self.grad);
+        let mut weighted = false;
+        for ((w, &g), &rate) in self.winv.iter_mut().zip(&self.grad).zip(rates) {
+            *w = if g * rate > 0.0 {
+                weighted = true;
+                1.0 / (1.0 + g.abs())
+            } else {
+                1.0
+            };
+        }
+        weighted
+    }
+
+    /// Eq. (18), `theta_dot = J+ (Xdot - J v) + v` with damping `delta`,
+    /// into `out`, through the weighted `J+` where the scene's weighting
+    /// asks for it ([`ik::theta_dot_weighted_into`]), else the paper's
+    /// ([`ik::theta_dot_symmetric_into`]).
+    pub(super) fn eq18(
+        &mut self,
+        cx: &Context<'_>,
+        pose: &Pose,
+        xdot: [f64; 2],
+        v: &[f64],
+        delta: f64,
+        out: &mut [f64],
+    ) -> Result<()> {
+        let jac = pose.jacobian();
+        ik::theta_dot_symmetric_into(jac, xdot, v, delta, out)?;
+        if self.update(cx.scene, pose, out) {
+            ik::theta_dot_weighted_into(jac, &self.winv, xdot, v, delta, out)?;
+        }
+        Ok(())
+    }
+
+    /// `W^-1`, one entry per joint, as [`JointWeights::update`] left it.
+    pub(super) fn inverse(&self) -> &[f64] {
+        &self.winv
+    }
+}
