@@ -274,7 +274,11 @@ pub fn theta_dot_weighted_into(
 ) -> Result<()> {
     check_lengths(
         jac,
-        &[("W^-1", winv.len()), ("v", v.len()), ("theta_dot", out.len())],
+        &[
+            ("W^-1", winv.len()),
+            ("v", v.len()),
+            ("theta_dot", out.len()),
+        ],
     )?;
     let [a11, a12, a22] = jwjt(jac, winv);
     let rhs = weighted_residual(jac, winv, xdot, v);
@@ -405,37 +409,66 @@ pub fn phi_weighted_into(jac: &[f64], winv: &[f64], delta: f64, out: &mut [f64])
 
 /// Weights an undamped `Phi_0` (a learned pseudoinverse, trained with
 /// `W = I`) by a diagonal `W` and damps it by `delta`, in place:
-/// `Phi_W = W^-1 Phi_0 (J W^-1 Phi_0 + delta Phi_0^T Phi_0)^-1`.
+/// `Phi_W = W^-1 Phi_0 M_W^-1 M_I (I + delta P)^-1` with `P = Phi_0^T Phi_0`
+/// and `M_W = J W^-1 Phi_0 + delta P` (`M_I` the same with `W = I`).
 ///
 /// The network cannot learn every `W`; this asks of it what it learned,
-/// as [`damp_phi`] does: with `A = J J^T`, `B = J W^-1 J^T` and an exact
-/// `Phi_0 = J^T A^-1`, `J W^-1 Phi_0 = B A^-1` and `Phi_0^T Phi_0 = A^-1`, so
-/// `Phi_W = W^-1 J^T A^-1 A (B + delta I)^-1 = W^-1 J^T (B + delta I)^-1`,
-/// the weighted damped pseudoinverse exactly. The 2x2 matrix is not
-/// symmetric for an inexact `Phi_0`; a singular one is refused.
+/// as [`damp_phi`] does. With `A = J J^T`, `B = J W^-1 J^T` and an exact
+/// `Phi_0 = J^T A^-1`: `P = A^-1`, `M_W = (B + delta I) A^-1`, and
+/// `M_I = I + delta P`, so `Phi_W = W^-1 J^T (B + delta I)^-1`, the weighted
+/// damped pseudoinverse exactly. With `W = I` it is [`damp_phi`]'s
+/// `Phi_0 (I + delta P)^-1`: the network's own error is kept as it is, not
+/// corrected, so the rates move with the weights continuously from those
+/// of the unweighted route. Refused where a 2x2 matrix is singular.
 pub fn weight_phi(phi: &mut [f64], jac: &[f64], winv: &[f64], delta: f64) -> Result<()> {
     check_delta(delta)?;
     check_lengths(jac, &[("W^-1", winv.len()), ("Phi (n x 2)", phi.len() / 2)])?;
-    // M = J W^-1 Phi_0 + delta Phi_0^T Phi_0, row-major 2 x 2.
-    let mut m = [0.0; 4];
-    for ((j, p), w) in jac.chunks_exact(2).zip(phi.chunks_exact(2)).zip(winv) {
-        m[0] += w * j[0] * p[0] + delta * p[0] * p[0];
-        m[1] += w * j[0] * p[1] + delta * p[0] * p[1];
-        m[2] += w * j[1] * p[0] + delta * p[1] * p[0];
-        m[3] += w * j[1] * p[1] + delta * p[1] * p[1];
+    // Row-major 2 x 2: M_W, M_I (without delta P yet) and P.
+    let (mut mw, mut mi, mut p) = ([0.0; 4], [0.0; 4], [0.0; 4]);
+    for ((j, f), w) in jac.chunks_exact(2).zip(phi.chunks_exact(2)).zip(winv) {
+        for r in 0..2 {
+            for c in 0..2 {
+                mi[2 * r + c] += j[r] * f[c];
+                mw[2 * r + c] += w * j[r] * f[c];
+                p[2 * r + c] += f[r] * f[c];
+            }
+        }
     }
+    let mut d = [1.0, 0.0, 0.0, 1.0];
+    for k in 0..4 {
+        mw[k] += delta * p[k];
+        mi[k] += delta * p[k];
+        d[k] += delta * p[k];
+    }
+    // T = M_W^-1 M_I D^-1.
+    let t = mul2(&mul2(&inverse2(mw)?, &mi), &inverse2(d)?);
+    for (row, w) in phi.chunks_exact_mut(2).zip(winv) {
+        let (x, y) = (w * row[0], w * row[1]);
+        row[0] = x * t[0] + y * t[2];
+        row[1] = x * t[1] + y * t[3];
+    }
+    Ok(())
+}
+
+/// The inverse of a row-major 2x2 matrix, refused when it is (numerically)
+/// singular.
+fn inverse2(m: [f64; 4]) -> Result<[f64; 4]> {
     let det = m[0] * m[3] - m[1] * m[2];
     let scale = m.iter().fold(0.0f64, |a, x| a.max(x.abs()));
     if !det.is_finite() || det.abs() <= 1e-13 * scale * scale {
         return Err(numerically_singular());
     }
-    let inv = [m[3] / det, -m[1] / det, -m[2] / det, m[0] / det];
-    for (row, w) in phi.chunks_exact_mut(2).zip(winv) {
-        let (x, y) = (w * row[0], w * row[1]);
-        row[0] = x * inv[0] + y * inv[2];
-        row[1] = x * inv[1] + y * inv[3];
-    }
-    Ok(())
+    Ok([m[3] / det, -m[1] / det, -m[2] / det, m[0] / det])
+}
+
+/// The product of two row-major 2x2 matrices.
+fn mul2(a: &[f64; 4], b: &[f64; 4]) -> [f64; 4] {
+    [
+        a[0] * b[0] + a[1] * b[2],
+        a[0] * b[1] + a[1] * b[3],
+        a[2] * b[0] + a[3] * b[2],
+        a[2] * b[1] + a[3] * b[3],
+    ]
 }
 
 /// Refines an approximate right inverse `Phi` of `J` in place by `steps`

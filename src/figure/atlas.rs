@@ -90,7 +90,10 @@ pub fn atlas_svg(atlas: &Atlas, scene: &Scene) -> Result<String> {
     let (mut x, mut y) = (14, 10);
     // The limit class only for an arm with limits (no other can have it).
     let limited = scene.arm.joint_limits().is_some();
-    for class in Class::ALL.into_iter().filter(|&c| c != Class::Limit || limited) {
+    for class in Class::ALL
+        .into_iter()
+        .filter(|&c| c != Class::Limit || limited)
+    {
         let w = 36 + text_size(class.label(), 13.0).0 as i32;
         if x > 14 && x + w > width - 14 {
             (x, y) = (14, y + 22);

@@ -12,10 +12,10 @@ use serde::de::{MapAccess, Visitor};
 use serde::ser::SerializeMap;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
+use super::JointWeighting;
 use crate::arm::Arm;
 use crate::ik::DampingSchedule;
 use crate::obstacle::Obstacle;
-use super::JointWeighting;
 
 /// Parameter values by name, in the order of the methods' list; written
 /// and read as one JSON object (a name given twice is refused).

@@ -1,10 +1,10 @@
 //! The `scene` target.
 
 use arbitrary::Unstructured;
+use redundant_ik::arm::JointLimits;
 use redundant_ik::ik::DampingSchedule;
 use redundant_ik::planner::methods as m;
 use redundant_ik::planner::{methods, Planner};
-use redundant_ik::arm::JointLimits;
 use redundant_ik::scene::{JointWeighting, Params};
 use redundant_ik::{Arm, Obstacle, Scene};
 
