@@ -237,7 +237,8 @@ impl Rule for Paper {
                     ik::damp_phi(&mut self.phi, delta)?;
                 }
                 ik::theta_dot_network_into(&self.phi, jac, xdot, &self.v, out)?;
-                if weighted && self.weights.update(cx.scene, pose, out) {
+                let mut again = weighted && self.weights.update(cx.scene, pose, out);
+                while again {
                     let winv = self.weights.inverse();
                     if handover {
                         ik::phi_weighted_into(jac, winv, delta + scheduled, &mut self.phi)?;
@@ -246,6 +247,7 @@ impl Rule for Paper {
                         ik::weight_phi(&mut self.phi, jac, winv, delta)?;
                     }
                     ik::theta_dot_network_weighted_into(&self.phi, jac, winv, xdot, &self.v, out)?;
+                    again = self.weights.widen(out);
                 }
                 Ok(Note {
                     handover,

@@ -14,11 +14,18 @@
 //! the derivative instead: `H` is convex in each `theta_i` on its range,
 //! so `d|dH/dtheta_i|/dt = |d^2H/dtheta_i^2| sign(dH/dtheta_i) theta_dot_i`,
 //! which is positive exactly when `dH/dtheta_i theta_dot_i > 0`: the joint
-//! moves away from the middle of its range. `theta_dot` there is the
+//! moves away from the middle of its range. `theta_dot` there is first the
 //! method's unweighted rate at the same pose (`W = I`), so each stage of a
 //! step decides from its own pose, and a stage whose joints all move toward
-//! the middle keeps the unweighted rates to the last bit. A weighted joint
-//! then moves less toward its limit (`w_i` grows without bound at it); the
+//! the middle keeps the unweighted rates to the last bit. Weighting some
+//! joints moves the others more: a joint that the unweighted rates moved
+//! toward the middle may be sent toward its limit by the weighted ones
+//! (Task 1 with +-2.0944 rad limits: joint 3 weighted near its lower limit
+//! drove joint 2 through its upper one, to 2.93 rad). So the test is
+//! repeated on the weighted rates, and every joint they move away from its
+//! middle is weighted too, until no further joint is (at most `n` solves:
+//! the weighted joints only ever grow in number). A weighted joint then
+//! moves less toward its limit (`w_i` grows without bound at it); the
 //! weights jump where a joint turns back (a property of the method).
 
 use super::Context;
@@ -60,16 +67,22 @@ impl JointWeights {
             return false;
         };
         limits.range_gradient_into(pose.theta(), &mut self.grad);
-        let mut weighted = false;
+        self.winv.iter_mut().for_each(|w| *w = 1.0);
+        self.widen(rates)
+    }
+
+    /// Weights every joint not weighted yet that `rates` move away from the
+    /// middle of its range; whether there was one (then the rates are to
+    /// be solved again).
+    pub(super) fn widen(&mut self, rates: &[f64]) -> bool {
+        let mut more = false;
         for ((w, &g), &rate) in self.winv.iter_mut().zip(&self.grad).zip(rates) {
-            *w = if g * rate > 0.0 {
-                weighted = true;
-                1.0 / (1.0 + g.abs())
-            } else {
-                1.0
-            };
+            if *w == 1.0 && g * rate > 0.0 {
+                *w = 1.0 / (1.0 + g.abs());
+                more = true;
+            }
         }
-        weighted
+        more
     }
 
     /// Eq. (18), `theta_dot = J+ (Xdot - J v) + v` with damping `delta`,
@@ -87,8 +100,10 @@ impl JointWeights {
     ) -> Result<()> {
         let jac = pose.jacobian();
         ik::theta_dot_symmetric_into(jac, xdot, v, delta, out)?;
-        if self.update(cx.scene, pose, out) {
+        let mut again = self.update(cx.scene, pose, out);
+        while again {
             ik::theta_dot_weighted_into(jac, &self.winv, xdot, v, delta, out)?;
+            again = self.widen(out);
         }
         Ok(())
     }
