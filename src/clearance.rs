@@ -11,21 +11,42 @@
 //! Then the clearance changes at `dc/dt = n^T J_p theta_dot` (the closest
 //! point may slide along the link, but to first order that does not change
 //! the distance).
+//!
+//! The ground, where a scene asks for it (`--floor`), gives pairs of the
+//! same form: the floor `y = 0` is a half-plane (for every link, `p` its
+//! lower end, `O = (p_x, 0)`, `c = p_y`, `n = (0, 1)`), the post a segment
+//! `(0, 0)-(0, L0)` (for every link but the first, which stands on it, `p`
+//! and `O` the closest points of link and post, `c = |p - O|`,
+//! `n = (p - O) / c`; a link that crosses the post has `c` minus the
+//! shorter way back across it).
 
-use crate::geometry::closest_parameter;
+use crate::geometry::{closest_parameter, closest_point};
 use crate::kinematics::Pose;
 use crate::obstacle::Obstacle;
+
+/// What a link keeps clear of.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Against {
+    /// The scene's obstacle disc of this index.
+    Disc(usize),
+    /// The floor, `y = 0`.
+    Floor,
+    /// The post, `(0, 0)-(0, L0)`.
+    Post,
+}
 
 /// One link and one obstacle, at one pose.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Pair {
     /// The link, from 0 (`P(0) P(1)`, the first moving link).
     pub link: usize,
-    /// The obstacle's index in the scene.
-    pub obstacle: usize,
+    /// What it keeps clear of.
+    pub against: Against,
     /// The point `p` of the link closest to the obstacle's centre.
     pub point: [f64; 2],
-    /// The obstacle's centre `O`.
+    /// The obstacle's centre `O` (for the ground, its point closest to
+    /// the link).
     pub centre: [f64; 2],
     /// `c = |p - O| - r`: negative when the link is inside the disc.
     pub clearance: f64,
@@ -55,10 +76,76 @@ impl Pair {
         };
         Self {
             link,
-            obstacle: index,
+            against: Against::Disc(index),
             point: p,
             centre: o,
             clearance: d - ob.radius,
+            normal,
+        }
+    }
+
+    /// The pair of `link` and the floor `y = 0`: its lower end.
+    pub fn floor(pose: &Pose, link: usize) -> Self {
+        let joints = pose.joints();
+        let (a, b) = (joints[link], joints[link + 1]);
+        let p = if b[1] < a[1] { b } else { a };
+        Self {
+            link,
+            against: Against::Floor,
+            point: p,
+            centre: [p[0], 0.0],
+            clearance: p[1],
+            normal: [0.0, 1.0],
+        }
+    }
+
+    /// The pair of `link` (not the first, which stands on the post) and the
+    /// post `(0, 0)-(0, post)`. Two segments that do not cross are closest
+    /// at an end of one of them; one that crosses the post has the
+    /// clearance minus the shorter way back, its end nearer the post.
+    pub fn post(pose: &Pose, link: usize, post: f64) -> Self {
+        let joints = pose.joints();
+        let (a, b) = (joints[link], joints[link + 1]);
+        let (bottom, top) = ([0.0, 0.0], [0.0, post]);
+        // Candidates (point on the link, point on the post).
+        let candidates = [
+            (a, closest_point(a, bottom, top)),
+            (b, closest_point(b, bottom, top)),
+            (closest_point(bottom, a, b), bottom),
+            (closest_point(top, a, b), top),
+        ];
+        let dist = |(p, o): &([f64; 2], [f64; 2])| (p[0] - o[0]).hypot(p[1] - o[1]);
+        let (mut p, mut o) = candidates[0];
+        for c in &candidates[1..] {
+            if dist(c) < dist(&(p, o)) {
+                (p, o) = *c;
+            }
+        }
+        let d = dist(&(p, o));
+        // The link crosses the post where its ends lie on both sides of
+        // x = 0 at a height within the post.
+        let crosses = a[0] * b[0] < 0.0 && {
+            let s = a[0] / (a[0] - b[0]);
+            let y = a[1] + s * (b[1] - a[1]);
+            (0.0..=post).contains(&y)
+        };
+        let (clearance, normal) = if crosses {
+            // Back across: the end nearer x = 0, pushed to its side.
+            let end = if a[0].abs() < b[0].abs() { a } else { b };
+            p = end;
+            o = [0.0, end[1].clamp(0.0, post)];
+            (-end[0].abs(), [-end[0].signum(), 0.0])
+        } else if d > 0.0 {
+            (d, [(p[0] - o[0]) / d, (p[1] - o[1]) / d])
+        } else {
+            (0.0, [if p[0] < 0.0 { -1.0 } else { 1.0 }, 0.0])
+        };
+        Self {
+            link,
+            against: Against::Post,
+            point: p,
+            centre: o,
+            clearance,
             normal,
         }
     }
@@ -127,7 +214,26 @@ impl Pairs {
         }
     }
 
-    /// The pairs, obstacle by obstacle, each from the first link.
+    /// Appends the pairs of the ground with clearance below `within`: the
+    /// floor for every link, the post `(0, 0)-(0, post)` for every link but
+    /// the first.
+    pub fn add_ground(&mut self, pose: &Pose, post: f64, within: f64) {
+        for k in 0..pose.dof() {
+            let pair = Pair::floor(pose, k);
+            if pair.clearance < within {
+                self.pairs.push(pair);
+            }
+        }
+        for k in 1..pose.dof() {
+            let pair = Pair::post(pose, k, post);
+            if pair.clearance < within {
+                self.pairs.push(pair);
+            }
+        }
+    }
+
+    /// The pairs, obstacle by obstacle, each from the first link, then the
+    /// ground's (floor, then post).
     pub fn as_slice(&self) -> &[Pair] {
         &self.pairs
     }

@@ -74,6 +74,10 @@ pub struct SceneArgs {
     /// Radius of the obstacles given without one, in metres.
     #[arg(long, allow_hyphen_values = true)]
     pub radius: Option<f64>,
+    /// Make the floor (y = 0) and the post obstacles for distance, priority
+    /// and qp, and a link below the floor or across the post a collision.
+    #[arg(long)]
+    pub floor: bool,
     /// Switch on the damping schedule near singular poses.
     #[arg(long)]
     pub damping: bool,
@@ -212,6 +216,7 @@ impl SceneArgs {
             s.damping = Some(DampingSchedule::default());
         }
         s.weighting = self.joint_weighting;
+        s.floor = self.floor;
         if let Some(v) = self.dt {
             s.dt = v;
         }

@@ -4,6 +4,7 @@
 
 use super::methods::Note;
 use super::{Method, Planner, Sample, Summary, Surrogate, REACH_TOLERANCE};
+use crate::clearance::Pair;
 use crate::kinematics::Pose;
 use crate::obstacle::Obstacle;
 
@@ -59,6 +60,13 @@ impl Planner {
             s.distance = Some(s.distance.map_or(d, |m| m.min(d)));
             let c = d - ob.radius;
             s.clearance = Some(s.clearance.map_or(c, |m| m.min(c)));
+        }
+        if let Some(post) = self.scene.ground() {
+            // The ground as an obstacle: a link below the floor or across
+            // the post collides.
+            let n = pose.dof();
+            s.collision |= (0..n).any(|k| Pair::floor(pose, k).clearance < 0.0)
+                || (1..n).any(|k| Pair::post(pose, k, post).clearance < 0.0);
         }
         s.delta = self.scene.param(&super::methods::DELTA)
             + self

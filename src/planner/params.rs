@@ -64,6 +64,7 @@ impl From<Scene> for SceneFile {
             feedback_gain: s.feedback_gain,
             params,
             joint_weighting: s.weighting,
+            floor: s.floor,
             lambda: None,
             delta: None,
             avoidance: None,
@@ -111,6 +112,7 @@ impl TryFrom<SceneFile> for Scene {
             feedback_gain: f.feedback_gain,
             params,
             weighting: f.joint_weighting,
+            floor: f.floor,
         })
     }
 }

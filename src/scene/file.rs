@@ -86,6 +86,9 @@ pub struct SceneFile {
     /// How the methods of eq. (5) use the joint limits (absent: `none`).
     #[serde(default, skip_serializing_if = "JointWeighting::is_none")]
     pub joint_weighting: JointWeighting,
+    /// Whether the floor and the post are obstacles (absent: no).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub floor: bool,
     /// Older files: the gain `lambda`.
     #[serde(default, skip_serializing)]
     pub lambda: Option<f64>,

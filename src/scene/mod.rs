@@ -54,6 +54,11 @@ pub struct Scene {
     /// How the methods of eq. (5) use the arm's joint limits: the paper's
     /// `W = I`, or weighted least norm.
     pub weighting: JointWeighting,
+    /// Whether the floor `y = 0` and the post are obstacles for the methods
+    /// that keep a clearance (`distance`, `priority`, `qp`) and for the
+    /// outcome (a link below the floor or across the post collides); off in
+    /// the paper's tasks.
+    pub floor: bool,
 }
 
 impl Scene {
@@ -95,6 +100,7 @@ impl Scene {
             feedback_gain: 0.0,
             params: Params::default(),
             weighting: JointWeighting::None,
+            floor: false,
         }
     }
 
@@ -118,6 +124,13 @@ impl Scene {
     /// bounds.
     pub fn set_param(&mut self, p: &'static Param, value: f64) -> Result<()> {
         self.params.set(p, value)
+    }
+
+    /// The post's height `L0` where the ground counts as an obstacle
+    /// ([`Scene::floor`]), for [`crate::clearance::Pairs::add_ground`].
+    #[inline]
+    pub fn ground(&self) -> Option<f64> {
+        self.floor.then(|| self.arm.post())
     }
 
     /// Number of RK4 steps, `tf / dt`.

@@ -124,6 +124,7 @@ fn keep_method_settings(scene: &mut Scene, old: &Scene) {
     // them (neither is ordered against another parameter).
     let _ = scene.params.set_all(&task);
     scene.weighting = old.weighting;
+    scene.floor = old.floor;
 }
 
 impl Session {

@@ -57,6 +57,7 @@ fn differ_for_atlas(a: &Scene, b: &Scene) -> bool {
         feedback_gain,
         params,
         weighting,
+        floor,
     } = a;
     let radii_or_rest = obstacles.len() != b.obstacles.len()
         || obstacles
@@ -74,6 +75,7 @@ fn differ_for_atlas(a: &Scene, b: &Scene) -> bool {
         || *feedback_gain != b.feedback_gain
         || *params != b.params
         || *weighting != b.weighting
+        || *floor != b.floor
 }
 
 impl Revisions {

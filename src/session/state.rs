@@ -178,6 +178,9 @@ impl Session {
         let influence = p.scene().param(&INFLUENCE);
         let mut pairs = Pairs::default();
         pairs.update(p.pose(), &p.scene().obstacles, influence);
+        if let Some(post) = p.scene().ground() {
+            pairs.add_ground(p.pose(), post, influence);
+        }
         Some((influence, pairs))
     }
 

@@ -9,6 +9,7 @@ use wasm_bindgen_test::wasm_bindgen_test as test;
 wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 
 mod criteria;
+mod ground;
 mod weighting;
 
 use redundant_ik::arm::JointLimits;

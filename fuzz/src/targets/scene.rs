@@ -74,6 +74,7 @@ pub fn scene(data: &[u8]) {
         // The lab's: joint limits around the start (sometimes excluding
         // it), the weighting and the new methods' and dampers' gains.
         let mut weighting = JointWeighting::None;
+        let mut floor = false;
         let mut arm = arm;
         if !u.is_empty() {
             values.extend([
@@ -86,6 +87,7 @@ pub fn scene(data: &[u8]) {
             if u.ratio(1u8, 2u8).unwrap_or(false) {
                 weighting = JointWeighting::Wln;
             }
+            floor = u.ratio(1u8, 2u8).unwrap_or(false);
             let ranges = theta0
                 .iter()
                 .map(|&t| [t - num_in(&mut u, -0.1, 3.0), t + num_in(&mut u, -0.1, 3.0)])
@@ -105,6 +107,7 @@ pub fn scene(data: &[u8]) {
         }
         Scene {
             weighting,
+            floor,
             arm,
             theta0,
             target,

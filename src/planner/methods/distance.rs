@@ -79,6 +79,9 @@ fn potential_gradient(cx: &Context<'_>, pose: &Pose, pairs: &mut Pairs, row: &mu
     let s = cx.scene;
     let (influence, gain) = (s.param(&INFLUENCE), s.param(&DISTANCE_GAIN));
     pairs.update(pose, &s.obstacles, influence);
+    if let Some(post) = s.ground() {
+        pairs.add_ground(pose, post, influence);
+    }
     v.iter_mut().for_each(|x| *x = 0.0);
     let floor = s.param(&STOP_DISTANCE).max(1e-3);
     for pair in pairs.as_slice() {

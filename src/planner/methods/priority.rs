@@ -98,6 +98,9 @@ impl Rule for Priority {
         ik::theta_dot_symmetric_into(jac, xdot, &self.zero, delta, out)?;
         let influence = s.param(&INFLUENCE);
         self.pairs.update(pose, &s.obstacles, influence);
+        if let Some(post) = s.ground() {
+            self.pairs.add_ground(pose, post, influence);
+        }
         let Some(pair) = self.pairs.closest().copied() else {
             return Ok(Note::default());
         };

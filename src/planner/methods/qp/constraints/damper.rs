@@ -100,6 +100,9 @@ impl Constraint for Damper {
     fn rows(&mut self, cx: &Context<'_>, pose: &Pose, rows: &mut Rows) -> Result<()> {
         let gains = Gains::of(cx.scene);
         self.pairs.update(pose, &cx.scene.obstacles, gains.influence);
+        if let Some(post) = cx.scene.ground() {
+            self.pairs.add_ground(pose, post, gains.influence);
+        }
         for pair in self.pairs.as_slice() {
             let row = rows.push(gains.bound(pair.clearance));
             pair.rate_row(pose, row);
