@@ -428,6 +428,13 @@ fn an_atlas_read_back_from_its_json_is_the_same_atlas() {
     let text = serde_json::to_string(a).unwrap();
     let back: Atlas = serde_json::from_str(&text).unwrap();
     assert_eq!(&back, a);
+    // It lists its methods as `methods`; atlases written before that name
+    // said `modes`, and still read back.
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert!(v.get("modes").is_none() && v["methods"].is_array());
+    let methods = v.as_object_mut().unwrap().remove("methods").unwrap();
+    v["modes"] = methods;
+    assert_eq!(&serde_json::from_value::<Atlas>(v).unwrap(), a);
     // A file with a cell missing, or a method missing from a cell, is refused.
     let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
     v["cells"].as_array_mut().unwrap().pop();

@@ -204,6 +204,10 @@ test('embed page: two independent demos', async () => {
   const l3 = await page.evaluate(() => document.getElementById('left').controller.state());
   assert.ok(l3.t >= l2.t && l3.method === 'numerical', 'reset of one demo leaves the other');
   await page.screenshot({ path: join(shots, 'embed.png'), fullPage: true });
+  // The attribute's older name, mode, is still read.
+  await page.evaluate(() => document.body.insertAdjacentHTML('beforeend', '<redundant-ik-demo id="old" task="2" mode="qp"></redundant-ik-demo>'));
+  await page.waitForSelector('#old[data-ready="true"]', { timeout: 15000 });
+  assert.equal(await page.evaluate(() => document.getElementById('old').controller.state().method), 'qp');
   assert.deepEqual(problems, []);
   await context.close();
 });

@@ -32,6 +32,31 @@ test('the state lives in the URL', async () => {
   await copy.close();
 });
 
+test('older names still work: mode= in the address, { mode } and { modes } in window.demo', async () => {
+  // Addresses written before "method" said mode=; where both are given, method= wins.
+  const old = await open('?task=2&mode=qp');
+  assert.equal((await state(old)).method, 'qp');
+  // The address is written back on the first change, with method=.
+  await old.fill('#lambda', '6');
+  await old.dispatchEvent('#lambda', 'input');
+  assert.match(old.url(), /[?&]method=qp(&|$)/);
+  assert.doesNotMatch(old.url(), /[?&]mode=/);
+  const both = await open('?task=1&method=case3&mode=qp');
+  assert.equal((await state(both)).method, 'case3');
+  // The playground's simulate({ mode }) and atlas({ modes }) as with the new names.
+  const r = await both.evaluate(async () => {
+    const d = window.demo;
+    const atlas = await d.atlas({ n: 3, modes: ['none', 'numerical'] });
+    return { old: d.simulate({ mode: 'numerical' }), new: d.simulate({ method: 'numerical' }), methods: atlas.methods };
+  });
+  assert.deepEqual(r.old, r.new);
+  assert.deepEqual(r.methods, ['none', 'numerical']);
+  for (const p of [old, both]) {
+    clean(p);
+    await p.close();
+  }
+});
+
 test('the drift switch closes the loop in Case 3, and the URL keeps it', async () => {
   const page = await open('?task=1&method=case3');
   await page.evaluate(() => window.demo.runUntil(10));
