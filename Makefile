@@ -117,7 +117,7 @@ bench-native:
 bench-web: web
 	bash scripts/bench-web.sh
 
-## The robustness atlases of both tasks (41 x 41 cells, five modes) as SVG
+## The robustness atlases of both tasks (41 x 41 cells, five methods) as SVG
 ## in docs/img, over the arm's reach and over the v network's trained
 ## obstacle box, with their tables of success rates (docs/atlas.md).
 atlas-figures:
@@ -127,7 +127,7 @@ atlas-figures:
 	  ./target/release/redundant-ik atlas --task $$t --region 0.3,0.8,0.3,0.8 --out docs/img/atlas_task$${t}_box.svg; \
 	done
 
-## The paper's figures for both tasks and every mode, as SVG.
+## The paper's figures for both tasks and every method, as SVG.
 figures:
 	cargo run --release -- figure --all --out figures
 

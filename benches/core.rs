@@ -10,11 +10,11 @@ use redundant_ik::{Method, Planner, Scene};
 fn theta_dot(c: &mut Criterion) {
     let scene = Scene::task1();
     let xdot = Vector2::new(-0.0955884, -0.0814851);
-    for mode in [Method::NO_AVOIDANCE, Method::NUMERICAL] {
-        let mut p = Planner::new(scene.clone(), mode, None).unwrap();
+    for method in [Method::NO_AVOIDANCE, Method::NUMERICAL] {
+        let mut p = Planner::new(scene.clone(), method, None).unwrap();
         let th = scene.theta0.clone();
         let mut out = [0.0; 3];
-        c.bench_function(&format!("theta_dot/{mode}"), |b| {
+        c.bench_function(&format!("theta_dot/{method}"), |b| {
             b.iter(|| {
                 p.theta_dot_into(black_box(&th), black_box([xdot[0], xdot[1]]), &mut out)
                     .unwrap()
@@ -24,9 +24,9 @@ fn theta_dot(c: &mut Criterion) {
 }
 
 fn task1_run(c: &mut Criterion) {
-    for mode in [Method::NO_AVOIDANCE, Method::NUMERICAL] {
-        c.bench_function(&format!("task1_run/{mode}"), |b| {
-            b.iter(|| Planner::run(black_box(Scene::task1()), mode, None).unwrap())
+    for method in [Method::NO_AVOIDANCE, Method::NUMERICAL] {
+        c.bench_function(&format!("task1_run/{method}"), |b| {
+            b.iter(|| Planner::run(black_box(Scene::task1()), method, None).unwrap())
         });
     }
 }

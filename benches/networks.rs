@@ -1,5 +1,5 @@
 //! Criterion benchmarks of the networks: forward passes, `theta_dot` in every
-//! mode, one Levenberg-Marquardt epoch per shipped network size and a short
+//! method, one Levenberg-Marquardt epoch per shipped network size and a short
 //! whole training run. `cargo bench --bench networks`.
 
 use std::hint::black_box;
@@ -51,11 +51,11 @@ fn theta_dot(c: &mut Criterion) {
     let nets: Arc<dyn Surrogate> = Arc::new(Networks::embedded().unwrap());
     let xdot = Vector2::new(-0.1, -0.08);
     let mut g = c.benchmark_group("theta_dot");
-    for &mode in methods::ALL {
-        let mut p = Planner::new(Scene::task1(), mode, Some(nets.clone())).unwrap();
+    for &method in methods::ALL {
+        let mut p = Planner::new(Scene::task1(), method, Some(nets.clone())).unwrap();
         let th = Scene::task1().theta0;
         let mut out = [0.0; 3];
-        g.bench_function(mode.name(), |b| {
+        g.bench_function(method.name(), |b| {
             b.iter(|| {
                 p.theta_dot_into(black_box(&th), [xdot[0], xdot[1]], &mut out)
                     .unwrap()
@@ -64,9 +64,9 @@ fn theta_dot(c: &mut Criterion) {
     }
     g.finish();
     let mut g = c.benchmark_group("task1_run_100_rk4_steps");
-    for &mode in methods::ALL {
-        g.bench_function(mode.name(), |b| {
-            b.iter(|| Planner::run(Scene::task1(), mode, Some(nets.clone())).unwrap())
+    for &method in methods::ALL {
+        g.bench_function(method.name(), |b| {
+            b.iter(|| Planner::run(Scene::task1(), method, Some(nets.clone())).unwrap())
         });
     }
     g.finish();

@@ -39,7 +39,7 @@ async function open(query) {
   return page;
 }
 
-const page = await open('?task=1&mode=numerical');
+const page = await open('?task=1&method=numerical');
 await page.evaluate(() => window.demo.controller.demo.setRunning(false));
 const runs = [];
 for (let i = 0; i < RUNS; i++) {
@@ -60,15 +60,15 @@ console.log(`median of ${RUNS} (${build} build): ${JSON.stringify(out)}`);
 const atlas = [];
 for (let i = 0; i < RUNS; i++) {
   const r = await page.evaluate(async () => {
-    const modes = window.demo.methods().filter((m) => m.group === 'paper').map((m) => m.name);
-    const a = await window.demo.atlas({ modes });
+    const methods = window.demo.methods().filter((m) => m.group === 'paper').map((m) => m.name);
+    const a = await window.demo.atlas({ methods });
     const s = Number(document.getElementById('atlas-status').dataset.ms) / 1000;
-    return { s, n: a.grid.n, modes: a.modes.length, runs: a.cells.length * a.modes.length };
+    return { s, n: a.grid.n, methods: a.methods.length, runs: a.cells.length * a.methods.length };
   });
   const s = r.s;
   atlas.push(s);
   console.log(
-    `atlas of Task 1, ${r.n} x ${r.n} cells, the paper's ${r.modes} methods (${r.runs.toLocaleString('en')} runs), in a worker: ${s.toFixed(2)} s`,
+    `atlas of Task 1, ${r.n} x ${r.n} cells, the paper's ${r.methods} methods (${r.runs.toLocaleString('en')} runs), in a worker: ${s.toFixed(2)} s`,
   );
 }
 console.log(`median of ${RUNS} (${build} build): atlas ${median(atlas).toFixed(2)} s`);
@@ -79,7 +79,7 @@ await page.close();
 // drawn and data-ready set.
 const loads = [];
 for (let i = 0; i < 5; i++) {
-  const p = await open('?task=1&mode=numerical');
+  const p = await open('?task=1&method=numerical');
   loads.push(
     await p.evaluate(() => ({
       ready: window.demo.readyMs,
@@ -97,7 +97,7 @@ console.log(
 // ---- Case 3 solver time per animation frame ----------------------------------
 // `state().solver_ms` sums performance.now() around the planner's step calls
 // in the last frame that stepped; Task 1 at 8x speed is about 1-2 steps a frame.
-const c3 = await open('?task=1&mode=case3');
+const c3 = await open('?task=1&method=case3');
 await c3.selectOption('#speed', '8');
 await c3.click('#task1');
 const frames = await c3.evaluate(
@@ -125,15 +125,15 @@ const batch = await c3.evaluate(() => {
   const t0 = performance.now();
   d.runUntil(100);
   const s = d.state();
-  return { mode: s.mode, steps: s.frame_steps, plannerMs: s.solver_ms, ms: performance.now() - t0 };
+  return { method: s.method, steps: s.frame_steps, plannerMs: s.solver_ms, ms: performance.now() - t0 };
 });
 await c3.close();
 console.log(
-  `measure: ${batch.mode} solver per animation frame (8x speed, ${stepsPerFrame.toFixed(2)} RK4 steps/frame, ${frames.length} frames): ` +
+  `measure: ${batch.method} solver per animation frame (8x speed, ${stepsPerFrame.toFixed(2)} RK4 steps/frame, ${frames.length} frames): ` +
     `median ${median(perFrame).toFixed(3)} ms, max ${perFrame.at(-1)?.toFixed(3)} ms`,
 );
 console.log(
-  `measure: ${batch.mode} batch of ${batch.steps} RK4 steps: planner ${((batch.plannerMs / batch.steps) * 1000).toFixed(1)} us/step; ` +
+  `measure: ${batch.method} batch of ${batch.steps} RK4 steps: planner ${((batch.plannerMs / batch.steps) * 1000).toFixed(1)} us/step; ` +
     `with the ghost arm and bookkeeping ${((batch.ms / batch.steps) * 1000).toFixed(1)} us/step`,
 );
 await browser.close();

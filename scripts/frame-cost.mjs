@@ -15,7 +15,7 @@ import { dragCost } from '../tests/e2e/frame-cost.mjs';
 const BASE = process.env.BASE_URL ?? 'http://127.0.0.1:8000/';
 const browser = await launchChromium();
 const page = await browser.newPage({ viewport: { width: 1280, height: 900 } });
-await page.goto(`${BASE}?task=1&mode=numerical&obstacles=0.5,0.5,0.05;1.0,1.3,0.05`);
+await page.goto(`${BASE}?task=1&method=numerical&obstacles=0.5,0.5,0.05;1.0,1.3,0.05`);
 await page.waitForFunction(() => window.demo && window.demo.state);
 await page.evaluate(() => window.demo.controller.demo.setRunning(false));
 const cost = await dragCost(page, { from: [1.0, 1.3], seconds: Number(process.env.SECONDS ?? 5) });

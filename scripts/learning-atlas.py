@@ -19,11 +19,11 @@ BIN = sys.argv[1] if len(sys.argv) > 1 else "target/release/redundant-ik"
 REGIONS = [("whole reach", []), ("box [0.3, 0.8]²", ["--region", "0.3,0.8,0.3,0.8"])]
 SETS = ["paper", "reach"]
 LOOPS = [(0, 0), (0, 1), (1, 0), (1, 1), (2, 0), (2, 1)]  # (refine, K)
-MODES = ["case1", "case2", "case3"]
+METHODS = ["case1", "case2", "case3"]
 
 
 def atlas(task, region, networks, refine, feedback):
-    args = [BIN, "atlas", "--task", str(task), "--modes", "numerical," + ",".join(MODES),
+    args = [BIN, "atlas", "--task", str(task), "--methods", "numerical," + ",".join(METHODS),
             "--networks", networks, "--refine", str(refine), "--feedback", str(feedback),
             "--json"] + region
     return json.loads(subprocess.run(args, check=True, capture_output=True, text=True).stdout)
@@ -37,8 +37,8 @@ def cell(summary):
 
 for region_name, region in REGIONS:
     print(f"\n### {region_name}\n")
-    print("| networks | refine | K | task | numerical (of avoidable) | " + " | ".join(m.replace("case", "Case ") for m in MODES) + " |")
-    print("|---|---|---|---|---|" + "---|" * len(MODES))
+    print("| networks | refine | K | task | numerical (of avoidable) | " + " | ".join(m.replace("case", "Case ") for m in METHODS) + " |")
+    print("|---|---|---|---|---|" + "---|" * len(METHODS))
     for networks in SETS:
         for refine, feedback in LOOPS:
             for task in (1, 2):
@@ -46,6 +46,6 @@ for region_name, region in REGIONS:
                 s = a["summary"]
                 n = s["numerical"]["avoidable"]
                 row = [networks, str(refine), str(feedback), str(task),
-                       f"{n['successes']}/{n['cells']}"] + [cell(s[m]) for m in MODES]
+                       f"{n['successes']}/{n['cells']}"] + [cell(s[m]) for m in METHODS]
                 print("| " + " | ".join(row) + " |")
                 sys.stdout.flush()

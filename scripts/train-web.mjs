@@ -21,7 +21,7 @@ async function open(base) {
   const context = await browser.newContext({ viewport: { width: 1280, height: 900 } });
   const page = await context.newPage();
   page.on('pageerror', (e) => console.error(`page exception: ${e.message}`));
-  await page.goto(`${base}?task=1&mode=numerical`);
+  await page.goto(`${base}?task=1&method=numerical`);
   await page.waitForSelector('body[data-ready="true"]', { timeout: 15000 });
   await page.evaluate(() => window.demo.controller.demo.setRunning(false));
   return { page, context };

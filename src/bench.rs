@@ -234,9 +234,9 @@ fn task1_xdot() -> Vector2<f64> {
     (scene.target_vector() - x0) / scene.tf
 }
 
-/// One `theta_dot` of `mode` at Task 1's start pose (ns).
-pub fn theta_dot_ns(mode: Method, opts: &Options, probes: &Probes) -> Result<f64> {
-    let mut p = Planner::new(scene(opts)?, mode, Some(shipped(opts)?))?;
+/// One `theta_dot` of `method` at Task 1's start pose (ns).
+pub fn theta_dot_ns(method: Method, opts: &Options, probes: &Probes) -> Result<f64> {
+    let mut p = Planner::new(scene(opts)?, method, Some(shipped(opts)?))?;
     let th: Vec<f64> = p.theta().iter().copied().collect();
     let xdot = task1_xdot();
     let xdot = [xdot[0], xdot[1]];
@@ -248,10 +248,10 @@ pub fn theta_dot_ns(mode: Method, opts: &Options, probes: &Probes) -> Result<f64
     })
 }
 
-/// One RK4 step of Task 1 in `mode`, sample included (ns); the task restarts
+/// One RK4 step of Task 1 in `method`, sample included (ns); the task restarts
 /// every 100 steps.
-pub fn step_ns(mode: Method, opts: &Options, probes: &Probes) -> Result<f64> {
-    let mut p = Planner::new(scene(opts)?, mode, Some(shipped(opts)?))?;
+pub fn step_ns(method: Method, opts: &Options, probes: &Probes) -> Result<f64> {
+    let mut p = Planner::new(scene(opts)?, method, Some(shipped(opts)?))?;
     let n = p.scene().steps();
     let mut k = 0;
     time_ns(opts, probes, || {
@@ -265,10 +265,10 @@ pub fn step_ns(mode: Method, opts: &Options, probes: &Probes) -> Result<f64> {
     })
 }
 
-/// Heap allocations per RK4 step of Task 1 in `mode`, over one whole run,
+/// Heap allocations per RK4 step of Task 1 in `method`, over one whole run,
 /// once the planner exists.
-pub fn allocs_per_step(mode: Method, opts: &Options, count: &dyn Fn() -> u64) -> Result<f64> {
-    let mut p = Planner::new(scene(opts)?, mode, Some(shipped(opts)?))?;
+pub fn allocs_per_step(method: Method, opts: &Options, count: &dyn Fn() -> u64) -> Result<f64> {
+    let mut p = Planner::new(scene(opts)?, method, Some(shipped(opts)?))?;
     let n = p.scene().steps();
     let before = count();
     for _ in 0..n {

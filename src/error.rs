@@ -84,9 +84,9 @@ pub enum Error {
         /// Most accepted.
         max: usize,
     },
-    /// A name that is not one of the choices (a mode, a variant, ...).
+    /// A name that is not one of the choices (a method, a variant, ...).
     UnknownName {
-        /// What kind of name, e.g. `"mode"`.
+        /// What kind of name, e.g. `"method"`.
         kind: &'static str,
         /// The name given.
         name: String,
@@ -168,7 +168,7 @@ pub enum Error {
         /// Of which active when the conflict was found.
         active: usize,
     },
-    /// A network mode was requested but no trained networks are loaded.
+    /// A network method was requested but no trained networks are loaded.
     NetworksUnavailable(String),
     /// The networks were trained for another arm than the planner's.
     NetworksForAnotherArm {

@@ -95,8 +95,9 @@ fn rel(y: &[f64], exact: &[f64]) -> f64 {
 pub struct TaskOutcome {
     /// Paper task (1 or 2).
     pub task: u32,
-    /// Method run.
-    pub mode: Method,
+    /// Method run (`mode` in reports written before this name).
+    #[serde(alias = "mode")]
+    pub method: Method,
     /// Obstacle centre.
     pub obstacle: [f64; 2],
     /// Closed-loop gain `K` (0 = open loop).
@@ -128,16 +129,16 @@ impl TaskOutcome {
     }
 }
 
-/// Runs `mode` on paper task `task` with its obstacle moved to `obstacle`
+/// Runs `method` on paper task `task` with its obstacle moved to `obstacle`
 /// (if given) and closed-loop gain `feedback_gain`.
 pub fn run_task(
     nets: &Networks,
     task: u32,
-    mode: Method,
+    method: Method,
     obstacle: Option<[f64; 2]>,
     feedback_gain: f64,
 ) -> Result<TaskOutcome> {
-    run_task_refined(nets, task, mode, obstacle, feedback_gain, 0)
+    run_task_refined(nets, task, method, obstacle, feedback_gain, 0)
 }
 
 /// [`run_task`] with `refine` Newton-Schulz steps on the learned `Phi`
@@ -145,7 +146,7 @@ pub fn run_task(
 pub fn run_task_refined(
     nets: &Networks,
     task: u32,
-    mode: Method,
+    method: Method,
     obstacle: Option<[f64; 2]>,
     feedback_gain: f64,
     refine: u32,
@@ -164,7 +165,7 @@ pub fn run_task_refined(
     let surrogate: Arc<dyn Surrogate> = Arc::new(nets.clone());
     let mut out = TaskOutcome {
         task,
-        mode,
+        method,
         obstacle: centre,
         feedback_gain,
         refine,
@@ -175,7 +176,7 @@ pub fn run_task_refined(
         error: None,
         success: false,
     };
-    match Planner::run(scene, mode, Some(surrogate)) {
+    match Planner::run(scene, method, Some(surrogate)) {
         Ok(run) => {
             let s = run.summary;
             out.min_distance = s.min_distance.unwrap_or(f64::INFINITY);
@@ -194,11 +195,11 @@ pub fn run_task_refined(
 pub fn task_outcomes(nets: &Networks, feedback_gain: f64, refine: u32) -> Result<Vec<TaskOutcome>> {
     let mut out = Vec::new();
     for task in [1, 2] {
-        for mode in methods::PAPER {
+        for method in methods::PAPER {
             out.push(run_task_refined(
                 nets,
                 task,
-                mode,
+                method,
                 None,
                 feedback_gain,
                 refine,

@@ -10,7 +10,7 @@ use std::sync::Arc;
 use crate::error::Result;
 use crate::planner::{Method, Planner, Surrogate};
 
-/// A planner and, while its mode uses networks, a copy of it solved
+/// A planner and, while its method uses networks, a copy of it solved
 /// numerically (the ghost).
 #[derive(Debug, Clone)]
 pub struct Twin {
@@ -19,7 +19,7 @@ pub struct Twin {
 }
 
 impl Twin {
-    /// The twin of `main` (with a ghost if its mode uses networks).
+    /// The twin of `main` (with a ghost if its method uses networks).
     pub fn new(main: Planner) -> Self {
         let mut twin = Self { main, ghost: None };
         twin.sync_ghost(true);
@@ -50,10 +50,10 @@ impl Twin {
         Ok(())
     }
 
-    /// Switches the planner's mode; the ghost appears in the network cases
+    /// Switches the planner's method; the ghost appears in the network cases
     /// (a copy of the planner from now on) and goes in the others.
-    pub fn set_method(&mut self, mode: Method) -> Result<()> {
-        self.main.set_method(mode)?;
+    pub fn set_method(&mut self, method: Method) -> Result<()> {
+        self.main.set_method(method)?;
         self.sync_ghost(false);
         Ok(())
     }
@@ -87,11 +87,11 @@ impl Twin {
         Ok(())
     }
 
-    /// Keeps the ghost in step with the mode: present in the network cases,
+    /// Keeps the ghost in step with the method: present in the network cases,
     /// absent otherwise; `fresh` rebuilds it from the planner.
     fn sync_ghost(&mut self, fresh: bool) {
-        let mode = self.main.method();
-        if !mode.uses_networks() {
+        let method = self.main.method();
+        if !method.uses_networks() {
             self.ghost = None;
         } else if self.ghost.is_none() || fresh {
             let mut ghost = self.main.clone();

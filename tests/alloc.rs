@@ -1,6 +1,6 @@
 //! A step allocates nothing: with a global allocator that counts, once a
 //! planner exists its RK4 steps (and resets) make no heap allocation, in
-//! every mode, for arms of 2 to 6 links, with several obstacles, damping and
+//! every method, for arms of 2 to 6 links, with several obstacles, damping and
 //! closed-loop feedback. Runs natively and in the browser.
 
 #[cfg(target_family = "wasm")]
@@ -83,7 +83,7 @@ fn damper_scene() -> Scene {
 }
 
 #[test]
-fn a_step_allocates_nothing_in_any_mode() {
+fn a_step_allocates_nothing_in_any_method() {
     // Both shipped sets: the reach set's 96-96 Phi is wider than the
     // paper's networks, and its route refines Phi.
     for set in NetworkSet::ALL {
@@ -97,16 +97,16 @@ fn a_step_allocates_nothing_in_any_mode() {
             damper_scene(),
             refined,
         ] {
-            for &mode in methods::ALL {
-                let mut p = Planner::new(scene.clone(), mode, Some(nets.clone())).unwrap();
+            for &method in methods::ALL {
+                let mut p = Planner::new(scene.clone(), method, Some(nets.clone())).unwrap();
                 let n = allocations_in(|| {
                     for _ in 0..20 {
                         p.step().unwrap();
                     }
                 });
-                assert_eq!(n, 0, "{set:?} {mode}: {n} allocations in 20 steps");
+                assert_eq!(n, 0, "{set:?} {method}: {n} allocations in 20 steps");
                 let n = allocations_in(|| p.reset());
-                assert_eq!(n, 0, "{set:?} {mode}: reset allocated {n} times");
+                assert_eq!(n, 0, "{set:?} {method}: reset allocated {n} times");
             }
         }
     }
@@ -123,14 +123,14 @@ fn a_step_allocates_nothing_for_arms_of_two_to_six_links() {
         s.obstacles = vec![Obstacle::new(1.2, 0.2, 0.05), Obstacle::new(-0.8, 1.0, 0.1)];
         s.damping = Some(DampingSchedule::default());
         // Methods with networks need networks trained for the arm.
-        for mode in methods::ALL.iter().copied().filter(|m| !m.uses_networks()) {
-            let mut p = Planner::new(s.clone(), mode, None).unwrap();
+        for method in methods::ALL.iter().copied().filter(|m| !m.uses_networks()) {
+            let mut p = Planner::new(s.clone(), method, None).unwrap();
             let n = allocations_in(|| {
                 for _ in 0..20 {
                     p.step().unwrap();
                 }
             });
-            assert_eq!(n, 0, "{links} links, {mode}: {n} allocations");
+            assert_eq!(n, 0, "{links} links, {method}: {n} allocations");
         }
     }
 }
@@ -138,12 +138,12 @@ fn a_step_allocates_nothing_for_arms_of_two_to_six_links() {
 #[test]
 fn theta_dot_into_allocates_nothing() {
     let nets: Arc<dyn Surrogate> = Arc::new(Networks::embedded().unwrap());
-    for &mode in methods::ALL {
-        let mut p = Planner::new(Scene::task1(), mode, Some(nets.clone())).unwrap();
+    for &method in methods::ALL {
+        let mut p = Planner::new(Scene::task1(), method, Some(nets.clone())).unwrap();
         let theta = Scene::task1().theta0;
         let mut out = [0.0; 3];
         let n = allocations_in(|| p.theta_dot_into(&theta, [-0.1, -0.08], &mut out).unwrap());
-        assert_eq!(n, 0, "{mode}");
+        assert_eq!(n, 0, "{method}");
     }
 }
 

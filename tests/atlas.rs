@@ -20,17 +20,17 @@ fn nets() -> Arc<Networks> {
         .clone()
 }
 
-/// Task `task` on a small grid over `region`, in `modes`.
-fn spec(task: u32, region: [f64; 4], n: usize, modes: &[Method]) -> Spec {
+/// Task `task` on a small grid over `region`, in `methods`.
+fn spec(task: u32, region: [f64; 4], n: usize, methods: &[Method]) -> Spec {
     Spec {
         scene: Scene::task(task).unwrap(),
         grid: Grid::new(region, n).unwrap(),
-        modes: modes.to_vec(),
+        methods: methods.to_vec(),
         task: Some(task),
     }
 }
 
-/// A small atlas of Task 1 around its obstacle, in every mode (cached: it is
+/// A small atlas of Task 1 around its obstacle, in every method (cached: it is
 /// read by several tests).
 fn small() -> &'static Atlas {
     static ATLAS: OnceLock<Atlas> = OnceLock::new();
@@ -74,7 +74,7 @@ fn the_default_grid_is_41_points_over_the_box_of_the_arms_reach_above_the_floor(
     assert!((x0 + reach).abs() < 1e-12 && (x1 - reach).abs() < 1e-12);
     assert_eq!(y0, 0.0);
     assert!((y1 - (0.5 + reach)).abs() < 1e-12);
-    assert_eq!(s.modes, methods::PAPER.to_vec());
+    assert_eq!(s.methods, methods::PAPER.to_vec());
     // An arm whose reach does not get down to the floor keeps its full box.
     let g = Grid::around_reach(&Arm::new(3.0, vec![0.5, 0.5]).unwrap(), 5);
     assert_eq!(g.region, [-1.0, 1.0, 2.0, 4.0]);
@@ -123,7 +123,7 @@ fn a_cell_on_the_line_is_path_blocked_and_one_on_the_start_arm_is_start_overlap(
             centre[1] + 0.3,
         ];
         let a = Atlas::run(spec(1, region, 3, &methods::PAPER), Some(nets())).unwrap();
-        for (m, o) in a.modes.iter().zip(&a.cells[4].outcomes) {
+        for (m, o) in a.methods.iter().zip(&a.cells[4].outcomes) {
             assert_eq!(o.class, class, "{m} at {centre:?}");
             // Path-blocked cells are still run and recorded; overlaps are not run.
             assert_eq!(o.final_error.is_some(), class == Class::PathBlocked, "{m}");
@@ -149,20 +149,20 @@ fn atlas_outcomes_equal_single_planner_runs_at_random_cells() {
         state ^= state << 17;
         let k = (state % a.cells.len() as u64) as usize;
         let cell = &a.cells[k];
-        for (&mode, o) in a.modes.iter().zip(&cell.outcomes) {
+        for (&method, o) in a.methods.iter().zip(&cell.outcomes) {
             let mut scene = Scene::task(1).unwrap();
             scene.obstacles[0].centre = [cell.x, cell.y];
             if o.class == Class::StartOverlap {
                 continue;
             }
-            let nets = (mode != Method::NO_AVOIDANCE && mode != Method::NUMERICAL)
+            let nets = (method != Method::NO_AVOIDANCE && method != Method::NUMERICAL)
                 .then(|| nets() as Arc<dyn redundant_ik::Surrogate>);
-            let run = Planner::run(scene, mode, nets).unwrap().summary;
-            assert_eq!(o.min_distance, run.min_distance, "cell {k} {mode}");
-            assert_eq!(o.final_error, Some(run.final_error), "cell {k} {mode}");
+            let run = Planner::run(scene, method, nets).unwrap().summary;
+            assert_eq!(o.min_distance, run.min_distance, "cell {k} {method}");
+            assert_eq!(o.final_error, Some(run.final_error), "cell {k} {method}");
             assert_eq!(
                 o.out_of_range_steps, run.out_of_range_steps,
-                "cell {k} {mode}"
+                "cell {k} {method}"
             );
             if o.class != Class::PathBlocked {
                 let class = if run.collided {
@@ -172,7 +172,7 @@ fn atlas_outcomes_equal_single_planner_runs_at_random_cells() {
                 } else {
                     Class::Missed
                 };
-                assert_eq!(o.class, class, "cell {k} {mode}");
+                assert_eq!(o.class, class, "cell {k} {method}");
             }
         }
     }
@@ -209,16 +209,16 @@ fn classes_mean_what_they_say() {
 fn summaries_count_every_cell_and_rate_the_avoidable_ones() {
     let a = small();
     let numerical = a
-        .modes
+        .methods
         .iter()
         .position(|&m| m == Method::NUMERICAL)
         .unwrap();
     for (k, s) in a.summary.iter().enumerate() {
-        assert_eq!(s.mode, a.modes[k]);
+        assert_eq!(s.method, a.methods[k]);
         assert_eq!(s.counts.iter().sum::<usize>(), a.cells.len());
         let classes = |c: Class| a.cells.iter().filter(|x| x.outcomes[k].class == c).count();
         for c in Class::ALL {
-            assert_eq!(s.count(c), classes(c), "{} {}", s.mode, c.name());
+            assert_eq!(s.count(c), classes(c), "{} {}", s.method, c.name());
         }
         let avoidable = a.cells.len() - classes(Class::StartOverlap) - classes(Class::PathBlocked);
         assert_eq!(s.avoidable.cells, avoidable);
@@ -234,12 +234,12 @@ fn summaries_count_every_cell_and_rate_the_avoidable_ones() {
         );
         assert_eq!(i.cells + o.cells, avoidable);
         assert_eq!(i.successes + o.successes, s.avoidable.successes);
-        // Agreement with the numerical route, for the network modes only.
-        let learned = s.mode.uses_networks();
+        // Agreement with the numerical route, for the network methods only.
+        let learned = s.method.uses_networks();
         assert_eq!(s.agreement.is_some(), learned);
         if let Some(g) = s.agreement {
             assert_eq!(
-                g.both + g.numerical_only + g.mode_only + g.neither,
+                g.both + g.numerical_only + g.method_only + g.neither,
                 a.cells.len()
             );
             let ok =
@@ -249,12 +249,12 @@ fn summaries_count_every_cell_and_rate_the_avoidable_ones() {
                 .iter()
                 .filter(|c| ok(c, numerical) && !ok(c, k))
                 .count();
-            let mode_only = a
+            let method_only = a
                 .cells
                 .iter()
                 .filter(|c| !ok(c, numerical) && ok(c, k))
                 .count();
-            assert_eq!((g.numerical_only, g.mode_only), (num_only, mode_only));
+            assert_eq!((g.numerical_only, g.method_only), (num_only, method_only));
         }
     }
     assert_eq!(a.trained_region, Some([0.3, 0.8, 0.3, 0.8]));
@@ -270,7 +270,7 @@ fn the_json_has_the_documented_shape() {
     assert_eq!(v["radius"], 0.05);
     assert_eq!(v["lambda"], 4.0);
     let paper: Vec<&str> = methods::PAPER.iter().map(|m| m.name()).collect();
-    assert_eq!(v["modes"], serde_json::json!(paper));
+    assert_eq!(v["methods"], serde_json::json!(paper));
     let cells = v["cells"].as_array().unwrap();
     assert_eq!(cells.len(), 49);
     let names: Vec<&str> = Class::ALL.iter().map(|c| c.name()).collect();
@@ -303,7 +303,7 @@ fn the_json_has_the_documented_shape() {
         }
     }
     assert!(v["summary"]["case3"]["agreement"]["numerical_only"].is_u64());
-    // In the text, every map lists the modes in the atlas's order.
+    // In the text, every map lists the methods in the atlas's order.
     let text = serde_json::to_string(a).unwrap();
     assert!(
         text.contains(r#""outcomes":{"none":{"class":"#),
@@ -352,13 +352,13 @@ fn bad_specs_are_refused_with_an_error_naming_the_problem() {
     assert_eq!(refused(s, None), Error::NoObstacle);
 
     let mut s = ok.clone();
-    s.modes.clear();
+    s.methods.clear();
     assert!(
-        matches!(refused(s, None), Error::OutOfRange { what, .. } if what == "number of modes")
+        matches!(refused(s, None), Error::OutOfRange { what, .. } if what == "number of methods")
     );
 
     let mut s = ok.clone();
-    s.modes = vec![Method::CASE3];
+    s.methods = vec![Method::CASE3];
     assert!(matches!(refused(s, None), Error::NetworksUnavailable(_)));
 
     for n in [0, 1, MAX_GRID + 1] {
@@ -382,15 +382,15 @@ fn bad_specs_are_refused_with_an_error_naming_the_problem() {
     // Networks for another arm are refused, naming both arms.
     let mut s = ok.clone();
     s.scene.arm = Arm::new(0.5, vec![0.6, 0.85, 0.7]).unwrap();
-    s.modes = vec![Method::CASE2];
+    s.methods = vec![Method::CASE2];
     assert!(matches!(
         refused(s, Some(nets())),
         Error::NetworksForAnotherArm { .. }
     ));
 
-    // Finishing early is refused; duplicate modes are dropped.
+    // Finishing early is refused; duplicate methods are dropped.
     let mut s = ok;
-    s.modes = vec![Method::NUMERICAL, Method::NUMERICAL];
+    s.methods = vec![Method::NUMERICAL, Method::NUMERICAL];
     let mut job = Job::new(s, None).unwrap();
     job.advance(4);
     assert!(matches!(
@@ -398,7 +398,7 @@ fn bad_specs_are_refused_with_an_error_naming_the_problem() {
         Err(Error::OutOfRange { .. })
     ));
     job.advance(usize::MAX);
-    assert_eq!(job.finish().unwrap().modes, [Method::NUMERICAL]);
+    assert_eq!(job.finish().unwrap().methods, [Method::NUMERICAL]);
 }
 
 #[test]
@@ -429,7 +429,14 @@ fn an_atlas_read_back_from_its_json_is_the_same_atlas() {
     let text = serde_json::to_string(a).unwrap();
     let back: Atlas = serde_json::from_str(&text).unwrap();
     assert_eq!(&back, a);
-    // A file with a cell missing, or a mode missing from a cell, is refused.
+    // It lists its methods as `methods`; atlases written before that name
+    // said `modes`, and still read back.
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert!(v.get("modes").is_none() && v["methods"].is_array());
+    let methods = v.as_object_mut().unwrap().remove("methods").unwrap();
+    v["modes"] = methods;
+    assert_eq!(&serde_json::from_value::<Atlas>(v).unwrap(), a);
+    // A file with a cell missing, or a method missing from a cell, is refused.
     let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
     v["cells"].as_array_mut().unwrap().pop();
     assert!(serde_json::from_value::<Atlas>(v).is_err());
@@ -445,7 +452,7 @@ fn an_atlas_read_back_from_its_json_is_the_same_atlas() {
 fn where_avoidance_mattered_is_where_the_arm_without_it_collides() {
     let a = small();
     let none = a
-        .modes
+        .methods
         .iter()
         .position(|&m| m == Method::NO_AVOIDANCE)
         .unwrap();
@@ -465,10 +472,10 @@ fn where_avoidance_mattered_is_where_the_arm_without_it_collides() {
         "without avoidance it never succeeds there"
     );
     assert!(s.mattered.cells > 0 && s.mattered.cells < s.avoidable.cells);
-    // Without `none` among the modes the atlas still knows where it matters.
+    // Without `none` among the methods the atlas still knows where it matters.
     let mut spec = Spec::task(1).unwrap();
     spec.grid = a.grid;
-    spec.modes = vec![Method::NUMERICAL];
+    spec.methods = vec![Method::NUMERICAL];
     let alone = Atlas::run(spec, None).unwrap();
     for (x, y) in alone.cells.iter().zip(&a.cells) {
         assert_eq!(x.avoidance_needed, y.avoidance_needed);

@@ -335,10 +335,11 @@ mod cli {
 
     #[test]
     fn the_paper_networks_still_fit_a_limited_paper_arm() {
-        for mode in ["case1", "case2", "case3"] {
+        for method in ["case1", "case2", "case3"] {
             let run: Value =
-                serde_json::from_str(&ok(&["simulate", "--mode", mode, LIMITS, "--json"])).unwrap();
-            assert!(run["scene"]["arm"]["joint_limits"].is_array(), "{mode}");
+                serde_json::from_str(&ok(&["simulate", "--method", method, LIMITS, "--json"]))
+                    .unwrap();
+            assert!(run["scene"]["arm"]["joint_limits"].is_array(), "{method}");
         }
     }
 
@@ -355,7 +356,7 @@ mod cli {
             "atlas",
             "--grid",
             "2",
-            "--modes",
+            "--methods",
             "numerical",
             "--threads",
             "1",
@@ -367,7 +368,7 @@ mod cli {
                 "atlas",
                 "--grid",
                 "2",
-                "--modes",
+                "--methods",
                 "numerical",
                 "--joint-limits=-1:1,-1:1,-1:1",
             ],

@@ -166,11 +166,11 @@ fn training_for_a_four_link_arm_gives_networks_the_planner_takes() {
         .collect();
     assert!(refined
         .iter()
-        .all(|row| ["case1", "case3"].contains(&row.check.mode)));
+        .all(|row| ["case1", "case3"].contains(&row.check.method)));
     assert_eq!(refined.len(), 4);
     for row in &r.random_tasks {
         assert_eq!(row.check.tasks, training_job::CHECK_TASKS);
-        if row.check.mode == "numerical" {
+        if row.check.method == "numerical" {
             assert_eq!(row.check.succeeded, training_job::CHECK_TASKS);
         }
     }
@@ -180,7 +180,7 @@ fn training_for_a_four_link_arm_gives_networks_the_planner_takes() {
     let case3 = r
         .random_tasks
         .iter()
-        .find(|row| row.feedback > 0.0 && row.refine == 2 && row.check.mode == "case3")
+        .find(|row| row.feedback > 0.0 && row.refine == 2 && row.check.method == "case3")
         .unwrap();
     assert!(case3.check.succeeded < 5, "{}", case3.check.succeeded);
     assert!(!r.verdict.passed);
@@ -230,7 +230,7 @@ fn training_one_network_keeps_the_other_and_needs_it_for_this_arm() {
         t.report
             .paper_tasks
             .iter()
-            .filter(|o| o.refine == 2 && o.mode == Method::CASE2)
+            .filter(|o| o.refine == 2 && o.method == Method::CASE2)
             .count(),
         0,
         "Case 2 has nothing to refine"

@@ -1,4 +1,4 @@
-// The page's address: what `?task=2&mode=case3&lambda=4&target=…&obstacle=…
+// The page's address: what `?task=2&method=case3&lambda=4&target=…&obstacle=…
 // &obstacles=…&arm=…&limits=…&rates=…&feedback=1&damping=0&theta0=…&tf=…&influence=…&networks=reach` asks
 // for, and the state written back into it (what "Copy link" copies). The arm, limits and obstacle syntax is the module's (parseArm, parseObstacles,
 // formatArm, parseJointLimits, formatJointLimits, parseRateLimits,
@@ -26,7 +26,8 @@ const named = () => allParams().filter((p) => p.name !== 'lambda');
 
 /**
  * The `mount()` options an address asks for (after loadModule): task,
- * mode (the module's defaultMethod() where it names none), lambda,
+ * method (the module's defaultMethod() where it names none; `mode=`, the
+ * older name, is read where there is no `method=`), lambda,
  * feedback, target, obstacle, obstacles (flat), arm, limits (the arm's
  * joint limits, flat [lo1, hi1, ...]), rates (its rate limits), damping, start
  * ({ theta0, tf }: a run's own start pose and final time), params (the
@@ -59,6 +60,10 @@ export function readAddress(search) {
       return x;
     });
   const names = methods().map((m) => m.name);
+  const known = (v) => {
+    if (!names.includes(v)) throw new Error(`unknown method '${clip(v)}': use ${names.join(', ')}`);
+    return v;
+  };
   const theta0 = parsed('theta0', (v) => {
     const a = v.split(',').map(number);
     if (!a.length || !a.every(Number.isFinite)) throw new Error(`expected joint angles a,b,c in radians, got '${clip(v)}'`);
@@ -80,11 +85,7 @@ export function readAddress(search) {
         if (v !== '1' && v !== '2') throw new Error(`the paper has tasks 1 and 2, got '${clip(v)}'`);
         return Number(v);
       }) ?? 1,
-    mode:
-      parsed('mode', (v) => {
-        if (!names.includes(v)) throw new Error(`unknown mode '${clip(v)}': use ${names.join(', ')}`);
-        return v;
-      }) ?? defaultMethod(),
+    method: (params.get('method') ? parsed('method', known) : parsed('mode', known)) ?? defaultMethod(),
     lambda: num('lambda'),
     feedback: num('feedback'),
     target: pair('target'),
@@ -122,7 +123,7 @@ export function readAddress(search) {
 export function writeAddress(s) {
   const q = new URLSearchParams();
   q.set('task', String(s.task));
-  q.set('mode', s.mode);
+  q.set('method', s.method);
   q.set('lambda', String(s.lambda));
   q.set('target', s.target.map(exact).join(','));
   const { default_radius: radius } = limits();

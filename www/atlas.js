@@ -26,7 +26,7 @@ export const RESOLUTIONS = [11, 21, 41, 61];
 export function mountAtlas(root, demo, { changed }) {
   const $ = (id) => root.querySelector('#' + id);
   const el = {
-    modes: $('atlas-modes'),
+    methods: $('atlas-modes'),
     n: $('atlas-n'),
     run: $('atlas-run'),
     cancel: $('atlas-cancel'),
@@ -50,12 +50,12 @@ export function mountAtlas(root, demo, { changed }) {
   const avoids = Object.fromEntries(methods().map((m) => [m.name, m.avoids]));
   const defaultGrid = limits().default_grid;
 
-  if (el.modes && !el.modes.querySelector('input')) {
+  if (el.methods && !el.methods.querySelector('input')) {
     for (const g of methodGroups()) {
       const head = document.createElement('span');
       head.className = 'group';
       head.textContent = g.label;
-      el.modes.append(head);
+      el.methods.append(head);
       for (const m of g.methods) {
         const l = document.createElement('label');
         const box = document.createElement('input');
@@ -63,7 +63,7 @@ export function mountAtlas(root, demo, { changed }) {
         box.value = m.name;
         box.checked = true;
         l.append(box, ` ${m.label}`);
-        el.modes.append(l);
+        el.methods.append(l);
       }
     }
   }
@@ -73,7 +73,7 @@ export function mountAtlas(root, demo, { changed }) {
   }
 
   let atlas = null; // the last result (the JSON shape of `redundant-ik atlas --json`)
-  let shown = null; // the mode drawn on the stage
+  let shown = null; // the method drawn on the stage
   let running = null; // AbortController of the job under way
   let atlasRevision = null; // the state's revision.atlas it was computed at
   let sceneUsed = null; // that scene itself (Demo.scene()), for the figure
@@ -82,14 +82,14 @@ export function mountAtlas(root, demo, { changed }) {
 
   /** What the atlas depends on, from the state (not the moved obstacle). */
 
-  function show(mode) {
+  function show(method) {
     if (!atlas) return;
-    shown = mode;
+    shown = method;
     const codes = new Uint8Array(atlas.cells.length);
-    atlas.cells.forEach((c, i) => (codes[i] = code[c.outcomes[mode].class]));
+    atlas.cells.forEach((c, i) => (codes[i] = code[c.outcomes[method].class]));
     demo.setAtlasLayer(atlas.grid.region, atlas.grid.n, codes);
-    if (el.show && el.show.value !== mode) el.show.value = mode;
-    fillLegend(mode);
+    if (el.show && el.show.value !== method) el.show.value = method;
+    fillLegend(method);
     demo.draw();
   }
 
@@ -102,11 +102,11 @@ export function mountAtlas(root, demo, { changed }) {
     demo.draw();
   }
 
-  function fillLegend(mode) {
+  function fillLegend(method) {
     if (!el.legend) return;
     el.legend.replaceChildren();
-    if (!mode) return;
-    const counts = atlas.summary[mode].counts;
+    if (!method) return;
+    const counts = atlas.summary[method].counts;
     for (const c of CLASSES) {
       const li = document.createElement('li');
       li.dataset.key = c.name;
@@ -121,7 +121,7 @@ export function mountAtlas(root, demo, { changed }) {
   function fillTable() {
     if (el.body) {
       el.body.replaceChildren(
-        ...atlas.modes.map((m) => {
+        ...atlas.methods.map((m) => {
           const s = atlas.summary[m];
           const mattered = s.mattered?.cells ? `${percent(s.mattered.rate)} of ${s.mattered.cells}` : '–';
           const tr = row([
@@ -132,22 +132,22 @@ export function mountAtlas(root, demo, { changed }) {
             percent(s.outside_trained_region?.rate),
             s.clearance ? `${metres(s.clearance.median)} / ${metres(s.clearance.p5)}` : '–',
           ]);
-          tr.dataset.mode = m;
+          tr.dataset.method = m;
           return tr;
         }),
       );
     }
     if (el.agreement) {
       el.agreement.replaceChildren(
-        ...atlas.modes
+        ...atlas.methods
           .filter((m) => atlas.summary[m].agreement)
           .map((m) => {
             const g = atlas.summary[m].agreement;
             const li = document.createElement('li');
-            li.dataset.mode = m;
+            li.dataset.method = m;
             li.textContent =
               `${label[m]} fails in ${g.numerical_only} cell${g.numerical_only === 1 ? '' : 's'} where the numerical route succeeds, ` +
-              `and succeeds in ${g.mode_only} where it fails.`;
+              `and succeeds in ${g.method_only} where it fails.`;
             return li;
           }),
       );
@@ -161,11 +161,11 @@ export function mountAtlas(root, demo, { changed }) {
     if (el.status) el.status.dataset.stale = 'false';
     if (el.show) {
       el.show.replaceChildren(new Option('(hidden)', ''));
-      for (const m of atlas.modes) el.show.add(new Option(label[m], m));
+      for (const m of atlas.methods) el.show.add(new Option(label[m], m));
     }
     fillTable();
     if (el.result) el.result.hidden = false;
-    const runs = atlas.cells.length * atlas.modes.length;
+    const runs = atlas.cells.length * atlas.methods.length;
     const text = (native) =>
       `${runs.toLocaleString('en')} runs in ${(ms / 1000).toFixed(2)} s here${native}. ` +
       'Hover a cell for its numbers; click one to put the obstacle there and replay.';
@@ -174,23 +174,24 @@ export function mountAtlas(root, demo, { changed }) {
     // The default atlas (Task 1, the default grid, the paper's methods) is
     // also timed natively (`make bench-native`).
     const paper = paperMethods();
-    if (atlas.grid.n === defaultGrid && atlas.task === 1 && atlas.modes.join() === paper.join()) {
+    if (atlas.grid.n === defaultGrid && atlas.task === 1 && atlas.methods.join() === paper.join()) {
       nativeFigures().then((nat) => {
         if (nat?.atlas_ms && atlas === result) status(text(` (native, one core: ${(nat.atlas_ms / 1000).toFixed(2)} s)`));
       });
     }
     // The map of the method in use, where it was mapped.
-    const selected = demo.state().mode;
-    const preferred = atlas.modes.includes(selected)
+    const selected = demo.state().method;
+    const preferred = atlas.methods.includes(selected)
       ? selected
-      : atlas.modes.includes(shown)
+      : atlas.methods.includes(shown)
         ? shown
-        : (atlas.modes.find((m) => avoids[m]) ?? atlas.modes[0]);
+        : (atlas.methods.find((m) => avoids[m]) ?? atlas.methods[0]);
     show(preferred);
   }
 
   /**
-   * Computes the atlas of the scene as it is now. `options`: `modes` (names;
+   * Computes the atlas of the scene as it is now. `options`: `methods` (names,
+   * `modes` read too, its older name;
    * default the panel's ticked ones, or all), `n` (default the panel's
    * choice, or the core's default grid), `region` ([x0, x1, y0, y1]; default the box of the
    * arm's reach), `feedback` (the closed-loop gain K) and `refine`
@@ -200,8 +201,9 @@ export function mountAtlas(root, demo, { changed }) {
    * shape of `redundant-ik atlas --json`; the map is drawn under the arm.
    */
   async function run(options = {}) {
-    const known = ['modes', 'n', 'region', 'feedback', 'refine', 'networks', 'onProgress', 'signal'];
-    const unknown = Object.keys(options ?? {}).filter((k) => !known.includes(k));
+    const known = ['methods', 'n', 'region', 'feedback', 'refine', 'networks', 'onProgress', 'signal'];
+    // `modes`, the older name of `methods`, is read too.
+    const unknown = Object.keys(options ?? {}).filter((k) => !known.includes(k) && k !== 'modes');
     if (unknown.length) throw new Error(`unknown atlas option '${unknown[0]}': use ${known.join(', ')}`);
     if (running) running.abort();
     const controller = new AbortController();
@@ -210,8 +212,8 @@ export function mountAtlas(root, demo, { changed }) {
       if (options.signal.aborted) controller.abort();
       options.signal.addEventListener('abort', () => controller.abort());
     }
-    const ticked = el.modes ? [...el.modes.querySelectorAll('input:checked')].map((b) => b.value) : [];
-    const modes = options.modes ?? (ticked.length ? ticked : methods().map((m) => m.name));
+    const ticked = el.methods ? [...el.methods.querySelectorAll('input:checked')].map((b) => b.value) : [];
+    const names = options.methods ?? options.modes ?? (ticked.length ? ticked : methods().map((m) => m.name));
     const n = options.n ?? (el.n ? Number(el.n.value) : defaultGrid);
     const run = demo.run();
     const scene = run.scene;
@@ -221,7 +223,7 @@ export function mountAtlas(root, demo, { changed }) {
     status('Computing…');
     try {
       const { result, ms } = await runWorker(
-        { kind: 'atlas', run, options: { modes, n, region: options.region, feedback, refine, networks } },
+        { kind: 'atlas', run, options: { methods: names, n, region: options.region, feedback, refine, networks } },
         {
           signal: controller.signal,
           onProgress: (p) => {
@@ -247,7 +249,7 @@ export function mountAtlas(root, demo, { changed }) {
   // The atlas's files: its JSON (the command line's), its cells as CSV,
   // and the map shown as the figure `redundant-ik atlas --out` draws.
   async function files(button) {
-    const { result } = await runWorker({ kind: 'atlas-files', atlas, scene: sceneUsed, modes: shown ? [shown] : [] });
+    const { result } = await runWorker({ kind: 'atlas-files', atlas, scene: sceneUsed, methods: shown ? [shown] : [] });
     return result;
   }
   const stemOf = () => `atlas-task${atlas.task ?? 0}-${atlas.grid.n}x${atlas.grid.n}${shown ? `-${shown}` : ''}`;
@@ -287,7 +289,7 @@ export function mountAtlas(root, demo, { changed }) {
     }
     const c = atlas.cells[k];
     const lines = [`obstacle at (${c.x.toFixed(3)}, ${c.y.toFixed(3)})`];
-    for (const m of atlas.modes) {
+    for (const m of atlas.methods) {
       const o = c.outcomes[m];
       const cls = CLASSES[code[o.class]].label;
       const nums =

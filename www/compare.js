@@ -1,5 +1,5 @@
 // The comparison panel: the scene as it is now, run from t = 0 with every
-// method off screen (Demo.compareModes(), one row per method of
+// method off screen (Demo.compareMethods(), one row per method of
 // methods()), tabulated: the smallest link-to-obstacle clearance, hit,
 // final error. A hit the obstacle makes unavoidable (on the path the hand
 // must follow, or on the arm at the start: the atlas's classes) says so;
@@ -30,7 +30,7 @@ export function mountCompare(root, demo, { attempt }) {
   let key = null;
   button?.addEventListener('click', () => {
     let result = null;
-    if (!attempt(() => (result = demo.compareModes()), 'error', button)) return;
+    if (!attempt(() => (result = demo.compareMethods()), 'error', button)) return;
     rows = result;
     // What the table depends on: everything but the method in use.
     key = demo.state().revision.scene;
@@ -46,7 +46,7 @@ export function mountCompare(root, demo, { attempt }) {
     const header = ['method', 'label', 'min_clearance_m', 'collided', 'unavoidable', 'final_error_m', 'reached', 'error'];
     const lines = rows.map((r) => {
       const m = r.summary;
-      return [r.mode, r.label, m?.min_clearance, m?.collided, r.unavoidable ?? '', m?.final_error, m?.reached, r.error ?? ''];
+      return [r.method, r.label, m?.min_clearance, m?.collided, r.unavoidable ?? '', m?.final_error, m?.reached, r.error ?? ''];
     });
     saveText(`compare-task${s.task}.csv`, csv(header, lines), 'text/csv');
   });
@@ -60,10 +60,10 @@ export function mountCompare(root, demo, { attempt }) {
   };
 }
 
-/** One method's row: `{ mode, label, summary, error, unavoidable }`. */
+/** One method's row: `{ method, label, summary, error, unavoidable }`. */
 function compareRow(r) {
   const tr = document.createElement('tr');
-  tr.dataset.mode = r.mode;
+  tr.dataset.method = r.method;
   const cell = (text, cls) => {
     const td = document.createElement('td');
     td.textContent = text;

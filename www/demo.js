@@ -32,7 +32,7 @@ import { mountNotes } from './notes.js';
  * Fills a `<select>` with the methods, grouped ("The paper", "Beyond the
  * paper"): "Case 1: Φ by a network, v exact".
  */
-function fillModes(select) {
+function fillMethods(select) {
   if (!select || select.options.length) return;
   for (const g of methodGroups()) {
     const group = document.createElement('optgroup');
@@ -81,7 +81,8 @@ const READOUTS = {
 };
 
 /**
- * Starts a demo on `root`. Options: task (1|2), mode, lambda, target [x, y],
+ * Starts a demo on `root`. Options: task (1|2), method (`mode`, the older
+ * name, is read too), lambda, target [x, y],
  * obstacle [x, y], obstacles [[x, y, r], ...] or flat [x0, y0, r0, ...]
  * (instead of obstacle), arm { post, links }, damping (bool), feedback
  * (closed-loop gain K, 1/s; default 0, the paper's open loop), networks
@@ -102,7 +103,7 @@ export async function mount(root, options = {}) {
   const stage = $('stage');
   const plots = $('plots');
   const el = {
-    mode: $('mode'),
+    method: $('mode'),
     legend: $('legend'),
     play: $('play'),
     step: $('step'),
@@ -118,7 +119,7 @@ export async function mount(root, options = {}) {
   const readouts = [...root.querySelectorAll('[data-readout]')];
 
   await loadModule();
-  fillModes(el.mode);
+  fillMethods(el.method);
   fillLegend(el.legend);
   const demo = new Demo(stage, plots ?? undefined, options.task === 2 ? 2 : 1);
 
@@ -152,10 +153,11 @@ export async function mount(root, options = {}) {
   if (options.arm) initial('arm', () => demo.setArm(options.arm.post, Float64Array.from(options.arm.links)));
   if (options.limits || options.rates) initial(options.limits ? 'limits' : 'rates', () => demo.setArmLimits(options.limits, options.rates));
   if (options.obstacles) initial('obstacles', () => demo.setObstacles(flatObstacles(options.obstacles)));
-  // Networks kept in this browser for the arm, before the mode that may need them.
+  // Networks kept in this browser for the arm, before the method that may need them.
   playground.restore();
-  if (options.mode && options.mode !== demo.state().mode) {
-    initial('mode', () => demo.setMode(options.mode));
+  const wanted = options.method ?? options.mode;
+  if (wanted && wanted !== demo.state().method) {
+    initial('method', () => demo.setMethod(wanted));
   }
   if (options.lambda !== undefined && options.lambda !== null) {
     initial('lambda', () => demo.setLambda(options.lambda));
@@ -175,20 +177,20 @@ export async function mount(root, options = {}) {
 
   // ---- controls -------------------------------------------------------
   function syncControls(s) {
-    if (el.mode && el.mode.value !== s.mode) el.mode.value = s.mode;
+    if (el.method && el.method.value !== s.method) el.method.value = s.method;
     syncParams(s);
     if (el.damping) el.damping.checked = s.damping;
     if (el.feedback) el.feedback.checked = s.feedback > 0;
   }
 
-  el.mode?.addEventListener('change', () => {
-    const wanted = el.mode.value;
-    chosenMode = wanted;
-    if (attempt(() => demo.setMode(wanted), 'error', el.mode)) {
+  el.method?.addEventListener('change', () => {
+    const wanted = el.method.value;
+    chosenMethod = wanted;
+    if (attempt(() => demo.setMethod(wanted), 'error', el.method)) {
       clearMessage();
       changed();
     } else {
-      el.mode.value = controller.state().mode;
+      el.method.value = controller.state().method;
     }
   });
   const togglePlay = () => {
@@ -248,8 +250,8 @@ export async function mount(root, options = {}) {
   // ---- readouts and the loop -------------------------------------------
   const syncNotes = mountNotes(root);
   let autoDampingShown = false;
-  let chosenMode = null; // the method the user picked last
-  let shownMode = null;
+  let chosenMethod = null; // the method the user picked last
+  let shownMethod = null;
   let shownArm = null;
   let drawnMask = -1;
   /** Follows the state `s` (the frame's, else asked for now): one state per frame, nothing else asked of the module. */
@@ -259,12 +261,12 @@ export async function mount(root, options = {}) {
     syncNotes(s);
     // A switch of method the page made by itself (a new arm without
     // networks for it, networks forgotten) is announced at the menu.
-    const [was, now] = [method(shownMode), method(s.mode)];
-    if (shownMode !== null && s.mode !== chosenMode && usesNetworks(was) && !usesNetworks(now)) {
-      show(`${was?.label ?? shownMode} needs networks trained for this arm, which it has not: the page switched to ${now?.label ?? s.mode}.`, 'warn', true, el.mode);
+    const [was, now] = [method(shownMethod), method(s.method)];
+    if (shownMethod !== null && s.method !== chosenMethod && usesNetworks(was) && !usesNetworks(now)) {
+      show(`${was?.label ?? shownMethod} needs networks trained for this arm, which it has not: the page switched to ${now?.label ?? s.method}.`, 'warn', true, el.method);
     }
-    shownMode = s.mode;
-    chosenMode = s.mode;
+    shownMethod = s.method;
+    chosenMethod = s.method;
     if (s.arm_text !== shownArm) {
       shownArm = s.arm_text;
       if (options.onArm) options.onArm(s);

@@ -51,7 +51,7 @@ export async function svgToPng(svg, scale = 2) {
 /** A file name's stem for the scene in `state`: `task1-case3` (the arm where it is not the paper's). */
 export function stem(state) {
   const arm = state.paper_arm ? '' : `-arm${state.arm_text.replace(/[:,]/g, '_')}`;
-  return `task${state.task}-${state.mode}${arm}`;
+  return `task${state.task}-${state.method}${arm}`;
 }
 
 /** Rows as CSV: a header and one line per row; cells with a comma or a quote are quoted. */

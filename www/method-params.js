@@ -77,7 +77,7 @@ export function mountMethodParams(root, demo, { attempt, changed }) {
 
   /** Per frame: the sliders of the method in use, at the values in force. */
   return function sync(s) {
-    if (s.mode !== shownFor) build(s.mode);
+    if (s.method !== shownFor) build(s.method);
     if (lambda && document.activeElement !== lambda && Number(lambda.value) !== s.lambda) {
       lambda.value = String(s.lambda);
     }

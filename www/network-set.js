@@ -61,7 +61,7 @@ export function mountNetworkSet(root, demo, { show, changed }) {
       if (!field || !select) return;
       // The shipped sets run where they were trained for the arm (the core says which).
       const fits = Object.values(s.set_fits).some(Boolean);
-      field.hidden = !usesNetworks(method(s.mode)) || !fits;
+      field.hidden = !usesNetworks(method(s.method)) || !fits;
       if (pending) return;
       const value = s.network_set ?? (s.trained_range ? OWN : select.value);
       if (select.value !== value) select.value = value;

@@ -88,12 +88,15 @@ export function mountPlayground(root, demo, { attempt, show, changed }) {
     }
   }
 
-  /** A whole run off screen: `{ mode, target?, obstacles?, tf?, theta0?, feedback?, refine? }` -> summary. */
+  /**
+   * A whole run off screen: `{ method, target?, obstacles?, tf?, theta0?, feedback?, refine? }` -> summary
+   * (`mode`, the older name of `method`, is read too).
+   */
   function simulate(options) {
-    const allowed = ['mode', 'target', 'obstacles', 'tf', 'theta0', 'feedback', 'refine'];
-    if (!options || typeof options !== 'object') throw new Error('simulate expects { mode, target?, obstacles?, tf?, theta0?, feedback?, refine? }');
+    const allowed = ['method', 'target', 'obstacles', 'tf', 'theta0', 'feedback', 'refine'];
+    if (!options || typeof options !== 'object') throw new Error('simulate expects { method, target?, obstacles?, tf?, theta0?, feedback?, refine? }');
     for (const k of Object.keys(options)) {
-      if (!allowed.includes(k)) throw new Error(`simulate: unknown option '${k}', expected one of ${allowed.join(', ')}`);
+      if (!allowed.includes(k) && k !== 'mode') throw new Error(`simulate: unknown option '${k}', expected one of ${allowed.join(', ')}`);
     }
     const nums = (v, what) => {
       if (v === undefined) return undefined;
@@ -101,7 +104,7 @@ export function mountPlayground(root, demo, { attempt, show, changed }) {
       return Float64Array.from(v, Number);
     };
     return demo.simulate(
-      String(options.mode),
+      String(options.method ?? options.mode),
       nums(options.target, 'target'),
       options.obstacles === undefined ? undefined : flatObstacles(options.obstacles),
       options.tf === undefined ? undefined : Number(options.tf),

@@ -1,10 +1,11 @@
-// <redundant-ik-demo task="1" mode="case3"> — the demo as a custom element.
+// <redundant-ik-demo task="1" method="case3"> — the demo as a custom element.
 //
 //   <script type="module" src="https://…/redundant-ik-demo.js"></script>
-//   <redundant-ik-demo task="2" mode="numerical"></redundant-ik-demo>
+//   <redundant-ik-demo task="2" method="numerical"></redundant-ik-demo>
 //
-// Attributes: task (1 or 2), mode (a method's name from methods(): none,
-// numerical, case1, ...; the module's defaultMethod() where absent),
+// Attributes: task (1 or 2), method (a method's name from methods(): none,
+// numerical, case1, ...; the module's defaultMethod() where absent; `mode`,
+// its older name, is read too),
 // lambda, feedback (closed-loop gain K in 1/s; 0 = the paper's open loop),
 // autoplay ("false" to start paused), plots (present: show the time
 // series). Each element has its own simulation in its own shadow root; the
@@ -91,10 +92,11 @@ class RedundantIkDemo extends HTMLElement {
       await loadModule();
       const task = Number(this.getAttribute('task')) === 2 ? 2 : 1;
       const lambda = this.getAttribute('lambda');
-      const mode = this.getAttribute('mode') ?? defaultMethod();
+      // `mode`, the attribute's older name, is read where `method` is absent.
+      const method = this.getAttribute('method') ?? this.getAttribute('mode') ?? defaultMethod();
       this.controller = await mount(root, {
         task,
-        mode,
+        method,
         lambda: lambda !== null && Number.isFinite(Number(lambda)) ? Number(lambda) : undefined,
         feedback: Number.isFinite(Number(this.getAttribute('feedback'))) ? Number(this.getAttribute('feedback')) : 0,
         autoplay: this.getAttribute('autoplay') !== 'false',

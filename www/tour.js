@@ -44,17 +44,17 @@ export function mountTour(root, controller) {
   const demo = controller.demo;
 
   // Through the page's controls, as a user would.
-  const pick = (mode) => {
+  const pick = (method) => {
     const select = $('mode');
-    select.value = mode;
+    select.value = method;
     select.dispatchEvent(new Event('change'));
   };
   const paperArm = () => {
     if (!demo.state().paper_arm) controller.playground.setArm(limits().arm_presets[0]);
   };
-  const task1 = (mode) => {
+  const task1 = (method) => {
     paperArm();
-    pick(mode);
+    pick(method);
     $('task1').click();
   };
 

@@ -88,17 +88,17 @@ function reportTable(report) {
   for (const t of report.paper_tasks) {
     const ok = t.success;
     const loop = `${t.feedback_gain ? `, K = ${t.feedback_gain}` : ''}${t.refine ? `, refine ${t.refine}` : ''}`;
-    body.append(row([`Task ${t.task}${loop}`, t.mode, ok ? 'yes' : 'no', t.collided ? 'yes' : 'no', metres(t.final_error)]));
+    body.append(row([`Task ${t.task}${loop}`, t.method, ok ? 'yes' : 'no', t.collided ? 'yes' : 'no', metres(t.final_error)]));
   }
   for (const c of report.random_tasks) {
     const tr = row([
       `${c.tasks} random tasks, K = ${c.feedback}${c.refine ? `, refine ${c.refine}` : ''}`,
-      c.mode,
+      c.method,
       `${c.succeeded}/${c.tasks}`,
       String(c.collided),
       metres(c.median_final_error),
     ]);
-    Object.assign(tr.dataset, { mode: c.mode, feedback: String(c.feedback), refine: String(c.refine), succeeded: String(c.succeeded) });
+    Object.assign(tr.dataset, { method: c.method, feedback: String(c.feedback), refine: String(c.refine), succeeded: String(c.succeeded) });
     body.append(tr);
   }
   table.append(body);

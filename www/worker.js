@@ -8,7 +8,7 @@
 //   { kind: 'bench', wasm, batchMs }
 //       the code behind `redundant-ik bench`, one figure per call, over the
 //       methods of benchMethods(); the result names benchVerdict()'s pair
-//   { kind: 'atlas', wasm, run, options: { modes, n, region, task, feedback, refine, networks } }
+//   { kind: 'atlas', wasm, run, options: { methods, n, region, task, feedback, refine, networks } }
 //       the atlas of `redundant-ik atlas`, one row of cells per chunk
 //   { kind: 'train', wasm, request: { arm, net, preset, samples, epochs, seed }, run }
 //       training of the networks for an arm and their check, a progress
@@ -20,8 +20,8 @@
 //       the check and report of a request whose networks were trained so
 //   { kind: 'run-files', wasm, run }
 //       a run as the JSON of `simulate --json`, CSV, and its figures as SVG
-//   { kind: 'atlas-files', wasm, atlas, scene, modes }
-//       an atlas's JSON, the CSV of its cells, and its maps (of `modes`) as SVG
+//   { kind: 'atlas-files', wasm, atlas, scene, methods }
+//       an atlas's JSON, the CSV of its cells, and its maps (of `methods`) as SVG
 // Messages out:
 //   { type: 'progress', done, total, label }
 //   { type: 'done', result, ms }
@@ -112,7 +112,7 @@ self.onmessage = async ({ data }) => {
     else if (data.kind === 'train-net') result = trainNet(data);
     else if (data.kind === 'conclude') result = concludeTraining(data.request, data.phi, data.v);
     else if (data.kind === 'run-files') result = runFiles(data.run);
-    else if (data.kind === 'atlas-files') result = atlasFiles(data.atlas, data.scene, data.modes ?? []);
+    else if (data.kind === 'atlas-files') result = atlasFiles(data.atlas, data.scene, data.methods ?? []);
     else throw new Error(`unknown job '${data.kind}'`);
     self.postMessage({ type: 'done', result, ms: performance.now() - t0 });
   } catch (e) {

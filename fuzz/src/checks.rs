@@ -28,7 +28,7 @@ pub fn assert_finite(what: &str, xs: &[f64]) {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Snapshot {
     scene: Scene,
-    mode: Method,
+    method: Method,
     time: f64,
     theta: Vec<f64>,
     ee: [f64; 2],
@@ -38,7 +38,7 @@ impl Snapshot {
     pub fn of(p: &Planner) -> Self {
         Self {
             scene: p.scene().clone(),
-            mode: p.method(),
+            method: p.method(),
             time: p.time(),
             theta: p.theta().as_slice().to_vec(),
             ee: p.sample().ee,

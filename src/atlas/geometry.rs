@@ -19,7 +19,7 @@ pub fn unavoidable(scene: &Scene, obstacle: &crate::obstacle::Obstacle) -> Optio
 }
 
 /// The start pose and the path, which decide `start_overlap` and
-/// `path_blocked` for every mode at once.
+/// `path_blocked` for every method at once.
 #[derive(Debug, Clone)]
 pub(super) struct Geometry {
     start: Pose,

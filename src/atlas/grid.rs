@@ -8,7 +8,7 @@ use crate::error::{coordinate, Error, Result};
 /// Points per side of the default grid.
 pub const DEFAULT_GRID: usize = 41;
 
-/// Most points per side (201 x 201 is 40,401 cells, a few seconds per mode).
+/// Most points per side (201 x 201 is 40,401 cells, a few seconds per method).
 pub const MAX_GRID: usize = 201;
 
 /// `n x n` obstacle centres over the region `x0..x1 x y0..y1`, both ends

@@ -1,11 +1,11 @@
 //! The robustness atlas: the paper's task run with its (first) obstacle
 //! centred on every point of a grid over the workspace, in every chosen
-//! mode, each outcome classified. The paper shows two obstacle positions and
+//! method, each outcome classified. The paper shows two obstacle positions and
 //! calls the approach robust; the atlas maps where the networks, and the
 //! triangle-area criterion of eqs. (12)-(16) itself, keep the arm clear.
 //!
 //! A run is never cut short at its first collision, so `min_distance` is the
-//! run's true minimum over its samples. Each mode keeps one planner and
+//! run's true minimum over its samples. Each method keeps one planner and
 //! moves the obstacle with [`Planner::move_obstacle`], so the runs allocate
 //! nothing. The work is done in chunks ([`Job::advance`]) so that a caller
 //! can report progress and cancel between them: a progress bar in the
@@ -28,9 +28,9 @@ use crate::scene::Scene;
 pub use geometry::unavoidable;
 use geometry::Geometry;
 pub use grid::{Grid, DEFAULT_GRID, MAX_GRID};
-pub use summary::{Agreement, Clearance, ModeSummary, Rate};
+pub use summary::{Agreement, Clearance, MethodSummary, Rate};
 
-/// What happened with the obstacle centred on one cell, in one mode.
+/// What happened with the obstacle centred on one cell, in one method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Class {
@@ -114,7 +114,7 @@ impl Class {
     }
 }
 
-/// The record of one run (one cell, one mode).
+/// The record of one run (one cell, one method).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Outcome {
     /// The class.
@@ -144,15 +144,15 @@ impl Outcome {
     }
 }
 
-/// One grid point and its outcome in each mode (in the order of
-/// [`Atlas::modes`]).
+/// One grid point and its outcome in each method (in the order of
+/// [`Atlas::methods`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Cell {
     /// Obstacle centre x (m).
     pub x: f64,
     /// Obstacle centre y (m).
     pub y: f64,
-    /// One outcome per mode.
+    /// One outcome per method.
     pub outcomes: Vec<Outcome>,
     /// Where avoidance is possible (neither `start_overlap` nor
     /// `path_blocked`): whether it matters here, i.e. whether the arm
@@ -161,7 +161,7 @@ pub struct Cell {
     pub avoidance_needed: Option<bool>,
 }
 
-/// What to map: a scene (whose first obstacle is moved), a grid and modes.
+/// What to map: a scene (whose first obstacle is moved), a grid and methods.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Spec {
     /// The scene; its first obstacle is centred on each cell in turn (its
@@ -169,8 +169,8 @@ pub struct Spec {
     pub scene: Scene,
     /// The obstacle centres.
     pub grid: Grid,
-    /// The modes to run (duplicates are dropped).
-    pub modes: Vec<Method>,
+    /// The methods to run (duplicates are dropped).
+    pub methods: Vec<Method>,
     /// The paper task the scene came from, for the report.
     pub task: Option<u32>,
 }
@@ -184,7 +184,7 @@ impl Spec {
         Ok(Self {
             scene,
             grid,
-            modes: methods::PAPER.to_vec(),
+            methods: methods::PAPER.to_vec(),
             task: Some(task),
         })
     }
@@ -201,20 +201,20 @@ pub struct Atlas {
     pub radius: f64,
     /// Gain `lambda` of the obstacle vector.
     pub lambda: f64,
-    /// The modes, in the order of each cell's outcomes.
-    pub modes: Vec<Method>,
+    /// The methods, in the order of each cell's outcomes.
+    pub methods: Vec<Method>,
     /// Row by row from `y0`, each row from `x0`: cell `(i, j)` is `cells[j * n + i]`.
     pub cells: Vec<Cell>,
     /// Where the `v` network saw obstacle centres in training,
     /// `[x0, x1, y0, y1]` (when networks were given).
     pub trained_region: Option<[f64; 4]>,
-    /// One summary per mode.
-    pub summary: Vec<ModeSummary>,
+    /// One summary per method.
+    pub summary: Vec<MethodSummary>,
 }
 
 impl Atlas {
     /// Runs a whole atlas on this thread. `networks` are needed for the
-    /// network modes (and give the trained obstacle region of the summary).
+    /// network methods (and give the trained obstacle region of the summary).
     pub fn run(spec: Spec, networks: Option<Arc<Networks>>) -> Result<Self> {
         let mut job = Job::new(spec, networks)?;
         while !job.is_done() {
@@ -223,15 +223,15 @@ impl Atlas {
         job.finish()
     }
 
-    /// The outcome of cell `index` in `mode`, if the atlas ran that mode.
-    pub fn outcome(&self, index: usize, mode: Method) -> Option<&Outcome> {
-        let m = self.modes.iter().position(|&x| x == mode)?;
+    /// The outcome of cell `index` in `method`, if the atlas ran that method.
+    pub fn outcome(&self, index: usize, method: Method) -> Option<&Outcome> {
+        let m = self.methods.iter().position(|&x| x == method)?;
         self.cells.get(index)?.outcomes.get(m)
     }
 
-    /// The summary of `mode`.
-    pub fn summary_of(&self, mode: Method) -> Option<&ModeSummary> {
-        self.summary.iter().find(|s| s.mode == mode)
+    /// The summary of `method`.
+    pub fn summary_of(&self, method: Method) -> Option<&MethodSummary> {
+        self.summary.iter().find(|s| s.method == method)
     }
 }
 
@@ -242,34 +242,34 @@ pub struct Job {
     geometry: Geometry,
     steps: usize,
     networks: Option<Arc<Networks>>,
-    /// One planner per mode, reused for every cell; then one without
-    /// avoidance if `none` is not among the modes (it says where avoidance
+    /// One planner per method, reused for every cell; then one without
+    /// avoidance if `none` is not among the methods (it says where avoidance
     /// matters).
     planners: Vec<Planner>,
     cells: Vec<Cell>,
 }
 
 impl Job {
-    /// Checks the spec and builds one planner per mode. Network modes
+    /// Checks the spec and builds one planner per method. Network methods
     /// without networks, or networks for another arm, are refused here.
     pub fn new(mut spec: Spec, networks: Option<Arc<Networks>>) -> Result<Self> {
         spec.scene.validate()?;
         spec.grid.validate()?;
-        let mut modes = Vec::new();
-        for m in spec.modes.iter().copied() {
-            if !modes.contains(&m) {
-                modes.push(m);
+        let mut methods = Vec::new();
+        for m in spec.methods.iter().copied() {
+            if !methods.contains(&m) {
+                methods.push(m);
             }
         }
-        if modes.is_empty() {
+        if methods.is_empty() {
             return Err(Error::OutOfRange {
-                what: "number of modes".into(),
+                what: "number of methods".into(),
                 value: 0.0,
                 min: 1.0,
                 max: methods::ALL.len() as f64,
             });
         }
-        spec.modes = modes;
+        spec.methods = methods;
         let radius = spec
             .scene
             .obstacles
@@ -279,14 +279,14 @@ impl Job {
         let geometry = Geometry::new(&spec.scene, radius)?;
         let surrogate = networks.clone().map(|n| n as Arc<dyn Surrogate>);
         let mut planners = spec
-            .modes
+            .methods
             .iter()
             .map(|&m| {
                 let nets = m.uses_networks().then(|| surrogate.clone());
                 Planner::new(spec.scene.clone(), m, nets.flatten())
             })
             .collect::<Result<Vec<_>>>()?;
-        if !spec.modes.contains(&Method::NO_AVOIDANCE) {
+        if !spec.methods.contains(&Method::NO_AVOIDANCE) {
             planners.push(Planner::new(
                 spec.scene.clone(),
                 Method::NO_AVOIDANCE,
@@ -327,7 +327,7 @@ impl Job {
         for index in self.done()..end {
             let cell = run_cell(
                 &mut self.planners,
-                self.spec.modes.len(),
+                self.spec.methods.len(),
                 &self.geometry,
                 self.steps,
                 self.spec.grid.point(index),
@@ -346,12 +346,12 @@ impl Job {
         let end = self.done().saturating_add(cells).min(self.total());
         let (planners, geometry, steps, grid) =
             (&self.planners, &self.geometry, self.steps, &self.spec.grid);
-        let modes = self.spec.modes.len();
+        let methods = self.spec.methods.len();
         let new: Vec<Cell> = (self.done()..end)
             .into_par_iter()
             .map_init(
                 || planners.clone(),
-                |p, index| run_cell(p, modes, geometry, steps, grid.point(index)),
+                |p, index| run_cell(p, methods, geometry, steps, grid.point(index)),
             )
             .collect();
         self.cells.extend(new);
@@ -378,7 +378,7 @@ impl Job {
             ]
         });
         let summary = summary::summarise(
-            &self.spec.modes,
+            &self.spec.methods,
             &self.cells,
             trained_region,
             self.geometry.radius,
@@ -388,7 +388,7 @@ impl Job {
             grid: self.spec.grid,
             radius: self.geometry.radius,
             lambda: self.spec.scene.param(&crate::planner::methods::LAMBDA),
-            modes: self.spec.modes,
+            methods: self.spec.methods,
             cells: self.cells,
             trained_region,
             summary,
@@ -396,11 +396,11 @@ impl Job {
     }
 }
 
-/// Runs every planner with the obstacle centred on `o`: the first `modes`
-/// are the atlas's modes, a further one the arm without avoidance.
+/// Runs every planner with the obstacle centred on `o`: the first `methods`
+/// are the atlas's methods, a further one the arm without avoidance.
 fn run_cell(
     planners: &mut [Planner],
-    modes: usize,
+    methods: usize,
     geometry: &Geometry,
     steps: usize,
     o: [f64; 2],
@@ -420,7 +420,7 @@ fn run_cell(
         (None, Some(k)) => Some(outcomes[k].class == Class::Collision),
         _ => None,
     };
-    outcomes.truncate(modes);
+    outcomes.truncate(methods);
     Cell {
         x: o[0],
         y: o[1],

@@ -26,7 +26,9 @@ struct AtlasIn {
     grid: Grid,
     radius: f64,
     lambda: f64,
-    modes: Vec<Method>,
+    /// `modes` in atlases written before this name.
+    #[serde(alias = "modes")]
+    methods: Vec<Method>,
     trained_region: Option<[f64; 4]>,
     cells: Vec<CellIn>,
 }
@@ -43,13 +45,13 @@ impl<'de> Deserialize<'de> for Atlas {
                 a.cells.len()
             )));
         }
-        if a.modes.is_empty() {
-            return Err(D::Error::custom("an atlas names no mode"));
+        if a.methods.is_empty() {
+            return Err(D::Error::custom("an atlas names no method"));
         }
         let mut cells = Vec::with_capacity(a.cells.len());
         for (k, mut c) in a.cells.into_iter().enumerate() {
             let outcomes = a
-                .modes
+                .methods
                 .iter()
                 .map(|m| {
                     c.outcomes
@@ -64,13 +66,13 @@ impl<'de> Deserialize<'de> for Atlas {
                 avoidance_needed: c.avoidance_needed,
             });
         }
-        let summary = summary::summarise(&a.modes, &cells, a.trained_region, a.radius);
+        let summary = summary::summarise(&a.methods, &cells, a.trained_region, a.radius);
         Ok(Atlas {
             task: a.task,
             grid: a.grid,
             radius: a.radius,
             lambda: a.lambda,
-            modes: a.modes,
+            methods: a.methods,
             cells,
             trained_region: a.trained_region,
             summary,

@@ -1,4 +1,4 @@
-//! What an atlas says per mode, and its JSON form.
+//! What an atlas says per method, and its JSON form.
 
 use serde::ser::{SerializeMap, SerializeStruct};
 use serde::{Serialize, Serializer};
@@ -27,15 +27,15 @@ impl Rate {
     }
 }
 
-/// A network mode against the numerical route, cell by cell.
+/// A network method against the numerical route, cell by cell.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub struct Agreement {
     /// Cells where both succeed.
     pub both: usize,
-    /// Cells where the numerical route succeeds and this mode does not.
+    /// Cells where the numerical route succeeds and this method does not.
     pub numerical_only: usize,
-    /// Cells where this mode succeeds and the numerical route does not.
-    pub mode_only: usize,
+    /// Cells where this method succeeds and the numerical route does not.
+    pub method_only: usize,
     /// Cells where neither succeeds.
     pub neither: usize,
 }
@@ -67,11 +67,11 @@ impl Clearance {
     }
 }
 
-/// One mode over the whole grid.
+/// One method over the whole grid.
 #[derive(Debug, Clone, PartialEq)]
-pub struct ModeSummary {
-    /// The mode.
-    pub mode: Method,
+pub struct MethodSummary {
+    /// The method.
+    pub method: Method,
     /// Cells of each class, in the order of [`Class::ALL`].
     pub counts: [usize; Class::COUNT],
     /// Success over the cells where avoidance is possible (neither
@@ -84,14 +84,14 @@ pub struct ModeSummary {
     pub inside_trained_region: Option<Rate>,
     /// The same outside it.
     pub outside_trained_region: Option<Rate>,
-    /// For the network modes, when the numerical route was mapped too.
+    /// For the network methods, when the numerical route was mapped too.
     pub agreement: Option<Agreement>,
     /// The smallest clearance of its successful runs, median and 5th
     /// percentile (`None` without a success).
     pub clearance: Option<Clearance>,
 }
 
-impl ModeSummary {
+impl MethodSummary {
     /// Cells of class `class`.
     pub fn count(&self, class: Class) -> usize {
         Class::ALL
@@ -111,17 +111,17 @@ fn inside(region: [f64; 4], c: &Cell) -> bool {
 }
 
 pub(super) fn summarise(
-    modes: &[Method],
+    methods: &[Method],
     cells: &[Cell],
     region: Option<[f64; 4]>,
     radius: f64,
-) -> Vec<ModeSummary> {
-    let numerical = modes.iter().position(|&m| m == Method::NUMERICAL);
+) -> Vec<MethodSummary> {
+    let numerical = methods.iter().position(|&m| m == Method::NUMERICAL);
     let success = |o: &Outcome| o.class == Class::Success;
-    modes
+    methods
         .iter()
         .enumerate()
-        .map(|(k, &mode)| {
+        .map(|(k, &method)| {
             let mut counts = [0; Class::COUNT];
             let (mut all, mut ins, mut outs) = ((0, 0), (0, 0), (0, 0));
             let mut mattered = (0, 0);
@@ -129,7 +129,7 @@ pub(super) fn summarise(
             let mut agree = Agreement {
                 both: 0,
                 numerical_only: 0,
-                mode_only: 0,
+                method_only: 0,
                 neither: 0,
             };
             for cell in cells {
@@ -154,14 +154,14 @@ pub(super) fn summarise(
                     match (success(&cell.outcomes[n]), success(o)) {
                         (true, true) => agree.both += 1,
                         (true, false) => agree.numerical_only += 1,
-                        (false, true) => agree.mode_only += 1,
+                        (false, true) => agree.method_only += 1,
                         (false, false) => agree.neither += 1,
                     }
                 }
             }
-            let learned = mode.uses_networks();
-            ModeSummary {
-                mode,
+            let learned = method.uses_networks();
+            MethodSummary {
+                method,
                 counts,
                 avoidable: Rate::of(all.0, all.1),
                 mattered: Rate::of(mattered.0, mattered.1),
@@ -176,9 +176,9 @@ pub(super) fn summarise(
 
 // ---- JSON ----------------------------------------------------------------
 //
-// {"task", "grid": {"region", "n"}, "radius", "lambda", "modes",
-//  "trained_region", "cells": [{"x", "y", "outcomes": {"<mode>": outcome}}],
-//  "summary": {"<mode>": {"success_rate", "counts": {"<class>": n}, ...}}}
+// {"task", "grid": {"region", "n"}, "radius", "lambda", "methods",
+//  "trained_region", "cells": [{"x", "y", "outcomes": {"<method>": outcome}}],
+//  "summary": {"<method>": {"success_rate", "counts": {"<class>": n}, ...}}}
 
 impl Serialize for Atlas {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
@@ -187,13 +187,13 @@ impl Serialize for Atlas {
         st.serialize_field("grid", &self.grid)?;
         st.serialize_field("radius", &self.radius)?;
         st.serialize_field("lambda", &self.lambda)?;
-        st.serialize_field("modes", &self.modes)?;
+        st.serialize_field("methods", &self.methods)?;
         st.serialize_field("trained_region", &self.trained_region)?;
         let cells: Vec<CellJson<'_>> = self
             .cells
             .iter()
             .map(|cell| CellJson {
-                modes: &self.modes,
+                methods: &self.methods,
                 cell,
             })
             .collect();
@@ -204,7 +204,7 @@ impl Serialize for Atlas {
 }
 
 struct CellJson<'a> {
-    modes: &'a [Method],
+    methods: &'a [Method],
     cell: &'a Cell,
 }
 
@@ -213,16 +213,16 @@ impl Serialize for CellJson<'_> {
         let mut st = s.serialize_struct("Cell", 4)?;
         st.serialize_field("x", &self.cell.x)?;
         st.serialize_field("y", &self.cell.y)?;
-        st.serialize_field("outcomes", &ByMode(self.modes, &self.cell.outcomes))?;
+        st.serialize_field("outcomes", &ByMethod(self.methods, &self.cell.outcomes))?;
         st.serialize_field("avoidance_needed", &self.cell.avoidance_needed)?;
         st.end()
     }
 }
 
-/// `{"<mode>": value}` in the modes' order.
-struct ByMode<'a, T>(&'a [Method], &'a [T]);
+/// `{"<method>": value}` in the methods' order.
+struct ByMethod<'a, T>(&'a [Method], &'a [T]);
 
-impl<T: Serialize> Serialize for ByMode<'_, T> {
+impl<T: Serialize> Serialize for ByMethod<'_, T> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         let mut map = s.serialize_map(Some(self.0.len()))?;
         for (m, v) in self.0.iter().zip(self.1) {
@@ -232,21 +232,21 @@ impl<T: Serialize> Serialize for ByMode<'_, T> {
     }
 }
 
-struct SummaryJson<'a>(&'a [ModeSummary]);
+struct SummaryJson<'a>(&'a [MethodSummary]);
 
 impl Serialize for SummaryJson<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         let mut map = s.serialize_map(Some(self.0.len()))?;
         for m in self.0 {
-            map.serialize_entry(m.mode.name(), m)?;
+            map.serialize_entry(m.method.name(), m)?;
         }
         map.end()
     }
 }
 
-impl Serialize for ModeSummary {
+impl Serialize for MethodSummary {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        let mut st = s.serialize_struct("ModeSummary", 8)?;
+        let mut st = s.serialize_struct("MethodSummary", 8)?;
         st.serialize_field("success_rate", &self.success_rate())?;
         st.serialize_field("counts", &Counts(&self.counts))?;
         st.serialize_field("avoidable", &self.avoidable)?;

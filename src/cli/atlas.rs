@@ -1,5 +1,5 @@
 //! `redundant-ik atlas`: the task run with its obstacle on every cell of a
-//! grid, in every mode ([`redundant_ik::atlas`]); a table of success rates,
+//! grid, in every method ([`redundant_ik::atlas`]); a table of success rates,
 //! the whole map as JSON, and the heat maps as SVG.
 
 use std::fmt::Write as _;
@@ -31,17 +31,17 @@ pub struct AtlasArgs {
     pub region: Option<String>,
     /// Methods to map, comma-separated; `paper` (the default) for the
     /// paper's five, `all` for every method.
-    #[arg(long, default_value = "paper")]
-    pub modes: String,
+    #[arg(long = "methods", alias = "modes", default_value = "paper")]
+    pub methods: String,
     /// Print the whole atlas as one JSON object instead of the table.
     #[arg(long, conflicts_with = "csv")]
     pub json: bool,
     /// Print the cells as CSV instead of the table: x, y, whether
-    /// avoidance matters there, then each mode's class, clearance and
+    /// avoidance matters there, then each method's class, clearance and
     /// final error.
     #[arg(long)]
     pub csv: bool,
-    /// Write the heat maps, one per mode, as SVG.
+    /// Write the heat maps, one per method, as SVG.
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// Threads to use (default: every core; 1 runs on this thread only).
@@ -49,16 +49,16 @@ pub struct AtlasArgs {
     pub threads: Option<usize>,
 }
 
-/// Parses `--modes`: `paper`, `all` or a comma-separated list of method
+/// Parses `--methods`: `paper`, `all` or a comma-separated list of method
 /// names.
-pub fn parse_modes(s: &str) -> Result<Vec<Method>, String> {
+pub fn parse_methods(s: &str) -> Result<Vec<Method>, String> {
     Method::parse_list(s).map_err(|e| e.to_string())
 }
 
 /// Runs `redundant-ik atlas`.
 pub fn run(args: &AtlasArgs) -> Result<(), String> {
     let scene = args.scene.scene()?;
-    let modes = parse_modes(&args.modes)?;
+    let methods = parse_methods(&args.methods)?;
     let grid = match &args.region {
         Some(r) => match parse_list(r).map_err(|e| format!("--region: {e}"))?[..] {
             [x0, x1, y0, y1] => Grid::new([x0, x1, y0, y1], args.grid),
@@ -71,7 +71,7 @@ pub fn run(args: &AtlasArgs) -> Result<(), String> {
         None => Grid::new(Grid::around_reach(&scene.arm, args.grid).region, args.grid),
     }
     .map_err(|e| e.to_string())?;
-    let networks = if modes.iter().any(|m| m.uses_networks()) {
+    let networks = if methods.iter().any(|m| m.uses_networks()) {
         let run = args.scene.spec(Method::NUMERICAL)?;
         Some(run.load_networks().map_err(|e| e.to_string())?)
     } else {
@@ -80,7 +80,7 @@ pub fn run(args: &AtlasArgs) -> Result<(), String> {
     let spec = Spec {
         scene: scene.clone(),
         grid,
-        modes,
+        methods,
         task: Some(args.scene.task()?),
     };
     let threads = match args.threads {
@@ -150,7 +150,7 @@ fn report(a: &Atlas, seconds: f64, threads: usize) -> String {
         }};
     }
     let [x0, x1, y0, y1] = a.grid.region;
-    let runs = a.cells.len() * a.modes.len();
+    let runs = a.cells.len() * a.methods.len();
     w!(
         "Atlas of Task {}: {n} x {n} obstacle centres over x {x0}..{x1} m, y {y0}..{y1} m \
          (radius {} m, lambda {})",
@@ -170,11 +170,11 @@ fn report(a: &Atlas, seconds: f64, threads: usize) -> String {
     let width = a
         .summary
         .iter()
-        .map(|s| s.mode.label().chars().count())
-        .fold(4, usize::max);
+        .map(|s| s.method.label().chars().count())
+        .fold("method".len(), usize::max);
     w!(
         "{:<width$} {:>8} {:>8} {:>8} {:>15}   {}",
-        "mode",
+        "method",
         "success",
         "inside",
         "outside",
@@ -188,7 +188,7 @@ fn report(a: &Atlas, seconds: f64, threads: usize) -> String {
             .map_or("–".into(), |c| format!("{:.3} / {:.3}", c.median, c.p5));
         w!(
             "{:<width$} {:>8} {:>8} {:>8} {:>15}   {}",
-            s.mode.label(),
+            s.method.label(),
             percent(s.success_rate()),
             percent(s.inside_trained_region.and_then(|r| r.rate)),
             percent(s.outside_trained_region.and_then(|r| r.rate)),
@@ -210,10 +210,10 @@ fn report(a: &Atlas, seconds: f64, threads: usize) -> String {
         if let Some(g) = s.agreement {
             w!(
                 "{} vs numerical: numerical succeeds and {} does not in {} cells; the reverse in {}",
-                s.mode.label(),
-                s.mode.label(),
+                s.method.label(),
+                s.method.label(),
                 g.numerical_only,
-                g.mode_only
+                g.method_only
             );
         }
     }

@@ -30,8 +30,8 @@ pub struct BenchArgs {
     pub no_atlas: bool,
     /// Methods to time, comma-separated; `paper` (the default) for the
     /// paper's five, `all` for every method.
-    #[arg(long, default_value = "paper")]
-    pub modes: String,
+    #[arg(long = "methods", alias = "modes", default_value = "paper")]
+    pub methods: String,
     /// The shipped network set the network methods run: paper or reach.
     #[arg(long, default_value = "paper", value_parser = ["paper", "reach"])]
     pub networks: String,
@@ -58,7 +58,7 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         lm_epoch: !args.no_lm,
         paper_variants: true,
         atlas: !args.no_atlas,
-        methods: Method::parse_list(&args.modes).map_err(|e| e.to_string())?,
+        methods: Method::parse_list(&args.methods).map_err(|e| e.to_string())?,
         networks: args
             .networks
             .parse()
@@ -94,7 +94,7 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
 fn table(r: &Report, layers: [String; 2]) -> String {
     let mut s = format!(
         "median of timed batches after a warm-up; Task 1, start pose; network kernels: {}\n\n\
-         mode        theta_dot      RK4 step   allocs/step\n",
+         method      theta_dot      RK4 step   allocs/step\n",
         r.kernels
     );
     let allocs = |m: Method| {
@@ -124,7 +124,7 @@ fn table(r: &Report, layers: [String; 2]) -> String {
     }
     if let Some(ms) = r.atlas_ms {
         s.push_str(&format!(
-            "atlas of Task 1, 41 x 41 cells, five modes (8,405 runs), one thread: {:.2} s\n",
+            "atlas of Task 1, 41 x 41 cells, five methods (8,405 runs), one thread: {:.2} s\n",
             ms / 1e3
         ));
     }

@@ -141,11 +141,11 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
     let outcomes = evaluation::task_outcomes(&task_nets, args.feedback, args.refine).map_err(e)?;
     let mut generalisation = Vec::new();
     for (task, o) in evaluation::GENERALISATION_SCENES {
-        let run = |mode| {
+        let run = |method| {
             evaluation::run_task_refined(
                 &task_nets,
                 task,
-                mode,
+                method,
                 Some(o),
                 args.feedback,
                 args.refine,
@@ -231,17 +231,17 @@ fn render(r: &Report) -> String {
         r.feedback_gain,
         r.refine
     ));
-    t.push_str("| task | mode | min distance (m) | collided | final error (m) | out-of-range steps | ok |\n");
+    t.push_str("| task | method | min distance (m) | collided | final error (m) | out-of-range steps | ok |\n");
     t.push_str("|---|---|---|---|---|---|---|\n");
     for o in &r.outcomes {
         if let Some(err) = &o.error {
             t.push_str(&format!(
                 "| {} | {} | failed: {err} | | | | no |\n",
-                o.task, o.mode
+                o.task, o.method
             ));
             continue;
         }
-        let ok = if o.mode == Method::NO_AVOIDANCE {
+        let ok = if o.method == Method::NO_AVOIDANCE {
             "-"
         } else if o.success() {
             "yes"
@@ -251,7 +251,7 @@ fn render(r: &Report) -> String {
         t.push_str(&format!(
             "| {} | {} | {:.4} | {} | {:.2e} | {} | {ok} |\n",
             o.task,
-            o.mode,
+            o.method,
             o.min_distance,
             if o.collided { "yes" } else { "no" },
             o.final_error,
@@ -310,7 +310,9 @@ fn other_arm(nets: &Networks, json: bool) -> Result<(), String> {
                 "\nRandom tasks in which the obstacle matters (seed {})\n\n",
                 redundant_ik::training_job::CHECK_SEED
             ));
-            t.push_str("| K | refine | mode | ok | collided | failed | median final error (m) |\n");
+            t.push_str(
+                "| K | refine | method | ok | collided | failed | median final error (m) |\n",
+            );
             t.push_str("|---|---|---|---|---|---|---|\n");
             for row in &r.random_tasks {
                 let c = &row.check;
@@ -318,7 +320,7 @@ fn other_arm(nets: &Networks, json: bool) -> Result<(), String> {
                     "| {} | {} | {} | {}/{} | {} | {} | {} |\n",
                     row.feedback,
                     row.refine,
-                    c.mode,
+                    c.method,
                     c.succeeded,
                     c.tasks,
                     c.collided,

@@ -22,7 +22,7 @@ pub struct FigureArgs {
     /// Output SVG file, or with --all a directory.
     #[arg(long)]
     pub out: PathBuf,
-    /// Write the whole set: both tasks in every available mode, plus the
+    /// Write the whole set: both tasks in every available method, plus the
     /// comparison figure of each task.
     #[arg(long, conflicts_with = "from")]
     pub all: bool,
@@ -54,7 +54,7 @@ pub fn run(args: &FigureArgs) -> Result<(), String> {
     let task = args.scene.task()?;
     if args.compare {
         let scene = args.scene.scene()?;
-        let runs = run_all_modes(&args.scene, &scene)?;
+        let runs = run_all_methods(&args.scene, &scene)?;
         return write(
             &args.out,
             &figure::compare_svg(task, &scene, &runs).map_err(e)?,
@@ -76,7 +76,7 @@ pub fn run(args: &FigureArgs) -> Result<(), String> {
         let mut sa = args.scene.clone();
         sa.task = task;
         let scene = sa.scene()?;
-        let runs = run_all_modes(&sa, &scene)?;
+        let runs = run_all_methods(&sa, &scene)?;
         for traj in &runs {
             let path = args.out.join(format!("task{task}_{}.svg", traj.method));
             write(
@@ -92,20 +92,20 @@ pub fn run(args: &FigureArgs) -> Result<(), String> {
 
 /// Runs `scene` with every method whose networks are available (the others
 /// are skipped with a note on stderr).
-fn run_all_modes(sa: &SceneArgs, scene: &Scene) -> Result<Vec<Trajectory>, String> {
+fn run_all_methods(sa: &SceneArgs, scene: &Scene) -> Result<Vec<Trajectory>, String> {
     let mut runs = Vec::new();
-    for &mode in methods::ALL {
+    for &method in methods::ALL {
         let nets = match sa
-            .spec(mode)
-            .and_then(|run| run.surrogate_for(mode).map_err(|e| e.to_string()))
+            .spec(method)
+            .and_then(|run| run.surrogate_for(method).map_err(|e| e.to_string()))
         {
             Ok(n) => n,
             Err(e) => {
-                eprintln!("skipping {mode}: {e}");
+                eprintln!("skipping {method}: {e}");
                 continue;
             }
         };
-        runs.push(Planner::run(scene.clone(), mode, nets).map_err(|e| e.to_string())?);
+        runs.push(Planner::run(scene.clone(), method, nets).map_err(|e| e.to_string())?);
     }
     Ok(runs)
 }

@@ -38,7 +38,7 @@ enum Command {
     Train(train::TrainArgs),
     /// Evaluate the embedded networks: accuracy and task outcomes.
     Eval(eval::EvalArgs),
-    /// Map where each mode keeps the arm clear: the obstacle on every cell of a grid.
+    /// Map where each method keeps the arm clear: the obstacle on every cell of a grid.
     Atlas(atlas::AtlasArgs),
     /// Measure theta_dot, RK4 steps, forward passes, an LM epoch, an atlas and allocations per step.
     Bench(bench::BenchArgs),
@@ -92,12 +92,12 @@ pub fn parse_arm(s: &str) -> Result<Arm, String> {
     s.parse().map_err(|e: redundant_ik::Error| e.to_string())
 }
 
-/// Parses a method name (`--mode`), refused at once when unknown.
+/// Parses a method name (`--method`), refused at once when unknown.
 pub fn parse_method(s: &str) -> Result<Method, String> {
     s.parse().map_err(|e: redundant_ik::Error| e.to_string())
 }
 
-/// The help of a `--mode` option: every method's name and what it is.
+/// The help of a `--method` option: every method's name and what it is.
 pub fn method_help() -> String {
     let list: Vec<String> = redundant_ik::planner::methods::ALL
         .iter()
@@ -128,7 +128,7 @@ pub fn emit(text: &str) -> Result<(), String> {
     }
 }
 
-/// Which networks the network modes use: a shipped set (with a choice of
+/// Which networks the network methods use: a shipped set (with a choice of
 /// `Phi` variant for the paper's) or a user's pair of weights files.
 #[derive(clap::Args, Debug, Clone)]
 pub struct NetworkArgs {

@@ -41,7 +41,7 @@ pub struct SceneArgs {
     #[command(flatten)]
     pub given: Given,
     /// A run file (the JSON of `simulate --json`, or of the page's
-    /// "Download run"): its scene, task and, unless --mode is given, its
+    /// "Download run"): its scene, task and, unless --method is given, its
     /// method. No other scene option goes with it.
     #[arg(long)]
     pub from: Option<PathBuf>,
@@ -148,7 +148,7 @@ impl SceneArgs {
         Ok(self.run_file()?.map_or(self.task, |r| r.task))
     }
 
-    /// The method: `--mode`, else the run file's, else `numerical`.
+    /// The method: `--method`, else the run file's, else `numerical`.
     pub fn method(&self, arg: &MethodArg) -> Result<Method, String> {
         Ok(match arg.method {
             Some(m) => m,
@@ -249,11 +249,11 @@ impl SceneArgs {
     }
 }
 
-/// The `--mode` option of `simulate` and `figure` (default: the run
+/// The `--method` option of `simulate` and `figure` (default: the run
 /// file's method with `--from`, else `numerical`).
 #[derive(Args, Debug, Clone)]
 pub struct MethodArg {
-    #[arg(long = "mode", value_parser = parse_method, help = method_help())]
+    #[arg(long = "method", alias = "mode", value_parser = parse_method, help = method_help())]
     pub method: Option<Method>,
 }
 
@@ -297,7 +297,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     let first = &traj.steps[0];
     w!(
         out,
-        "Task {} | mode {} | lambda {} | delta {}{} | dt {} s | tf {} s{}",
+        "Task {} | method {} | lambda {} | delta {}{} | dt {} s | tf {} s{}",
         task,
         traj.method,
         scene.param(&LAMBDA),

@@ -57,12 +57,12 @@ pub fn run_csv(scene: &Scene, steps: &[Sample]) -> String {
     out
 }
 
-/// An atlas's cells as CSV: `x, y, avoidance_needed`, then for each mode
+/// An atlas's cells as CSV: `x, y, avoidance_needed`, then for each method
 /// its class, the run's smallest link-to-obstacle clearance (m) and its
 /// final distance to the target (m); empty where nothing was run.
 pub fn atlas_csv(atlas: &Atlas) -> String {
     let mut out = String::from("x,y,avoidance_needed");
-    for m in &atlas.modes {
+    for m in &atlas.methods {
         let _ = write!(out, ",{m}_class,{m}_clearance,{m}_final_error");
     }
     out.push('\n');

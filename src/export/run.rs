@@ -11,7 +11,7 @@ use crate::scene::Scene;
 /// steps of a 6-link arm) is about 6 MB.
 pub const MAX_RUN_FILE_BYTES: usize = 16 << 20;
 
-/// One run: `{ task, mode, scene, networks, steps, summary }`, the JSON of
+/// One run: `{ task, method, scene, networks, steps, summary }`, the JSON of
 /// `redundant-ik simulate --json` and of the page's "Download run": the
 /// [`Run`] and what it did. Files written before `networks` read as the
 /// paper's set.
@@ -20,9 +20,9 @@ pub struct RunFile {
     /// The paper task the scene came from (its start pose and target may
     /// have been changed since: the scene says what was run).
     pub task: u32,
-    /// The method (`mode` in the JSON, as every output of the tool names
-    /// it; `method` is read too).
-    #[serde(rename = "mode", alias = "method")]
+    /// The method (`method` in the JSON, as every output of the tool names
+    /// it; `mode`, the older name, is read too).
+    #[serde(alias = "mode")]
     pub method: Method,
     /// Everything that defines the motion.
     pub scene: Scene,

@@ -1,4 +1,4 @@
-//! The atlas as SVG: one heat map per mode, side by side, the cells
+//! The atlas as SVG: one heat map per method, side by side, the cells
 //! coloured by class; on top the arm's start pose, the straight line, the
 //! target, the canonical obstacle and the v network's trained region;
 //! below, the legend of the classes. Each panel's title gives its success
@@ -72,7 +72,7 @@ fn inside(p: Pt, [x0, x1, y0, y1]: [f64; 4]) -> bool {
     (x0..=x1).contains(&p.0) && (y0..=y1).contains(&p.1)
 }
 
-/// The maps of `atlas` (computed on `scene`) as SVG, one panel per mode.
+/// The maps of `atlas` (computed on `scene`) as SVG, one panel per method.
 pub fn atlas_svg(atlas: &Atlas, scene: &Scene) -> Result<String> {
     let [x0, x1, y0, y1] = atlas.grid.region;
     let n = atlas.grid.n;
@@ -83,7 +83,7 @@ pub fn atlas_svg(atlas: &Atlas, scene: &Scene) -> Result<String> {
     let (ml, mr, mt, mb) = (52u32, 14u32, 44u32, 40u32);
     let panel_w = PANEL_W as u32 + ml + mr;
     let panel_h = plot_h as u32 + mt + mb;
-    let k = atlas.modes.len() as u32;
+    let k = atlas.methods.len() as u32;
     // The legend of the classes, wrapped to the figure's width.
     let width = (panel_w * k).max(560) as i32;
     let mut places = Vec::new();
@@ -132,7 +132,7 @@ pub fn atlas_svg(atlas: &Atlas, scene: &Scene) -> Result<String> {
                 .map_or("–".into(), |r| format!("{:.0}%", 100.0 * r));
             let caption = format!(
                 "{}: {rate} clear and reached ({}/{})",
-                summary.mode.label(),
+                summary.method.label(),
                 summary.avoidable.successes,
                 summary.avoidable.cells
             );

@@ -341,8 +341,10 @@ pub struct Sampling {
     /// arms other than the paper's could be trained, hence the default 0.
     #[serde(default, skip_serializing_if = "is_zero_count")]
     pub random_tasks: usize,
-    /// Modes run on each task and obstacle (`none`, `numerical`).
-    pub modes: Vec<Method>,
+    /// Methods run on each task and obstacle (`none`, `numerical`);
+    /// `modes` in files written before this name (the shipped weights).
+    #[serde(alias = "modes")]
+    pub methods: Vec<Method>,
     /// Obstacle positions drawn per task.
     pub obstacles_per_task: usize,
     /// Lower corner of the obstacle region (also the canonical obstacles are run).
@@ -396,7 +398,7 @@ impl Default for Sampling {
         Self {
             tasks: vec![1, 2],
             random_tasks: 0,
-            modes: vec![Method::NO_AVOIDANCE, Method::NUMERICAL],
+            methods: vec![Method::NO_AVOIDANCE, Method::NUMERICAL],
             obstacles_per_task: 60,
             obstacle_min: [0.3, 0.3],
             obstacle_max: [0.8, 0.8],
@@ -437,10 +439,10 @@ impl Sampling {
             }
         }
         if !self.whole_torus
-            && ((self.tasks.is_empty() && self.random_tasks == 0) || self.modes.is_empty())
+            && ((self.tasks.is_empty() && self.random_tasks == 0) || self.methods.is_empty())
         {
             return Err(Error::Training(
-                "sampling: need at least one task and one mode".into(),
+                "sampling: need at least one task and one method".into(),
             ));
         }
         if self.random_tasks > 10_000 || self.obstacles_per_task > 10_000 {
@@ -448,9 +450,9 @@ impl Sampling {
                 "sampling: at most 10 000 random tasks and 10 000 obstacles per task".into(),
             ));
         }
-        if self.modes.iter().any(|m| m.uses_networks()) {
+        if self.methods.iter().any(|m| m.uses_networks()) {
             return Err(Error::Training(
-                "sampling: only the numerical modes (none, numerical) can seed training data"
+                "sampling: only the numerical methods (none, numerical) can seed training data"
                     .into(),
             ));
         }

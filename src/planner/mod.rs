@@ -246,7 +246,7 @@ fn needs_auto_damping(scene: &Scene) -> bool {
 fn check_networks(method: Method, networks: &Option<Arc<dyn Surrogate>>, arm: &Arm) -> Result<()> {
     match networks {
         None if method.uses_networks() => Err(Error::NetworksUnavailable(format!(
-            "mode {method} needs trained networks and none are loaded"
+            "method {method} needs trained networks and none are loaded"
         ))),
         Some(n) if !n.arm().same_geometry(arm) => {
             let spec = |a: &Arm| (a.post(), a.links().to_vec());

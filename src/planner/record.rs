@@ -138,8 +138,9 @@ impl Sample {
 /// What a run achieved, over every step since the last reset.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Summary {
-    /// Method of the last step (`mode` in JSON, as on the command line).
-    #[serde(rename = "mode")]
+    /// Method of the last step (`method` in JSON, as on the command line;
+    /// `mode`, the older name, is read too).
+    #[serde(alias = "mode")]
     pub method: Method,
     /// RK4 steps taken.
     pub steps: usize,
@@ -193,8 +194,8 @@ pub struct Summary {
 /// A whole run: every sample from `t = 0` to `tf`, and the summary.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Trajectory {
-    /// Method used (`mode` in JSON).
-    #[serde(rename = "mode")]
+    /// Method used (`method` in JSON; `mode`, the older name, is read too).
+    #[serde(alias = "mode")]
     pub method: Method,
     /// One sample per RK4 step, the initial state first.
     pub steps: Vec<Sample>,

@@ -15,7 +15,7 @@ use crate::scene::Scene;
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct MethodRun {
     /// Method name.
-    pub mode: &'static str,
+    pub method: &'static str,
     /// Method label ([`Method::label`]).
     pub label: &'static str,
     /// The outcome, if the run went through.
@@ -53,7 +53,7 @@ impl Session {
                     Err(e) => (None, Some(e.to_string())),
                 };
                 MethodRun {
-                    mode: m.name(),
+                    method: m.name(),
                     label: m.label(),
                     summary,
                     error,

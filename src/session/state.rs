@@ -19,7 +19,7 @@ pub struct State<'a> {
     /// The paper's task last loaded (1 or 2).
     pub task: u32,
     /// Method name.
-    pub mode: &'static str,
+    pub method: &'static str,
     /// The networks the method uses (`{ phi, v }`).
     pub uses: Needs,
     /// Whether the clock runs.
@@ -195,7 +195,7 @@ impl Session {
         State {
             t: s.t,
             task: self.task,
-            mode: p.method().name(),
+            method: p.method().name(),
             uses: p.method().networks(),
             running: self.running,
             ended: self.ended(),

@@ -86,7 +86,7 @@ impl Sampling {
         let base = Self {
             obstacle_min,
             obstacle_max,
-            modes: vec![Method::NUMERICAL],
+            methods: vec![Method::NUMERICAL],
             ..Self::default()
         };
         match net {
@@ -140,7 +140,7 @@ impl Sampling {
 
     /// Every pose `arm` visits in the numerical runs: each paper task with
     /// its canonical obstacle, and each random task, with
-    /// `obstacles_per_task` obstacles uniform in the region, in every mode
+    /// `obstacles_per_task` obstacles uniform in the region, in every method
     /// listed. Runs that fail (obstacle on the post, a singular pose) are
     /// skipped. The paper's tasks start from three joint angles, so they
     /// need a 3-link arm.
@@ -190,8 +190,8 @@ impl Sampling {
                 let radius = base.obstacles.first().map_or(0.05, |ob| ob.radius);
                 let mut scene = base.clone();
                 scene.obstacles = vec![Obstacle::new(o[0], o[1], radius)];
-                for &mode in &self.modes {
-                    let Ok(run) = Planner::run(scene.clone(), mode, None) else {
+                for &method in &self.methods {
+                    let Ok(run) = Planner::run(scene.clone(), method, None) else {
                         continue;
                     };
                     out.extend(run.steps.into_iter().map(|s| Visited {

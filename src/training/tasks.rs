@@ -174,7 +174,7 @@ pub fn avoidance_tasks(
         }
         let mut scene = random_task(arm, &mut rng)?;
         scene.obstacles = vec![random_obstacle(arm, region.0, region.1, &mut rng)?];
-        let run = |mode| Planner::run_summary(scene.clone(), mode, None);
+        let run = |method| Planner::run_summary(scene.clone(), method, None);
         let (Ok(none), Ok(numerical)) = (run(Method::NO_AVOIDANCE), run(Method::NUMERICAL)) else {
             continue;
         };
@@ -188,11 +188,11 @@ pub fn avoidance_tasks(
     Ok(out)
 }
 
-/// How a mode fared on a set of tasks ([`check`]).
+/// How a method fared on a set of tasks ([`check`]).
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Check {
     /// Method name.
-    pub mode: &'static str,
+    pub method: &'static str,
     /// Tasks run.
     pub tasks: usize,
     /// Runs that ended clear and within 5 mm ([`succeeded`]).
@@ -206,17 +206,17 @@ pub struct Check {
     pub median_final_error: Option<f64>,
 }
 
-/// Runs every scene in `mode` with `networks` and counts the outcomes.
+/// Runs every scene in `method` with `networks` and counts the outcomes.
 pub fn check(
     scenes: &[Scene],
-    mode: crate::planner::Method,
+    method: crate::planner::Method,
     networks: Option<std::sync::Arc<dyn crate::planner::Surrogate>>,
 ) -> Check {
     use crate::planner::Planner;
     let mut errors = Vec::with_capacity(scenes.len());
     let (mut succeeded_runs, mut collided, mut failed) = (0, 0, 0);
     for scene in scenes {
-        match Planner::run_summary(scene.clone(), mode, networks.clone()) {
+        match Planner::run_summary(scene.clone(), method, networks.clone()) {
             Ok(s) => {
                 succeeded_runs += usize::from(succeeded(&s));
                 collided += usize::from(s.collided);
@@ -227,7 +227,7 @@ pub fn check(
     }
     errors.sort_by(f64::total_cmp);
     Check {
-        mode: mode.name(),
+        method: method.name(),
         tasks: scenes.len(),
         succeeded: succeeded_runs,
         collided,

@@ -318,13 +318,13 @@ pub fn assess(nets: &Networks, samples: usize) -> Result<Report> {
     if arm.same_geometry(&Arm::paper()) {
         for (feedback, refine) in CHECK_LOOPS {
             for task in [1, 2] {
-                for mode in [Method::CASE1, Method::CASE2, Method::CASE3] {
+                for method in [Method::CASE1, Method::CASE2, Method::CASE3] {
                     // Case 2 runs the exact Phi: nothing to refine.
-                    if refine > 0 && !mode.networks().phi {
+                    if refine > 0 && !method.networks().phi {
                         continue;
                     }
                     paper_tasks.push(evaluation::run_task_refined(
-                        nets, task, mode, None, feedback, refine,
+                        nets, task, method, None, feedback, refine,
                     )?);
                 }
             }
@@ -354,20 +354,20 @@ pub fn assess(nets: &Networks, samples: usize) -> Result<Report> {
                 s
             })
             .collect();
-        for mode in [
+        for method in [
             Method::NUMERICAL,
             Method::CASE1,
             Method::CASE2,
             Method::CASE3,
         ] {
             // The exact route takes no refinement: once is enough.
-            if refine > 0 && !mode.networks().phi {
+            if refine > 0 && !method.networks().phi {
                 continue;
             }
             random_tasks.push(CheckRow {
                 feedback,
                 refine,
-                check: tasks::check(&scenes, mode, Some(surrogate.clone())),
+                check: tasks::check(&scenes, method, Some(surrogate.clone())),
             });
         }
     }

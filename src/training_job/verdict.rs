@@ -87,20 +87,20 @@ impl Verdict {
     /// What fails in one loop. Case 2 runs the exact `Phi`, so its
     /// unrefined runs stand for every refinement.
     fn failures(report: &Report, cases: &[Method], feedback: f64, refine: u32) -> Vec<String> {
-        let in_loop = |k: f64, r: u32, mode: Method| {
-            k == feedback && (r == refine || (r == 0 && !mode.networks().phi))
+        let in_loop = |k: f64, r: u32, method: Method| {
+            k == feedback && (r == refine || (r == 0 && !method.networks().phi))
         };
         let lp = describe_loop(feedback, refine);
         let mut failures = Vec::new();
         if !report.paper_tasks.is_empty() {
             for t in &report.paper_tasks {
-                if cases.contains(&t.mode)
-                    && in_loop(t.feedback_gain, t.refine, t.mode)
+                if cases.contains(&t.method)
+                    && in_loop(t.feedback_gain, t.refine, t.method)
                     && !t.success()
                 {
                     failures.push(format!(
                         "{} misses Task {} {lp} ({}, {:.1} mm from the target)",
-                        t.mode.label(),
+                        t.method.label(),
                         t.task,
                         if t.collided {
                             "collides"
@@ -116,13 +116,13 @@ impl Verdict {
         let Some(numerical) = report
             .random_tasks
             .iter()
-            .find(|r| r.feedback == feedback && r.check.mode == Method::NUMERICAL.name())
+            .find(|r| r.feedback == feedback && r.check.method == Method::NUMERICAL.name())
         else {
             return failures;
         };
         let wanted = (PASS_SHARE * numerical.check.succeeded as f64).ceil() as usize;
         for r in &report.random_tasks {
-            let Some(&case) = cases.iter().find(|m| m.name() == r.check.mode) else {
+            let Some(&case) = cases.iter().find(|m| m.name() == r.check.method) else {
                 continue;
             };
             if in_loop(r.feedback, r.refine, case) && r.check.succeeded < wanted.max(1) {

@@ -31,7 +31,7 @@ pub(super) fn finite(what: &str, value: f64) -> JsResult<f64> {
 
 #[wasm_bindgen]
 impl Demo {
-    /// A demo of the paper's task `task` (1 or 2) in mode `numerical`, drawn on
+    /// A demo of the paper's task `task` (1 or 2) with method `numerical`, drawn on
     /// `stage`, with the time-series plots on `plots` if given. Paused at `t = 0`.
     #[wasm_bindgen(constructor)]
     pub fn new(
@@ -52,7 +52,7 @@ impl Demo {
     }
 
     /// Loads the paper's scene `task` (1 or 2; obstacle, start pose, target and
-    /// `lambda = 4`), keeping the mode, the damping switch and the feedback
+    /// `lambda = 4`), keeping the method, the damping switch and the feedback
     /// gain, and runs it from `t = 0` to `tf = 10 s`.
     #[wasm_bindgen(js_name = loadTask)]
     pub fn load_task(&mut self, task: u32) -> JsResult {
@@ -75,9 +75,9 @@ impl Demo {
     /// networks take the loaded ones, else the built-in ones where they fit
     /// the arm; without them this throws "networks not available: ..." and
     /// the method stays as it was.
-    #[wasm_bindgen(js_name = setMode)]
-    pub fn set_method(&mut self, mode: &str) -> JsResult {
-        let method: Method = mode.parse().map_err(js_err)?;
+    #[wasm_bindgen(js_name = setMethod)]
+    pub fn set_method(&mut self, method: &str) -> JsResult {
+        let method: Method = method.parse().map_err(js_err)?;
         self.session.set_method(method).map_err(js_err)
     }
 
@@ -196,10 +196,10 @@ impl Demo {
     }
 
     /// Runs the current scene from `t = 0` to `tf` with every method, off
-    /// screen: `[{ mode, label, summary, error }]`, `summary` as the CLI's
+    /// screen: `[{ method, label, summary, error }]`, `summary` as the CLI's
     /// JSON or `null` with `error` saying why the method could not run.
-    #[wasm_bindgen(js_name = compareModes)]
-    pub fn compare_modes(&self) -> JsResult<JsValue> {
+    #[wasm_bindgen(js_name = compareMethods)]
+    pub fn compare_methods(&self) -> JsResult<JsValue> {
         to_js(&self.session.compare_methods())
     }
 

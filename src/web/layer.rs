@@ -9,7 +9,7 @@ use super::surface::View;
 use crate::atlas::{Class, Grid};
 use crate::error::{Error, Result};
 
-/// The classes of one mode's atlas, cell by cell.
+/// The classes of one method's atlas, cell by cell.
 pub struct Layer {
     grid: Grid,
     /// Index into [`Class::ALL`] per cell, rows from `y0`.

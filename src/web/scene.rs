@@ -167,7 +167,7 @@ impl Demo {
     #[allow(clippy::too_many_arguments)] // one optional argument per override, as JavaScript passes them
     pub fn simulate(
         &self,
-        mode: &str,
+        method: &str,
         target: Option<Vec<f64>>,
         obstacles: Option<Vec<f64>>,
         tf: Option<f64>,
@@ -175,7 +175,7 @@ impl Demo {
         feedback: Option<f64>,
         refine: Option<f64>,
     ) -> JsResult<JsValue> {
-        let mode: Method = mode.parse().map_err(js_err)?;
+        let method: Method = method.parse().map_err(js_err)?;
         let mut scene = self.session.planner().scene().clone();
         if let Some(t) = target {
             let [x, y] = t[..] else {
@@ -205,7 +205,7 @@ impl Demo {
                 .map_err(js_err)?;
         }
         scene.validate().map_err(js_err)?;
-        let summary = self.session.run_offscreen(scene, mode).map_err(js_err)?;
+        let summary = self.session.run_offscreen(scene, method).map_err(js_err)?;
         to_js(&summary)
     }
 }

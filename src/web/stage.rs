@@ -44,7 +44,7 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) -> u32 {
     ctx.stroke();
     dash(ctx, &[]);
 
-    // Where the v network saw obstacles in training (network v modes).
+    // Where the v network saw obstacles in training (network v methods).
     if let (true, Some(r)) = (planner.method().networks().v, s.trained_range()) {
         drawn |= bit::REGION;
         let (x0, y0) = view.to_px(r.obstacle_min);

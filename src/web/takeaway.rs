@@ -61,46 +61,50 @@ struct AtlasFiles {
     json: String,
     /// One line per cell (`redundant-ik atlas --csv`).
     csv: String,
-    /// The maps (`redundant-ik atlas --out`), of the modes asked for.
+    /// The maps (`redundant-ik atlas --out`), of the methods asked for.
     figure: String,
 }
 
 /// An atlas (the object a job finished with) computed on `scene`:
-/// `{ json, csv, figure }`, the figure of the modes named in `modes` (all
+/// `{ json, csv, figure }`, the figure of the methods named in `methods` (all
 /// of the atlas's when empty). Throws on an atlas that does not read back.
 #[wasm_bindgen(js_name = atlasFiles)]
-pub fn atlas_files(atlas: JsValue, scene: JsValue, modes: Vec<String>) -> Result<JsValue, JsError> {
+pub fn atlas_files(
+    atlas: JsValue,
+    scene: JsValue,
+    methods: Vec<String>,
+) -> Result<JsValue, JsError> {
     let atlas: Atlas = serde_wasm_bindgen::from_value(atlas)
         .map_err(|e| JsError::new(&format!("not an atlas: {e}")))?;
     let scene: Scene = serde_wasm_bindgen::from_value(scene)
         .map_err(|e| JsError::new(&format!("not a scene: {e}")))?;
     let json = serde_json::to_string(&atlas).map_err(|e| JsError::new(&e.to_string()))?;
     let csv = export::atlas_csv(&atlas);
-    let shown = if modes.is_empty() {
+    let shown = if methods.is_empty() {
         atlas
     } else {
-        only(atlas, &modes)?
+        only(atlas, &methods)?
     };
     let figure = figure::atlas_svg(&shown, &scene).map_err(js_err)?;
     to_js(&AtlasFiles { json, csv, figure })
 }
 
-/// The atlas restricted to `modes` (in the atlas's order).
-fn only(mut atlas: Atlas, modes: &[String]) -> Result<Atlas, JsError> {
+/// The atlas restricted to `methods` (in the atlas's order).
+fn only(mut atlas: Atlas, methods: &[String]) -> Result<Atlas, JsError> {
     let keep: Vec<usize> = atlas
-        .modes
+        .methods
         .iter()
         .enumerate()
-        .filter(|(_, m)| modes.iter().any(|n| n == m.name()))
+        .filter(|(_, m)| methods.iter().any(|n| n == m.name()))
         .map(|(k, _)| k)
         .collect();
     if keep.is_empty() {
         return Err(JsError::new(&format!(
-            "the atlas has none of the modes {}",
-            modes.join(", ")
+            "the atlas has none of the methods {}",
+            methods.join(", ")
         )));
     }
-    atlas.modes = keep.iter().map(|&k| atlas.modes[k]).collect();
+    atlas.methods = keep.iter().map(|&k| atlas.methods[k]).collect();
     atlas.summary = keep.iter().map(|&k| atlas.summary[k].clone()).collect();
     for c in &mut atlas.cells {
         c.outcomes = keep.iter().map(|&k| c.outcomes[k].clone()).collect();

@@ -44,7 +44,7 @@ pub(super) fn read_run(run: JsValue) -> Result<Run, JsError> {
 #[derive(Deserialize)]
 struct AtlasOptions {
     /// Method names; the paper's five when absent.
-    modes: Option<Vec<String>>,
+    methods: Option<Vec<String>>,
     /// Points per side; 41 when absent.
     n: Option<f64>,
     /// `[x0, x1, y0, y1]`; the box of the arm's reach when absent.
@@ -61,7 +61,7 @@ struct AtlasOptions {
 }
 
 const OPTION_NAMES: [&str; 7] = [
-    "modes", "n", "region", "task", "feedback", "refine", "networks",
+    "methods", "n", "region", "task", "feedback", "refine", "networks",
 ];
 
 /// An atlas being computed in a worker: `new AtlasJob(run, options)`, then
@@ -76,7 +76,7 @@ pub struct AtlasJob {
 #[wasm_bindgen]
 impl AtlasJob {
     /// `run` is the page's run (`Demo.run()`: its scene and networks);
-    /// `options` is `{ modes, n, region, task, feedback, refine, networks
+    /// `options` is `{ methods, n, region, task, feedback, refine, networks
     /// }`, each optional (`feedback` and `refine` override the scene's,
     /// `task` the run's, and `networks` names a shipped set instead of the
     /// run's networks). The methods that use networks take those, or the
@@ -88,7 +88,7 @@ impl AtlasJob {
         let mut run = read_run(run)?;
         let options: AtlasOptions = if options.is_undefined() || options.is_null() {
             AtlasOptions {
-                modes: None,
+                methods: None,
                 n: None,
                 region: None,
                 task: None,
@@ -129,7 +129,7 @@ impl AtlasJob {
                 )))
             }
         };
-        let modes = match options.modes {
+        let methods = match options.methods {
             None => methods::PAPER.to_vec(),
             Some(names) => names
                 .iter()
@@ -150,7 +150,7 @@ impl AtlasJob {
             let set = name.parse::<networks::NetworkSet>().map_err(js_err)?;
             run.networks = Some(NetworkChoice::Set(set));
         }
-        let networks = if modes.iter().any(|m| m.uses_networks()) {
+        let networks = if methods.iter().any(|m| m.uses_networks()) {
             Some(run.load_networks().map_err(js_err)?)
         } else {
             None
@@ -158,7 +158,7 @@ impl AtlasJob {
         let spec = Spec {
             scene: run.scene,
             grid,
-            modes,
+            methods,
             task: Some(options.task.unwrap_or(run.task)),
         };
         Ok(AtlasJob {
@@ -348,20 +348,20 @@ pub fn bench_verdict() -> Vec<String> {
         .collect()
 }
 
-/// One `theta_dot` of `mode` at Task 1's start pose, in nanoseconds (the
+/// One `theta_dot` of `method` at Task 1's start pose, in nanoseconds (the
 /// code behind `redundant-ik bench`; one figure per call, so a Web Worker can
 /// report progress between them).
 #[wasm_bindgen(js_name = benchThetaDot)]
-pub fn bench_theta_dot(mode: &str, batch_ms: f64) -> Result<f64, JsError> {
-    let mode: Method = mode.parse().map_err(js_err)?;
-    bench::theta_dot_ns(mode, &bench_options(batch_ms)?, &probes()).map_err(js_err)
+pub fn bench_theta_dot(method: &str, batch_ms: f64) -> Result<f64, JsError> {
+    let method: Method = method.parse().map_err(js_err)?;
+    bench::theta_dot_ns(method, &bench_options(batch_ms)?, &probes()).map_err(js_err)
 }
 
-/// One RK4 step of Task 1 in `mode`, sample included, in nanoseconds.
+/// One RK4 step of Task 1 in `method`, sample included, in nanoseconds.
 #[wasm_bindgen(js_name = benchStep)]
-pub fn bench_step(mode: &str, batch_ms: f64) -> Result<f64, JsError> {
-    let mode: Method = mode.parse().map_err(js_err)?;
-    bench::step_ns(mode, &bench_options(batch_ms)?, &probes()).map_err(js_err)
+pub fn bench_step(method: &str, batch_ms: f64) -> Result<f64, JsError> {
+    let method: Method = method.parse().map_err(js_err)?;
+    bench::step_ns(method, &bench_options(batch_ms)?, &probes()).map_err(js_err)
 }
 
 /// Forward passes of the shipped networks in nanoseconds: `{ phi, v }`.

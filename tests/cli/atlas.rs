@@ -10,7 +10,7 @@ fn atlas_prints_the_success_table_and_writes_json_and_an_svg() {
         "2",
         "--grid",
         "5",
-        "--modes",
+        "--methods",
         "none,numerical",
     ]);
     assert!(table.contains("Atlas of Task 2: 5 x 5"), "{table}");
@@ -20,7 +20,7 @@ fn atlas_prints_the_success_table_and_writes_json_and_an_svg() {
     );
     assert!(!table.contains("Case 1"), "{table}");
 
-    // The JSON: a small grid over the obstacle's neighbourhood, every mode.
+    // The JSON: a small grid over the obstacle's neighbourhood, every method.
     let svg = scratch("atlas.svg");
     let v = json(&[
         "atlas",
@@ -41,7 +41,7 @@ fn atlas_prints_the_success_table_and_writes_json_and_an_svg() {
     assert_eq!(v["grid"]["region"], serde_json::json!([0.2, 0.8, 0.2, 0.8]));
     assert_eq!(v["radius"], 0.05);
     assert_eq!(v["lambda"], 4.0);
-    assert_eq!(v["modes"].as_array().unwrap().len(), methods::PAPER.len());
+    assert_eq!(v["methods"].as_array().unwrap().len(), methods::PAPER.len());
     let cells = v["cells"].as_array().unwrap();
     assert_eq!(cells.len(), 16);
     assert_eq!(
@@ -79,28 +79,28 @@ fn atlas_prints_the_success_table_and_writes_json_and_an_svg() {
 }
 
 #[test]
-fn atlas_refuses_bad_grids_regions_modes_and_threads() {
+fn atlas_refuses_bad_grids_regions_methods_and_threads() {
     refused(&["atlas", "--grid", "1"], "grid points per side");
     refused(&["atlas", "--grid", "500"], "grid points per side");
     refused(&["atlas", "--region", "0,1,0"], "four numbers");
     refused(&["atlas", "--region", "1,0,0,1"], "empty");
     refused(&["atlas", "--region", "0,1,nan,1"], "finite");
     refused(&["atlas", "--region", "0,x,0,1"], "not a number");
-    refused(&["atlas", "--modes", "numerical,fast"], "unknown mode");
+    refused(&["atlas", "--methods", "numerical,fast"], "unknown method");
     refused(&["atlas", "--threads", "0"], "threads");
     refused(&["atlas", "--radius", "-1"], "radius");
 }
 
 #[test]
 fn atlas_csv_has_a_line_per_cell_and_says_where_avoidance_mattered() {
-    let csv = ok(&["atlas", "--grid", "5", "--modes", "numerical", "--csv"]);
+    let csv = ok(&["atlas", "--grid", "5", "--methods", "numerical", "--csv"]);
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(
         lines[0],
         "x,y,avoidance_needed,numerical_class,numerical_clearance,numerical_final_error"
     );
     assert_eq!(lines.len(), 26);
-    let v = json(&["atlas", "--grid", "5", "--modes", "numerical", "--json"]);
+    let v = json(&["atlas", "--grid", "5", "--methods", "numerical", "--json"]);
     for (line, cell) in lines[1..].iter().zip(v["cells"].as_array().unwrap()) {
         let f: Vec<&str> = line.split(',').collect();
         assert_eq!(f[0].parse::<f64>().unwrap(), cell["x"].as_f64().unwrap());

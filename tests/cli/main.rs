@@ -60,6 +60,7 @@ fn scratch(name: &str) -> PathBuf {
     dir.join(name)
 }
 
+mod aliases;
 mod atlas;
 mod outputs;
 mod refusals;

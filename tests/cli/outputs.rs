@@ -3,7 +3,7 @@
 use super::*;
 
 #[test]
-fn figure_writes_an_svg_and_all_writes_every_task_and_mode() {
+fn figure_writes_an_svg_and_all_writes_every_task_and_method() {
     let one = scratch("task1.svg");
     ok(&["figure", "--task", "1", "--out", one.to_str().unwrap()]);
     let svg = std::fs::read_to_string(&one).unwrap();
@@ -49,10 +49,10 @@ fn figure_writes_an_svg_and_all_writes_every_task_and_mode() {
 }
 
 #[test]
-fn eval_reports_accuracy_and_all_five_modes_on_both_tasks() {
+fn eval_reports_accuracy_and_all_five_methods_on_both_tasks() {
     let report = json(&["eval", "--samples", "100", "--json"]);
     let outcomes = report["outcomes"].as_array().unwrap();
-    assert_eq!(outcomes.len(), 10, "2 tasks x 5 modes");
+    assert_eq!(outcomes.len(), 10, "2 tasks x 5 methods");
     assert!(report["v"]["median"].as_f64().unwrap() < 0.1);
     assert!(
         report["phi"][0]["relative_error"]["median"]
@@ -95,12 +95,16 @@ fn bench_reports_every_figure_and_no_allocation_per_step() {
         assert_eq!(names, paper, "{key}");
     }
     for m in methods::PAPER {
-        let mode = m.name();
+        let method = m.name();
         for key in ["theta_dot_ns", "step_ns"] {
-            let x = v[key][mode].as_f64().unwrap_or(f64::NAN);
-            assert!(x.is_finite() && x > 0.0, "{key}.{mode} = {}", v[key][mode]);
+            let x = v[key][method].as_f64().unwrap_or(f64::NAN);
+            assert!(
+                x.is_finite() && x > 0.0,
+                "{key}.{method} = {}",
+                v[key][method]
+            );
         }
-        assert_eq!(v["allocs_per_step"][mode], 0.0, "{mode} allocates");
+        assert_eq!(v["allocs_per_step"][method], 0.0, "{method} allocates");
     }
     for net in ["phi", "v"] {
         assert!(v["forward_ns"][net].as_f64().is_some_and(|x| x > 0.0));
@@ -121,8 +125,8 @@ fn bench_reports_every_figure_and_no_allocation_per_step() {
         "portable"
     };
     assert_eq!(base["kernels"], expected);
-    // --modes all times every method.
-    let all = bench(&["--modes", "all"]);
+    // --methods all times every method.
+    let all = bench(&["--methods", "all"]);
     assert_eq!(
         all["step_ns"].as_object().unwrap().len(),
         methods::ALL.len()

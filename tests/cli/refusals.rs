@@ -19,7 +19,7 @@ fn bad_input_is_one_error_line_and_exit_status_2() {
         (&["simulate", "--feedback", "100"], "unstable"),
         (&["simulate", "--target", "1e9,0"], "within"),
         (&["simulate", "--task", "3"], "task 3"),
-        (&["simulate", "--mode", "case4"], "mode"),
+        (&["simulate", "--method", "case4"], "method"),
         (&["simulate", "--theta0", "0,1"], "3"),
         (&["figure", "--task", "1"], "required"),
     ];
@@ -138,10 +138,10 @@ fn hostile_input_through_every_subcommand_is_one_readable_error() {
         // Garbage.
         (&["simulate", "--lambda", "four"], "lambda"),
         (&["simulate", "--target", "x,y"], "target"),
-        (&["simulate", "--mode", "\u{1F4A5}"], "mode"),
+        (&["simulate", "--method", "\u{1F4A5}"], "method"),
         (&["simulate", "--task=-1"], "task"),
         (&["simulate", "--arm", "::"], "arm"),
-        (&["atlas", "--modes", ",,,"], "mode"),
+        (&["atlas", "--methods", ",,,"], "method"),
         (&["train", "--net", "both", "--out", "/dev/null"], "net"),
         (&["simulate", "--phi-variant", "sideways"], "phi-variant"),
         (&["simulate", "--bogus"], "unexpected argument"),
@@ -190,7 +190,7 @@ fn hostile_weights_files_are_refused_with_the_reason() {
         refused(
             &[
                 "simulate",
-                "--mode",
+                "--method",
                 "case3",
                 "--phi-weights",
                 file,
@@ -205,7 +205,7 @@ fn hostile_weights_files_are_refused_with_the_reason() {
                 "atlas",
                 "--grid",
                 "2",
-                "--modes",
+                "--methods",
                 "case1",
                 "--phi-weights",
                 file,
@@ -216,7 +216,7 @@ fn hostile_weights_files_are_refused_with_the_reason() {
         );
     }
     refused(
-        &["simulate", "--mode", "case2", "--v-weights", &other],
+        &["simulate", "--method", "case2", "--v-weights", &other],
         "arm",
     );
 }
@@ -227,13 +227,13 @@ fn a_corrupt_or_mismatched_weights_file_is_refused_with_the_reason() {
     std::fs::write(&bad, "{\"format\": 12").unwrap();
     let bad = bad.to_str().unwrap();
     refused(
-        &["simulate", "--mode", "case1", "--phi-weights", bad],
+        &["simulate", "--method", "case1", "--phi-weights", bad],
         "weights",
     );
     refused(
         &[
             "simulate",
-            "--mode",
+            "--method",
             "case1",
             "--phi-weights",
             "weights/v-plain.json",
@@ -243,7 +243,7 @@ fn a_corrupt_or_mismatched_weights_file_is_refused_with_the_reason() {
     refused(
         &[
             "simulate",
-            "--mode",
+            "--method",
             "case2",
             "--v-weights",
             "no/such/file.json",

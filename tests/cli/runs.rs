@@ -95,7 +95,7 @@ fn from_refuses_every_scene_flag_beside_it_and_applies_the_rest() {
     // (which a file of a method without networks does not name).
     let beside = [
         "--from",
-        "--mode",
+        "--method",
         "--json",
         "--csv",
         "--help",
@@ -124,15 +124,15 @@ fn from_refuses_every_scene_flag_beside_it_and_applies_the_rest() {
     }
     assert!(checked >= 20, "only {checked} scene flags checked");
     // The method and the output go with it.
-    let other: Value = json(&["simulate", "--from", path, "--mode", "qp", "--json"]);
-    assert_eq!(other["mode"], "qp");
+    let other: Value = json(&["simulate", "--from", path, "--method", "qp", "--json"]);
+    assert_eq!(other["method"], "qp");
 }
 
 #[test]
 fn a_run_names_its_networks_and_replays_with_them() {
     let text = ok(&[
         "simulate",
-        "--mode",
+        "--method",
         "case3",
         "--networks",
         "reach",
@@ -159,7 +159,7 @@ fn a_run_names_its_networks_and_replays_with_them() {
     );
     let paper: Value = json(&[
         "simulate",
-        "--mode",
+        "--method",
         "case3",
         "--refine",
         "2",
@@ -176,7 +176,7 @@ fn a_run_names_its_networks_and_replays_with_them() {
     std::fs::write(&phi, redundant_ik::networks::PHI_REACH_JSON).unwrap();
     let own = ok(&[
         "simulate",
-        "--mode",
+        "--method",
         "case1",
         "--phi-weights",
         phi.to_str().unwrap(),
@@ -220,5 +220,11 @@ fn a_run_file_written_before_the_parameters_moved_loads_and_replays_as_it_ran() 
     assert!(read.summary.success == (!read.summary.collided && read.summary.reached));
     let again: Value = json(&["simulate", "--from", path, "--json"]);
     assert_eq!(again["steps"], old["steps"], "the same steps");
-    assert_eq!(again["mode"], old["mode"]);
+    // It names its method `mode` (in the summary too), as files did before
+    // "method"; the replay writes `method`.
+    assert_eq!(read.method.name(), "case1");
+    assert_eq!(read.summary.method, read.method);
+    assert_eq!(again["method"], old["mode"]);
+    assert_eq!(again["summary"]["method"], old["summary"]["mode"]);
+    assert!(again.get("mode").is_none() && again["summary"].get("mode").is_none());
 }

@@ -5,7 +5,7 @@ use super::*;
 
 #[test]
 fn simulate_prints_a_readable_summary_of_the_papers_task_1() {
-    let text = ok(&["simulate", "--task", "1", "--mode", "numerical"]);
+    let text = ok(&["simulate", "--task", "1", "--method", "numerical"]);
     assert!(text.contains("Task 1"), "{text}");
     assert!(
         text.contains("0.2345 m"),
@@ -13,14 +13,14 @@ fn simulate_prints_a_readable_summary_of_the_papers_task_1() {
     );
     assert!(text.contains("no collision"), "{text}");
 
-    let text = ok(&["simulate", "--task", "1", "--mode", "none"]);
+    let text = ok(&["simulate", "--task", "1", "--method", "none"]);
     assert!(text.to_lowercase().contains("collision"), "{text}");
     assert!(!text.contains("no collision"), "Fig. 2 collides: {text}");
 }
 
 #[test]
 fn simulate_json_has_every_step_and_a_consistent_summary() {
-    let run = json(&["simulate", "--task", "2", "--mode", "numerical", "--json"]);
+    let run = json(&["simulate", "--task", "2", "--method", "numerical", "--json"]);
     let steps = run["steps"].as_array().unwrap();
     assert_eq!(steps.len(), 101, "t = 0 plus 100 RK4 steps");
     let last = &steps[100];
@@ -47,13 +47,13 @@ fn simulate_json_has_every_step_and_a_consistent_summary() {
 #[test]
 fn the_network_cases_run_from_the_embedded_weights() {
     let learned = methods::ALL.iter().filter(|m| m.uses_networks());
-    for mode in learned.map(|m| m.name()) {
-        let run = json(&["simulate", "--task", "1", "--mode", mode, "--json"]);
+    for method in learned.map(|m| m.name()) {
+        let run = json(&["simulate", "--task", "1", "--method", method, "--json"]);
         let s = &run["summary"];
-        assert_eq!(s["collided"], false, "{mode}");
-        assert!(s["final_error"].as_f64().unwrap() < 5e-3, "{mode}: {s}");
+        assert_eq!(s["collided"], false, "{method}");
+        assert!(s["final_error"].as_f64().unwrap() < 5e-3, "{method}: {s}");
     }
-    let closed = json(&["simulate", "--mode", "case3", "--feedback", "1", "--json"]);
+    let closed = json(&["simulate", "--method", "case3", "--feedback", "1", "--json"]);
     assert!(closed["summary"]["final_error"].as_f64().unwrap() < 1e-4);
 }
 
@@ -77,9 +77,9 @@ fn an_out_of_reach_target_completes_with_finite_numbers_and_says_so() {
 fn a_constant_delta_in_a_network_case_damps_the_network_phi() {
     // It used to swap in the exact Phi silently and print the numerical
     // route's numbers.
-    let run = |mode: &str| {
+    let run = |method: &str| {
         json(&[
-            "simulate", "--task", "1", "--mode", mode, "--delta", "0.001", "--json",
+            "simulate", "--task", "1", "--method", method, "--delta", "0.001", "--json",
         ])["summary"]
             .clone()
     };
@@ -89,7 +89,7 @@ fn a_constant_delta_in_a_network_case_damps_the_network_phi() {
     assert_eq!(case1["handover_steps"], 0);
     // Where the schedule takes over, the text says so.
     let text = ok(&[
-        "simulate", "--task", "1", "--mode", "case1", "--target", "2.5,0.8",
+        "simulate", "--task", "1", "--method", "case1", "--target", "2.5,0.8",
     ]);
     assert!(text.contains("exact damped Phi stood in"), "{text}");
 }
@@ -103,7 +103,7 @@ fn a_run_file_is_read_back_by_simulate_and_figure_and_csv_has_a_line_per_step() 
         "simulate",
         "--task",
         "2",
-        "--mode",
+        "--method",
         "case3",
         "--feedback",
         "1",
@@ -117,12 +117,19 @@ fn a_run_file_is_read_back_by_simulate_and_figure_and_csv_has_a_line_per_step() 
     assert_eq!(again, text, "the same run, byte for byte");
     let v: Value = serde_json::from_str(&text).unwrap();
     assert_eq!(
-        (v["task"].as_u64(), v["mode"].as_str()),
+        (v["task"].as_u64(), v["method"].as_str()),
         (Some(2), Some("case3"))
     );
     // Another method on the same scene.
-    let other: Value = json(&["simulate", "--from", path, "--mode", "numerical", "--json"]);
-    assert_eq!(other["mode"], "numerical");
+    let other: Value = json(&[
+        "simulate",
+        "--from",
+        path,
+        "--method",
+        "numerical",
+        "--json",
+    ]);
+    assert_eq!(other["method"], "numerical");
     assert_eq!(other["scene"], v["scene"]);
     // The CSV: a header and one line per sample, in the file's numbers.
     let csv = ok(&["simulate", "--from", path, "--csv"]);

@@ -33,7 +33,7 @@ fn train_writes_a_weights_file_that_simulate_accepts() {
     // summary reports what it did.
     let run = json(&[
         "simulate",
-        "--mode",
+        "--method",
         "case1",
         "--phi-weights",
         path,
@@ -76,7 +76,7 @@ fn train_and_simulate_take_any_arm() {
         "simulate",
         "--arm",
         arm,
-        "--mode",
+        "--method",
         "numerical",
         "--obstacle",
         "0.5,0.5,0.08",
@@ -91,7 +91,7 @@ fn train_and_simulate_take_any_arm() {
         "simulate",
         "--arm",
         arm,
-        "--mode",
+        "--method",
         "case3",
         "--theta0",
         "0.2,1.4,-0.5,-0.5",
@@ -103,7 +103,7 @@ fn train_and_simulate_take_any_arm() {
     ]);
     assert_eq!(s["steps"][0]["theta"][1], 1.4);
     // Networks for another arm, a start pose of the wrong length, bad arms.
-    refused(&["simulate", "--arm", arm, "--mode", "case3"], "arm");
+    refused(&["simulate", "--arm", arm, "--method", "case3"], "arm");
     refused(
         &["simulate", "--arm", arm, "--theta0", "0.1,0.2,0.3"],
         "theta",
@@ -151,7 +151,7 @@ fn the_reach_recipe_and_network_set_through_the_command_line() {
     let run = |refine: &str| {
         json(&[
             "simulate",
-            "--mode",
+            "--method",
             "case3",
             "--networks",
             "reach",
@@ -170,7 +170,7 @@ fn the_reach_recipe_and_network_set_through_the_command_line() {
     let fig = scratch("refined-case3.svg");
     ok(&[
         "figure",
-        "--mode",
+        "--method",
         "case3",
         "--networks",
         "reach",
@@ -188,7 +188,7 @@ fn the_reach_recipe_and_network_set_through_the_command_line() {
     let numerical = |set: &str| {
         json(&[
             "simulate",
-            "--mode",
+            "--method",
             "numerical",
             "--networks",
             set,
@@ -248,7 +248,7 @@ fn the_reach_recipe_and_network_set_through_the_command_line() {
     refused(
         &[
             "simulate",
-            "--mode",
+            "--method",
             "case1",
             "--networks",
             "reach",

@@ -188,8 +188,8 @@ fn the_allocation_free_routines_equal_the_matrix_forms_and_refuse_wrong_sizes() 
 
 #[test]
 fn the_planner_rates_through_its_workspace_equal_the_convenience_form() {
-    for mode in methods::ALL.iter().copied().filter(|m| !m.uses_networks()) {
-        let mut p = Planner::new(Scene::task2(), mode, None).unwrap();
+    for method in methods::ALL.iter().copied().filter(|m| !m.uses_networks()) {
+        let mut p = Planner::new(Scene::task2(), method, None).unwrap();
         let th = DVector::from_vec(vec![0.4, 1.2, 0.3]);
         let a = p.theta_dot(&th, &Vector2::new(-0.05, 0.02)).unwrap();
         let mut b = [0.0; 3];

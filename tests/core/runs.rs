@@ -33,7 +33,7 @@ fn rk4_error_falls_about_sixteen_times_when_dt_halves() {
 
 struct Reference {
     task: Scene,
-    mode: Method,
+    method: Method,
     min_distance: f64,
     collides: bool,
 }
@@ -43,44 +43,44 @@ fn numerical_runs_match_the_reference_rows_of_the_spec() {
     let rows = [
         Reference {
             task: Scene::task1(),
-            mode: Method::NO_AVOIDANCE,
+            method: Method::NO_AVOIDANCE,
             min_distance: 0.0019,
             collides: true,
         },
         Reference {
             task: Scene::task1(),
-            mode: Method::NUMERICAL,
+            method: Method::NUMERICAL,
             min_distance: 0.2345,
             collides: false,
         },
         Reference {
             task: Scene::task2(),
-            mode: Method::NO_AVOIDANCE,
+            method: Method::NO_AVOIDANCE,
             min_distance: 0.0016,
             collides: true,
         },
         Reference {
             task: Scene::task2(),
-            mode: Method::NUMERICAL,
+            method: Method::NUMERICAL,
             min_distance: 0.2193,
             collides: false,
         },
     ];
     for r in rows {
-        let t = Planner::run(r.task, r.mode, None).unwrap();
+        let t = Planner::run(r.task, r.method, None).unwrap();
         let s = &t.summary;
         assert_eq!(t.steps.len(), 101);
         let d = s.min_distance.unwrap();
         assert!(
             (d - r.min_distance).abs() < 1e-3,
             "{}: min distance {d}",
-            r.mode
+            r.method
         );
-        assert_eq!(s.collided, r.collides, "{}", r.mode);
+        assert_eq!(s.collided, r.collides, "{}", r.method);
         assert!(
             s.final_error < 1e-6,
             "{}: final error {}",
-            r.mode,
+            r.method,
             s.final_error
         );
         assert!(s.reached && s.target_reachable && !s.auto_damping);
@@ -119,8 +119,8 @@ fn damping_keeps_joint_rates_finite_at_a_fully_stretched_pose() {
 fn an_out_of_reach_target_completes_with_finite_numbers_and_is_not_reached() {
     let mut s = Scene::task1();
     s.target = [3.0, 2.0];
-    for mode in methods::ALL.iter().copied().filter(|m| !m.uses_networks()) {
-        let t = Planner::run(s.clone(), mode, None).unwrap();
+    for method in methods::ALL.iter().copied().filter(|m| !m.uses_networks()) {
+        let t = Planner::run(s.clone(), method, None).unwrap();
         assert!(t
             .steps
             .iter()
@@ -185,9 +185,9 @@ fn moving_the_obstacle_takes_effect_at_the_next_step() {
 }
 
 #[test]
-fn network_modes_without_networks_fail_clearly() {
-    for mode in methods::ALL.iter().copied().filter(|m| m.uses_networks()) {
-        let err = Planner::new(Scene::task1(), mode, None).unwrap_err();
+fn network_methods_without_networks_fail_clearly() {
+    for method in methods::ALL.iter().copied().filter(|m| m.uses_networks()) {
+        let err = Planner::new(Scene::task1(), method, None).unwrap_err();
         assert!(matches!(err, Error::NetworksUnavailable(_)));
         assert!(err.to_string().contains("networks not available"));
     }
@@ -350,7 +350,7 @@ fn bad_input_is_rejected_with_an_error_naming_the_problem() {
     }
     assert!(matches!(
         "case4".parse::<Method>(),
-        Err(UnknownName { kind: "mode", .. })
+        Err(UnknownName { kind: "method", .. })
     ));
     assert!(matches!(Scene::task(3), Err(UnknownTask { task: 3 })));
     let mut p = Planner::new(Scene::task1(), Method::NUMERICAL, None).unwrap();

@@ -6,17 +6,17 @@ import assert from 'node:assert/strict';
 import { here, shots, test, open, clean, state, near, pause, countFrames, methodsOf, usesNetworks } from './harness.mjs';
 
 test('atlas: computed in a worker while the page draws, equal to the module computed directly', async () => {
-  const page = await open('?task=1&mode=case3');
+  const page = await open('?task=1&method=case3');
   await pause(page);
   await page.click('#atlas-panel summary');
   await countFrames(page);
-  const modes = ['none', 'numerical', 'case3', 'distance', 'priority', 'qp'];
-  const run = await page.evaluate(async (modes) => {
+  const methods = ['none', 'numerical', 'case3', 'distance', 'priority', 'qp'];
+  const run = await page.evaluate(async (methods) => {
     const progress = [];
     const t0 = performance.now();
-    const r = await window.demo.atlas({ modes, n: 11, onProgress: (p) => progress.push([p.done, p.total]) });
+    const r = await window.demo.atlas({ methods, n: 11, onProgress: (p) => progress.push([p.done, p.total]) });
     return { r, progress, seconds: (performance.now() - t0) / 1000, frames: window.__frames };
-  }, modes);
+  }, methods);
   const { r, progress } = run;
   // Progress advances row by row to the whole grid.
   assert.ok(progress.length >= 11, `${progress.length} progress messages`);
@@ -28,30 +28,30 @@ test('atlas: computed in a worker while the page draws, equal to the module comp
   assert.equal(r.grid.n, 11);
   assert.deepEqual(r.grid.region.map((v) => Math.round(v * 1000) / 1000), [-2.05, 2.05, 0, 2.55]);
   assert.equal(r.radius, 0.05);
-  assert.deepEqual(r.modes, modes);
+  assert.deepEqual(r.methods, methods);
   assert.equal(r.cells.length, 121);
-  for (const m of modes) {
+  for (const m of methods) {
     assert.ok(['success', 'collision', 'missed', 'failed', 'path_blocked', 'start_overlap'].includes(r.cells[60].outcomes[m].class));
     assert.equal(Object.values(r.summary[m].counts).reduce((a, b) => a + b, 0), 121);
   }
   // The worker's result equals the module computing the same atlas here.
-  const same = await page.evaluate(async ({ modes, expected }) => {
+  const same = await page.evaluate(async ({ methods, expected }) => {
     const m = await import('./pkg/redundant_ik_worker.js');
     const wasm = window.demo.build === 'simd' ? 'redundant_ik_worker_simd_bg.wasm' : 'redundant_ik_worker_bg.wasm';
     await m.default({ module_or_path: `./pkg/${wasm}` });
-    const job = new m.AtlasJob(window.demo.controller.demo.run(), { modes, n: 11, task: 1 });
+    const job = new m.AtlasJob(window.demo.controller.demo.run(), { methods, n: 11, task: 1 });
     job.advance(1e6);
     const direct = job.finish();
     job.free();
     return JSON.stringify(direct) === JSON.stringify(expected);
-  }, { modes, expected: r });
+  }, { methods, expected: r });
   assert.ok(same, 'the worker and the module computed directly agree');
   clean(page);
   await page.close();
 });
 
 test('atlas panel: the map under the arm, its legend, hover numbers, click to replay, cancel and bad options', async () => {
-  const page = await open('?task=1&mode=numerical');
+  const page = await open('?task=1&method=numerical');
   await pause(page);
   await page.click('#atlas-panel summary');
   await page.selectOption('#atlas-n', '11');
@@ -121,7 +121,7 @@ test('atlas panel: the map under the arm, its legend, hover numbers, click to re
   for (const [options, message] of [
     [{ n: 1 }, /grid points per side/],
     [{ n: 2.5 }, /whole number/],
-    [{ modes: ['fast'] }, /unknown mode 'fast'/],
+    [{ methods: ['fast'] }, /unknown method 'fast'/],
     [{ region: [1, 0, 0, 1] }, /empty/],
     [{ region: [0, 1] }, /four numbers/],
     [{ grid: 21 }, /unknown atlas option 'grid'/],
@@ -139,7 +139,7 @@ test('atlas panel: the map under the arm, its legend, hover numbers, click to re
 });
 
 test('atlas of 41 x 41 cells in every method, in Chromium', async () => {
-  const page = await open('?task=1&mode=numerical');
+  const page = await open('?task=1&method=numerical');
   const r = await page.evaluate(async () => {
     const t0 = performance.now();
     const a = await window.demo.atlas({});
@@ -147,17 +147,17 @@ test('atlas of 41 x 41 cells in every method, in Chromium', async () => {
       wall: (performance.now() - t0) / 1000,
       worker: Number(document.getElementById('atlas-status').dataset.ms) / 1000,
       cells: a.cells.length,
-      modes: a.modes.length,
-      rates: Object.fromEntries(a.modes.map((m) => [m, a.summary[m].success_rate])),
+      methods: a.methods.length,
+      rates: Object.fromEntries(a.methods.map((m) => [m, a.summary[m].success_rate])),
       build: window.demo.build,
     };
   });
   const count = (await methodsOf(page)).length;
   assert.equal(r.cells, 41 * 41);
-  assert.equal(r.modes, count, 'every method ticked by default');
+  assert.equal(r.methods, count, 'every method ticked by default');
   const rates = Object.entries(r.rates).map(([m, v]) => `${m} ${(100 * v).toFixed(1)}%`).join(', ');
   console.log(
-    `measure: atlas of Task 1, 41 x 41 cells, ${count} methods (${r.cells * r.modes} runs) in a worker (${r.build} build): ` +
+    `measure: atlas of Task 1, 41 x 41 cells, ${count} methods (${r.cells * r.methods} runs) in a worker (${r.build} build): ` +
       `${r.worker.toFixed(2)} s computing, ${r.wall.toFixed(2)} s with the worker's start; success ${rates}`,
   );
   clean(page);

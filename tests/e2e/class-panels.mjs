@@ -7,14 +7,14 @@ import assert from 'node:assert/strict';
 import { download, pngSize, parseSvg, close } from './class-helpers.mjs';
 
 export function classPanelTests(h) {
-  const { test, open, clean, state, shots, mouseDrag, selectMode, methodsOf, usesNetworks, browser, BASE } = h;
+  const { test, open, clean, state, shots, mouseDrag, selectMethod, methodsOf, usesNetworks, browser, BASE } = h;
 
   test('class: the legend lists what is drawn, per method (ghost, trained region, dampers), and a link below the floor', async () => {
-    const page = await open('?task=1&mode=numerical');
+    const page = await open('?task=1&method=numerical');
     const visible = () => page.evaluate(() => [...document.querySelectorAll('#legend li')].filter((li) => !li.hidden).map((li) => li.dataset.key));
     const frame = () => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
     for (const m of await methodsOf(page)) {
-      await selectMode(page, m.name);
+      await selectMethod(page, m.name);
       await page.click('#task1');
       await page.evaluate(() => window.demo.runUntil(100));
       await frame();
@@ -31,7 +31,7 @@ export function classPanelTests(h) {
     assert.ok(!atStart.includes('strobe') && !atStart.includes('trail'), `${atStart}`);
     // The ghost is drawn on top of the arm, in its own colour: where the two
     // agree (at the start) its pixels show on the arm.
-    await selectMode(page, 'case3');
+    await selectMethod(page, 'case3');
     await page.click('#reset');
     await frame();
     const ghost = await page.evaluate(() => {
@@ -68,14 +68,14 @@ export function classPanelTests(h) {
   });
 
   test('class: the tour runs its five steps to the end, each one click, and can be skipped', async () => {
-    const page = await open('?task=2&mode=qp');
+    const page = await open('?task=2&method=qp');
     await page.click('#tour-open');
     assert.equal(await page.isVisible('#tour'), true);
     const expect = [
-      (s) => s.mode === 'none' && s.collided,
-      (s) => s.mode === 'numerical' && !s.collided && s.final_error < 5e-3,
-      (s) => s.mode === 'case3' && !s.collided && s.ghost && s.final_error < 5e-3,
-      (s) => s.mode === 'case3' && Math.hypot(s.obstacle[0] + 0.2, s.obstacle[1] - 0.85) < 1e-9 && s.collided,
+      (s) => s.method === 'none' && s.collided,
+      (s) => s.method === 'numerical' && !s.collided && s.final_error < 5e-3,
+      (s) => s.method === 'case3' && !s.collided && s.ghost && s.final_error < 5e-3,
+      (s) => s.method === 'case3' && Math.hypot(s.obstacle[0] + 0.2, s.obstacle[1] - 0.85) < 1e-9 && s.collided,
       null,
     ];
     for (let k = 0; k < 5; k++) {
@@ -87,7 +87,7 @@ export function classPanelTests(h) {
         await page.evaluate(() => window.demo.runUntil(100));
         await page.waitForFunction(() => /This run:/.test(document.getElementById('tour-result').textContent), null, { timeout: 20000 });
         const s = await state(page);
-        assert.ok(expect[k](s), `step ${k + 1}: ${JSON.stringify({ mode: s.mode, collided: s.collided, obstacle: s.obstacle, in_range: s.in_range })}`);
+        assert.ok(expect[k](s), `step ${k + 1}: ${JSON.stringify({ method: s.method, collided: s.collided, obstacle: s.obstacle, in_range: s.in_range })}`);
         if (k === 3) assert.equal(await page.isVisible('.stage-card #range-warning'), true, 'outside the box: the warning shows');
       } else {
         await page.waitForFunction(() => /This atlas: Case 3 succeeds/.test(document.getElementById('tour-result').textContent), null, { timeout: 60000 });
@@ -100,16 +100,16 @@ export function classPanelTests(h) {
     assert.equal(await page.getAttribute('#tour', 'data-done'), 'true');
     // Skipped at once: the page goes on as it was.
     await page.click('#tour-open');
-    const before = (await state(page)).mode;
+    const before = (await state(page)).method;
     await page.click('#tour-close');
     assert.equal(await page.isVisible('#tour'), false);
-    assert.equal((await state(page)).mode, before);
+    assert.equal((await state(page)).method, before);
     clean(page);
     await page.close();
   });
 
   test('class: the atlas opens on the selected method and says what it counts; the comparison greys out and marks unavoidable hits; both download', async () => {
-    const page = await open('?task=1&mode=case3');
+    const page = await open('?task=1&method=case3');
     await page.click('#atlas-panel summary');
     await page.selectOption('#atlas-n', '11');
     await page.click('#atlas-run');
@@ -119,7 +119,7 @@ export function classPanelTests(h) {
     const heads = await page.$$eval('#atlas-table th', (ths) => ths.map((th) => th.textContent));
     assert.deepEqual(heads, ['method', 'success', 'where it mattered', 'in v box', 'outside', 'smallest clearance']);
     assert.match(await page.textContent('#atlas-counts'), /not on the path, not on the start arm/);
-    const none = await page.textContent('#atlas-body tr[data-mode="none"] td:nth-child(3)');
+    const none = await page.textContent('#atlas-body tr[data-method="none"] td:nth-child(3)');
     assert.match(none, /^0\.0% of \d+$/, `no avoidance where it mattered: ${none}`);
     const result = await page.evaluate(() => window.demo.atlasResult());
     const json = await download(page, '#atlas-json');
@@ -166,7 +166,7 @@ export function classPanelTests(h) {
   });
 
   test('class: the prose follows the arm; a switch of method the page makes is announced at the menu; messages appear next to their cause', async () => {
-    const page = await open('?task=1&mode=case3');
+    const page = await open('?task=1&method=case3');
     assert.equal(await page.textContent('[data-arm="links"]'), 'three');
     await page.click('#arm-panel summary');
     await page.selectOption('#arm-preset', 'four');
@@ -175,7 +175,7 @@ export function classPanelTests(h) {
     assert.equal(await page.textContent('[data-arm="spare"]'), 'two spare degrees');
     assert.match(await page.textContent('#what-you-see'), /links of 0\.6, 0\.85, 0\.6 and 0\.4 m.*Four joints .* two degrees of freedom spare/);
     assert.match(await page.textContent('#network-note'), /trained for the paper's arm, not this one/);
-    assert.equal((await state(page)).mode, 'numerical');
+    assert.equal((await state(page)).method, 'numerical');
     const said = await page.evaluate(() => {
       const m = document.getElementById('message');
       return { text: m.textContent, hidden: m.hidden, after: m.previousElementSibling?.contains(document.getElementById('mode')) };
@@ -207,7 +207,7 @@ export function classPanelTests(h) {
   });
 
   test('class: the benchmark downloads as CSV', async () => {
-    const page = await open('?task=1&mode=numerical');
+    const page = await open('?task=1&method=numerical');
     await page.click('#bench-panel summary');
     await page.click('#bench');
     await page.waitForSelector('#bench-csv:not([hidden])', { timeout: 120000 });

@@ -15,22 +15,22 @@ import { CLI, scratch, cli, download, pngSize, parseSvg, close } from './class-h
 import { classPanelTests } from './class-panels.mjs';
 
 export function classTests(h) {
-  const { test, open, clean, state, shots, mouseDrag, selectMode, methodsOf, usesNetworks, browser, BASE } = h;
+  const { test, open, clean, state, shots, mouseDrag, selectMethod, methodsOf, usesNetworks, browser, BASE } = h;
   const waitEnded = (page, timeout = 60000) =>
     page.waitForFunction(() => window.demo.state().ended && !window.demo.state().running, null, { timeout });
 
 
   test('class: a dropped target runs its line to the end; the clock stops and the hand holds within 1 mm for 5 s, in every method', async () => {
-    const page = await open('?task=1&mode=numerical');
+    const page = await open('?task=1&method=numerical');
     await page.selectOption('#speed', '8');
     for (const m of await methodsOf(page)) {
-      await selectMode(page, m.name);
+      await selectMethod(page, m.name);
       await page.click('#task1');
       await waitEnded(page);
       // The issue's drop: (0.3, 1.2), from wherever the hand is now.
       await mouseDrag(page, (await state(page)).target, [0.3, 1.2]);
       const run = await state(page);
-      assert.equal(run.mode, m.name);
+      assert.equal(run.method, m.name);
       assert.ok(run.running && run.t < run.tf, `${m.name}: the drop starts a new run`);
       await waitEnded(page);
       const end = await state(page);
@@ -54,7 +54,7 @@ export function classTests(h) {
   });
 
   test('class: add three obstacles by clicking, press Task 1: all three are there', async () => {
-    const page = await open('?task=1&mode=numerical');
+    const page = await open('?task=1&method=numerical');
     await page.click('#arm-panel summary');
     const added = [[-0.4, 1.4], [1.3, 1.5], [0.2, 1.75]];
     for (const p of added) {
@@ -79,7 +79,7 @@ export function classTests(h) {
   });
 
   test('class: pause, reset, drag the obstacle next to the arm: "smallest this run" is the distance', async () => {
-    const page = await open('?task=1&mode=numerical');
+    const page = await open('?task=1&method=numerical');
     await page.waitForFunction(() => window.demo.state().t > 1);
     await page.click('#play');
     assert.equal((await state(page)).running, false, 'paused');
@@ -99,7 +99,7 @@ export function classTests(h) {
   });
 
   test('class: moving the obstacle after a run ends replays the run with it there', async () => {
-    const page = await open('?task=1&mode=numerical');
+    const page = await open('?task=1&method=numerical');
     await page.selectOption('#speed', '8');
     await waitEnded(page);
     await mouseDrag(page, (await state(page)).obstacle, [1.05, 0.95]);
@@ -113,7 +113,7 @@ export function classTests(h) {
   });
 
   test('class: take it away: the figure, the plots and the run, each read back (SVG as XML, PNG of the right size, CSV a line per step, JSON by the CLI)', async () => {
-    const page = await open('?task=1&mode=case3');
+    const page = await open('?task=1&method=case3');
     await page.selectOption('#speed', '8');
     await waitEnded(page);
     const s = await state(page);
@@ -122,8 +122,8 @@ export function classTests(h) {
     const json = await download(page, '#save-run-json');
     assert.match(json.name, /^task1-case3\.json$/);
     const run = JSON.parse(json.text);
-    assert.deepEqual(Object.keys(run), ['task', 'mode', 'scene', 'networks', 'steps', 'summary']);
-    assert.equal(run.mode, 'case3');
+    assert.deepEqual(Object.keys(run), ['task', 'method', 'scene', 'networks', 'steps', 'summary']);
+    assert.equal(run.method, 'case3');
     assert.deepEqual(run.networks, { set: 'paper' }, 'the run names its networks');
     assert.deepEqual(run.scene, await page.evaluate(() => window.demo.controller.demo.scene()), 'the page scene');
     const last = run.steps.at(-1);
@@ -133,7 +133,7 @@ export function classTests(h) {
     assert.equal(back.steps.length, run.steps.length);
     back.steps.forEach((st, k) => st.theta.forEach((v, i) => close(v, run.steps[k].theta[i], 1e-9, `step ${k} theta${i + 1}`)));
     for (const key of ['min_distance', 'min_clearance', 'final_error', 'max_tracking_error']) close(back.summary[key], run.summary[key], 1e-9, key);
-    for (const key of ['collided', 'reached', 'steps', 'mode', 'out_of_range_steps']) assert.equal(back.summary[key], run.summary[key], key);
+    for (const key of ['collided', 'reached', 'steps', 'method', 'out_of_range_steps']) assert.equal(back.summary[key], run.summary[key], key);
     // The CSV: its header and one line per step, the numbers of the run.
     const csv = await download(page, '#save-run-csv');
     const lines = csv.text.trim().split('\n');
@@ -195,7 +195,7 @@ export function classTests(h) {
     assert.deepEqual(names, ['phi-equivariant.json', 'v-plain.json']);
     const paths = {};
     for (const d of [w1, w2]) paths[d.suggestedFilename()] = await d.path();
-    cli(['simulate', '--mode', 'case3', '--phi-weights', paths['phi-equivariant.json'], '--v-weights', paths['v-plain.json']]);
+    cli(['simulate', '--method', 'case3', '--phi-weights', paths['phi-equivariant.json'], '--v-weights', paths['v-plain.json']]);
     await page.screenshot({ path: join(shots, 'class-take-away.png') });
     clean(page);
     await page.close();
@@ -205,7 +205,7 @@ export function classTests(h) {
     const context = await browser.newContext({ viewport: { width: 1280, height: 900 } });
     await context.grantPermissions(['clipboard-read', 'clipboard-write'], { origin: new URL(BASE).origin });
     const page = await context.newPage();
-    await page.goto(BASE + '?task=2&mode=distance');
+    await page.goto(BASE + '?task=2&method=distance');
     await page.waitForSelector('body[data-ready="true"]');
     await page.selectOption('#speed', '8');
     await page.click('label[for="damping"]');
@@ -222,7 +222,7 @@ export function classTests(h) {
     await other.goto(url);
     await other.waitForSelector('body[data-ready="true"]');
     const o = await other.evaluate(() => window.demo.state());
-    assert.equal(o.mode, 'distance');
+    assert.equal(o.method, 'distance');
     assert.deepEqual(o.theta0, s.theta0, 'the start pose of the dropped line');
     assert.equal(o.tf, s.tf);
     assert.deepEqual(o.target, s.target);
@@ -238,12 +238,12 @@ export function classTests(h) {
   });
 
   test('class: at 390 x 844 with every panel open the page never scrolls sideways; the drawing and the method menu fit the first screen', async () => {
-    const page = await open('?task=1&mode=case3', { viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true, deviceScaleFactor: 2 });
+    const page = await open('?task=1&method=case3', { viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true, deviceScaleFactor: 2 });
     const first = await page.evaluate(() => {
       const box = (id) => document.getElementById(id).getBoundingClientRect();
-      return { stage: box('stage'), mode: box('mode'), height: innerHeight };
+      return { stage: box('stage'), method: box('mode'), height: innerHeight };
     });
-    assert.ok(first.stage.bottom <= first.height && first.mode.bottom <= first.height, `stage ends at ${first.stage.bottom}, menu at ${first.mode.bottom} of ${first.height}`);
+    assert.ok(first.stage.bottom <= first.height && first.method.bottom <= first.height, `stage ends at ${first.stage.bottom}, menu at ${first.method.bottom} of ${first.height}`);
     assert.ok(first.stage.width >= 340, `the drawing uses the width (${first.stage.width} px)`);
     await page.screenshot({ path: join(shots, 'class-phone.png') });
     // Every panel open, the tour too, and the longest texts in them.

@@ -17,7 +17,7 @@
 // and the arm's joint limits (limits.mjs); harness.mjs
 // holds the browser and the helpers they share.
 
-import { browser, tests, test, open, clean, state, shots, mouseDrag, touchDrag, selectMode, methodsOf, usesNetworks, BASE, near, pause, countFrames } from './harness.mjs';
+import { browser, tests, test, open, clean, state, shots, mouseDrag, touchDrag, selectMethod, methodsOf, usesNetworks, BASE, near, pause, countFrames } from './harness.mjs';
 import './stage.mjs';
 import './methods.mjs';
 import './page.mjs';
@@ -30,7 +30,7 @@ import './runs.mjs';
 import { classTests } from './class.mjs';
 import { limitsTests } from './limits.mjs';
 
-classTests({ test, open, clean, state, shots, mouseDrag, touchDrag, selectMode, methodsOf, usesNetworks, browser, BASE, near, pause, countFrames });
+classTests({ test, open, clean, state, shots, mouseDrag, touchDrag, selectMethod, methodsOf, usesNetworks, browser, BASE, near, pause, countFrames });
 limitsTests({ test, open, clean, state, shots });
 
 // E2E_ONLY=text runs only the tests whose name contains it (for development).

@@ -84,8 +84,8 @@ export async function countFrames(page) {
   });
 }
 
-export async function selectMode(page, mode) {
-  await page.selectOption('#mode', mode);
+export async function selectMethod(page, method) {
+  await page.selectOption('#mode', method);
 }
 
 /** The page's methods (the module's methods()). */

@@ -49,8 +49,8 @@ const HOSTILE_URLS = [
   ['arm=0.5:0.6,abc,0.6', [/arm: .*'abc' is not a finite number/]],
   ['arm=-1:0.6,0.6', [/arm: .*post/]],
   ['arm=0.5:1e308,1', [/arm: .*link length L1 must lie within/]],
-  ['mode=%3Cscript%3Ealert(1)%3C%2Fscript%3E', [/mode: unknown mode '<script>/]],
-  ['mode=case9&lambda=abc&target=x,y&arm=zzz', [/mode: unknown mode/, /lambda: expected a number/, /target: expected two numbers/, /arm: arm 'zzz'/]],
+  ['method=%3Cscript%3Ealert(1)%3C%2Fscript%3E', [/method: unknown method '<script>/]],
+  ['method=case9&lambda=abc&target=x,y&arm=zzz', [/method: unknown method/, /lambda: expected a number/, /target: expected two numbers/, /arm: arm 'zzz'/]],
   ['task=%00%FF&%E2%80=1&lambda=%F0%9F%92%A5', [/task:/, /lambda: expected a number/]],
 ];
 
@@ -81,7 +81,7 @@ test('hostile URL parameters: each is named in one readable message and the page
 });
 
 test('window.demo with wrong types and out-of-range values: readable errors, nothing changes, the page keeps working', async () => {
-  const page = await open('?task=1&mode=case3');
+  const page = await open('?task=1&method=case3');
   await pause(page);
   const v = readFileSync(join(here, '../../weights/v-plain.json'), 'utf8');
   const phi = readFileSync(join(here, '../../weights/phi-equivariant.json'), 'utf8');
@@ -89,7 +89,7 @@ test('window.demo with wrong types and out-of-range values: readable errors, not
     const d = window.demo;
     const m = d.controller.demo;
     const before = d.state();
-    const sim0 = d.simulate({ mode: 'case3' });
+    const sim0 = d.simulate({ method: 'case3' });
     // A weights file for a 4-link arm (the page's paper arm has 3).
     const other = JSON.parse(v);
     other.arm.links = [0.6, 0.85, 0.6, 0.4];
@@ -114,16 +114,16 @@ test('window.demo with wrong types and out-of-range values: readable errors, not
       'removeObstacle(1e9)': () => d.removeObstacle(1e9),
       'removeObstacle(0.5)': () => d.removeObstacle(0.5),
       'simulate(null)': () => d.simulate(null),
-      'simulate(mode warp)': () => d.simulate({ mode: 'warp' }),
-      'simulate(mode 5)': () => d.simulate({ mode: 5 }),
-      'simulate(target NaN)': () => d.simulate({ mode: 'numerical', target: [NaN, 0] }),
-      'simulate(target "ab")': () => d.simulate({ mode: 'numerical', target: 'ab' }),
-      'simulate(tf -1)': () => d.simulate({ mode: 'numerical', tf: -1 }),
-      'simulate(tf 1e12)': () => d.simulate({ mode: 'numerical', tf: 1e12 }),
-      'simulate(theta0 short)': () => d.simulate({ mode: 'numerical', theta0: [1, 2] }),
-      'simulate(obstacles "x")': () => d.simulate({ mode: 'numerical', obstacles: 'x' }),
-      'simulate(9 obstacles)': () => d.simulate({ mode: 'numerical', obstacles: Array(9).fill([1, 1, 0.05]) }),
-      'simulate(bogus option)': () => d.simulate({ mode: 'numerical', speed: 2 }),
+      'simulate(method warp)': () => d.simulate({ method: 'warp' }),
+      'simulate(method 5)': () => d.simulate({ method: 5 }),
+      'simulate(target NaN)': () => d.simulate({ method: 'numerical', target: [NaN, 0] }),
+      'simulate(target "ab")': () => d.simulate({ method: 'numerical', target: 'ab' }),
+      'simulate(tf -1)': () => d.simulate({ method: 'numerical', tf: -1 }),
+      'simulate(tf 1e12)': () => d.simulate({ method: 'numerical', tf: 1e12 }),
+      'simulate(theta0 short)': () => d.simulate({ method: 'numerical', theta0: [1, 2] }),
+      'simulate(obstacles "x")': () => d.simulate({ method: 'numerical', obstacles: 'x' }),
+      'simulate(9 obstacles)': () => d.simulate({ method: 'numerical', obstacles: Array(9).fill([1, 1, 0.05]) }),
+      'simulate(bogus option)': () => d.simulate({ method: 'numerical', speed: 2 }),
       'train("x")': () => d.train('x'),
       'train(preset huge)': () => d.train({ preset: 'huge' }),
       'train(net x)': () => d.train({ net: 'x' }),
@@ -135,13 +135,13 @@ test('window.demo with wrong types and out-of-range values: readable errors, not
       'atlas(n "abc")': () => d.atlas({ n: 'abc' }),
       'atlas(region short)': () => d.atlas({ n: 5, region: [0, 1] }),
       'atlas(region NaN)': () => d.atlas({ n: 5, region: [0, NaN, 0, 1] }),
-      'atlas(modes x)': () => d.atlas({ n: 5, modes: ['x'] }),
+      'atlas(methods x)': () => d.atlas({ n: 5, methods: ['x'] }),
       'atlas(bogus option)': () => d.atlas({ n: 5, size: 3 }),
       'setLambda("x")': () => m.setLambda('x'),
       'setLambda(1e308)': () => m.setLambda(1e308),
       'setTarget(NaN)': () => m.setTarget(NaN, 0, 10),
       'setTarget(Infinity)': () => m.setTarget(Infinity, 0, 10),
-      'setMode(<b>)': () => m.setMode('<b>'),
+      'setMethod(<b>)': () => m.setMethod('<b>'),
       'setSpeed(1e308)': () => m.setSpeed(1e308),
       'setFeedback(Infinity)': () => m.setFeedback(Infinity),
       'setObstacles(odd length)': () => m.setObstacles(Float64Array.from([1, 1])),
@@ -164,7 +164,7 @@ test('window.demo with wrong types and out-of-range values: readable errors, not
         out[name] = { threw: true, message: String(e && e.message) };
       }
     }
-    return { out, before, after: d.state(), sim0, sim1: d.simulate({ mode: 'case3' }) };
+    return { out, before, after: d.state(), sim0, sim1: d.simulate({ method: 'case3' }) };
   }, { v, phi });
   for (const [name, o] of Object.entries(r.out)) {
     assert.ok(o.threw, `${name} is refused`);
@@ -177,7 +177,7 @@ test('window.demo with wrong types and out-of-range values: readable errors, not
   assert.match(r.out['loadNetworks(another arm)'].message, /arm/);
   assert.match(r.out['removeObstacle(NaN)'].message, /whole number/);
   // Nothing changed: the same scene, and the same run from it.
-  for (const k of ['arm', 'obstacles', 'target', 'mode', 'lambda', 'feedback', 'speed', 'theta', 't']) {
+  for (const k of ['arm', 'obstacles', 'target', 'method', 'lambda', 'feedback', 'speed', 'theta', 't']) {
     assert.deepEqual(r.after[k], r.before[k], `${k} unchanged`);
   }
   assert.deepEqual(r.sim1, r.sim0, 'the networks in use are unchanged');
@@ -187,13 +187,13 @@ test('window.demo with wrong types and out-of-range values: readable errors, not
 });
 
 test('weights files through the file picker: too large, truncated, for another arm: refused, the networks in use stay', async () => {
-  const page = await open('?task=1&mode=case3');
+  const page = await open('?task=1&method=case3');
   await pause(page);
   const v = readFileSync(join(here, '../../weights/v-plain.json'), 'utf8');
   const phi = readFileSync(join(here, '../../weights/phi-equivariant.json'), 'utf8');
   const other = JSON.parse(v);
   other.arm.links = [0.6, 0.85, 0.6, 0.4];
-  const before = await page.evaluate(() => window.demo.simulate({ mode: 'case3' }));
+  const before = await page.evaluate(() => window.demo.simulate({ method: 'case3' }));
   const file = (name, text) => ({ name, mimeType: 'application/json', buffer: Buffer.from(text) });
   const cases = [
     ['too large', file('phi.json', ' '.repeat((8 << 20) + 1)), file('v.json', v), /phi\.json has 8\.0 MB; weights files are at most 8 MB/],
@@ -213,7 +213,7 @@ test('weights files through the file picker: too large, truncated, for another a
     assert.match(text, re, `${name}: ${text}`);
     assert.doesNotMatch(text, CRASHY, `${name}: ${text}`);
   }
-  const after = await page.evaluate(() => window.demo.simulate({ mode: 'case3' }));
+  const after = await page.evaluate(() => window.demo.simulate({ method: 'case3' }));
   assert.deepEqual(after, before, 'the networks in use are unchanged');
   await stillWorks(page);
   clean(page);
@@ -221,15 +221,15 @@ test('weights files through the file picker: too large, truncated, for another a
 });
 
 test('nothing lost: a refused atlas keeps the last map, a refused training keeps the networks', async () => {
-  const page = await open('?task=1&mode=case3');
+  const page = await open('?task=1&method=case3');
   await pause(page);
   const r = await page.evaluate(async () => {
     const d = window.demo;
-    await d.atlas({ n: 5, modes: ['numerical'] });
+    await d.atlas({ n: 5, methods: ['numerical'] });
     const map = d.atlasResult();
-    const sim = d.simulate({ mode: 'case3' });
+    const sim = d.simulate({ method: 'case3' });
     const errors = [];
-    for (const bad of [{ n: 1 }, { n: 5, modes: [] }, { n: 5, region: [1, 0, 0, 1] }]) {
+    for (const bad of [{ n: 1 }, { n: 5, methods: [] }, { n: 5, region: [1, 0, 0, 1] }]) {
       try {
         await d.atlas(bad);
       } catch (e) {
@@ -243,7 +243,7 @@ test('nothing lost: a refused atlas keeps the last map, a refused training keeps
         errors.push(e.message);
       }
     }
-    return { map, after: d.atlasResult(), errors, sim, simAfter: d.simulate({ mode: 'case3' }) };
+    return { map, after: d.atlasResult(), errors, sim, simAfter: d.simulate({ method: 'case3' }) };
   });
   assert.equal(r.errors.length, 5, `every bad job is refused: ${r.errors.join(' | ')}`);
   for (const e of r.errors) assert.doesNotMatch(e, CRASHY, e);
@@ -255,9 +255,9 @@ test('nothing lost: a refused atlas keeps the last map, a refused training keeps
 });
 
 test('weights kept in the browser that are corrupt: dropped with a message, the built-in networks run', async () => {
-  const page = await open('?task=1&mode=case3');
+  const page = await open('?task=1&method=case3');
   await pause(page);
-  const shipped = await page.evaluate(() => window.demo.simulate({ mode: 'case3' }));
+  const shipped = await page.evaluate(() => window.demo.simulate({ method: 'case3' }));
   const key = 'redundant-ik:weights:0.5:0.6,0.85,0.6';
   // Entries that are JSON but do not load say so; one that is not JSON at
   // all is not an entry the page wrote, and is dropped without a word.
@@ -273,12 +273,12 @@ test('weights kept in the browser that are corrupt: dropped with a message, the 
     const r = await page.evaluate((k) => ({
       message: document.getElementById('message').textContent,
       kept: localStorage.getItem(k),
-      sim: window.demo.simulate({ mode: 'case3' }),
-      mode: window.demo.state().mode,
+      sim: window.demo.simulate({ method: 'case3' }),
+      method: window.demo.state().method,
     }), key);
     assert.equal(r.kept, null, `${junk}: the corrupt entry is dropped`);
     assert.deepEqual(r.sim, shipped, `${junk}: the built-in networks run`);
-    assert.equal(r.mode, 'case3');
+    assert.equal(r.method, 'case3');
     assert.match(r.message, said, `${junk}: ${r.message}`);
     assert.doesNotMatch(r.message, CRASHY, `${junk}: ${r.message}`);
   }

@@ -16,7 +16,7 @@ export function limitsTests(h) {
   const address = (page) => page.evaluate(() => Object.fromEntries(new URLSearchParams(location.search)));
 
   test('limits: the address carries the arm\'s limits in the command line\'s syntax, the designer shows them and the drawing their ranges', async () => {
-    const page = await open(`?task=2&mode=numerical&limits=${LIMITS}&rates=1.5,1.5,2`);
+    const page = await open(`?task=2&method=numerical&limits=${LIMITS}&rates=1.5,1.5,2`);
     const s = await state(page);
     assert.deepEqual(s.arm.joint_limits, [[-2.0944, 2.0944], [-2.0944, 2.0944], [-2.0944, 2.0944]]);
     assert.deepEqual(s.arm.rate_limits, [1.5, 1.5, 2]);
@@ -34,7 +34,7 @@ export function limitsTests(h) {
   });
 
   test('limits: the designer\'s fields set and clear the limits; the core refuses bad ones next to the field, changing nothing', async () => {
-    const page = await open('?task=1&mode=numerical');
+    const page = await open('?task=1&method=numerical');
     await frame(page);
     assert.equal(await legendShown(page), false, 'no limits, no ranges drawn');
     assert.equal((await address(page)).limits, undefined);

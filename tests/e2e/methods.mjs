@@ -3,19 +3,19 @@
 
 import { join } from 'node:path';
 import assert from 'node:assert/strict';
-import { shots, test, open, clean, state, selectMode, methodsOf, usesNetworks } from './harness.mjs';
+import { shots, test, open, clean, state, selectMethod, methodsOf, usesNetworks } from './harness.mjs';
 
-test('every mode is selectable', async () => {
-  const page = await open('?task=1&mode=numerical');
+test('every method is selectable', async () => {
+  const page = await open('?task=1&method=numerical');
   // The page ships the networks: the paper's arm can run every method.
   assert.equal((await state(page)).networks, true, 'the built-in networks are there');
   const methods = await methodsOf(page);
   assert.ok(methods.length >= 5, `the paper's five methods at least: ${methods.map((m) => m.name)}`);
   assert.ok(methods.some(usesNetworks) && methods.some((m) => !usesNetworks(m)), 'methods with and without networks');
   for (const m of methods) {
-    await selectMode(page, m.name);
+    await selectMethod(page, m.name);
     const s = await state(page);
-    assert.equal(s.mode, m.name);
+    assert.equal(s.method, m.name);
     assert.equal(await page.inputValue('#mode'), m.name);
     assert.deepEqual(s.uses, m.networks, `${m.name}: the state says which networks it uses`);
     await page.evaluate(() => window.demo.runUntil(window.demo.state().t + 1));
@@ -29,7 +29,7 @@ test('every mode is selectable', async () => {
 });
 
 test("the menu groups the paper's methods and those beyond it; each runs Task 1", async () => {
-  const page = await open('?task=1&mode=numerical');
+  const page = await open('?task=1&method=numerical');
   const methods = await methodsOf(page);
   const groups = await page.$$eval('#mode optgroup', (gs) => gs.map((g) => ({ label: g.label, names: [...g.querySelectorAll('option')].map((o) => o.value) })));
   assert.deepEqual(groups.map((g) => g.label), ['The paper', 'Beyond the paper']);
@@ -38,7 +38,7 @@ test("the menu groups the paper's methods and those beyond it; each runs Task 1"
   assert.ok(groups[1].names.length >= 3, `distance, priority and qp at least: ${groups[1].names}`);
   const outcomes = [];
   for (const m of methods) {
-    await selectMode(page, m.name);
+    await selectMethod(page, m.name);
     await page.click('#task1');
     const s = await page.evaluate(() => window.demo.runUntil(10));
     assert.equal(s.error, null, `${m.name}: Task 1 runs`);
@@ -52,7 +52,7 @@ test("the menu groups the paper's methods and those beyond it; each runs Task 1"
   }
   console.log(`measure: Task 1 in the page: ${outcomes.join('; ')}`);
   // A parameter set on its slider reaches the planner; a refused one changes nothing.
-  await selectMode(page, 'qp');
+  await selectMethod(page, 'qp');
   await page.fill('#param-influence', '0.2');
   await page.dispatchEvent('#param-influence', 'input');
   assert.equal((await state(page)).params.influence, 0.2);
@@ -73,23 +73,23 @@ test("the menu groups the paper's methods and those beyond it; each runs Task 1"
 
 for (const task of [1, 2]) {
   test(`#task${task}: collides without avoidance, not with it`, async () => {
-    const page = await open('?task=1&mode=numerical');
-    await selectMode(page, 'none');
+    const page = await open('?task=1&method=numerical');
+    await selectMethod(page, 'none');
     await page.click(`#task${task}`);
     await page.evaluate(() => window.demo.runUntil(10));
     const none = await state(page);
     assert.equal(none.task, task);
     assert.ok(Math.abs(none.t - 10) < 1e-9, `ran to t = 10 (t = ${none.t})`);
-    assert.equal(none.collided, true, `mode none collides (min distance ${none.min_distance})`);
+    assert.equal(none.collided, true, `method none collides (min distance ${none.min_distance})`);
     assert.equal(none.running, false, 'the task run stops at t = 10');
     await page.screenshot({ path: join(shots, `task${task}-none.png`) });
 
-    await selectMode(page, 'numerical');
+    await selectMethod(page, 'numerical');
     await page.click(`#task${task}`);
     const fresh = await state(page);
     assert.ok(fresh.t < 0.5, `the task restarts from t = 0 (t = ${fresh.t})`);
     assert.equal(fresh.collided, false, 'loading the task clears the collision flag');
-    assert.equal(fresh.mode, 'numerical', 'the task keeps the mode');
+    assert.equal(fresh.method, 'numerical', 'the task keeps the method');
     await page.evaluate(() => window.demo.runUntil(10));
     const num = await state(page);
     assert.equal(num.collided, false, `numerical avoids (min distance ${num.min_distance})`);

@@ -11,7 +11,7 @@ test('a module that cannot load gives a readable message, not a blank page', asy
   const exceptions = [];
   page.on('pageerror', (err) => exceptions.push(err.message));
   await page.route('**/*.wasm', (route) => route.abort());
-  await page.goto(BASE + '?task=1&mode=numerical');
+  await page.goto(BASE + '?task=1&method=numerical');
   const loading = page.locator('#loading.failed');
   await loading.waitFor({ state: 'visible', timeout: 15000 });
   const text = await loading.textContent();
@@ -32,11 +32,11 @@ test('built-in networks that cannot be fetched: the page runs the exact methods 
   await page.goto(BASE);
   await page.waitForSelector('body[data-ready="true"]', { timeout: 15000 });
   const s = await page.evaluate(() => window.demo.state());
-  assert.equal(s.mode, 'numerical', 'the default method falls back to one without networks');
+  assert.equal(s.method, 'numerical', 'the default method falls back to one without networks');
   assert.equal(s.networks, false);
   const refused = await page.evaluate(() => {
     try {
-      window.demo.controller.demo.setMode('case3');
+      window.demo.controller.demo.setMethod('case3');
       return null;
     } catch (e) {
       return e.message;
@@ -54,7 +54,7 @@ test('built-in networks that cannot be fetched: the page runs the exact methods 
 
 test('the SIMD build runs where SIMD is available, the baseline build where it is not', async () => {
   // Chromium has wasm SIMD: the page picks the SIMD build.
-  const page = await open('?task=1&mode=case3');
+  const page = await open('?task=1&method=case3');
   assert.equal(await page.evaluate(() => window.demo.build), 'simd');
   clean(page);
   await page.close();
@@ -73,7 +73,7 @@ test('the SIMD build runs where SIMD is available, the baseline build where it i
   p2.on('console', (m) => m.type() === 'error' && problems.push(m.text()));
   p2.on('pageerror', (e) => problems.push(e.message));
   p2.on('request', (r) => r.url().endsWith('.wasm') && requested.push(r.url().split('/').pop()));
-  await p2.goto(BASE + '?task=1&mode=case3');
+  await p2.goto(BASE + '?task=1&method=case3');
   await p2.waitForSelector('body[data-ready="true"]', { timeout: 15000 });
   assert.equal(await p2.evaluate(() => window.demo.build), 'baseline');
   assert.deepEqual(requested, ['redundant_ik_bg.wasm'], 'the SIMD module is not even fetched');
@@ -83,7 +83,7 @@ test('the SIMD build runs where SIMD is available, the baseline build where it i
   // The workers load the baseline build of their module too.
   const r = await p2.evaluate(() => window.demo.bench({ batchMs: 2 }));
   assert.ok(r.step_ns.case3 > 0);
-  const a = await p2.evaluate(() => window.demo.atlas({ n: 5, modes: ['case3'] }));
+  const a = await p2.evaluate(() => window.demo.atlas({ n: 5, methods: ['case3'] }));
   assert.equal(a.cells.length, 25);
   assert.deepEqual(requested, ['redundant_ik_bg.wasm', 'redundant_ik_worker_bg.wasm', 'redundant_ik_worker_bg.wasm']);
   assert.deepEqual(problems, []);
@@ -96,7 +96,7 @@ test('the SIMD build runs where SIMD is available, the baseline build where it i
   await p3.route('**/redundant_ik_simd_bg.wasm', (route) =>
     route.fulfill({ status: 200, contentType: 'application/wasm', body: Buffer.from('not wasm') }),
   );
-  await p3.goto(BASE + '?task=1&mode=numerical');
+  await p3.goto(BASE + '?task=1&method=numerical');
   await p3.waitForSelector('body[data-ready="true"]', { timeout: 15000 });
   assert.equal(await p3.evaluate(() => window.demo.build), 'baseline');
   assert.deepEqual(errors, []);
@@ -104,7 +104,7 @@ test('the SIMD build runs where SIMD is available, the baseline build where it i
 });
 
 test('names and colours come from the module: the method menu, and legend swatches that match the drawing', async () => {
-  const page = await open('?task=1&mode=numerical');
+  const page = await open('?task=1&method=numerical');
   await pause(page);
   // The menu is built from the module's methods(): none is written in the page.
   const options = await page.$$eval('#mode option', (os) => os.map((o) => [o.value, o.textContent]));
@@ -189,21 +189,25 @@ test('embed page: two independent demos', async () => {
     }, id);
   const left = await run('left');
   const right = await run('right');
-  assert.equal(left.mode, 'none');
-  assert.equal(right.mode, 'numerical');
+  assert.equal(left.method, 'none');
+  assert.equal(right.method, 'numerical');
   assert.equal(left.collided, true, 'left (no avoidance) collides');
   assert.equal(right.collided, false, 'right (numerical) does not');
   // Changing one leaves the other alone.
   await page.locator('#left').locator('#mode').selectOption('numerical');
   const l2 = await page.evaluate(() => document.getElementById('left').controller.state());
   const r2 = await page.evaluate(() => document.getElementById('right').controller.state());
-  assert.equal(l2.mode, 'numerical');
+  assert.equal(l2.method, 'numerical');
   assert.equal(r2.t, right.t);
   // (The left run had ended: the new method replays it, from t = 0.)
   await page.locator('#right').locator('#reset').click();
   const l3 = await page.evaluate(() => document.getElementById('left').controller.state());
-  assert.ok(l3.t >= l2.t && l3.mode === 'numerical', 'reset of one demo leaves the other');
+  assert.ok(l3.t >= l2.t && l3.method === 'numerical', 'reset of one demo leaves the other');
   await page.screenshot({ path: join(shots, 'embed.png'), fullPage: true });
+  // The attribute's older name, mode, is still read.
+  await page.evaluate(() => document.body.insertAdjacentHTML('beforeend', '<redundant-ik-demo id="old" task="2" mode="qp"></redundant-ik-demo>'));
+  await page.waitForSelector('#old[data-ready="true"]', { timeout: 15000 });
+  assert.equal(await page.evaluate(() => document.getElementById('old').controller.state().method), 'qp');
   assert.deepEqual(problems, []);
   await context.close();
 });

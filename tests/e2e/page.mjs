@@ -3,10 +3,10 @@
 
 import { join } from 'node:path';
 import assert from 'node:assert/strict';
-import { shots, BASE, test, open, clean, state, near, pause, mouseDrag, countFrames, selectMode, methodsOf } from './harness.mjs';
+import { shots, BASE, test, open, clean, state, near, pause, mouseDrag, countFrames, selectMethod, methodsOf } from './harness.mjs';
 
 test('the state lives in the URL', async () => {
-  const page = await open('?task=1&mode=numerical');
+  const page = await open('?task=1&method=numerical');
   await pause(page);
   await page.click('#task2');
   await pause(page);
@@ -17,12 +17,12 @@ test('the state lives in the URL', async () => {
   const s = await state(page);
   const url = page.url();
   assert.match(url, /task=2/);
-  assert.match(url, /mode=numerical/);
+  assert.match(url, /method=numerical/);
   assert.match(url, /lambda=6/);
   const copy = await open(url.slice(BASE.length));
   const c = await state(copy);
   assert.equal(c.task, 2);
-  assert.equal(c.mode, 'numerical');
+  assert.equal(c.method, 'numerical');
   assert.equal(c.lambda, 6);
   assert.ok(near(c.obstacle, s.obstacle, 2e-3), 'obstacle restored');
   assert.ok(near(c.target, s.target, 2e-3), 'target restored');
@@ -32,8 +32,33 @@ test('the state lives in the URL', async () => {
   await copy.close();
 });
 
+test('older names still work: mode= in the address, { mode } and { modes } in window.demo', async () => {
+  // Addresses written before "method" said mode=; where both are given, method= wins.
+  const old = await open('?task=2&mode=qp');
+  assert.equal((await state(old)).method, 'qp');
+  // The address is written back on the first change, with method=.
+  await old.fill('#lambda', '6');
+  await old.dispatchEvent('#lambda', 'input');
+  assert.match(old.url(), /[?&]method=qp(&|$)/);
+  assert.doesNotMatch(old.url(), /[?&]mode=/);
+  const both = await open('?task=1&method=case3&mode=qp');
+  assert.equal((await state(both)).method, 'case3');
+  // The playground's simulate({ mode }) and atlas({ modes }) as with the new names.
+  const r = await both.evaluate(async () => {
+    const d = window.demo;
+    const atlas = await d.atlas({ n: 3, modes: ['none', 'numerical'] });
+    return { old: d.simulate({ mode: 'numerical' }), new: d.simulate({ method: 'numerical' }), methods: atlas.methods };
+  });
+  assert.deepEqual(r.old, r.new);
+  assert.deepEqual(r.methods, ['none', 'numerical']);
+  for (const p of [old, both]) {
+    clean(p);
+    await p.close();
+  }
+});
+
 test('the drift switch closes the loop in Case 3, and the URL keeps it', async () => {
-  const page = await open('?task=1&mode=case3');
+  const page = await open('?task=1&method=case3');
   await page.evaluate(() => window.demo.runUntil(10));
   const open_ = await state(page);
   assert.equal(open_.feedback, 0, "the paper's open loop by default");
@@ -59,7 +84,7 @@ test('the drift switch closes the loop in Case 3, and the URL keeps it', async (
 });
 
 test('sharp on high-DPI screens', async () => {
-  const page = await open('?task=1&mode=numerical', { deviceScaleFactor: 2 });
+  const page = await open('?task=1&method=numerical', { deviceScaleFactor: 2 });
   const size = await page.evaluate(() => {
     const c = document.getElementById('stage');
     const r = c.getBoundingClientRect();
@@ -71,7 +96,7 @@ test('sharp on high-DPI screens', async () => {
 });
 
 test('narrow screen layout', async () => {
-  const page = await open('?task=2&mode=numerical', { viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true, deviceScaleFactor: 2 });
+  const page = await open('?task=2&method=numerical', { viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true, deviceScaleFactor: 2 });
   await page.evaluate(() => window.demo.runUntil(10));
   await page.screenshot({ path: join(shots, 'mobile.png'), fullPage: true });
   clean(page);
@@ -79,9 +104,9 @@ test('narrow screen layout', async () => {
 });
 
 test('network cases warn outside the trained range', async () => {
-  const page = await open('?task=1&mode=numerical');
+  const page = await open('?task=1&method=numerical');
   assert.equal((await state(page)).networks, true, 'the built-in networks are there');
-  await selectMode(page, 'case3');
+  await selectMethod(page, 'case3');
   await pause(page);
   assert.ok(await page.isHidden('#range-warning'), 'no warning on the paper task');
   const s = await state(page);
@@ -96,7 +121,7 @@ test('network cases warn outside the trained range', async () => {
 });
 
 test('bad weights files give a readable message', async () => {
-  const page = await open('?task=1&mode=numerical');
+  const page = await open('?task=1&method=numerical');
   const msg = await page.evaluate(() => {
     try {
       window.demo.controller.demo.loadNetworks('{"not": "weights"}', 'nonsense');
@@ -111,16 +136,16 @@ test('bad weights files give a readable message', async () => {
 });
 
 test('compare panel: every method on a moved obstacle', async () => {
-  const page = await open('?task=2&mode=numerical');
+  const page = await open('?task=2&method=numerical');
   await pause(page);
   const s0 = await state(page);
   await mouseDrag(page, s0.obstacle, [0.65, 0.55]);
   await page.click('#compare-panel summary');
   await page.click('#compare');
-  await page.waitForSelector('#compare-body tr[data-mode="case3"]');
+  await page.waitForSelector('#compare-body tr[data-method="case3"]');
   const rows = await page.$$eval('#compare-body tr', (trs) => trs.map((tr) => ({ ...tr.dataset })));
-  assert.deepEqual(rows.map((r) => r.mode), (await methodsOf(page)).map((m) => m.name), 'one row per method, in menu order');
-  const by = Object.fromEntries(rows.map((r) => [r.mode, r]));
+  assert.deepEqual(rows.map((r) => r.method), (await methodsOf(page)).map((m) => m.name), 'one row per method, in menu order');
+  const by = Object.fromEntries(rows.map((r) => [r.method, r]));
   // Moved next to the path, the obstacle is still one the numerical route
   // avoids; Case 3 must avoid it too.
   assert.equal(by.numerical.collided, 'false', `the numerical route avoids: ${JSON.stringify(by.numerical)}`);
@@ -129,15 +154,15 @@ test('compare panel: every method on a moved obstacle', async () => {
   assert.equal(by.qp.collided, 'false', `the QP with dampers avoids: ${JSON.stringify(by.qp)}`);
   console.log(
     'measure: compare at obstacle (0.65, 0.55), Task 2: ' +
-      rows.map((r) => `${r.mode} ${Number(r.minDistance).toFixed(3)} m`).join(', '),
+      rows.map((r) => `${r.method} ${Number(r.minDistance).toFixed(3)} m`).join(', '),
   );
   await page.locator('#compare-panel').screenshot({ path: join(shots, 'compare.png') });
   clean(page);
   await page.close();
 });
 
-test('in-page benchmark: every mode, in a worker, while the page keeps drawing', async () => {
-  const page = await open('?task=1&mode=numerical');
+test('in-page benchmark: every method, in a worker, while the page keeps drawing', async () => {
+  const page = await open('?task=1&method=numerical');
   await page.click('#bench-panel summary');
   // Count animation frames while the benchmark runs.
   await countFrames(page);
@@ -167,12 +192,12 @@ test('in-page benchmark: every mode, in a worker, while the page keeps drawing',
   // The same measurement through window.demo.bench(), and cancelling it.
   const api = await page.evaluate(async () => {
     const r = await window.demo.bench({ batchMs: 2 });
-    return { modes: Object.keys(r.step_ns), thetaDot: Object.keys(r.theta_dot_ns), phi: r.forward_ns.phi, verdict: r.verdict };
+    return { methods: Object.keys(r.step_ns), thetaDot: Object.keys(r.theta_dot_ns), phi: r.forward_ns.phi, verdict: r.verdict };
   });
   // `redundant-ik bench`'s methods: the paper's five, in menu order.
   const paper = (await methodsOf(page)).filter((m) => m.group === 'paper').map((m) => m.name);
-  assert.deepEqual(api.modes, paper);
-  assert.deepEqual(api.thetaDot, api.modes);
+  assert.deepEqual(api.methods, paper);
+  assert.deepEqual(api.thetaDot, api.methods);
   assert.deepEqual(api.verdict, ['case3', 'numerical']);
   assert.ok(api.phi > 0);
   const cancelled = await page.evaluate(async () => {

@@ -6,20 +6,20 @@ import { spawnSync } from 'node:child_process';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import assert from 'node:assert/strict';
-import { shots, test, open, clean, state, near, pause, mouseDrag, countFrames, selectMode } from './harness.mjs';
+import { shots, test, open, clean, state, near, pause, mouseDrag, countFrames, selectMethod } from './harness.mjs';
 
 // ---- the playground: arms, several obstacles, training in the page --------
 
 const FOUR = { post: 0.5, links: [0.6, 0.85, 0.6, 0.4] };
 
 test('playground: a 4-link arm and two obstacles from the URL; the network cases wait for networks', async () => {
-  const page = await open('?arm=0.5:0.6,0.85,0.6,0.4&obstacles=0.5,0.5,0.05;-0.5,1.2,0.08&mode=case3');
+  const page = await open('?arm=0.5:0.6,0.85,0.6,0.4&obstacles=0.5,0.5,0.05;-0.5,1.2,0.08&method=case3');
   const s = await state(page);
   assert.deepEqual(s.arm, FOUR);
   assert.equal(s.theta.length, 4);
   assert.deepEqual(s.obstacles.map((o) => [...o.centre, o.radius]), [[0.5, 0.5, 0.05], [-0.5, 1.2, 0.08]]);
-  assert.equal(s.mode, 'numerical', 'Case 3 needs networks for this arm');
-  assert.match(await page.textContent('#message'), /mode: networks not available: the built-in ones were trained for the paper's arm, not for this one; train networks for this arm/);
+  assert.equal(s.method, 'numerical', 'Case 3 needs networks for this arm');
+  assert.match(await page.textContent('#message'), /method: networks not available: the built-in ones were trained for the paper's arm, not for this one; train networks for this arm/);
   assert.equal(await page.isVisible('#train-for-arm'), true);
   assert.equal(await page.locator('#mode option[value=case3]').isDisabled(), true);
   assert.equal(await page.locator('#mode option[value=numerical]').isDisabled(), false);
@@ -50,7 +50,7 @@ test('playground: a 4-link arm and two obstacles from the URL; the network cases
 });
 
 test('playground: the arm and obstacles through the UI: presets, links, add by click, drag, double-click removes', async () => {
-  const page = await open('?task=1&mode=numerical');
+  const page = await open('?task=1&method=numerical');
   await pause(page);
   await page.click('#arm-panel summary');
   await page.selectOption('#arm-preset', 'five');
@@ -119,8 +119,8 @@ test('playground: the arm and obstacles through the UI: presets, links, add by c
       () => window.demo.removeObstacle(-1),
       () => window.demo.addObstacle(0, 0.2, 0.05),
       () => window.demo.addObstacle(0.5, 0.5, -0.1),
-      () => window.demo.simulate({ mode: 'case9' }),
-      () => window.demo.simulate({ mode: 'numerical', obstacle: [1, 1] }),
+      () => window.demo.simulate({ method: 'case9' }),
+      () => window.demo.simulate({ method: 'numerical', obstacle: [1, 1] }),
     ]) {
       try {
         f();
@@ -141,7 +141,7 @@ test('playground: the arm and obstacles through the UI: presets, links, add by c
 });
 
 test('playground: train in a worker with live curves; Cases 1 and 3 reach the target; networks survive a reload; the CLI reads the download', async () => {
-  const page = await open('?task=1&mode=numerical');
+  const page = await open('?task=1&method=numerical');
   await pause(page);
   await page.click('#train-panel summary');
   await countFrames(page);
@@ -162,26 +162,26 @@ test('playground: train in a worker with live curves; Cases 1 and 3 reach the ta
   assert.ok(phi.at(-1)[2] < phi[0][2], 'the training error fell');
   assert.ok(Number(await page.getAttribute('#train-status', 'data-epoch')) >= 1);
   // Cases 1 and 3 end within 5 mm on both tasks without collision (open loop).
-  for (const t of run.report.paper_tasks.filter((t) => t.mode !== 'case2' && !t.feedback_gain && !t.refine)) {
-    assert.ok(!t.collided && t.final_error <= 5e-3, `task ${t.task} ${t.mode}: ${JSON.stringify(t)}`);
+  for (const t of run.report.paper_tasks.filter((t) => t.method !== 'case2' && !t.feedback_gain && !t.refine)) {
+    assert.ok(!t.collided && t.final_error <= 5e-3, `task ${t.task} ${t.method}: ${JSON.stringify(t)}`);
   }
   assert.match(await page.textContent('#train-report'), /Test errors/);
   // Case 3 runs on the stage with them.
-  await selectMode(page, 'case3');
+  await selectMethod(page, 'case3');
   const end = await page.evaluate(() => window.demo.runUntil(10));
   assert.equal(end.collided, false);
   assert.ok(end.final_error < 5e-3);
-  const before = await page.evaluate(() => window.demo.simulate({ mode: 'case3' }));
+  const before = await page.evaluate(() => window.demo.simulate({ method: 'case3' }));
   const files = await page.evaluate(() => window.demo.exportWeights());
   assert.match(files.phi, /"net": ?"phi"/);
   // A reload finds them: the same run, bit for bit (not the built-in networks).
   await page.reload();
   await page.waitForSelector('body[data-ready="true"]');
-  const after = await page.evaluate(() => window.demo.simulate({ mode: 'case3' }));
+  const after = await page.evaluate(() => window.demo.simulate({ method: 'case3' }));
   assert.deepEqual(after, before);
   const builtIn = await page.evaluate(() => {
     window.demo.controller.demo.clearNetworks();
-    return window.demo.simulate({ mode: 'case3' });
+    return window.demo.simulate({ method: 'case3' });
   });
   assert.notEqual(builtIn.final_error, before.final_error, 'the trained networks differ from the built-in ones');
   // The downloaded files in the CLI: the same run.
@@ -189,7 +189,7 @@ test('playground: train in a worker with live curves; Cases 1 and 3 reach the ta
   writeFileSync(join(dir, 'phi.json'), files.phi);
   writeFileSync(join(dir, 'v.json'), files.v);
   const cli = process.env.REDUNDANT_IK ?? 'target/debug/redundant-ik';
-  const out = spawnSync(cli, ['simulate', '--task', '1', '--damping', '--mode', 'case3', '--phi-weights', join(dir, 'phi.json'), '--v-weights', join(dir, 'v.json'), '--json'], { encoding: 'utf8' });
+  const out = spawnSync(cli, ['simulate', '--task', '1', '--damping', '--method', 'case3', '--phi-weights', join(dir, 'phi.json'), '--v-weights', join(dir, 'v.json'), '--json'], { encoding: 'utf8' });
   assert.equal(out.status, 0, out.stderr);
   const summary = JSON.parse(out.stdout).summary;
   // Native kernels use FMA, wasm's do not: equal to rounding, not bit for bit.
@@ -201,10 +201,10 @@ test('playground: train in a worker with live curves; Cases 1 and 3 reach the ta
 });
 
 test('playground: a cancelled training keeps the networks in use', async () => {
-  const page = await open('?task=1&mode=case3');
+  const page = await open('?task=1&method=case3');
   await pause(page);
   const r = await page.evaluate(async () => {
-    const before = window.demo.simulate({ mode: 'case3' });
+    const before = window.demo.simulate({ method: 'case3' });
     const job = window.demo.train({ preset: 'thorough' });
     await new Promise((ok) => setTimeout(ok, 1500));
     document.getElementById('train-cancel').click();
@@ -214,7 +214,7 @@ test('playground: a cancelled training keeps the networks in use', async () => {
     } catch (e) {
       error = e.name;
     }
-    return { error, before, after: window.demo.simulate({ mode: 'case3' }), status: document.getElementById('train-status').textContent };
+    return { error, before, after: window.demo.simulate({ method: 'case3' }), status: document.getElementById('train-status').textContent };
   });
   assert.equal(r.error, 'AbortError');
   assert.deepEqual(r.after, r.before);
@@ -224,7 +224,7 @@ test('playground: a cancelled training keeps the networks in use', async () => {
 });
 
 test('playground: networks for a 4-link arm trained in the page fail their own check: a warning beside the drawing, kept out unless used anyway', async () => {
-  const page = await open('?arm=0.5:0.6,0.85,0.6,0.4&mode=numerical');
+  const page = await open('?arm=0.5:0.6,0.85,0.6,0.4&method=numerical');
   await pause(page);
   await countFrames(page);
   // Through the UI: the quick preset (seeded: the trainer's seed is 1).
@@ -238,11 +238,11 @@ test('playground: networks for a 4-link arm trained in the page fail their own c
     seconds: (Date.now() - t0) / 1000,
     frames: await page.evaluate(() => window.__frames),
   };
-  const rows = run.report.random_tasks.map((c) => `${c.mode} K=${c.feedback} refine ${c.refine}: ${c.succeeded}/${c.tasks} ok, ${c.collided} hit`);
+  const rows = run.report.random_tasks.map((c) => `${c.method} K=${c.feedback} refine ${c.refine}: ${c.succeeded}/${c.tasks} ok, ${c.collided} hit`);
   console.log(`measure: quick preset, 4-link arm in Chromium: ${run.seconds.toFixed(1)} s (goal <= 60 s); Phi median error ${run.report.phi_error.median.toExponential(2)}, v ${run.report.v_error.median.toExponential(2)}; ${rows.join('; ')}`);
   assert.ok(run.seconds <= 300, `took ${run.seconds.toFixed(1)} s (a hang guard; the goal is the measure line)`);
   assert.ok(run.frames > 10 * run.seconds, 'the page kept drawing');
-  const numerical = run.report.random_tasks.find((c) => c.mode === 'numerical' && c.feedback === 0);
+  const numerical = run.report.random_tasks.find((c) => c.method === 'numerical' && c.feedback === 0);
   assert.equal(numerical.succeeded, numerical.tasks, 'the check tasks are ones the numerical route manages');
   // They fail their own check: said beside the drawing, and not swapped in.
   assert.equal(run.report.verdict.passed, false);
@@ -258,7 +258,7 @@ test('playground: networks for a 4-link arm trained in the page fail their own c
   await page.click('#verdict-use');
   assert.equal(await warning.isVisible(), false);
   assert.equal(await page.locator('#mode option[value=case3]').isDisabled(), false);
-  await selectMode(page, 'case3');
+  await selectMethod(page, 'case3');
   await page.click('#task1');
   const seen = new Set();
   for (let k = 0; k < 40; k++) {
@@ -269,7 +269,7 @@ test('playground: networks for a 4-link arm trained in the page fail their own c
     await page.waitForTimeout(100);
   }
   const s = await page.evaluate(() => window.demo.runUntil(100));
-  assert.equal(s.mode, 'case3');
+  assert.equal(s.method, 'case3');
   assert.ok(s.ghost, 'the numerical ghost compares');
   console.log(`measure: 4-link networks used anyway, Task 1 in Case 3: in range ${[...seen].join('/')}, ${s.collided ? 'collides' : 'no collision'}, ${(s.final_error * 1000).toFixed(1)} mm from the target`);
   clean(page);

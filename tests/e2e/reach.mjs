@@ -3,7 +3,7 @@
 
 import { join } from 'node:path';
 import assert from 'node:assert/strict';
-import { here, shots, BASE, browser, test, open, clean, state, pause, selectMode } from './harness.mjs';
+import { here, shots, BASE, browser, test, open, clean, state, pause, selectMethod } from './harness.mjs';
 
 // ---- networks over the whole workspace (docs/learning.md) ------------------
 
@@ -20,7 +20,7 @@ async function slide(page, selector, value) {
 }
 
 test('network sets: the whole-reach networks fetched when chosen, refined and drift-corrected Case 3 ends at the target, the URL keeps both', async () => {
-  const page = await open('?task=1&mode=case3');
+  const page = await open('?task=1&method=case3');
   const fetched = [];
   page.on('request', (r) => r.url().includes('/weights/') && fetched.push(r.url().split('/').pop()));
   assert.equal(await page.isVisible('#network-set'), true, 'the selector shows for a method with networks');
@@ -44,9 +44,9 @@ test('network sets: the whole-reach networks fetched when chosen, refined and dr
   assert.equal(run.collided, false);
   assert.ok(run.final_error < 5e-3, `final error ${run.final_error} m`);
   await page.screenshot({ path: join(shots, 'reach-set.png') });
-  await selectMode(page, 'case2');
+  await selectMethod(page, 'case2');
   assert.equal(await page.$('#param-refine'), null, 'Case 2 runs the exact Φ: nothing to refine');
-  await selectMode(page, 'case3');
+  await selectMethod(page, 'case3');
   assert.match(page.url(), /networks=reach/);
   assert.match(page.url(), /refine=2/);
   const copy = await open(page.url().slice(BASE.length));
@@ -65,7 +65,7 @@ test('network sets: the whole-reach networks fetched when chosen, refined and dr
 });
 
 test('a network set that cannot be fetched: a readable message, the networks in use stay, a later try works', async () => {
-  const page = await open('?task=1&mode=case3');
+  const page = await open('?task=1&method=case3');
   let block = true;
   await page.route('**/weights/v-reach.json', (route) => (block ? route.fulfill({ status: 404, body: 'gone' }) : route.continue()));
   await page.selectOption('#network-set', 'reach');
@@ -82,18 +82,18 @@ test('a network set that cannot be fetched: a readable message, the networks in 
 });
 
 test('window.demo.simulate and atlas take refine, feedback and networks; bad values are refused with a reason', async () => {
-  const page = await open('?task=1&mode=case3&networks=reach');
+  const page = await open('?task=1&method=case3&networks=reach');
   await page.waitForFunction(() => window.demo.state().network_set === 'reach');
   const runs = await page.evaluate(() => ({
-    plain: window.demo.simulate({ mode: 'case3' }),
-    refined: window.demo.simulate({ mode: 'case3', refine: 2, feedback: 1 }),
+    plain: window.demo.simulate({ method: 'case3' }),
+    refined: window.demo.simulate({ method: 'case3', refine: 2, feedback: 1 }),
   }));
   assert.ok(runs.refined.final_error < 5e-3 && !runs.refined.collided, JSON.stringify(runs.refined));
   assert.ok(runs.plain.final_error > 10 * runs.refined.final_error, 'unrefined open loop drifts');
   for (const bad of [{ refine: 1.5 }, { refine: 9 }, { feedback: -1 }]) {
     const why = await page.evaluate((b) => {
       try {
-        window.demo.simulate({ mode: 'case3', ...b });
+        window.demo.simulate({ method: 'case3', ...b });
         return null;
       } catch (e) {
         return e.message;
@@ -102,18 +102,18 @@ test('window.demo.simulate and atlas take refine, feedback and networks; bad val
     assert.match(why ?? '', /refine|feedback/, JSON.stringify(bad));
   }
   const atlas = await page.evaluate(() =>
-    window.demo.atlas({ modes: ['numerical', 'case3'], n: 11, refine: 2, feedback: 1, networks: 'reach' }),
+    window.demo.atlas({ methods: ['numerical', 'case3'], n: 11, refine: 2, feedback: 1, networks: 'reach' }),
   );
   const a = atlas.summary.case3.agreement;
   assert.ok(a.both / (a.both + a.numerical_only) >= 0.95, JSON.stringify(a));
-  const refused = await page.evaluate(() => window.demo.atlas({ modes: ['case3'], n: 5, networks: 'nope' }).then(() => null, (e) => e.message));
+  const refused = await page.evaluate(() => window.demo.atlas({ methods: ['case3'], n: 5, networks: 'nope' }).then(() => null, (e) => e.message));
   assert.match(refused ?? '', /network set/);
   clean(page);
   await page.close();
 });
 
 test('a short whole-reach training in the page swaps angle-feature networks in', async () => {
-  const page = await open('?task=1&mode=case3');
+  const page = await open('?task=1&method=case3');
   const report = await page.evaluate(() =>
     window.demo.train({ net: 'both', preset: 'reach', samples: 300, epochs: 15, seed: 1 }),
   );

@@ -9,7 +9,7 @@ import { cli, download, close } from './class-helpers.mjs';
 import { dragCost } from './frame-cost.mjs';
 
 test('runs: with networks=reach the run file names the reach set and the CLI replays it with them; Download weights gives the reach files', async () => {
-  const page = await open('?task=1&mode=case3&networks=reach&refine=2&feedback=1');
+  const page = await open('?task=1&method=case3&networks=reach&refine=2&feedback=1');
   await page.waitForFunction(() => window.demo.state().network_set === 'reach');
   await page.selectOption('#speed', '8');
   await page.click('#task1');
@@ -25,7 +25,7 @@ test('runs: with networks=reach the run file names the reach set and the CLI rep
   assert.deepEqual(back.networks, { set: 'reach' });
   back.steps.forEach((st, k) => st.theta.forEach((v, i) => close(v, run.steps[k].theta[i], 1e-9, `step ${k} theta${i + 1}`)));
   // With the paper's networks it would be another run: the files differ.
-  const paper = JSON.parse(cli(['simulate', '--mode', 'case3', '--refine', '2', '--feedback', '1', '--json']));
+  const paper = JSON.parse(cli(['simulate', '--method', 'case3', '--refine', '2', '--feedback', '1', '--json']));
   assert.notEqual(paper.summary.final_error, run.summary.final_error);
   // The weights download gives the set in use.
   await page.click('#train-panel summary');
@@ -41,10 +41,10 @@ test('runs: with networks=reach the run file names the reach set and the CLI rep
 });
 
 test('runs: moving a second obstacle marks the atlas and the comparison stale; choosing a cell (the first obstacle) leaves the atlas current', async () => {
-  const page = await open('?task=1&mode=numerical&obstacles=0.5,0.5,0.05;1.0,1.3,0.05');
+  const page = await open('?task=1&method=numerical&obstacles=0.5,0.5,0.05;1.0,1.3,0.05');
   await pause(page);
   await page.evaluate(() => document.querySelectorAll('details').forEach((d) => (d.open = true)));
-  await page.evaluate(() => window.demo.atlas({ n: 5, modes: ['numerical'] }));
+  await page.evaluate(() => window.demo.atlas({ n: 5, methods: ['numerical'] }));
   await page.click('#compare');
   const stale = () =>
     page.evaluate(() => ({
@@ -67,7 +67,7 @@ test('runs: moving a second obstacle marks the atlas and the comparison stale; c
   assert.ok((await state(page)).revision.atlas > r1.atlas);
   assert.deepEqual(await stale(), { atlas: 'true', compare: 'true' });
   // The method is not a result's input for either.
-  await page.evaluate(() => window.demo.atlas({ n: 5, modes: ['numerical'] }));
+  await page.evaluate(() => window.demo.atlas({ n: 5, methods: ['numerical'] }));
   await page.click('#compare');
   await page.selectOption('#mode', 'qp');
   await page.waitForTimeout(100);
@@ -77,7 +77,7 @@ test('runs: moving a second obstacle marks the atlas and the comparison stale; c
 });
 
 test('page actions: a drag costs at most two calls into the module per frame and rebuilds no list; a radius typed changes that obstacle alone', async () => {
-  const page = await open('?task=1&mode=numerical&obstacles=0.5,0.5,0.05;1.0,1.3,0.05');
+  const page = await open('?task=1&method=numerical&obstacles=0.5,0.5,0.05;1.0,1.3,0.05');
   await pause(page);
   await page.evaluate(() => document.querySelectorAll('details').forEach((d) => (d.open = true)));
   const items = () => page.$$('#obstacle-list li');
@@ -107,16 +107,16 @@ test('page actions: a drag costs at most two calls into the module per frame and
 });
 
 test('controls a method does not read are hidden: the network-set selector for a method without networks, the gain λ for one that reads none', async () => {
-  const page = await open('?task=1&mode=numerical');
+  const page = await open('?task=1&method=numerical');
   await pause(page);
   assert.equal(await page.isVisible('#network-set'), false, 'no networks, no selector');
   assert.equal(await page.isVisible('#lambda'), true, 'the numerical route reads λ');
   await page.selectOption('#mode', 'priority');
-  await page.waitForFunction(() => window.demo.state().mode === 'priority');
+  await page.waitForFunction(() => window.demo.state().method === 'priority');
   await page.waitForTimeout(100);
   assert.equal(await page.isVisible('#lambda'), false, 'task priority reads no λ');
   await page.selectOption('#mode', 'case3');
-  await page.waitForFunction(() => window.demo.state().mode === 'case3');
+  await page.waitForFunction(() => window.demo.state().method === 'case3');
   await page.waitForTimeout(100);
   assert.equal(await page.isVisible('#network-set'), true, 'Case 3 runs networks: the selector shows');
   clean(page);

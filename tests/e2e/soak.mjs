@@ -169,18 +169,18 @@ const actions = {
   },
   async 'small atlas'() {
     const names = (await page.evaluate(() => window.demo.methods())).map((m) => m.name);
-    const modes = names.filter(() => random() < 0.5);
-    if (!modes.length) modes.push(pick(names));
+    const methods = names.filter(() => random() < 0.5);
+    if (!methods.length) methods.push(pick(names));
     await page.evaluate(
-      async ({ n, modes }) => {
+      async ({ n, methods }) => {
         try {
-          await window.demo.atlas({ n, modes });
+          await window.demo.atlas({ n, methods });
         } catch (e) {
           // The network methods on an arm without networks are refused: fine.
           if (!/network/i.test(e.message)) throw e;
         }
       },
-      { n: 3 + Math.floor(random() * 6), modes },
+      { n: 3 + Math.floor(random() * 6), methods },
     );
   },
   async 'short training'() {

@@ -8,7 +8,7 @@ import { shots, test, open, clean, state, near, pause, mouseDrag, touchDrag } fr
 test('page loads, draws and exposes window.demo', async () => {
   const page = await open();
   const s = await state(page);
-  for (const key of ['t', 'mode', 'theta', 'ee', 'target', 'obstacle', 'radius', 'distance', 'min_distance', 'collided', 'running', 'solver_ms']) {
+  for (const key of ['t', 'method', 'theta', 'ee', 'target', 'obstacle', 'radius', 'distance', 'min_distance', 'collided', 'running', 'solver_ms']) {
     assert.ok(key in s, `state() has ${key}`);
   }
   assert.equal(s.theta.length, 3);
@@ -29,7 +29,7 @@ test('page loads, draws and exposes window.demo', async () => {
 });
 
 test('play runs the clock; space pauses; r resets', async () => {
-  const page = await open('?task=1&mode=numerical');
+  const page = await open('?task=1&method=numerical');
   await page.waitForFunction(() => window.demo.state().t > 0.3);
   await page.keyboard.press('Space');
   const paused = await state(page);
@@ -50,7 +50,7 @@ test('play runs the clock; space pauses; r resets', async () => {
 });
 
 test('drag the target with the mouse: new line, the arm follows', async () => {
-  const page = await open('?task=1&mode=numerical');
+  const page = await open('?task=1&method=numerical');
   await page.evaluate(() => window.demo.runUntil(3));
   await pause(page);
   const before = await state(page);
@@ -72,7 +72,7 @@ test('drag the target with the mouse: new line, the arm follows', async () => {
 });
 
 test('a target out of reach: damping switches on, the arm stretches, nothing breaks', async () => {
-  const page = await open('?task=1&mode=numerical');
+  const page = await open('?task=1&method=numerical');
   await pause(page);
   await page.click('label[for="damping"]');
   assert.equal((await state(page)).damping, false);
@@ -93,7 +93,7 @@ test('a target out of reach: damping switches on, the arm stretches, nothing bre
 });
 
 test('keyboard on the drawing: arrows move the target, Shift+arrows the obstacle', async () => {
-  const page = await open('?task=1&mode=numerical');
+  const page = await open('?task=1&method=numerical');
   await pause(page);
   const before = await state(page);
   await page.focus('#stage');
@@ -111,7 +111,7 @@ test('keyboard on the drawing: arrows move the target, Shift+arrows the obstacle
 });
 
 test('drag the obstacle with the mouse: takes effect at once', async () => {
-  const page = await open('?task=1&mode=numerical');
+  const page = await open('?task=1&method=numerical');
   await pause(page);
   const before = await state(page);
   const goal = [1.0, 1.25];
@@ -128,7 +128,7 @@ test('drag the obstacle with the mouse: takes effect at once', async () => {
 });
 
 test('the obstacle cannot be dropped onto the post', async () => {
-  const page = await open('?task=1&mode=numerical');
+  const page = await open('?task=1&method=numerical');
   await pause(page);
   const before = await state(page);
   await mouseDrag(page, before.obstacle, [0.0, 0.25]);
@@ -142,7 +142,7 @@ test('the obstacle cannot be dropped onto the post', async () => {
 });
 
 test('touch drag moves the target', async () => {
-  const page = await open('?task=1&mode=numerical', { hasTouch: true });
+  const page = await open('?task=1&method=numerical', { hasTouch: true });
   await pause(page);
   const before = await state(page);
   const goal = [0.9, 0.3];

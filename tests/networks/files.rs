@@ -29,6 +29,20 @@ fn shipped_weights_round_trip_exactly() {
 }
 
 #[test]
+fn weights_files_that_name_their_sampling_methods_modes_still_load() {
+    // Files written before "method" was the word listed `sampling.modes`.
+    let json = networks::V_PLAIN_JSON;
+    assert!(json.contains("\"methods\": [") && !json.contains("\"modes\""));
+    let old = json.replacen("\"methods\": [", "\"modes\": [", 1);
+    let (new, old) = (
+        WeightsFile::from_json(json).unwrap(),
+        WeightsFile::from_json(&old).unwrap(),
+    );
+    assert_eq!(old, new);
+    assert_eq!(old.to_json().unwrap().trim_end(), json.trim_end());
+}
+
+#[test]
 fn bad_weights_files_are_rejected_with_a_clear_error() {
     let v = embedded_v();
     // Wrong shape: a weight missing.

@@ -198,26 +198,26 @@ fn near_a_singular_pose_the_damping_schedule_hands_phi_over_and_says_so() {
     let nets: Arc<dyn Surrogate> = Arc::new(Networks::embedded().unwrap());
     let mut scene = Scene::task1();
     scene.target = [2.5, 0.8];
-    for &mode in methods::ALL {
-        let run = Planner::run(scene.clone(), mode, Some(nets.clone())).unwrap();
+    for &method in methods::ALL {
+        let run = Planner::run(scene.clone(), method, Some(nets.clone())).unwrap();
         let s = &run.summary;
-        assert!(s.auto_damping, "{mode}");
+        assert!(s.auto_damping, "{method}");
         let flagged = run.steps.iter().filter(|x| x.phi_handover).count();
-        assert_eq!(flagged, s.handover_steps, "{mode}");
-        if mode == Method::CASE1 {
+        assert_eq!(flagged, s.handover_steps, "{method}");
+        if method == Method::CASE1 {
             // Phi by the network, v exact: the arm stretches and the exact
             // damped Phi takes over.
             assert!(s.handover_steps > 10, "{}", s.handover_steps);
-        } else if !mode.networks().phi {
+        } else if !method.networks().phi {
             // No Phi network, nothing to hand over. (Case 3's v network, far
             // outside its trained range here, folds the arm instead: it
             // never comes near the singular pose.)
-            assert_eq!(s.handover_steps, 0, "{mode}");
+            assert_eq!(s.handover_steps, 0, "{method}");
         }
     }
     // In the paper's scenes the networks work alone.
-    for mode in methods::ALL.iter().copied().filter(|m| m.networks().phi) {
-        let run = Planner::run(Scene::task2(), mode, Some(nets.clone())).unwrap();
+    for method in methods::ALL.iter().copied().filter(|m| m.networks().phi) {
+        let run = Planner::run(Scene::task2(), method, Some(nets.clone())).unwrap();
         assert_eq!(run.summary.handover_steps, 0);
     }
 }
@@ -318,9 +318,9 @@ fn the_planner_refuses_networks_trained_for_another_arm() {
         let mut scene = Scene::task1();
         scene.theta0 = vec![0.2; arm.dof()];
         scene.arm = arm.clone();
-        // In any mode: networks for another arm are never installed.
-        for mode in [Method::NUMERICAL, Method::CASE3] {
-            let err = Planner::new(scene.clone(), mode, Some(nets.clone())).unwrap_err();
+        // In any method: networks for another arm are never installed.
+        for method in [Method::NUMERICAL, Method::CASE3] {
+            let err = Planner::new(scene.clone(), method, Some(nets.clone())).unwrap_err();
             assert!(
                 matches!(&err, Error::NetworksForAnotherArm { trained, arm: mine }
                     if trained.1 == [0.6, 0.85, 0.6] && mine.1 == arm.links()),

@@ -34,11 +34,11 @@ fn shipped_networks_meet_the_documented_accuracy() {
 fn cases_1_to_3_avoid_the_obstacle_and_reach_the_target_on_both_tasks() {
     let nets = Networks::embedded().unwrap();
     for task in [1, 2] {
-        for mode in methods::ALL.iter().copied().filter(|m| m.uses_networks()) {
-            let o = evaluation::run_task(&nets, task, mode, None, 0.0).unwrap();
+        for method in methods::ALL.iter().copied().filter(|m| m.uses_networks()) {
+            let o = evaluation::run_task(&nets, task, method, None, 0.0).unwrap();
             assert!(
                 o.success(),
-                "task {task} {mode}: min distance {:.4}, collided {}, final error {:.2e}, {:?}",
+                "task {task} {method}: min distance {:.4}, collided {}, final error {:.2e}, {:?}",
                 o.min_distance,
                 o.collided,
                 o.final_error,
@@ -56,9 +56,9 @@ fn paper_form_networks_also_succeed_on_both_tasks() {
     for variant in [Variant::Plain, Variant::Rows] {
         let nets = Networks::embedded_with(variant).unwrap();
         for task in [1, 2] {
-            for mode in methods::ALL.iter().copied().filter(|m| m.networks().phi) {
-                let o = evaluation::run_task(&nets, task, mode, None, 0.0).unwrap();
-                assert!(o.success(), "{variant:?} task {task} {mode}: {o:?}");
+            for method in methods::ALL.iter().copied().filter(|m| m.networks().phi) {
+                let o = evaluation::run_task(&nets, task, method, None, 0.0).unwrap();
+                assert!(o.success(), "{variant:?} task {task} {method}: {o:?}");
             }
         }
     }
@@ -100,7 +100,7 @@ fn case_3_avoids_wherever_the_numerical_route_does_in_9_of_10_scenes() {
 }
 
 #[test]
-fn planner_runs_every_mode_with_the_networks_as_surrogate() {
+fn planner_runs_every_method_with_the_networks_as_surrogate() {
     let nets: Arc<dyn Surrogate> = Arc::new(Networks::embedded().unwrap());
     let p = Planner::new(Scene::task2(), Method::CASE3, Some(nets.clone())).unwrap();
     let xdot = Vector2::new(-0.1, -0.03);

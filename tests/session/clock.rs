@@ -6,11 +6,11 @@ use super::*;
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
 #[test]
-fn a_new_session_is_the_papers_task_at_rest_in_numerical_mode_with_damping() {
+fn a_new_session_is_the_papers_task_at_rest_in_numerical_method_with_damping() {
     let s = Session::new(2).unwrap();
     let st = s.state();
     assert_eq!(
-        (st.task, st.mode, st.t, st.running),
+        (st.task, st.method, st.t, st.running),
         (2, "numerical", 0.0, false)
     );
     assert!(st.damping);
@@ -24,10 +24,10 @@ fn a_new_session_is_the_papers_task_at_rest_in_numerical_mode_with_damping() {
 
 #[test]
 fn running_a_task_stops_at_its_final_time_and_avoidance_works() {
-    for (mode, collides) in [(Method::NO_AVOIDANCE, true), (Method::NUMERICAL, false)] {
+    for (method, collides) in [(Method::NO_AVOIDANCE, true), (Method::NUMERICAL, false)] {
         let mut s = Session::new(1).unwrap();
         s.set_damping(false).unwrap();
-        s.set_method(mode).unwrap();
+        s.set_method(method).unwrap();
         s.run_task();
         assert!(s.running());
         for _ in 0..10_000 {
@@ -39,7 +39,7 @@ fn running_a_task_stops_at_its_final_time_and_avoidance_works() {
         let st = s.state();
         assert!(!st.running, "stopped at tf");
         assert!((st.t - 10.0).abs() < 1e-9);
-        assert_eq!(st.collided, collides, "{mode}");
+        assert_eq!(st.collided, collides, "{method}");
     }
 }
 
@@ -77,7 +77,7 @@ fn the_network_cases_need_networks_and_bring_a_numerical_ghost() {
         Err(Error::NetworksUnavailable(_))
     ));
     assert_eq!(
-        s.state().mode,
+        s.state().method,
         "numerical",
         "a refused change changes nothing"
     );
@@ -181,7 +181,7 @@ fn the_histories_keep_the_trail_every_fifth_pose_and_the_time_series() {
 }
 
 #[test]
-fn comparing_the_modes_runs_the_scene_off_screen_and_changes_nothing() {
+fn comparing_the_methods_runs_the_scene_off_screen_and_changes_nothing() {
     let mut s = with_networks(2);
     s.set_damping(false).unwrap();
     s.set_obstacle([0.65, 0.55]).unwrap();
@@ -190,9 +190,9 @@ fn comparing_the_modes_runs_the_scene_off_screen_and_changes_nothing() {
     let rows = s.compare_methods();
     assert_eq!(rows.len(), methods::ALL.len());
     for (row, m) in rows.iter().zip(methods::ALL) {
-        assert_eq!((row.mode, row.label), (m.name(), m.label()));
+        assert_eq!((row.method, row.label), (m.name(), m.label()));
     }
-    let run = |m: Method| rows.iter().find(|r| r.mode == m.name()).unwrap();
+    let run = |m: Method| rows.iter().find(|r| r.method == m.name()).unwrap();
     let none = run(Method::NO_AVOIDANCE).summary.as_ref().unwrap();
     let numerical = run(Method::NUMERICAL).summary.as_ref().unwrap();
     assert!(none.collided && !numerical.collided);
@@ -209,7 +209,7 @@ fn comparing_the_modes_runs_the_scene_off_screen_and_changes_nothing() {
 }
 
 #[test]
-fn loading_a_task_keeps_the_mode_damping_and_feedback_and_runs_it() {
+fn loading_a_task_keeps_the_method_damping_and_feedback_and_runs_it() {
     let mut s = with_networks(1);
     s.set_method(Method::CASE1).unwrap();
     s.set_damping(false).unwrap();
@@ -217,7 +217,7 @@ fn loading_a_task_keeps_the_mode_damping_and_feedback_and_runs_it() {
     s.set_lambda(7.0).unwrap();
     s.load_task(2).unwrap();
     let st = s.state();
-    assert_eq!((st.task, st.mode), (2, "case1"));
+    assert_eq!((st.task, st.method), (2, "case1"));
     assert!(!st.damping);
     assert_eq!(st.feedback, 1.0);
     assert_eq!(st.lambda, 4.0, "the paper's scene");
@@ -232,7 +232,7 @@ fn the_state_serialises_to_the_object_the_page_reads() {
     for key in [
         "t",
         "task",
-        "mode",
+        "method",
         "running",
         "speed",
         "lambda",

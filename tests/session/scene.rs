@@ -7,7 +7,7 @@ use wasm_bindgen_test::wasm_bindgen_test as test;
 // ---- the playground: arms and several obstacles ---------------------------
 
 #[test]
-fn a_new_arm_restarts_from_its_own_start_pose_and_the_numerical_modes_run_at_once() {
+fn a_new_arm_restarts_from_its_own_start_pose_and_the_numerical_methods_run_at_once() {
     let mut s = Session::new(1).unwrap();
     s.set_arm(four_links()).unwrap();
     let st = s.state();
@@ -18,11 +18,11 @@ fn a_new_arm_restarts_from_its_own_start_pose_and_the_numerical_modes_run_at_onc
         st.joints.iter().all(|p| p[1] > 0.0),
         "start pose above the ground"
     );
-    for mode in methods::ALL.iter().copied().filter(|m| !m.uses_networks()) {
-        s.set_method(mode).unwrap();
+    for method in methods::ALL.iter().copied().filter(|m| !m.uses_networks()) {
+        s.set_method(method).unwrap();
         s.run_task();
         s.run_until(10.0).unwrap();
-        assert!(s.state().final_error < 5e-3, "{mode} reaches the target");
+        assert!(s.state().final_error < 5e-3, "{method} reaches the target");
     }
 }
 
@@ -34,7 +34,7 @@ fn networks_for_another_arm_are_set_aside_and_the_network_cases_fall_back() {
     s.set_method(Method::CASE3).unwrap();
     s.set_arm(four_links()).unwrap();
     assert!(s.networks().is_none());
-    assert_eq!(s.state().mode, "numerical");
+    assert_eq!(s.state().method, "numerical");
     assert!(matches!(
         s.set_networks(Arc::new(Networks::embedded().unwrap())),
         Err(Error::NetworksForAnotherArm { .. })

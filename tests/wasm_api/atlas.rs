@@ -13,7 +13,7 @@ fn an_atlas_job_maps_the_pages_scene_a_chunk_at_a_time() {
     use redundant_ik::web::AtlasJob;
     let d = demo(1);
     let options = js_of(
-        r#"{"modes": ["none", "numerical"], "n": 4, "region": [0.2, 0.8, 0.2, 0.8], "task": 1}"#,
+        r#"{"methods": ["none", "numerical"], "n": 4, "region": [0.2, 0.8, 0.2, 0.8], "task": 1}"#,
     );
     let mut job = AtlasJob::new(d.run().unwrap(), options).unwrap();
     assert_eq!((job.total(), job.done(), job.row()), (16, 0, 4));
@@ -24,7 +24,7 @@ fn an_atlas_job_maps_the_pages_scene_a_chunk_at_a_time() {
     assert_eq!(a["task"], 1);
     assert_eq!(a["grid"]["n"], 4);
     assert_eq!(a["cells"].as_array().unwrap().len(), 16);
-    assert_eq!(a["modes"], serde_json::json!(["none", "numerical"]));
+    assert_eq!(a["methods"], serde_json::json!(["none", "numerical"]));
     // The page's scene is the task with its damping switch on: the same
     // atlas as the core computes for that scene.
     let mut scene = redundant_ik::Scene::task(1).unwrap();
@@ -32,7 +32,7 @@ fn an_atlas_job_maps_the_pages_scene_a_chunk_at_a_time() {
     let spec = redundant_ik::atlas::Spec {
         scene,
         grid: redundant_ik::atlas::Grid::new([0.2, 0.8, 0.2, 0.8], 4).unwrap(),
-        modes: vec![
+        methods: vec![
             redundant_ik::Method::NO_AVOIDANCE,
             redundant_ik::Method::NUMERICAL,
         ],
@@ -59,8 +59,8 @@ fn bad_atlas_options_throw_with_the_reason() {
     assert!(job(r#"{"n": 1}"#).contains("grid points per side"));
     assert!(job(r#"{"n": 3.5}"#).contains("whole number"));
     assert!(job(r#"{"n": 1e300}"#).contains("grid points per side"));
-    assert!(job(r#"{"modes": ["numerical", "fast"]}"#).contains("unknown mode 'fast'"));
-    assert!(job(r#"{"modes": []}"#).contains("number of modes"));
+    assert!(job(r#"{"methods": ["numerical", "fast"]}"#).contains("unknown method 'fast'"));
+    assert!(job(r#"{"methods": []}"#).contains("number of methods"));
     assert!(job(r#"{"region": [0, 1, 0]}"#).contains("four numbers"));
     assert!(job(r#"{"region": [1, 0, 0, 1]}"#).contains("empty"));
     assert!(job(r#"{"n": "many"}"#).contains("atlas options"));
@@ -72,7 +72,7 @@ fn bad_atlas_options_throw_with_the_reason() {
     run["networks"] = serde_json::json!({"phi": "{", "v": "{"});
     let corrupt = AtlasJob::new(
         js_of(&run.to_string()),
-        js_of(r#"{"modes": ["case3"], "n": 3}"#),
+        js_of(r#"{"methods": ["case3"], "n": 3}"#),
     );
     assert!(message(corrupt.err().unwrap()).contains("bad network weights"));
     // A scene that fails validation is refused by the core.

@@ -61,37 +61,37 @@ fn closed_loop_feedback_shrinks_the_networks_drift_and_survives_a_task_load() {
 #[wasm_bindgen_test]
 fn the_in_browser_benchmark_returns_costs_or_refuses_bad_input() {
     use redundant_ik::web::{bench_forward, bench_step, bench_theta_dot};
-    for mode in ["numerical", "case3"] {
-        let ns = bench_step(mode, 1.0).unwrap();
-        assert!(ns.is_finite() && ns > 0.0, "{mode}: {ns}");
-        let ns = bench_theta_dot(mode, 1.0).unwrap();
-        assert!(ns.is_finite() && ns > 0.0, "{mode}: {ns}");
+    for method in ["numerical", "case3"] {
+        let ns = bench_step(method, 1.0).unwrap();
+        assert!(ns.is_finite() && ns > 0.0, "{method}: {ns}");
+        let ns = bench_theta_dot(method, 1.0).unwrap();
+        assert!(ns.is_finite() && ns > 0.0, "{method}: {ns}");
     }
     let f = json_of(bench_forward(1.0).unwrap());
     assert!(f["phi"].as_f64().is_some_and(|x| x > 0.0), "{f}");
     assert!(f["v"].as_f64().is_some_and(|x| x > 0.0), "{f}");
-    assert!(message(bench_step("case9", 1.0).err().unwrap()).contains("unknown mode"));
+    assert!(message(bench_step("case9", 1.0).err().unwrap()).contains("unknown method"));
     for bad in [0.0, f64::NAN, 1e9] {
         assert!(message(bench_theta_dot("numerical", bad).err().unwrap()).contains("batch"));
     }
 }
 
 #[wasm_bindgen_test]
-fn compare_modes_runs_the_current_scene_in_all_five_modes_off_screen() {
+fn compare_methods_runs_the_current_scene_in_all_five_methods_off_screen() {
     let mut d = demo(1);
     d.set_damping(false).unwrap();
     d.set_obstacle(0.55, 0.45).unwrap();
     let before = state(&d);
-    let js = d.compare_modes().unwrap();
+    let js = d.compare_methods().unwrap();
     let text: String = js_sys::JSON::stringify(&js).unwrap().into();
     let rows: Value = serde_json::from_str(&text).unwrap();
     let rows = rows.as_array().unwrap();
-    let modes: Vec<&str> = rows.iter().map(|r| r["mode"].as_str().unwrap()).collect();
+    let methods: Vec<&str> = rows.iter().map(|r| r["method"].as_str().unwrap()).collect();
     let registry: Vec<&str> = redundant_ik::planner::methods::ALL
         .iter()
         .map(|m| m.name())
         .collect();
-    assert_eq!(modes, registry);
+    assert_eq!(methods, registry);
     let collided = |i: usize| rows[i]["summary"]["collided"].as_bool().unwrap();
     for (i, m) in redundant_ik::planner::methods::ALL.iter().enumerate() {
         // Without avoidance the arm hits the moved obstacle; every method

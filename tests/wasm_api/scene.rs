@@ -1,15 +1,15 @@
-//! The `Demo` binding: tasks, modes, refusals, coordinates, dragging and the
+//! The `Demo` binding: tasks, methods, refusals, coordinates, dragging and the
 //! clock.
 
 use super::*;
 use wasm_bindgen_test::wasm_bindgen_test;
 
 #[wasm_bindgen_test]
-fn a_new_demo_is_task_1_at_rest_in_numerical_mode() {
+fn a_new_demo_is_task_1_at_rest_in_numerical_method() {
     let d = demo(1);
     let s = state(&d);
     assert_eq!(s["t"], 0.0);
-    assert_eq!(s["mode"], "numerical");
+    assert_eq!(s["method"], "numerical");
     assert_eq!(s["running"], false);
     assert_eq!(s["theta"].as_array().unwrap().len(), 3);
     assert_eq!(pair(&s["obstacle"]), [0.5, 0.5]);
@@ -50,22 +50,22 @@ fn task_1_collides_without_avoidance_and_not_with_it() {
 }
 
 #[wasm_bindgen_test]
-fn modes_parse_and_bad_names_throw() {
+fn methods_parse_and_bad_names_throw() {
     let mut d = demo(2);
     let err = d.set_method("case4").err().unwrap();
-    assert!(message(err).contains("unknown mode 'case4'"));
-    assert_eq!(state(&d)["mode"], "numerical");
+    assert!(message(err).contains("unknown method 'case4'"));
+    assert_eq!(state(&d)["method"], "numerical");
     for m in redundant_ik::planner::methods::ALL {
-        let mode = m.name();
-        match (d.set_method(mode), networks_error(None)) {
+        let method = m.name();
+        match (d.set_method(method), networks_error(None)) {
             (Ok(()), _) => {
-                assert_eq!(state(&d)["mode"], mode);
+                assert_eq!(state(&d)["method"], method);
                 d.step().unwrap();
                 let ghost = !state(&d)["ghost"].is_null();
                 assert_eq!(ghost, m.uses_networks(), "ghost arm only with networks");
             }
             (Err(e), Some(_)) => assert!(message(e).contains("networks not available")),
-            (Err(e), None) => panic!("mode {mode}: {}", message(e)),
+            (Err(e), None) => panic!("method {method}: {}", message(e)),
         }
     }
 }

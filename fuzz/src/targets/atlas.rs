@@ -12,8 +12,8 @@ use super::gen::{method, num, num_in, point, small};
 
 /// Small atlases (2 x 2 or 3 x 3 cells, up to 8 steps per run) of a paper
 /// task or an arbitrary scene, over an arbitrary region, in arbitrary
-/// modes, with or without networks, advanced in arbitrary chunks. A job
-/// that starts finishes with one outcome per cell and mode, and its
+/// methods, with or without networks, advanced in arbitrary chunks. A job
+/// that starts finishes with one outcome per cell and method, and its
 /// summaries count every cell once.
 pub fn atlas(data: &[u8]) {
     let mut u = Unstructured::new(data);
@@ -45,9 +45,9 @@ pub fn atlas(data: &[u8]) {
     let Ok(grid) = Grid::new(region, n) else {
         return;
     };
-    let mut modes = Vec::new();
+    let mut methods = Vec::new();
     for _ in 0..small(&mut u, 6) {
-        modes.push(method(&mut u));
+        methods.push(method(&mut u));
     }
     let networks = u
         .arbitrary()
@@ -56,7 +56,7 @@ pub fn atlas(data: &[u8]) {
     let spec = Spec {
         scene,
         grid,
-        modes,
+        methods,
         task: None,
     };
     let Ok(mut job) = Job::new(spec, networks) else {
@@ -75,7 +75,7 @@ pub fn atlas(data: &[u8]) {
     let atlas = job.finish().expect("a done job finishes");
     assert_eq!(atlas.cells.len(), total);
     for cell in &atlas.cells {
-        assert_eq!(cell.outcomes.len(), atlas.modes.len());
+        assert_eq!(cell.outcomes.len(), atlas.methods.len());
     }
     for s in &atlas.summary {
         assert_eq!(

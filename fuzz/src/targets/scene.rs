@@ -12,7 +12,7 @@ use super::checks::{shipped_surrogate, step_checked, Snapshot};
 use super::gen::{arm, num, num_in, point, small};
 
 /// Arms, obstacles and scenes from arbitrary numbers (or, 1 time in 4, a
-/// scene as JSON, as the workers receive it), then a planner in every mode
+/// scene as JSON, as the workers receive it), then a planner in every method
 /// for up to 12 steps. A scene the planner accepts validates; no step
 /// accepts a non-finite angle; a failed step changes nothing.
 pub fn scene(data: &[u8]) {
@@ -120,8 +120,8 @@ pub fn scene(data: &[u8]) {
         }
     };
     let networks = (scene.arm == Arm::paper()).then(shipped_surrogate);
-    for &mode in methods::ALL {
-        let Ok(mut p) = Planner::new(scene.clone(), mode, networks.clone()) else {
+    for &method in methods::ALL {
+        let Ok(mut p) = Planner::new(scene.clone(), method, networks.clone()) else {
             continue;
         };
         scene.validate().expect("an accepted scene validates");

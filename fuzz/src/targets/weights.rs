@@ -35,8 +35,8 @@ pub fn weights(data: &[u8]) {
     let nets: Arc<dyn Surrogate> = Arc::new(nets);
     let mut scene = Scene::task1();
     scene.tf = 1.0;
-    for mode in [Method::CASE1, Method::CASE2, Method::CASE3] {
-        let Ok(mut p) = Planner::new(scene.clone(), mode, Some(nets.clone())) else {
+    for method in [Method::CASE1, Method::CASE2, Method::CASE3] {
+        let Ok(mut p) = Planner::new(scene.clone(), method, Some(nets.clone())) else {
             continue;
         };
         step_checked(&mut p, 10);

@@ -172,7 +172,7 @@ impl Context<'_> {
     /// The networks, or why `method` cannot run without them.
     pub fn networks_for(&self, method: Method) -> Result<&dyn Surrogate> {
         self.networks.ok_or_else(|| {
-            Error::NetworksUnavailable(format!("mode {method} needs trained networks"))
+            Error::NetworksUnavailable(format!("method {method} needs trained networks"))
         })
     }
 
@@ -371,7 +371,7 @@ impl fmt::Display for Method {
 impl FromStr for Method {
     type Err = Error;
     fn from_str(s: &str) -> Result<Self> {
-        crate::error::by_name("mode", s, ALL, Method::name)
+        crate::error::by_name("method", s, ALL, Method::name)
     }
 }
 
