@@ -414,7 +414,9 @@ pub const PRESETS: [Preset; 4] = [
 impl Preset {
     /// The preset whose post and links `arm` has, if any.
     pub fn of(arm: &Arm) -> Option<&'static Preset> {
-        PRESETS.iter().find(|p| p.post == arm.post && p.links == arm.links)
+        PRESETS
+            .iter()
+            .find(|p| p.post == arm.post && p.links == arm.links)
     }
 
     /// The arm, with the preset's limits if it has any (each preset is

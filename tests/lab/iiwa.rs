@@ -18,7 +18,10 @@ fn the_preset_is_the_urdfs_joints_2_4_and_6_with_their_limits() {
     assert_eq!(p.links, [0.2045 + 0.2155, 0.1845 + 0.2155, 0.081 + 0.045]);
     let arm = p.arm();
     let limits = arm.joint_limits().unwrap();
-    assert!(limits.ranges().iter().all(|r| *r == [-2.09439510239, 2.09439510239]));
+    assert!(limits
+        .ranges()
+        .iter()
+        .all(|r| *r == [-2.09439510239, 2.09439510239]));
     assert_eq!(
         arm.rate_limits().unwrap().rates(),
         [1.4835298641951802, 1.3089969389957472, 2.356194490192345]
@@ -38,7 +41,10 @@ fn its_task_starts_within_its_limits_and_the_arm_without_avoidance_hits_the_disc
     scene.validate().unwrap();
     assert_eq!(scene.theta0, [0.1, 1.2, 1.6]);
     let hand = Pose::new(&scene.arm, &scene.theta0).unwrap().end_effector();
-    assert!((hand[0] - 0.4575).abs() < 1e-3 && (hand[1] - 0.7626).abs() < 1e-3, "{hand:?}");
+    assert!(
+        (hand[0] - 0.4575).abs() < 1e-3 && (hand[1] - 0.7626).abs() < 1e-3,
+        "{hand:?}"
+    );
     let none = Planner::run(scene.clone(), Method::NO_AVOIDANCE, None).unwrap();
     assert!(none.summary.collided);
     for m in [Method::NUMERICAL, DISTANCE, QP] {
