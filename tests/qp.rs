@@ -399,7 +399,10 @@ fn the_qp_methods_own_programs_near_joint_limits_agree_with_clarabel() {
             .zip(&reference)
             .map(|(p, q)| (p - q).abs())
             .fold(0.0, f64::max);
-        assert!(err < 1e-7, "{theta:?}: {rates} against clarabel's {reference:?}");
+        assert!(
+            err < 1e-7,
+            "{theta:?}: {rates} against clarabel's {reference:?}"
+        );
         compared += 1;
         // Rows of the joint-limit dampers: a single +-1 entry bounded below
         // the rate limit.
