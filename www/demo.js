@@ -23,6 +23,7 @@ import { mountCompare } from './compare.js';
 import { mountWeightsUpload } from './weights-upload.js';
 import { wireStage } from './stage-input.js';
 import { mountMethodParams } from './method-params.js';
+import { mountSelfMotion } from './self-motion.js';
 import { mountNetworkSet } from './network-set.js';
 import { messenger } from './messages.js';
 import { mountTakeaway } from './takeaway.js';
@@ -217,6 +218,7 @@ export async function mount(root, options = {}) {
   }
   // λ and the parameters of the method in use (www/method-params.js).
   const syncParams = mountMethodParams(root, demo, { attempt, changed });
+  mountSelfMotion(root, demo, { attempt, changed });
   el.damping?.addEventListener('change', () => attempt(() => demo.setDamping(el.damping.checked), 'error', el.damping));
   // "Correct drift": the core's gain K (1/s) of Xdot + K (X_ref - X).
   el.feedback?.addEventListener('change', () => {

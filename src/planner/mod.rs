@@ -20,6 +20,7 @@ pub mod methods;
 mod observe;
 pub mod params;
 mod record;
+pub mod self_motion;
 mod settings;
 mod surrogate;
 

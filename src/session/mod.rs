@@ -16,6 +16,8 @@ mod history;
 mod installed;
 mod pointer;
 mod revision;
+mod scenes;
+mod self_motion;
 mod state;
 
 use crate::arm::{Arm, JointLimits, RateLimits};
@@ -23,7 +25,7 @@ use crate::error::{within, Error, Result};
 use crate::ik::DampingSchedule;
 use crate::networks::{self, NetworkSet};
 use crate::obstacle::Obstacle;
-use crate::planner::methods::{DELTA, LAMBDA};
+use crate::planner::methods::LAMBDA;
 use crate::planner::{Method, Planner};
 use crate::run::Run;
 use crate::scene::{Param, Scene, PAPER_RADIUS, PAPER_TARGET};
@@ -34,6 +36,8 @@ pub use compare::MethodRun;
 pub use history::{below_floor, Point, STROBE_EVERY};
 pub use pointer::{Handle, DRAG_LINE_SPEED, MIN_LINE_DURATION, NUDGE};
 pub use revision::Revision;
+pub use scenes::start_pose;
+use scenes::{keep_method_settings, paper_scene};
 pub use state::{ByName, GhostState, State};
 
 use history::Histories;
@@ -92,43 +96,6 @@ pub struct Session {
 
 fn no_clock() -> f64 {
     0.0
-}
-
-/// A start pose for `arm`: a preset's own task's if it has one; else the
-/// paper's Task 1 pose for its first three
-/// joints (`pi/12, pi/2, -pi/6`), then each further joint bent `-pi/6`,
-/// which keeps a 2- to 6-link arm off the ground, bent (not singular) and
-/// inside its reach.
-pub fn start_pose(arm: &Arm) -> Vec<f64> {
-    use std::f64::consts::PI;
-    if let Some(task) = crate::arm::Preset::of(arm).and_then(|p| p.task) {
-        return task.theta0.to_vec();
-    }
-    let paper = [PI / 12.0, PI / 2.0, -PI / 6.0];
-    (0..arm.dof())
-        .map(|i| paper.get(i).copied().unwrap_or(-PI / 6.0))
-        .collect()
-}
-
-/// The paper's scene `task` with the damping switch and feedback gain given.
-fn paper_scene(task: u32, damping: bool, feedback: f64) -> Result<Scene> {
-    let mut scene = Scene::task(task)?;
-    scene.damping = damping.then(DampingSchedule::default);
-    scene.feedback_gain = feedback;
-    Ok(scene)
-}
-
-/// The settings of the methods that a new task or arm keeps from `old`:
-/// every parameter but the paper's `lambda` and `delta`, which come with
-/// the task.
-fn keep_method_settings(scene: &mut Scene, old: &Scene) {
-    let task = [&LAMBDA, &DELTA].map(|p| (p, scene.param(p)));
-    scene.params = old.params.clone();
-    // The values came from valid scenes; the order checks cannot fail on
-    // them (neither is ordered against another parameter).
-    let _ = scene.params.set_all(&task);
-    scene.weighting = old.weighting;
-    scene.floor = old.floor;
 }
 
 impl Session {

@@ -20,14 +20,18 @@ pub enum Handle {
     Target,
     /// Obstacle `i`.
     Obstacle(usize),
+    /// The elbow `P(k)` (`1 <= k < n`): dragging it moves the arm in the
+    /// null space, the hand holding still (`super::self_motion`).
+    Joint(usize),
 }
 
 impl Handle {
-    /// `"target"` or `"obstacle"`.
+    /// `"target"`, `"obstacle"` or `"joint"`.
     pub fn name(self) -> &'static str {
         match self {
             Handle::Target => "target",
             Handle::Obstacle(_) => "obstacle",
+            Handle::Joint(_) => "joint",
         }
     }
 }
@@ -99,7 +103,8 @@ impl Session {
     }
 
     /// Moves the held handle to `point`: the obstacle at once (refused on
-    /// the post), the target only as a marker until [`Session::drag_end`].
+    /// the post), an elbow toward it in the null space (the arm's new
+    /// start), the target only as a marker until [`Session::drag_end`].
     pub fn drag_to(&mut self, point: [f64; 2]) -> Result<()> {
         match self.drag {
             Some(Handle::Target) => {
@@ -109,6 +114,7 @@ impl Session {
                 Ok(())
             }
             Some(Handle::Obstacle(i)) => self.place_obstacle(i, point),
+            Some(Handle::Joint(k)) => self.drag_joint(k, point),
             None => Ok(()),
         }
     }
@@ -126,7 +132,7 @@ impl Session {
                 self.set_target(p, None)?;
                 self.set_running(true);
             }
-            (Some(Handle::Obstacle(_)), _) => self.after_change(),
+            (Some(Handle::Obstacle(_) | Handle::Joint(_)), _) => self.after_change(),
             _ => {}
         }
         Ok(())
@@ -148,6 +154,7 @@ impl Session {
                 Some(o) => o.centre,
                 None => return Ok(()),
             },
+            Handle::Joint(_) => return Ok(()),
         };
         let to = [at[0] + dx * NUDGE, at[1] + dy * NUDGE];
         match handle {
@@ -157,6 +164,7 @@ impl Session {
                 Ok(())
             }
             Handle::Obstacle(i) => self.move_obstacle(i, to),
+            Handle::Joint(_) => Ok(()),
         }
     }
 }

@@ -123,6 +123,15 @@ impl Demo {
         self.session.set_damping(on).map_err(js_err)
     }
 
+    /// Moves the arm along the self-motion through joint `joint` (0-based)
+    /// by `amount` rad of joint-space arc, the hand holding still; the new
+    /// pose is the run's start, paused. Throws, changing nothing, where
+    /// the joint has no self-motion or the pose would pass a limit.
+    #[wasm_bindgen(js_name = selfMotion)]
+    pub fn self_motion(&mut self, joint: usize, amount: f64) -> JsResult {
+        self.session.self_motion(joint, amount).map_err(js_err)
+    }
+
     /// Closed-loop gain `K` (1/s): the planner then commands
     /// `Xdot + K (X_ref - X)`; `0` is the paper's open loop (the default).
     #[wasm_bindgen(js_name = setFeedback)]

@@ -6,12 +6,16 @@ use crate::session::{Handle, Session};
 
 /// Radius (CSS px) of the target marker a pointer grabs.
 const TARGET_GRAB_PX: f64 = 10.0;
+/// Radius (CSS px) around an elbow a pointer grabs.
+const JOINT_GRAB_PX: f64 = 8.0;
 /// Handles stay this far (CSS px) inside the canvas, so they can always be
 /// picked up again.
 const EDGE_PX: f64 = 8.0;
 
 /// What a pointer at canvas CSS pixel `(x, y)` would grab, with `slop`
-/// extra pixels of tolerance (0 to 64): the target before the obstacle.
+/// extra pixels of tolerance (0 to 64): the target before the obstacle,
+/// the obstacle before an elbow (the joints between the first and the
+/// hand, which drag the arm in its null space).
 pub fn hit(s: &Session, surface: &Surface, x: f64, y: f64, slop: f64) -> Option<Handle> {
     if !(x.is_finite() && y.is_finite() && slop.is_finite()) {
         return None;
@@ -25,7 +29,13 @@ pub fn hit(s: &Session, surface: &Surface, x: f64, y: f64, slop: f64) -> Option<
     if near(s.target_marker(), TARGET_GRAB_PX + slop) {
         return Some(Handle::Target);
     }
-    obstacle_at(s, surface, x, y, slop).map(Handle::Obstacle)
+    if let Some(i) = obstacle_at(s, surface, x, y, slop) {
+        return Some(Handle::Obstacle(i));
+    }
+    let joints = s.planner().pose().joints();
+    (1..joints.len().saturating_sub(1))
+        .find(|&k| near(joints[k], JOINT_GRAB_PX + slop))
+        .map(Handle::Joint)
 }
 
 /// The obstacle under canvas CSS pixel `(x, y)` with `slop` extra pixels of

@@ -11,6 +11,7 @@ wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 mod criteria;
 mod ground;
 mod iiwa;
+mod self_motion;
 mod weighting;
 
 use redundant_ik::arm::JointLimits;

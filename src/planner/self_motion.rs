@@ -1,0 +1,220 @@
+//! Self-motion: the arm moving in the null space of its Jacobian, the hand
+//! holding still (the motion eq. (5)'s `(I - J+ J) v` term makes, on its
+//! own). A joint dragged toward a point is pulled by a force `f` at that
+//! joint, `theta_dot = (I - J+ J) J_k^T f`, with `J_k` the Jacobian of the
+//! joint's position `P(k)` and `J+ = J^T (J J^T)^-1` (eq. 6 with `W = I`,
+//! `delta = 0`: the exact projector, so the hand's velocity is zero to
+//! rounding); a closed loop `J+ K (X_hold - X)` brings back what RK4 and
+//! rounding let drift. Integrated by RK4 in small steps.
+
+use crate::arm::Arm;
+use crate::error::{Error, Result};
+use crate::ik;
+use crate::kinematics::Pose;
+
+/// RK4 step of the self-motion (s).
+pub const SELF_MOTION_DT: f64 = 0.02;
+/// Gain `K` (1/s) of the loop that holds the hand.
+pub const HOLD_GAIN: f64 = 10.0;
+
+/// The self-motion's scratch space for an `n`-joint arm.
+#[derive(Debug, Clone)]
+pub struct SelfMotion {
+    pose: Pose,
+    stage: Vec<f64>,
+    k: [Vec<f64>; 4],
+    v: Vec<f64>,
+    /// The last direction of a motion along the null space, which the next
+    /// keeps the orientation of.
+    dir: Vec<f64>,
+}
+
+/// What moves the arm, the hand held at `hold`: elbow `joint` pulled
+/// toward `to`, or (`to` absent) the joint-space direction `(I - J+ J) e_j`
+/// of joint `joint` at unit speed, times `sign`.
+#[derive(Debug, Clone, Copy)]
+struct Pull {
+    joint: usize,
+    to: Option<[f64; 2]>,
+    sign: f64,
+    hold: [f64; 2],
+}
+
+impl SelfMotion {
+    /// Room for the arm's `n` joints.
+    pub fn new(arm: &Arm) -> Self {
+        let n = arm.dof();
+        let v = || vec![0.0; n];
+        Self {
+            pose: Pose::zeros(n),
+            stage: v(),
+            k: [v(), v(), v(), v()],
+            v: v(),
+            dir: v(),
+        }
+    }
+
+    /// Moves `theta` in place by `steps` RK4 steps of [`SELF_MOTION_DT`]
+    /// with the elbow `joint` (its position `P(joint)`, `1 <= joint < n`)
+    /// pulled toward `to` and the hand held at `hold`; refused, leaving
+    /// `theta` as it was, for a joint that is not an elbow, a non-finite
+    /// point or a singular pose.
+    pub fn drag(
+        &mut self,
+        arm: &Arm,
+        theta: &mut [f64],
+        joint: usize,
+        to: [f64; 2],
+        hold: [f64; 2],
+        steps: usize,
+    ) -> Result<()> {
+        let n = arm.dof();
+        if !(1..n).contains(&joint) || theta.len() != n || self.v.len() != n {
+            return Err(Error::OutOfRange {
+                what: "dragged joint".into(),
+                value: joint as f64,
+                min: 1.0,
+                max: n.saturating_sub(1) as f64,
+            });
+        }
+        crate::error::finite("drag point x", to[0])?;
+        crate::error::finite("drag point y", to[1])?;
+        let pull = Pull {
+            joint,
+            to: Some(to),
+            sign: 1.0,
+            hold,
+        };
+        self.integrate(arm, theta, pull, steps)
+    }
+
+    /// Moves `theta` in place along the self-motion through joint `joint`
+    /// (`0 <= joint < n`): the direction `(I - J+ J) e_j`, normalised, for
+    /// an arc length of `amount` rad in joint space, the hand held at
+    /// `hold`. It sets out the way that `theta_j` grows for `amount > 0`
+    /// and keeps its orientation from step to step (the direction of
+    /// `(I - J+ J) e_j` itself turns over where `theta_j` is extreme on the
+    /// self-motion, which would stop the arm there). The page's slider, for
+    /// a keyboard. Refused as [`SelfMotion::drag`] is.
+    pub fn along(
+        &mut self,
+        arm: &Arm,
+        theta: &mut [f64],
+        joint: usize,
+        amount: f64,
+        hold: [f64; 2],
+    ) -> Result<()> {
+        let n = arm.dof();
+        crate::error::finite("self-motion", amount)?;
+        if joint >= n || theta.len() != n || self.v.len() != n {
+            return Err(Error::OutOfRange {
+                what: "moved joint".into(),
+                value: joint as f64,
+                min: 0.0,
+                max: n.saturating_sub(1) as f64,
+            });
+        }
+        let steps = (amount.abs() / SELF_MOTION_DT).ceil().min(1e4) as usize;
+        if steps == 0 {
+            return Ok(());
+        }
+        let pull = Pull {
+            joint,
+            to: None,
+            sign: amount.abs() / (steps as f64 * SELF_MOTION_DT),
+            hold,
+        };
+        self.dir.iter_mut().enumerate().for_each(|(i, d)| {
+            *d = if i == joint { amount.signum() } else { 0.0 };
+        });
+        self.integrate(arm, theta, pull, steps)
+    }
+
+    /// `steps` RK4 steps of `pull`; `theta` as it was if one fails.
+    fn integrate(&mut self, arm: &Arm, theta: &mut [f64], pull: Pull, steps: usize) -> Result<()> {
+        let start = theta.to_vec();
+        for _ in 0..steps {
+            if let Err(e) = self.rk4(arm, theta, pull) {
+                theta.copy_from_slice(&start);
+                return Err(e);
+            }
+        }
+        Ok(())
+    }
+
+    /// One classical RK4 step of [`SELF_MOTION_DT`].
+    fn rk4(&mut self, arm: &Arm, theta: &mut [f64], pull: Pull) -> Result<()> {
+        let h = SELF_MOTION_DT;
+        let Self {
+            pose,
+            stage,
+            k,
+            v,
+            dir,
+        } = self;
+        for s in 0..4 {
+            let a = [0.0, 0.5, 0.5, 1.0][s] * h;
+            for i in 0..theta.len() {
+                stage[i] = theta[i] + if s == 0 { 0.0 } else { a * k[s - 1][i] };
+            }
+            pose.update(arm, stage)?;
+            rates(pose, pull, v, dir, &mut k[s])?;
+        }
+        if pull.to.is_none() {
+            dir.copy_from_slice(&k[0]);
+        }
+        for (i, t) in theta.iter_mut().enumerate() {
+            *t += h / 6.0 * (k[0][i] + 2.0 * k[1][i] + 2.0 * k[2][i] + k[3][i]);
+        }
+        Ok(())
+    }
+}
+
+/// `theta_dot = (I - J+ J) v + J+ K (hold - X)` at `pose` into `out`, with
+/// `v = J_k^T f`, `f = to - P(k)` (m), or `v` the unit `(I - J+ J) e_j`
+/// oriented as `dir` and times the pull's speed; `v` is scratch.
+fn rates(pose: &Pose, pull: Pull, v: &mut [f64], dir: &[f64], out: &mut [f64]) -> Result<()> {
+    let joints = pose.joints();
+    match pull.to {
+        Some(to) => {
+            let p = joints[pull.joint];
+            let f = [to[0] - p[0], to[1] - p[1]];
+            // v = J_k^T f: the joints before k move P(k) as
+            // crate::clearance's point Jacobian says, the others not.
+            for (i, vi) in v.iter_mut().enumerate() {
+                *vi = if i < pull.joint {
+                    let q = joints[i];
+                    f[0] * (p[1] - q[1]) - f[1] * (p[0] - q[0])
+                } else {
+                    0.0
+                };
+            }
+        }
+        None => {
+            // (I - J+ J) e_j = J+ (0 - J e_j) + e_j, then unit length.
+            v.iter_mut()
+                .enumerate()
+                .for_each(|(i, x)| *x = f64::from(u8::from(i == pull.joint)));
+            ik::theta_dot_symmetric_into(pose.jacobian(), [0.0, 0.0], v, 0.0, out)?;
+            let norm = out.iter().map(|x| x * x).sum::<f64>().sqrt();
+            if norm < 1e-9 {
+                return Err(Error::Singular(format!(
+                    "joint {} has no self-motion at this pose",
+                    pull.joint + 1
+                )));
+            }
+            let along: f64 = out.iter().zip(dir).map(|(o, d)| o * d).sum();
+            let scale = pull.sign.copysign(along) / norm;
+            v.iter_mut()
+                .zip(out.iter())
+                .for_each(|(x, o)| *x = scale * o);
+        }
+    }
+    // (I - J+ J) v + J+ K (hold - X) = J+ (K (hold - X) - J v) + v.
+    let x = pose.end_effector();
+    let xdot = [
+        HOLD_GAIN * (pull.hold[0] - x[0]),
+        HOLD_GAIN * (pull.hold[1] - x[1]),
+    ];
+    ik::theta_dot_symmetric_into(pose.jacobian(), xdot, v, 0.0, out)
+}
