@@ -1,7 +1,7 @@
 //! Self-motion: the arm moving in the null space of its Jacobian, the hand
 //! holding still (the motion eq. (5)'s `(I - J+ J) v` term makes, on its
-//! own). A joint dragged toward a point is pulled by a force `f` at that
-//! joint, `theta_dot = (I - J+ J) J_k^T f`, with `J_k` the Jacobian of the
+//! own). A joint dragged toward a point is pulled by a force
+//! `f = G (to - P(k))` at that joint, `theta_dot = (I - J+ J) J_k^T f`, with `J_k` the Jacobian of the
 //! joint's position `P(k)` and `J+ = J^T (J J^T)^-1` (eq. 6 with `W = I`,
 //! `delta = 0`: the exact projector, so the hand's velocity is zero to
 //! rounding); a closed loop `J+ K (X_hold - X)` brings back what RK4 and
@@ -16,6 +16,10 @@ use crate::kinematics::Pose;
 pub const SELF_MOTION_DT: f64 = 0.02;
 /// Gain `K` (1/s) of the loop that holds the hand.
 pub const HOLD_GAIN: f64 = 10.0;
+/// Stiffness `G` (1/(m s)) of the pull on a dragged elbow: the force is
+/// `f = G (to - P(k))`, so the elbow follows the pointer within about
+/// `1 / (G |J_k|^2)`, a quarter of a second for the paper's arm.
+pub const PULL_GAIN: f64 = 10.0;
 
 /// The self-motion's scratch space for an `n`-joint arm.
 #[derive(Debug, Clone)]
@@ -178,7 +182,7 @@ fn rates(pose: &Pose, pull: Pull, v: &mut [f64], dir: &[f64], out: &mut [f64]) -
     match pull.to {
         Some(to) => {
             let p = joints[pull.joint];
-            let f = [to[0] - p[0], to[1] - p[1]];
+            let f = [PULL_GAIN * (to[0] - p[0]), PULL_GAIN * (to[1] - p[1])];
             // v = J_k^T f: the joints before k move P(k) as
             // crate::clearance's point Jacobian says, the others not.
             for (i, vi) in v.iter_mut().enumerate() {

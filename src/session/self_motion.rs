@@ -18,28 +18,32 @@ impl Session {
     /// nothing, for a joint that is not an elbow, a singular pose or a pose
     /// outside the joints' limits.
     pub fn drag_joint(&mut self, joint: usize, to: [f64; 2]) -> Result<()> {
-        self.move_in_null_space(|m, arm, theta, hold| {
-            m.drag(arm, theta, joint, to, hold, DRAG_STEPS)
-        })
+        self.move_in_null_space(joint, Some(to), 0.0)
     }
 
     /// Moves the arm along joint `joint`'s self-motion by `amount` rad of
     /// joint-space arc (the page's slider; the sign chooses the way),
     /// the hand held where it is; refused as [`Session::drag_joint`] is.
     pub fn self_motion(&mut self, joint: usize, amount: f64) -> Result<()> {
-        self.move_in_null_space(|m, arm, theta, hold| m.along(arm, theta, joint, amount, hold))
+        self.move_in_null_space(joint, None, amount)
     }
 
+    /// Joint `joint` dragged toward `to`, or (none) moved along by `amount`.
     fn move_in_null_space(
         &mut self,
-        step: impl FnOnce(&mut SelfMotion, &crate::arm::Arm, &mut [f64], [f64; 2]) -> Result<()>,
+        joint: usize,
+        to: Option<[f64; 2]>,
+        amount: f64,
     ) -> Result<()> {
         let p = self.planner();
         let mut scene = p.scene().clone();
         let mut theta = p.theta().as_slice().to_vec();
         let hold = p.sample().ee;
         let mut motion = SelfMotion::new(&scene.arm);
-        step(&mut motion, &scene.arm, &mut theta, hold)?;
+        match to {
+            Some(to) => motion.drag(&scene.arm, &mut theta, joint, to, hold, DRAG_STEPS)?,
+            None => motion.along(&scene.arm, &mut theta, joint, amount, hold)?,
+        }
         scene
             .arm
             .check_within_limits("the pose after the self-motion", &theta)?;
