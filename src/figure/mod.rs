@@ -183,6 +183,12 @@ pub fn caption(task: u32, scene: &Scene, method: Method) -> String {
     if let Some(r) = scene.arm.rate_limits() {
         parts.push(format!("rate limits {r}"));
     }
+    if !scene.weighting.is_none() {
+        parts.push(format!("joint weighting {}", scene.weighting));
+    }
+    if scene.floor {
+        parts.push("floor and post are obstacles".into());
+    }
     use crate::planner::methods::{DELTA, LAMBDA, REFINE, SIGN_SMOOTHING};
     parts.push(format!("λ = {}", scene.param(&LAMBDA)));
     parts.push(format!(
