@@ -153,7 +153,7 @@ const LEGEND: [(&str, &str, &str, f64, &str); 15] = [
     ),
     (
         "limits",
-        "each joint's range (its position limits), a tick at its angle",
+        "each joint's range (its position limits), a dot at its angle",
         LIMIT,
         1.0,
         "line",
