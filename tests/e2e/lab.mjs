@@ -130,9 +130,9 @@ export function labTests(h) {
     await page.close();
   });
 
-  for (const [name, viewport] of [
-    ['laptop', { width: 1366, height: 768 }],
-    ['phone', { width: 390, height: 844 }],
+  for (const [name, viewport, shot] of [
+    ['laptop', { width: 1366, height: 768 }, 'lab-limit-laptop.png'],
+    ['phone', { width: 390, height: 844 }, 'lab-limit-phone.png'],
   ]) {
     test(`lab: a joint past its limit is named beside the drawing, with the ellipse (${name})`, async () => {
       // Limits tight around Task 1's start pose: its joints leave them.
@@ -151,7 +151,7 @@ export function labTests(h) {
       const text = await note.textContent();
       if (s.past_limits.length) assert.match(text, new RegExp(`Joint ${s.past_limits[0]} is past its limit \\(-?\\d+° to -?\\d+°\\)`), text);
       assert.match(text, new RegExp(`${s.limit_steps} steps of this run`), text);
-      await page.screenshot({ path: join(shots, `lab-limit-${name}.png`) });
+      await page.screenshot({ path: join(shots, shot) });
       // Back inside, with no limits: no note.
       await page.click('#arm-panel summary');
       await page.fill('#arm-limits', '');
@@ -199,5 +199,23 @@ export function labTests(h) {
     }
     clean(page);
     await page.close();
+  });
+
+  test('lab: the atlas legend lists the class of a joint past its limits only for an arm with limits', async () => {
+    for (const [query, limited] of [['', false], [`&limits=${LIMITS}`, true]]) {
+      const page = await open(`?task=1&method=numerical${query}`);
+      await page.evaluate(() => window.demo.controller.demo.setRunning(false));
+      await page.click('#atlas-panel summary');
+      await page.selectOption('#atlas-n', '11');
+      await page.click('#atlas-run');
+      await page.waitForSelector('#atlas-result:not([hidden])', { timeout: 60000 });
+      const keys = await page.$$eval('#atlas-legend li', (l) => l.map((li) => li.dataset.key));
+      const classes = await page.evaluate(() => import('./module.js').then((m) => m.atlasClasses()));
+      const expected = classes.filter((c) => limited || !c.limits).map((c) => c.name);
+      assert.deepEqual(keys, expected, query || 'unlimited');
+      assert.equal(keys.length, classes.length - (limited ? 0 : 1));
+      clean(page);
+      await page.close();
+    }
   });
 }
