@@ -25,6 +25,7 @@ ALLOWED = {
     ("www/demo.js", "none"): "the collision readout's word when nothing was hit",
     ("www/page.js", "paper"): "a data attribute value for the stylesheet (paper's arm or other)",
     ("www/index.html", "distance"): "a readout's key (data-readout), not the method",
+    ("www/index.html", "manipulability"): "a readout's key (data-readout), not the method",
     ("www/redundant-ik-demo.js", "distance"): "a readout's key (data-readout), not the method",
 }
 

@@ -288,6 +288,27 @@ pub fn smallest_singular_value([p, q, r]: [f64; 3]) -> f64 {
     (mean - radius).max(0.0).sqrt()
 }
 
+/// The velocity (manipulability) ellipse `{J theta_dot : |theta_dot| <= 1}`
+/// of a pose from `J J^T = (a11, a12, a22)` (Yoshikawa 1985): its axes are
+/// the unit eigenvectors of `J J^T`, the major first, and its half-lengths
+/// the square roots of their eigenvalues, the singular values
+/// `sigma_1 >= sigma_2` of `J` (their product is the manipulability
+/// `sqrt(det(J J^T))`). The force ellipse `{f : |J^T f| <= 1}` has the same
+/// axes with half-lengths `1 / sigma_i`. The major axis is at the angle
+/// `phi = atan2(2 a12, a11 - a22) / 2`.
+pub fn velocity_ellipse([p, q, r]: [f64; 3]) -> ([[f64; 2]; 2], [f64; 2]) {
+    let mean = 0.5 * (p + r);
+    let radius = (0.25 * (p - r) * (p - r) + q * q).sqrt();
+    let (s, c) = sin_cos(0.5 * (2.0 * q).atan2(p - r));
+    (
+        [[c, s], [-s, c]],
+        [
+            (mean + radius).max(0.0).sqrt(),
+            (mean - radius).max(0.0).sqrt(),
+        ],
+    )
+}
+
 /// `(sin x, cos x)`, within one unit in the last place of the C library's,
 /// and about three times faster for the angles an arm takes.
 ///

@@ -1,5 +1,5 @@
 // The page's address: what `?task=2&method=case3&lambda=4&target=…&obstacle=…
-// &obstacles=…&arm=…&limits=…&rates=…&feedback=1&damping=0&theta0=…&tf=…&influence=…&networks=reach` asks
+// &obstacles=…&arm=…&limits=…&rates=…&feedback=1&damping=0&weighting=wln&floor=1&theta0=…&tf=…&influence=…&networks=reach` asks
 // for, and the state written back into it (what "Copy link" copies). The arm, limits and obstacle syntax is the module's (parseArm, parseObstacles,
 // formatArm, parseJointLimits, formatJointLimits, parseRateLimits,
 // formatRateLimits: the command line's too). Every parameter that does not parse
@@ -29,7 +29,8 @@ const named = () => allParams().filter((p) => p.name !== 'lambda');
  * method (the module's defaultMethod() where it names none; `mode=`, the
  * older name, is read where there is no `method=`), lambda,
  * feedback, target, obstacle, obstacles (flat), arm, limits (the arm's
- * joint limits, flat [lo1, hi1, ...]), rates (its rate limits), damping, start
+ * joint limits, flat [lo1, hi1, ...]), rates (its rate limits), damping,
+ * weighting (a name of limits().joint_weightings), floor (bool), start
  * ({ theta0, tf }: a run's own start pose and final time), params (the
  * methods' parameters by name), networks (a shipped network set), and
  * `problems`: what did not parse, each as `name: why`.
@@ -91,10 +92,20 @@ export function readAddress(search) {
     target: pair('target'),
     obstacle: pair('obstacle'),
     obstacles: parsed('obstacles', parseObstacles),
-    arm: parsed('arm', parseArm),
+    // A preset's name (its key in limits().arm_presets) gives the preset, its limits with it.
+    arm: parsed('arm', (v) => limits().arm_presets.find((p) => p.key === v) ?? parseArm(v)),
     limits: parsed('limits', parseJointLimits),
     rates: parsed('rates', parseRateLimits),
     damping: parsed('damping', (v) => {
+      if (v !== '0' && v !== '1') throw new Error(`expected 0 or 1, got '${clip(v)}'`);
+      return v === '1';
+    }),
+    weighting: parsed('weighting', (v) => {
+      const names = limits().joint_weightings.map(([name]) => name);
+      if (!names.includes(v)) throw new Error(`unknown joint weighting '${clip(v)}': use ${names.join(' or ')}`);
+      return v;
+    }),
+    floor: parsed('floor', (v) => {
       if (v !== '0' && v !== '1') throw new Error(`expected 0 or 1, got '${clip(v)}'`);
       return v === '1';
     }),
@@ -116,7 +127,8 @@ export function readAddress(search) {
  * where it has them (limits=, rates=); the obstacles as a list where
  * there are several or one of another radius than the default, else the one
  * obstacle's centre; the drift gain where it is on; the damping switch
- * where it is off; the methods' parameters that differ from their
+ * where it is off; the joint weighting where it is not the first (none),
+ * floor=1 where the floor and post are obstacles; the methods' parameters that differ from their
  * defaults; a shipped network set other than the paper's; and a run's own start pose and final time (a line dropped
  * from where the hand was), in full. Returns the address.
  */
@@ -137,6 +149,8 @@ export function writeAddress(s) {
   }
   if (s.feedback > 0) q.set('feedback', String(s.feedback));
   if (!s.damping) q.set('damping', '0');
+  if (s.weighting !== limits().joint_weightings[0][0]) q.set('weighting', s.weighting);
+  if (s.floor) q.set('floor', '1');
   if (s.network_set && s.network_set !== networkSets()[0].name) q.set('networks', s.network_set);
   for (const p of named()) {
     if (s.params[p.name] !== undefined && s.params[p.name] !== p.default) q.set(p.name, String(s.params[p.name]));

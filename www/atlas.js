@@ -107,7 +107,9 @@ export function mountAtlas(root, demo, { changed }) {
     el.legend.replaceChildren();
     if (!method) return;
     const counts = atlas.summary[method].counts;
-    for (const c of CLASSES) {
+    // The class of a joint past its limits only for an arm with limits.
+    const limited = Boolean(demo.state().arm.joint_limits);
+    for (const c of CLASSES.filter((c) => limited || !c.limits)) {
       const li = document.createElement('li');
       li.dataset.key = c.name;
       const key = document.createElement('span');

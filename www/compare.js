@@ -43,10 +43,10 @@ export function mountCompare(root, demo, { attempt }) {
   download?.addEventListener('click', () => {
     if (!rows) return;
     const s = demo.state();
-    const header = ['method', 'label', 'min_clearance_m', 'collided', 'unavoidable', 'final_error_m', 'reached', 'error'];
+    const header = ['method', 'label', 'min_clearance_m', 'collided', 'unavoidable', 'final_error_m', 'reached', 'error', 'limit_steps'];
     const lines = rows.map((r) => {
       const m = r.summary;
-      return [r.method, r.label, m?.min_clearance, m?.collided, r.unavoidable ?? '', m?.final_error, m?.reached, r.error ?? ''];
+      return [r.method, r.label, m?.min_clearance, m?.collided, r.unavoidable ?? '', m?.final_error, m?.reached, r.error ?? '', m?.limit_steps];
     });
     saveText(`compare-task${s.task}.csv`, csv(header, lines), 'text/csv');
   });
@@ -84,6 +84,14 @@ function compareRow(r) {
       cell('unavoidable', 'unavoidable').title = `hit: ${WHY[r.unavoidable] ?? r.unavoidable}`;
     } else {
       cell(s.collided ? 'yes' : 'no', s.collided ? 'bad' : 'ok');
+    }
+    // Steps past a joint limit, where the method had any (the lab's arms).
+    if (s.limit_steps > 0) {
+      tr.dataset.limitSteps = String(s.limit_steps);
+      const past = document.createElement('span');
+      past.className = 'bad';
+      past.textContent = `, ${s.limit_steps} step${s.limit_steps === 1 ? '' : 's'} past a joint limit`;
+      tr.lastChild.append(past);
     }
     cell(metres(s.final_error), s.reached ? 'num' : 'num warn');
   } else {

@@ -28,6 +28,7 @@ import { mountNetworkSet } from './network-set.js';
 import { messenger } from './messages.js';
 import { mountTakeaway } from './takeaway.js';
 import { mountNotes } from './notes.js';
+import { mountLab } from './lab.js';
 
 /**
  * Fills a `<select>` with the methods, grouped ("The paper", "Beyond the
@@ -57,6 +58,16 @@ function fillLegend(list) {
     key.className = `key key-${e.kind}`;
     key.style.setProperty('--swatch', e.swatch);
     li.append(key, e.label);
+    // An entry the page may switch (the lab's ellipses): a checkbox, always listed.
+    if (e.toggle) {
+      const label = document.createElement('label');
+      const box = document.createElement('input');
+      box.type = 'checkbox';
+      box.dataset.toggle = e.key;
+      label.append(box, ...li.childNodes);
+      li.append(label);
+      li.dataset.toggle = 'true';
+    }
     list.append(li);
   }
 }
@@ -65,7 +76,7 @@ function fillLegend(list) {
 function syncLegend(list, mask) {
   if (!list) return;
   [...list.children].forEach((li, i) => {
-    const hide = !(mask & (1 << i));
+    const hide = !(mask & (1 << i)) && !li.dataset.toggle;
     if (li.hidden !== hide) li.hidden = hide;
   });
 }
@@ -77,6 +88,7 @@ const READOUTS = {
   min_distance: (s) => fixed(s.min_distance, 3),
   collision: (s) => (s.collision ? 'now' : s.collided ? 'earlier' : 'none'),
   manipulability: (s) => fixed(s.manipulability, 3),
+  sigma: (s) => s.singular_values.map((v) => fixed(v, 3)).join(', '),
   delta: (s) => (s.delta > 0 ? s.delta.toExponential(1) : '0'),
   solver: (s) => fixed(s.solver_ms_per_step, 3),
 };
@@ -151,8 +163,16 @@ export async function mount(root, options = {}) {
   if (options.damping === false) initial('damping', () => demo.setDamping(false));
   if (options.feedback) initial('feedback', () => demo.setFeedback(options.feedback));
   if (options.speed) initial('speed', () => demo.setSpeed(options.speed));
-  if (options.arm) initial('arm', () => demo.setArm(options.arm.post, Float64Array.from(options.arm.links)));
+  if (options.arm) {
+    // A preset named in the address brings its limits (and the core its task).
+    const { post, links, joint_limits: lim, rate_limits: rat } = options.arm;
+    const own = !options.limits && !options.rates && (lim || rat);
+    initial('arm', () => (own ? demo.setLimitedArm(post, Float64Array.from(links), lim ? Float64Array.from(lim.flat()) : undefined, rat ? Float64Array.from(rat) : undefined) : demo.setArm(post, Float64Array.from(links))));
+  }
   if (options.limits || options.rates) initial(options.limits ? 'limits' : 'rates', () => demo.setArmLimits(options.limits, options.rates));
+  // The lab's switches (www/lab.js).
+  if (options.weighting) initial('weighting', () => demo.setWeighting(options.weighting));
+  if (options.floor) initial('floor', () => demo.setFloor(true));
   if (options.obstacles) initial('obstacles', () => demo.setObstacles(flatObstacles(options.obstacles)));
   // Networks kept in this browser for the arm, before the method that may need them.
   playground.restore();
@@ -251,6 +271,7 @@ export async function mount(root, options = {}) {
 
   // ---- readouts and the loop -------------------------------------------
   const syncNotes = mountNotes(root);
+  const syncLab = mountLab(root, demo, { attempt, changed: () => changed() });
   let autoDampingShown = false;
   let chosenMethod = null; // the method the user picked last
   let shownMethod = null;
@@ -261,6 +282,7 @@ export async function mount(root, options = {}) {
     const mask = s.drawn;
     if (mask !== drawnMask) syncLegend(el.legend, (drawnMask = mask));
     syncNotes(s);
+    syncLab(s);
     // A switch of method the page made by itself (a new arm without
     // networks for it, networks forgotten) is announced at the menu.
     const [was, now] = [method(shownMethod), method(s.method)];

@@ -7,6 +7,8 @@
 // numerical, case1, ...; the module's defaultMethod() where absent; `mode`,
 // its older name, is read too),
 // lambda, feedback (closed-loop gain K in 1/s; 0 = the paper's open loop),
+// weighting (a joint weighting's name, limits().joint_weightings), floor
+// ("1": the floor and post are obstacles),
 // autoplay ("false" to start paused), plots (present: show the time
 // series). Each element has its own simulation in its own shadow root; the
 // WebAssembly module is loaded once per page. After its first frame an element
@@ -99,6 +101,8 @@ class RedundantIkDemo extends HTMLElement {
         method,
         lambda: lambda !== null && Number.isFinite(Number(lambda)) ? Number(lambda) : undefined,
         feedback: Number.isFinite(Number(this.getAttribute('feedback'))) ? Number(this.getAttribute('feedback')) : 0,
+        weighting: this.getAttribute('weighting') ?? undefined,
+        floor: this.getAttribute('floor') === '1',
         autoplay: this.getAttribute('autoplay') !== 'false',
         keyboard: this,
       });

@@ -34,6 +34,10 @@ pub struct FigureArgs {
     /// error and joint angles over time (the page's plots).
     #[arg(long, conflicts_with = "all")]
     pub plots: bool,
+    /// Draw the manipulability ellipse {J theta_dot : |theta_dot| <= 1} at
+    /// the final pose (at 1/4 scale, as the page's legend switch does).
+    #[arg(long, conflicts_with_all = ["compare", "plots"])]
+    pub ellipse: bool,
     /// Draw the arm every this many steps (the page's stroboscopic trace).
     #[arg(long, default_value_t = redundant_ik::session::STROBE_EVERY)]
     pub every: usize,
@@ -66,7 +70,7 @@ pub fn run(args: &FigureArgs) -> Result<(), String> {
         let svg = if args.plots {
             figure::series_svg(task, &scene, &traj)
         } else {
-            figure::arm_svg(task, &scene, &traj, args.every)
+            figure::arm_svg_with(task, &scene, &traj, args.every, args.ellipse)
         };
         return write(&args.out, &svg.map_err(e)?);
     }
@@ -81,7 +85,7 @@ pub fn run(args: &FigureArgs) -> Result<(), String> {
             let path = args.out.join(format!("task{task}_{}.svg", traj.method));
             write(
                 &path,
-                &figure::arm_svg(task, &scene, traj, args.every).map_err(e)?,
+                &figure::arm_svg_with(task, &scene, traj, args.every, args.ellipse).map_err(e)?,
             )?;
         }
         let path = args.out.join(format!("task{task}_compare.svg"));

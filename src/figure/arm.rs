@@ -1,18 +1,61 @@
 //! The paper's stroboscopic figure of a run (Figs. 2-11): the arm every
 //! few steps, the obstacle discs, the straight-line path and the hand's
-//! trace, the start and final poses highlighted, axes in metres.
+//! trace, the start and final poses highlighted, axes in metres; on request
+//! the manipulability ellipse at the final pose.
 
 use plotters::prelude::*;
 
 use super::{caption, colour, draw_caption, draw_legend, svg, why, Swatch};
 use crate::error::Result;
+use crate::kinematics::{velocity_ellipse, Pose};
 use crate::planner::Trajectory;
 use crate::scene::Scene;
+
+/// The drawn scale of the manipulability ellipse (its half-lengths are the
+/// singular values of `J`, m per rad/s), as on the page.
+pub const ELLIPSE_SCALE: f64 = 0.25;
 
 /// The figure of `run` (of `scene`, from paper task `task`) as SVG, the
 /// arm drawn every `every` steps (at least 1).
 pub fn arm_svg(task: u32, scene: &Scene, run: &Trajectory, every: usize) -> Result<String> {
+    arm_svg_with(task, scene, run, every, false)
+}
+
+/// The outline of the manipulability ellipse `{J theta_dot : |theta_dot|
+/// <= 1}` at the pose `theta` of `scene`'s arm, centred at its hand and
+/// drawn at [`ELLIPSE_SCALE`] ([`velocity_ellipse`]: axes the eigenvectors
+/// of `J J^T`, half-lengths the square roots of its eigenvalues).
+pub fn ellipse_outline(scene: &Scene, theta: &[f64]) -> Result<Vec<(f64, f64)>> {
+    let pose = Pose::new(&scene.arm, theta)?;
+    let (axes, half) = velocity_ellipse(pose.jjt());
+    let [cx, cy] = pose.end_effector();
+    let (a, b) = (ELLIPSE_SCALE * half[0], ELLIPSE_SCALE * half[1]);
+    Ok((0..=72)
+        .map(|i| {
+            let t = i as f64 / 72.0 * std::f64::consts::TAU;
+            let (u, v) = (a * t.cos(), b * t.sin());
+            (
+                cx + u * axes[0][0] + v * axes[1][0],
+                cy + u * axes[0][1] + v * axes[1][1],
+            )
+        })
+        .collect())
+}
+
+/// [`arm_svg`], with the manipulability ellipse at the final pose when
+/// `ellipse` is set (`figure --ellipse`).
+pub fn arm_svg_with(
+    task: u32,
+    scene: &Scene,
+    run: &Trajectory,
+    every: usize,
+    ellipse: bool,
+) -> Result<String> {
     let every = every.max(1);
+    let outline = match (ellipse, run.steps.last()) {
+        (true, Some(last)) => ellipse_outline(scene, &last.theta)?,
+        _ => Vec::new(),
+    };
     // World bounds: every joint of every drawn pose, the obstacles and the post.
     let (mut x0, mut x1, mut y0, mut y1) = (-0.2f64, 0.2f64, 0.0f64, 0.6f64);
     for s in &run.steps {
@@ -22,6 +65,9 @@ pub fn arm_svg(task: u32, scene: &Scene, run: &Trajectory, every: usize) -> Resu
             y0 = y0.min(p[1]);
             y1 = y1.max(p[1]);
         }
+    }
+    for &(x, y) in &outline {
+        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
     }
     for o in &scene.obstacles {
         x0 = x0.min(o.centre[0] - o.radius);
@@ -151,7 +197,13 @@ pub fn arm_svg(task: u32, scene: &Scene, run: &Trajectory, every: usize) -> Resu
                 .draw_series(pts.iter().map(|p| Circle::new(*p, 4, c.filled())))
                 .map_err(why)?;
         }
-        let legend = [
+        let velocity = RGBColor(46, 125, 50);
+        if !outline.is_empty() {
+            chart
+                .draw_series(LineSeries::new(outline, velocity.stroke_width(2)))
+                .map_err(why)?;
+        }
+        let mut legend = vec![
             (Swatch::Line(path, 1), "straight-line task".to_string()),
             (Swatch::Line(trace, 2), "end effector".into()),
             (Swatch::Line(start, 3), "start pose".into()),
@@ -161,6 +213,12 @@ pub fn arm_svg(task: u32, scene: &Scene, run: &Trajectory, every: usize) -> Resu
                 format!("every {every}th pose"),
             ),
         ];
+        if ellipse {
+            legend.push((
+                Swatch::Line(velocity, 2),
+                "manipulability ellipse at 1/4 scale".into(),
+            ));
+        }
         let (w, h) = plot.dim_in_pixel();
         let bottom = h as i32 - mb as i32 - 10 - 17 * legend.len() as i32 - 10;
         draw_legend(&plot, &legend, (w as i32 - mr as i32 - 8, bottom), true)

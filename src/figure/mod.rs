@@ -26,7 +26,7 @@ use crate::error::{Error, Result};
 use crate::planner::Method;
 use crate::scene::Scene;
 
-pub use arm::arm_svg;
+pub use arm::{arm_svg, arm_svg_with, ellipse_outline, ELLIPSE_SCALE};
 pub use atlas::atlas_svg;
 pub use series::{compare_svg, series_svg};
 

@@ -166,10 +166,18 @@ pub struct Training {
     /// Hidden layer widths.
     pub hidden: Vec<usize>,
     /// Levenberg-Marquardt options (unused when `adam` is set).
+    #[cfg_attr(
+        not(any(feature = "worker", feature = "cli", feature = "eval")),
+        serde(deserialize_with = "crate::networks::unread::skip")
+    )]
     pub options: LmOptions,
     /// Adam's options, when Adam trained the networks instead of
     /// Levenberg-Marquardt; absent in older files.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(
+        not(any(feature = "worker", feature = "cli", feature = "eval")),
+        serde(deserialize_with = "crate::networks::unread::skip")
+    )]
     pub adam: Option<AdamOptions>,
     /// How the samples were drawn.
     pub sampling: Sampling,
@@ -184,6 +192,10 @@ pub struct NetEntry {
     /// The network.
     pub mlp: Mlp,
     /// Epochs, stop reason and final train/validation/test MSE (mapminmax units).
+    #[cfg_attr(
+        not(any(feature = "worker", feature = "cli", feature = "eval")),
+        serde(deserialize_with = "crate::networks::unread::skip")
+    )]
     pub report: TrainReport,
 }
 

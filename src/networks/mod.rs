@@ -13,6 +13,8 @@
 mod builtin;
 pub mod file;
 pub mod inputs;
+#[cfg(not(any(feature = "worker", feature = "cli", feature = "eval")))]
+mod unread;
 
 use serde::{Deserialize, Serialize};
 

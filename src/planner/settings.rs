@@ -134,6 +134,20 @@ impl Planner {
         Ok(())
     }
 
+    /// Sets how the methods of eq. (5) use the arm's joint limits (the
+    /// paper's `W` of eq. 7: [`scene::JointWeighting`]).
+    pub fn set_weighting(&mut self, weighting: scene::JointWeighting) {
+        self.scene.weighting = weighting;
+        self.resample();
+    }
+
+    /// Makes the floor `y = 0` and the post obstacles (or not) for the
+    /// methods that read link-obstacle pairs ([`scene::Scene::floor`]).
+    pub fn set_floor(&mut self, floor: bool) {
+        self.scene.floor = floor;
+        self.resample();
+    }
+
     /// Sets the closed-loop gain `K` (0 = open loop, as in the paper).
     pub fn set_feedback_gain(&mut self, gain: f64) -> Result<()> {
         scene::validate_gain(gain, self.scene.dt)?;

@@ -8,7 +8,8 @@
 //! One file per concern: the scene and its settings here; the clock
 //! (`clock.rs`), the histories (`history.rs`), the pointer and the keys
 //! (`pointer.rs`), runs off screen and the comparison of the methods
-//! (`compare.rs`) and the snapshot (`state.rs`).
+//! (`compare.rs`), the gains and switches of the scene (`settings.rs`) and
+//! the snapshot (`state.rs`).
 
 mod clock;
 mod compare;
@@ -18,17 +19,17 @@ mod pointer;
 mod revision;
 mod scenes;
 mod self_motion;
+mod settings;
 mod state;
 
 use crate::arm::{Arm, JointLimits, RateLimits};
 use crate::error::{within, Error, Result};
-use crate::ik::DampingSchedule;
 use crate::networks::{self, NetworkSet};
 use crate::obstacle::Obstacle;
 use crate::planner::methods::LAMBDA;
 use crate::planner::{Method, Planner};
 use crate::run::Run;
-use crate::scene::{Param, Scene, PAPER_RADIUS, PAPER_TARGET};
+use crate::scene::{Scene, PAPER_RADIUS, PAPER_TARGET};
 use crate::twin::Twin;
 
 pub use clock::MAX_STEPS_PER_FRAME;
@@ -257,34 +258,6 @@ impl Session {
         let p = self.planner();
         self.revisions
             .observe(self.task, p.method(), p.scene(), self.networks_installed)
-    }
-
-    /// Sets `lambda`, the gain of the obstacle vector (eq. 14).
-    pub fn set_lambda(&mut self, lambda: f64) -> Result<()> {
-        self.set_param(&LAMBDA, lambda)
-    }
-
-    /// Sets a parameter of the methods ([`Param`]), for the planner and the
-    /// ghost; refused, changing nothing, when out of its bounds.
-    pub fn set_param(&mut self, param: &'static Param, value: f64) -> Result<()> {
-        self.twin.apply(|p| p.set_param(param, value))?;
-        self.after_change();
-        Ok(())
-    }
-
-    /// Switches the damping schedule on or off.
-    pub fn set_damping(&mut self, on: bool) -> Result<()> {
-        self.twin
-            .apply(|p| p.set_damping(on.then(DampingSchedule::default)))?;
-        self.after_change();
-        Ok(())
-    }
-
-    /// Closed-loop gain `K` (1/s), for the planner and the ghost.
-    pub fn set_feedback(&mut self, gain: f64) -> Result<()> {
-        self.twin.apply(|p| p.set_feedback_gain(gain))?;
-        self.after_change();
-        Ok(())
     }
 
     /// Simulated seconds per real second (0.05 to 50).

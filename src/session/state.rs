@@ -5,11 +5,13 @@ use serde::Serialize;
 use super::{Handle, Session};
 use crate::arm::Arm;
 use crate::clearance::{Pair, Pairs};
+use crate::kinematics::velocity_ellipse;
 use crate::networks::{self, NetworkSet, TrainedRange};
 use crate::obstacle::{self, Obstacle};
 use crate::planner::methods::{INFLUENCE, LAMBDA};
 use crate::planner::params;
 use crate::planner::{Line, Needs};
+use crate::scene::JointWeighting;
 
 /// The snapshot the page reads every frame.
 #[derive(Debug, Serialize)]
@@ -50,6 +52,10 @@ pub struct State<'a> {
     pub dampers: Vec<Pair>,
     /// Whether the damping schedule is on.
     pub damping: bool,
+    /// How the methods of eq. (5) use the joint limits (`none`, `wln`).
+    pub weighting: JointWeighting,
+    /// Whether the floor and the post are obstacles for the methods.
+    pub floor: bool,
     /// Whether it was switched on for an out-of-reach target.
     pub auto_damping: bool,
     /// Closed-loop gain `K`.
@@ -94,6 +100,13 @@ pub struct State<'a> {
     pub final_error: f64,
     /// `sqrt(det(J J^T))`.
     pub manipulability: f64,
+    /// The singular values `sigma_1 >= sigma_2` of `J` (their product is
+    /// the manipulability; [`crate::kinematics::velocity_ellipse`]).
+    pub singular_values: [f64; 2],
+    /// The joints (1-based) past their position limits now.
+    pub past_limits: &'a [usize],
+    /// Steps of this run with a joint past its limits.
+    pub limit_steps: usize,
     /// Damping in force.
     pub delta: f64,
     /// Whether the networks in use see inputs inside their trained range.
@@ -214,6 +227,8 @@ impl Session {
             influence: near.as_ref().map(|(d, _)| *d),
             dampers: near.map_or_else(Vec::new, |(_, pairs)| pairs.as_slice().to_vec()),
             damping: scene.damping.is_some(),
+            weighting: scene.weighting,
+            floor: scene.floor,
             auto_damping: summary.auto_damping,
             feedback: scene.feedback_gain,
             theta: &s.theta,
@@ -236,6 +251,9 @@ impl Session {
             tracking_error: s.tracking_error,
             final_error: summary.final_error,
             manipulability: s.manipulability,
+            singular_values: velocity_ellipse(p.pose().jjt()).1,
+            past_limits: &s.past_limits,
+            limit_steps: summary.limit_steps,
             delta: s.delta,
             in_range: s.in_range,
             phi_handover: s.phi_handover,

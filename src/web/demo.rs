@@ -21,6 +21,8 @@ pub struct Demo {
     layer: Option<Layer>,
     /// What the last frame drew ([`stage::draw`]'s mask).
     drawn: std::cell::Cell<u32>,
+    /// The legend's entries switched on (`setShown`: the lab's ellipses).
+    shown: u32,
 }
 
 pub(super) type JsResult<T = ()> = Result<T, JsError>;
@@ -48,6 +50,7 @@ impl Demo {
             plots: plots.map(Surface::new).transpose()?,
             layer: None,
             drawn: std::cell::Cell::new(0),
+            shown: 0,
         })
     }
 
@@ -130,6 +133,35 @@ impl Demo {
     #[wasm_bindgen(js_name = selfMotion)]
     pub fn self_motion(&mut self, joint: usize, amount: f64) -> JsResult {
         self.session.self_motion(joint, amount).map_err(js_err)
+    }
+
+    /// How the methods of eq. (5) use the arm's joint limits: a name of
+    /// `limits().joint_weightings` (`none`, `wln`); refused, changing
+    /// nothing, for any other.
+    #[wasm_bindgen(js_name = setWeighting)]
+    pub fn set_weighting(&mut self, name: &str) -> JsResult {
+        let w = name.parse().map_err(js_err)?;
+        self.session.set_weighting(w);
+        Ok(())
+    }
+
+    /// Switches a legend entry the page offers a toggle for (`legend()`'s
+    /// `toggle`: `ellipse`, `force`) on or off; false for any other key.
+    #[wasm_bindgen(js_name = setShown)]
+    pub fn set_shown(&mut self, key: &str, on: bool) -> bool {
+        let Some(b) = super::style::toggle_bit(key) else {
+            return false;
+        };
+        self.shown = if on { self.shown | b } else { self.shown & !b };
+        self.draw();
+        true
+    }
+
+    /// Whether the floor `y = 0` and the post are obstacles for the
+    /// methods that read link-obstacle pairs (`distance`, `priority`, `qp`).
+    #[wasm_bindgen(js_name = setFloor)]
+    pub fn set_floor(&mut self, on: bool) {
+        self.session.set_floor(on);
     }
 
     /// Closed-loop gain `K` (1/s): the planner then commands
@@ -363,7 +395,7 @@ impl Demo {
 
     /// Redraws the stage and the plots.
     pub fn draw(&self) {
-        let drawn = stage::draw(&self.session, &self.stage, self.layer.as_ref());
+        let drawn = stage::draw(&self.session, &self.stage, self.layer.as_ref(), self.shown);
         self.drawn.set(drawn);
         if let Some(p) = &self.plots {
             plots::draw(&self.session, p);

@@ -25,6 +25,8 @@ mod demo;
 #[cfg(feature = "page")]
 mod input;
 #[cfg(feature = "page")]
+mod lab;
+#[cfg(feature = "page")]
 mod layer;
 #[cfg(feature = "page")]
 mod plots;
@@ -226,7 +228,8 @@ pub fn default_method() -> String {
 /// The limits and defaults the page uses, from the core that enforces
 /// them, so that no number is written twice: `{ min_links, max_links,
 /// max_obstacles, default_radius, max_weights_bytes, reach_tolerance,
-/// default_grid, max_grid, drift_gain, max_lambda, arm_presets }`.
+/// default_grid, max_grid, drift_gain, max_lambda, arm_presets,
+/// joint_weightings: [[name, label]] }`.
 #[wasm_bindgen]
 pub fn limits() -> Result<JsValue, JsError> {
     #[derive(Serialize)]
@@ -242,6 +245,7 @@ pub fn limits() -> Result<JsValue, JsError> {
         drift_gain: f64,
         max_lambda: f64,
         arm_presets: &'static [crate::arm::Preset],
+        joint_weightings: Vec<[&'static str; 2]>,
     }
     to_js(&Limits {
         min_links: crate::session::MIN_LINKS,
@@ -255,6 +259,10 @@ pub fn limits() -> Result<JsValue, JsError> {
         drift_gain: crate::session::DRIFT_GAIN,
         max_lambda: crate::planner::methods::LAMBDA.bounds.1,
         arm_presets: &crate::arm::PRESETS,
+        joint_weightings: crate::scene::JointWeighting::ALL
+            .iter()
+            .map(|w| [w.name(), w.label()])
+            .collect(),
     })
 }
 
@@ -389,6 +397,8 @@ pub fn atlas_classes() -> Result<JsValue, JsError> {
         label: &'static str,
         colour: &'static str,
         swatch: String,
+        /// Only an arm with joint limits has it (the class `limit`).
+        limits: bool,
     }
     let all: Vec<Entry> = crate::atlas::Class::ALL
         .iter()
@@ -397,6 +407,7 @@ pub fn atlas_classes() -> Result<JsValue, JsError> {
             label: c.label(),
             colour: c.colour(),
             swatch: style::rgba(c.colour(), style::LAYER_ALPHA),
+            limits: *c == crate::atlas::Class::Limit,
         })
         .collect();
     to_js(&all)

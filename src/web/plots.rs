@@ -1,5 +1,6 @@
 //! The time-series plots under the stage: distance to the obstacle (with
-//! its radius), tracking error and joint angles, each in a small panel.
+//! its radius), tracking error and joint angles (shaded beyond each joint's
+//! limits, where the arm has them), each in a small panel.
 
 use std::f64::consts::PI;
 
@@ -99,10 +100,24 @@ pub fn draw(s: &Session, surface: &Surface) {
     if !(lo.is_finite() && hi.is_finite()) {
         (lo, hi) = (-PI, PI);
     }
+    // The joints' limits, in view, each shaded beyond in its joint's colour.
+    let limits = s.arm().joint_limits().map_or(&[][..], |l| l.ranges());
+    for r in limits {
+        lo = lo.min(r[0]);
+        hi = hi.max(r[1]);
+    }
     let pad = ((hi - lo) * 0.1).max(0.1);
     let frame = Frame::new(at(2.0), w, h, (t0, t1), (lo - pad, hi + pad));
     frame.axes(ctx, "joint angles (rad)");
     let joints = history.front().map_or(0, |p| p.theta.len());
+    for (i, r) in limits.iter().enumerate() {
+        ctx.set_fill_style_str(&rgba(SERIES[i % SERIES.len()], 0.12));
+        let (_, y_hi) = frame.px(t0, r[1]);
+        let (_, y_lo) = frame.px(t0, r[0]);
+        let width = frame.right - frame.left;
+        ctx.fill_rect(frame.left, frame.top, width, y_hi - frame.top);
+        ctx.fill_rect(frame.left, y_lo, width, frame.bottom - y_lo);
+    }
     for i in 0..joints {
         let colour = SERIES[i % SERIES.len()];
         frame.key(ctx, i, joints, &format!("θ{}", subscript(i + 1)), colour);

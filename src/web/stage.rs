@@ -15,7 +15,7 @@ use crate::session::{Handle, Session};
 /// Draws the session on the stage, over an atlas layer if one is shown;
 /// returns which entries of the legend it drew (a bit each, in the
 /// legend's order), so that the page's legend lists only those.
-pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) -> u32 {
+pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>, shown: u32) -> u32 {
     let mut drawn = bit::ARM | bit::PATH | bit::REFERENCE | bit::TARGET;
     let ctx = &surface.ctx;
     let view = surface.view();
@@ -164,7 +164,12 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) -> u32 {
     if let Some(pts) = s.display_joints(false) {
         if let Some(limits) = arm.joint_limits() {
             drawn |= bit::LIMITS;
-            joint_ranges(ctx, view, &pts, limits.ranges(), arm.links());
+            let theta = planner.theta().as_slice();
+            joint_ranges(ctx, view, &pts, limits.ranges(), arm.links(), theta);
+        }
+        // The lab's ellipses at the hand (the legend's toggles).
+        if let Some(hand) = pts.last() {
+            drawn |= super::lab::ellipses(ctx, view, *hand, planner.pose().jjt(), shown);
         }
         ctx.set_stroke_style_str(ARM);
         ctx.set_line_width(7.0);
@@ -247,13 +252,15 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) -> u32 {
 /// at `P(k-1)` may turn link `k` to the absolute angles `phi_(k-1) + lo ..
 /// phi_(k-1) + hi` (`phi_0 = 0`, the post; angles from the vertical towards
 /// `+X1`, which is clockwise on the canvas, so a canvas angle is `phi -
-/// pi/2`). The radius is a quarter of the link, kept between 10 and 26 px.
+/// pi/2`). The radius is a quarter of the link, kept between 10 and 26 px;
+/// a dot on the arc marks the joint's angle `theta_k` now (red past a limit).
 fn joint_ranges(
     ctx: &CanvasRenderingContext2d,
     view: View,
     pts: &[[f64; 2]],
     ranges: &[[f64; 2]],
     links: &[f64],
+    theta: &[f64],
 ) {
     ctx.set_stroke_style_str(LIMIT);
     ctx.set_line_width(1.5);
@@ -276,7 +283,14 @@ fn joint_ranges(
             ctx.line_to(x + r * cb, y + r * sb);
         }
         ctx.stroke();
-        phi = (q[0] - p[0]).atan2(q[1] - p[1]);
+        let angle = (q[0] - p[0]).atan2(q[1] - p[1]);
+        // The joint's angle now: a dot on its arc, red past a limit.
+        let now = theta.get(i).copied().unwrap_or(lo);
+        let (sn, cn) = sin_cos(angle - FRAC_PI_2);
+        disc(ctx, x + r * cn, y + r * sn, 2.5);
+        ctx.set_fill_style_str(if now < lo || now > hi { DANGER } else { LIMIT });
+        ctx.fill();
+        phi = angle;
     }
 }
 

@@ -23,6 +23,15 @@ pub const GROUND: &str = "#dfe4ea";
 pub const DAMPER: &str = "#17becf";
 /// The joints' position limits (their ranges drawn at the joints).
 pub const LIMIT: &str = "#8e6bbf";
+/// The manipulability (velocity) ellipse and the force ellipse at the hand.
+pub const VELOCITY: &str = "#2e7d32";
+pub const FORCE: &str = "#6d4c41";
+/// The drawn scale of the velocity ellipse (its half-lengths `sigma_i` are
+/// m per rad/s), of the force ellipse (`1 / sigma_i`), and the force
+/// ellipse's largest drawn half-length (m): the legend says them.
+pub const VELOCITY_SCALE: f64 = 0.25;
+pub const FORCE_SCALE: f64 = 0.1;
+pub const MAX_FORCE: f64 = 0.6;
 pub const PAPER: &str = "#ffffff";
 pub const FONT: &str = "system-ui, -apple-system, 'Segoe UI', Roboto, sans-serif";
 
@@ -38,7 +47,7 @@ pub const INFLUENCE_ALPHA: f64 = 0.6;
 pub const LAYER_ALPHA: f64 = 0.42;
 
 /// Every named colour, for the page's CSS custom properties.
-pub const PALETTE: [(&str, &str); 14] = [
+pub const PALETTE: [(&str, &str); 16] = [
     ("ink", INK),
     ("muted", MUTED),
     ("grid", GRID),
@@ -53,6 +62,8 @@ pub const PALETTE: [(&str, &str); 14] = [
     ("ground", GROUND),
     ("damper", DAMPER),
     ("limit", LIMIT),
+    ("velocity", VELOCITY),
+    ("force", FORCE),
 ];
 
 /// `#rrggbb` with an alpha, as a CSS colour.
@@ -78,11 +89,14 @@ pub struct Entry {
     /// How the swatch looks: `thick`, `line`, `thin`, `dashed`, `disc`,
     /// `region`, `dot`, `target` or `square`.
     pub kind: &'static str,
+    /// Whether the page offers a switch for it (`Demo.setShown`): always
+    /// listed, drawn only while on.
+    pub toggle: bool,
 }
 
 /// The legend's entries: key, label, colour, alpha, kind. Their order is
 /// that of the bits of [`super::stage::draw`]'s mask of what it drew.
-const LEGEND: [(&str, &str, &str, f64, &str); 13] = [
+const LEGEND: [(&str, &str, &str, f64, &str); 15] = [
     ("arm", "arm", ARM, 1.0, "thick"),
     ("strobe", "", ARM, STROBE_ALPHA, "thin"),
     (
@@ -139,14 +153,36 @@ const LEGEND: [(&str, &str, &str, f64, &str); 13] = [
     ),
     (
         "limits",
-        "each joint's range (its position limits)",
+        "each joint's range (its position limits), a dot at its angle",
         LIMIT,
+        1.0,
+        "line",
+    ),
+    (
+        "ellipse",
+        "manipulability ellipse {Jθ̇ : |θ̇| ≤ 1} at 1/4 scale (half-axes σ₁, σ₂)",
+        VELOCITY,
+        1.0,
+        "line",
+    ),
+    (
+        "force",
+        "force ellipse (half-axes 1/σᵢ) at 1/10 scale, at most 0.6 m",
+        FORCE,
         1.0,
         "line",
     ),
 ];
 
-/// The bit of each legend entry in [`super::stage::draw`]'s mask.
+/// The entries the page may switch ([`Entry::toggle`]).
+pub const TOGGLES: u32 = bit::ELLIPSE | bit::FORCE;
+
+/// The legend entry whose key is `key`, if the page may switch it: its bit.
+pub fn toggle_bit(key: &str) -> Option<u32> {
+    let i = LEGEND.iter().position(|e| e.0 == key)?;
+    Some(1u32 << i).filter(|b| TOGGLES & b != 0)
+}
+
 pub mod bit {
     pub const ARM: u32 = 1;
     pub const STROBE: u32 = 1 << 1;
@@ -161,6 +197,8 @@ pub mod bit {
     pub const FLOOR: u32 = 1 << 10;
     pub const ATLAS: u32 = 1 << 11;
     pub const LIMITS: u32 = 1 << 12;
+    pub const ELLIPSE: u32 = 1 << 13;
+    pub const FORCE: u32 = 1 << 14;
 }
 
 /// The legend of the stage, in the order of the bits of
@@ -169,7 +207,8 @@ pub mod bit {
 pub fn legend() -> Vec<Entry> {
     LEGEND
         .iter()
-        .map(|&(key, label, colour, alpha, kind)| Entry {
+        .enumerate()
+        .map(|(i, &(key, label, colour, alpha, kind))| Entry {
             key,
             label: if label.is_empty() {
                 format!("every {STROBE_EVERY}th pose")
@@ -183,6 +222,7 @@ pub fn legend() -> Vec<Entry> {
                 rgba(colour, alpha)
             },
             kind,
+            toggle: TOGGLES & (1 << i) != 0,
         })
         .collect()
 }

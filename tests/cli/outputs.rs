@@ -49,6 +49,31 @@ fn figure_writes_an_svg_and_all_writes_every_task_and_method() {
 }
 
 #[test]
+fn figure_ellipse_draws_the_manipulability_ellipse_at_the_final_pose() {
+    let plain = scratch("plain.svg");
+    ok(&["figure", "--task", "1", "--out", plain.to_str().unwrap()]);
+    let with = scratch("ellipse.svg");
+    ok(&[
+        "figure",
+        "--task",
+        "1",
+        "--ellipse",
+        "--out",
+        with.to_str().unwrap(),
+    ]);
+    let (plain, with) = (
+        std::fs::read_to_string(&plain).unwrap(),
+        std::fs::read_to_string(&with).unwrap(),
+    );
+    assert!(!plain.contains("manipulability ellipse"), "only when asked");
+    assert!(with.contains("manipulability ellipse at 1/4 scale"));
+    assert!(
+        with.contains("#2E7D32") || with.contains("#2e7d32"),
+        "drawn"
+    );
+}
+
+#[test]
 fn eval_reports_accuracy_and_all_five_methods_on_both_tasks() {
     let report = json(&["eval", "--samples", "100", "--json"]);
     let outcomes = report["outcomes"].as_array().unwrap();

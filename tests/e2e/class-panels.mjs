@@ -18,7 +18,8 @@ export function classPanelTests(h) {
       await page.click('#task1');
       await page.evaluate(() => window.demo.runUntil(100));
       await frame();
-      const expected = ['arm', 'strobe', 'path', 'trail', 'reference', 'target', 'obstacle'];
+      // The ellipses' entries (legend toggles) are always listed.
+      const expected = ['arm', 'strobe', 'path', 'trail', 'reference', 'target', 'obstacle', 'ellipse', 'force'];
       if (usesNetworks(m)) expected.push('ghost');
       if (m.networks.v) expected.push('region');
       if (m.params.includes('influence')) expected.push('dampers');

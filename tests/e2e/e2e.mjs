@@ -14,7 +14,7 @@
 // The tests live in one file per part of the page, registered in this order:
 // stage.mjs, methods.mjs, page.mjs, atlas.mjs, module.mjs, playground.mjs,
 // hostile.mjs, reach.mjs, runs.mjs, self-motion.mjs, then the page for a class (class.mjs)
-// and the arm's joint limits (limits.mjs); harness.mjs
+// and the arm's joint limits (limits.mjs) and the lab's page (lab.mjs); harness.mjs
 // holds the browser and the helpers they share.
 
 import { browser, tests, test, open, clean, state, shots, mouseDrag, touchDrag, selectMethod, methodsOf, usesNetworks, BASE, near, pause, countFrames } from './harness.mjs';
@@ -30,9 +30,11 @@ import './runs.mjs';
 import './self-motion.mjs';
 import { classTests } from './class.mjs';
 import { limitsTests } from './limits.mjs';
+import { labTests } from './lab.mjs';
 
 classTests({ test, open, clean, state, shots, mouseDrag, touchDrag, selectMethod, methodsOf, usesNetworks, browser, BASE, near, pause, countFrames });
 limitsTests({ test, open, clean, state, shots });
+labTests({ test, open, clean, state, shots });
 
 // E2E_ONLY=text runs only the tests whose name contains it (for development).
 const only = process.env.E2E_ONLY;

@@ -52,6 +52,10 @@ const HOSTILE_URLS = [
   ['method=%3Cscript%3Ealert(1)%3C%2Fscript%3E', [/method: unknown method '<script>/]],
   ['method=case9&lambda=abc&target=x,y&arm=zzz', [/method: unknown method/, /lambda: expected a number/, /target: expected two numbers/, /arm: arm 'zzz'/]],
   ['task=%00%FF&%E2%80=1&lambda=%F0%9F%92%A5', [/task:/, /lambda: expected a number/]],
+  // The lab's switches (issue 25).
+  ['weighting=qp', [/weighting: unknown joint weighting 'qp': use none or wln/]],
+  ['weighting=%3Cb%3Ewln&floor=yes', [/weighting: unknown joint weighting '<b>wln'/, /floor: expected 0 or 1, got 'yes'/]],
+  [`weighting=${'w'.repeat(5000)}`, [/weighting: unknown joint weighting 'w{40}…'/]],
 ];
 
 test('hostile URL parameters: each is named in one readable message and the page runs from its defaults', async () => {

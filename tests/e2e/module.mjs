@@ -151,7 +151,7 @@ test('names and colours come from the module: the method menu, and legend swatch
       cssArm: getComputedStyle(document.documentElement).getPropertyValue('--arm').trim(),
     };
   });
-  assert.deepEqual(probe.keys, ['arm', 'strobe', 'ghost', 'path', 'trail', 'reference', 'target', 'obstacle', 'region', 'dampers', 'floor', 'atlas', 'limits']);
+  assert.deepEqual(probe.keys, ['arm', 'strobe', 'ghost', 'path', 'trail', 'reference', 'target', 'obstacle', 'region', 'dampers', 'floor', 'atlas', 'limits', 'ellipse', 'force']);
   const rgba = (css) => {
     const m = css.match(/rgba?\(([^)]+)\)/);
     const v = m[1].split(',').map(Number);

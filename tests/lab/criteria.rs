@@ -8,6 +8,8 @@ use redundant_ik::nalgebra::{DVector, Vector2};
 use redundant_ik::nn::Rng;
 use redundant_ik::planner::methods::{JOINT_RANGE, JOINT_RANGE_GAIN, MANIPULABILITY};
 use redundant_ik::{Method, Planner, Pose, Scene};
+#[cfg(target_family = "wasm")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
 
 #[test]
 fn the_range_criterion_is_one_per_joint_at_the_middles_and_grows_toward_either_limit() {

@@ -8,6 +8,8 @@ use redundant_ik::clearance::{Against, Pair, Pairs};
 use redundant_ik::nn::Rng;
 use redundant_ik::planner::methods::{DISTANCE, QP};
 use redundant_ik::{Arm, Method, Planner, Pose, Scene};
+#[cfg(target_family = "wasm")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
 
 #[test]
 fn the_floor_pair_is_the_links_lower_end_and_the_post_pair_the_closest_points() {

@@ -6,6 +6,8 @@
 use redundant_ik::arm::{Preset, PRESETS};
 use redundant_ik::planner::methods::{DISTANCE, QP};
 use redundant_ik::{Method, Planner, Pose, Scene};
+#[cfg(target_family = "wasm")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
 
 fn iiwa() -> &'static Preset {
     PRESETS.iter().find(|p| p.key == "iiwa-planar").unwrap()

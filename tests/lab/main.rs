@@ -4,8 +4,6 @@
 //! `jointrange`) and their gradients.
 
 #[cfg(target_family = "wasm")]
-use wasm_bindgen_test::wasm_bindgen_test as test;
-#[cfg(target_family = "wasm")]
 wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 
 mod criteria;

@@ -5,6 +5,8 @@
 //! joint past its limit is an outcome.
 
 use std::sync::Arc;
+#[cfg(target_family = "wasm")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
 
 use super::{limits_around, random_arm, random_theta, PAPER_LIMITS};
 use redundant_ik::ik::{self, Weights};

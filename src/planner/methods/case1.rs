@@ -19,6 +19,7 @@ static ENTRY: Entry = Entry {
             v: false,
         },
         avoids: true,
+        weighting: true,
         colour: "#1f77b4",
         params: &[&LAMBDA, &DELTA, &SIGN_SMOOTHING, &REFINE],
     },

@@ -19,6 +19,7 @@ static ENTRY: Entry = Entry {
             v: true,
         },
         avoids: true,
+        weighting: true,
         colour: "#2ca02c",
         params: &[&LAMBDA, &DELTA],
     },

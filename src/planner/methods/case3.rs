@@ -19,6 +19,7 @@ static ENTRY: Entry = Entry {
             v: true,
         },
         avoids: true,
+        weighting: true,
         colour: "#ff7f0e",
         params: &[&LAMBDA, &DELTA, &REFINE],
     },

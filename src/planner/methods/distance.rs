@@ -52,6 +52,7 @@ static ENTRY: Entry = Entry {
         paper_figures: None,
         networks: Needs::NOTHING,
         avoids: true,
+        weighting: true,
         colour: "#9467bd",
         params: &[&DISTANCE_GAIN, &INFLUENCE, &STOP_DISTANCE, &DELTA],
     },

@@ -49,6 +49,7 @@ static ENTRY: Entry = Entry {
         paper_figures: None,
         networks: Needs::NOTHING,
         avoids: false,
+        weighting: true,
         colour: "#bcbd22",
         params: &[&JOINT_RANGE_GAIN, &DELTA],
     },

@@ -42,6 +42,7 @@ static ENTRY: Entry = Entry {
         paper_figures: None,
         networks: Needs::NOTHING,
         avoids: false,
+        weighting: true,
         colour: "#e377c2",
         params: &[&MANIPULABILITY_GAIN, &DELTA],
     },

@@ -142,6 +142,10 @@ pub struct MethodInfo {
     pub networks: Needs,
     /// Whether it avoids obstacles at all.
     pub avoids: bool,
+    /// Whether the scene's joint weighting reaches it (the paper's `W` of
+    /// eq. 7, [`crate::scene::JointWeighting`]): the methods built on
+    /// eq. (5), whose rates `weighting.rs` weights.
+    pub weighting: bool,
     /// Its colour in comparison figures and tables, `#rrggbb`.
     pub colour: &'static str,
     /// The scene's parameters it reads, each declared (`static`) in the

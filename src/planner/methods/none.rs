@@ -16,6 +16,7 @@ static ENTRY: Entry = Entry {
         paper_figures: Some([2, 7]),
         networks: Needs::NOTHING,
         avoids: false,
+        weighting: true,
         colour: "#d62728",
         params: &[&DELTA],
     },

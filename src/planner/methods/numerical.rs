@@ -16,6 +16,7 @@ static ENTRY: Entry = Entry {
         paper_figures: Some([3, 8]),
         networks: Needs::NOTHING,
         avoids: true,
+        weighting: true,
         colour: "#000000",
         params: &[&LAMBDA, &DELTA, &SIGN_SMOOTHING],
     },

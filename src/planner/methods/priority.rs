@@ -62,6 +62,7 @@ static ENTRY: Entry = Entry {
         paper_figures: None,
         networks: Needs::NOTHING,
         avoids: true,
+        weighting: false,
         colour: "#8c564b",
         params: &[&INFLUENCE, &STOP_DISTANCE, &ESCAPE_SPEED, &DELTA],
     },

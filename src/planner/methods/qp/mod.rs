@@ -79,6 +79,7 @@ static ENTRY: Entry = Entry {
         paper_figures: None,
         networks: Needs::NOTHING,
         avoids: true,
+        weighting: false,
         colour: "#17becf",
         // The program's own and its constraints' (tests/constraints.rs
         // checks that every constraint's are here).

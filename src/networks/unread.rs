@@ -1,0 +1,48 @@
+//! What the page's module (feature `page` without `worker`, `cli` or `eval`) does not
+//! read of a weights file: the trainer's options and reports. It uses a
+//! file's networks, input ranges and sampling (the obstacle region), never
+//! how they were trained, and keeps the file's text for the workers, which
+//! read all of it. Skipped as any JSON value (`IgnoredAny`), they take
+//! placeholders: their readers were about 9 KB of the module (`twiggy`).
+
+use serde::de::{Deserialize, Deserializer, IgnoredAny};
+
+use crate::nn::adam::AdamOptions;
+use crate::nn::lm::{LmOptions, StopReason, TrainReport};
+
+/// What stands in for a value the page does not read.
+pub trait Placeholder {
+    fn placeholder() -> Self;
+}
+
+impl Placeholder for LmOptions {
+    fn placeholder() -> Self {
+        LmOptions::default()
+    }
+}
+
+impl Placeholder for Option<AdamOptions> {
+    fn placeholder() -> Self {
+        None
+    }
+}
+
+impl Placeholder for TrainReport {
+    fn placeholder() -> Self {
+        TrainReport {
+            epochs: 0,
+            best_epoch: 0,
+            stop: StopReason::MaxEpochs,
+            train_mse: 0.0,
+            val_mse: 0.0,
+            test_mse: 0.0,
+            split: [0; 3],
+        }
+    }
+}
+
+/// Any JSON value, skipped.
+pub fn skip<'de, D: Deserializer<'de>, T: Placeholder>(d: D) -> Result<T, D::Error> {
+    IgnoredAny::deserialize(d)?;
+    Ok(T::placeholder())
+}
