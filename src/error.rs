@@ -434,9 +434,22 @@ pub(crate) fn non_negative(what: &str, value: f64) -> Result<f64> {
 /// Names for a message: `"a, b or c"`.
 pub(crate) fn choices(names: &[&str]) -> String {
     match names.split_last() {
-        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
-        _ => names.join(""),
+        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", join(rest, ", ")),
+        _ => join(names, ""),
     }
+}
+
+/// `names.join(separator)` by a loop: the standard library's generic join
+/// costs the page's module 0.3 KB gzipped.
+pub(crate) fn join(names: &[&str], separator: &str) -> String {
+    let mut out = String::new();
+    for (i, name) in names.iter().enumerate() {
+        if i > 0 {
+            out.push_str(separator);
+        }
+        out.push_str(name);
+    }
+    out
 }
 
 /// The one of `all` whose `name` is `text`, or [`Error::UnknownName`] of

@@ -1,7 +1,9 @@
 //! The dense quadratic program solver of the `qp` method (`src/qp.rs`,
 //! Goldfarb-Idnani) against clarabel, an interior-point solver, on random
 //! feasible problems of the sizes the method poses: up to 8 variables and 48
-//! constraints. Native only (clarabel is a native dev-dependency).
+//! constraints, and on the method's own programs near joint limits (the
+//! joint-limit dampers and the arm's rate limits among the rows). Native
+//! only (clarabel is a native dev-dependency).
 #![cfg(not(target_family = "wasm"))]
 
 use clarabel::algebra::CscMatrix;
@@ -327,4 +329,88 @@ fn without_binding_constraints_the_solution_is_the_unconstrained_minimum() {
     let det = 1.75;
     assert!((x[0] - (g[0] * h[3] - h[1] * g[1]) / det).abs() < 1e-15);
     assert!((x[1] - (h[0] * g[1] - h[2] * g[0]) / det).abs() < 1e-15);
+}
+
+#[test]
+fn the_qp_methods_own_programs_near_joint_limits_agree_with_clarabel() {
+    use redundant_ik::nalgebra::{DVector, Vector2};
+    use redundant_ik::planner::methods::constraints::{self, Rows};
+    use redundant_ik::planner::methods::{Context, QP, SLACK_WEIGHT};
+    use redundant_ik::{Obstacle, Planner, Pose, Scene};
+    let mut rng = Rng::new(77);
+    let mut scene = Scene::task1();
+    scene.obstacles = vec![Obstacle::new(0.8, 0.9, 0.05), Obstacle::new(0.3, 1.3, 0.05)];
+    scene.arm = scene
+        .arm
+        .clone()
+        .with_limits(
+            Some("-1.2:1.2,-0.3:2.0,-2.0:0.4".parse().unwrap()),
+            Some("1.0,0.8,1.2".parse().unwrap()),
+        )
+        .unwrap();
+    let planner = Planner::new(scene.clone(), QP, None).unwrap();
+    let w = scene.param(&SLACK_WEIGHT);
+    let (mut compared, mut limit_rows) = (0, 0);
+    for _ in 0..2000 {
+        // Poses within the limits, many within the dampers' 0.9 rad.
+        let theta: Vec<f64> = scene
+            .arm
+            .joint_limits()
+            .unwrap()
+            .ranges()
+            .iter()
+            .map(|&[lo, hi]| rng.range(lo + 0.01, hi - 0.01))
+            .collect();
+        let Ok(pose) = Pose::new(&scene.arm, &theta) else {
+            continue;
+        };
+        let xdot = [rng.range(-0.2, 0.2), rng.range(-0.2, 0.2)];
+        let cx = Context {
+            scene: &scene,
+            networks: None,
+        };
+        let mut rows = Rows::default();
+        rows.clear(3);
+        for entry in constraints::ALL {
+            (entry.build)(3).rows(&cx, &pose, &mut rows).unwrap();
+        }
+        let th = DVector::from_vec(theta.clone());
+        let v = planner.null_space(&th).unwrap();
+        let problem = Problem {
+            n: 3,
+            j: pose.jacobian().to_vec(),
+            v: v.as_slice().to_vec(),
+            xdot,
+            w,
+            a: rows.g().iter().map(|g| -g).collect(),
+            b: rows.h().iter().map(|h| -h).collect(),
+        };
+        // Feasible at theta_dot = 0 (no row asks a joint or link to move
+        // away): the program the method solves without relaxing.
+        if rows.h().iter().any(|&h| h < 0.0) {
+            continue;
+        }
+        let Some(reference) = problem.clarabel() else {
+            continue;
+        };
+        let rates = planner.theta_dot(&th, &Vector2::from(xdot)).unwrap();
+        let err = rates
+            .iter()
+            .zip(&reference)
+            .map(|(p, q)| (p - q).abs())
+            .fold(0.0, f64::max);
+        assert!(
+            err < 1e-7,
+            "{theta:?}: {rates} against clarabel's {reference:?}"
+        );
+        compared += 1;
+        // Rows of the joint-limit dampers: a single +-1 entry bounded below
+        // the rate limit.
+        limit_rows += rows
+            .iter()
+            .filter(|(g, h)| g.iter().filter(|x| **x != 0.0).count() == 1 && *h < 0.8)
+            .count();
+    }
+    assert!(compared > 1000, "{compared}");
+    assert!(limit_rows > 500, "only {limit_rows} joint-limit rows");
 }

@@ -94,7 +94,7 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
 fn table(r: &Report, layers: [String; 2]) -> String {
     let mut s = format!(
         "median of timed batches after a warm-up; Task 1, start pose; network kernels: {}\n\n\
-         method      theta_dot      RK4 step   allocs/step\n",
+         method              theta_dot      RK4 step   allocs/step\n",
         r.kernels
     );
     let allocs = |m: Method| {
@@ -105,7 +105,7 @@ fn table(r: &Report, layers: [String; 2]) -> String {
     };
     for &(m, theta_dot) in &r.theta_dot_ns.0 {
         s.push_str(&format!(
-            "{:<10} {:>10.1} ns {:>10.1} ns {:>12}\n",
+            "{:<14} {:>14.1} ns {:>10.1} ns {:>12}\n",
             m.name(),
             theta_dot,
             r.step_ns.get(m).unwrap_or(f64::NAN),

@@ -55,7 +55,7 @@ pub struct SceneArgs {
     #[arg(long, default_value_t = 1)]
     pub task: u32,
     /// The arm, POST:L1,L2,... in metres, or a preset's name: paper (the
-    /// default, 0.5:0.6,0.85,0.6), four or five.
+    /// default, 0.5:0.6,0.85,0.6), four, five or iiwa-planar (a KUKA iiwa14 in its plane, with its limits and its own task).
     #[arg(long, value_parser = parse_arm, allow_hyphen_values = true)]
     pub arm: Option<Arm>,
     /// Position limits of the arm's joints, LO:HI,LO:HI,... in radians,
@@ -207,6 +207,7 @@ impl SceneArgs {
                 s.theta0 = redundant_ik::session::start_pose(arm);
             }
             s.arm = arm.clone();
+            s.use_preset_task();
         }
         if self.joint_limits.is_some() || self.rate_limits.is_some() {
             let arm = s.arm.clone();

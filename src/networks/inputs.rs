@@ -36,7 +36,7 @@ fn encode(encoding: Encoding, angles: &[f64], buf: &mut [f64]) -> usize {
         }
         Encoding::Angles => {
             for (pair, a) in buf.chunks_exact_mut(2).zip(angles) {
-                let (s, c) = a.sin_cos();
+                let (s, c) = crate::kinematics::sin_cos(*a);
                 pair[0] = s;
                 pair[1] = c;
             }

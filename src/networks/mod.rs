@@ -140,7 +140,7 @@ impl Networks {
     /// allocation-free. `theta` is checked (length, finiteness).
     pub fn phi_into(&self, theta: &[f64], out: &mut [f64]) -> Result<()> {
         self.arm.check_angles(theta)?;
-        let (s, c) = theta[0].sin_cos();
+        let (s, c) = crate::kinematics::sin_cos(theta[0]);
         self.phi_raw(theta, s, c, out)
     }
 
@@ -190,7 +190,7 @@ impl Networks {
                 what: "obstacle point".into(),
             });
         }
-        let (s, c) = theta[0].sin_cos();
+        let (s, c) = crate::kinematics::sin_cos(theta[0]);
         self.area_gradient_raw(theta, s, c, o, out)
     }
 
@@ -236,7 +236,7 @@ impl Networks {
         if self.arm.check_angles(theta).is_err() || !(o[0].is_finite() && o[1].is_finite()) {
             return false;
         }
-        let (s, c) = theta[0].sin_cos();
+        let (s, c) = crate::kinematics::sin_cos(theta[0]);
         self.v_in_range_raw(theta, s, c, o)
     }
 

@@ -34,7 +34,7 @@ pub fn by_name(name: &str) -> Result<&'static Param> {
         .ok_or_else(|| Error::UnknownName {
             kind: "parameter",
             name: crate::error::clip(name),
-            choices: all().iter().map(|p| p.name).collect::<Vec<_>>().join(", "),
+            choices: crate::error::join(&all().iter().map(|p| p.name).collect::<Vec<_>>(), ", "),
         })
 }
 

@@ -155,6 +155,20 @@ impl Scene {
         self.floor.then(|| self.arm.post())
     }
 
+    /// Takes the start pose, target and obstacle of the arm's own task
+    /// when the arm is a preset that has one ([`crate::arm::PresetTask`]);
+    /// whether it did.
+    pub fn use_preset_task(&mut self) -> bool {
+        let Some(task) = crate::arm::Preset::of(&self.arm).and_then(|p| p.task) else {
+            return false;
+        };
+        let [x, y, r] = task.obstacle;
+        self.theta0 = task.theta0.to_vec();
+        self.target = task.target;
+        self.obstacles = vec![Obstacle::new(x, y, r)];
+        true
+    }
+
     /// Number of RK4 steps, `tf / dt`.
     pub fn steps(&self) -> usize {
         (self.tf / self.dt).round() as usize

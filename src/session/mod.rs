@@ -94,12 +94,16 @@ fn no_clock() -> f64 {
     0.0
 }
 
-/// A start pose for `arm`: the paper's Task 1 pose for its first three
+/// A start pose for `arm`: a preset's own task's if it has one; else the
+/// paper's Task 1 pose for its first three
 /// joints (`pi/12, pi/2, -pi/6`), then each further joint bent `-pi/6`,
 /// which keeps a 2- to 6-link arm off the ground, bent (not singular) and
 /// inside its reach.
 pub fn start_pose(arm: &Arm) -> Vec<f64> {
     use std::f64::consts::PI;
+    if let Some(task) = crate::arm::Preset::of(arm).and_then(|p| p.task) {
+        return task.theta0.to_vec();
+    }
     let paper = [PI / 12.0, PI / 2.0, -PI / 6.0];
     (0..arm.dof())
         .map(|i| paper.get(i).copied().unwrap_or(-PI / 6.0))
@@ -469,16 +473,18 @@ impl Session {
         scene.arm = arm.clone();
         let _ = scene.params.set(&LAMBDA, old.param(&LAMBDA));
         keep_method_settings(&mut scene, &old);
-        scene.target = old.target;
-        if !arm.can_reach(&scene.target_vector()) {
-            scene.target = PAPER_TARGET;
+        if !scene.use_preset_task() {
+            scene.target = old.target;
+            if !arm.can_reach(&scene.target_vector()) {
+                scene.target = PAPER_TARGET;
+            }
+            scene.obstacles = old
+                .obstacles
+                .iter()
+                .filter(|o| o.validate(&arm).is_ok())
+                .copied()
+                .collect();
         }
-        scene.obstacles = old
-            .obstacles
-            .iter()
-            .filter(|o| o.validate(&arm).is_ok())
-            .copied()
-            .collect();
         let nets = self
             .networks
             .as_ref()

@@ -402,11 +402,17 @@ pub fn atlas_classes() -> Result<JsValue, JsError> {
     to_js(&all)
 }
 
-/// A serialisable value as a plain JavaScript object (`None` as `null`).
+/// A serialisable value as a plain JavaScript object (`None` as `null`):
+/// its JSON text, parsed by the browser. serde-wasm-bindgen built the same
+/// objects but cost the page's module 2.4 KB gzipped (its serialiser, the
+/// `Serialize` code of every type for it, a string cache); serde_json is in
+/// the module anyway. JSON has no NaN or infinity (they would arrive as
+/// `null`): the page's values are finite (the planner refuses a step to a
+/// non-finite pose; the checks refuse non-finite input). The workers'
+/// values, whose atlas cells may hold NaN, use [`worker::to_js`].
 fn to_js<T: Serialize>(value: &T) -> Result<JsValue, JsError> {
-    value
-        .serialize(&serde_wasm_bindgen::Serializer::json_compatible())
-        .map_err(|e| JsError::new(&e.to_string()))
+    let text = serde_json::to_string(value).map_err(|e| JsError::new(&e.to_string()))?;
+    js_sys::JSON::parse(&text).map_err(|_| JsError::new("JSON.parse refused the module's JSON"))
 }
 
 fn js_err(e: Error) -> JsError {

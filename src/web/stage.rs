@@ -9,6 +9,7 @@ use super::layer::Layer;
 use super::plots::{fmt_tick, nice_step};
 use super::style::*;
 use super::surface::{dash, disc, polyline, text, Surface, View};
+use crate::kinematics::sin_cos;
 use crate::session::{Handle, Session};
 
 /// Draws the session on the stage, over an atlas layer if one is shown;
@@ -113,7 +114,10 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) -> u32 {
         ctx.set_global_alpha(1.0);
         ctx.set_line_width(2.0);
         for pair in pairs.as_slice() {
-            let r = scene.obstacles[pair.obstacle].radius;
+            let r = match pair.against {
+                crate::clearance::Against::Disc(k) => scene.obstacles[k].radius,
+                _ => 0.0,
+            };
             let edge = [
                 pair.centre[0] + r * pair.normal[0],
                 pair.centre[1] + r * pair.normal[1],
@@ -262,13 +266,14 @@ fn joint_ranges(
         let r = (0.25 * length * view.scale).clamp(10.0, 26.0);
         let (a, b) = (phi + lo - FRAC_PI_2, phi + hi - FRAC_PI_2);
         ctx.begin_path();
-        ctx.move_to(x + r * a.cos(), y + r * a.sin());
+        let ((sa, ca), (sb, cb)) = (sin_cos(a), sin_cos(b));
+        ctx.move_to(x + r * ca, y + r * sa);
         let _ = ctx.arc(x, y, r, a, b);
         if hi - lo < 2.0 * PI {
-            ctx.move_to(x + 0.6 * r * a.cos(), y + 0.6 * r * a.sin());
-            ctx.line_to(x + r * a.cos(), y + r * a.sin());
-            ctx.move_to(x + 0.6 * r * b.cos(), y + 0.6 * r * b.sin());
-            ctx.line_to(x + r * b.cos(), y + r * b.sin());
+            ctx.move_to(x + 0.6 * r * ca, y + 0.6 * r * sa);
+            ctx.line_to(x + r * ca, y + r * sa);
+            ctx.move_to(x + 0.6 * r * cb, y + 0.6 * r * sb);
+            ctx.line_to(x + r * cb, y + r * sb);
         }
         ctx.stroke();
         phi = (q[0] - p[0]).atan2(q[1] - p[1]);

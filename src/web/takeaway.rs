@@ -8,8 +8,8 @@
 use serde::Serialize;
 use wasm_bindgen::prelude::*;
 
-use super::worker::read_run;
-use super::{js_err, to_js};
+use super::js_err;
+use super::worker::{read_run, to_js};
 use crate::atlas::Atlas;
 use crate::export::{self, RunFile};
 use crate::figure;

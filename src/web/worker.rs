@@ -4,10 +4,10 @@
 //! benchmark, one figure per call. The page's own module carries none of
 //! them.
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use wasm_bindgen::prelude::*;
 
-use super::{js_err, now_ms, to_js};
+use super::{js_err, now_ms};
 use crate::atlas::{Grid, Job, Spec, DEFAULT_GRID};
 use crate::bench;
 use crate::error::{self, Error};
@@ -196,6 +196,15 @@ impl AtlasJob {
         let atlas = self.job.clone().finish().map_err(js_err)?;
         to_js(&atlas)
     }
+}
+
+/// A serialisable value as a plain JavaScript object (`None` as `null`),
+/// built by serde-wasm-bindgen, which keeps NaN and infinity (an atlas
+/// cell's distance or error may be either; JSON would make them `null`).
+pub(super) fn to_js<T: Serialize>(value: &T) -> Result<JsValue, JsError> {
+    value
+        .serialize(&serde_wasm_bindgen::Serializer::json_compatible())
+        .map_err(|e| JsError::new(&e.to_string()))
 }
 
 // ---- training ------------------------------------------------------------

@@ -10,6 +10,7 @@ wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 
 mod criteria;
 mod ground;
+mod iiwa;
 mod weighting;
 
 use redundant_ik::arm::JointLimits;
