@@ -7,7 +7,7 @@ use std::sync::Arc;
 use redundant_ik::atlas::{unavoidable, Class};
 use redundant_ik::networks::Networks;
 use redundant_ik::planner::{methods, Planner, Surrogate, Track};
-use redundant_ik::scene::{Path, Scene, SceneFile, MAX_POINTS};
+use redundant_ik::scene::{Path, Scene, SceneFile, DRAWN_SPACING, MAX_LAPS, MAX_POINTS};
 use redundant_ik::Obstacle;
 
 const CIRCLE: &str = "circle:1.2,0.8";
@@ -62,15 +62,18 @@ fn bad_paths_are_refused_with_a_message() {
         ("circle:1,2,0", "LAPS"),
         ("circle:1,2,-1", "LAPS"),
         ("circle:1,2,1.5", "LAPS"),
-        ("points:", "at least one point"),
-        ("points:;;", "at least one point"),
+        ("circle:1,2,1001", "from 1 to 1000"),
+        ("points:", "expected 1 to 64 points"),
+        ("points:;;", "expected 1 to 64 points"),
         ("points:1,2,3", "expected X,Y"),
         ("points:1,x", "not a finite number"),
-        (too_many.as_str(), "at most 64 points"),
+        (too_many.as_str(), "expected 1 to 64 points"),
     ] {
         let e = text.parse::<Path>().unwrap_err().to_string();
         assert!(e.contains(says), "{text:?}: {e}");
     }
+    // The messages' numbers are the limits'.
+    assert_eq!((MAX_POINTS, MAX_LAPS), (64, 1000));
     // The centre at the hand's start: radius 0.
     let mut s = Scene::task1();
     let start = s.start();
@@ -96,7 +99,7 @@ fn a_circle_closes_on_itself_at_constant_speed_through_the_start() {
             centre: [1.2, 0.8],
             laps,
         };
-        let track = Track::new(&path, start, [0.6, 0.2], 0.0, 10.0);
+        let track = Track::new(path.clone(), start, [0.6, 0.2], 0.0, 10.0);
         let r = dist(start, [1.2, 0.8]);
         assert!((r - 0.416).abs() < 1e-3, "radius {r}");
         assert_eq!(track.end(), start);
@@ -134,7 +137,7 @@ fn a_circle_closes_on_itself_at_constant_speed_through_the_start() {
 fn a_polyline_runs_from_the_hand_to_its_last_point_at_constant_speed() {
     let start = Scene::task1().start();
     let path: Path = "points:1.2,0.3;0.6,0.3;0.6,0.3;0.6,1.0".parse().unwrap();
-    let track = Track::new(&path, start, [0.6, 0.2], 0.0, 10.0);
+    let track = Track::new(path.clone(), start, [0.6, 0.2], 0.0, 10.0);
     assert_eq!(v2(track.reference(0.0)), start);
     assert_eq!(v2(track.reference(10.0)), [0.6, 1.0]);
     assert_eq!(track.end(), [0.6, 1.0]);
@@ -155,7 +158,7 @@ fn a_polyline_runs_from_the_hand_to_its_last_point_at_constant_speed() {
     // At a corner the side decides: before it the first segment's
     // direction, after it the second's (a square's corner at t = 1 s).
     let square: Path = "points:1,0;1,1".parse().unwrap();
-    let square = Track::new(&square, [0.0, 0.0], [0.0, 0.0], 0.0, 2.0);
+    let square = Track::new(square, [0.0, 0.0], [0.0, 0.0], 0.0, 2.0);
     assert_eq!(v2(square.velocity(0.95, 1.0, false)), [1.0, 0.0]);
     assert_eq!(v2(square.velocity(1.05, 1.0, true)), [0.0, 1.0]);
     assert_eq!(v2(square.velocity(2.05, 2.0, false)), [0.0, 0.0]);
@@ -250,4 +253,52 @@ fn path_blocked_tests_the_disc_against_the_whole_circle() {
     let corner = Obstacle::new(1.2, 0.3, 0.05);
     assert_eq!(unavoidable(&poly, &corner), Some(Class::PathBlocked));
     assert_eq!(unavoidable(&Scene::task1(), &corner), None);
+}
+
+#[test]
+fn a_drawn_stroke_is_thinned_to_points_5_cm_apart_ending_where_it_ended() {
+    // A stroke of 1 mm steps along x, 0.333 m long.
+    let stroke: Vec<[f64; 2]> = (0..=333).map(|k| [1.0 + k as f64 * 1e-3, 0.5]).collect();
+    let Path::Points(p) = Path::drawn(&stroke) else {
+        panic!("a polyline")
+    };
+    assert_eq!(p[0], stroke[0]);
+    assert_eq!(*p.last().unwrap(), *stroke.last().unwrap());
+    for w in p.windows(2).take(p.len() - 2) {
+        assert!(dist(w[0], w[1]) >= DRAWN_SPACING - 1e-12, "{w:?}");
+    }
+    assert_eq!(p.len(), 7, "{p:?}");
+    // A long scribble keeps at most MAX_POINTS, its end the stroke's.
+    let long: Vec<[f64; 2]> = (0..5000)
+        .map(|k| {
+            let a = k as f64 * 0.01;
+            [1.0 + 0.4 * a.cos(), 1.0 + 0.4 * a.sin()]
+        })
+        .collect();
+    let Path::Points(p) = Path::drawn(&long) else {
+        panic!("a polyline")
+    };
+    assert!(
+        p.len() <= MAX_POINTS && p.len() > MAX_POINTS / 2,
+        "{}",
+        p.len()
+    );
+    assert_eq!(*p.last().unwrap(), *long.last().unwrap());
+    // Nothing drawn: no points, which the scene refuses.
+    let mut s = Scene::task1();
+    s.path = Path::drawn(&[]);
+    assert!(s
+        .validate()
+        .unwrap_err()
+        .to_string()
+        .contains("1 to 64 points"));
+}
+
+#[test]
+fn a_hostile_stroke_ends_and_is_refused() {
+    let mut s = Scene::task1();
+    s.path = Path::drawn(&vec![[f64::INFINITY, 0.0]; 100]);
+    assert!(s.validate().is_err());
+    s.path = Path::drawn(&vec![[f64::NAN, 1.0]; 100]);
+    assert!(s.validate().is_err());
 }

@@ -84,10 +84,11 @@ impl Planner {
         let t_mid = t + 0.5 * h;
         // A line's Xdot is constant: taken once, at the step's midpoint,
         // for every stage (the paper's runs, to the last bit).
-        let line_xdot = match &self.track {
-            super::Track::Line(line) => Some(line.velocity_at(t_mid)),
-            _ => None,
-        };
+        let line_xdot = self
+            .track
+            .path
+            .is_line()
+            .then(|| self.track.line.velocity_at(t_mid));
         let Self {
             scene,
             networks,

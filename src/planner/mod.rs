@@ -36,7 +36,7 @@ use crate::kinematics::Pose;
 use crate::scene::Scene;
 
 pub use methods::{Group, Method, MethodInfo, Needs};
-pub use path::{Circle, Polyline, Track};
+pub use path::Track;
 pub use record::{Line, Sample, Summary, Trajectory};
 pub use surrogate::Surrogate;
 
@@ -127,7 +127,7 @@ impl Planner {
         let mut ws = Workspace::new(n, method);
         ws.pose.update(&scene.arm, theta.as_slice())?;
         let start = ws.pose.end_effector();
-        let track = Track::new(&scene.path, start, scene.target, 0.0, scene.tf);
+        let track = Track::new(scene.path.clone(), start, scene.target, 0.0, scene.tf);
         let auto_damping = needs_auto_damping(&scene, &track);
         if auto_damping {
             scene.damping = Some(DampingSchedule::default());
@@ -193,19 +193,11 @@ impl Planner {
         let _ = self.ws.pose.update(&self.scene.arm, self.theta.as_slice());
         self.step_index = 0;
         self.t = 0.0;
-        // A polyline from the scene's start is kept as it is (rebuilding it
-        // would allocate); every other track is rebuilt in place.
-        let kept = matches!(self.track, Track::Points(ref p) if p.t0 == 0.0)
-            && matches!(self.scene.path, crate::scene::Path::Points(_));
-        if !kept {
-            self.track = Track::new(
-                &self.scene.path,
-                self.ws.pose.end_effector(),
-                self.scene.target,
-                0.0,
-                self.scene.tf,
-            );
-        }
+        // The track's path is the scene's (a new target makes both the
+        // line): only its timing and start are renewed, allocating nothing.
+        let start = self.ws.pose.end_effector();
+        let end = self.scene.path.end(start, self.scene.target);
+        self.track.line = Line::new(start, end, 0.0, self.scene.tf);
         self.stats = Stats::new();
         self.refresh_sample(methods::Note::default());
         self.stats.record(&self.sample);
@@ -239,7 +231,7 @@ impl Planner {
     /// The straight line being tracked; for a path other than the line,
     /// the straight line from its start to its end (see [`Planner::track`]).
     pub fn line(&self) -> Line {
-        self.track.line()
+        self.track.line
     }
 
     /// The path being tracked, with its timing.

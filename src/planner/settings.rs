@@ -45,12 +45,15 @@ impl Planner {
         let steps = (duration / self.scene.dt - 1e-9).ceil().max(1.0);
         self.scene.target = target;
         self.scene.path = crate::scene::Path::Line;
-        self.track = Track::Line(Line::new(
-            self.ws.pose.end_effector(),
-            target,
-            self.t,
-            steps * self.scene.dt,
-        ));
+        self.track = Track {
+            line: Line::new(
+                self.ws.pose.end_effector(),
+                target,
+                self.t,
+                steps * self.scene.dt,
+            ),
+            path: crate::scene::Path::Line,
+        };
         if needs_auto_damping(&self.scene, &self.track) {
             self.scene.damping = Some(DampingSchedule::default());
             self.auto_damping = true;

@@ -18,7 +18,7 @@ use crate::obstacle::Obstacle;
 pub use file::{ParamMap, SceneFile};
 pub(crate) use params::validate_gain;
 pub use params::{Param, Params, Scale, MAX_GAIN_STEP};
-pub use path::{Path, MAX_LAPS, MAX_POINTS, MIN_RADIUS};
+pub use path::{Path, DRAWN_SPACING, MAX_LAPS, MAX_POINTS, MIN_RADIUS};
 pub use weighting::JointWeighting;
 
 /// The paper's final end-effector position for both tasks, `Xf = (0.60, 0.20)`.

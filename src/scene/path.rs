@@ -21,17 +21,26 @@ use std::str::FromStr;
 
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use crate::arm::{number, number_list};
+use crate::arm::number_list;
 use crate::error::{coordinate, Error, Result};
 use crate::geometry::segment_distance_squared;
+use crate::kinematics::sin_cos;
 
 /// Most points a `points:` path may have.
 pub const MAX_POINTS: usize = 64;
 /// Most laps a `circle:` path may run.
 pub const MAX_LAPS: u32 = 1000;
+/// What a refusal of the laps says (with [`MAX_LAPS`]).
+const LAPS: &str = "LAPS must be a whole number from 1 to 1000";
+/// What a refusal of the points' count says (with [`MAX_POINTS`]).
+const COUNT: &str = "expected 1 to 64 points X,Y";
 /// Smallest radius of a `circle:` path (m): its centre must lie this far
 /// from the hand's start at least.
 pub const MIN_RADIUS: f64 = 1e-6;
+
+/// Least distance (m) between the points of a path drawn on the page's
+/// stage ([`Path::drawn`]).
+pub const DRAWN_SPACING: f64 = 0.05;
 
 /// What the hand follows (see the module's syntax).
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -58,42 +67,67 @@ impl Path {
         *self == Path::Line
     }
 
+    /// The `points:` path through a stroke drawn by a pointer (`stroke`,
+    /// world points in the order drawn), thinned to points at least
+    /// [`DRAWN_SPACING`] apart (twice that, and so on, until at most
+    /// [`MAX_POINTS`] remain): the first point and each one that far from
+    /// the last kept, the stroke's end in place of the last kept. An empty
+    /// stroke gives no points, which [`Path::validate`] refuses.
+    pub fn drawn(stroke: &[[f64; 2]]) -> Self {
+        let mut gap = DRAWN_SPACING;
+        loop {
+            let mut kept: Vec<[f64; 2]> = Vec::new();
+            for &p in stroke {
+                if kept.last().is_none_or(|&q| distance(p, q) >= gap) {
+                    kept.push(p);
+                }
+            }
+            // (A gap grown past every finite distance ends it too: the
+            // scene refuses the points then, which are not finite.)
+            if kept.len() <= MAX_POINTS || !gap.is_finite() {
+                kept.truncate(MAX_POINTS);
+                if let (Some(&end), [_, .., last]) = (stroke.last(), &mut kept[..]) {
+                    *last = end;
+                }
+                return Path::Points(kept);
+            }
+            gap *= 2.0;
+        }
+    }
+
     /// Checks the numbers (finite, within [`crate::error::MAX_COORDINATE`]),
     /// the laps and the points' count, and that a circle's centre is not
     /// the hand's `start` (radius 0). A point out of reach is allowed: the
     /// run will miss it.
     pub fn validate(&self, start: [f64; 2]) -> Result<()> {
-        let syntax = |expected: String| Error::Syntax {
-            what: "path",
-            text: self.to_string(),
-            expected,
+        let refuse = |expected: &str| {
+            Err(Error::Syntax {
+                what: "path",
+                text: self.to_string(),
+                expected: expected.into(),
+            })
         };
-        match self {
-            Path::Line => Ok(()),
+        let points = match self {
+            Path::Line => return Ok(()),
             Path::Circle { centre, laps } => {
-                coordinate("path circle centre x", centre[0])?;
-                coordinate("path circle centre y", centre[1])?;
                 if !(1..=MAX_LAPS).contains(laps) {
-                    return Err(syntax(format!("LAPS must be 1 to {MAX_LAPS}")));
+                    return refuse(LAPS);
                 }
                 if distance(*centre, start) < MIN_RADIUS {
-                    return Err(syntax(
-                        "the centre is the hand's start: the circle would have radius 0".into(),
-                    ));
+                    return refuse(
+                        "the centre is the hand's start: the circle would have radius 0",
+                    );
                 }
-                Ok(())
+                std::slice::from_ref(centre)
             }
-            Path::Points(points) => {
-                if points.is_empty() || points.len() > MAX_POINTS {
-                    return Err(syntax(format!("expected 1 to {MAX_POINTS} points")));
-                }
-                for p in points {
-                    coordinate("path point x", p[0])?;
-                    coordinate("path point y", p[1])?;
-                }
-                Ok(())
-            }
+            Path::Points(p) if p.is_empty() || p.len() > MAX_POINTS => return refuse(COUNT),
+            Path::Points(p) => p,
+        };
+        for p in points {
+            coordinate("path x", p[0])?;
+            coordinate("path y", p[1])?;
         }
+        Ok(())
     }
 
     /// Where the path ends for a hand starting at `start`: the `target`
@@ -110,23 +144,21 @@ impl Path {
     /// points, a circle through `per_lap` chords (its corners on the
     /// circle, the start first and last).
     pub fn outline(&self, start: [f64; 2], target: [f64; 2], per_lap: usize) -> Vec<[f64; 2]> {
+        let mut out = vec![start];
         match self {
-            Path::Line => vec![start, target],
-            Path::Points(p) => std::iter::once(start).chain(p.iter().copied()).collect(),
+            Path::Line => out.push(target),
+            Path::Points(p) => out.extend_from_slice(p),
             Path::Circle { centre, .. } => {
-                let (r, phase) = polar(*centre, start);
-                let n = per_lap.max(3);
-                let mut out: Vec<[f64; 2]> = (0..n)
-                    .map(|k| {
-                        let a = phase + TAU * k as f64 / n as f64;
-                        [centre[0] + r * a.cos(), centre[1] + r * a.sin()]
-                    })
-                    .collect();
-                out[0] = start;
+                let (dx, dy) = (start[0] - centre[0], start[1] - centre[1]);
+                let (r, phase, n) = (dx.hypot(dy), dy.atan2(dx), per_lap.max(3));
+                for k in 1..n {
+                    let (sin, cos) = sin_cos(phase + TAU * k as f64 / n as f64);
+                    out.push([centre[0] + r * cos, centre[1] + r * sin]);
+                }
                 out.push(start);
-                out
             }
         }
+        out
     }
 
     /// Exact distance from `p` to the path of a hand starting at `start`
@@ -149,12 +181,6 @@ impl Path {
     }
 }
 
-/// The radius and the angle of `p` about `centre`.
-pub(crate) fn polar(centre: [f64; 2], p: [f64; 2]) -> (f64, f64) {
-    let (dx, dy) = (p[0] - centre[0], p[1] - centre[1]);
-    (dx.hypot(dy), dy.atan2(dx))
-}
-
 fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
     (a[0] - b[0]).hypot(a[1] - b[1])
 }
@@ -165,55 +191,49 @@ fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
 impl FromStr for Path {
     type Err = Error;
     fn from_str(text: &str) -> Result<Self> {
-        let syntax = |expected: String| Error::Syntax {
+        let refuse = |expected: &str| Error::Syntax {
             what: "path",
             text: text.to_string(),
-            expected,
+            expected: expected.into(),
         };
         let t = text.trim();
         if t == "line" {
             return Ok(Path::Line);
         }
-        if let Some(rest) = t.strip_prefix("circle:") {
-            let (x, y, laps) = match rest.split(',').collect::<Vec<_>>()[..] {
-                [x, y] => (x, y, None),
-                [x, y, laps] => (x, y, Some(laps)),
-                _ => return Err(syntax("expected circle:CX,CY or circle:CX,CY,LAPS".into())),
-            };
-            let centre = [number(x).map_err(&syntax)?, number(y).map_err(&syntax)?];
-            let laps = match laps {
-                None => 1,
-                Some(l) => {
-                    let l = number(l).map_err(&syntax)?;
-                    if l.fract() != 0.0 || !(1.0..=MAX_LAPS as f64).contains(&l) {
-                        return Err(syntax(format!(
-                            "LAPS must be a whole number from 1 to {MAX_LAPS}"
-                        )));
+        let (kind, rest) = t.split_once(':').unwrap_or((t, ""));
+        match kind {
+            "circle" => {
+                let (centre, laps) = match number_list(rest).map_err(|e| refuse(&e))?[..] {
+                    [x, y] => ([x, y], 1.0),
+                    [x, y, laps] => ([x, y], laps),
+                    _ => return Err(refuse("expected circle:CX,CY or circle:CX,CY,LAPS")),
+                };
+                if laps.fract() != 0.0 || !(1.0..=f64::from(MAX_LAPS)).contains(&laps) {
+                    return Err(refuse(LAPS));
+                }
+                Ok(Path::Circle {
+                    centre,
+                    laps: laps as u32,
+                })
+            }
+            "points" => {
+                let mut points = Vec::new();
+                for part in rest.split(';').filter(|p| !p.trim().is_empty()) {
+                    match number_list(part).map_err(|e| refuse(&e))?[..] {
+                        [x, y] if points.len() < MAX_POINTS => points.push([x, y]),
+                        [_, _] => return Err(refuse(COUNT)),
+                        _ => return Err(refuse("expected X,Y for each point")),
                     }
-                    l as u32
                 }
-            };
-            return Ok(Path::Circle { centre, laps });
-        }
-        if let Some(rest) = t.strip_prefix("points:") {
-            let mut points = Vec::new();
-            for part in rest.split(';').filter(|p| !p.trim().is_empty()) {
-                if points.len() == MAX_POINTS {
-                    return Err(syntax(format!("at most {MAX_POINTS} points")));
+                if points.is_empty() {
+                    return Err(refuse(COUNT));
                 }
-                match number_list(part).map_err(&syntax)?[..] {
-                    [x, y] => points.push([x, y]),
-                    _ => return Err(syntax(format!("expected X,Y, got '{}'", part.trim()))),
-                }
+                Ok(Path::Points(points))
             }
-            if points.is_empty() {
-                return Err(syntax("expected at least one point X,Y".into()));
-            }
-            return Ok(Path::Points(points));
+            _ => Err(refuse(
+                "expected line, circle:CX,CY[,LAPS] or points:X,Y;X,Y;...",
+            )),
         }
-        Err(syntax(
-            "expected line, circle:CX,CY[,LAPS] or points:X,Y;X,Y;...".into(),
-        ))
     }
 }
 

@@ -66,6 +66,9 @@ pub struct State<'a> {
     pub target: [f64; 2],
     /// The line being tracked.
     pub line: Line,
+    /// The path the hand follows, as its text (`line`, `circle:1.2,0.8`,
+    /// `points:...`: [`crate::scene::Path`]'s syntax, the address's `path=`).
+    pub path: String,
     /// The arm.
     pub arm: &'a Arm,
     /// Centre of the first obstacle.
@@ -222,6 +225,7 @@ impl Session {
             reference: s.reference,
             target: scene.target,
             line: p.line(),
+            path: scene.path.to_string(),
             arm: &scene.arm,
             obstacle: obstacle.map(|o| o.centre),
             radius: obstacle.map(|o| o.radius),
