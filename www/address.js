@@ -1,5 +1,5 @@
 // The page's address: what `?task=2&method=case3&lambda=4&target=…&obstacle=…
-// &obstacles=…&arm=…&limits=…&rates=…&feedback=1&damping=0&theta0=…&tf=…&influence=…&networks=reach` asks
+// &obstacles=…&arm=…&limits=…&rates=…&feedback=1&damping=0&theta0=…&tf=…&path=…&influence=…&networks=reach` asks
 // for, and the state written back into it (what "Copy link" copies). The arm, limits and obstacle syntax is the module's (parseArm, parseObstacles,
 // formatArm, parseJointLimits, formatJointLimits, parseRateLimits,
 // formatRateLimits: the command line's too). Every parameter that does not parse
@@ -30,7 +30,8 @@ const named = () => allParams().filter((p) => p.name !== 'lambda');
  * older name, is read where there is no `method=`), lambda,
  * feedback, target, obstacle, obstacles (flat), arm, limits (the arm's
  * joint limits, flat [lo1, hi1, ...]), rates (its rate limits), damping, start
- * ({ theta0, tf }: a run's own start pose and final time), params (the
+ * ({ theta0, tf }: a run's own start pose and final time), path (the
+ * path's text, for the module to read), params (the
  * methods' parameters by name), networks (a shipped network set), and
  * `problems`: what did not parse, each as `name: why`.
  */
@@ -99,6 +100,8 @@ export function readAddress(search) {
       return v === '1';
     }),
     start,
+    // The path's text goes to the module's parser as it is (mount's setPath).
+    path: params.get('path') || undefined,
     params: values,
     networks: parsed('networks', (v) => {
       const sets = networkSets().map((n) => n.name);
@@ -117,7 +120,8 @@ export function readAddress(search) {
  * there are several or one of another radius than the default, else the one
  * obstacle's centre; the drift gain where it is on; the damping switch
  * where it is off; the methods' parameters that differ from their
- * defaults; a shipped network set other than the paper's; and a run's own start pose and final time (a line dropped
+ * defaults; a shipped network set other than the paper's; the path where
+ * it is not the line; and a run's own start pose and final time (a line dropped
  * from where the hand was), in full. Returns the address.
  */
 export function writeAddress(s) {
@@ -141,6 +145,7 @@ export function writeAddress(s) {
   for (const p of named()) {
     if (s.params[p.name] !== undefined && s.params[p.name] !== p.default) q.set(p.name, String(s.params[p.name]));
   }
+  if (s.path) q.set('path', s.path);
   if (s.own_start) {
     q.set('theta0', s.theta0.map(String).join(','));
     q.set('tf', String(s.tf));

@@ -7,7 +7,9 @@
 // numerical, case1, ...; the module's defaultMethod() where absent; `mode`,
 // its older name, is read too),
 // lambda, feedback (closed-loop gain K in 1/s; 0 = the paper's open loop),
-// autoplay ("false" to start paused), plots (present: show the time
+// path (the path the hand follows: line, circle:CX,CY[,LAPS] or
+// points:X,Y;X,Y;..., as the address's path=), autoplay ("false" to start
+// paused), plots (present: show the time
 // series). Each element has its own simulation in its own shadow root; the
 // WebAssembly module is loaded once per page. After its first frame an element
 // sets data-ready="true" and exposes .controller (state(), worldToClient()).
@@ -99,6 +101,7 @@ class RedundantIkDemo extends HTMLElement {
         method,
         lambda: lambda !== null && Number.isFinite(Number(lambda)) ? Number(lambda) : undefined,
         feedback: Number.isFinite(Number(this.getAttribute('feedback'))) ? Number(this.getAttribute('feedback')) : 0,
+        path: this.getAttribute('path') ?? undefined,
         autoplay: this.getAttribute('autoplay') !== 'false',
         keyboard: this,
       });

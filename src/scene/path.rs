@@ -68,16 +68,19 @@ impl Path {
     }
 
     /// The `points:` path through a stroke drawn by a pointer (`stroke`,
-    /// world points in the order drawn), thinned to points at least
-    /// [`DRAWN_SPACING`] apart (twice that, and so on, until at most
-    /// [`MAX_POINTS`] remain): the first point and each one that far from
-    /// the last kept, the stroke's end in place of the last kept. An empty
-    /// stroke gives no points, which [`Path::validate`] refuses.
+    /// world points in the order drawn), to the millimetre and thinned to
+    /// points at least [`DRAWN_SPACING`] apart (twice that, and so on,
+    /// until at most [`MAX_POINTS`] remain): the first point and each one
+    /// that far from the last kept, the stroke's end in place of the last
+    /// kept. An empty stroke gives no points, which [`Path::validate`]
+    /// refuses.
     pub fn drawn(stroke: &[[f64; 2]]) -> Self {
         let mut gap = DRAWN_SPACING;
         loop {
             let mut kept: Vec<[f64; 2]> = Vec::new();
-            for &p in stroke {
+            for &[x, y] in stroke {
+                // To the millimetre: a path's text people can read.
+                let p = [(x * 1e3).round() / 1e3, (y * 1e3).round() / 1e3];
                 if kept.last().is_none_or(|&q| distance(p, q) >= gap) {
                     kept.push(p);
                 }
@@ -86,8 +89,8 @@ impl Path {
             // scene refuses the points then, which are not finite.)
             if kept.len() <= MAX_POINTS || !gap.is_finite() {
                 kept.truncate(MAX_POINTS);
-                if let (Some(&end), [_, .., last]) = (stroke.last(), &mut kept[..]) {
-                    *last = end;
+                if let (Some(&[x, y]), [_, .., last]) = (stroke.last(), &mut kept[..]) {
+                    *last = [(x * 1e3).round() / 1e3, (y * 1e3).round() / 1e3];
                 }
                 return Path::Points(kept);
             }

@@ -13,7 +13,7 @@
 //
 // The tests live in one file per part of the page, registered in this order:
 // stage.mjs, methods.mjs, page.mjs, atlas.mjs, module.mjs, playground.mjs,
-// hostile.mjs, reach.mjs, runs.mjs, then the page for a class (class.mjs)
+// hostile.mjs, reach.mjs, runs.mjs, paths.mjs, then the page for a class (class.mjs)
 // and the arm's joint limits (limits.mjs); harness.mjs
 // holds the browser and the helpers they share.
 
@@ -27,6 +27,7 @@ import './playground.mjs';
 import './hostile.mjs';
 import './reach.mjs';
 import './runs.mjs';
+import './paths.mjs';
 import { classTests } from './class.mjs';
 import { limitsTests } from './limits.mjs';
 
