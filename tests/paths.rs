@@ -303,3 +303,32 @@ fn a_hostile_stroke_ends_and_is_refused() {
     s.path = Path::drawn(&vec![[f64::NAN, 1.0]; 100]);
     assert!(s.validate().is_err());
 }
+
+#[test]
+fn the_session_takes_a_path_and_a_new_target_makes_it_the_line_again() {
+    use redundant_ik::session::Session;
+    let mut s = Session::new(1).unwrap();
+    assert_eq!(s.state().path, None, "the line: no path in the state");
+    s.set_path(CIRCLE.parse().unwrap()).unwrap();
+    assert_eq!(s.state().path.as_deref(), Some(CIRCLE));
+    // Refused, changing nothing: the centre at the hand's start.
+    let start = s.planner().scene().start();
+    let before = s.planner().scene().clone();
+    let refused = Path::Circle {
+        centre: start,
+        laps: 1,
+    };
+    assert!(s.set_path(refused).is_err());
+    assert_eq!(*s.planner().scene(), before);
+    // The stage's outline of the circle: closed, on the circle.
+    let outline = s.planner().track().outline();
+    assert_eq!(outline.first(), outline.last());
+    let r = dist(start, [1.2, 0.8]);
+    assert!(outline
+        .iter()
+        .all(|&p| (dist(p, [1.2, 0.8]) - r).abs() < 1e-12));
+    // A new target: a new line from the hand.
+    s.set_target([0.9, 0.3], None).unwrap();
+    assert!(s.planner().scene().path.is_line());
+    assert_eq!(s.state().path, None);
+}
