@@ -16,7 +16,7 @@ use crate::session::{Handle, Session};
 /// returns which entries of the legend it drew (a bit each, in the
 /// legend's order), so that the page's legend lists only those.
 pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) -> u32 {
-    let mut drawn = bit::ARM | bit::PATH | bit::REFERENCE | bit::TARGET;
+    let mut drawn = bit::ARM | bit::PATH | bit::REFERENCE;
     let ctx = &surface.ctx;
     let view = surface.view();
     surface.begin();
@@ -226,8 +226,9 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>) -> u32 {
     ctx.set_fill_style_str(MUTED);
     ctx.fill();
 
-    // The target is the line's: another path hides it.
+    // The target is the line's: another path hides it (and its legend).
     if scene.path.is_line() {
+        drawn |= bit::TARGET;
         target(ctx, view, s);
     }
 

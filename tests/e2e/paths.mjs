@@ -26,6 +26,12 @@ test('path: the address ?path=circle:1.2,0.8 loads, runs the circle and closes i
   assert.ok(Math.abs(s.t - 10) < 1e-9, `ran to the end (t = ${s.t})`);
   assert.ok(s.final_error < 1e-3, `back at the start (${s.final_error} m)`);
   assert.ok(dist(s.ee, s0.ee) < 1e-3, 'the hand is back at its start');
+  // The target is the line's: neither drawn nor in the legend; the note
+  // speaks of the path's end.
+  await page.evaluate(() => window.demo.controller.demo.draw());
+  await page.waitForTimeout(100);
+  assert.doesNotMatch(await page.innerText('#legend'), /target/);
+  assert.match(await page.textContent('#run-note'), /path's end/);
   await page.screenshot({ path: join(shots, 'path-circle.png') });
   clean(page);
   await page.close();
