@@ -90,12 +90,21 @@ fn a_step_allocates_nothing_in_any_method() {
         let nets: Arc<dyn Surrogate> = Arc::new(Networks::embedded_set(set).unwrap());
         let mut refined = busy_scene();
         refined.set_param(&methods::REFINE, 2.0).unwrap();
+        // The paths beyond the line: a circle, and a polyline (whose
+        // reset keeps its corners).
+        let mut circle = Scene::task1();
+        circle.path = "circle:1.2,0.8".parse().unwrap();
+        circle.feedback_gain = 1.0;
+        let mut points = Scene::task1();
+        points.path = "points:1.2,0.3;0.6,0.3".parse().unwrap();
         for scene in [
             Scene::task1(),
             Scene::task2(),
             busy_scene(),
             damper_scene(),
             refined,
+            circle,
+            points,
         ] {
             for &method in methods::ALL {
                 let mut p = Planner::new(scene.clone(), method, Some(nets.clone())).unwrap();

@@ -1,5 +1,5 @@
 // The page's address: what `?task=2&method=case3&lambda=4&target=…&obstacle=…
-// &obstacles=…&arm=…&limits=…&rates=…&feedback=1&damping=0&weighting=wln&floor=1&theta0=…&tf=…&influence=…&networks=reach` asks
+// &obstacles=…&arm=…&limits=…&rates=…&feedback=1&damping=0&weighting=wln&floor=1&theta0=…&tf=…&path=…&influence=…&networks=reach` asks
 // for, and the state written back into it (what "Copy link" copies). The arm, limits and obstacle syntax is the module's (parseArm, parseObstacles,
 // formatArm, parseJointLimits, formatJointLimits, parseRateLimits,
 // formatRateLimits: the command line's too). Every parameter that does not parse
@@ -31,7 +31,8 @@ const named = () => allParams().filter((p) => p.name !== 'lambda');
  * feedback, target, obstacle, obstacles (flat), arm, limits (the arm's
  * joint limits, flat [lo1, hi1, ...]), rates (its rate limits), damping,
  * weighting (a name of limits().joint_weightings), floor (bool), start
- * ({ theta0, tf }: a run's own start pose and final time), params (the
+ * ({ theta0, tf }: a run's own start pose and final time), path (the
+ * path's text, for the module to read), params (the
  * methods' parameters by name), networks (a shipped network set), and
  * `problems`: what did not parse, each as `name: why`.
  */
@@ -110,6 +111,8 @@ export function readAddress(search) {
       return v === '1';
     }),
     start,
+    // The path's text goes to the module's parser as it is (mount's setPath).
+    path: params.get('path') || undefined,
     params: values,
     networks: parsed('networks', (v) => {
       const sets = networkSets().map((n) => n.name);
@@ -129,7 +132,8 @@ export function readAddress(search) {
  * obstacle's centre; the drift gain where it is on; the damping switch
  * where it is off; the joint weighting where it is not the first (none),
  * floor=1 where the floor and post are obstacles; the methods' parameters that differ from their
- * defaults; a shipped network set other than the paper's; and a run's own start pose and final time (a line dropped
+ * defaults; a shipped network set other than the paper's; the path where
+ * it is not the line; and a run's own start pose and final time (a line dropped
  * from where the hand was), in full. Returns the address.
  */
 export function writeAddress(s) {
@@ -155,6 +159,7 @@ export function writeAddress(s) {
   for (const p of named()) {
     if (s.params[p.name] !== undefined && s.params[p.name] !== p.default) q.set(p.name, String(s.params[p.name]));
   }
+  if (s.path) q.set('path', s.path);
   if (s.own_start) {
     q.set('theta0', s.theta0.map(String).join(','));
     q.set('tf', String(s.tf));

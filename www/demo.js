@@ -29,6 +29,7 @@ import { messenger } from './messages.js';
 import { mountTakeaway } from './takeaway.js';
 import { mountNotes } from './notes.js';
 import { mountLab } from './lab.js';
+import { mountPath } from './path-input.js';
 
 /**
  * Fills a `<select>` with the methods, grouped ("The paper", "Beyond the
@@ -107,7 +108,8 @@ const READOUTS = {
  * problems (what the caller could not parse, shown with the settings
  * the core refuses under problemsLabel; default 'Not applied'), start
  * { theta0, tf } (a run's own start pose and final time, from an address),
- * params { name: value } (the methods' parameters), link(state, scene)
+ * params { name: value } (the methods' parameters), path (the path's
+ * text: line, circle:CX,CY[,LAPS], points:X,Y;...), link(state, scene)
  * (the address of the scene, for "Copy link"; default the page's).
  * Returns a controller with state(), worldToClient(x, y), runUntil(t), demo.
  */
@@ -188,6 +190,7 @@ export async function mount(root, options = {}) {
   }
   if (options.target) initial('target', () => demo.setTarget(options.target[0], options.target[1], 10));
   if (options.start) initial('theta0', () => demo.setStart(Float64Array.from(options.start.theta0), options.start.tf));
+  if (options.path) initial('path', () => demo.setPath(options.path));
   for (const [name, value] of Object.entries(options.params ?? {})) initial(name, () => demo.setParam(name, value));
   // A shipped set other than the paper's is fetched first: it comes in when it arrives.
   if (options.networks && options.networks !== demo.state().network_set) {
@@ -202,6 +205,7 @@ export async function mount(root, options = {}) {
     syncParams(s);
     if (el.damping) el.damping.checked = s.damping;
     if (el.feedback) el.feedback.checked = s.feedback > 0;
+    syncPath(s);
   }
 
   el.method?.addEventListener('change', () => {
@@ -255,6 +259,7 @@ export async function mount(root, options = {}) {
   });
   const atlas = mountAtlas(root, demo, { changed: () => changed() });
   mountWeightsUpload(root, { attempt, show, install: playground.installNetworks });
+  const syncPath = mountPath(root, demo, { attempt, changed, stage });
   wireStage(stage, demo, { attempt, changed, togglePlay, reset, atlas, playground, keyboard: options.keyboard });
 
   // ---- size: sharp on high-DPI screens, follows the layout -------------

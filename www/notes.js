@@ -15,6 +15,13 @@ function runText(s) {
   const t = s.t.toFixed(1);
   if (s.ended) {
     const hit = s.collided ? ' A link hit an obstacle during the run.' : '';
+    // A path other than the line (s.path) ends at its own end, not the target.
+    if (s.path) {
+      return (
+        `The run ended at t = ${t} s, where its path ends: the hand is ${metres(s.final_error)} from the path's end and holds still.${hit} ` +
+        'Type or draw another path, move an obstacle to replay the run with it there, or press Replay.'
+      );
+    }
     return (
       `The run ended at t = ${t} s, where its line ends: the hand is ${metres(s.final_error)} from the target and holds still.${hit} ` +
       'Drag the target for a new line, move an obstacle to replay the run with it there, or press Replay.'

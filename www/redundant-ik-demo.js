@@ -9,7 +9,9 @@
 // lambda, feedback (closed-loop gain K in 1/s; 0 = the paper's open loop),
 // weighting (a joint weighting's name, limits().joint_weightings), floor
 // ("1": the floor and post are obstacles),
-// autoplay ("false" to start paused), plots (present: show the time
+// path (the path the hand follows: line, circle:CX,CY[,LAPS] or
+// points:X,Y;X,Y;..., as the address's path=), autoplay ("false" to start
+// paused), plots (present: show the time
 // series). Each element has its own simulation in its own shadow root; the
 // WebAssembly module is loaded once per page. After its first frame an element
 // sets data-ready="true" and exposes .controller (state(), worldToClient()).
@@ -103,6 +105,7 @@ class RedundantIkDemo extends HTMLElement {
         feedback: Number.isFinite(Number(this.getAttribute('feedback'))) ? Number(this.getAttribute('feedback')) : 0,
         weighting: this.getAttribute('weighting') ?? undefined,
         floor: this.getAttribute('floor') === '1',
+        path: this.getAttribute('path') ?? undefined,
         autoplay: this.getAttribute('autoplay') !== 'false',
         keyboard: this,
       });

@@ -198,7 +198,7 @@ fn report(a: &Atlas, seconds: f64, threads: usize) -> String {
     }
     w!();
     w!(
-        "success: no collision and within 5 mm of the target, over the {} cells where \
+        "success: no collision and within 5 mm of the target (the path's end), over the {} cells where \
          avoidance is possible (not path_blocked or start_overlap)",
         a.summary.first().map_or(0, |s| s.avoidable.cells)
     );

@@ -12,7 +12,7 @@ use std::fmt::Write as _;
 use redundant_ik::arm::{JointLimits, RateLimits};
 use redundant_ik::obstacle::Placement;
 use redundant_ik::planner::methods::{DELTA, LAMBDA};
-use redundant_ik::scene::JointWeighting;
+use redundant_ik::scene::{JointWeighting, Path};
 
 use super::params::{Given, ParamArgs};
 use super::NetworkArgs;
@@ -30,6 +30,12 @@ fn parse_rate_limits(s: &str) -> Result<RateLimits, String> {
 
 /// Parses `--joint-weighting` (`none` or `wln`).
 fn parse_weighting(s: &str) -> Result<JointWeighting, String> {
+    s.parse().map_err(|e: redundant_ik::Error| e.to_string())
+}
+
+/// Parses `--path` (the core's syntax, `line`, `circle:CX,CY[,LAPS]` or
+/// `points:X,Y;X,Y;...`).
+fn parse_path(s: &str) -> Result<Path, String> {
     s.parse().map_err(|e: redundant_ik::Error| e.to_string())
 }
 
@@ -90,6 +96,13 @@ pub struct SceneArgs {
     /// End of the straight line X,Y in metres.
     #[arg(long, value_parser = parse_pair, allow_hyphen_values = true)]
     pub target: Option<[f64; 2]>,
+    /// The path the hand follows at constant speed over tf: line (the
+    /// straight line to --target, the default), circle:CX,CY[,LAPS] (the
+    /// circle about CX,CY through the hand's start, counter-clockwise,
+    /// LAPS whole laps, default 1) or points:X,Y;X,Y;... (the polyline from
+    /// the hand through the points, ending at the last; at most 64).
+    #[arg(long, value_parser = parse_path, allow_hyphen_values = true)]
+    pub path: Option<Path>,
     /// Initial joint angles in radians, one per link (default: the task's
     /// for the paper's arm, else the page's start pose for the arm).
     #[arg(long, allow_hyphen_values = true)]
@@ -227,6 +240,9 @@ impl SceneArgs {
         if let Some(v) = self.target {
             s.target = v;
         }
+        if let Some(v) = &self.path {
+            s.path = v.clone();
+        }
         if let Some(v) = &self.theta0 {
             s.theta0 = parse_list(v).map_err(|e| format!("--theta0: {e}"))?;
         }
@@ -324,14 +340,22 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         first.ee[1]
     );
     let last = traj.steps.last().unwrap_or(first);
+    // The line's end is the target; another path names itself and its end.
+    let end = scene.path_end();
+    let goal = if scene.path.is_line() {
+        format!("target ({}, {})", end[0], end[1])
+    } else {
+        format!(
+            "path {} ending at ({:.6}, {:.6})",
+            scene.path, end[0], end[1]
+        )
+    };
     w!(
         out,
-        "end    theta = [{}]  X = ({:.6}, {:.6})  target ({}, {})",
+        "end    theta = [{}]  X = ({:.6}, {:.6})  {goal}",
         fmt_list(&last.theta),
         last.ee[0],
         last.ee[1],
-        scene.target[0],
-        scene.target[1]
     );
     if let Some(l) = scene.arm.joint_limits() {
         w!(out, "joint limits {l} rad");

@@ -1,7 +1,7 @@
 //! The paper's stroboscopic figure of a run (Figs. 2-11): the arm every
-//! few steps, the obstacle discs, the straight-line path and the hand's
-//! trace, the start and final poses highlighted, axes in metres; on request
-//! the manipulability ellipse at the final pose.
+//! few steps, the obstacle discs, the path (the straight line, a circle or
+//! a polyline) and the hand's trace, the start and final poses highlighted,
+//! axes in metres; on request the manipulability ellipse at the final pose.
 
 use plotters::prelude::*;
 
@@ -165,17 +165,16 @@ pub fn arm_svg_with(
                 .draw_series(LineSeries::new(pts, faint.stroke_width(1)))
                 .map_err(why)?;
         }
-        // Straight-line path and the end-effector trace.
+        // The path (the straight line, a circle or a polyline) and the
+        // end-effector trace.
         let Some(first) = run.steps.first() else {
             return Err("a run without samples".into());
         };
         let path = RGBColor(44, 160, 44);
+        let track = scene.path.outline(first.ee, scene.target, 128);
         chart
             .draw_series(LineSeries::new(
-                vec![
-                    (first.ee[0], first.ee[1]),
-                    (scene.target[0], scene.target[1]),
-                ],
+                track.iter().map(|p| (p[0], p[1])),
                 path.stroke_width(1),
             ))
             .map_err(why)?;
@@ -204,7 +203,7 @@ pub fn arm_svg_with(
                 .map_err(why)?;
         }
         let mut legend = vec![
-            (Swatch::Line(path, 1), "straight-line task".to_string()),
+            (Swatch::Line(path, 1), super::path_label(&scene.path)),
             (Swatch::Line(trace, 2), "end effector".into()),
             (Swatch::Line(start, 3), "start pose".into()),
             (Swatch::Line(BLACK, 3), "final pose".into()),

@@ -1,6 +1,6 @@
 //! The atlas as SVG: one heat map per method, side by side, the cells
-//! coloured by class; on top the arm's start pose, the straight line, the
-//! target, the canonical obstacle and the v network's trained region;
+//! coloured by class; on top the arm's start pose, the path (the straight
+//! line, a circle or a polyline) and its end, the canonical obstacle and the v network's trained region;
 //! below, the legend of the classes. Each panel's title gives its success
 //! rate, over the cells where avoidance is possible and over those where it
 //! mattered (the arm without avoidance collides there).
@@ -209,9 +209,17 @@ pub fn atlas_svg(atlas: &Atlas, scene: &Scene) -> Result<String> {
                         .map_err(why)?;
                 }
             }
-            // The straight line and the target.
-            let target = (scene.target[0], scene.target[1]);
-            for piece in clip_polyline(&[(ee[0], ee[1]), target], bounds) {
+            // The path (the straight line, a circle or a polyline) and
+            // its end (the target, for the line).
+            let end = scene.path_end();
+            let target = (end[0], end[1]);
+            let outline: Vec<Pt> = scene
+                .path
+                .outline(ee, scene.target, 128)
+                .into_iter()
+                .map(|p| (p[0], p[1]))
+                .collect();
+            for piece in clip_polyline(&outline, bounds) {
                 chart
                     .draw_series(DashedLineSeries::new(
                         piece,
@@ -290,10 +298,18 @@ pub fn atlas_svg(atlas: &Atlas, scene: &Scene) -> Result<String> {
                 .draw(&Text::new(class.label(), (x + 22, y + 2), font.clone()))
                 .map_err(why)?;
         }
+        let path = if scene.path.is_line() {
+            "orange: the straight line to the target (+)".to_string()
+        } else {
+            format!(
+                "orange: the {} to its end (+)",
+                super::path_label(&scene.path)
+            )
+        };
         let marks = [
-        "blue: the arm at t = 0 · orange: the straight line to the target (+)",
-        "black ring: the task's own obstacle · white dashes: where the v network saw obstacles in training",
-    ];
+            format!("blue: the arm at t = 0 · {path}"),
+            "black ring: the task's own obstacle · white dashes: where the v network saw obstacles in training".to_string(),
+        ];
         for (k, line) in marks.into_iter().enumerate() {
             legend
                 .draw(&Text::new(

@@ -174,6 +174,9 @@ pub(crate) fn why(e: impl std::fmt::Display) -> String {
 /// settings, so that a figure in a report says how it was made.
 pub fn caption(task: u32, scene: &Scene, method: Method) -> String {
     let mut parts = vec![method.label().to_string(), format!("Task {task}")];
+    if !scene.path.is_line() {
+        parts.push(path_label(&scene.path));
+    }
     if !scene.arm.same_geometry(&crate::arm::Arm::paper()) {
         parts.push(format!("arm {}", scene.arm));
     }
@@ -308,4 +311,18 @@ pub(crate) fn draw_legend(
 pub(crate) fn hex(s: &str) -> RGBColor {
     let channel = |i: usize| u8::from_str_radix(s.get(i..i + 2).unwrap_or("00"), 16).unwrap_or(0);
     RGBColor(channel(1), channel(3), channel(5))
+}
+
+/// What a legend calls a run's path: the paper's "straight-line task", or
+/// `path` and its text (clipped to 48 characters: a polyline may have 64
+/// points).
+pub(crate) fn path_label(path: &crate::scene::Path) -> String {
+    if path.is_line() {
+        return "straight-line task".to_string();
+    }
+    let text = path.to_string();
+    match text.char_indices().nth(45) {
+        Some((at, _)) if text.len() > 48 => format!("path {}...", &text[..at]),
+        _ => format!("path {text}"),
+    }
 }

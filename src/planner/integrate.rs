@@ -81,12 +81,19 @@ impl Planner {
     pub fn step(&mut self) -> Result<&super::Sample> {
         let h = self.scene.dt;
         let t = self.t;
-        let line_xdot = self.line.velocity_at(t + 0.5 * h);
+        let t_mid = t + 0.5 * h;
+        // A line's Xdot is constant: taken once, at the step's midpoint,
+        // for every stage (the paper's runs, to the last bit).
+        let line_xdot = self
+            .track
+            .path
+            .is_line()
+            .then(|| self.track.line.velocity_at(t_mid));
         let Self {
             scene,
             networks,
             theta,
-            line,
+            track,
             ws,
             ..
         } = self;
@@ -96,24 +103,26 @@ impl Planner {
         };
         let theta = theta.as_slice();
         let gain = scene.feedback_gain;
-        // The commanded task velocity at a stage: the line's Xdot plus, when
-        // K > 0, K (X_ref(t) - X(theta)).
-        let xdot = |tt: f64, pose: &Pose| -> [f64; 2] {
+        // The commanded task velocity at a stage of time `tt`: the path's
+        // Xdot (a circle's or a polyline's at `tt` itself, the segment after
+        // a corner but at the last stage) plus, when K > 0,
+        // K (X_ref(tt) - X(theta)).
+        let xdot = |tt: f64, last: bool, pose: &Pose| -> [f64; 2] {
+            let v = line_xdot.unwrap_or_else(|| track.velocity(t_mid, tt, !last));
             if gain > 0.0 {
-                let r = line.reference(tt);
+                let r = track.reference(tt);
                 let x = pose.end_effector();
-                [
-                    line_xdot[0] + gain * (r[0] - x[0]),
-                    line_xdot[1] + gain * (r[1] - x[1]),
-                ]
+                [v[0] + gain * (r[0] - x[0]), v[1] + gain * (r[1] - x[1])]
             } else {
-                [line_xdot[0], line_xdot[1]]
+                [v[0], v[1]]
             }
         };
         let [k1, k2, k3, k4] = &mut ws.k;
         // Stage 1 reads the kinematics of the current state, computed when
         // the previous step ended.
-        let mut note = ws.rule.theta_dot(&cx, &ws.pose, xdot(t, &ws.pose), k1)?;
+        let mut note = ws
+            .rule
+            .theta_dot(&cx, &ws.pose, xdot(t, false, &ws.pose), k1)?;
         for (stage, (c, tt)) in [(0.5 * h, t + 0.5 * h), (0.5 * h, t + 0.5 * h), (h, t + h)]
             .into_iter()
             .enumerate()
@@ -127,9 +136,9 @@ impl Planner {
                 *s = th + c * k;
             }
             ws.stage.update(&scene.arm, &ws.theta_stage)?;
-            let stage_note = ws
-                .rule
-                .theta_dot(&cx, &ws.stage, xdot(tt, &ws.stage), out)?;
+            let stage_note =
+                ws.rule
+                    .theta_dot(&cx, &ws.stage, xdot(tt, stage == 2, &ws.stage), out)?;
             note.handover |= stage_note.handover;
             note.relaxed |= stage_note.relaxed;
         }

@@ -1,5 +1,5 @@
 //! The motion planner of section V, steps (a)-(g): a straight-line task at
-//! constant speed, joint rates from the chosen method ([`methods`]: the
+//! constant speed (or a circle or a polyline, `path.rs`), joint rates from the chosen method ([`methods`]: the
 //! paper's eq. (18) or eq. (21), or a method beyond the paper), integrated
 //! by the classical fourth-order Runge-Kutta method.
 //!
@@ -19,6 +19,7 @@ mod integrate;
 pub mod methods;
 mod observe;
 pub mod params;
+mod path;
 mod record;
 pub mod self_motion;
 mod settings;
@@ -36,6 +37,7 @@ use crate::kinematics::Pose;
 use crate::scene::Scene;
 
 pub use methods::{Group, Method, MethodInfo, Needs};
+pub use path::Track;
 pub use record::{Line, Sample, Summary, Trajectory};
 pub use surrogate::Surrogate;
 
@@ -55,7 +57,7 @@ pub struct Planner {
     theta: DVector<f64>,
     step_index: usize,
     t: f64,
-    line: Line,
+    track: Track,
     stats: Stats,
     auto_damping: bool,
     /// The state as the page and the CLI see it, refreshed in place.
@@ -121,24 +123,25 @@ impl Planner {
     ) -> Result<Self> {
         scene.validate()?;
         check_networks(method, &networks, &scene.arm)?;
-        let auto_damping = needs_auto_damping(&scene);
-        if auto_damping {
-            scene.damping = Some(DampingSchedule::default());
-        }
         let n = scene.arm.dof();
         let theta = scene.theta0_vector();
         let mut ws = Workspace::new(n, method);
         ws.pose.update(&scene.arm, theta.as_slice())?;
-        let line = Line::new(ws.pose.end_effector(), scene.target, 0.0, scene.tf);
+        let start = ws.pose.end_effector();
+        let track = Track::new(scene.path.clone(), start, scene.target, 0.0, scene.tf);
+        let auto_damping = needs_auto_damping(&scene, &track);
+        if auto_damping {
+            scene.damping = Some(DampingSchedule::default());
+        }
         let mut p = Self {
-            sample: Sample::zeros(n, line.start),
+            sample: Sample::zeros(n, start),
             scene,
             method,
             networks,
             theta,
             step_index: 0,
             t: 0.0,
-            line,
+            track,
             stats: Stats::new(),
             auto_damping,
             ws,
@@ -191,12 +194,11 @@ impl Planner {
         let _ = self.ws.pose.update(&self.scene.arm, self.theta.as_slice());
         self.step_index = 0;
         self.t = 0.0;
-        self.line = Line::new(
-            self.ws.pose.end_effector(),
-            self.scene.target,
-            0.0,
-            self.scene.tf,
-        );
+        // The track's path is the scene's (a new target makes both the
+        // line): only its timing and start are renewed, allocating nothing.
+        let start = self.ws.pose.end_effector();
+        let end = self.scene.path.end(start, self.scene.target);
+        self.track.line = Line::new(start, end, 0.0, self.scene.tf);
         self.stats = Stats::new();
         self.refresh_sample(methods::Note::default());
         self.stats.record(&self.sample);
@@ -227,9 +229,15 @@ impl Planner {
         &self.ws.pose
     }
 
-    /// The line being tracked.
+    /// The straight line being tracked; for a path other than the line,
+    /// the straight line from its start to its end (see [`Planner::track`]).
     pub fn line(&self) -> Line {
-        self.line
+        self.track.line
+    }
+
+    /// The path being tracked, with its timing.
+    pub fn track(&self) -> &Track {
+        &self.track
     }
 
     /// The networks in use, if any.
@@ -238,8 +246,10 @@ impl Planner {
     }
 }
 
-fn needs_auto_damping(scene: &Scene) -> bool {
-    scene.damping.is_none() && !scene.arm.can_reach(&scene.target_vector())
+/// Whether the damping schedule must be switched on: a point of the path
+/// (the target, for the line) lies outside the workspace.
+fn needs_auto_damping(scene: &Scene, track: &Track) -> bool {
+    scene.damping.is_none() && !track.reachable(&scene.arm)
 }
 
 /// Methods that use networks need them, and networks must be trained for

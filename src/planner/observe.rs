@@ -44,7 +44,7 @@ impl Planner {
         let pose = &self.ws.pose;
         let s = &mut self.sample;
         let ee = pose.end_effector();
-        let reference = self.line.reference(self.t);
+        let reference = self.track.reference(self.t);
         s.t = self.t;
         s.theta.copy_from_slice(pose.theta());
         s.joints.copy_from_slice(pose.joints());
@@ -102,8 +102,9 @@ impl Planner {
     /// Outcome since the last reset.
     pub fn summary(&self) -> Summary {
         let x = self.ws.pose.end_effector();
-        let target = self.scene.target;
-        let final_error = distance(x, target);
+        // The path's end: the target for the line, the start for a circle,
+        // the last point of a polyline.
+        let final_error = distance(x, self.track.end());
         Summary {
             method: self.method,
             steps: self.stats.steps,
@@ -117,7 +118,7 @@ impl Planner {
             success: !self.stats.collided
                 && self.stats.limit_steps == 0
                 && final_error <= REACH_TOLERANCE,
-            target_reachable: self.scene.arm.can_reach(&self.scene.target_vector()),
+            target_reachable: self.track.reachable(&self.scene.arm),
             out_of_range_steps: self.stats.out_of_range_steps,
             max_delta: self.stats.max_delta,
             auto_damping: self.auto_damping,

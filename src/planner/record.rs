@@ -67,7 +67,7 @@ pub struct Sample {
     pub joints: Vec<[f64; 2]>,
     /// End effector `X = P(n)`.
     pub ee: [f64; 2],
-    /// Straight-line reference point at `t`.
+    /// The path's reference point at `t`.
     pub reference: [f64; 2],
     /// Distance from the end effector to the reference.
     pub tracking_error: f64,
@@ -154,7 +154,8 @@ pub struct Summary {
     pub min_clearance: Option<f64>,
     /// Whether a link entered an obstacle disc at any step.
     pub collided: bool,
-    /// Distance from the end effector to the target now.
+    /// Distance from the end effector to the path's end now (the target
+    /// for the line, the start for a circle, the last point of a polyline).
     pub final_error: f64,
     /// Largest distance from the end effector to the reference.
     pub max_tracking_error: f64,
@@ -167,7 +168,8 @@ pub struct Summary {
     /// from the other fields).
     #[serde(default)]
     pub success: bool,
-    /// Whether the target lies in the arm's workspace at all.
+    /// Whether the target (every point of the path) lies in the arm's
+    /// workspace at all.
     pub target_reachable: bool,
     /// Steps at which a network's input left its trained range.
     pub out_of_range_steps: usize,

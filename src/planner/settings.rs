@@ -5,7 +5,7 @@
 use std::sync::Arc;
 
 use super::methods::{DELTA, LAMBDA};
-use super::{check_networks, needs_auto_damping, Line, Method, Planner, Surrogate};
+use super::{check_networks, needs_auto_damping, Line, Method, Planner, Surrogate, Track};
 use crate::arm::{JointLimits, RateLimits};
 use crate::error::{coordinate, positive, Error, Result};
 use crate::ik::DampingSchedule;
@@ -36,22 +36,28 @@ impl Planner {
 
     /// Re-plans: a new straight line from the current end effector to `target`,
     /// starting now and lasting `duration` seconds (rounded up to whole steps).
+    /// The scene's path becomes the line (a circle or a polyline gives way
+    /// to the line to the dragged target).
     pub fn set_target(&mut self, target: [f64; 2], duration: f64) -> Result<()> {
         coordinate("target x", target[0])?;
         coordinate("target y", target[1])?;
         positive("line duration", duration)?;
         let steps = (duration / self.scene.dt - 1e-9).ceil().max(1.0);
         self.scene.target = target;
-        if needs_auto_damping(&self.scene) {
+        self.scene.path = crate::scene::Path::Line;
+        self.track = Track {
+            line: Line::new(
+                self.ws.pose.end_effector(),
+                target,
+                self.t,
+                steps * self.scene.dt,
+            ),
+            path: crate::scene::Path::Line,
+        };
+        if needs_auto_damping(&self.scene, &self.track) {
             self.scene.damping = Some(DampingSchedule::default());
             self.auto_damping = true;
         }
-        self.line = Line::new(
-            self.ws.pose.end_effector(),
-            target,
-            self.t,
-            steps * self.scene.dt,
-        );
         self.resample();
         Ok(())
     }

@@ -12,7 +12,7 @@ use serde::de::{MapAccess, Visitor};
 use serde::ser::SerializeMap;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use super::JointWeighting;
+use super::{JointWeighting, Path};
 use crate::arm::Arm;
 use crate::ik::DampingSchedule;
 use crate::obstacle::Obstacle;
@@ -70,6 +70,9 @@ pub struct SceneFile {
     pub theta0: Vec<f64>,
     /// End of the straight line, `X(tf)`.
     pub target: [f64; 2],
+    /// The path, as its text (`circle:1.2,0.8`); absent: the line.
+    #[serde(default, skip_serializing_if = "Path::is_line")]
+    pub path: Path,
     /// Obstacle discs.
     pub obstacles: Vec<Obstacle>,
     /// Optional damping schedule near singular poses.

@@ -7,6 +7,7 @@ use std::f64::consts::PI;
 
 mod file;
 mod params;
+mod path;
 mod weighting;
 
 use crate::arm::Arm;
@@ -17,6 +18,7 @@ use crate::obstacle::Obstacle;
 pub use file::{ParamMap, SceneFile};
 pub(crate) use params::validate_gain;
 pub use params::{Param, Params, Scale, MAX_GAIN_STEP};
+pub use path::{Path, DRAWN_SPACING, MAX_LAPS, MAX_POINTS, MIN_RADIUS};
 pub use weighting::JointWeighting;
 
 /// The paper's final end-effector position for both tasks, `Xf = (0.60, 0.20)`.
@@ -36,8 +38,11 @@ pub struct Scene {
     pub arm: Arm,
     /// Joint angles at `t = 0` (radians).
     pub theta0: Vec<f64>,
-    /// End of the straight line, `X(tf)`.
+    /// End of the straight line, `X(tf)` (for [`Path::Line`]).
     pub target: [f64; 2],
+    /// What the hand follows at constant speed over `tf`: the straight
+    /// line to `target` (the paper's), a circle or a polyline ([`Path`]).
+    pub path: Path,
     /// Obstacle discs; their centres are the points `O` of eq. (16).
     pub obstacles: Vec<Obstacle>,
     /// Optional damping schedule added to `delta` near singular poses.
@@ -93,6 +98,7 @@ impl Scene {
             arm: Arm::paper(),
             theta0,
             target: PAPER_TARGET,
+            path: Path::Line,
             obstacles: vec![Obstacle::new(obstacle[0], obstacle[1], PAPER_RADIUS)],
             damping: None,
             dt: 0.1,
@@ -107,6 +113,22 @@ impl Scene {
     /// `theta0` as a vector.
     pub fn theta0_vector(&self) -> DVector<f64> {
         DVector::from_column_slice(&self.theta0)
+    }
+
+    /// The hand's position at `t = 0` (`theta0` must have one entry per
+    /// link, as [`Scene::validate`] checks first).
+    pub fn start(&self) -> [f64; 2] {
+        crate::kinematics::Pose::new(&self.arm, &self.theta0)
+            .map_or([f64::NAN; 2], |p| p.end_effector())
+    }
+
+    /// Where the path ends: the target for a line, the start for a
+    /// circle, the last point of a polyline ([`Path::end`]).
+    pub fn path_end(&self) -> [f64; 2] {
+        match self.path {
+            Path::Line => self.target,
+            _ => self.path.end(self.start(), self.target),
+        }
     }
 
     /// The target as a vector.
@@ -160,6 +182,9 @@ impl Scene {
             .check_within_limits("start pose theta0", &self.theta0)?;
         coordinate("target x", self.target[0])?;
         coordinate("target y", self.target[1])?;
+        if !self.path.is_line() {
+            self.path.validate(self.start())?;
+        }
         for ob in &self.obstacles {
             ob.validate(&self.arm)?;
         }

@@ -1,6 +1,6 @@
-//! The pointer and the keys: grabbing, dragging and dropping the target
-//! (a new line from the hand) and the obstacles (moved at once), and the
-//! arrow keys.
+//! The pointer and the keys: a path drawn (or typed), grabbing, dragging
+//! and dropping the target (a new line from the hand) and the obstacles
+//! (moved at once), and the arrow keys.
 
 use super::Session;
 use crate::error::{finite, positive, Result};
@@ -38,7 +38,7 @@ impl Handle {
 
 impl Session {
     /// Plans a new run: a straight line from the current end effector to
-    /// `target`, lasting `duration` seconds (default: at
+    /// `target` (the path becomes the line), lasting `duration` seconds (default: at
     /// [`DRAG_LINE_SPEED`], at least [`MIN_LINE_DURATION`]; rounded up to
     /// whole steps). The run's scene starts from the pose the arm has now
     /// at `t = 0` and ends with the line (`tf`), so it is a scene like any
@@ -60,6 +60,8 @@ impl Session {
         let mut scene = p.scene().clone();
         scene.theta0 = p.theta().as_slice().to_vec();
         scene.target = target;
+        // A new target is a new line, whatever the path was.
+        scene.path = crate::scene::Path::Line;
         scene.tf = (duration / scene.dt - 1e-9).ceil().max(1.0) * scene.dt;
         let planner = Planner::new(scene, p.method(), p.networks().cloned())?;
         self.twin.replace(planner);
@@ -80,6 +82,22 @@ impl Session {
         self.twin.replace(planner);
         self.own_start = true;
         self.restart();
+        Ok(())
+    }
+
+    /// Makes `path` the one the hand follows (a line, a circle, a polyline
+    /// drawn on the stage or typed: [`crate::scene::Path`]), from the run's
+    /// start over its `tf`, and runs it from `t = 0` to the end; refused,
+    /// changing nothing, when the scene refuses it (a circle centred on the
+    /// hand's start).
+    pub fn set_path(&mut self, path: crate::scene::Path) -> Result<()> {
+        let p = self.planner();
+        let mut scene = p.scene().clone();
+        scene.path = path;
+        let planner = Planner::new(scene, p.method(), p.networks().cloned())?;
+        self.twin.replace(planner);
+        self.restart();
+        self.run_to_end();
         Ok(())
     }
 

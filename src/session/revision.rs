@@ -50,6 +50,7 @@ fn differ_for_atlas(a: &Scene, b: &Scene) -> bool {
         arm,
         theta0,
         target,
+        path,
         obstacles,
         damping,
         dt,
@@ -69,6 +70,7 @@ fn differ_for_atlas(a: &Scene, b: &Scene) -> bool {
         || *arm != b.arm
         || *theta0 != b.theta0
         || *target != b.target
+        || *path != b.path
         || *damping != b.damping
         || *dt != b.dt
         || *tf != b.tf

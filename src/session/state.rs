@@ -72,6 +72,10 @@ pub struct State<'a> {
     pub target: [f64; 2],
     /// The line being tracked.
     pub line: Line,
+    /// The path the hand follows as its text (`circle:1.2,0.8`,
+    /// `points:...`: [`crate::scene::Path`]'s syntax, the address's
+    /// `path=`); none (`null`) for the line.
+    pub path: Option<String>,
     /// The arm.
     pub arm: &'a Arm,
     /// Centre of the first obstacle.
@@ -237,6 +241,7 @@ impl Session {
             reference: s.reference,
             target: scene.target,
             line: p.line(),
+            path: (!scene.path.is_line()).then(|| scene.path.to_string()),
             arm: &scene.arm,
             obstacle: obstacle.map(|o| o.centre),
             radius: obstacle.map(|o| o.radius),

@@ -26,7 +26,9 @@ pub fn hit(s: &Session, surface: &Surface, x: f64, y: f64, slop: f64) -> Option<
         let (px, py) = view.to_px(p);
         (px - x).hypot(py - y) <= r
     };
-    if near(s.target_marker(), TARGET_GRAB_PX + slop) {
+    // The target is the line's: hidden (and not grabbed) on another path.
+    let line = s.planner().scene().path.is_line();
+    if line && near(s.target_marker(), TARGET_GRAB_PX + slop) {
         return Some(Handle::Target);
     }
     if let Some(i) = obstacle_at(s, surface, x, y, slop) {

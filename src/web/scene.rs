@@ -1,5 +1,6 @@
 //! [`Demo`]'s bindings for the scene: the arm, several obstacles, the
-//! networks trained in the page, and whole runs off screen. Each forwards to
+//! path (typed or drawn), the networks trained in the page, and whole runs
+//! off screen. Each forwards to
 //! the [`Session`](crate::session::Session) and maps the core's errors to
 //! exceptions; values from JavaScript are checked by the core.
 
@@ -142,6 +143,30 @@ impl Demo {
     #[wasm_bindgen(js_name = obstacleAt)]
     pub fn obstacle_at(&self, x: f64, y: f64, slop: f64) -> Option<usize> {
         input::obstacle_at(&self.session, &self.stage, x, y, slop)
+    }
+
+    /// Makes the path the hand follows the one written `text` (`line`,
+    /// `circle:CX,CY[,LAPS]`, `points:X,Y;X,Y;...`: the core's syntax, the
+    /// address's `path=`) or, given `stroke` (canvas CSS pixels flat,
+    /// `[x0, y0, x1, y1, ...]`), the polyline drawn, thinned by the core to
+    /// points at least 5 cm apart; runs it and returns the path's text.
+    /// Throws, changing nothing, on bad text or a path the scene refuses.
+    #[wasm_bindgen(js_name = setPath)]
+    pub fn set_path(&mut self, text: &str, stroke: Option<Vec<f64>>) -> JsResult<String> {
+        let path = match stroke {
+            Some(flat) => {
+                let view = self.stage.view();
+                let world: Vec<[f64; 2]> = flat
+                    .chunks_exact(2)
+                    .map(|p| view.to_world(p[0], p[1]))
+                    .collect();
+                crate::scene::Path::drawn(&world)
+            }
+            None => text.parse().map_err(js_err)?,
+        };
+        let text = path.to_string();
+        self.session.set_path(path).map_err(js_err)?;
+        Ok(text)
     }
 
     /// Whether networks for the arm in use are available: loaded or trained

@@ -1,4 +1,4 @@
-//! The stage: the arm, its ghost, the obstacle, the line, the target and the
+//! The stage: the arm, its ghost, the obstacle, the path, the target and the
 //! traces, over a metric grid.
 
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -16,7 +16,7 @@ use crate::session::{Handle, Session};
 /// returns which entries of the legend it drew (a bit each, in the
 /// legend's order), so that the page's legend lists only those.
 pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>, shown: u32) -> u32 {
-    let mut drawn = bit::ARM | bit::PATH | bit::REFERENCE | bit::TARGET;
+    let mut drawn = bit::ARM | bit::PATH | bit::REFERENCE;
     let ctx = &surface.ctx;
     let view = surface.view();
     surface.begin();
@@ -79,12 +79,11 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>, shown: u32) -
     }
     ctx.set_global_alpha(1.0);
 
-    // The straight line being tracked.
-    let line = planner.line();
+    // The path being tracked (the straight line, a circle, a polyline).
     ctx.set_stroke_style_str(MUTED);
     ctx.set_line_width(1.25);
     dash(ctx, &[6.0, 5.0]);
-    polyline(ctx, Some(view), &[line.start, line.end]);
+    polyline(ctx, Some(view), &planner.track().outline());
     dash(ctx, &[]);
 
     // End-effector trail.
@@ -232,7 +231,11 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>, shown: u32) -
     ctx.set_fill_style_str(MUTED);
     ctx.fill();
 
-    target(ctx, view, s);
+    // The target is the line's: another path hides it (and its legend).
+    if scene.path.is_line() {
+        drawn |= bit::TARGET;
+        target(ctx, view, s);
+    }
 
     // The time and the method; on a narrow stage (at about 7 px a
     // character) the method's short label.

@@ -106,7 +106,7 @@ const LEGEND: [(&str, &str, &str, f64, &str); 15] = [
         GHOST_ALPHA,
         "dashed",
     ),
-    ("path", "straight-line task", MUTED, 1.0, "dashed"),
+    ("path", "path to follow", MUTED, 1.0, "dashed"),
     ("trail", "end-effector trail", ACCENT, 1.0, "line"),
     (
         "reference",

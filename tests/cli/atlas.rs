@@ -117,3 +117,53 @@ fn atlas_csv_has_a_line_per_cell_and_says_where_avoidance_mattered() {
     }
     assert!(v["summary"]["numerical"]["mattered"]["cells"].is_u64());
 }
+
+#[test]
+fn atlas_and_figure_take_a_circle_and_draw_it() {
+    let svg = scratch("atlas-circle.svg");
+    let v = json(&[
+        "atlas",
+        "--path",
+        "circle:1.2,0.8",
+        "--feedback",
+        "1",
+        "--grid",
+        "11",
+        "--methods",
+        "numerical",
+        "--json",
+        "--out",
+        svg.to_str().unwrap(),
+    ]);
+    let text = v.to_string();
+    assert!(text.contains("path_blocked"), "{text:.400}");
+    let drawn = std::fs::read_to_string(&svg).unwrap();
+    assert!(
+        drawn.contains("path circle:1.2,0.8"),
+        "the legend names the path"
+    );
+    // The run's figure and the comparison draw it too.
+    let fig = scratch("circle.svg");
+    ok(&[
+        "figure",
+        "--path",
+        "circle:1.2,0.8",
+        "--out",
+        fig.to_str().unwrap(),
+    ]);
+    assert!(std::fs::read_to_string(&fig)
+        .unwrap()
+        .contains("path circle:1.2,0.8"));
+    let cmp = scratch("compare.svg");
+    ok(&[
+        "figure",
+        "--compare",
+        "--path",
+        "points:1.2,0.3;0.6,0.3",
+        "--out",
+        cmp.to_str().unwrap(),
+    ]);
+    assert!(std::fs::read_to_string(&cmp)
+        .unwrap()
+        .contains("path points:1.2,0.3;0.6,0.3"));
+}

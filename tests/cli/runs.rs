@@ -89,6 +89,7 @@ fn from_refuses_every_scene_flag_beside_it_and_applies_the_rest() {
         "--joint-limits" => Some("-2:2,-2:2,-2:2"),
         "--rate-limits" => Some("1,1,1"),
         "--joint-weighting" => Some("wln"),
+        "--path" => Some("circle:1.2,0.8"),
         _ => None,
     };
     // What goes with --from: the method, the output and the networks

@@ -174,3 +174,39 @@ fn a_run_file_is_read_back_by_simulate_and_figure_and_csv_has_a_line_per_step() 
         "cannot read",
     );
 }
+
+#[test]
+fn simulate_follows_a_circle_and_refuses_a_bad_path() {
+    let run = json(&[
+        "simulate",
+        "--path",
+        "circle:1.2,0.8",
+        "--feedback",
+        "1",
+        "--json",
+    ]);
+    assert_eq!(run["scene"]["path"], "circle:1.2,0.8");
+    let summary = &run["summary"];
+    let err = summary["max_tracking_error"].as_f64().unwrap();
+    assert!(err < 1e-6, "{summary}");
+    assert!(summary["final_error"].as_f64().unwrap() < 1e-6, "{summary}");
+    assert_eq!(summary["reached"], true);
+    let steps = run["steps"].as_array().unwrap();
+    assert_eq!(steps[0]["ee"], steps[0]["reference"]);
+    // The same scene read back replays it.
+    let file = scratch("circle.json");
+    std::fs::write(&file, serde_json::to_string(&run).unwrap()).unwrap();
+    let again = json(&["simulate", "--from", file.to_str().unwrap(), "--json"]);
+    assert_eq!(again["summary"], run["summary"]);
+    // A polyline ends at its last point; the line's JSON has no path.
+    let poly = json(&["simulate", "--path", "points:1.2,0.3;0.6,0.3", "--json"]);
+    let last = poly["steps"].as_array().unwrap().last().unwrap().clone();
+    let x = last["ee"].as_array().unwrap();
+    assert!((x[0].as_f64().unwrap() - 0.6).abs() < 5e-3, "{last}");
+    assert!((x[1].as_f64().unwrap() - 0.3).abs() < 5e-3, "{last}");
+    let line = json(&["simulate", "--path", "line", "--tf", "0.2", "--json"]);
+    assert!(line["scene"].get("path").is_none());
+    for bad in ["circle:NaN,1", "points:", "spiral", "circle:1,2,0.5"] {
+        refused(&["simulate", "--path", bad], "path");
+    }
+}

@@ -5,7 +5,7 @@ use redundant_ik::arm::JointLimits;
 use redundant_ik::ik::DampingSchedule;
 use redundant_ik::planner::methods as m;
 use redundant_ik::planner::{methods, Planner};
-use redundant_ik::scene::{JointWeighting, Params};
+use redundant_ik::scene::{JointWeighting, Params, Path};
 use redundant_ik::{Arm, Obstacle, Scene};
 
 use super::checks::{shipped_surrogate, step_checked, Snapshot};
@@ -100,6 +100,16 @@ pub fn scene(data: &[u8]) {
             };
             arm = limited;
         }
+        // The paths beyond the line, drawn last: the line when the input
+        // has ended.
+        let path = match (!u.is_empty()).then(|| small(&mut u, 3)) {
+            Some(1) => Path::Circle {
+                centre: point(&mut u),
+                laps: 1 + small(&mut u, 3) as u32,
+            },
+            Some(2) => Path::Points((0..1 + small(&mut u, 4)).map(|_| point(&mut u)).collect()),
+            _ => Path::Line,
+        };
         let mut params = Params::default();
         if params.set_all(&values).is_err() {
             // Refused where it is set; nothing to plan.
@@ -111,6 +121,7 @@ pub fn scene(data: &[u8]) {
             arm,
             theta0,
             target,
+            path,
             obstacles,
             damping,
             dt,
