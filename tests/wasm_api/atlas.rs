@@ -112,7 +112,10 @@ fn an_atlas_layer_is_checked_then_drawn_and_finds_the_cell_under_the_pointer() {
         .iter()
         .map(|c| c["limits"].as_bool().unwrap())
         .collect();
-    assert_eq!(only_limited, [false, false, true, false, false, false, false]);
+    assert_eq!(
+        only_limited,
+        [false, false, true, false, false, false, false]
+    );
     let mut d = demo(1);
     assert_eq!(d.atlas_cell_at(100.0, 100.0), None, "no layer, no cell");
     let region = vec![0.0, 1.0, 0.0, 1.0];
@@ -128,7 +131,7 @@ fn an_atlas_layer_is_checked_then_drawn_and_finds_the_cell_under_the_pointer() {
     )
     .contains("has 8 entries"));
     assert!(refused(
-        d.set_atlas_layer(region.clone(), 3, vec![6; 9])
+        d.set_atlas_layer(region.clone(), 3, vec![7; 9])
             .unwrap_err()
     )
     .contains("class index"));
