@@ -49,7 +49,7 @@ pub fn skip<'de, D: Deserializer<'de>, T: Placeholder>(d: D) -> Result<T, D::Err
 
 #[cfg(test)]
 mod tests {
-    use crate::networks::file::WeightsFile;
+    use crate::networks::WeightsFile;
 
     /// A shipped weights file reads in the page's build, its networks and
     /// sampling kept, its training options and reports skipped as any JSON
