@@ -70,8 +70,9 @@ lint: setup
 
 test-native:
 	cargo test
-	# The number reader as the page's module is built (without exact-floats).
-	cargo test --lib --no-default-features --features page arm::
+	# The number reader and the weights files as the page's module is built
+	# (without exact-floats; the trainer's options and reports unread).
+	cargo test --lib --no-default-features --features page -- arm:: networks::unread
 
 test-wasm: setup
 	CHROMEDRIVER=/usr/bin/chromedriver $(WASM_ENV) wasm-pack test --headless --chrome

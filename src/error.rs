@@ -465,7 +465,8 @@ pub(crate) fn by_name<T: Copy>(
         .find(|&t| name(t) == text)
         .ok_or_else(|| Error::UnknownName {
             kind,
-            name: text.into(),
+            // Cut to 40 characters: a page's call may pass megabytes.
+            name: clip(text),
             choices: choices(&all.iter().map(|&t| name(t)).collect::<Vec<_>>()),
         })
 }

@@ -46,3 +46,31 @@ pub fn skip<'de, D: Deserializer<'de>, T: Placeholder>(d: D) -> Result<T, D::Err
     IgnoredAny::deserialize(d)?;
     Ok(T::placeholder())
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::networks::WeightsFile;
+
+    /// A shipped weights file reads in the page's build, its networks and
+    /// sampling kept, its training options and reports skipped as any JSON
+    /// value (the workers' build refuses these; the page uses neither).
+    #[test]
+    fn a_weights_file_reads_without_its_training_options_and_reports() {
+        let text = std::fs::read_to_string("weights/v-plain.json").expect("the shipped v file");
+        let file = WeightsFile::from_json(&text).expect("it reads");
+        assert!(file.training.adam.is_none());
+        let s = &file.training.sampling;
+        assert!(
+            s.obstacle_max[0] > s.obstacle_min[0],
+            "the sampling is read"
+        );
+        let mut odd: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+        odd["training"]["options"] = serde_json::json!([1, { "x": null }]);
+        odd["nets"][0]["report"] = serde_json::json!("anything");
+        let read = WeightsFile::from_json(&odd.to_string()).expect("skipped");
+        assert_eq!(
+            read.nets[0].mlp, file.nets[0].mlp,
+            "the network is the same"
+        );
+    }
+}

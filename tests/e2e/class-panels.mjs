@@ -155,7 +155,7 @@ export function classPanelTests(h) {
     assert.equal(await page.getAttribute('#compare-table', 'data-stale'), 'false');
     const ccsv = await download(page, '#compare-csv');
     const crows = ccsv.text.trim().split('\n');
-    assert.equal(crows[0], 'method,label,min_clearance_m,collided,unavoidable,final_error_m,reached,error');
+    assert.equal(crows[0], 'method,label,min_clearance_m,collided,unavoidable,final_error_m,reached,error,limit_steps');
     assert.equal(crows.length, (await methodsOf(page)).length + 1);
     // The scene changes: the table greys out and says so.
     await mouseDrag(page, mid, [1.2, 1.5]);

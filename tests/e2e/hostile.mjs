@@ -151,6 +151,9 @@ test('window.demo with wrong types and out-of-range values: readable errors, not
       'setMethod(<b>)': () => m.setMethod('<b>'),
       'setSpeed(1e308)': () => m.setSpeed(1e308),
       'setFeedback(Infinity)': () => m.setFeedback(Infinity),
+      'setWeighting("qp")': () => m.setWeighting('qp'),
+      'setWeighting(<b>wln)': () => m.setWeighting('<b>wln'),
+      'setWeighting(huge)': () => m.setWeighting('w'.repeat(1 << 20)),
       'setObstacles(odd length)': () => m.setObstacles(Float64Array.from([1, 1])),
       'setObstacle(NaN)': () => m.setObstacle(NaN, NaN),
       'loadNetworks(huge)': () => m.loadNetworks('x'.repeat(9 << 20), v),
@@ -183,8 +186,9 @@ test('window.demo with wrong types and out-of-range values: readable errors, not
   assert.match(r.out['loadNetworks(NaN)'].message, /not a valid weights file/);
   assert.match(r.out['loadNetworks(another arm)'].message, /arm/);
   assert.match(r.out['removeObstacle(NaN)'].message, /whole number/);
+  assert.match(r.out['setWeighting(huge)'].message, /^unknown joint weighting 'w{40}…': use none or wln$/);
   // Nothing changed: the same scene, and the same run from it.
-  for (const k of ['arm', 'obstacles', 'target', 'method', 'lambda', 'feedback', 'speed', 'theta', 't']) {
+  for (const k of ['arm', 'obstacles', 'target', 'method', 'lambda', 'feedback', 'speed', 'theta', 't', 'weighting', 'floor']) {
     assert.deepEqual(r.after[k], r.before[k], `${k} unchanged`);
   }
   assert.deepEqual(r.sim1, r.sim0, 'the networks in use are unchanged');

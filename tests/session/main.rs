@@ -26,5 +26,6 @@ fn four_links() -> Arm {
 }
 
 mod clock;
+mod lab;
 mod runs;
 mod scene;

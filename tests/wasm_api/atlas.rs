@@ -97,6 +97,7 @@ fn an_atlas_layer_is_checked_then_drawn_and_finds_the_cell_under_the_pointer() {
         [
             "success",
             "collision",
+            "limit",
             "missed",
             "failed",
             "path_blocked",
@@ -104,6 +105,17 @@ fn an_atlas_layer_is_checked_then_drawn_and_finds_the_cell_under_the_pointer() {
         ]
     );
     assert!(classes[0]["swatch"].as_str().unwrap().starts_with("rgba("));
+    // Only an arm with joint limits has the class limit (the page's legend).
+    let only_limited: Vec<bool> = classes
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["limits"].as_bool().unwrap())
+        .collect();
+    assert_eq!(
+        only_limited,
+        [false, false, true, false, false, false, false]
+    );
     let mut d = demo(1);
     assert_eq!(d.atlas_cell_at(100.0, 100.0), None, "no layer, no cell");
     let region = vec![0.0, 1.0, 0.0, 1.0];
@@ -119,7 +131,7 @@ fn an_atlas_layer_is_checked_then_drawn_and_finds_the_cell_under_the_pointer() {
     )
     .contains("has 8 entries"));
     assert!(refused(
-        d.set_atlas_layer(region.clone(), 3, vec![6; 9])
+        d.set_atlas_layer(region.clone(), 3, vec![7; 9])
             .unwrap_err()
     )
     .contains("class index"));
@@ -177,4 +189,16 @@ fn the_legend_lists_what_the_stage_drew() {
         assert!(now.iter().any(|x| x == k), "{k} in {now:?}");
     }
     assert!(!now.iter().any(|x| x == "dampers" || x == "floor"));
+    // The lab's ellipses: drawn while their legend switch is on.
+    assert!(!now.iter().any(|x| x == "ellipse" || x == "force"));
+    assert!(d.set_shown("ellipse", true));
+    assert!(drawn(&d).iter().any(|x| x == "ellipse"));
+    assert!(d.set_shown("force", true));
+    assert!(drawn(&d).iter().any(|x| x == "force"));
+    assert!(!d.set_shown("arm", false), "not a switch");
+    assert!(!d.set_shown("nothing", true));
+    assert!(d.set_shown("ellipse", false) && d.set_shown("force", false));
+    let off = drawn(&d);
+    assert!(!off.iter().any(|x| x == "ellipse" || x == "force"));
+    assert!(off.iter().any(|x| x == "arm"), "the arm still drawn");
 }

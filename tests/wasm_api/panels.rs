@@ -143,6 +143,13 @@ fn names_colours_and_the_legend_come_from_the_module() {
     assert_eq!(l["max_links"], redundant_ik::session::MAX_LINKS);
     assert_eq!(l["max_obstacles"], redundant_ik::session::MAX_OBSTACLES);
     assert_eq!(l["arm_presets"][1]["links"].as_array().unwrap().len(), 4);
+    // The joint weighting's choices, [name, label], in menu order.
+    assert_eq!(l["joint_weightings"][0][0], "none");
+    assert_eq!(l["joint_weightings"][1][0], "wln");
+    // Which methods the weighting reaches, from their files.
+    for (e, method) in m.as_array().unwrap().iter().zip(methods::ALL) {
+        assert_eq!(e["weighting"], method.info().weighting, "{method}");
+    }
     let p = json_of(palette().unwrap());
     assert_eq!(p["arm"], "#1d4e89");
     let l = json_of(legend().unwrap());
@@ -169,4 +176,22 @@ fn arrow_keys_move_the_target_and_with_shift_the_obstacle() {
     d.set_obstacle(0.09, 0.3).unwrap();
     assert!(d.key("ArrowLeft", true).is_err());
     assert_eq!(pair(&state(&d)["obstacle"]), [0.09, 0.3]);
+}
+
+#[wasm_bindgen_test]
+fn the_joint_weighting_and_the_floor_are_set_by_name_and_refused_otherwise() {
+    let mut d = demo(1);
+    assert_eq!(state(&d)["weighting"], "none");
+    assert_eq!(state(&d)["floor"], false);
+    let e = message(d.set_weighting("qp").unwrap_err());
+    assert!(e.contains("joint weighting") && e.contains("qp"), "{e}");
+    assert_eq!(state(&d)["weighting"], "none", "nothing changed");
+    d.set_weighting("wln").unwrap();
+    d.set_floor(true);
+    let s = state(&d);
+    assert_eq!(s["weighting"], "wln");
+    assert_eq!(s["floor"], true);
+    assert_eq!(s["singular_values"].as_array().unwrap().len(), 2);
+    assert_eq!(s["past_limits"].as_array().unwrap().len(), 0);
+    assert_eq!(s["limit_steps"], 0);
 }
