@@ -238,7 +238,11 @@ impl Rule for Paper {
                 }
                 ik::theta_dot_network_into(&self.phi, jac, xdot, &self.v, out)?;
                 let mut again = weighted && self.weights.update(cx.scene, pose, out);
-                while again {
+                // At most n + 1 solves (JointWeights::widen).
+                for _ in 0..=out.len() {
+                    if !again {
+                        break;
+                    }
                     let winv = self.weights.inverse();
                     if handover {
                         ik::phi_weighted_into(jac, winv, delta + scheduled, &mut self.phi)?;

@@ -74,12 +74,18 @@ impl JointWeights {
     /// Weights every joint not weighted yet that `rates` move away from the
     /// middle of its range; whether there was one (then the rates are to
     /// be solved again).
+    ///
+    /// A weight that rounds to 1 (`|dH/dtheta_i|` below an ulp of 1, near
+    /// the middle of the range) changes nothing and does not count, so each
+    /// `true` weights one more joint for good: at most `n` in a row (a
+    /// fuzzed scene at the middles of its ranges looped here for ever while
+    /// the test was `w == 1` alone).
     pub(super) fn widen(&mut self, rates: &[f64]) -> bool {
         let mut more = false;
         for ((w, &g), &rate) in self.winv.iter_mut().zip(&self.grad).zip(rates) {
             if *w == 1.0 && g * rate > 0.0 {
                 *w = 1.0 / (1.0 + g.abs());
-                more = true;
+                more |= *w != 1.0;
             }
         }
         more
@@ -101,7 +107,11 @@ impl JointWeights {
         let jac = pose.jacobian();
         ik::theta_dot_symmetric_into(jac, xdot, v, delta, out)?;
         let mut again = self.update(cx.scene, pose, out);
-        while again {
+        // At most n + 1 solves (see widen); the bound only restates that.
+        for _ in 0..=out.len() {
+            if !again {
+                break;
+            }
             ik::theta_dot_weighted_into(jac, &self.winv, xdot, v, delta, out)?;
             again = self.widen(out);
         }
