@@ -72,7 +72,7 @@ test-native:
 	cargo test
 	# The number reader and the weights files as the page's module is built
 	# (without exact-floats; the trainer's options and reports unread).
-	cargo test --lib --no-default-features --features page -- arm:: networks::unread
+	cargo test --lib --no-default-features --features page -- arm:: networks::reader
 
 test-wasm: setup
 	CHROMEDRIVER=/usr/bin/chromedriver $(WASM_ENV) wasm-pack test --headless --chrome

@@ -166,18 +166,10 @@ pub struct Training {
     /// Hidden layer widths.
     pub hidden: Vec<usize>,
     /// Levenberg-Marquardt options (unused when `adam` is set).
-    #[cfg_attr(
-        not(any(feature = "worker", feature = "cli", feature = "eval")),
-        serde(deserialize_with = "crate::networks::unread::skip")
-    )]
     pub options: LmOptions,
     /// Adam's options, when Adam trained the networks instead of
     /// Levenberg-Marquardt; absent in older files.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    #[cfg_attr(
-        not(any(feature = "worker", feature = "cli", feature = "eval")),
-        serde(deserialize_with = "crate::networks::unread::skip")
-    )]
     pub adam: Option<AdamOptions>,
     /// How the samples were drawn.
     pub sampling: Sampling,
@@ -192,10 +184,6 @@ pub struct NetEntry {
     /// The network.
     pub mlp: Mlp,
     /// Epochs, stop reason and final train/validation/test MSE (mapminmax units).
-    #[cfg_attr(
-        not(any(feature = "worker", feature = "cli", feature = "eval")),
-        serde(deserialize_with = "crate::networks::unread::skip")
-    )]
     pub report: TrainReport,
 }
 
@@ -253,21 +241,6 @@ pub fn shape(
 pub const MAX_FILE_BYTES: usize = 8 << 20;
 
 impl WeightsFile {
-    /// Parses and validates a weights file (at most [`MAX_FILE_BYTES`]).
-    pub fn from_json(json: &str) -> Result<Self> {
-        if json.len() > MAX_FILE_BYTES {
-            return Err(Error::Weights(format!(
-                "the file has {:.1} MB; weights files are at most {} MB",
-                json.len() as f64 / 1048576.0,
-                MAX_FILE_BYTES >> 20
-            )));
-        }
-        let file: WeightsFile = serde_json::from_str(json)
-            .map_err(|e| Error::Weights(format!("not a valid weights file: {e}")))?;
-        file.validate()?;
-        Ok(file)
-    }
-
     /// Pretty JSON (f64 values round-trip exactly).
     pub fn to_json(&self) -> Result<String> {
         serde_json::to_string_pretty(self)

@@ -13,8 +13,7 @@
 mod builtin;
 pub mod file;
 pub mod inputs;
-#[cfg(not(any(feature = "worker", feature = "cli", feature = "eval")))]
-mod unread;
+mod reader;
 
 use serde::{Deserialize, Serialize};
 

@@ -1,0 +1,173 @@
+//! The page's reader of weights files against serde's derived one.
+
+use super::by_hand::read;
+// The derived readers exist where the tool's or the workers' features are on.
+#[cfg(any(feature = "worker", feature = "cli", feature = "eval"))]
+use {super::by_hand::unread_report, crate::networks::WeightsFile};
+
+/// The derived reader's file with what the page skips replaced by the
+/// page reader's placeholders.
+#[cfg(any(feature = "worker", feature = "cli", feature = "eval"))]
+fn as_the_page_reads_it(mut file: WeightsFile) -> WeightsFile {
+    file.training.options = crate::nn::lm::LmOptions::default();
+    file.training.adam = None;
+    for net in &mut file.nets {
+        net.report = unread_report();
+    }
+    file
+}
+
+fn shipped() -> Vec<(String, String)> {
+    let mut files: Vec<_> = std::fs::read_dir("weights")
+        .expect("the weights folder")
+        .map(|e| e.expect("an entry").path())
+        .filter(|p| p.extension().is_some_and(|x| x == "json"))
+        .map(|p| {
+            let text = std::fs::read_to_string(&p).expect("readable");
+            (p.display().to_string(), text)
+        })
+        .collect();
+    files.sort();
+    assert!(files.len() >= 6, "the shipped weights files");
+    files
+}
+
+/// Every shipped weights file reads to the same networks, arm, range and
+/// sampling with the page's reader as with the derived one.
+#[cfg(any(feature = "worker", feature = "cli", feature = "eval"))]
+#[test]
+fn the_page_reads_every_shipped_file_as_the_tool_does() {
+    for (name, text) in shipped() {
+        let derived: WeightsFile = serde_json::from_str(&text).expect(&name);
+        let page = read(&text).expect(&name);
+        assert_eq!(page, as_the_page_reads_it(derived), "{name}");
+    }
+}
+
+/// A file with every optional field set and the older names, written
+/// by the derived writer, reads the same with both readers.
+#[cfg(any(feature = "worker", feature = "cli", feature = "eval"))]
+#[test]
+fn every_optional_field_and_older_name_reads_as_the_tool_reads_it() {
+    let (_, text) = &shipped()[0];
+    let mut value: serde_json::Value = serde_json::from_str(text).expect("JSON");
+    let s = &mut value["training"]["sampling"];
+    s["random_tasks"] = 7.into();
+    s["obstacle_spread"] = 0.05.into();
+    s["whole_torus"] = true.into();
+    s["sign_smoothing"] = 1e-4.into();
+    let methods = s["methods"].take();
+    s.as_object_mut().expect("an object").remove("methods");
+    s["modes"] = methods;
+    value["training"]["seconds"] = 12.5.into();
+    value["encoding"] = "raw".into();
+    value["arm"]["joint_limits"] = serde_json::json!([[-3, 3], [-2.5, 2.5], [-2, 2]]);
+    value["arm"]["rate_limits"] = serde_json::json!([1, 2, 3.5]);
+    let text = value.to_string();
+    let derived: WeightsFile = serde_json::from_str(&text).expect("the tool reads it");
+    let page = read(&text).expect("the page reads it");
+    assert_eq!(page, as_the_page_reads_it(derived));
+    assert!(page.arm.joint_limits().is_some());
+    assert!(page.training.sampling.whole_torus);
+}
+
+/// What the derived readers refuse, the page's refuses too, each with a
+/// message that names the field.
+#[test]
+fn what_the_tool_refuses_the_page_refuses_and_says_where() {
+    let (_, text) = &shipped()[0];
+    let base: serde_json::Value = serde_json::from_str(text).expect("JSON");
+    type Change = Box<dyn Fn(&mut serde_json::Value)>;
+    let cases: Vec<(&str, Change)> = vec![
+        (
+            "missing field `nets`",
+            Box::new(|v| drop(v.as_object_mut().unwrap().remove("nets"))),
+        ),
+        (
+            "unknown field `colour`",
+            Box::new(|v| v["colour"] = "red".into()),
+        ),
+        (
+            "sampling: Sampling: unknown field `extra`",
+            Box::new(|v| v["training"]["sampling"]["extra"] = 1.into()),
+        ),
+        (
+            "net: unknown variant `w`",
+            Box::new(|v| v["net"] = "w".into()),
+        ),
+        (
+            "variant: unknown variant",
+            Box::new(|v| v["variant"] = "diagonal".into()),
+        ),
+        (
+            "samples: invalid type: a floating point number",
+            Box::new(|v| v["training"]["samples"] = 2.5.into()),
+        ),
+        (
+            "samples: invalid type: an integer",
+            Box::new(|v| v["training"]["samples"] = (-1).into()),
+        ),
+        (
+            "obstacle_min: invalid length 3",
+            Box::new(|v| v["training"]["sampling"]["obstacle_min"] = serde_json::json!([0, 1, 2])),
+        ),
+        (
+            "link length",
+            Box::new(|v| v["arm"]["links"] = serde_json::json!([0.6, -1, 0.6])),
+        ),
+        (
+            "missing field `report`",
+            Box::new(|v| drop(v["nets"][0].as_object_mut().unwrap().remove("report"))),
+        ),
+        (
+            "missing field `options`",
+            Box::new(|v| drop(v["training"].as_object_mut().unwrap().remove("options"))),
+        ),
+        (
+            "methods: [0]: unknown method",
+            Box::new(|v| v["training"]["sampling"]["methods"] = serde_json::json!(["flying"])),
+        ),
+        (
+            "weights: [0]: invalid type: a string",
+            Box::new(|v| v["nets"][0]["mlp"]["layers"][0]["weights"][0] = "x".into()),
+        ),
+    ];
+    for (message, change) in cases {
+        let mut v = base.clone();
+        change(&mut v);
+        let text = v.to_string();
+        let page = read(&text).expect_err(message);
+        assert!(page.contains(message), "{message}: got '{page}'");
+        #[cfg(any(feature = "worker", feature = "cli", feature = "eval"))]
+        assert!(
+            serde_json::from_str::<WeightsFile>(&text).is_err(),
+            "the tool refuses {message}"
+        );
+    }
+    let repeated = text_with_repeated_field(text);
+    assert!(read(&repeated)
+        .expect_err("repeated")
+        .contains("duplicate field `format`"));
+    for broken in [
+        "",
+        "[",
+        "{\"format\": ",
+        "\u{0}\u{ff}garbage",
+        "null",
+        "[1, 2]",
+    ] {
+        assert!(read(broken).is_err(), "{broken:?} is refused");
+    }
+}
+
+fn text_with_repeated_field(text: &str) -> String {
+    text.replacen('{', "{\"format\": \"x\", ", 1)
+}
+
+/// A JSON tree deeper than serde_json's recursion limit is refused, not
+/// a stack overflow.
+#[test]
+fn a_deep_tree_is_refused() {
+    let deep = format!("{}{}", "[".repeat(100_000), "]".repeat(100_000));
+    assert!(read(&deep).is_err());
+}
