@@ -206,10 +206,20 @@ pub fn caption(task: u32, scene: &Scene, method: Method) -> String {
     match scene.obstacles.len() {
         0 => parts.push("no obstacle".into()),
         1 => parts.push(format!("radius {} m", scene.obstacles[0].radius)),
-        k => parts.push(format!(
-            "{k} obstacles, radius {} m",
-            scene.obstacles[0].radius
-        )),
+        k => {
+            let first = scene.obstacles[0].radius;
+            if scene.obstacles.iter().all(|o| o.radius == first) {
+                parts.push(format!("{k} obstacles, radius {first} m"));
+            } else {
+                // Each obstacle's radius, in their order.
+                let radii: Vec<String> = scene
+                    .obstacles
+                    .iter()
+                    .map(|o| o.radius.to_string())
+                    .collect();
+                parts.push(format!("{k} obstacles, radii {} m", radii.join(", ")));
+            }
+        }
     }
     parts.push(if scene.feedback_gain > 0.0 {
         format!("closed loop K = {} 1/s", scene.feedback_gain)

@@ -48,6 +48,31 @@ fn figure_writes_an_svg_and_all_writes_every_task_and_method() {
     assert!(svg.contains("min 0.2193 m"), "Task 2's numerical clearance");
 }
 
+/// The caption names each obstacle's radius where they differ (issue 27:
+/// radii 0.05 and 0.12 m were captioned "2 obstacles, radius 0.05 m").
+#[test]
+fn figure_caption_gives_every_radius_where_they_differ() {
+    let caption = |obstacles: &[&str]| {
+        let out = scratch("radii.svg");
+        let mut args = vec!["figure", "--task", "1", "--out", out.to_str().unwrap()];
+        for o in obstacles {
+            args.extend(["--obstacle", o]);
+        }
+        ok(&args);
+        std::fs::read_to_string(&out).unwrap()
+    };
+    let mixed = caption(&["0.6,0.5,0.05", "1.0,1.3,0.12"]);
+    assert!(
+        mixed.contains("2 obstacles, radii 0.05, 0.12 m"),
+        "both radii"
+    );
+    let same = caption(&["0.6,0.5,0.05", "1.0,1.3,0.05"]);
+    assert!(
+        same.contains("2 obstacles, radius 0.05 m"),
+        "one radius once"
+    );
+}
+
 #[test]
 fn figure_ellipse_draws_the_manipulability_ellipse_at_the_final_pose() {
     let plain = scratch("plain.svg");
