@@ -5,7 +5,10 @@
 
 use plotters::prelude::*;
 
-use super::{caption, colour, draw_caption, draw_legend, svg, why, Swatch};
+use super::{
+    caption, caption_lines, colour, draw_caption, draw_legend, draw_title, svg, why, Swatch,
+    TITLE_HEIGHT,
+};
 use crate::error::Result;
 use crate::kinematics::{velocity_ellipse, Pose};
 use crate::planner::Trajectory;
@@ -94,18 +97,20 @@ pub fn arm_svg_with(
         Some(d) => format!("min distance {d:.4} m"),
         None => "no obstacle".into(),
     };
-    let title = format!(
+    let head = format!(
         "Task {task}, {}{fig}: {verdict}, final error {:.1e} m",
-        run.method.title(),
+        run.method.label(),
         s.final_error
     );
-    let line = caption(task, scene, run.method);
+    let (lines, foot) = caption_lines(&caption(task, scene, run.method), size.0);
+    let size = (size.0, size.1 - 30 + foot);
     svg(size, |root| {
         let (plot, foot_area) = root.split_vertically(size.1 - foot);
-        draw_caption(&foot_area, &line)?;
+        draw_caption(&foot_area, &lines)?;
+        let (head_area, plot) = plot.split_vertically(TITLE_HEIGHT);
+        draw_title(&head_area, &head, run.method.description())?;
         let mut chart = ChartBuilder::on(&plot)
-            .caption(title, ("sans-serif", 17))
-            .margin_top(10)
+            .margin_top(2)
             .margin_right(mr)
             .x_label_area_size(mb - 10)
             .y_label_area_size(ml - 10)

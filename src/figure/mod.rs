@@ -180,11 +180,18 @@ pub fn caption(task: u32, scene: &Scene, method: Method) -> String {
     if !scene.arm.same_geometry(&crate::arm::Arm::paper()) {
         parts.push(format!("arm {}", scene.arm));
     }
+    // Limits in short decimals (a preset's are radians to 17 digits).
     if let Some(l) = scene.arm.joint_limits() {
-        parts.push(format!("joint limits {l}"));
+        let ranges: Vec<String> = l
+            .ranges()
+            .iter()
+            .map(|[lo, hi]| format!("{}:{}", short(*lo), short(*hi)))
+            .collect();
+        parts.push(format!("joint limits {} rad", ranges.join(",")));
     }
     if let Some(r) = scene.arm.rate_limits() {
-        parts.push(format!("rate limits {r}"));
+        let rates: Vec<String> = r.rates().iter().map(|x| short(*x)).collect();
+        parts.push(format!("rate limits {} rad/s", rates.join(",")));
     }
     if !scene.weighting.is_none() {
         parts.push(format!("joint weighting {}", scene.weighting));
@@ -240,13 +247,104 @@ pub fn caption(task: u32, scene: &Scene, method: Method) -> String {
     parts.join(" · ")
 }
 
-/// Draws a caption line at the bottom of `area`, `height` pixels high.
-pub(crate) fn draw_caption(area: &Area<'_>, text: &str) -> std::result::Result<(), String> {
-    let (_, h) = area.dim_in_pixel();
+/// `x` with at most three decimals, trailing zeros dropped (for captions).
+fn short(x: f64) -> String {
+    let text = format!("{x:.3}");
+    let text = text.trim_end_matches('0').trim_end_matches('.');
+    match text {
+        "-0" => "0".into(),
+        t => t.into(),
+    }
+}
+
+/// Font size and line height of the caption under a figure.
+const CAPTION_SIZE: f64 = 13.0;
+const CAPTION_LINE: u32 = 17;
+
+/// `text`'s parts (split at `sep`) joined again into lines no wider than
+/// `width` pixels at font `size` ([`text_size`]); a part wider than a line
+/// has a line of its own.
+pub(crate) fn wrap(text: &str, sep: &str, width: u32, size: f64) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    for part in text.split(sep) {
+        match lines.last_mut() {
+            Some(line) if text_size(&format!("{line}{sep}{part}"), size).0 <= width => {
+                line.push_str(sep);
+                line.push_str(part);
+            }
+            _ => lines.push(part.to_string()),
+        }
+    }
+    lines
+}
+
+/// The caption's lines for a figure `width` pixels wide (its parts are
+/// separated by ` · `, [`caption`]), and the height of the foot they need.
+pub(crate) fn caption_lines(text: &str, width: u32) -> (Vec<String>, u32) {
+    // 85% of the width: the glyph table is Helvetica's, and the fonts
+    // browsers substitute for sans-serif run up to a tenth wider.
+    let lines = wrap(
+        text,
+        " · ",
+        width.saturating_sub(24) * 85 / 100,
+        CAPTION_SIZE,
+    );
+    let foot = 13 + CAPTION_LINE * lines.len() as u32;
+    (lines, foot)
+}
+
+/// Draws the caption's lines ([`caption_lines`]) in the foot `area`.
+pub(crate) fn draw_caption(area: &Area<'_>, lines: &[String]) -> std::result::Result<(), String> {
+    for (i, line) in lines.iter().enumerate() {
+        area.draw(&Text::new(
+            line.clone(),
+            (12, 4 + (CAPTION_LINE * i as u32) as i32),
+            ("sans-serif", CAPTION_SIZE)
+                .into_font()
+                .color(&colour::MUTED),
+        ))
+        .map_err(why)?;
+    }
+    Ok(())
+}
+
+/// Height of the title block [`draw_title`] draws.
+pub(crate) const TITLE_HEIGHT: u32 = 48;
+
+/// Draws a figure's title, centred at the top of `area`: `head` (what the
+/// figure shows and its verdict) at 17 px and `sub` (the method's
+/// description) under it at 13 px, each made smaller where it would not
+/// fit the width (the longer methods' titles were clipped at both ends).
+pub(crate) fn draw_title(
+    area: &Area<'_>,
+    head: &str,
+    sub: &str,
+) -> std::result::Result<(), String> {
+    let (w, _) = area.dim_in_pixel();
+    let fit = |text: &str, size: f64| {
+        let wide = text_size(text, size).0.max(1) as f64;
+        size.min(size * (w.saturating_sub(20)) as f64 / wide)
+    };
+    let centre = (w / 2) as i32;
+    let style = |size: f64, colour: &RGBColor| {
+        ("sans-serif", size)
+            .into_font()
+            .color(colour)
+            .pos(plotters::style::text_anchor::Pos::new(
+                plotters::style::text_anchor::HPos::Center,
+                plotters::style::text_anchor::VPos::Top,
+            ))
+    };
     area.draw(&Text::new(
-        text.to_string(),
-        (12, h as i32 - 20),
-        ("sans-serif", 13).into_font().color(&colour::MUTED),
+        head.to_string(),
+        (centre, 8),
+        style(fit(head, 17.0), &BLACK),
+    ))
+    .map_err(why)?;
+    area.draw(&Text::new(
+        sub.to_string(),
+        (centre, 29),
+        style(fit(sub, 13.0), &colour::MUTED),
     ))
     .map_err(why)
 }

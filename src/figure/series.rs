@@ -8,7 +8,10 @@ use std::ops::Range;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
-use super::{caption, colour, draw_caption, draw_legend, hex, svg, why, Area, Swatch};
+use super::{
+    caption, caption_lines, colour, draw_caption, draw_legend, draw_title, hex, svg, why, Area,
+    Swatch, TITLE_HEIGHT,
+};
 use crate::error::Result;
 use crate::planner::{Method, Trajectory};
 use crate::scene::Scene;
@@ -49,13 +52,15 @@ fn panel<'a, 'b>(
 pub fn series_svg(task: u32, scene: &Scene, run: &Trajectory) -> Result<String> {
     let size = (820u32, 760u32);
     let t1 = run.steps.last().map_or(0.0, |s| s.t).max(1e-9);
-    let title = format!("Task {task}, {} over time", run.method.title());
-    let line = caption(task, scene, run.method);
+    let head = format!("Task {task}, {} over time", run.method.label());
+    let (lines, foot_height) = caption_lines(&caption(task, scene, run.method), size.0);
+    let size = (size.0, size.1 - 30 + foot_height);
     svg(size, |root| {
-        let root = root.titled(&title, ("sans-serif", 17)).map_err(why)?;
-        let (h, _) = (root.dim_in_pixel().1, 0);
-        let (panels, foot) = root.split_vertically(h - 30);
-        draw_caption(&foot, &line)?;
+        let (head_area, root) = root.split_vertically(TITLE_HEIGHT);
+        draw_title(&head_area, &head, run.method.description())?;
+        let h = root.dim_in_pixel().1;
+        let (panels, foot) = root.split_vertically(h - foot_height);
+        draw_caption(&foot, &lines)?;
         let areas = panels.split_evenly((3, 1));
 
         let radius = scene.obstacles.first().map(|o| o.radius);
@@ -153,11 +158,12 @@ pub fn compare_svg(task: u32, scene: &Scene, runs: &[Trajectory]) -> Result<Stri
     let line = line
         .split_once(" · ")
         .map_or(line.clone(), |(_, rest)| rest.to_string());
-    svg((820, 750), |root| {
+    let (lines, foot_height) = caption_lines(&line, 820);
+    svg((820, 720 + foot_height), |root| {
         let root = root.titled(&title, ("sans-serif", 18)).map_err(why)?;
         let h = root.dim_in_pixel().1;
-        let (charts, foot) = root.split_vertically(h - 30);
-        draw_caption(&foot, &line)?;
+        let (charts, foot) = root.split_vertically(h - foot_height);
+        draw_caption(&foot, &lines)?;
         let (top, bottom) = charts.split_vertically(330);
 
         // Clearance.

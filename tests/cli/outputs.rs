@@ -73,6 +73,37 @@ fn figure_caption_gives_every_radius_where_they_differ() {
     );
 }
 
+/// A figure of the iiwa's planar model: its limits in short decimals, the
+/// caption wrapped into lines that fit, and the method's description under
+/// the title instead of in one line clipped at both ends (issue 27).
+#[test]
+fn figure_text_fits_with_short_decimals() {
+    let out = scratch("iiwa.svg");
+    ok(&[
+        "figure",
+        "--arm",
+        "iiwa-planar",
+        "--method",
+        "manipulability",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(svg.contains("joint limits -2.094:2.094,"), "short decimals");
+    assert!(svg.contains("rate limits 1.484,1.309,2.356 rad/s"));
+    assert!(!svg.contains("2.09439510239"), "no radians to 12 digits");
+    let lines: Vec<&str> = svg
+        .split("<text x=\"12\"")
+        .skip(1)
+        .filter_map(|t| t.split('>').nth(1)?.split('<').next())
+        .map(str::trim)
+        .collect();
+    assert!(lines.len() >= 2, "the caption wraps: {lines:?}");
+    assert!(lines.iter().all(|l| l.chars().count() <= 120), "{lines:?}");
+    assert!(svg.contains("Task 1, Manipulability: "), "the title's head");
+    assert!(svg.contains("climbs Yoshikawa"), "the description under it");
+}
+
 #[test]
 fn figure_ellipse_draws_the_manipulability_ellipse_at_the_final_pose() {
     let plain = scratch("plain.svg");
