@@ -15,7 +15,7 @@ PAGE_ENV = CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_TARGET_DIR=target/wasm-page
 PAGE_SIMD_ENV = CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_TARGET_DIR=target/wasm-page-simd
 WORKER_OPT = CARGO_PROFILE_RELEASE_OPT_LEVEL=s
 
-.PHONY: setup web demo offline test-offline test lint test-native test-wasm test-e2e test-fuzz test-soak fuzz soak bench bench-native bench-web figures atlas-figures weights clean-web
+.PHONY: setup web demo offline test-offline npm test-npm test lint test-native test-wasm test-e2e test-fuzz test-soak fuzz soak bench bench-native bench-web figures atlas-figures weights clean-web
 
 ## Make this machine able to build and test for wasm32 (idempotent).
 setup:
@@ -63,6 +63,18 @@ offline: web
 ## The offline file from file:// in headless Chromium (tests/bundle/offline.mjs).
 test-offline: offline
 	bash scripts/test-bundle.sh offline
+
+## The npm package: target/npm/redundant-ik/ and its tarball
+## target/npm/redundant-ik-VERSION.tgz (npm pack), the version Cargo.toml's:
+## the element, the page's module, the compat entry (every file inline) and
+## the notebook widget (docs/embedding.md).
+npm: web
+	bash scripts/bundle.sh npm
+
+## The tarball installed into a scratch folder, served, and the element loaded
+## from it three ways in headless Chromium (tests/bundle/npm.mjs).
+test-npm: npm
+	bash scripts/test-bundle.sh npm
 
 ## Everything CI runs: formatting, lints, native tests, the same core tests in
 ## headless Chromium, the end-to-end browser test of the page, and the short

@@ -12,7 +12,7 @@
 // assetUrl() answers with.
 
 import * as esbuild from 'esbuild';
-import { copyFileSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { copyFileSync, existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { dirname, join, relative } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 import { gzipSync } from 'node:zlib';
@@ -64,7 +64,8 @@ async function bundle(contents, inputs = new Set()) {
     },
   };
   const out = await esbuild.build({ ...COMMON, stdin: { contents, resolveDir: www, sourcefile: 'entry.js' }, metafile: true, plugins: [assets] });
-  for (const input of Object.keys(out.metafile.inputs)) if (!input.includes(':')) inputs.add(relative(www, join(root, input)));
+  // The files read, not the entry itself nor the inline files.
+  for (const input of Object.keys(out.metafile.inputs)) if (existsSync(join(root, input))) inputs.add(relative(www, join(root, input)));
   return out.outputFiles[0].text;
 }
 
@@ -126,8 +127,8 @@ an anywidget module for notebooks. No runtime dependencies.
 |---|---|
 | \`redundant-ik\`, \`redundant-ik/element\` | the \`<redundant-ik-demo>\` element; loads the .wasm and weights files beside it (serve them as \`application/wasm\` and JSON) |
 | \`redundant-ik/module\` | the page's module API (\`loadModule\`, \`methods\`, \`limits\`, \`Demo\`, \`assetUrl\`, ...) |
-| \`redundant-ik/compat\` | the element with every .wasm and weights file inline (one file, nothing else fetched) |
-| \`redundant-ik/widget\` | an anywidget front-end module (\`export default { render }\`), self-contained |
+| \`redundant-ik/compat\` | the element with every .wasm and weights file inline: nothing fetched (its module is widget.js) |
+| \`redundant-ik/widget\` | an anywidget front-end module (\`export default { render }\`), one self-contained file |
 
 Attributes (and the widget's traits): \`task\`, \`method\`, \`lambda\`, \`feedback\`, \`weighting\`,
 \`floor\`, \`path\`, \`autoplay\`, \`plots\`, with the page's address keys. Recipes for plain HTML,
@@ -155,8 +156,10 @@ async function npm() {
     mkdirSync(dirname(join(out, f)), { recursive: true });
     copyFileSync(join(www, f), join(out, f));
   }
-  save('compat.js', await bundle(inlineEntry('./redundant-ik-demo.js')));
+  // One self-contained bundle, the widget (anywidget loads one module's
+  // text), which defines the element; compat.js is that module too.
   save('widget.js', await bundle(inlineEntry('./widget.js', 'export default m.default;')));
+  save('compat.js', `${BANNER}\n// The element with every file inline (widget.js defines it; its default export is the notebook widget).\nexport { default } from './widget.js';\n`);
   for (const f of ['LICENSE-MIT', 'LICENSE-APACHE']) copyFileSync(join(root, f), join(out, f));
   save('README.md', readme(v));
   const pkg = {

@@ -32,8 +32,8 @@ export async function open(url, { ready = 'body[data-ready="true"]', init } = {}
 const tests = [];
 export const test = (name, fn) => tests.push({ name, fn });
 
-/** Runs the tests in order; exits non-zero if any failed. */
-export async function run(what) {
+/** Runs the tests in order, then `after()`; exits non-zero if any failed. */
+export async function run(what, after = () => {}) {
   let failed = 0;
   for (const { name, fn } of tests) {
     const t0 = Date.now();
@@ -46,6 +46,7 @@ export async function run(what) {
     }
   }
   await browser.close();
+  after();
   console.log(`${what}: ${tests.length - failed} passed, ${failed} failed`);
   process.exit(failed ? 1 : 0);
 }
