@@ -1,9 +1,10 @@
 // The offline file (dist/redundant-ik.html, `make offline`) opened from
 // file:// in headless Chromium, with no server: it reaches data-ready on
 // the SIMD build fetching nothing but its own data: URLs, Task 1 runs in
-// every method of the menu, an atlas and a quick training complete in
-// their workers, the built-in weights download, and where the browser had
-// no wasm SIMD it says why it cannot start. Run by `make test-offline`.
+// every method of the menu, the whole-reach networks run, the benchmark,
+// an atlas and a quick training complete in their workers, the built-in
+// weights download, and where the browser had no wasm SIMD it says why it
+// cannot start. Run by `make test-offline`.
 
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
@@ -32,6 +33,18 @@ test('Task 1 runs in every method of the menu', async () => {
     assert.equal(s.error, null, `${name}: Task 1 runs`);
     assert.ok(Math.abs(s.t - 10) < 1e-9, `${name}: to its end`);
   }
+  assert.deepEqual(page.problems, []);
+  await page.close();
+});
+
+test("the whole-reach network set, inline too, runs Case 3; the benchmark runs in its worker", async () => {
+  const page = await open(`${FILE}?task=1&method=case3`);
+  await page.evaluate(() => window.demo.useNetworks('reach'));
+  await page.waitForFunction(() => window.demo.state().network_set === 'reach');
+  const s = await page.evaluate(() => window.demo.runUntil(10));
+  assert.equal(s.error, null, 'Case 3 on the reach set runs Task 1');
+  const r = await page.evaluate(() => window.demo.bench({ batchMs: 2 }).then((b) => Object.keys(b.step_ns).length, (e) => e.message));
+  assert.ok(typeof r === 'number' && r > 0, `the benchmark: ${r}`);
   assert.deepEqual(page.problems, []);
   await page.close();
 });
