@@ -15,7 +15,7 @@ PAGE_ENV = CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_TARGET_DIR=target/wasm-page
 PAGE_SIMD_ENV = CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_TARGET_DIR=target/wasm-page-simd
 WORKER_OPT = CARGO_PROFILE_RELEASE_OPT_LEVEL=s
 
-.PHONY: setup web demo test lint test-native test-wasm test-e2e test-fuzz test-soak fuzz soak bench bench-native bench-web figures atlas-figures weights clean-web
+.PHONY: setup web demo offline test-offline npm test-npm test lint test-native test-wasm test-e2e test-fuzz test-soak fuzz soak bench bench-native bench-web figures atlas-figures weights clean-web
 
 ## Make this machine able to build and test for wasm32 (idempotent).
 setup:
@@ -51,6 +51,30 @@ web: setup
 ## Build, then serve www/ on http://127.0.0.1:$(PORT)/.
 demo: web
 	python3 scripts/serve.py --dir www --port $(PORT)
+
+## The page in one HTML file that opens from file:// with no server
+## (dist/redundant-ik.html, under 3 MB): index.html with its styles and its
+## one module inline, the SIMD builds of both modules, the shipped network
+## sets' weights files and bench-native.json gzipped in base64 inside it
+## (tools/bundle.mjs, esbuild pinned in tools/package-lock.json).
+offline: web
+	bash scripts/bundle.sh offline
+
+## The offline file from file:// in headless Chromium (tests/bundle/offline.mjs).
+test-offline: offline
+	bash scripts/test-bundle.sh offline
+
+## The npm package: target/npm/redundant-ik/ and its tarball
+## target/npm/redundant-ik-VERSION.tgz (npm pack), the version Cargo.toml's:
+## the element, the page's module, the compat entry (every file inline) and
+## the notebook widget (docs/embedding.md).
+npm: web
+	bash scripts/bundle.sh npm
+
+## The tarball installed into a scratch folder, served, and the element loaded
+## from it three ways in headless Chromium (tests/bundle/npm.mjs).
+test-npm: npm
+	bash scripts/test-bundle.sh npm
 
 ## Everything CI runs: formatting, lints, native tests, the same core tests in
 ## headless Chromium, the end-to-end browser test of the page, and the short

@@ -25,6 +25,16 @@ const exact = (v) => {
 const named = () => allParams().filter((p) => p.name !== 'lambda');
 
 /**
+ * Every key the address reads (readAddress), the methods' parameters by
+ * name included (after loadModule): the element's attributes and the
+ * notebook widget's traits are named so too.
+ */
+export function addressKeys() {
+  const keys = ['task', 'method', 'lambda', 'target', 'obstacle', 'obstacles', 'arm', 'limits', 'rates', 'feedback', 'damping', 'weighting', 'floor', 'path', 'networks', 'theta0', 'tf'];
+  return [...keys, ...named().map((p) => p.name)];
+}
+
+/**
  * The `mount()` options an address asks for (after loadModule): task,
  * method (the module's defaultMethod() where it names none; `mode=`, the
  * older name, is read where there is no `method=`), lambda,

@@ -2,7 +2,7 @@
 // (www/worker.js) on the workers' module of the build the page runs, so
 // the page keeps drawing; cancelling terminates the worker at once.
 
-import { loadModule, workerModuleUrl } from './module.js';
+import { assetUrl, loadModule, workerModuleUrl } from './module.js';
 
 /**
  * Runs one job in a Web Worker. `onProgress({ done, total, label })`
@@ -17,7 +17,7 @@ export async function runWorker(job, { onProgress, signal } = {}) {
       reject(new DOMException('Cancelled.', 'AbortError'));
     };
     if (signal?.aborted) return abort();
-    const worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
+    const worker = new Worker(assetUrl('worker.js'), { type: 'module' });
     function finish() {
       worker.terminate();
       if (signal) signal.removeEventListener('abort', abort);
@@ -77,7 +77,8 @@ let native = null;
  * first needed: a Promise of the object, or of null where there is none.
  */
 export function nativeFigures() {
-  native ??= fetch(new URL('./bench-native.json', import.meta.url))
+  native ??= Promise.resolve()
+    .then(() => fetch(assetUrl('bench-native.json')))
     .then((r) => (r.ok ? r.json() : null))
     .catch(() => null);
   return native;

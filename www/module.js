@@ -44,16 +44,32 @@ export {
 /** The built-in networks' weights files, `[phi, v]` (served in weights/). */
 export { builtinWeightsFiles };
 
+/**
+ * The address of a file the page or its workers load, `path` relative to
+ * www/ ('pkg/redundant_ik_simd_bg.wasm', 'weights/v-plain.json',
+ * 'worker.js', 'bench-native.json'): every URL the page and its workers
+ * resolve comes from here. Normally the file beside this module; in a
+ * build that carries its files inline (the offline file, the package's
+ * compat entry: tools/bundle.mjs) the data: URL of its copy, from the map
+ * `globalThis.__REDUNDANT_IK_ASSETS__` that the build's first lines fill.
+ */
+export function assetUrl(path) {
+  const inline = globalThis.__REDUNDANT_IK_ASSETS__;
+  if (!inline) return new URL(path, import.meta.url).href;
+  if (!Object.hasOwn(inline, path)) throw new Error(`this single-file build does not carry ${path} (it carries ${Object.keys(inline).join(', ')})`);
+  return inline[path];
+}
+
 /** The two builds of the module (make web): with wasm SIMD, and without. */
 const BUILDS = {
-  simd: new URL('./pkg/redundant_ik_simd_bg.wasm', import.meta.url).href,
-  baseline: new URL('./pkg/redundant_ik_bg.wasm', import.meta.url).href,
+  simd: 'pkg/redundant_ik_simd_bg.wasm',
+  baseline: 'pkg/redundant_ik_bg.wasm',
 };
 
 /** The same two builds of the workers' module (the atlas, the benchmark, the trainer). */
 const WORKER_BUILDS = {
-  simd: new URL('./pkg/redundant_ik_worker_simd_bg.wasm', import.meta.url).href,
-  baseline: new URL('./pkg/redundant_ik_worker_bg.wasm', import.meta.url).href,
+  simd: 'pkg/redundant_ik_worker_simd_bg.wasm',
+  baseline: 'pkg/redundant_ik_worker_bg.wasm',
 };
 
 /** Whether this browser validates wasm SIMD (v128, as wasm-feature-detect checks it). */
@@ -78,16 +94,13 @@ export function moduleBuild() {
 
 /** The workers' .wasm of the build the page runs (null before loading). */
 export function workerModuleUrl() {
-  return build && WORKER_BUILDS[build];
+  return build && assetUrl(WORKER_BUILDS[build]);
 }
 
 /** Bytes of the page module's linear memory (it grows, never shrinks; the soak watches it). */
 export function moduleMemoryBytes() {
   return memory ? memory.buffer.byteLength : 0;
 }
-
-/** Where `make web` puts the repository's weights files, beside the page. */
-const WEIGHTS = new URL('./weights/', import.meta.url);
 
 /** The fetches of shipped network sets under way or done, by name. */
 const fetchedSets = new Map();
@@ -110,7 +123,7 @@ export function loadNetworkSet(set = moduleNetworkSets()[0]) {
           const files = builtinWeightsFiles(set);
           const texts = await Promise.all(
             files.map(async (name) => {
-              const r = await fetch(new URL(name, WEIGHTS));
+              const r = await fetch(builtinWeightsUrl(name));
               if (!r.ok) throw new Error(`could not fetch weights/${name} (HTTP ${r.status})`);
               return r.text();
             }),
@@ -145,9 +158,12 @@ export function networkSets() {
   return cachedSets;
 }
 
-/** The URL of the built-in networks' weights file `name` (for downloads). */
+/**
+ * The URL of the built-in networks' weights file `name`, which `make web`
+ * puts in weights/ beside the page (fetched at start-up, for downloads).
+ */
 export function builtinWeightsUrl(name) {
-  return new URL(name, WEIGHTS).href;
+  return assetUrl(`weights/${name}`);
 }
 
 /**
@@ -159,7 +175,7 @@ export function builtinWeightsUrl(name) {
 export function loadModule() {
   if (!module) {
     const start = async (which) => {
-      const exports = await init({ module_or_path: BUILDS[which] });
+      const exports = await init({ module_or_path: assetUrl(BUILDS[which]) });
       memory = exports.memory;
       build = which;
       // The drawing's colours, for the stylesheet (var(--arm), ...).

@@ -1,0 +1,80 @@
+// The offline file (dist/redundant-ik.html, `make offline`) opened from
+// file:// in headless Chromium, with no server: it reaches data-ready on
+// the SIMD build fetching nothing but its own data: URLs, Task 1 runs in
+// every method of the menu, the whole-reach networks run, the benchmark,
+// an atlas and a quick training complete in their workers, the built-in
+// weights download, and where the browser had no wasm SIMD it says why it
+// cannot start. Run by `make test-offline`.
+
+import assert from 'node:assert/strict';
+import { join } from 'node:path';
+import { pathToFileURL } from 'node:url';
+import { open, run, root, shots, test } from './browser.mjs';
+
+const FILE = pathToFileURL(join(root, 'dist/redundant-ik.html')).href;
+
+test('opens from file:// on the SIMD build; fetches nothing beside it', async () => {
+  const page = await open(`${FILE}?task=1&method=numerical`);
+  assert.equal(await page.evaluate(() => window.demo.build), 'simd');
+  await page.screenshot({ path: join(shots, 'offline.png') });
+  assert.deepEqual(page.requests.filter((u) => u.split('?')[0] !== FILE), [], 'no request but the file itself');
+  assert.deepEqual(page.problems, []);
+  await page.close();
+});
+
+test('Task 1 runs in every method of the menu', async () => {
+  const page = await open(FILE);
+  const names = await page.$$eval('#mode option', (os) => os.map((o) => o.value));
+  assert.deepEqual(names, await page.evaluate(() => window.demo.methods().map((m) => m.name)));
+  for (const name of names) {
+    await page.selectOption('#mode', name);
+    await page.click('#task1');
+    const s = await page.evaluate(() => window.demo.runUntil(10));
+    assert.equal(s.error, null, `${name}: Task 1 runs`);
+    assert.ok(Math.abs(s.t - 10) < 1e-9, `${name}: to its end`);
+  }
+  assert.deepEqual(page.problems, []);
+  await page.close();
+});
+
+test("the whole-reach network set, inline too, runs Case 3; the benchmark runs in its worker", async () => {
+  const page = await open(`${FILE}?task=1&method=case3`);
+  await page.evaluate(() => window.demo.useNetworks('reach'));
+  await page.waitForFunction(() => window.demo.state().network_set === 'reach');
+  const s = await page.evaluate(() => window.demo.runUntil(10));
+  assert.equal(s.error, null, 'Case 3 on the reach set runs Task 1');
+  const r = await page.evaluate(() => window.demo.bench({ batchMs: 2 }).then((b) => Object.keys(b.step_ns).length, (e) => e.message));
+  assert.ok(typeof r === 'number' && r > 0, `the benchmark: ${r}`);
+  assert.deepEqual(page.problems, []);
+  await page.close();
+});
+
+test('an atlas completes in its worker', async () => {
+  const page = await open(FILE);
+  const r = await page.evaluate(() => window.demo.atlas({ n: 5, methods: ['none', 'numerical'] }).then((a) => ({ keys: Object.keys(a) }), (e) => ({ error: e.message })));
+  assert.equal(r.error, undefined, `the atlas: ${r.error}`);
+  assert.deepEqual(page.problems, []);
+  await page.close();
+});
+
+test('the built-in weights download; a quick training completes in its workers', async () => {
+  const page = await open(FILE);
+  await page.click('#train-panel summary');
+  const download = page.waitForEvent('download');
+  await page.click('#train-download');
+  const name = (await download).suggestedFilename();
+  assert.match(name, /\.json$/);
+  const report = await page.evaluate(() => window.demo.train({ net: 'both', preset: 'quick' }).then((r) => r, (e) => ({ error: e.message })));
+  assert.equal(report.error, undefined, `the training: ${report.error}`);
+  assert.match(await page.textContent('#train-report'), /Test errors/);
+  assert.deepEqual(page.problems, []);
+  await page.close();
+});
+
+test('without wasm SIMD the file says it carries the SIMD build only', async () => {
+  const page = await open(FILE, { ready: '#loading.failed', init: () => (WebAssembly.validate = () => false) });
+  assert.match(await page.textContent('#loading-text'), /does not carry pkg\/redundant_ik_bg\.wasm/);
+  await page.close();
+});
+
+await run('offline');
