@@ -8,7 +8,7 @@
 // The files a build inlines (the SIMD builds of both modules, the built-in
 // networks' weights files of every shipped set, bench-native.json and the
 // workers' script bundled with its glue) are gzipped, in base64, and
-// become Blob URLs in the browser (www/inline-assets.js) that module.js's
+// become data: URLs in the browser (www/inline-assets.js) that module.js's
 // assetUrl() answers with.
 
 import * as esbuild from 'esbuild';
