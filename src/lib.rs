@@ -20,6 +20,7 @@ pub mod kinematics;
 pub mod networks;
 pub mod nn;
 pub mod obstacle;
+pub mod palette;
 pub mod planner;
 pub mod qp;
 pub mod run;

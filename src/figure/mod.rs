@@ -32,16 +32,24 @@ pub use series::{compare_svg, series_svg};
 
 /// Colours of the figures.
 pub(crate) mod colour {
+    use crate::palette::{self, rgb};
     use plotters::style::RGBColor;
-    pub const INK: RGBColor = RGBColor(31, 41, 51);
-    pub const MUTED: RGBColor = RGBColor(95, 107, 120);
-    pub const ARM: RGBColor = RGBColor(29, 78, 137);
-    pub const ACCENT: RGBColor = RGBColor(217, 115, 26);
-    pub const DANGER: RGBColor = RGBColor(192, 57, 43);
-    pub const TEAL: RGBColor = RGBColor(42, 157, 143);
+    const fn of(hex: &str) -> RGBColor {
+        let (r, g, b) = rgb(hex);
+        RGBColor(r, g, b)
+    }
+    pub const INK: RGBColor = of(palette::INK);
+    pub const MUTED: RGBColor = of(palette::MUTED);
+    pub const ARM: RGBColor = of(palette::ARM);
+    pub const ACCENT: RGBColor = of(palette::ACCENT);
+    pub const DANGER: RGBColor = of(palette::DANGER);
     pub const LIGHT: RGBColor = RGBColor(246, 246, 246);
     pub const BOLD: RGBColor = RGBColor(215, 215, 215);
     pub const FRAME: RGBColor = RGBColor(200, 200, 200);
+    /// Joint `i`'s series ([`palette::joint_series`]).
+    pub fn joint(i: usize) -> RGBColor {
+        of(palette::joint_series(i))
+    }
 }
 
 /// Width of a glyph of the sans-serif fonts, in ems (Helvetica's metrics,

@@ -16,9 +16,6 @@ use crate::error::Result;
 use crate::planner::{Method, Trajectory};
 use crate::scene::Scene;
 
-/// Colours of the joint angles `theta_1, theta_2, ...` in turn (the page's).
-const JOINTS: [RGBColor; 3] = [colour::ARM, colour::TEAL, colour::ACCENT];
-
 type Chart<'a, 'b> =
     ChartContext<'a, super::Measured<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
@@ -118,7 +115,7 @@ pub fn series_svg(task: u32, scene: &Scene, run: &Trajectory) -> Result<String> 
         let joints = scene.arm.dof();
         let mut legend = Vec::new();
         for i in 0..joints {
-            let c = JOINTS[i % JOINTS.len()];
+            let c = colour::joint(i);
             chart
                 .draw_series(LineSeries::new(
                     run.steps

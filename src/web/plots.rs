@@ -8,10 +8,8 @@ use web_sys::CanvasRenderingContext2d;
 
 use super::style::*;
 use super::surface::{dash, polyline, text, Surface};
+use crate::palette::joint_series;
 use crate::session::Session;
-
-/// Colours of the joint-angle series, `theta_1, theta_2, ...` in turn.
-const SERIES: [&str; 3] = [ARM, TEAL, ACCENT];
 
 /// Tick spacing giving about `target` ticks over `span`.
 pub fn nice_step(span: f64, target: f64) -> f64 {
@@ -111,7 +109,7 @@ pub fn draw(s: &Session, surface: &Surface) {
     frame.axes(ctx, "joint angles (rad)");
     let joints = history.front().map_or(0, |p| p.theta.len());
     for (i, r) in limits.iter().enumerate() {
-        ctx.set_fill_style_str(&rgba(SERIES[i % SERIES.len()], 0.12));
+        ctx.set_fill_style_str(&rgba(joint_series(i), 0.12));
         let (_, y_hi) = frame.px(t0, r[1]);
         let (_, y_lo) = frame.px(t0, r[0]);
         let width = frame.right - frame.left;
@@ -119,7 +117,7 @@ pub fn draw(s: &Session, surface: &Surface) {
         ctx.fill_rect(frame.left, y_lo, width, frame.bottom - y_lo);
     }
     for i in 0..joints {
-        let colour = SERIES[i % SERIES.len()];
+        let colour = joint_series(i);
         frame.key(ctx, i, joints, &format!("θ{}", subscript(i + 1)), colour);
         let series: Vec<[f64; 2]> = history
             .iter()

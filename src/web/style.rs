@@ -8,14 +8,9 @@ use serde::Serialize;
 
 use crate::session::STROBE_EVERY;
 
-pub const INK: &str = "#1f2933";
-pub const MUTED: &str = "#5f6b78";
+pub use crate::palette::{ACCENT, ARM, DANGER, INK, MUTED, TEAL};
 pub const GRID: &str = "#eef1f5";
 pub const AXIS: &str = "#c4ccd6";
-pub const ARM: &str = "#1d4e89";
-pub const ACCENT: &str = "#d9731a";
-pub const DANGER: &str = "#c0392b";
-pub const TEAL: &str = "#2a9d8f";
 pub const GHOST: &str = "#c2185b";
 pub const REGION: &str = "#b9c7d6";
 pub const POST: &str = "#4a5560";
