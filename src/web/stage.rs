@@ -54,17 +54,9 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>, shown: u32) -
         ctx.set_line_width(1.0);
         dash(ctx, &[3.0, 4.0]);
         ctx.stroke_rect(x0.min(x1), y0.min(y1), (x1 - x0).abs(), (y1 - y0).abs());
+        // No label in the drawing (it sat over the arm's path, issue 27):
+        // the legend names the box.
         dash(ctx, &[]);
-        let at = (x0.min(x1) + 3.0, y0.min(y1) - 3.0);
-        let label = "v net: trained obstacle region";
-        text(
-            ctx,
-            &format!("10px {FONT}"),
-            MUTED,
-            ("left", "bottom"),
-            at,
-            label,
-        );
     }
 
     // Stroboscopic trace: every few poses, faint (as in Figs. 2-11).
