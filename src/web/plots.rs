@@ -11,6 +11,9 @@ use super::surface::{dash, polyline, text, Surface};
 use crate::palette::joint_series;
 use crate::session::Session;
 
+/// Width of one key of a panel's legend (its swatch and `θ₁`), px.
+const KEY_SPACING: f64 = 34.0;
+
 /// Tick spacing giving about `target` ticks over `span`.
 pub fn nice_step(span: f64, target: f64) -> f64 {
     let raw = (span / target).max(1e-12);
@@ -106,8 +109,19 @@ pub fn draw(s: &Session, surface: &Surface) {
     }
     let pad = ((hi - lo) * 0.1).max(0.1);
     let frame = Frame::new(at(2.0), w, h, (t0, t1), (lo - pad, hi + pad));
-    frame.axes(ctx, "joint angles (rad)");
     let joints = history.front().map_or(0, |p| p.theta.len());
+    // The keys share the title row with the title: where the full title
+    // leaves them too little room (a narrow panel, many joints), the short
+    // one; they never go inside the plot, over the curves (issue 27).
+    let room = frame.right - frame.left - KEY_SPACING * joints as f64 - 10.0;
+    frame.axes(
+        ctx,
+        if room >= 125.0 {
+            "joint angles (rad)"
+        } else {
+            "θ (rad)"
+        },
+    );
     for (i, r) in limits.iter().enumerate() {
         ctx.set_fill_style_str(&rgba(joint_series(i), 0.12));
         let (_, y_hi) = frame.px(t0, r[1]);
@@ -243,8 +257,7 @@ impl Frame {
     }
 
     /// Entry `index` of `count` of the panel's legend, right-aligned in the
-    /// title row, or in the plot's top row where the title leaves too
-    /// little room (a narrow panel, many joints).
+    /// title row, [`KEY_SPACING`] apart.
     fn key(
         &self,
         ctx: &CanvasRenderingContext2d,
@@ -253,14 +266,8 @@ impl Frame {
         label: &str,
         colour: &str,
     ) {
-        let x = self.right - 40.0 * (count - 1 - index.min(count - 1)) as f64 - 18.0;
-        // The title ("joint angles (rad)") takes about 125 px.
-        let cramped = self.right - 40.0 * count as f64 - 10.0 < self.left + 125.0;
-        let y = if cramped {
-            self.top + 8.0
-        } else {
-            self.top - 12.0
-        };
+        let x = self.right - KEY_SPACING * (count - 1 - index.min(count - 1)) as f64 - 18.0;
+        let y = self.top - 12.0;
         ctx.set_stroke_style_str(colour);
         ctx.set_line_width(2.0);
         polyline(ctx, None, &[[x - 16.0, y], [x - 4.0, y]]);
