@@ -14,6 +14,8 @@
 
 import { join } from 'node:path';
 import { spawn } from 'node:child_process';
+import { mkdtempSync, writeFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
 import assert from 'node:assert/strict';
 import { browser, test, open, clean, state, shots, BASE, here } from './harness.mjs';
 
@@ -57,6 +59,23 @@ const course = (body) => `<!doctype html><html lang="en"><head><meta charset="ut
 async function serveAt(page, url, html) {
   await page.route(url, (route) => route.fulfill({ status: 200, contentType: 'text/html; charset=utf-8', body: html }));
 }
+
+/**
+ * Whether the light-DOM text `words` inside an element is drawn (a box on
+ * screen): Playwright's isVisible() asks about the text's element, the
+ * host, which shows either way.
+ */
+const drawn = (page, words) =>
+  page.evaluate((words) => {
+    const walk = document.createTreeWalker(document.body, NodeFilter.SHOW_TEXT);
+    for (let n = walk.nextNode(); n; n = walk.nextNode()) {
+      if (!n.textContent.includes(words)) continue;
+      const range = document.createRange();
+      range.selectNodeContents(n);
+      if ([...range.getClientRects()].some((r) => r.width > 0 && r.height > 0)) return true;
+    }
+    return false;
+  }, words);
 
 /** The element's state once ready. */
 const elementState = (page, id) => page.evaluate((id) => document.getElementById(id).controller.state(), id);
@@ -102,7 +121,7 @@ test('embed: the element with every setting has the page\'s state for the same a
     const got = await until(() => elementState(page, `e${i}`), (s) => !q.includes('networks=') || s.network_set === 'reach', 'the element to fetch the reach set');
     assert.deepEqual(scene(got), scene(want), `the element has the page's scene for ${q}`);
     assert.equal(await page.locator(`#e${i}`).locator('#message').isHidden(), true, 'no problem shown');
-    assert.equal(await page.getByText(`fallback ${i}`).isVisible(), false, 'the shadow root hides the fallback text');
+    assert.equal(await drawn(page, `fallback ${i}`), false, 'the shadow root hides the fallback text');
   }
   // Changed after ready: applied to the running demo, the module not reloaded.
   const arm = (await elementState(page, 'e0')).arm_text;
@@ -144,10 +163,11 @@ test('embed: the element with every setting has the page\'s state for the same a
   await until(() => page.locator('#bad').locator('#message').textContent(), (t) => /method: unknown method '<b>nope<\/b>'/.test(t), 'the bad method to be named');
   assert.equal((await elementState(page, 'bad')).method, 'numerical', 'the method stays');
   await page.evaluate(() => document.getElementById('bad').setAttribute('lambda', '3'));
+  await page.evaluate(() => document.getElementById('bad').removeAttribute('target'));
   await page.evaluate(() => document.getElementById('bad').setAttribute('method', 'qp'));
   const fixed = await until(() => elementState(page, 'bad'), (s) => s.method === 'qp' && s.lambda === 3, 'the fixed attributes');
   assert.ok(fixed, 'fixed attributes apply');
-  assert.equal(await page.locator('#bad').locator('#message').isHidden(), true, 'no problem left to show');
+  assert.equal(await page.locator('#bad').locator('#message').isHidden(), true, `no problem left to show: ${await page.locator('#bad').locator('#message').textContent()}`);
   // The methods listed in embed.html are the module's.
   const listed = await page.$$eval('#method-list code', (cs) => cs.map((c) => c.textContent));
   assert.deepEqual(listed, await page.evaluate(async () => (await import('./module.js')).methods().map((m) => m.name)));
@@ -166,8 +186,10 @@ test('embed: the Embed button shows an iframe and an element of the scene, each 
   assert.equal(await page.evaluate(() => document.getElementById('embed-dialog').contains(document.activeElement)), true, 'the focus is in the dialog');
   const iframe = await page.inputValue('#embed-iframe');
   const element = await page.inputValue('#embed-element');
-  for (const key of ['arm=iiwa-planar', 'weighting=wln', 'floor=1', 'influence=0.25', 'embed=1']) assert.ok(iframe.includes(key), `the iframe has ${key}: ${iframe}`);
-  for (const key of ['arm="iiwa-planar"', 'weighting="wln"', 'floor="1"', 'influence="0.25"', 'method="qp"']) assert.ok(element.includes(key), `the element has ${key}: ${element}`);
+  // The arm as its text (the address's form), with the preset's limits.
+  const arm = want.arm_text;
+  for (const key of [`arm=${encodeURIComponent(arm)}`, 'limits=', 'weighting=wln', 'floor=1', 'influence=0.25', 'theta0=', 'embed=1']) assert.ok(iframe.includes(key), `the iframe has ${key}: ${iframe}`);
+  for (const key of [`arm="${arm}"`, 'limits="', 'weighting="wln"', 'floor="1"', 'influence="0.25"', 'method="qp"', 'path="circle:1.1,1"']) assert.ok(element.includes(key), `the element has ${key}: ${element}`);
   assert.match(iframe, /loading="lazy"/);
   assert.match(iframe, /title="/);
   assert.match(element, new RegExp(`<script type="module" src="${BASE}redundant-ik-demo.js"></script>`));
@@ -204,52 +226,57 @@ test('embed: the Embed button shows an iframe and an element of the scene, each 
   await blankPage.goto(BASE + 'course-element.html');
   await ready(blankPage, 'pasted');
   assert.deepEqual(scene(await elementState(blankPage, 'pasted')), scene(want), 'the element shows the scene');
-  assert.equal(await blankPage.getByText('If this text stays').isVisible(), false, 'the fallback text hides once the element runs');
+  assert.equal(await drawn(blankPage, 'If this text stays'), false, 'the fallback text hides once the element runs');
   clean(blankPage);
   await blankPage.close();
 });
 
-/** Starts scripts/serve.py with --cors on a free port; resolves to { url, stop }. */
-function corsServer() {
+/** Starts scripts/serve.py on a free port for `dir` (with --cors if asked); resolves to { url, stop }. */
+function serve(dir, cors) {
   return new Promise((resolve, reject) => {
-    const server = spawn('python3', [join(here, '../../scripts/serve.py'), '--port', '0', '--dir', join(here, '../../www'), '--quiet', '--cors']);
+    const args = [join(here, '../../scripts/serve.py'), '--port', '0', '--dir', dir, '--quiet', ...(cors ? ['--cors'] : [])];
+    const server = spawn('python3', args);
     let out = '';
     server.stdout.on('data', (d) => {
       out += d;
       const m = out.match(/http:\/\/127\.0\.0\.1:\d+\//);
       if (m) resolve({ url: m[0], stop: () => server.kill() });
     });
-    server.on('exit', (code) => reject(new Error(`serve.py --cors exited (${code}): ${out}`)));
+    server.on('exit', (code) => reject(new Error(`serve.py exited (${code}): ${out}`)));
   });
 }
 
 test('embed: a course page on another origin shows the fallback text without CORS and runs the element with it; a module that cannot be fetched is said', async () => {
-  // localhost is another origin than the test server's 127.0.0.1.
-  const other = BASE.replace('127.0.0.1', 'localhost');
+  // The course pages, served on a port of their own (another origin than www/'s).
+  const dir = mkdtempSync(join(tmpdir(), 'course-'));
   const snippet = (base) =>
     `<script type="module" src="${base}redundant-ik-demo.js"></script>` +
     `<redundant-ik-demo id="far" task="1" method="numerical">If this text stays, the demo's script could not load: its server must send Access-Control-Allow-Origin.</redundant-ik-demo>`;
-  const page = await blank();
-  await serveAt(page, other + 'course.html', course(snippet(BASE)));
-  await page.goto(other + 'course.html');
-  await page.waitForTimeout(1500);
-  assert.equal(await page.getByText('If this text stays').isVisible(), true, 'without CORS: the fallback text shows');
-  assert.equal(await page.evaluate(() => Boolean(customElements.get('redundant-ik-demo'))), false, 'nothing of ours ran');
-  await page.screenshot({ path: join(shots, 'embed-fallback.png') });
-  await page.close();
-
-  const cors = await corsServer();
+  const www = join(here, '../../www');
+  const [site, cors] = await Promise.all([serve(dir, false), serve(www, true)]);
   try {
+    writeFileSync(join(dir, 'plain.html'), course(snippet(BASE)));
+    writeFileSync(join(dir, 'cors.html'), course(snippet(cors.url)));
+    const page = await blank();
+    await page.goto(site.url + 'plain.html');
+    await page.waitForTimeout(1500);
+    assert.equal(await drawn(page, 'If this text stays'), true, 'without CORS: the fallback text shows');
+    assert.equal(await page.evaluate(() => Boolean(customElements.get('redundant-ik-demo'))), false, 'nothing of ours ran');
+    assert.ok(page.problems.some((p) => /CORS/.test(p)), `blocked by CORS: ${page.problems.join(' | ')}`);
+    await page.screenshot({ path: join(shots, 'embed-fallback.png') });
+    await page.close();
+
     const page2 = await blank();
-    await serveAt(page2, other + 'course.html', course(snippet(cors.url)));
-    await page2.goto(other + 'course.html');
+    await page2.goto(site.url + 'cors.html');
     await ready(page2, 'far');
     assert.equal((await elementState(page2, 'far')).method, 'numerical', 'with CORS: the element runs');
-    assert.equal(await page2.getByText('If this text stays').isVisible(), false);
+    assert.equal(await drawn(page2, 'If this text stays'), false, 'with CORS: the fallback text hides');
     clean(page2);
     await page2.close();
   } finally {
+    site.stop();
     cors.stop();
+    rmSync(dir, { recursive: true, force: true });
   }
 
   // The element's script runs but its module cannot be fetched: said in the element.
