@@ -20,9 +20,10 @@
 // The element's own: autoplay ("false" to start paused) and plots (present:
 // show the time series). A value that does not parse, or that the core
 // refuses, is named in the element's message ("Not applied: ...") and the
-// rest runs. Changing an attribute later applies it to the running demo;
-// removing one sets it back to its default (the task's target, obstacles,
-// arm, limits and start pose stay as they are).
+// rest runs. Changing an attribute later applies it to the running demo
+// (autoplay and plots are read at the start only); removing one sets it
+// back to its default (the target, obstacles, arm, limits and start pose
+// stay as they are).
 //
 // Each element has its own simulation in its own shadow root (which hides
 // the fallback text inside the element: there is no <slot>); the
@@ -175,7 +176,13 @@ class RedundantIkDemo extends HTMLElement {
   watch(m) {
     const keys = new Set(m.addressKeys());
     const observer = new MutationObserver((records) => {
-      if (records.some((r) => keys.has(r.attributeName))) this.update(m);
+      if (!records.some((r) => keys.has(r.attributeName))) return;
+      try {
+        this.update(m);
+      } catch (e) {
+        // Nothing a page sets may throw out of the element: said beside the drawing.
+        this.controller.show(`Not applied: ${m.describe(e)}`, 'warn', true);
+      }
     });
     observer.observe(this, { attributes: true });
     this.observer = observer;

@@ -162,6 +162,12 @@ test('embed: the element with every setting has the page\'s state for the same a
   await page.evaluate(() => document.getElementById('bad').setAttribute('method', '<b>nope</b>'));
   await until(() => page.locator('#bad').locator('#message').textContent(), (t) => /method: unknown method '<b>nope<\/b>'/.test(t), 'the bad method to be named');
   assert.equal((await elementState(page, 'bad')).method, 'numerical', 'the method stays');
+  // A megabyte of markup: named in a few words, nothing thrown.
+  await page.evaluate(() => document.getElementById('bad').setAttribute('obstacles', '<img src=x onerror=alert(1)>'.repeat(40000)));
+  const long = await until(() => page.locator('#bad').locator('#message').textContent(), (t) => /obstacles:/.test(t), 'the long attribute to be named');
+  assert.ok(long.length < 600, `a short message (${long.length} characters)`);
+  assert.equal(await page.locator('#bad').locator('img').count(), 0, 'no markup made');
+  await page.evaluate(() => document.getElementById('bad').removeAttribute('obstacles'));
   await page.evaluate(() => document.getElementById('bad').setAttribute('lambda', '3'));
   await page.evaluate(() => document.getElementById('bad').removeAttribute('target'));
   await page.evaluate(() => document.getElementById('bad').setAttribute('method', 'qp'));
