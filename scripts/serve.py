@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
 """Serve the demo (www/) on 127.0.0.1 with .wasm as application/wasm.
 
-    python3 scripts/serve.py [--port 8000] [--dir www]
+    python3 scripts/serve.py [--port 8000] [--dir www] [--cors]
 
-Standard library only. --port 0 picks a free port; the URL is printed as
+Standard library only. It sends no CORS header unless --cors is given
+(`Access-Control-Allow-Origin: *`, which pages on other sites need to load
+the <redundant-ik-demo> element; the e2e test serves both ways). --port 0 picks a free port; the URL is printed as
 the first line (`Serving http://127.0.0.1:PORT/`), so scripts can read it.
 """
 
@@ -29,6 +31,8 @@ class Handler(http.server.SimpleHTTPRequestHandler):
     def end_headers(self):
         # A development server: always fetch the freshly built module.
         self.send_header("Cache-Control", "no-store")
+        if self.server.cors:
+            self.send_header("Access-Control-Allow-Origin", "*")
         super().end_headers()
 
     def log_message(self, fmt, *args):
@@ -41,6 +45,7 @@ def main() -> int:
     parser.add_argument("--port", type=int, default=8000, help="port (0: any free port)")
     parser.add_argument("--dir", default="www", help="directory to serve (default: www)")
     parser.add_argument("--quiet", action="store_true", help="do not log requests")
+    parser.add_argument("--cors", action="store_true", help="send Access-Control-Allow-Origin: * (for pages on other sites)")
     args = parser.parse_args()
 
     root = os.path.abspath(args.dir)
@@ -57,6 +62,7 @@ def main() -> int:
         print(f"serve.py: cannot listen on 127.0.0.1:{args.port}: {e.strerror}", file=sys.stderr)
         return 1
     server.quiet = args.quiet
+    server.cors = args.cors
     port = server.server_address[1]
     print(f"Serving http://127.0.0.1:{port}/ (directory {root}); Ctrl-C stops.", flush=True)
     try:

@@ -1,4 +1,5 @@
-// The page's address: what `?task=2&method=case3&lambda=4&target=…&obstacle=…
+// The page's address, and the <redundant-ik-demo> element's attributes (the
+// same keys, read by the same readAddress): what `?task=2&method=case3&lambda=4&target=…&obstacle=…
 // &obstacles=…&arm=…&limits=…&rates=…&feedback=1&damping=0&weighting=wln&floor=1&theta0=…&tf=…&path=…&influence=…&networks=reach` asks
 // for, and the state written back into it (what "Copy link" copies). The arm, limits and obstacle syntax is the module's (parseArm, parseObstacles,
 // formatArm, parseJointLimits, formatJointLimits, parseRateLimits,
@@ -24,14 +25,16 @@ const exact = (v) => {
 /** The parameters the address carries by name (λ has its own). */
 const named = () => allParams().filter((p) => p.name !== 'lambda');
 
+/** The keys readAddress reads besides the methods' parameters (the order is mount()'s). */
+const KEYS = ['task', 'method', 'mode', 'lambda', 'feedback', 'target', 'obstacle', 'obstacles', 'arm', 'limits', 'rates', 'damping', 'weighting', 'floor', 'theta0', 'tf', 'path', 'networks'];
+
 /**
- * Every key the address reads (readAddress), the methods' parameters by
- * name included (after loadModule): the element's attributes and the
+ * Every key an address (or the element's attributes) may carry (after
+ * loadModule): KEYS and the methods' parameters by name (params()); the
  * notebook widget's traits are named so too.
  */
 export function addressKeys() {
-  const keys = ['task', 'method', 'lambda', 'target', 'obstacle', 'obstacles', 'arm', 'limits', 'rates', 'feedback', 'damping', 'weighting', 'floor', 'path', 'networks', 'theta0', 'tf'];
-  return [...keys, ...named().map((p) => p.name)];
+  return [...KEYS, ...named().map((p) => p.name)];
 }
 
 /**
@@ -47,6 +50,7 @@ export function addressKeys() {
  * `problems`: what did not parse, each as `name: why`.
  */
 export function readAddress(search) {
+  // A query string, or a URLSearchParams (the element's attributes as pairs).
   const params = new URLSearchParams(search);
   const problems = [];
   const parsed = (name, parse) => {
@@ -144,9 +148,23 @@ export function readAddress(search) {
  * floor=1 where the floor and post are obstacles; the methods' parameters that differ from their
  * defaults; a shipped network set other than the paper's; the path where
  * it is not the line; and a run's own start pose and final time (a line dropped
- * from where the hand was), in full. Returns the address.
+ * from where the hand was), in full; embed=1 where the page is embedded
+ * (isEmbedded). Returns the address.
  */
 export function writeAddress(s) {
+  const q = sceneQuery(s);
+  // The page in an iframe (embed=1) stays so.
+  if (isEmbedded()) q.set('embed', '1');
+  history.replaceState(null, '', `${location.pathname}?${q}`);
+  return location.href;
+}
+
+/**
+ * The keys and values of the scene in state `s`, as writeAddress writes
+ * them (without embed=): the address's query, and the Embed snippets'
+ * attributes (takeaway.js).
+ */
+export function sceneQuery(s) {
   const q = new URLSearchParams();
   q.set('task', String(s.task));
   q.set('method', s.method);
@@ -174,6 +192,10 @@ export function writeAddress(s) {
     q.set('theta0', s.theta0.map(String).join(','));
     q.set('tf', String(s.tf));
   }
-  history.replaceState(null, '', `${location.pathname}?${q}`);
-  return location.href;
+  return q;
+}
+
+/** Whether the page's address asks for the embedded view (`embed=1`: the stage and the essential controls, for an iframe). */
+export function isEmbedded() {
+  return new URLSearchParams(location.search).get('embed') === '1';
 }

@@ -111,7 +111,9 @@ const READOUTS = {
  * params { name: value } (the methods' parameters), path (the path's
  * text: line, circle:CX,CY[,LAPS], points:X,Y;...), link(state, scene)
  * (the address of the scene, for "Copy link"; default the page's).
- * Returns a controller with state(), worldToClient(x, y), runUntil(t), demo.
+ * Returns a controller with state(), worldToClient(x, y), runUntil(t),
+ * apply(settings) (the same options, task included, applied to the
+ * running demo: what changed; returns what was refused), demo.
  */
 export async function mount(root, options = {}) {
   const $ = (id) => root.querySelector('#' + id);
@@ -150,52 +152,60 @@ export async function mount(root, options = {}) {
   const playground = mountPlayground(root, demo, { attempt, show, changed: () => changed() });
   const networkSet = mountNetworkSet(root, demo, { show, changed: () => changed() });
 
-  // ---- initial settings (URL or attributes) ---------------------------
+  // ---- settings (URL or attributes) -------------------------------------
   // Each is tried on its own: one refused keeps the others. What was
-  // refused (with what the caller could not parse, options.problems) is
-  // shown together, so no problem hides another.
-  const problems = [...(options.problems ?? [])];
-  const initial = (name, fn) => {
-    try {
-      fn();
-    } catch (e) {
-      problems.push(`${name}: ${describe(e)}`);
+  // refused is returned (and, at the start, shown with what the caller
+  // could not parse, options.problems), so no problem hides another.
+  // `settings` has mount()'s option names; those undefined are left as
+  // they are. The same code applies the element's changed attributes later
+  // (controller.apply).
+  function apply(settings) {
+    const refused = [];
+    const initial = (name, fn) => {
+      try {
+        fn();
+      } catch (e) {
+        refused.push(`${name}: ${describe(e)}`);
+      }
+    };
+    if (settings.task !== undefined && settings.task !== demo.state().task) initial('task', () => demo.loadTask(settings.task === 2 ? 2 : 1));
+    if (settings.damping !== undefined && settings.damping !== demo.state().damping) initial('damping', () => demo.setDamping(settings.damping));
+    if (settings.feedback !== undefined && settings.feedback !== demo.state().feedback) initial('feedback', () => demo.setFeedback(settings.feedback));
+    if (settings.speed) initial('speed', () => demo.setSpeed(settings.speed));
+    if (settings.arm) {
+      // A preset named in the address brings its limits (and the core its task).
+      const { post, links, joint_limits: lim, rate_limits: rat } = settings.arm;
+      const own = !settings.limits && !settings.rates && (lim || rat);
+      initial('arm', () => (own ? demo.setLimitedArm(post, Float64Array.from(links), lim ? Float64Array.from(lim.flat()) : undefined, rat ? Float64Array.from(rat) : undefined) : demo.setArm(post, Float64Array.from(links))));
     }
-  };
-  if (options.damping === false) initial('damping', () => demo.setDamping(false));
-  if (options.feedback) initial('feedback', () => demo.setFeedback(options.feedback));
-  if (options.speed) initial('speed', () => demo.setSpeed(options.speed));
-  if (options.arm) {
-    // A preset named in the address brings its limits (and the core its task).
-    const { post, links, joint_limits: lim, rate_limits: rat } = options.arm;
-    const own = !options.limits && !options.rates && (lim || rat);
-    initial('arm', () => (own ? demo.setLimitedArm(post, Float64Array.from(links), lim ? Float64Array.from(lim.flat()) : undefined, rat ? Float64Array.from(rat) : undefined) : demo.setArm(post, Float64Array.from(links))));
+    if (settings.limits || settings.rates) initial(settings.limits ? 'limits' : 'rates', () => demo.setArmLimits(settings.limits, settings.rates));
+    // The lab's switches (www/lab.js).
+    if (settings.weighting && settings.weighting !== demo.state().weighting) initial('weighting', () => demo.setWeighting(settings.weighting));
+    if (settings.floor !== undefined && settings.floor !== demo.state().floor) initial('floor', () => demo.setFloor(settings.floor));
+    if (settings.obstacles) initial('obstacles', () => demo.setObstacles(flatObstacles(settings.obstacles)));
+    // Networks kept in this browser for the arm, before the method that may need them.
+    if (settings.arm || settings.restore) playground.restore();
+    const wanted = settings.method ?? settings.mode;
+    if (wanted && wanted !== demo.state().method) {
+      initial('method', () => demo.setMethod(wanted));
+    }
+    if (settings.lambda !== undefined && settings.lambda !== null) {
+      initial('lambda', () => demo.setLambda(settings.lambda));
+    }
+    if (settings.obstacle && !settings.obstacles) {
+      initial('obstacle', () => demo.setObstacle(settings.obstacle[0], settings.obstacle[1]));
+    }
+    if (settings.target) initial('target', () => demo.setTarget(settings.target[0], settings.target[1], 10));
+    if (settings.start) initial('theta0', () => demo.setStart(Float64Array.from(settings.start.theta0), settings.start.tf));
+    if (settings.path) initial('path', () => demo.setPath(settings.path));
+    for (const [name, value] of Object.entries(settings.params ?? {})) initial(name, () => demo.setParam(name, value));
+    // A shipped set other than the one in use is fetched first: it comes in when it arrives.
+    if (settings.networks && settings.networks !== demo.state().network_set) {
+      networkSet.choose(settings.networks).catch((e) => show(`networks: ${describe(e)}`, 'warn', true));
+    }
+    return refused;
   }
-  if (options.limits || options.rates) initial(options.limits ? 'limits' : 'rates', () => demo.setArmLimits(options.limits, options.rates));
-  // The lab's switches (www/lab.js).
-  if (options.weighting) initial('weighting', () => demo.setWeighting(options.weighting));
-  if (options.floor) initial('floor', () => demo.setFloor(true));
-  if (options.obstacles) initial('obstacles', () => demo.setObstacles(flatObstacles(options.obstacles)));
-  // Networks kept in this browser for the arm, before the method that may need them.
-  playground.restore();
-  const wanted = options.method ?? options.mode;
-  if (wanted && wanted !== demo.state().method) {
-    initial('method', () => demo.setMethod(wanted));
-  }
-  if (options.lambda !== undefined && options.lambda !== null) {
-    initial('lambda', () => demo.setLambda(options.lambda));
-  }
-  if (options.obstacle && !options.obstacles) {
-    initial('obstacle', () => demo.setObstacle(options.obstacle[0], options.obstacle[1]));
-  }
-  if (options.target) initial('target', () => demo.setTarget(options.target[0], options.target[1], 10));
-  if (options.start) initial('theta0', () => demo.setStart(Float64Array.from(options.start.theta0), options.start.tf));
-  if (options.path) initial('path', () => demo.setPath(options.path));
-  for (const [name, value] of Object.entries(options.params ?? {})) initial(name, () => demo.setParam(name, value));
-  // A shipped set other than the paper's is fetched first: it comes in when it arrives.
-  if (options.networks && options.networks !== demo.state().network_set) {
-    networkSet.choose(options.networks).catch((e) => show(`networks: ${describe(e)}`, 'warn', true));
-  }
+  const problems = [...(options.problems ?? []), ...apply({ ...options, task: undefined, restore: true })];
   if (problems.length) show(`${options.problemsLabel ?? 'Not applied'}: ${problems.join('; ')}`, 'warn', true);
   if (options.autoplay !== false) demo.runTask();
 
@@ -352,7 +362,11 @@ export async function mount(root, options = {}) {
       return update();
     },
     show,
+    /** Hides the message beside the drawing. */
+    clear: () => clearMessage(),
     attempt,
+    /** Applies settings (mount()'s option names; undefined ones stay) to the running demo; returns what was refused, each as `name: why`. */
+    apply: (settings) => apply(settings),
     files: () => takeaway.files(),
     atlas: (options) => atlas.run(options),
     useNetworks: (name) => networkSet.choose(name),

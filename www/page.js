@@ -3,7 +3,9 @@
 // is now), mounts the demo on the document with the settings of the
 // address (address.js), wires the benchmark panel (bench-panel.js) and the
 // tour (tour.js), keeps the stage column's top for the layout (stage.css)
-// and exposes `window.demo` for scripts and tests. If the module cannot
+// and exposes `window.demo` for scripts and tests. With embed=1 in the
+// address it marks the document (data-embed) for stage.css, which shows the
+// stage and the essential controls only (for an iframe). If the module cannot
 // start, the page says so and disables its controls instead of showing a
 // blank stage.
 
@@ -11,7 +13,7 @@ import { loadModule, describe, methods, methodGroups, fillLimits, moduleBuild, m
 import { mountTour } from './tour.js';
 import { bench } from './jobs.js';
 import { mount } from './demo.js';
-import { readAddress, writeAddress } from './address.js';
+import { readAddress, writeAddress, isEmbedded } from './address.js';
 import { mountBenchPanel } from './bench-panel.js';
 
 /** The methods, each with what it computes: the "The methods" list of the page. */
@@ -146,5 +148,6 @@ async function start() {
   }
 }
 
+if (isEmbedded()) document.documentElement.dataset.embed = 'true';
 start();
 mountBenchPanel(document);

@@ -1,23 +1,37 @@
 // <redundant-ik-demo task="1" method="case3"> — the demo as a custom element.
 //
 //   <script type="module" src="https://…/redundant-ik-demo.js"></script>
-//   <redundant-ik-demo task="2" method="numerical"></redundant-ik-demo>
+//   <redundant-ik-demo task="2" method="numerical">
+//     If this text stays, the demo's script could not load: …
+//   </redundant-ik-demo>
 //
-// Attributes: task (1 or 2), method (a method's name from methods(): none,
-// numerical, case1, ...; the module's defaultMethod() where absent; `mode`,
-// its older name, is read too),
-// lambda, feedback (closed-loop gain K in 1/s; 0 = the paper's open loop),
-// weighting (a joint weighting's name, limits().joint_weightings), floor
-// ("1": the floor and post are obstacles),
-// path (the path the hand follows: line, circle:CX,CY[,LAPS] or
-// points:X,Y;X,Y;..., as the address's path=), autoplay ("false" to start
-// paused), plots (present: show the time
-// series). Each element has its own simulation in its own shadow root; the
-// WebAssembly module is loaded once per page. After its first frame an element
-// sets data-ready="true" and exposes .controller (state(), worldToClient()).
-
-import { mount } from './demo.js';
-import { describe, loadModule, defaultMethod } from './module.js';
+// Attributes: exactly the page's address keys (www/address.js, read by the
+// same readAddress): task (1 or 2), method (a name of the module's
+// methods(); its defaultMethod() where absent; `mode`, its older name, is
+// read where there is no method), lambda, feedback (closed-loop gain K in
+// 1/s), target and obstacle ("x,y"), obstacles ("x,y,r;..."), arm (a preset
+// key of limits().arm_presets, e.g. iiwa-planar, or an arm's text
+// "post:l1,l2,..."), limits ("lo:hi,..."), rates ("r,..."), damping ("0"
+// switches it off), weighting (a name of limits().joint_weightings), floor
+// ("1": the floor and post are obstacles), theta0 and tf (a start pose and
+// final time, together), path (line, circle:CX,CY[,LAPS] or
+// points:X,Y;X,Y;...), networks (a shipped set, networkSets()), and every
+// method parameter by its name in params() (influence=..., refine=...).
+// The element's own: autoplay ("false" to start paused) and plots (present:
+// show the time series). A value that does not parse, or that the core
+// refuses, is named in the element's message ("Not applied: ...") and the
+// rest runs. Changing an attribute later applies it to the running demo
+// (autoplay and plots are read at the start only); removing one sets it
+// back to its default (the target, obstacles, arm, limits and start pose
+// stay as they are).
+//
+// Each element has its own simulation in its own shadow root (which hides
+// the fallback text inside the element: there is no <slot>); the
+// WebAssembly module is loaded once per page. This file imports the rest
+// when it runs, so a module that cannot be fetched (CORS, 404) is said in
+// the element's loading box rather than nothing at all. After its first
+// frame an element sets data-ready="true", fires `ready` and exposes
+// .controller (state(), worldToClient(), apply(), ...).
 
 const STYLE = `
 :host {
@@ -76,6 +90,35 @@ const TEMPLATE = `
 <p id="message" class="notice" role="status" aria-live="polite" hidden></p>
 `;
 
+/** Where the rest of the demo lives (the folder of this script): named when it cannot be fetched. */
+const HOME = new URL('./', import.meta.url).href;
+
+/** The demo's modules, imported once when the first element starts (a failure rejects with the reason). */
+let modules = null;
+const importModules = () =>
+  (modules ??= (async () => {
+    const [demo, module, address] = await Promise.all([import('./demo.js'), import('./module.js'), import('./address.js')]);
+    await module.loadModule();
+    return { ...demo, ...module, ...address };
+  })());
+
+/** The words for a module that could not be fetched or started: what the host must send. */
+function loadFailure(e) {
+  const why = e && e.message ? e.message : String(e);
+  const crossOrigin = new URL(HOME).origin !== location.origin;
+  return (
+    `The simulation could not load its files from ${HOME} (${why}). ` +
+    'The server that hosts redundant-ik-demo.js must serve the rest of the demo beside it (pkg/, weights/ and the other .js files)' +
+    (crossOrigin ? ', and, since this page is on another site, send the header Access-Control-Allow-Origin with every file' : '; for a page on another site it must send the header Access-Control-Allow-Origin with every file') +
+    '; .wasm files should be served as application/wasm.'
+  );
+}
+
+/** The settings an element's attributes ask for: readAddress over its attributes, as pairs. */
+const readAttributes = (el, m) => m.readAddress(new URLSearchParams([...el.attributes].map((a) => [a.name, a.value])));
+
+const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
+
 class RedundantIkDemo extends HTMLElement {
   connectedCallback() {
     if (this.shadowRoot) return;
@@ -92,35 +135,106 @@ class RedundantIkDemo extends HTMLElement {
 
   async start(root) {
     const loading = root.getElementById('loading');
+    const fail = (text, e) => {
+      loading.hidden = false;
+      loading.classList.add('failed');
+      loading.textContent = text;
+      console.warn(e);
+    };
+    let m;
     try {
-      await loadModule();
-      const task = Number(this.getAttribute('task')) === 2 ? 2 : 1;
-      const lambda = this.getAttribute('lambda');
-      // `mode`, the attribute's older name, is read where `method` is absent.
-      const method = this.getAttribute('method') ?? this.getAttribute('mode') ?? defaultMethod();
-      this.controller = await mount(root, {
-        task,
-        method,
-        lambda: lambda !== null && Number.isFinite(Number(lambda)) ? Number(lambda) : undefined,
-        feedback: Number.isFinite(Number(this.getAttribute('feedback'))) ? Number(this.getAttribute('feedback')) : 0,
-        weighting: this.getAttribute('weighting') ?? undefined,
-        floor: this.getAttribute('floor') === '1',
-        path: this.getAttribute('path') ?? undefined,
+      m = await importModules();
+    } catch (e) {
+      fail(loadFailure(e), e);
+      return;
+    }
+    try {
+      const { problems, ...settings } = readAttributes(this, m);
+      this.controller = await m.mount(root, {
+        ...settings,
+        problems,
         autoplay: this.getAttribute('autoplay') !== 'false',
         keyboard: this,
       });
+      this.settings = settings;
+      this.watch(m);
       this.dataset.ready = 'true';
       this.dispatchEvent(new CustomEvent('ready', { bubbles: true }));
     } catch (e) {
-      loading.hidden = false;
-      loading.classList.add('failed');
-      loading.textContent = `The simulation could not start: ${describe(e)}`;
-      console.warn(e);
+      fail(`The simulation could not start: ${m.describe(e)}`, e);
     }
+  }
+
+  /**
+   * Applies changed attributes to the running demo. A MutationObserver
+   * rather than observedAttributes: the methods' parameters are attributes
+   * too (params()), and their names are the module's, known only once it
+   * has loaded, while observedAttributes is read once when the element is
+   * defined, before. One observer for every key keeps one path; the
+   * changes of one task are applied together (the observer's batch).
+   */
+  watch(m) {
+    const keys = new Set(m.addressKeys());
+    const observer = new MutationObserver((records) => {
+      if (!records.some((r) => keys.has(r.attributeName))) return;
+      try {
+        this.update(m);
+      } catch (e) {
+        // Nothing a page sets may throw out of the element: said beside the drawing.
+        this.controller.show(`Not applied: ${m.describe(e)}`, 'warn', true);
+      }
+    });
+    observer.observe(this, { attributes: true });
+    this.observer = observer;
+  }
+
+  /** What the attributes ask for now against what was applied: the changes to the controller (apply), the problems shown. */
+  update(m) {
+    const { problems, ...now } = readAttributes(this, m);
+    const was = this.settings;
+    const lambdaDefault = m.params().find((p) => p.name === 'lambda')?.default;
+    // An attribute removed goes back to its default; the scene's own parts
+    // (target, obstacles, arm, limits, start pose) stay as they are.
+    const defaults = {
+      lambda: lambdaDefault,
+      feedback: 0,
+      damping: true,
+      weighting: m.limits().joint_weightings[0][0],
+      floor: false,
+      path: 'line',
+      networks: m.networkSets()[0].name,
+    };
+    // A value that does not parse leaves its setting as it is (named, not
+    // replaced by the default as at the start): mode= is the method, tf= the start.
+    const bad = new Set(problems.map((p) => ({ mode: 'method', theta0: 'start', tf: 'start' })[p.split(':')[0]] ?? p.split(':')[0]));
+    for (const key of bad) {
+      if (key in now) now[key] = was[key];
+      else if (key in was.params) now.params[key] = was.params[key];
+    }
+    const changed = {};
+    // A new task loads the paper's scene: everything asked for is applied again over it.
+    const all = now.task !== was.task;
+    for (const key of ['task', 'method', 'lambda', 'feedback', 'target', 'obstacle', 'obstacles', 'arm', 'limits', 'rates', 'damping', 'weighting', 'floor', 'start', 'path', 'networks']) {
+      if (all || !same(now[key], was[key])) changed[key] = now[key] ?? defaults[key];
+    }
+    // The limits go with the arm: a new arm is set with the limits asked for.
+    if (changed.arm && now.limits) changed.limits = now.limits;
+    if (changed.arm && now.rates) changed.rates = now.rates;
+    changed.params = {};
+    for (const p of m.params()) {
+      if (p.name === 'lambda') continue;
+      if (all || now.params[p.name] !== was.params[p.name]) changed.params[p.name] = now.params[p.name] ?? p.default;
+    }
+    this.settings = now;
+    const refused = this.controller.apply(changed);
+    const listed = [...problems, ...refused];
+    if (listed.length) this.controller.show(`Not applied: ${listed.join('; ')}`, 'warn', true);
+    else this.controller.clear();
   }
 
   disconnectedCallback() {
     this.controller?.stop();
+    this.observer?.disconnect();
   }
 }
 

@@ -5,14 +5,55 @@
 // files are made in a Web Worker by the workers' module (runFiles): the
 // run of the scene as it is now, from t = 0 to the end of its line, the
 // very run the drawing shows unless the scene was changed while it ran.
+// Embed shows two snippets of the scene for another page: an iframe of the
+// page with embed=1, and the <redundant-ik-demo> element with the scene's
+// address keys as attributes (embedSnippets).
 
 import { runWorker } from './jobs.js';
 import { saveBlob, saveText, svgToPng, stem } from './download.js';
+import { sceneQuery } from './address.js';
+
+/** Text for an HTML attribute's value in double quotes. */
+const attribute = (v) => String(v).replace(/&/g, '&amp;').replace(/"/g, '&quot;').replace(/</g, '&lt;').replace(/>/g, '&gt;');
+/** Text for an element's content. */
+const content = (v) => String(v).replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;');
+
+/**
+ * The two snippets that put the scene of state `s` in another page, from
+ * `page` (the page's address): `{ iframe, element }`. The iframe shows the
+ * page with the scene's address and embed=1; the element snippet loads
+ * redundant-ik-demo.js from beside the page (an absolute URL, so it works
+ * when pasted on another site) and sets the same keys as attributes, with
+ * a fallback text that shows while (or if) the script cannot run.
+ */
+export function embedSnippets(s, page = location.href) {
+  const q = sceneQuery(s);
+  const full = new URL(page);
+  full.hash = '';
+  full.search = `?${q}`;
+  const framed = new URL(full);
+  framed.searchParams.set('embed', '1');
+  const script = new URL('redundant-ik-demo.js', full).href;
+  const iframe =
+    `<iframe src="${attribute(framed.href)}" width="900" height="600" loading="lazy" ` +
+    `title="Redundant-arm simulation" style="border: 0; max-width: 100%;"></iframe>`;
+  const attrs = [...q].map(([k, v]) => `${k}="${attribute(v)}"`).join(' ');
+  const element = [
+    `<script type="module" src="${attribute(script)}"></script>`,
+    `<redundant-ik-demo ${attrs}>`,
+    `  If this text stays, the simulation's script could not load from ${content(new URL('./', full).href)}: that server must send the header`,
+    `  Access-Control-Allow-Origin to pages on other sites (docs/web.md, "Embedding"). <a href="${attribute(full.href)}">Open the demo</a> instead.`,
+    `</redundant-ik-demo>`,
+  ].join('\n');
+  return { iframe, element };
+}
 
 /**
  * Wires `#save-figure-svg`, `#save-figure-png`, `#save-plots-svg`,
- * `#save-plots-png`, `#save-run-csv`, `#save-run-json`, `#copy-link` and
- * `#link-text` under `root`. Hooks: `show(text, kind, sticky, near)`,
+ * `#save-plots-png`, `#save-run-csv`, `#save-run-json`, `#copy-link`,
+ * `#link-text` and the Embed dialog (`#embed-open`, `#embed-dialog`,
+ * `#embed-iframe`, `#embed-element`, their `-copy` buttons, `#embed-status`)
+ * under `root`. Hooks: `show(text, kind, sticky, near)`,
  * `link()` (the address
  * of the scene). Returns `{ files() }`: a Promise of `{ json, csv, figure,
  * plots }` for the scene as it is now.
@@ -92,6 +133,34 @@ export function mountTakeaway(root, demo, { show, link }) {
       show('Copy the address above (the browser did not let the page copy it).', 'info', false, copy);
     }
   });
+
+  // ---- Embed: the dialog with the two snippets -------------------------
+  const dialog = $('embed-dialog');
+  const open = $('embed-open');
+  const status = $('embed-status');
+  open?.addEventListener('click', () => {
+    const { iframe, element } = embedSnippets(demo.state());
+    $('embed-iframe').value = iframe;
+    $('embed-element').value = element;
+    status.textContent = '';
+    dialog.showModal();
+  });
+  for (const [button, area, what] of [
+    ['embed-iframe-copy', 'embed-iframe', 'The iframe'],
+    ['embed-element-copy', 'embed-element', 'The element'],
+  ]) {
+    $(button)?.addEventListener('click', async () => {
+      const box = $(area);
+      box.select();
+      try {
+        await navigator.clipboard.writeText(box.value);
+        status.textContent = `${what} is copied: paste it into the other page's HTML.`;
+      } catch (_) {
+        status.textContent = `${what} is selected: copy it with Ctrl+C (the browser did not let the page copy it).`;
+      }
+    });
+  }
+  dialog?.addEventListener('close', () => open?.focus());
 
   return { files };
 }
