@@ -90,8 +90,18 @@ const TEMPLATE = `
 <p id="message" class="notice" role="status" aria-live="polite" hidden></p>
 `;
 
-/** Where the rest of the demo lives (the folder of this script): named when it cannot be fetched. */
-const HOME = new URL('./', import.meta.url).href;
+/**
+ * Where the rest of the demo lives (the folder of this script): named when
+ * it cannot be fetched. A bundle loaded from a blob: URL (the notebook
+ * widget) has no folder; its own URL is named then.
+ */
+function home() {
+  try {
+    return new URL('./', import.meta.url).href;
+  } catch (_) {
+    return import.meta.url;
+  }
+}
 
 /** The demo's modules, imported once when the first element starts (a failure rejects with the reason). */
 let modules = null;
@@ -105,9 +115,10 @@ const importModules = () =>
 /** The words for a module that could not be fetched or started: what the host must send. */
 function loadFailure(e) {
   const why = e && e.message ? e.message : String(e);
-  const crossOrigin = new URL(HOME).origin !== location.origin;
+  const from = home();
+  const crossOrigin = new URL(from).origin !== location.origin;
   return (
-    `The simulation could not load its files from ${HOME} (${why}). ` +
+    `The simulation could not load its files from ${from} (${why}). ` +
     'The server that hosts redundant-ik-demo.js must serve the rest of the demo beside it (pkg/, weights/ and the other .js files)' +
     (crossOrigin ? ', and, since this page is on another site, send the header Access-Control-Allow-Origin with every file' : '; for a page on another site it must send the header Access-Control-Allow-Origin with every file') +
     '; .wasm files should be served as application/wasm.'

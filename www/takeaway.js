@@ -42,7 +42,7 @@ export function embedSnippets(s, page = location.href) {
     `<script type="module" src="${attribute(script)}"></script>`,
     `<redundant-ik-demo ${attrs}>`,
     `  If this text stays, the simulation's script could not load from ${content(new URL('./', full).href)}: that server must send the header`,
-    `  Access-Control-Allow-Origin to pages on other sites (docs/web.md, "Embedding"). <a href="${attribute(full.href)}">Open the demo</a> instead.`,
+    `  Access-Control-Allow-Origin to pages on other sites (docs/embedding.md). <a href="${attribute(full.href)}">Open the demo</a> instead.`,
     `</redundant-ik-demo>`,
   ].join('\n');
   return { iframe, element };

@@ -64,7 +64,7 @@ test('(c) the compat entry fetches no .wasm or weights file', async () => {
   await p.close();
 });
 
-test('the widget: its module text alone renders the element from the traits; a trait change sets the attribute; cleanup removes it', async () => {
+test('the widget: its module text alone renders the element from the traits; a trait change changes the running demo; cleanup removes it', async () => {
   const p = await open(`${base}widget.html`, { ready: null });
   const r = await p.evaluate(async () => {
     // anywidget imports the module's text (a notebook's _esm), so nothing beside it resolves.
@@ -89,15 +89,23 @@ test('the widget: its module text alone renders the element from the traits; a t
     const demo = el.querySelector('redundant-ik-demo');
     await new Promise((resolve) => (demo.dataset.ready ? resolve() : demo.addEventListener('ready', resolve, { once: true })));
     const before = Object.fromEntries(['task', 'method', 'lambda', 'floor', 'plots', 'target', 'obstacles'].map((a) => [a, demo.getAttribute(a)]));
+    const running = () => demo.controller.state();
+    const first = running();
     model.set('method', 'case3');
+    model.set('lambda', 6);
     model.save_changes();
     const after = demo.getAttribute('method');
+    // The element applies a changed attribute to its running demo (a MutationObserver: a task later).
+    await new Promise((resolve) => setTimeout(resolve, 50));
+    const now = running();
     const listening = () => [...handlers.values()].flat().length;
     window.widgetTest = { cleanup, listening };
-    return { before, after, listening: listening() };
+    return { before, after, listening: listening(), first: [first.method, first.lambda, first.target], now: [now.method, now.lambda] };
   });
   assert.deepEqual(r.before, { task: '2', method: 'numerical', lambda: '4', floor: '0', plots: '', target: '0.6,0.2', obstacles: null });
   assert.equal(r.after, 'case3');
+  assert.deepEqual(r.first, ['numerical', 4, [0.6, 0.2]], 'the traits are the running scene');
+  assert.deepEqual(r.now, ['case3', 6], 'a trait change changes the running demo');
   assert.ok(r.listening > 0);
   await p.screenshot({ path: join(shots, 'widget.png') });
   // The cleanup render() returned: no element, no handler left.
