@@ -31,7 +31,8 @@ setup:
 ## page's at opt-level z, the workers' at s; 3 is 13 KB gzipped larger),
 ## then the debug `name` section stripped (cargo's strip also drops a
 ## section wasm-bindgen needs). The built-in networks' weights files go
-## beside the page (www/weights/), which fetches them.
+## beside the page (www/weights/), which fetches them and hands them to
+## its workers: neither module embeds them (docs/web.md, "Bytes on the wire").
 PAGE = -- --no-default-features --features page
 WORKER = --out-name redundant_ik_worker -- --no-default-features --features worker
 web: setup
