@@ -15,7 +15,7 @@ PAGE_ENV = CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_TARGET_DIR=target/wasm-page
 PAGE_SIMD_ENV = CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_TARGET_DIR=target/wasm-page-simd
 WORKER_OPT = CARGO_PROFILE_RELEASE_OPT_LEVEL=s
 
-.PHONY: setup web demo offline test-offline npm test-npm test lint test-native test-wasm test-e2e test-fuzz test-soak fuzz soak bench bench-native bench-web figures atlas-figures weights clean-web
+.PHONY: setup web dist test-dist offline test-offline npm test-npm demo test lint test-native test-wasm test-e2e test-fuzz test-soak fuzz soak bench bench-native bench-web figures atlas-figures weights clean-web
 
 ## Make this machine able to build and test for wasm32 (idempotent).
 setup:
@@ -31,7 +31,8 @@ setup:
 ## page's at opt-level z, the workers' at s; 3 is 13 KB gzipped larger),
 ## then the debug `name` section stripped (cargo's strip also drops a
 ## section wasm-bindgen needs). The built-in networks' weights files go
-## beside the page (www/weights/), which fetches them.
+## beside the page (www/weights/), which fetches them and hands them to
+## its workers: neither module embeds them (docs/web.md, "Bytes on the wire").
 PAGE = -- --no-default-features --features page
 WORKER = --out-name redundant_ik_worker -- --no-default-features --features worker
 web: setup
@@ -47,6 +48,32 @@ web: setup
 	for f in www/pkg/*.wasm; do python3 scripts/strip-wasm-names.py $$f; done
 	mkdir -p www/weights && cp weights/*.json www/weights/
 	@for f in www/pkg/*.wasm; do echo "$$f: $$(stat -c %s $$f) B, gzip -9 $$(gzip -9 -c $$f | wc -c) B"; done
+
+## The page as one folder for any static host, dist/ (docs/hosting.md,
+## copied in as its README.md), and that folder as an archive in target/:
+## what index.html, embed.html and the custom element (redundant-ik-demo.js)
+## load, with relative URLs only, so it works from any sub-path, and the
+## page in one file (redundant-ik.html, make offline). The list of files is
+## this recipe.
+VERSION := $(shell sed -n 's/^version = "\(.*\)"$$/\1/p' Cargo.toml | head -n1)
+DIST_TAR = target/redundant-ik-$(VERSION).tar.gz
+dist: web
+	rm -rf dist
+	mkdir -p dist/pkg dist/weights
+	cp www/*.html www/*.js www/*.css www/bench-native.json dist/
+	cp www/pkg/*.js www/pkg/*.wasm dist/pkg/
+	cp www/weights/*.json dist/weights/
+	cp docs/hosting.md dist/README.md
+	cp LICENSE-MIT LICENSE-APACHE dist/
+	bash scripts/bundle.sh offline
+	tar --sort=name --owner=0 --group=0 --numeric-owner --mtime=@0 \
+	  --transform 's,^dist,redundant-ik-$(VERSION),' -czf $(DIST_TAR) dist
+	@echo "dist/: $$(find dist -type f | wc -l) files, $$(du -sb dist | cut -f1) B; $(DIST_TAR): $$(stat -c %s $(DIST_TAR)) B"
+
+## dist/ served under a sub-path (/courses/robotics/arm/) on a free port,
+## and the page's smoke test there in headless Chromium (scripts/test-dist.sh).
+test-dist: dist
+	bash scripts/test-dist.sh
 
 ## Build, then serve www/ on http://127.0.0.1:$(PORT)/.
 demo: web
@@ -78,8 +105,10 @@ test-npm: npm
 
 ## Everything CI runs: formatting, lints, native tests, the same core tests in
 ## headless Chromium, the end-to-end browser test of the page, and the short
-## versions of the fuzzing and of the browser soak (docs/reliability.md).
-test: lint test-native test-wasm test-e2e test-fuzz test-soak
+## versions of the fuzzing and of the browser soak (docs/reliability.md),
+## the page as dist/ builds it, served under a sub-path, the offline file
+## from file:// and the npm package installed from its tarball.
+test: lint test-native test-wasm test-e2e test-dist test-offline test-npm test-fuzz test-soak
 
 lint: setup
 	python3 scripts/check-house.py

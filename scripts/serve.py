@@ -1,12 +1,16 @@
 #!/usr/bin/env python3
 """Serve the demo (www/) on 127.0.0.1 with .wasm as application/wasm.
 
-    python3 scripts/serve.py [--port 8000] [--dir www] [--cors]
+    python3 scripts/serve.py [--port 8000] [--dir www] [--cors] [--prefix /courses/robotics/arm/]
 
 Standard library only. It sends no CORS header unless --cors is given
 (`Access-Control-Allow-Origin: *`, which pages on other sites need to load
-the <redundant-ik-demo> element; the e2e test serves both ways). --port 0 picks a free port; the URL is printed as
-the first line (`Serving http://127.0.0.1:PORT/`), so scripts can read it.
+the <redundant-ik-demo> element; the e2e test serves both ways). --port 0
+picks a free port; the URL is printed as the first line (`Serving
+http://127.0.0.1:PORT/`, with the prefix), so scripts can read it.
+--prefix serves the directory under that sub-path only (anything outside
+it is a 404), as a host that puts the page in a folder of its site would
+(scripts/test-dist.sh).
 """
 
 import argparse
@@ -28,6 +32,21 @@ class Handler(http.server.SimpleHTTPRequestHandler):
         ".svg": "image/svg+xml",
     }
 
+    def send_head(self):
+        prefix = self.server.prefix
+        if self.path.split("?")[0] == prefix[:-1]:
+            self.send_response(301)
+            self.send_header("Location", prefix)
+            self.end_headers()
+            return None
+        if not self.path.startswith(prefix):
+            self.send_error(404, f"outside {prefix}")
+            return None
+        return super().send_head()
+
+    def translate_path(self, path):
+        return super().translate_path("/" + path[len(self.server.prefix):])
+
     def end_headers(self):
         # A development server: always fetch the freshly built module.
         self.send_header("Cache-Control", "no-store")
@@ -46,7 +65,9 @@ def main() -> int:
     parser.add_argument("--dir", default="www", help="directory to serve (default: www)")
     parser.add_argument("--quiet", action="store_true", help="do not log requests")
     parser.add_argument("--cors", action="store_true", help="send Access-Control-Allow-Origin: * (for pages on other sites)")
+    parser.add_argument("--prefix", default="/", help="the sub-path to serve the directory under (default: /)")
     args = parser.parse_args()
+    prefix = "/" + args.prefix.strip("/") + "/" if args.prefix.strip("/") else "/"
 
     root = os.path.abspath(args.dir)
     if not os.path.isdir(root):
@@ -63,8 +84,9 @@ def main() -> int:
         return 1
     server.quiet = args.quiet
     server.cors = args.cors
+    server.prefix = prefix
     port = server.server_address[1]
-    print(f"Serving http://127.0.0.1:{port}/ (directory {root}); Ctrl-C stops.", flush=True)
+    print(f"Serving http://127.0.0.1:{port}{prefix} (directory {root}); Ctrl-C stops.", flush=True)
     try:
         server.serve_forever()
     except KeyboardInterrupt:

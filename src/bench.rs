@@ -16,6 +16,7 @@ use serde::{Deserialize, Serialize};
 use crate::atlas;
 use crate::error::{Error, Result};
 use crate::nalgebra::Vector2;
+#[cfg(feature = "embedded-weights")]
 use crate::networks::Networks;
 use crate::networks::{Encoding, NetworkSet, Sampling, Variant};
 use crate::nn::lm::{LmOptions, LmTrainer};
@@ -299,8 +300,9 @@ pub fn forward_ns(opts: &Options, probes: &Probes) -> Result<Forward> {
 
 /// Forward passes of the paper's two `Phi` forms, the single 3-35-14-6 net
 /// and the three 3-35-14-2 row nets (ns). Separate from [`forward_ns`] so
-/// that the page, which ships only the default networks, does not embed
-/// their weights.
+/// that the workers' module, which is handed only the shipped sets' files,
+/// does not embed their weights; compiled in with `embedded-weights`.
+#[cfg(feature = "embedded-weights")]
 pub fn forward_paper_ns(opts: &Options, probes: &Probes) -> Result<(f64, f64)> {
     let theta = Scene::task1().theta0;
     let mut out = [0.0; 6];
@@ -311,6 +313,15 @@ pub fn forward_paper_ns(opts: &Options, probes: &Probes) -> Result<(f64, f64)> {
         })
     };
     Ok((time(Variant::Plain)?, time(Variant::Rows)?))
+}
+
+/// Without `embedded-weights` (the workers' module) the paper's two `Phi`
+/// forms are not there to time: says so.
+#[cfg(not(feature = "embedded-weights"))]
+pub fn forward_paper_ns(_opts: &Options, _probes: &Probes) -> Result<(f64, f64)> {
+    Err(Error::NetworksUnavailable(
+        "the paper's plain and rows Phi networks are built into the command-line tool only".into(),
+    ))
 }
 
 /// One `trainlm` epoch (ms) of a fresh 2-35-14-6 `Phi` network on 3,000
@@ -355,7 +366,7 @@ pub const ATLAS_RUNS: usize = 3;
 /// stepping) computed on this thread, in ms: the median of [`ATLAS_RUNS`]
 /// runs.
 pub fn atlas_ms(probes: &Probes) -> Result<f64> {
-    let nets = Arc::new(Networks::embedded()?);
+    let nets = crate::networks::builtin()?;
     let now = probes.now_ms;
     let mut times = Vec::with_capacity(ATLAS_RUNS);
     for _ in 0..ATLAS_RUNS {

@@ -5,7 +5,7 @@
 
 pub mod arm;
 pub mod atlas;
-#[cfg(feature = "embedded-weights")]
+#[cfg(any(feature = "embedded-weights", feature = "worker"))]
 pub mod bench;
 pub mod clearance;
 pub mod error;

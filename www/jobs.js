@@ -2,7 +2,10 @@
 // (www/worker.js) on the workers' module of the build the page runs, so
 // the page keeps drawing; cancelling terminates the worker at once.
 
-import { assetUrl, loadModule, workerModuleUrl } from './module.js';
+import { assetUrl, loadModule, workerModuleUrl, networkSetsFor } from './module.js';
+
+/** The shipped network sets a job names: its atlas's `networks` option, its run's set. */
+const namedSets = (job) => [job.options?.networks, job.run?.networks?.set].filter((s) => typeof s === 'string');
 
 /**
  * Runs one job in a Web Worker. `onProgress({ done, total, label })`
@@ -11,6 +14,8 @@ import { assetUrl, loadModule, workerModuleUrl } from './module.js';
  */
 export async function runWorker(job, { onProgress, signal } = {}) {
   await loadModule();
+  // The workers' module carries no weights: the page hands it the sets the job may use.
+  const networks = await networkSetsFor(namedSets(job));
   return new Promise((resolve, reject) => {
     const abort = () => {
       finish();
@@ -38,7 +43,7 @@ export async function runWorker(job, { onProgress, signal } = {}) {
       finish();
       reject(new Error(e.message || 'the worker failed to start'));
     };
-    worker.postMessage({ ...job, wasm: workerModuleUrl() });
+    worker.postMessage({ ...job, wasm: workerModuleUrl(), networks });
   });
 }
 

@@ -104,6 +104,10 @@ export function moduleMemoryBytes() {
 
 /** The fetches of shipped network sets under way or done, by name. */
 const fetchedSets = new Map();
+/** The weights files' text of each shipped set fetched, by name: `[phi, v]` (for the workers). */
+const setTexts = new Map();
+/** Why a shipped set could not be fetched, by name (for the workers). */
+const setFailures = new Map();
 
 /**
  * Fetches a shipped network set's weights files (the module names them)
@@ -128,9 +132,11 @@ export function loadNetworkSet(set = moduleNetworkSets()[0]) {
               return r.text();
             }),
           );
+          setTexts.set(set, texts);
           provideBuiltinNetworks(texts[0], texts[1], set);
         } catch (e) {
           const why = e && e.message ? e.message : String(e);
+          if (!setTexts.has(set)) setFailures.set(set, why);
           // The first set (the paper's) is what the network methods start
           // with: its failure is kept as their reason. Another set may be
           // tried again.
@@ -145,6 +151,27 @@ export function loadNetworkSet(set = moduleNetworkSets()[0]) {
     );
   }
   return fetchedSets.get(set);
+}
+
+/**
+ * The shipped sets a worker's job needs, for the workers' module, which
+ * carries none (make web; docs/web.md, "Bytes on the wire"): the paper's
+ * and the sets named in `names` (unknown names left to the module's
+ * message), fetched first if need be (once per page; the worker fetches
+ * nothing). Resolves to `{ name: { phi, v } }` with the weights files'
+ * text, or `{ name: { error } }` with why they could not be fetched.
+ */
+export async function networkSetsFor(names = []) {
+  const known = moduleNetworkSets();
+  const out = {};
+  for (const name of new Set([known[0], ...names])) {
+    if (!known.includes(name)) continue;
+    const why = await loadNetworkSet(name);
+    const texts = setTexts.get(name);
+    // Fetched files go as they are (a corrupt one is refused by the workers' module as here).
+    out[name] = texts ? { phi: texts[0], v: texts[1] } : { error: setFailures.get(name) ?? why ?? 'not fetched' };
+  }
+  return out;
 }
 
 let cachedSets = null;

@@ -22,6 +22,10 @@
 //       a run as the JSON of `simulate --json`, CSV, and its figures as SVG
 //   { kind: 'atlas-files', wasm, atlas, scene, methods }
 //       an atlas's JSON, the CSV of its cells, and its maps (of `methods`) as SVG
+// Every message also has `networks`: `{ set: { phi, v } | { error } }`, the
+// shipped network sets the job may use (the weights files' text, fetched by
+// the page, or why they could not be had), handed to the module before the
+// job: the workers' module carries none (docs/web.md, "Bytes on the wire").
 // Messages out:
 //   { type: 'progress', done, total, label }
 //   { type: 'done', result, ms }
@@ -39,6 +43,8 @@ import init, {
   benchVerdict,
   runFiles,
   atlasFiles,
+  provideBuiltinNetworks,
+  builtinNetworksFailed,
   lastPanic,
 } from './pkg/redundant_ik_worker.js';
 import { describeError } from './errors.js';
@@ -104,6 +110,16 @@ function trainNet({ request, net }) {
 self.onmessage = async ({ data }) => {
   try {
     await init({ module_or_path: data.wasm });
+    for (const [set, files] of Object.entries(data.networks ?? {})) {
+      if (files.error) builtinNetworksFailed(files.error, set);
+      else {
+        try {
+          provideBuiltinNetworks(files.phi, files.v, set);
+        } catch (_) {
+          // Kept by the module as the set's reason: a job that needs it says so.
+        }
+      }
+    }
     const t0 = performance.now();
     let result;
     if (data.kind === 'bench') result = bench(data);

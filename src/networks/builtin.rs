@@ -3,8 +3,8 @@
 //! `weights/v-plain.json`) and the whole-reach recipe
 //! (`weights/phi-reach.json`, `weights/v-reach.json`, `docs/learning.md`).
 //! Compiled into the build with the feature `embedded-weights` (the
-//! command-line tool and the workers' module); the page's module fetches
-//! the files beside it and hands them over ([`provide_builtin`]). Which
+//! command-line tool); the page fetches the files beside it and hands them
+//! to its module and to each worker's ([`provide_builtin`]). Which
 //! networks a method runs with, and whether they fit the arm, is decided
 //! here, in one place ([`for_method`]).
 

@@ -39,6 +39,9 @@ test('atlas: computed in a worker while the page draws, equal to the module comp
     const m = await import('./pkg/redundant_ik_worker.js');
     const wasm = window.demo.build === 'simd' ? 'redundant_ik_worker_simd_bg.wasm' : 'redundant_ik_worker_bg.wasm';
     await m.default({ module_or_path: `./pkg/${wasm}` });
+    // The workers' module carries no weights: hand it the sets, as the page's jobs do.
+    const sets = await (await import('./module.js')).networkSetsFor();
+    for (const [set, f] of Object.entries(sets)) m.provideBuiltinNetworks(f.phi, f.v, set);
     const job = new m.AtlasJob(window.demo.controller.demo.run(), { methods, n: 11, task: 1 });
     job.advance(1e6);
     const direct = job.finish();

@@ -43,6 +43,10 @@ test('built-in networks that cannot be fetched: the page runs the exact methods 
     }
   });
   assert.match(refused, /networks not available: could not fetch weights\/phi-equivariant\.json \(HTTP 404\)/);
+  // The workers are told the same reason: an atlas in Case 3 says it, one in the exact methods runs.
+  const inWorker = await page.evaluate(() => window.demo.atlas({ methods: ['case3'], n: 3 }).then(() => null, (e) => e.message));
+  assert.match(inWorker ?? '', /networks not available: could not fetch weights\/phi-equivariant\.json \(HTTP 404\)/);
+  assert.equal((await page.evaluate(() => window.demo.atlas({ methods: ['numerical'], n: 3 }))).cells.length, 9);
   // The methods without networks are there, the others disabled.
   const options = await page.$$eval('#mode option', (os) => os.map((o) => [o.value, o.disabled]));
   const methods = await methodsOf(page);

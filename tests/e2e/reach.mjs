@@ -73,6 +73,9 @@ test('a network set that cannot be fetched: a readable message, the networks in 
   assert.match(await page.textContent('#message'), /reach.*could not be loaded.*v-reach\.json.*404/);
   assert.equal((await state(page)).network_set, 'paper', 'the paper networks stay');
   assert.equal(await page.inputValue('#network-set'), 'paper');
+  // A job in a worker that needs the set says why it cannot have it (the workers' module carries no weights).
+  const why = await page.evaluate(() => window.demo.atlas({ methods: ['case3'], n: 3, networks: 'reach' }).then(() => null, (e) => e.message));
+  assert.match(why ?? '', /networks not available: could not fetch weights\/v-reach\.json \(HTTP 404\)/);
   block = false;
   await page.selectOption('#network-set', 'reach');
   await page.waitForFunction(() => window.demo.state().network_set === 'reach');
