@@ -15,6 +15,7 @@ cd "$root"
 prefix=/courses/robotics/arm/
 
 [[ -f dist/index.html ]] || { echo "test-dist: dist/ is not built; run 'make dist' first" >&2; exit 2; }
+[[ -f dist/redundant-ik.html ]] || { echo "test-dist: dist/ has no redundant-ik.html, the page in one file (make offline)" >&2; exit 1; }
 chromium="${CHROMIUM:-/usr/bin/chromium}"
 [[ -x "$chromium" ]] || { echo "test-dist: no Chromium at $chromium (scripts/setup-wasm.sh installs it)" >&2; exit 2; }
 

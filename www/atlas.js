@@ -120,7 +120,24 @@ export function mountAtlas(root, demo, { changed }) {
     }
   }
 
+  /**
+   * What an atlas's numbers are of (its task, grid, region and the scene's
+   * damping and drift correction): the table's caption and the tour's
+   * figure say it, since the same method's rate differs between grids and
+   * settings (the README's tables are with damping off, as in the paper).
+   */
+  function describeAtlas(a = atlas, scene = sceneUsed) {
+    const [x0, x1, y0, y1] = a.grid.region;
+    const box = `[${x0.toFixed(2)}, ${x1.toFixed(2)}] × [${y0.toFixed(2)}, ${y1.toFixed(2)}] m`;
+    // The scene's JSON (Demo.scene(), `simulate --json`'s): a damping schedule or null.
+    const damping = scene?.damping ? 'damping near singular poses on' : 'damping off, as in the paper';
+    const feedback = scene?.feedback_gain > 0 ? `, drift corrected (K = ${scene.feedback_gain} 1/s)` : '';
+    return `Task ${a.task ?? '–'}, ${a.grid.n} × ${a.grid.n} cells over ${box}, ${damping}${feedback}`;
+  }
+
   function fillTable() {
+    const table = el.body?.closest('table');
+    if (table) table.createCaption().textContent = `${describeAtlas()}.`;
     if (el.body) {
       el.body.replaceChildren(
         ...atlas.methods.map((m) => {
@@ -339,5 +356,5 @@ export function mountAtlas(root, demo, { changed }) {
     }
   }
 
-  return { run, hover, click, leave, check, result: () => atlas, shown: () => shown };
+  return { run, hover, click, leave, check, result: () => atlas, shown: () => shown, describe: () => (atlas ? describeAtlas() : '') };
 }

@@ -372,6 +372,7 @@ export async function mount(root, options = {}) {
     useNetworks: (name) => networkSet.choose(name),
     playground,
     atlasResult: () => atlas.result(),
+    atlasDescription: () => atlas.describe(),
     stop() {
       stopped = true;
     },

@@ -1,11 +1,28 @@
 // The notes beside the drawing, from the state every frame: where the run
 // is (ended and holding still, paused, ready), a link below the floor, a
 // network's input outside its trained range, the exact Φ standing in near
-// a singular pose; and the play button's word (Play, Pause, Replay). Each
-// element is optional (`#run-note`, `#floor-warning`, `#range-warning`,
-// `#handover-note`, `#play`), so the custom element shows what it has.
+// a singular pose, the paper's criterion with several obstacles; and the
+// play button's word (Play, Pause, Replay). Each element is optional
+// (`#run-note`, `#floor-warning`, `#range-warning`, `#handover-note`,
+// `#criterion-note`, `#play`), so the custom element shows what it has.
 
 import { metres } from './format.js';
+import { method } from './module.js';
+
+/**
+ * Whether method `name` avoids obstacles by the paper's criterion (the
+ * triangle areas of eq. 14: the avoiding methods of the paper's group).
+ */
+const areaCriterion = (name) => {
+  const m = method(name);
+  return Boolean(m && m.group === 'paper' && m.avoids);
+};
+
+/** Why the paper's criterion may hit the near obstacle of several (issue 27: read as a bug). */
+const CRITERION_TEXT =
+  "Several obstacles: the paper's criterion grows the triangle areas between the links and each obstacle's centre (eq. 14), " +
+  'and an area grows with the distance, so a far obstacle pulls harder than a near one and a link may still hit the near one. ' +
+  'The distance gradient, task priority and the QP push away from the nearest.';
 
 const plural = (n, word) => `${n} ${word}${n === 1 ? '' : 's'}`;
 
@@ -34,7 +51,9 @@ function runText(s) {
 /** Wires the notes under `root`; returns `sync(state)` for the animation loop. */
 export function mountNotes(root) {
   const $ = (id) => root.querySelector('#' + id);
-  const el = { run: $('run-note'), floor: $('floor-warning'), range: $('range-warning'), handover: $('handover-note'), play: $('play') };
+  const el = { run: $('run-note'), floor: $('floor-warning'), range: $('range-warning'), handover: $('handover-note'), criterion: $('criterion-note'), play: $('play') };
+  // The methods' text, where the page has it (the custom element has none).
+  const explained = $('modes-explained');
   const set = (node, text) => {
     if (!node) return;
     if (text && node.textContent !== text) node.textContent = text;
@@ -59,6 +78,19 @@ export function mountNotes(root) {
         ? `A link ${s.below_floor ? 'is' : 'went'} below the floor (y < 0), drawn in red: ${plural(s.below_floor_steps, 'step')} of this run. A real arm would hit the ground there.`
         : '',
     );
+    if (el.criterion) {
+      const on = s.obstacles.length > 1 && areaCriterion(s.method);
+      if (on && !el.criterion.childNodes.length) {
+        el.criterion.append(CRITERION_TEXT);
+        if (explained) {
+          const a = document.createElement('a');
+          a.href = '#modes-explained';
+          a.textContent = 'The methods';
+          el.criterion.append(' ', a, '.');
+        }
+      }
+      el.criterion.hidden = !on;
+    }
     set(
       el.handover,
       s.handover_steps > 0 && s.uses.phi

@@ -86,6 +86,7 @@ const TEMPLATE = `
     collision <b data-readout="collision">none</b></span>
 </div>
 <p id="range-warning" class="notice warn" hidden>Outside the networks' trained range.</p>
+<p id="criterion-note" class="notice warn" role="status" hidden></p>
 <p id="handover-note" class="notice warn" role="status" hidden></p>
 <p id="message" class="notice" role="status" aria-live="polite" hidden></p>
 `;

@@ -107,7 +107,7 @@ export function mountTour(root, controller) {
         const s = a?.summary?.case3;
         if (!s) return '';
         const pct = (r) => (r?.rate === null || r?.rate === undefined ? '–' : `${Math.round(100 * r.rate)}%`);
-        return `This atlas: Case 3 succeeds in ${pct(s.inside_trained_region)} of the cells inside the box and ${pct(s.outside_trained_region)} outside it (the numerical route: ${pct(a.summary.numerical?.avoidable)} overall).`;
+        return `This atlas (${controller.atlasDescription()}): Case 3 succeeds in ${pct(s.inside_trained_region)} of the cells inside the box and ${pct(s.outside_trained_region)} outside it (the numerical route: ${pct(a.summary.numerical?.avoidable)} overall).`;
       },
     },
   ];
