@@ -92,9 +92,10 @@ pub fn arm_svg_with(
         .paper_figure(task)
         .map(|n| format!(" (paper Fig. {n})"))
         .unwrap_or_default();
-    let verdict = match s.min_distance {
-        Some(d) if s.collided => format!("collides, min distance {d:.4} m"),
-        Some(d) => format!("min distance {d:.4} m"),
+    // The clearance to the obstacles' edges, as the page and the tables give it.
+    let verdict = match s.min_clearance {
+        Some(c) if s.collided => format!("collides, min clearance {c:.4} m"),
+        Some(c) => format!("min clearance {c:.4} m"),
         None => "no obstacle".into(),
     };
     let head = format!(

@@ -1,5 +1,5 @@
-//! Time series: a run's plots (the page's three panels: distance from the
-//! obstacle centre to the nearest link with the radius, tracking error,
+//! Time series: a run's plots (the page's three panels: the clearance
+//! between the links and the nearest obstacle's edge, tracking error,
 //! joint angles), and every method of a scene over time (clearance and
 //! tracking error, `redundant-ik figure --compare`).
 
@@ -18,6 +18,14 @@ use crate::scene::Scene;
 
 type Chart<'a, 'b> =
     ChartContext<'a, super::Measured<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// The vertical range of a clearance panel: from below 0 (contact, or the
+/// deepest a link went inside) to above the largest clearance.
+fn clearance_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (lo, hi) = values.fold((0.0f64, 1e-3f64), |(lo, hi), c| (lo.min(c), hi.max(c)));
+    let pad = 0.08 * (hi - lo);
+    (lo - pad, hi + pad)
+}
 
 /// One panel over `t` with a light mesh.
 fn panel<'a, 'b>(
@@ -43,9 +51,9 @@ fn panel<'a, 'b>(
     Ok(chart)
 }
 
-/// A run's time series as SVG: distance from the obstacle centres to the
-/// nearest link (with the radius of the first disc), tracking error and
-/// joint angles, one panel each, and the caption line.
+/// A run's time series as SVG: the clearance between the links and the
+/// nearest obstacle's edge (0, contact, dashed), tracking error and joint
+/// angles, one panel each, and the caption line.
 pub fn series_svg(task: u32, scene: &Scene, run: &Trajectory) -> Result<String> {
     let size = (820u32, 760u32);
     let t1 = run.steps.last().map_or(0.0, |s| s.t).max(1e-9);
@@ -60,36 +68,30 @@ pub fn series_svg(task: u32, scene: &Scene, run: &Trajectory) -> Result<String> 
         draw_caption(&foot, &lines)?;
         let areas = panels.split_evenly((3, 1));
 
-        let radius = scene.obstacles.first().map(|o| o.radius);
-        let distance: Vec<(f64, f64)> = run
+        // Clearance to the nearest obstacle's edge (0: contact), as the
+        // page's plots and readouts give it.
+        let clearance: Vec<(f64, f64)> = run
             .steps
             .iter()
-            .filter_map(|s| s.distance.map(|d| (s.t, d)))
+            .filter_map(|s| s.clearance.map(|c| (s.t, c)))
             .collect();
-        let dmax = distance
-            .iter()
-            .map(|p| p.1)
-            .fold(radius.unwrap_or(0.0) * 2.0, f64::max)
-            .max(1e-3)
-            * 1.1;
-        let mut chart = panel(&areas[0], 0.0..t1, 0.0..dmax, "distance to obstacle (m)")?;
-        if let Some(r) = radius {
+        let (lo, hi) = clearance_range(clearance.iter().map(|p| p.1));
+        let mut chart = panel(&areas[0], 0.0..t1, lo..hi, "clearance to obstacle (m)")?;
+        if !clearance.is_empty() {
             chart
                 .draw_series(DashedLineSeries::new(
-                    vec![(0.0, r), (t1, r)],
+                    vec![(0.0, 0.0), (t1, 0.0)],
                     6,
                     4,
                     colour::DANGER.stroke_width(1),
                 ))
                 .map_err(why)?;
-        }
-        chart
-            .draw_series(LineSeries::new(distance, colour::ARM.stroke_width(2)))
-            .map_err(why)?;
-        if let Some(r) = radius {
+            chart
+                .draw_series(LineSeries::new(clearance, colour::ARM.stroke_width(2)))
+                .map_err(why)?;
             let legend = [
                 (Swatch::Line(colour::ARM, 2), "nearest link".to_string()),
-                (Swatch::Dashed(colour::DANGER, 1), format!("radius {r} m")),
+                (Swatch::Dashed(colour::DANGER, 1), "contact".to_string()),
             ];
             let (w, _) = areas[0].dim_in_pixel();
             draw_legend(&areas[0], &legend, (w as i32 - 24, 16), true)?;
@@ -137,7 +139,7 @@ fn method_colour(method: Method) -> RGBColor {
 }
 
 /// Every run of one scene over time, as SVG: the clearance between the
-/// obstacle centre and the nearest link (with the radius dashed), and the
+/// links and the nearest obstacle's edge (0, contact, dashed), and the
 /// tracking error on a log scale.
 pub fn compare_svg(task: u32, scene: &Scene, runs: &[Trajectory]) -> Result<String> {
     let tf = runs
@@ -145,7 +147,7 @@ pub fn compare_svg(task: u32, scene: &Scene, runs: &[Trajectory]) -> Result<Stri
         .filter_map(|r| r.steps.last().map(|s| s.t))
         .fold(0.0, f64::max)
         .max(1e-9);
-    let radius = scene.obstacles.iter().map(|o| o.radius).fold(0.0, f64::max);
+    let has_obstacle = !scene.obstacles.is_empty();
     let title = format!("Task {task}: the methods over time");
     let line = caption(
         task,
@@ -163,38 +165,33 @@ pub fn compare_svg(task: u32, scene: &Scene, runs: &[Trajectory]) -> Result<Stri
         draw_caption(&foot, &lines)?;
         let (top, bottom) = charts.split_vertically(330);
 
-        // Clearance.
-        let dmax = runs
-            .iter()
-            .flat_map(|r| r.steps.iter().filter_map(|s| s.distance))
-            .fold(radius, f64::max)
-            .max(1e-3)
-            * 1.1;
-        let mut chart = panel(&top, 0.0..tf, 0.0..dmax, "clearance to O (m)")?;
+        // Clearance to the nearest obstacle's edge (0: contact).
+        let (lo, hi) = clearance_range(
+            runs.iter()
+                .flat_map(|r| r.steps.iter().filter_map(|s| s.clearance)),
+        );
+        let mut chart = panel(&top, 0.0..tf, lo..hi, "clearance to obstacle (m)")?;
         let mut legend = Vec::new();
-        if radius > 0.0 {
+        if has_obstacle {
             chart
                 .draw_series(DashedLineSeries::new(
-                    vec![(0.0, radius), (tf, radius)],
+                    vec![(0.0, 0.0), (tf, 0.0)],
                     6,
                     4,
                     colour::DANGER.stroke_width(1),
                 ))
                 .map_err(why)?;
-            legend.push((
-                Swatch::Dashed(colour::DANGER, 1),
-                format!("obstacle radius {radius} m"),
-            ));
+            legend.push((Swatch::Dashed(colour::DANGER, 1), "contact".to_string()));
         }
         for r in runs {
             let c = method_colour(r.method);
             let min = r
                 .summary
-                .min_distance
+                .min_clearance
                 .map_or(String::new(), |d| format!(", min {d:.4} m"));
             chart
                 .draw_series(LineSeries::new(
-                    r.steps.iter().filter_map(|s| s.distance.map(|d| (s.t, d))),
+                    r.steps.iter().filter_map(|s| s.clearance.map(|d| (s.t, d))),
                     c.stroke_width(2),
                 ))
                 .map_err(why)?;

@@ -21,8 +21,9 @@ const MAX_HISTORY: usize = 600;
 pub struct Point {
     /// Time (s).
     pub t: f64,
-    /// Distance from the nearest obstacle centre to a link.
-    pub distance: Option<f64>,
+    /// Clearance between the links and the nearest obstacle's edge
+    /// (negative inside it; [`crate::planner::Sample::clearance`]).
+    pub clearance: Option<f64>,
     /// Tracking error (m).
     pub error: f64,
     /// Joint angles.
@@ -85,7 +86,7 @@ impl Histories {
             MAX_HISTORY,
             Point {
                 t: s.t,
-                distance: s.distance,
+                clearance: s.clearance,
                 error: s.tracking_error,
                 theta: s.theta.clone(),
             },

@@ -58,6 +58,10 @@ pub struct State<'a> {
     pub floor: bool,
     /// Whether it was switched on for an out-of-reach target.
     pub auto_damping: bool,
+    /// Whether a point of the run's path (the target, for the line) lies
+    /// outside the arm's reach, with the damping on or off (the page's note
+    /// said so only when the damping was switched on for it).
+    pub out_of_reach: bool,
     /// Closed-loop gain `K`.
     pub feedback: f64,
     /// Joint angles.
@@ -86,10 +90,17 @@ pub struct State<'a> {
     pub obstacles: &'a [Obstacle],
     /// Index of the obstacle nearest to a link now (what `distance` measures).
     pub nearest: Option<usize>,
-    /// Distance from the nearest obstacle centre to a link now.
+    /// Distance from the nearest obstacle centre to a link now (named so:
+    /// the readouts, plots and tables give the clearance).
     pub distance: Option<f64>,
     /// Smallest such distance since the last reset.
     pub min_distance: Option<f64>,
+    /// Clearance between the links and the nearest obstacle's edge now
+    /// (negative inside it): what the readouts, the plots, the comparison,
+    /// the run's CSV and the atlas give.
+    pub clearance: Option<f64>,
+    /// Smallest clearance since the last reset.
+    pub min_clearance: Option<f64>,
     /// Whether a link is inside an obstacle now.
     pub collision: bool,
     /// Whether one was since the last reset.
@@ -234,6 +245,7 @@ impl Session {
             weighting: scene.weighting,
             floor: scene.floor,
             auto_damping: summary.auto_damping,
+            out_of_reach: !p.track().reachable(&scene.arm),
             feedback: scene.feedback_gain,
             theta: &s.theta,
             joints: &s.joints,
@@ -249,6 +261,8 @@ impl Session {
             nearest: nearest(&s.joints, &scene.obstacles),
             distance: s.distance,
             min_distance: summary.min_distance,
+            clearance: s.clearance,
+            min_clearance: summary.min_clearance,
             collision: s.collision,
             collided: summary.collided,
             below_floor: super::history::below_floor(&s.joints),

@@ -56,25 +56,26 @@ pub fn draw(s: &Session, surface: &Surface) {
         (surface.width, surface.height / 3.0)
     };
     let at = |k: f64| if wide { (k * w, 0.0) } else { (0.0, k * h) };
-    let radius = s.planner().scene().obstacles.first().map(|o| o.radius);
-
-    let distance: Vec<[f64; 2]> = history
+    // Clearance to the nearest obstacle's edge, as the readouts, the
+    // comparison, the CSV and the atlas give it: 0 is contact, below is a
+    // link inside the disc.
+    let clearance: Vec<[f64; 2]> = history
         .iter()
-        .filter_map(|p| p.distance.map(|d| [p.t, d]))
+        .filter_map(|p| p.clearance.map(|c| [p.t, c]))
         .collect();
-    let dmax = distance
+    let (lo, hi) = clearance
         .iter()
-        .map(|p| p[1])
-        .fold(radius.unwrap_or(0.0) * 2.0, f64::max);
-    let frame = Frame::new(at(0.0), w, h, (t0, t1), (0.0, dmax * 1.1));
-    frame.axes(ctx, "distance to obstacle (m)");
-    if let Some(r) = radius {
+        .fold((0.0f64, 0.1f64), |(lo, hi), p| (lo.min(p[1]), hi.max(p[1])));
+    let pad = 0.05 * (hi - lo);
+    let frame = Frame::new(at(0.0), w, h, (t0, t1), (lo - pad, hi + pad));
+    frame.axes(ctx, "clearance to obstacle (m)");
+    if !clearance.is_empty() {
         ctx.set_stroke_style_str(DANGER);
         ctx.set_line_width(1.0);
         dash(ctx, &[4.0, 3.0]);
-        frame.line(ctx, &[[t0, r], [t1, r]]);
+        frame.line(ctx, &[[t0, 0.0], [t1, 0.0]]);
         dash(ctx, &[]);
-        let (_, y) = frame.px(t1, r);
+        let (_, y) = frame.px(t1, 0.0);
         let font = format!("10px {FONT}");
         text(
             ctx,
@@ -82,10 +83,10 @@ pub fn draw(s: &Session, surface: &Surface) {
             DANGER,
             ("right", "bottom"),
             (frame.right, y - 2.0),
-            "radius",
+            "contact",
         );
     }
-    frame.series(ctx, ARM, 1.75, &distance);
+    frame.series(ctx, ARM, 1.75, &clearance);
 
     let error: Vec<[f64; 2]> = history.iter().map(|p| [p.t, p.error]).collect();
     let emax = error.iter().map(|p| p[1]).fold(1e-3, f64::max);

@@ -45,7 +45,10 @@ fn figure_writes_an_svg_and_all_writes_every_task_and_method() {
             "{label} in the legend"
         );
     }
-    assert!(svg.contains("min 0.2193 m"), "Task 2's numerical clearance");
+    assert!(
+        svg.contains("min 0.1693 m"),
+        "Task 2's numerical clearance to the edge"
+    );
 }
 
 /// The caption names each obstacle's radius where they differ (issue 27:

@@ -215,6 +215,15 @@ fn the_readouts_reset_with_the_run_they_describe() {
         Some(d),
         "smallest so far is the distance now"
     );
+    // What the readouts show: the clearance to the disc's edge, the
+    // distance to its centre less its radius (issue 27: one distance).
+    let c = st.clearance.unwrap();
+    assert!((c - (d - st.radius.unwrap())).abs() < 1e-12, "{c} vs {d}");
+    assert_eq!(
+        st.min_clearance,
+        Some(c),
+        "smallest so far is the clearance now"
+    );
     // Moved away again before the start: the run is its start alone.
     s.move_obstacle(0, [1.2, 1.6]).unwrap();
     let st = s.state();

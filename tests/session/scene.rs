@@ -159,3 +159,21 @@ fn a_shipped_network_set_is_installed_by_name_and_the_method_settings_survive_a_
     ));
     assert_eq!(four.network_set(), None);
 }
+
+/// A target beyond the arm's reach is said so with the damping on or off
+/// (issue 27: with it on, the page gave no "out of reach" note).
+#[test]
+fn a_target_out_of_reach_is_said_so_with_damping_on_or_off() {
+    for damping in [false, true] {
+        let mut s = Session::new(1).unwrap();
+        s.set_damping(damping).unwrap();
+        assert!(!s.state().out_of_reach, "the paper's target is in reach");
+        // The arm reaches 2.05 m from the top of its 0.5 m post.
+        s.set_target([0.0, 3.0], None).unwrap();
+        let st = s.state();
+        assert!(st.out_of_reach, "damping {damping}");
+        assert!(st.damping, "the damping is on (switched on, or on already)");
+        s.set_target([0.6, 0.2], None).unwrap();
+        assert!(!s.state().out_of_reach);
+    }
+}
