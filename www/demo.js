@@ -85,8 +85,11 @@ function syncLegend(list, mask) {
 const READOUTS = {
   t: (s) => fixed(s.t, 1),
   error: (s) => metres(s.tracking_error),
-  distance: (s) => fixed(s.distance, 3),
-  min_distance: (s) => fixed(s.min_distance, 3),
+  // The clearance to the nearest obstacle's edge, as the plots, the
+  // comparison, the CSV and the atlas give it (the centre's distance is
+  // the state's `distance`).
+  clearance: (s) => fixed(s.clearance, 3),
+  min_clearance: (s) => fixed(s.min_clearance, 3),
   collision: (s) => (s.collision ? 'now' : s.collided ? 'earlier' : 'none'),
   manipulability: (s) => fixed(s.manipulability, 3),
   sigma: (s) => s.singular_values.map((v) => fixed(v, 3)).join(', '),
@@ -287,7 +290,7 @@ export async function mount(root, options = {}) {
   // ---- readouts and the loop -------------------------------------------
   const syncNotes = mountNotes(root);
   const syncLab = mountLab(root, demo, { attempt, changed: () => changed() });
-  let autoDampingShown = false;
+  let outOfReachShown = false;
   let chosenMethod = null; // the method the user picked last
   let shownMethod = null;
   let shownArm = null;
@@ -318,10 +321,18 @@ export async function mount(root, options = {}) {
       }
       if (r.dataset.readout === 'collision') r.dataset.level = s.collision ? 'bad' : s.collided ? 'warn' : 'ok';
     }
-    if (s.auto_damping && !autoDampingShown) {
-      show('The target is out of reach: damping switched on so the joint rates stay finite.', 'warn');
+    // Said once as the target (or the path) leaves the reach, with the
+    // damping on or off.
+    if (s.out_of_reach && !outOfReachShown) {
+      const what = s.path ? "The path leaves the arm's reach" : 'The target is out of reach';
+      show(
+        s.auto_damping
+          ? `${what}: damping switched on so the joint rates stay finite; the hand stops as close as it can.`
+          : `${what}: the hand stops as close as it can.`,
+        'warn',
+      );
     }
-    autoDampingShown = s.auto_damping;
+    outOfReachShown = s.out_of_reach;
     syncControls(s);
     atlas.check(s);
     compare?.(s);

@@ -7,16 +7,13 @@
 // `#criterion-note`, `#play`), so the custom element shows what it has.
 
 import { metres } from './format.js';
-import { method } from './module.js';
+import { method, paperMethods } from './module.js';
 
 /**
  * Whether method `name` avoids obstacles by the paper's criterion (the
- * triangle areas of eq. 14: the avoiding methods of the paper's group).
+ * triangle areas of eq. 14: the paper's methods that avoid).
  */
-const areaCriterion = (name) => {
-  const m = method(name);
-  return Boolean(m && m.group === 'paper' && m.avoids);
-};
+const areaCriterion = (name) => Boolean(method(name)?.avoids && paperMethods().includes(name));
 
 /** Why the paper's criterion may hit the near obstacle of several (issue 27: read as a bug). */
 const CRITERION_TEXT =

@@ -82,7 +82,7 @@ const TEMPLATE = `
   <select id="mode" aria-label="Method"></select>
   <button id="play" type="button">Play</button>
   <button id="reset" type="button">Reset</button>
-  <span class="read">t <b data-readout="t">0.0</b> s · distance <b data-readout="distance">–</b> m ·
+  <span class="read">t <b data-readout="t">0.0</b> s · clearance <b data-readout="clearance">–</b> m ·
     collision <b data-readout="collision">none</b></span>
 </div>
 <p id="range-warning" class="notice warn" hidden>Outside the networks' trained range.</p>

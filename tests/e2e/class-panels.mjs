@@ -91,7 +91,11 @@ export function classPanelTests(h) {
         assert.ok(expect[k](s), `step ${k + 1}: ${JSON.stringify({ method: s.method, collided: s.collided, obstacle: s.obstacle, in_range: s.in_range })}`);
         if (k === 3) assert.equal(await page.isVisible('.stage-card #range-warning'), true, 'outside the box: the warning shows');
       } else {
-        await page.waitForFunction(() => /This atlas: Case 3 succeeds/.test(document.getElementById('tour-result').textContent), null, { timeout: 60000 });
+        await page.waitForFunction(() => /This atlas \(.*\): Case 3 succeeds/.test(document.getElementById('tour-result').textContent), null, { timeout: 60000 });
+        // The figure says what it is of (issue 27: three grids, none labelled).
+        const said = await page.textContent('#tour-result');
+        assert.match(said, /Task 1, 21 × 21 cells over \[-?[\d.]+, [\d.]+\] × \[-?[\d.]+, [\d.]+\] m, damping near singular poses on/, said);
+        assert.match(await page.textContent('#atlas-table caption'), /21 × 21 cells/, 'the table says its grid too');
         assert.equal(await page.inputValue('#atlas-show'), 'case3', 'the map of Case 3');
       }
       await page.screenshot({ path: join(shots, `class-tour-${k + 1}.png`) });

@@ -91,8 +91,10 @@ export function classTests(h) {
     const s = await state(page);
     assert.ok(s.distance < 0.15, `next to the arm: ${s.distance}`);
     assert.equal(s.min_distance, s.distance);
-    const shown = await page.evaluate(() => ['distance', 'min_distance'].map((k) => document.querySelector(`[data-readout="${k}"]`).textContent));
+    const shown = await page.evaluate(() => ['clearance', 'min_clearance'].map((k) => document.querySelector(`[data-readout="${k}"]`).textContent));
     assert.equal(shown[1], shown[0], `readouts ${shown}`);
+    // One distance (issue 27): the readout is the clearance to the disc's edge, as the comparison and the atlas give it.
+    assert.equal(Number(shown[0]), Number((s.distance - s.radius).toFixed(3)), `clearance ${shown[0]} = distance - radius`);
     await page.screenshot({ path: join(shots, 'class-readouts-reset.png') });
     clean(page);
     await page.close();

@@ -3,7 +3,7 @@
 
 import { join } from 'node:path';
 import assert from 'node:assert/strict';
-import { shots, test, open, clean, state, near, pause, mouseDrag, touchDrag } from './harness.mjs';
+import { shots, test, open, clean, state, near, pause, mouseDrag, touchDrag, selectMethod } from './harness.mjs';
 
 test('page loads, draws and exposes window.demo', async () => {
   const page = await open();
@@ -71,7 +71,7 @@ test('drag the target with the mouse: new line, the arm follows', async () => {
   await page.close();
 });
 
-test('a target out of reach: damping switches on, the arm stretches, nothing breaks', async () => {
+test('a target out of reach: damping switches on, the arm stretches, nothing breaks; with damping on, the note says so too', async () => {
   const page = await open('?task=1&method=numerical');
   await pause(page);
   await page.click('label[for="damping"]');
@@ -90,6 +90,17 @@ test('a target out of reach: damping switches on, the arm stretches, nothing bre
   assert.ok(reach > 2.0, `the arm stretches towards the target (${reach.toFixed(3)} m from the post top)`);
   clean(page);
   await page.close();
+  // With the damping on already (the page's default), the note says it too (issue 27).
+  const on = await open('?task=1&method=numerical');
+  await pause(on);
+  assert.equal((await state(on)).damping, true);
+  await mouseDrag(on, (await state(on)).target, goal);
+  const t = await state(on);
+  assert.equal(t.out_of_reach, true);
+  assert.equal(t.auto_damping, false, 'nothing to switch on');
+  assert.match(await on.textContent('#message'), /out of reach: the hand stops as close as it can/);
+  clean(on);
+  await on.close();
 });
 
 test('keyboard on the drawing: arrows move the target, Shift+arrows the obstacle', async () => {
@@ -151,4 +162,23 @@ test('touch drag moves the target', async () => {
   assert.ok(near(after.target, goal, 0.03), `target moved by touch to ${after.target}`);
   clean(page);
   await page.close();
+});
+
+test("the paper's criterion with several obstacles: a note says why a far one pulls harder; the distance gradient has none", async () => {
+  const page = await open('?task=1&method=numerical&obstacles=0.5,0.5,0.05;1.0,1.3,0.05');
+  const note = '#criterion-note';
+  await page.waitForSelector(`${note}:not([hidden])`);
+  assert.match(await page.textContent(note), /an area grows with the distance, so a far obstacle pulls harder/);
+  assert.equal(await page.getAttribute(`${note} a`, 'href'), '#modes-explained', 'a link to the methods');
+  await selectMethod(page, 'distance');
+  await page.waitForSelector(note, { state: 'hidden' });
+  await selectMethod(page, 'case3');
+  await page.waitForSelector(`${note}:not([hidden])`);
+  const one = await open('?task=1&method=numerical');
+  await pause(one);
+  assert.equal(await one.isVisible(note), false, 'one obstacle: no note');
+  clean(page);
+  clean(one);
+  await page.close();
+  await one.close();
 });
