@@ -4,6 +4,7 @@
 // parseRateLimits, Demo.setArmLimits) and obstacle (Demo.setArm,
 // addObstacle, setObstacles) and this file shows its refusals.
 
+import { applied, follow } from './place-fields.js';
 import { limits, formatArm, parseJointLimits, formatJointLimits, parseRateLimits, formatRateLimits } from './module.js';
 
 /**
@@ -166,11 +167,28 @@ export function mountArmDesigner(root, demo, { setArm, attempt, show, changed })
     changed();
   }
 
-  /** Obstacle `i`'s entry: its centre (text kept in step by `syncObstacles`), its radius, a remove button. */
+  /**
+   * Obstacle `i`'s entry: its centre's x and y and its radius as number
+   * fields (placement without dragging, WCAG 2.5.7; kept in step with
+   * drags by `syncObstacles` except while edited), a remove button.
+   */
   function obstacleItem(i) {
     const li = document.createElement('li');
     li.dataset.index = String(i);
-    const where = document.createElement('span');
+    const name = document.createElement('span');
+    name.textContent = `#${i + 1}`;
+    const x = numberInput(-10, 10, 0.01, 0, `Centre x of obstacle ${i + 1} (m)`);
+    const y = numberInput(-10, 10, 0.01, 0, `Centre y of obstacle ${i + 1} (m)`);
+    const place = (field) => {
+      const [vx, vy] = [Number(x.value), Number(y.value)];
+      if (x.value.trim() === '' || y.value.trim() === '') return show(`Obstacle ${i + 1} needs a centre x and y in metres.`, 'error', false, field);
+      if (attempt(() => demo.moveObstacle(i, vx, vy), 'error', field)) {
+        applied(x, y);
+        changed();
+      }
+    };
+    x.addEventListener('change', () => place(x));
+    y.addEventListener('change', () => place(y));
     const r = numberInput(0.01, 1, 0.01, 0.05, `Radius of obstacle ${i + 1} (m)`);
     r.addEventListener('change', () => {
       if (attempt(() => demo.setObstacleRadius(i, Number(r.value)), 'error', r)) changed();
@@ -179,9 +197,10 @@ export function mountArmDesigner(root, demo, { setArm, attempt, show, changed })
     del.type = 'button';
     del.textContent = '×';
     del.title = `Remove obstacle ${i + 1}`;
+    del.setAttribute('aria-label', `Remove obstacle ${i + 1}`);
     del.addEventListener('click', () => attempt(() => removeObstacle(i)));
-    li.append(where, ' r ', r, ' ', del);
-    return { li, where, r, text: '', radius: NaN };
+    li.append(name, ' x ', x, ' y ', y, ' r ', r, ' ', del);
+    return { li, x, y, r, centre: '', radius: NaN };
   }
 
   // The entries, rebuilt only when the obstacles come or go; their text
@@ -195,10 +214,15 @@ export function mountArmDesigner(root, demo, { setArm, attempt, show, changed })
       el.obstacleList.replaceChildren(...items.map((it) => it.li));
       nearestShown = null;
     }
+    const mm = (v) => String(Number(v.toFixed(3)));
     s.obstacles.forEach((o, i) => {
       const it = items[i];
-      const text = `#${i + 1} (${o.centre[0].toFixed(2)}, ${o.centre[1].toFixed(2)})`;
-      if (it.text !== text) it.where.textContent = it.text = text;
+      const centre = `${o.centre[0]},${o.centre[1]}`;
+      if (it.centre !== centre) {
+        it.centre = centre;
+        follow(it.x, mm(o.centre[0]));
+        follow(it.y, mm(o.centre[1]));
+      }
       if (it.radius !== o.radius && document.activeElement !== it.r) it.r.value = String((it.radius = o.radius));
     });
     if (s.nearest !== nearestShown) {

@@ -30,6 +30,7 @@ import { mountTakeaway } from './takeaway.js';
 import { mountNotes } from './notes.js';
 import { mountLab } from './lab.js';
 import { mountPath } from './path-input.js';
+import { mountTargetFields } from './place-fields.js';
 
 /**
  * Fills a `<select>` with the methods, grouped ("The paper", "Beyond the
@@ -290,6 +291,7 @@ export async function mount(root, options = {}) {
   // ---- readouts and the loop -------------------------------------------
   const syncNotes = mountNotes(root);
   const syncLab = mountLab(root, demo, { attempt, changed: () => changed() });
+  const syncTarget = mountTargetFields(root, demo, { attempt, changed: () => changed() });
   let outOfReachShown = false;
   let chosenMethod = null; // the method the user picked last
   let shownMethod = null;
@@ -301,6 +303,7 @@ export async function mount(root, options = {}) {
     if (mask !== drawnMask) syncLegend(el.legend, (drawnMask = mask));
     syncNotes(s);
     syncLab(s);
+    syncTarget(s);
     // A switch of method the page made by itself (a new arm without
     // networks for it, networks forgotten) is announced at the menu.
     const [was, now] = [method(shownMethod), method(s.method)];

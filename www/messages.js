@@ -5,7 +5,7 @@
 // user is looking, not under a control off screen.
 
 /** What holds a control: the block the message goes after. */
-const HOLDER = '.field, .row, .takeaway, .tour, li, details, .bench-actions';
+const HOLDER = '.field, .place, .row, .takeaway, .tour, li, details, .bench-actions';
 
 /**
  * `messenger(root)` for the message element `#message` under `root`:

@@ -124,6 +124,17 @@ impl Demo {
             .map_err(js_err)
     }
 
+    /// Moves obstacle `i`'s centre to `(x, y)` (the number fields beside the
+    /// drawing: placement without dragging); throws, changing nothing, on
+    /// a bad index or point, or one whose disc would overlap the post.
+    #[wasm_bindgen(js_name = moveObstacle)]
+    pub fn move_obstacle(&mut self, i: f64, x: f64, y: f64) -> JsResult {
+        let centre = [finite("x", x)?, finite("y", y)?];
+        self.session
+            .move_obstacle(index(i)?, centre)
+            .map_err(js_err)
+    }
+
     /// Removes obstacle `i`; throws if there is none.
     #[wasm_bindgen(js_name = removeObstacle)]
     pub fn remove_obstacle(&mut self, i: f64) -> JsResult {

@@ -81,8 +81,8 @@ test('playground: the arm and obstacles through the UI: presets, links, add by c
   assert.ok(near(s.obstacles[1].centre, [-0.3, 1.2], 0.02), `dragged to ${s.obstacles[1].centre}`);
   assert.ok(near(s.obstacles[0].centre, [0.5, 0.5], 1e-9), 'the other stays');
   // Its radius from the list.
-  await page.fill('#obstacle-list li[data-index="1"] input', '0.1');
-  await page.press('#obstacle-list li[data-index="1"] input', 'Enter');
+  await page.fill('#obstacle-list li[data-index="1"] input[aria-label^="Radius"]', '0.1');
+  await page.press('#obstacle-list li[data-index="1"] input[aria-label^="Radius"]', 'Enter');
   s = await state(page);
   assert.equal(s.obstacles[1].radius, 0.1);
   // window.demo adds and removes too; nine are refused.

@@ -92,15 +92,15 @@ test('page actions: a drag costs at most two calls into the module per frame and
   const moved = (await state(page)).obstacles[1].centre;
   assert.match(await after[1].textContent(), new RegExp(`\\(${moved[0].toFixed(2)}, ${moved[1].toFixed(2)}\\)`), 'its text follows the drag');
   // The second obstacle's radius, typed: that one changes, in the module.
-  await page.fill('#obstacle-list li[data-index="1"] input', '0.12');
-  await page.press('#obstacle-list li[data-index="1"] input', 'Enter');
+  await page.fill('#obstacle-list li[data-index="1"] input[aria-label^="Radius"]', '0.12');
+  await page.press('#obstacle-list li[data-index="1"] input[aria-label^="Radius"]', 'Enter');
   await page.waitForFunction(() => window.demo.state().obstacles[1].radius === 0.12);
   const s = await state(page);
   assert.deepEqual(s.obstacles.map((o) => o.radius), [0.05, 0.12]);
   assert.deepEqual(s.obstacles[1].centre, moved, 'its centre stays');
   // Out of bounds: refused next to the field, nothing changed.
-  await page.fill('#obstacle-list li[data-index="0"] input', '-1');
-  await page.press('#obstacle-list li[data-index="0"] input', 'Enter');
+  await page.fill('#obstacle-list li[data-index="0"] input[aria-label^="Radius"]', '-1');
+  await page.press('#obstacle-list li[data-index="0"] input[aria-label^="Radius"]', 'Enter');
   assert.equal((await state(page)).obstacles[0].radius, 0.05);
   clean(page);
   await page.close();

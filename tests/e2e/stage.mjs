@@ -182,3 +182,41 @@ test("the paper's criterion with several obstacles: a note says why a far one pu
   await page.close();
   await one.close();
 });
+
+test('placing without dragging: the target and each obstacle have number fields, kept in step with drags', async () => {
+  const page = await open('?task=1&method=numerical&obstacles=0.5,0.5,0.05;1.2,1.4,0.08');
+  await pause(page);
+  await page.fill('#target-x', '0.7');
+  await page.fill('#target-y', '0.25');
+  await page.press('#target-y', 'Enter');
+  await page.waitForFunction(() => window.demo.state().target.join() === '0.7,0.25');
+  // Dragged, the fields follow (to the millimetre).
+  const s = await state(page);
+  await mouseDrag(page, s.target, [0.9, 0.4]);
+  const t = (await state(page)).target;
+  assert.equal(await page.inputValue('#target-x'), String(Number(t[0].toFixed(3))));
+  assert.equal(await page.inputValue('#target-y'), String(Number(t[1].toFixed(3))));
+  // Obstacle 2 typed into place, then dragged: its fields follow.
+  await page.click('#arm-panel summary');
+  const field = (i, what) => `#obstacle-list li[data-index="${i}"] input[aria-label^="Centre ${what}"]`;
+  assert.equal(await page.inputValue(field(1, 'x')), '1.2');
+  await page.fill(field(1, 'x'), '1.05');
+  await page.press(field(1, 'x'), 'Enter');
+  await page.waitForFunction(() => window.demo.state().obstacles[1].centre[0] === 1.05);
+  assert.deepEqual((await state(page)).obstacles[1].centre, [1.05, 1.4]);
+  await mouseDrag(page, [0.5, 0.5], [0.45, 0.75]);
+  const o = (await state(page)).obstacles[0].centre;
+  assert.equal(await page.inputValue(field(0, 'y')), String(Number(o[1].toFixed(3))));
+  // Each field applies on its own: x = 0 above the post is a place; y = 0.2 then puts it on the post: refused beside the field, nothing moved.
+  await page.fill(field(0, 'x'), '0');
+  await page.press(field(0, 'x'), 'Enter');
+  await page.waitForFunction(() => window.demo.state().obstacles[0].centre[0] === 0);
+  const above = (await state(page)).obstacles[0].centre;
+  assert.deepEqual(above, [0, Number(o[1].toFixed(3))], "the other coordinate as its field shows it");
+  await page.fill(field(0, 'y'), '0.2');
+  await page.press(field(0, 'y'), 'Enter');
+  assert.deepEqual((await state(page)).obstacles[0].centre, above, 'refused');
+  assert.match(await page.textContent('#message'), /post/);
+  clean(page);
+  await page.close();
+});
