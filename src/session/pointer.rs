@@ -13,6 +13,12 @@ pub const MIN_LINE_DURATION: f64 = 1.0;
 /// How far one arrow key moves the target or the obstacle (m).
 pub const NUDGE: f64 = 0.05;
 
+/// `point` rounded to the millimetre (a non-finite coordinate stays so, for
+/// the checks that refuse it).
+fn to_mm(point: [f64; 2]) -> [f64; 2] {
+    point.map(|v| (v * 1000.0).round() / 1000.0)
+}
+
 /// What the pointer holds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Handle {
@@ -101,6 +107,12 @@ impl Session {
         Ok(())
     }
 
+    /// `point` rounded to the millimetre (a non-finite coordinate stays so, for
+    /// the checks that refuse it).
+    fn to_mm(point: [f64; 2]) -> [f64; 2] {
+        point.map(|v| (v * 1000.0).round() / 1000.0)
+    }
+
     /// What the pointer holds.
     pub fn dragging(&self) -> Option<Handle> {
         self.drag
@@ -123,15 +135,19 @@ impl Session {
     /// Moves the held handle to `point`: the obstacle at once (refused on
     /// the post), an elbow toward it in the null space (the arm's new
     /// start), the target only as a marker until [`Session::drag_end`].
+    ///
+    /// The target and the obstacles land on the millimetre (a pixel of the
+    /// drawing is 2 to 10 mm): the page's links and messages then quote
+    /// `0.8`, not `0.7999998728434248`, and reproduce the scene exactly.
     pub fn drag_to(&mut self, point: [f64; 2]) -> Result<()> {
         match self.drag {
             Some(Handle::Target) => {
                 finite("pointer x", point[0])?;
                 finite("pointer y", point[1])?;
-                self.drag_point = Some(point);
+                self.drag_point = Some(to_mm(point));
                 Ok(())
             }
-            Some(Handle::Obstacle(i)) => self.place_obstacle(i, point),
+            Some(Handle::Obstacle(i)) => self.place_obstacle(i, to_mm(point)),
             Some(Handle::Joint(k)) => self.drag_joint(k, point),
             None => Ok(()),
         }

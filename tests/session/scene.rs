@@ -177,3 +177,18 @@ fn a_target_out_of_reach_is_said_so_with_damping_on_or_off() {
         assert!(!s.state().out_of_reach);
     }
 }
+
+/// A dragged target or obstacle lands on the millimetre, so the page's
+/// link quotes short decimals that reproduce the scene (issue 27:
+/// `target=-0.7999998728434248`).
+#[test]
+fn a_drag_lands_on_the_millimetre() {
+    let mut s = Session::new(1).unwrap();
+    s.drag_start(Some(Handle::Target));
+    s.drag_end([-0.7999998728434248, 1.30000004]).unwrap();
+    assert_eq!(s.state().target, [-0.8, 1.3]);
+    s.drag_start(Some(Handle::Obstacle(0)));
+    s.drag_to([0.91234, 0.40049]).unwrap();
+    s.drag_end([0.91234, 0.40049]).unwrap();
+    assert_eq!(s.state().obstacles[0].centre, [0.912, 0.4]);
+}
