@@ -2,7 +2,8 @@
 // (mouse and touch), a long press or a double-click removes an obstacle, a
 // click adds one (while the playground asks for it) or picks an atlas cell,
 // the arrow keys move the target (Shift: the obstacle), and the page-wide
-// keys (space plays or pauses, r resets). The module decides what a point
+// keys (space plays or pauses where no control has the focus, r resets;
+// Enter ticks a focused checkbox). The module decides what a point
 // or a key grabs (src/web/input.rs); this file only routes the events.
 
 const LONG_PRESS_MS = 600;
@@ -18,9 +19,21 @@ export function wireStage(stage, demo, { attempt, changed, togglePlay, reset, at
   keyboard?.addEventListener('keydown', (e) => {
     if (e.ctrlKey || e.metaKey || e.altKey) return;
     const t = e.composedPath()[0];
-    const typing = t && t.matches && t.matches('input[type=text], input[type=number], textarea, select');
+    // Enter ticks a checkbox as Space does (Damping, Correct drift, the
+    // atlas's methods: issue 27, they could not be changed without a mouse).
+    if (e.key === 'Enter' && t?.matches?.('input[type=checkbox]')) {
+      e.preventDefault();
+      t.click();
+      return;
+    }
+    const typing = t && t.matches && t.matches('input, textarea, select, [contenteditable]');
     if (typing) return;
+    // Space and Enter do what a focused control does (a button, a link, a
+    // panel's heading); the page's keys act only on the drawing or on
+    // nothing in particular.
+    const control = t !== keyboard && t?.matches?.('button, a[href], summary, [role=button], [role=tab], [role=switch], [tabindex]:not(canvas)');
     if (e.key === ' ' || e.code === 'Space') {
+      if (control) return;
       e.preventDefault();
       togglePlay();
     } else if (e.key === 'r' || e.key === 'R') {
