@@ -30,6 +30,7 @@ import { mountTakeaway } from './takeaway.js';
 import { mountNotes } from './notes.js';
 import { mountLab } from './lab.js';
 import { mountPath } from './path-input.js';
+import { mountAnnouncer } from './announce.js';
 
 /**
  * Fills a `<select>` with the methods, grouped ("The paper", "Beyond the
@@ -245,6 +246,7 @@ export async function mount(root, options = {}) {
   ]) {
     button?.addEventListener('click', () => {
       if (attempt(() => demo.loadTask(task), 'error', button)) {
+        announce.task(task);
         clearMessage();
         changed();
       }
@@ -286,6 +288,7 @@ export async function mount(root, options = {}) {
 
   // ---- readouts and the loop -------------------------------------------
   const syncNotes = mountNotes(root);
+  const announce = mountAnnouncer(root);
   const syncLab = mountLab(root, demo, { attempt, changed: () => changed() });
   let autoDampingShown = false;
   let chosenMethod = null; // the method the user picked last
@@ -297,6 +300,7 @@ export async function mount(root, options = {}) {
     const mask = s.drawn;
     if (mask !== drawnMask) syncLegend(el.legend, (drawnMask = mask));
     syncNotes(s);
+    announce.sync(s);
     syncLab(s);
     // A switch of method the page made by itself (a new arm without
     // networks for it, networks forgotten) is announced at the menu.

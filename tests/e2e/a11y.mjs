@@ -70,3 +70,68 @@ test('a11y: axe finds no serious or critical violation in any panel state, at 13
   console.log(`measure: axe serious/critical violations: ${found.length}${found.map((f) => `\n  ${f}`).join('')}`);
   assert.deepEqual(found, [], found.join('\n'));
 });
+
+/** Every text the live region took, with when (ms since the page started), from now on. */
+async function listen(page) {
+  await page.evaluate(() => {
+    window.__said = [];
+    const region = document.getElementById('announcer');
+    new MutationObserver(() => window.__said.push({ text: region.textContent, at: performance.now() })).observe(region, { childList: true, characterData: true, subtree: true });
+  });
+}
+const said = (page) => page.evaluate(() => window.__said);
+
+test('a11y: the live region says the first collision of a run, its end and result, a method switch, a task; the drawing has a text summary', async () => {
+  const page = await open('?task=1', DESKTOP);
+  const list = await page.evaluate(() => window.demo.methods());
+  const bare = list.find((m) => m.group === 'paper' && !m.avoids);
+  const exact = list.find((m) => m.group === 'paper' && m.avoids && !m.networks.phi && !m.networks.v);
+  await page.selectOption('#mode', bare.name);
+  await page.selectOption('#speed', '4');
+  await listen(page);
+  await page.click('#task1');
+  await page.waitForFunction(() => window.demo.state().ended, null, { timeout: 20000 });
+  await page.waitForFunction(() => window.__said.some((s) => s.text.includes('run ended')), null, { timeout: 5000 });
+  // Said one after the other, or together where the end came within 1.5 s of the contact.
+  const texts = (await said(page)).flatMap((s) => s.text.split('; '));
+  console.log(`measure: heard: ${texts.join(' | ')}`);
+  const hits = texts.filter((t) => t.startsWith('collision'));
+  assert.equal(hits.length, 1, `the first contact only: ${texts.join(' | ')}`);
+  assert.match(hits[0], /^collision: link [1-3] inside obstacle 1 at t = \d+\.\d s$/);
+  const end = texts.find((t) => t.startsWith('run ended'));
+  assert.match(end, /^run ended at t = 10\.0 s: the hand is .* from the target, smallest distance to an obstacle's centre \d\.\d{3} m, a link hit an obstacle$/);
+  // The contact's time is the state's: the link was inside then.
+  const s = await state(page);
+  assert.equal(s.collided, true);
+  // A method switch, then the drawing's summary names it.
+  await page.waitForTimeout(1600);
+  await page.selectOption('#mode', exact.name);
+  await page.waitForFunction((l) => document.getElementById('announcer').textContent === `method: ${l}`, exact.label, { timeout: 3000 });
+  const summary = await page.evaluate(() => {
+    const canvas = document.getElementById('stage');
+    return document.getElementById(canvas.getAttribute('aria-describedby')).textContent;
+  });
+  assert.match(summary, /^The drawing: a 3-link arm on a 0\.50 m post \(links 0\.60, 0\.85, 0\.60 m\); its hand follows a straight line to the target at \(0\.60, 0\.20\) m; 1 obstacle: 1 at \(.*\) m, radius 0\.05 m; method: /);
+  assert.ok(summary.includes(`method: ${exact.label}`), summary);
+  await page.evaluate(() => window.demo.addObstacle(1.2, 0.2, 0.1));
+  await page.waitForFunction(() => document.getElementById('stage-summary').textContent.includes('2 obstacles'));
+  clean(page);
+  await page.close();
+});
+
+test('a11y: the live region says at most one thing every 1.5 s, the latest', async () => {
+  const page = await open('?task=1', DESKTOP);
+  await page.evaluate(() => window.demo.controller.demo.setRunning(false));
+  const list = (await page.evaluate(() => window.demo.methods())).filter((m) => !m.networks.phi && !m.networks.v);
+  await page.waitForTimeout(1600);
+  await listen(page);
+  for (const m of list.slice(0, 3)) await page.selectOption('#mode', m.name);
+  await page.waitForTimeout(2000);
+  const got = await said(page);
+  assert.deepEqual(got.map((s) => s.text), [`method: ${list[0].label}`, `method: ${list[2].label}`], 'the first at once, the last after the gap, the one between dropped');
+  const gap = got[1].at - got[0].at;
+  assert.ok(gap >= 1450 && gap < 1900, `${gap} ms between them`);
+  clean(page);
+  await page.close();
+});
+
