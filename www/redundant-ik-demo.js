@@ -17,7 +17,9 @@
 // final time, together), path (line, circle:CX,CY[,LAPS] or
 // points:X,Y;X,Y;...), networks (a shipped set, networkSets()), and every
 // method parameter by its name in params() (influence=..., refine=...).
-// The element's own: autoplay ("false" to start paused) and plots (present:
+// projector ("1": larger text, thicker borders, higher contrast).
+// The element's own: autoplay ("false" to start paused; unset, it plays
+// unless the user prefers reduced motion) and plots (present:
 // show the time series). A value that does not parse, or that the core
 // refuses, is named in the element's message ("Not applied: ...") and the
 // rest runs. Changing an attribute later applies it to the running demo
@@ -70,6 +72,10 @@ button:hover, select:hover { background: #f8fafc; border-color: #aab5c2; }
   background: #fdf0ee; border: 1px solid #f1c4bd; color: #8c2a1e; }
 .notice[data-kind="warn"], .notice.warn { background: #fff7e8; border-color: #f3d9a6; color: #7a4d00; }
 .notice[hidden] { display: none; }
+:host([data-projector]) { font-size: 18px; border: 2px solid #3d4853; --muted: #27313b; }
+:host([data-projector]) select, :host([data-projector]) button { font-size: 17px; border: 2px solid #3d4853; min-height: 40px; }
+:host([data-projector]) .read, :host([data-projector]) .notice { font-size: 16px; }
+@media (pointer: coarse) { select, button { min-height: 44px; } }
 `;
 
 const TEMPLATE = `
@@ -164,7 +170,8 @@ class RedundantIkDemo extends HTMLElement {
       this.controller = await m.mount(root, {
         ...settings,
         problems,
-        autoplay: this.getAttribute('autoplay') !== 'false',
+        // Unset: the run plays unless the user prefers reduced motion.
+        autoplay: { true: true, false: false }[this.getAttribute('autoplay')],
         keyboard: this,
       });
       this.settings = settings;
@@ -214,6 +221,7 @@ class RedundantIkDemo extends HTMLElement {
       floor: false,
       path: 'line',
       networks: m.networkSets()[0].name,
+      projector: false,
     };
     // A value that does not parse leaves its setting as it is (named, not
     // replaced by the default as at the start): mode= is the method, tf= the start.
@@ -225,7 +233,7 @@ class RedundantIkDemo extends HTMLElement {
     const changed = {};
     // A new task loads the paper's scene: everything asked for is applied again over it.
     const all = now.task !== was.task;
-    for (const key of ['task', 'method', 'lambda', 'feedback', 'target', 'obstacle', 'obstacles', 'arm', 'limits', 'rates', 'damping', 'weighting', 'floor', 'start', 'path', 'networks']) {
+    for (const key of ['task', 'method', 'lambda', 'feedback', 'target', 'obstacle', 'obstacles', 'arm', 'limits', 'rates', 'damping', 'weighting', 'floor', 'start', 'path', 'networks', 'projector']) {
       if (all || !same(now[key], was[key])) changed[key] = now[key] ?? defaults[key];
     }
     // The limits go with the arm: a new arm is set with the limits asked for.

@@ -135,3 +135,123 @@ test('a11y: the live region says at most one thing every 1.5 s, the latest', asy
   await page.close();
 });
 
+/** The boxes of every visible button, menu, check box's label and panel heading shorter than `min` px. */
+const small = (page, min) =>
+  page.evaluate((min) => {
+    const targets = [...document.querySelectorAll('button, select, summary, label')].filter((e) => e.tagName !== 'LABEL' || e.querySelector('input[type="checkbox"]'));
+    return targets
+      .map((e) => ({ e, r: e.getBoundingClientRect() }))
+      .filter(({ e, r }) => r.width > 0 && r.height > 0 && r.height < min - 0.5 && getComputedStyle(e).visibility !== 'hidden')
+      .map(({ e, r }) => `${e.id || e.textContent.trim().slice(0, 24)} ${Math.round(r.height)} px`);
+  }, min);
+
+test('a11y: the phone: a one-line introduction with More, the plots right under the drawing, tap targets of 44 px', async () => {
+  const page = await open('?task=1&method=case3', PHONE);
+  const first = await page.evaluate(() => {
+    const box = (sel) => document.querySelector(sel).getBoundingClientRect();
+    return { short: box('.lede-short'), full: box('#lede-text'), line: parseFloat(getComputedStyle(document.querySelector('.lede')).lineHeight), stage: box('#stage'), card: box('.stage-card'), plots: box('.plots-card'), height: innerHeight };
+  });
+  assert.ok(first.short.height > 0 && first.short.height <= first.line + 1, `the lede is one line (${first.short.height} px of ${first.line})`);
+  assert.equal(first.full.height, 0, 'the rest is behind More');
+  assert.ok(first.stage.bottom <= first.height, `the drawing fits the first screen (ends at ${first.stage.bottom})`);
+  assert.ok(first.plots.top - first.card.bottom <= 20 && first.plots.top < first.height, `the plots start ${first.plots.top - first.card.bottom} px under the drawing's card, at ${first.plots.top}`);
+  await page.screenshot({ path: join(shots, 'a11y-phone.png') });
+  await page.click('#lede-more');
+  assert.ok((await page.locator('#lede-text').boundingBox()).height > 40, 'More shows the introduction');
+  assert.equal(await page.getAttribute('#lede-more', 'aria-expanded'), 'true');
+  // Every panel open, the tour too: nothing to tap is under 44 px.
+  await page.click('#tour-open');
+  const count = await page.evaluate(() => {
+    const c = document.getElementById('tour-count');
+    const range = document.createRange();
+    range.selectNodeContents(c);
+    const tops = new Set([...range.getClientRects()].map((r) => Math.round(r.top)));
+    return { text: c.textContent, lines: tops.size };
+  });
+  assert.deepEqual(count, { text: '1 of 5', lines: 1 }, 'the count on one line');
+  await page.evaluate(() => document.querySelectorAll('details').forEach((d) => (d.open = true)));
+  await page.selectOption('#atlas-n', '11');
+  await page.click('#atlas-run');
+  await page.waitForSelector('#atlas-result:not([hidden])', { timeout: 60000 });
+  assert.deepEqual(await small(page, 44), [], 'tap targets of at least 44 px');
+  clean(page);
+  await page.close();
+});
+
+test('a11y: at 150% zoom on 1366 x 768 the first screen shows the whole drawing', async () => {
+  const page = await open('?task=1&method=case3', { viewport: { width: 911, height: 512 }, deviceScaleFactor: 1.5 });
+  const r = await page.evaluate(() => ({ stage: document.getElementById('stage').getBoundingClientRect().toJSON(), height: innerHeight }));
+  assert.ok(r.stage.bottom <= r.height && r.stage.height >= 200, `the drawing ${Math.round(r.stage.top)}-${Math.round(r.stage.bottom)} of ${r.height} px`);
+  await page.screenshot({ path: join(shots, 'a11y-zoom150.png') });
+  clean(page);
+  await page.close();
+});
+
+test('a11y: the atlas table scrolls inside its panel, focusable, with a cue', async () => {
+  const page = await open('?task=1&method=case3', DESKTOP);
+  await page.evaluate(() => window.demo.controller.demo.setRunning(false));
+  await page.click('#atlas-panel summary');
+  await page.selectOption('#atlas-n', '11');
+  await page.click('#atlas-run');
+  await page.waitForSelector('#atlas-result:not([hidden])', { timeout: 60000 });
+  const box = page.locator('#atlas-table-scroll');
+  await box.scrollIntoViewIfNeeded();
+  const before = await box.evaluate((e) => ({ scroll: e.scrollWidth, width: e.clientWidth, left: e.scrollLeft, tab: e.tabIndex, role: e.getAttribute('role'), label: e.getAttribute('aria-label') }));
+  assert.ok(before.scroll > before.width, `it scrolls (${before.scroll} > ${before.width})`);
+  assert.equal(before.tab, 0);
+  assert.equal(before.role, 'region');
+  assert.ok(before.label);
+  await box.screenshot({ path: join(shots, 'a11y-atlas-table.png') });
+  await box.focus();
+  await page.keyboard.press('ArrowRight');
+  await page.keyboard.press('End');
+  await page.waitForTimeout(200);
+  assert.ok((await box.evaluate((e) => e.scrollLeft)) > 0, 'the keyboard scrolls it');
+  clean(page);
+  await page.close();
+});
+
+test('a11y: projector mode: the header switch and projector=1, larger text; the element takes the attribute', async () => {
+  const page = await open('?task=1&method=case3&projector=1', DESKTOP);
+  const on = await page.evaluate(() => ({ attr: document.documentElement.hasAttribute('data-projector'), pressed: document.getElementById('projector').getAttribute('aria-pressed'), font: getComputedStyle(document.body).fontSize, label: getComputedStyle(document.querySelector('label[for="mode"]')).fontSize, url: location.search }));
+  assert.deepEqual({ attr: on.attr, pressed: on.pressed }, { attr: true, pressed: 'true' });
+  assert.ok(parseFloat(on.font) >= 18 && parseFloat(on.label) >= 18, `text ${on.font}, labels ${on.label}`);
+  await page.screenshot({ path: join(shots, 'a11y-projector.png') });
+  await page.click('#projector');
+  const off = await page.evaluate(() => ({ attr: document.documentElement.hasAttribute('data-projector'), pressed: document.getElementById('projector').getAttribute('aria-pressed'), url: location.search, font: getComputedStyle(document.body).fontSize }));
+  assert.deepEqual({ attr: off.attr, pressed: off.pressed, font: off.font }, { attr: false, pressed: 'false', font: '15px' });
+  assert.ok(!off.url.includes('projector'), off.url);
+  await page.click('#projector');
+  assert.ok((await page.evaluate(() => location.search)).includes('projector=1'));
+  clean(page);
+  await page.close();
+  // The element: the attribute, and a change of it later.
+  const context = await browser.newContext(DESKTOP);
+  const embed = await context.newPage();
+  embed.problems = [];
+  embed.on('console', (m) => m.type() === 'error' && embed.problems.push(`console error: ${m.text()}`));
+  embed.on('pageerror', (e) => embed.problems.push(`page exception: ${e.message}`));
+  await embed.goto(BASE + 'embed.html');
+  await embed.waitForSelector('#right[data-ready="true"]', { timeout: 15000 });
+  await embed.evaluate(() => document.getElementById('right').setAttribute('projector', '1'));
+  await embed.waitForFunction(() => document.getElementById('right').hasAttribute('data-projector'));
+  await embed.evaluate(() => document.getElementById('right').removeAttribute('projector'));
+  await embed.waitForFunction(() => !document.getElementById('right').hasAttribute('data-projector'));
+  clean(embed);
+  await context.close();
+});
+
+test('a11y: reduced motion: the run waits for Play, no transitions', async () => {
+  const page = await open('?task=1&method=case3&target=0.9,0.3', { ...DESKTOP, reducedMotion: 'reduce' });
+  await page.waitForTimeout(600);
+  const s = await state(page);
+  assert.deepEqual({ running: s.running, t: s.t }, { running: false, t: 0 });
+  assert.match(await page.textContent('#run-note'), /Ready at the start/);
+  const motion = await page.evaluate(() => getComputedStyle(document.querySelector('.switch .track')).transitionDuration);
+  assert.equal(motion, '0s');
+  await page.click('#play');
+  await page.waitForFunction(() => window.demo.state().t > 0);
+  clean(page);
+  await page.close();
+});
+
