@@ -45,7 +45,9 @@ function describeArm(s) {
   const links = s.arm.links.map(String);
   const list = links.length > 1 ? `${links.slice(0, -1).join(', ')} and ${links.at(-1)}` : links[0];
   for (const el of document.querySelectorAll('[data-arm="links"]')) el.textContent = word(n);
-  for (const el of document.querySelectorAll('[data-arm="spare"]')) el.textContent = spare === 1 ? 'spare degree' : `${word(spare)} spare degrees`;
+  // The clause with its verb, which agrees with it: "its two spare degrees of freedom bend".
+  const clause = spare === 0 ? 'it has no spare degree of freedom to bend' : spare === 1 ? 'its spare degree of freedom bends' : `its ${word(spare)} spare degrees of freedom bend`;
+  for (const el of document.querySelectorAll('[data-arm="spare"]')) el.textContent = clause;
   const see = document.getElementById('what-you-see');
   if (see) {
     const use =
