@@ -255,3 +255,17 @@ test('a11y: reduced motion: the run waits for Play, no transitions', async () =>
   await page.close();
 });
 
+test('a11y: networks swapped in after training restart the run on screen', async () => {
+  const page = await open('?task=1&method=case3', DESKTOP);
+  await page.evaluate(() => window.demo.runUntil(6));
+  assert.ok((await state(page)).t >= 6);
+  // A tiny training: whether or not it passes its check, the networks are put in use.
+  const r = await page.evaluate(() => window.demo.train({ preset: 'quick', samples: 200, epochs: 2 }));
+  if (!r.installed) await page.click('#verdict-use');
+  const s = await state(page);
+  assert.equal(s.network_set, null, 'the trained networks are in use');
+  assert.ok(s.t < 1 && s.running, `the run restarted (t = ${s.t}, running ${s.running})`);
+  assert.match(await page.textContent('#train-status'), /restarted/);
+  clean(page);
+  await page.close();
+});
