@@ -27,7 +27,8 @@
 // back to its default (the target, obstacles, arm, limits and start pose
 // stay as they are).
 //
-// Each element has its own simulation in its own shadow root (which hides
+// Like the page, it has the live region and the drawing's summary
+// (announce.js). Each element has its own simulation in its own shadow root (which hides
 // the fallback text inside the element: there is no <slot>); the
 // WebAssembly module is loaded once per page. This file imports the rest
 // when it runs, so a module that cannot be fetched (CORS, 404) is said in
@@ -72,6 +73,8 @@ button:hover, select:hover { background: #f8fafc; border-color: #aab5c2; }
   background: #fdf0ee; border: 1px solid #f1c4bd; color: #8c2a1e; }
 .notice[data-kind="warn"], .notice.warn { background: #fff7e8; border-color: #f3d9a6; color: #7a4d00; }
 .notice[hidden] { display: none; }
+.visually-hidden { position: absolute; width: 1px; height: 1px; margin: -1px; padding: 0; border: 0;
+  overflow: hidden; clip: rect(0 0 0 0); clip-path: inset(50%); white-space: nowrap; }
 :host([data-projector]) { font-size: 18px; border: 2px solid #3d4853; --muted: #27313b; }
 :host([data-projector]) select, :host([data-projector]) button { font-size: 17px; border: 2px solid #3d4853; min-height: 40px; }
 :host([data-projector]) .read, :host([data-projector]) .notice { font-size: 16px; }
@@ -81,7 +84,8 @@ button:hover, select:hover { background: #f8fafc; border-color: #aab5c2; }
 const TEMPLATE = `
 <style>${STYLE}</style>
 <div class="wrap">
-  <canvas id="stage" part="stage" aria-label="Redundant arm simulation; drag the target or the obstacle"></canvas>
+  <canvas id="stage" part="stage" aria-label="Redundant arm simulation; drag the target or the obstacle" aria-describedby="stage-summary"></canvas>
+  <p id="stage-summary" class="visually-hidden"></p>
   <div id="loading" role="status">Loading the simulation…</div>
 </div>
 <div class="bar">
@@ -94,6 +98,7 @@ const TEMPLATE = `
 <p id="range-warning" class="notice warn" hidden>Outside the networks' trained range.</p>
 <p id="handover-note" class="notice warn" role="status" hidden></p>
 <p id="message" class="notice" role="status" aria-live="polite" hidden></p>
+<p id="announcer" class="visually-hidden" role="status" aria-live="polite" aria-atomic="true"></p>
 `;
 
 /**

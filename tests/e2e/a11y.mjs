@@ -269,3 +269,21 @@ test('a11y: networks swapped in after training restart the run on screen', async
   clean(page);
   await page.close();
 });
+
+test('a11y: the element has the live region and the drawing summary too', async () => {
+  const context = await browser.newContext(DESKTOP);
+  const page = await context.newPage();
+  const problems = [];
+  page.on('pageerror', (e) => problems.push(e.message));
+  await page.goto(BASE + 'embed.html');
+  await page.waitForSelector('#right[data-ready="true"]', { timeout: 15000 });
+  const got = await page.evaluate(() => {
+    const root = document.getElementById('right').shadowRoot;
+    const canvas = root.getElementById('stage');
+    return { summary: root.getElementById(canvas.getAttribute('aria-describedby'))?.textContent, region: root.getElementById('announcer')?.getAttribute('aria-live') };
+  });
+  assert.equal(got.region, 'polite');
+  assert.match(got.summary ?? '', /^The drawing: a 3-link arm/);
+  assert.deepEqual(problems, []);
+  await context.close();
+});
