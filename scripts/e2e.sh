@@ -23,10 +23,10 @@ if [[ ! -x "$chromium" ]]; then
 fi
 command -v node >/dev/null || { echo "e2e: node is not installed" >&2; exit 2; }
 
-# playwright-core only (it never downloads a browser), pinned in package-lock.json.
+# playwright-core (it never downloads a browser) and axe-core, pinned in package-lock.json.
 (
   cd tests/e2e
-  if [[ ! -d node_modules/playwright-core ]]; then
+  if [[ ! -d node_modules/playwright-core || ! -d node_modules/axe-core ]]; then
     if [[ -f package-lock.json ]]; then
       npm ci --no-audit --no-fund --loglevel=error
     else

@@ -1,6 +1,6 @@
 // The page's address, and the <redundant-ik-demo> element's attributes (the
 // same keys, read by the same readAddress): what `?task=2&method=case3&lambda=4&target=…&obstacle=…
-// &obstacles=…&arm=…&limits=…&rates=…&feedback=1&damping=0&weighting=wln&floor=1&theta0=…&tf=…&path=…&influence=…&networks=reach` asks
+// &obstacles=…&arm=…&limits=…&rates=…&feedback=1&damping=0&weighting=wln&floor=1&theta0=…&tf=…&path=…&influence=…&networks=reach&projector=1` asks
 // for, and the state written back into it (what "Copy link" copies). The arm, limits and obstacle syntax is the module's (parseArm, parseObstacles,
 // formatArm, parseJointLimits, formatJointLimits, parseRateLimits,
 // formatRateLimits: the command line's too). Every parameter that does not parse
@@ -26,7 +26,7 @@ const exact = (v) => {
 const named = () => allParams().filter((p) => p.name !== 'lambda');
 
 /** The keys readAddress reads besides the methods' parameters (the order is mount()'s). */
-const KEYS = ['task', 'method', 'mode', 'lambda', 'feedback', 'target', 'obstacle', 'obstacles', 'arm', 'limits', 'rates', 'damping', 'weighting', 'floor', 'theta0', 'tf', 'path', 'networks'];
+const KEYS = ['task', 'method', 'mode', 'lambda', 'feedback', 'target', 'obstacle', 'obstacles', 'arm', 'limits', 'rates', 'damping', 'weighting', 'floor', 'theta0', 'tf', 'path', 'networks', 'projector'];
 
 /**
  * Every key an address (or the element's attributes) may carry (after
@@ -46,7 +46,8 @@ export function addressKeys() {
  * weighting (a name of limits().joint_weightings), floor (bool), start
  * ({ theta0, tf }: a run's own start pose and final time), path (the
  * path's text, for the module to read), params (the
- * methods' parameters by name), networks (a shipped network set), and
+ * methods' parameters by name), networks (a shipped network set),
+ * projector (bool: projector mode, larger text and higher contrast), and
  * `problems`: what did not parse, each as `name: why`.
  */
 export function readAddress(search) {
@@ -128,6 +129,10 @@ export function readAddress(search) {
     // The path's text goes to the module's parser as it is (mount's setPath).
     path: params.get('path') || undefined,
     params: values,
+    projector: parsed('projector', (v) => {
+      if (v !== '0' && v !== '1') throw new Error(`expected 0 or 1, got '${clip(v)}'`);
+      return v === '1';
+    }),
     networks: parsed('networks', (v) => {
       const sets = networkSets().map((n) => n.name);
       if (!sets.includes(v)) throw new Error(`unknown network set '${clip(v)}': use ${sets.join(' or ')}`);
@@ -149,12 +154,14 @@ export function readAddress(search) {
  * defaults; a shipped network set other than the paper's; the path where
  * it is not the line; and a run's own start pose and final time (a line dropped
  * from where the hand was), in full; embed=1 where the page is embedded
- * (isEmbedded). Returns the address.
+ * (isEmbedded), projector=1 where the page is in projector mode. Returns the address.
  */
 export function writeAddress(s) {
   const q = sceneQuery(s);
   // The page in an iframe (embed=1) stays so.
   if (isEmbedded()) q.set('embed', '1');
+  // Projector mode is the view's, not the scene's: kept in the address, not in the Embed snippets.
+  if (document.documentElement.hasAttribute('data-projector')) q.set('projector', '1');
   history.replaceState(null, '', `${location.pathname}?${q}`);
   return location.href;
 }

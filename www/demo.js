@@ -31,6 +31,7 @@ import { mountNotes } from './notes.js';
 import { mountLab } from './lab.js';
 import { mountPath } from './path-input.js';
 import { mountTargetFields } from './place-fields.js';
+import { mountAnnouncer } from './announce.js';
 
 /**
  * Fills a `<select>` with the methods, grouped ("The paper", "Beyond the
@@ -106,7 +107,9 @@ const READOUTS = {
  * (closed-loop gain K, 1/s; default 0, the paper's open loop), networks
  * (a shipped set: 'paper' or 'reach'), params ({ name: value } for the
  * methods' other parameters: refine, influence, ...), speed,
- * autoplay (default true), keyboard (element that receives key presses;
+ * autoplay (default true, false where the user prefers reduced motion),
+ * projector (bool: data-projector on the page's <html> or the element, for
+ * a11y.css), keyboard (element that receives key presses;
  * default none), onChange(state) (after user changes, e.g. to update the
  * URL), onArm(state) (when the arm changes, e.g. to rewrite the page's prose),
  * problems (what the caller could not parse, shown with the settings
@@ -204,6 +207,8 @@ export async function mount(root, options = {}) {
     if (settings.path) initial('path', () => demo.setPath(settings.path));
     for (const [name, value] of Object.entries(settings.params ?? {})) initial(name, () => demo.setParam(name, value));
     // A shipped set other than the one in use is fetched first: it comes in when it arrives.
+    // Projector mode: the page's (or the element's) larger text and higher contrast (a11y.css).
+    if (settings.projector !== undefined) (root.host ?? root.documentElement)?.toggleAttribute('data-projector', Boolean(settings.projector));
     if (settings.networks && settings.networks !== demo.state().network_set) {
       networkSet.choose(settings.networks).catch((e) => show(`networks: ${describe(e)}`, 'warn', true));
     }
@@ -211,7 +216,10 @@ export async function mount(root, options = {}) {
   }
   const problems = [...(options.problems ?? []), ...apply({ ...options, task: undefined, restore: true })];
   if (problems.length) show(`${options.problemsLabel ?? 'Not applied'}: ${problems.join('; ')}`, 'warn', true);
-  if (options.autoplay !== false) demo.runTask();
+  // Reduced motion asked for: the run waits for Play (unless the caller says autoplay: true).
+  const still = typeof matchMedia === 'function' && matchMedia('(prefers-reduced-motion: reduce)').matches;
+  if (options.autoplay ?? !still) demo.runTask();
+  else demo.setRunning(false);
 
   // ---- controls -------------------------------------------------------
   function syncControls(s) {
@@ -249,6 +257,7 @@ export async function mount(root, options = {}) {
   ]) {
     button?.addEventListener('click', () => {
       if (attempt(() => demo.loadTask(task), 'error', button)) {
+        announce.task(task);
         clearMessage();
         changed();
       }
@@ -290,6 +299,7 @@ export async function mount(root, options = {}) {
 
   // ---- readouts and the loop -------------------------------------------
   const syncNotes = mountNotes(root);
+  const announce = mountAnnouncer(root);
   const syncLab = mountLab(root, demo, { attempt, changed: () => changed() });
   const syncTarget = mountTargetFields(root, demo, { attempt, changed: () => changed() });
   let outOfReachShown = false;
@@ -302,6 +312,7 @@ export async function mount(root, options = {}) {
     const mask = s.drawn;
     if (mask !== drawnMask) syncLegend(el.legend, (drawnMask = mask));
     syncNotes(s);
+    announce.sync(s);
     syncLab(s);
     syncTarget(s);
     // A switch of method the page made by itself (a new arm without

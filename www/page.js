@@ -2,7 +2,7 @@
 // knows (the methods explained, the limits quoted, the arm described as it
 // is now), mounts the demo on the document with the settings of the
 // address (address.js), wires the benchmark panel (bench-panel.js) and the
-// tour (tour.js), keeps the stage column's top for the layout (stage.css)
+// tour (tour.js), the introduction's "More" and the projector-mode switch, keeps the stage column's top for the layout (stage.css)
 // and exposes `window.demo` for scripts and tests. With embed=1 in the
 // address it marks the document (data-embed) for stage.css, which shows the
 // stage and the essential controls only (for an iframe). If the module cannot
@@ -45,7 +45,9 @@ function describeArm(s) {
   const links = s.arm.links.map(String);
   const list = links.length > 1 ? `${links.slice(0, -1).join(', ')} and ${links.at(-1)}` : links[0];
   for (const el of document.querySelectorAll('[data-arm="links"]')) el.textContent = word(n);
-  for (const el of document.querySelectorAll('[data-arm="spare"]')) el.textContent = spare === 1 ? 'spare degree' : `${word(spare)} spare degrees`;
+  // The clause with its verb, which agrees with it: "its two spare degrees of freedom bend".
+  const clause = spare === 0 ? 'it has no spare degree of freedom to bend' : spare === 1 ? 'its spare degree of freedom bends' : `its ${word(spare)} spare degrees of freedom bend`;
+  for (const el of document.querySelectorAll('[data-arm="spare"]')) el.textContent = clause;
   const see = document.getElementById('what-you-see');
   if (see) {
     const use =
@@ -93,6 +95,31 @@ function followLayout() {
   apply();
 }
 
+/** The introduction's "More" on small and short screens (a11y.css shows the one-line lede there). */
+function wireLede() {
+  const lede = document.getElementById('lede');
+  const more = document.getElementById('lede-more');
+  more?.addEventListener('click', () => {
+    const open = lede.dataset.more !== 'true';
+    lede.dataset.more = String(open);
+    more.setAttribute('aria-expanded', String(open));
+    more.textContent = open ? 'Less' : 'More';
+  });
+}
+
+/** The header's projector-mode switch: through the controller (projector=1 in the address). */
+function wireProjector(controller) {
+  const button = document.getElementById('projector');
+  if (!button) return;
+  const sync = () => button.setAttribute('aria-pressed', String(document.documentElement.hasAttribute('data-projector')));
+  button.addEventListener('click', () => {
+    controller.apply({ projector: !document.documentElement.hasAttribute('data-projector') });
+    sync();
+    writeAddress(controller.state());
+  });
+  sync();
+}
+
 async function start() {
   const loading = document.getElementById('loading');
   try {
@@ -113,6 +140,7 @@ async function start() {
       link: (s) => writeAddress(s),
     });
     const tour = mountTour(document, controller);
+    wireProjector(controller);
     window.demo = {
       state: () => controller.state(),
       worldToClient: (x, y) => controller.worldToClient(x, y),
@@ -149,5 +177,6 @@ async function start() {
 }
 
 if (isEmbedded()) document.documentElement.dataset.embed = 'true';
+wireLede();
 start();
 mountBenchPanel(document);

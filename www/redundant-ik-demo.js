@@ -17,7 +17,9 @@
 // final time, together), path (line, circle:CX,CY[,LAPS] or
 // points:X,Y;X,Y;...), networks (a shipped set, networkSets()), and every
 // method parameter by its name in params() (influence=..., refine=...).
-// The element's own: autoplay ("false" to start paused) and plots (present:
+// projector ("1": larger text, thicker borders, higher contrast).
+// The element's own: autoplay ("false" to start paused; unset, it plays
+// unless the user prefers reduced motion) and plots (present:
 // show the time series). A value that does not parse, or that the core
 // refuses, is named in the element's message ("Not applied: ...") and the
 // rest runs. Changing an attribute later applies it to the running demo
@@ -25,7 +27,8 @@
 // back to its default (the target, obstacles, arm, limits and start pose
 // stay as they are).
 //
-// Each element has its own simulation in its own shadow root (which hides
+// Like the page, it has the live region and the drawing's summary
+// (announce.js). Each element has its own simulation in its own shadow root (which hides
 // the fallback text inside the element: there is no <slot>); the
 // WebAssembly module is loaded once per page. This file imports the rest
 // when it runs, so a module that cannot be fetched (CORS, 404) is said in
@@ -70,12 +73,19 @@ button:hover, select:hover { background: #f8fafc; border-color: #aab5c2; }
   background: #fdf0ee; border: 1px solid #f1c4bd; color: #8c2a1e; }
 .notice[data-kind="warn"], .notice.warn { background: #fff7e8; border-color: #f3d9a6; color: #7a4d00; }
 .notice[hidden] { display: none; }
+.visually-hidden { position: absolute; width: 1px; height: 1px; margin: -1px; padding: 0; border: 0;
+  overflow: hidden; clip: rect(0 0 0 0); clip-path: inset(50%); white-space: nowrap; }
+:host([data-projector]) { font-size: 18px; border: 2px solid #3d4853; --muted: #27313b; }
+:host([data-projector]) select, :host([data-projector]) button { font-size: 17px; border: 2px solid #3d4853; min-height: 40px; }
+:host([data-projector]) .read, :host([data-projector]) .notice { font-size: 16px; }
+@media (pointer: coarse) { select, button { min-height: 44px; } }
 `;
 
 const TEMPLATE = `
 <style>${STYLE}</style>
 <div class="wrap">
-  <canvas id="stage" part="stage" aria-label="Redundant arm simulation; drag the target or the obstacle"></canvas>
+  <canvas id="stage" part="stage" aria-label="Redundant arm simulation; drag the target or the obstacle" aria-describedby="stage-summary"></canvas>
+  <p id="stage-summary" class="visually-hidden"></p>
   <div id="loading" role="status">Loading the simulation…</div>
 </div>
 <div class="bar">
@@ -89,6 +99,7 @@ const TEMPLATE = `
 <p id="criterion-note" class="notice warn" role="status" hidden></p>
 <p id="handover-note" class="notice warn" role="status" hidden></p>
 <p id="message" class="notice" role="status" aria-live="polite" hidden></p>
+<p id="announcer" class="visually-hidden" role="status" aria-live="polite" aria-atomic="true"></p>
 `;
 
 /**
@@ -165,7 +176,8 @@ class RedundantIkDemo extends HTMLElement {
       this.controller = await m.mount(root, {
         ...settings,
         problems,
-        autoplay: this.getAttribute('autoplay') !== 'false',
+        // Unset: the run plays unless the user prefers reduced motion.
+        autoplay: { true: true, false: false }[this.getAttribute('autoplay')],
         keyboard: this,
       });
       this.settings = settings;
@@ -215,6 +227,7 @@ class RedundantIkDemo extends HTMLElement {
       floor: false,
       path: 'line',
       networks: m.networkSets()[0].name,
+      projector: false,
     };
     // A value that does not parse leaves its setting as it is (named, not
     // replaced by the default as at the start): mode= is the method, tf= the start.
@@ -226,7 +239,7 @@ class RedundantIkDemo extends HTMLElement {
     const changed = {};
     // A new task loads the paper's scene: everything asked for is applied again over it.
     const all = now.task !== was.task;
-    for (const key of ['task', 'method', 'lambda', 'feedback', 'target', 'obstacle', 'obstacles', 'arm', 'limits', 'rates', 'damping', 'weighting', 'floor', 'start', 'path', 'networks']) {
+    for (const key of ['task', 'method', 'lambda', 'feedback', 'target', 'obstacle', 'obstacles', 'arm', 'limits', 'rates', 'damping', 'weighting', 'floor', 'start', 'path', 'networks', 'projector']) {
       if (all || !same(now[key], was[key])) changed[key] = now[key] ?? defaults[key];
     }
     // The limits go with the arm: a new arm is set with the limits asked for.

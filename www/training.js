@@ -231,9 +231,9 @@ export function mountTraining(root, demo, { files, install, keep, forget, attemp
         return { ...result.report, seconds, worker_ms: ms, stored: false, installed: false };
       }
       // Swap the networks in; on failure the ones in use stay.
-      const kept = use(entry);
+      const { kept, restarted } = use(entry);
       status(
-        `Done in ${fmtS(seconds)}; ${networkMethodLabels()} now use these networks${kept ? ', kept in this browser for this arm' : ' (not kept: browser storage unavailable)'}.`,
+        `Done in ${fmtS(seconds)}; ${networkMethodLabels()} now use these networks${kept ? ', kept in this browser for this arm' : ' (not kept: browser storage unavailable)'}${restarted ? '; the run restarted with them' : ''}.`,
       );
       return { ...result.report, seconds, worker_ms: ms, stored: kept, installed: true };
     } catch (e) {
@@ -285,13 +285,20 @@ export function mountTraining(root, demo, { files, install, keep, forget, attemp
     }
   }
 
-  /** Installs and keeps trained networks; whether they were kept. */
+  /**
+   * Installs and keeps trained networks, and restarts the run on screen
+   * where its method uses networks (it would go on with the old ones until
+   * replayed); whether they were kept, and the run restarted.
+   */
   function use(entry) {
     install(entry.phi, entry.v);
     const kept = keep(demo.state().arm, entry);
     hideVerdict();
+    const { uses } = demo.state();
+    const restarted = uses.phi || uses.v;
+    if (restarted) demo.runTask();
     changed();
-    return kept;
+    return { kept, restarted };
   }
 
   function warnVerdict(verdict) {
@@ -312,8 +319,9 @@ export function mountTraining(root, demo, { files, install, keep, forget, attemp
       return show('Those networks were trained for another arm.', 'warn', false, el.verdictUse);
     }
     const entry = pending.entry;
-    if (!attempt(() => use(entry), 'error', el.verdictUse)) return;
-    status(`${networkMethodLabels()} now use the networks just trained, although they fail their own check.`);
+    let restarted = false;
+    if (!attempt(() => ({ restarted } = use(entry)), 'error', el.verdictUse)) return;
+    status(`${networkMethodLabels()} now use the networks just trained, although they fail their own check${restarted ? '; the run restarted with them' : ''}.`);
     show('In use although they fail their check: compare with the dashed numerical ghost.', 'warn', false, el.verdictUse);
   });
   el.verdictDismiss?.addEventListener('click', () => {

@@ -177,7 +177,7 @@ export function classPanelTests(h) {
     await page.selectOption('#arm-preset', 'four');
     await page.waitForFunction(() => window.demo.state().arm.links.length === 4);
     assert.equal(await page.textContent('[data-arm="links"]'), 'four');
-    assert.equal(await page.textContent('[data-arm="spare"]'), 'two spare degrees');
+    assert.equal(await page.textContent('[data-arm="spare"]'), 'its two spare degrees of freedom bend');
     assert.match(await page.textContent('#what-you-see'), /links of 0\.6, 0\.85, 0\.6 and 0\.4 m.*Four joints .* two degrees of freedom spare/);
     assert.match(await page.textContent('#network-note'), /trained for the paper's arm, not this one/);
     assert.equal((await state(page)).method, 'numerical');
