@@ -50,11 +50,11 @@ function collisionText(s) {
   return c ? `collision: link ${c.link} inside obstacle ${c.obstacle} at ${t}` : `collision: a link went inside an obstacle before ${t}`;
 }
 
-/** What the end of a run says: its final error, the smallest distance, whether a link hit. */
+/** What the end of a run says: its final error, the smallest clearance (to an obstacle's edge, as the readouts), whether a link hit. */
 function endText(s) {
   const to = s.path ? "the path's end" : 'the target';
   const hit = s.collided ? 'a link hit an obstacle' : 'no collision';
-  const near = s.min_distance === null || s.min_distance === undefined ? '' : `, smallest distance to an obstacle's centre ${fixed(s.min_distance, 3)} m`;
+  const near = s.min_clearance === null || s.min_clearance === undefined ? '' : `, smallest clearance to an obstacle ${fixed(s.min_clearance, 3)} m`;
   return `run ended at t = ${fixed(s.t, 1)} s: the hand is ${metres(s.final_error)} from ${to}${near}, ${hit}`;
 }
 

@@ -99,7 +99,7 @@ test('a11y: the live region says the first collision of a run, its end and resul
   assert.equal(hits.length, 1, `the first contact only: ${texts.join(' | ')}`);
   assert.match(hits[0], /^collision: link [1-3] inside obstacle 1 at t = \d+\.\d s$/);
   const end = texts.find((t) => t.startsWith('run ended'));
-  assert.match(end, /^run ended at t = 10\.0 s: the hand is .* from the target, smallest distance to an obstacle's centre \d\.\d{3} m, a link hit an obstacle$/);
+  assert.match(end, /^run ended at t = 10\.0 s: the hand is .* from the target, smallest clearance to an obstacle -?\d\.\d{3} m, a link hit an obstacle$/);
   // The contact's time is the state's: the link was inside then.
   const s = await state(page);
   assert.equal(s.collided, true);
