@@ -40,7 +40,7 @@ LAYERS = [
     ["run"],
     ["training", "atlas"],
     ["evaluation", "session", "export", "figure"],
-    ["training_job", "bench"],
+    ["training_job", "bench", "view"],
     ["web"],
 ]
 LAYER = {m: i for i, names in enumerate(LAYERS) for m in names}

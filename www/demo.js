@@ -284,6 +284,14 @@ export async function mount(root, options = {}) {
   mountWeightsUpload(root, { attempt, show, install: playground.installNetworks });
   const syncPath = mountPath(root, demo, { attempt, changed, stage });
   wireStage(stage, demo, { attempt, changed, togglePlay, reset, atlas, playground, keyboard: options.keyboard });
+  // Fit, over the drawing's top right corner (the page's and the element's
+  // button styles, made small): back to the whole reach after a zoom.
+  const fitButton = document.createElement('button');
+  Object.assign(fitButton, { type: 'button', id: 'fit-view', textContent: 'Fit' });
+  fitButton.title = 'Show the whole reach (key 0); zoom with the wheel, two fingers or + and -, drag the empty drawing to pan';
+  fitButton.style.cssText = 'position: absolute; top: 6px; right: 6px; flex: none; min-height: 0; padding: 1px 8px; font-size: 12px;';
+  fitButton.addEventListener('click', () => demo.fitView());
+  stage.after(fitButton);
 
   // ---- size: sharp on high-DPI screens, follows the layout -------------
   const fit = (canvas, resize) => {

@@ -1,10 +1,13 @@
 // Pointer and keyboard on the stage: drag the target and the obstacles
 // (mouse and touch), a long press or a double-click removes an obstacle, a
 // click adds one (while the playground asks for it) or picks an atlas cell,
-// the arrow keys move the target (Shift: the obstacle), and the page-wide
+// the arrow keys move the target (Shift: the obstacle), + - and 0 zoom and
+// fit, the wheel (a trackpad's pinch: ctrl+wheel) and two fingers zoom
+// about the pointer, a drag on the empty drawing pans, and the page-wide
 // keys (space plays or pauses where no control has the focus, r resets;
-// Enter ticks a focused checkbox). The module decides what a point
-// or a key grabs (src/web/input.rs); this file only routes the events.
+// Enter ticks a focused checkbox). The module decides what a point or a
+// key grabs and keeps the view (src/web/input.rs, src/view.rs); this file
+// only routes the events.
 
 const LONG_PRESS_MS = 600;
 
@@ -42,10 +45,20 @@ export function wireStage(stage, demo, { attempt, changed, togglePlay, reset, at
     }
   });
 
-  // ---- keyboard on the drawing: arrows move the target, Shift+arrows the obstacle
+  // ---- keyboard on the drawing: arrows move the target, Shift+arrows the obstacle, + - 0 the view
   if (!stage.hasAttribute('tabindex')) stage.tabIndex = 0;
+  const zoomKeys = { '+': 1.25, '=': 1.25, '-': 0.8, '_': 0.8 };
   stage.addEventListener('keydown', (e) => {
     if (e.ctrlKey || e.metaKey || e.altKey) return;
+    // + and - zoom about the middle, 0 fits the view again.
+    const factor = zoomKeys[e.key];
+    if (factor || e.key === '0') {
+      e.preventDefault();
+      const [x, y] = [stage.clientWidth / 2, stage.clientHeight / 2];
+      if (factor) demo.moveView(x, y, x, y, factor);
+      else demo.fitView();
+      return;
+    }
     let used = false;
     const ok = attempt(() => (used = demo.key(e.key, e.shiftKey)));
     if (!ok || used) e.preventDefault();
@@ -59,18 +72,38 @@ export function wireStage(stage, demo, { attempt, changed, togglePlay, reset, at
     if (longPress) clearTimeout(longPress.timer);
     longPress = null;
   };
-  let press = null; // { id, x, y } of a press on no handle: a click on an atlas cell
+  let press = null; // { id, x, y, at, pan } of a press on no handle: a click on an atlas cell, or a pan
   const local = (e) => {
     const r = stage.getBoundingClientRect();
     return [e.clientX - r.left, e.clientY - r.top];
   };
   const slopFor = (e) => (e.pointerType === 'mouse' ? 4 : 18);
+  const touches = new Map(); // pointerId -> [x, y]: the fingers on the drawing
+  let pinch = null; // { span, mid } of the two fingers while they zoom and pan
+  const twoFingers = () => {
+    const [a, b] = [...touches.values()];
+    return { span: Math.hypot(a[0] - b[0], a[1] - b[1]), mid: [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2] };
+  };
   stage.addEventListener('pointerdown', (e) => {
+    if (e.pointerType === 'touch') {
+      touches.set(e.pointerId, local(e));
+      if (touches.size > 2) return;
+      if (touches.size === 2) {
+        // A second finger: the first one's drag or press becomes a pinch.
+        if (held !== null) demo.pointerCancel();
+        held = null;
+        press = null;
+        cancelLongPress();
+        pinch = twoFingers();
+        e.preventDefault();
+        return;
+      }
+    }
     if (held !== null || (e.pointerType === 'mouse' && e.button !== 0)) return;
     const [x, y] = local(e);
     const what = playground.wantsClick() ? undefined : demo.pointerDown(x, y, slopFor(e));
     if (!what) {
-      press = { id: e.pointerId, x, y };
+      press = { id: e.pointerId, x, y, at: [x, y], pan: false };
       return;
     }
     if (what === 'obstacle' && e.pointerType !== 'mouse') {
@@ -95,6 +128,22 @@ export function wireStage(stage, demo, { attempt, changed, togglePlay, reset, at
   });
   stage.addEventListener('pointermove', (e) => {
     const [x, y] = local(e);
+    if (touches.has(e.pointerId)) touches.set(e.pointerId, [x, y]);
+    if (pinch) {
+      if (touches.size !== 2) return;
+      // What lay between the fingers follows their middle, zoomed as they spread.
+      const now = twoFingers();
+      demo.moveView(...pinch.mid, ...now.mid, pinch.span > 0 ? now.span / pinch.span : 1);
+      pinch = now;
+      return;
+    }
+    if (press && press.id === e.pointerId && (press.pan || Math.hypot(x - press.x, y - press.y) >= 6)) {
+      if (!press.pan) stage.setPointerCapture(e.pointerId);
+      press.pan = true;
+      demo.moveView(...press.at, x, y, 1);
+      press.at = [x, y];
+      return;
+    }
     if (held === e.pointerId) {
       if (longPress && Math.hypot(x - longPress.x, y - longPress.y) > 8) cancelLongPress();
       attempt(() => demo.pointerMove(x, y), 'warn');
@@ -105,15 +154,31 @@ export function wireStage(stage, demo, { attempt, changed, togglePlay, reset, at
     }
   });
   stage.addEventListener('pointerleave', () => atlas.leave());
+  const lift = (e) => {
+    touches.delete(e.pointerId);
+    if (touches.size < 2) pinch = null;
+  };
+  stage.addEventListener('pointercancel', lift);
   stage.addEventListener('pointerup', (e) => {
+    lift(e);
     if (!press || press.id !== e.pointerId) return;
     const [x, y] = local(e);
-    const near = Math.hypot(x - press.x, y - press.y) < 6;
+    const near = !press.pan && Math.hypot(x - press.x, y - press.y) < 6;
     press = null;
     if (!near) return;
     if (playground.wantsClick()) attempt(() => playground.click(x, y));
     else attempt(() => atlas.click(x, y), 'warn');
   });
+  stage.addEventListener(
+    'wheel',
+    (e) => {
+      e.preventDefault();
+      const [x, y] = local(e);
+      const px = e.deltaY * (e.deltaMode === 1 ? 16 : e.deltaMode === 2 ? 400 : 1);
+      demo.moveView(x, y, x, y, Math.exp(-px * (e.ctrlKey ? 0.01 : 0.002)));
+    },
+    { passive: false },
+  );
   stage.addEventListener('dblclick', (e) => {
     const [x, y] = local(e);
     attempt(() => demo.removeObstacleAt(x, y, 4) !== undefined && changed());

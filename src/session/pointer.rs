@@ -107,12 +107,6 @@ impl Session {
         Ok(())
     }
 
-    /// `point` rounded to the millimetre (a non-finite coordinate stays so, for
-    /// the checks that refuse it).
-    fn to_mm(point: [f64; 2]) -> [f64; 2] {
-        point.map(|v| (v * 1000.0).round() / 1000.0)
-    }
-
     /// What the pointer holds.
     pub fn dragging(&self) -> Option<Handle> {
         self.drag

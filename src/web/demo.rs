@@ -11,6 +11,7 @@ use super::{input, js_err, now_ms, plots, stage, to_js};
 use crate::atlas::Grid;
 use crate::planner::Method;
 use crate::session::Session;
+use crate::view::{Camera, View};
 
 /// One interactive simulation drawn on one canvas. Several can live on a page.
 #[wasm_bindgen]
@@ -23,12 +24,23 @@ pub struct Demo {
     drawn: std::cell::Cell<u32>,
     /// The legend's entries switched on (`setShown`: the lab's ellipses).
     shown: u32,
+    /// The stage's view: fitted to the scene, or the user's zoom.
+    camera: Camera,
 }
 
 pub(super) type JsResult<T = ()> = Result<T, JsError>;
 
 pub(super) fn finite(what: &str, value: f64) -> JsResult<f64> {
     crate::error::finite(what, value).map_err(js_err)
+}
+
+impl Demo {
+    /// The stage's view now (`crate::view::Camera`): what it draws, hit-tests
+    /// and maps pointer positions with.
+    pub(super) fn view(&self) -> View {
+        let size = (self.stage.width, self.stage.height);
+        self.camera.view(&self.session, size)
+    }
 }
 
 #[wasm_bindgen]
@@ -51,6 +63,7 @@ impl Demo {
             layer: None,
             drawn: std::cell::Cell::new(0),
             shown: 0,
+            camera: Camera::default(),
         })
     }
 
@@ -297,7 +310,7 @@ impl Demo {
     /// and the point lies on it; the cell is outlined until the next call.
     #[wasm_bindgen(js_name = atlasCellAt)]
     pub fn atlas_cell_at(&mut self, x: f64, y: f64) -> Option<usize> {
-        let view = self.stage.view();
+        let view = self.view();
         let layer = self.layer.as_mut()?;
         let cell = (x.is_finite() && y.is_finite())
             .then(|| layer.grid().nearest(view.to_world(x, y)))
@@ -323,31 +336,51 @@ impl Demo {
         Ok(())
     }
 
+    /// Moves the stage's view so that the world point at canvas CSS pixel
+    /// `(x, y)` comes to `(to_x, to_y)`, zoomed by `factor` (0.5 to 8
+    /// times the fitted scale in all): the wheel zooms about the pointer
+    /// (`to` = `(x, y)`), a drag on the empty drawing pans (`factor` 1),
+    /// two fingers do both. Returns the zoom now (1: fitted). The view is
+    /// then the user's until `fitView()`: kept when the scene changes.
+    #[wasm_bindgen(js_name = moveView)]
+    pub fn move_view(&self, x: f64, y: f64, to_x: f64, to_y: f64, factor: f64) -> f64 {
+        let size = (self.stage.width, self.stage.height);
+        let moved = ((x, y), (to_x, to_y));
+        self.camera.move_view(&self.session, size, moved, factor)
+    }
+
+    /// Fits the stage's view to the arm's reach, the obstacles, the target
+    /// and the path again (the view follows the scene from then on).
+    #[wasm_bindgen(js_name = fitView)]
+    pub fn fit_view(&self) {
+        self.camera.fit();
+    }
+
     /// Canvas CSS-pixel position `[x, y]` of the world point `(x, y)` (metres).
     #[wasm_bindgen(js_name = worldToCanvas)]
     pub fn world_to_canvas(&self, x: f64, y: f64) -> JsResult<Vec<f64>> {
-        let (px, py) = self.stage.view().to_px([finite("x", x)?, finite("y", y)?]);
+        let (px, py) = self.view().to_px([finite("x", x)?, finite("y", y)?]);
         Ok(vec![px, py])
     }
 
     /// World position `[x, y]` (metres) of the canvas CSS-pixel point `(x, y)`.
     #[wasm_bindgen(js_name = canvasToWorld)]
     pub fn canvas_to_world(&self, x: f64, y: f64) -> JsResult<Vec<f64>> {
-        let view = self.stage.view();
+        let view = self.view();
         Ok(view.to_world(finite("x", x)?, finite("y", y)?).to_vec())
     }
 
     /// What a pointer at canvas CSS pixel `(x, y)` would grab, with `slop`
     /// extra pixels of tolerance: `"target"`, `"obstacle"` or `undefined`.
     pub fn hover(&self, x: f64, y: f64, slop: f64) -> Option<String> {
-        input::hit(&self.session, &self.stage, x, y, slop).map(|h| h.name().into())
+        input::hit(&self.session, self.view(), x, y, slop).map(|h| h.name().into())
     }
 
     /// Starts a drag at canvas CSS pixel `(x, y)`; returns what was grabbed
     /// (`"target"`, `"obstacle"` or `undefined`).
     #[wasm_bindgen(js_name = pointerDown)]
     pub fn pointer_down(&mut self, x: f64, y: f64, slop: f64) -> Option<String> {
-        let grabbed = input::hit(&self.session, &self.stage, x, y, slop);
+        let grabbed = input::hit(&self.session, self.view(), x, y, slop);
         self.session.drag_start(grabbed);
         grabbed.map(|h| h.name().into())
     }
@@ -357,7 +390,7 @@ impl Demo {
     /// marker until [`Demo::pointer_up`].
     #[wasm_bindgen(js_name = pointerMove)]
     pub fn pointer_move(&mut self, x: f64, y: f64) -> JsResult {
-        let p = input::drag_point(&self.stage, x, y);
+        let p = input::drag_point(&self.stage, self.view(), x, y);
         self.session.drag_to(p).map_err(js_err)
     }
 
@@ -365,7 +398,7 @@ impl Demo {
     /// from the current end effector and starts the clock.
     #[wasm_bindgen(js_name = pointerUp)]
     pub fn pointer_up(&mut self, x: f64, y: f64) -> JsResult {
-        let p = input::drag_point(&self.stage, x, y);
+        let p = input::drag_point(&self.stage, self.view(), x, y);
         self.session.drag_end(p).map_err(js_err)
     }
 
@@ -377,7 +410,8 @@ impl Demo {
 
     /// A key pressed on the drawing: the arrows move the target by 5 cm
     /// (planning a new line and starting the clock), with Shift the
-    /// obstacle. Returns whether the key was used; throws if the move was
+    /// obstacle (stage-input.js routes `+`, `-` and `0` to `moveView` and
+    /// `fitView`). Returns whether the key was used; throws if the move was
     /// refused (the obstacle onto the post).
     pub fn key(&mut self, key: &str, shift: bool) -> JsResult<bool> {
         let Some((handle, dx, dy)) = input::arrow(key, shift) else {
@@ -395,7 +429,13 @@ impl Demo {
 
     /// Redraws the stage and the plots.
     pub fn draw(&self) {
-        let drawn = stage::draw(&self.session, &self.stage, self.layer.as_ref(), self.shown);
+        let drawn = stage::draw(
+            &self.session,
+            &self.stage,
+            self.view(),
+            self.layer.as_ref(),
+            self.shown,
+        );
         self.drawn.set(drawn);
         if let Some(p) = &self.plots {
             plots::draw(&self.session, p);

@@ -1,7 +1,7 @@
 //! Pointer and keyboard input on the stage: which handle a pointer would
 //! grab, where a drag may go, and what the arrow keys do.
 
-use super::surface::Surface;
+use super::surface::{Surface, View};
 use crate::session::{Handle, Session};
 
 /// Radius (CSS px) of the target marker a pointer grabs.
@@ -16,12 +16,11 @@ const EDGE_PX: f64 = 8.0;
 /// extra pixels of tolerance (0 to 64): the target before the obstacle,
 /// the obstacle before an elbow (the joints between the first and the
 /// hand, which drag the arm in its null space).
-pub fn hit(s: &Session, surface: &Surface, x: f64, y: f64, slop: f64) -> Option<Handle> {
+pub fn hit(s: &Session, view: View, x: f64, y: f64, slop: f64) -> Option<Handle> {
     if !(x.is_finite() && y.is_finite() && slop.is_finite()) {
         return None;
     }
     let slop = slop.clamp(0.0, 64.0);
-    let view = surface.view();
     let near = |p: [f64; 2], r: f64| {
         let (px, py) = view.to_px(p);
         (px - x).hypot(py - y) <= r
@@ -31,7 +30,7 @@ pub fn hit(s: &Session, surface: &Surface, x: f64, y: f64, slop: f64) -> Option<
     if line && near(s.target_marker(), TARGET_GRAB_PX + slop) {
         return Some(Handle::Target);
     }
-    if let Some(i) = obstacle_at(s, surface, x, y, slop) {
+    if let Some(i) = obstacle_at(s, view, x, y, slop) {
         return Some(Handle::Obstacle(i));
     }
     let joints = s.planner().pose().joints();
@@ -42,12 +41,11 @@ pub fn hit(s: &Session, surface: &Surface, x: f64, y: f64, slop: f64) -> Option<
 
 /// The obstacle under canvas CSS pixel `(x, y)` with `slop` extra pixels of
 /// tolerance: the one drawn last (on top) when discs overlap.
-pub fn obstacle_at(s: &Session, surface: &Surface, x: f64, y: f64, slop: f64) -> Option<usize> {
+pub fn obstacle_at(s: &Session, view: View, x: f64, y: f64, slop: f64) -> Option<usize> {
     if !(x.is_finite() && y.is_finite() && slop.is_finite()) {
         return None;
     }
     let slop = slop.clamp(0.0, 64.0);
-    let view = surface.view();
     s.obstacles().iter().rposition(|ob| {
         let (px, py) = view.to_px(ob.centre);
         (px - x).hypot(py - y) <= ob.radius * view.scale + slop
@@ -55,7 +53,7 @@ pub fn obstacle_at(s: &Session, surface: &Surface, x: f64, y: f64, slop: f64) ->
 }
 
 /// The world point of canvas CSS pixel `(x, y)`, kept inside the canvas.
-pub fn drag_point(surface: &Surface, x: f64, y: f64) -> [f64; 2] {
+pub fn drag_point(surface: &Surface, view: View, x: f64, y: f64) -> [f64; 2] {
     let (w, h) = (surface.width, surface.height);
     let clamp = |v: f64, hi: f64| {
         if v.is_finite() {
@@ -64,7 +62,7 @@ pub fn drag_point(surface: &Surface, x: f64, y: f64) -> [f64; 2] {
             v
         }
     };
-    surface.view().to_world(clamp(x, w), clamp(y, h))
+    view.to_world(clamp(x, w), clamp(y, h))
 }
 
 /// What an arrow key does on the drawing: `(handle, dx, dy)` in steps of

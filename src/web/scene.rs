@@ -100,7 +100,7 @@ impl Demo {
     /// [`Demo::add_obstacle`].
     #[wasm_bindgen(js_name = addObstacleAt)]
     pub fn add_obstacle_at(&mut self, x: f64, y: f64) -> JsResult<usize> {
-        let [wx, wy] = self.stage.view().to_world(finite("x", x)?, finite("y", y)?);
+        let [wx, wy] = self.view().to_world(finite("x", x)?, finite("y", y)?);
         self.add_obstacle(wx, wy, None)
     }
 
@@ -108,7 +108,7 @@ impl Demo {
     /// pixels of tolerance), if any: its index, or `undefined`.
     #[wasm_bindgen(js_name = removeObstacleAt)]
     pub fn remove_obstacle_at(&mut self, x: f64, y: f64, slop: f64) -> JsResult<Option<usize>> {
-        let Some(i) = input::obstacle_at(&self.session, &self.stage, x, y, slop) else {
+        let Some(i) = input::obstacle_at(&self.session, self.view(), x, y, slop) else {
             return Ok(None);
         };
         self.session.remove_obstacle(i).map_err(js_err)?;
@@ -153,7 +153,7 @@ impl Demo {
     /// tolerance), if any: for double-click and long-press removal.
     #[wasm_bindgen(js_name = obstacleAt)]
     pub fn obstacle_at(&self, x: f64, y: f64, slop: f64) -> Option<usize> {
-        input::obstacle_at(&self.session, &self.stage, x, y, slop)
+        input::obstacle_at(&self.session, self.view(), x, y, slop)
     }
 
     /// Makes the path the hand follows the one written `text` (`line`,
@@ -166,7 +166,7 @@ impl Demo {
     pub fn set_path(&mut self, text: &str, stroke: Option<Vec<f64>>) -> JsResult<String> {
         let path = match stroke {
             Some(flat) => {
-                let view = self.stage.view();
+                let view = self.view();
                 let world: Vec<[f64; 2]> = flat
                     .chunks_exact(2)
                     .map(|p| view.to_world(p[0], p[1]))

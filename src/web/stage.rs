@@ -15,18 +15,27 @@ use crate::session::{Handle, Session};
 /// Draws the session on the stage, over an atlas layer if one is shown;
 /// returns which entries of the legend it drew (a bit each, in the
 /// legend's order), so that the page's legend lists only those.
-pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>, shown: u32) -> u32 {
+pub fn draw(s: &Session, surface: &Surface, view: View, layer: Option<&Layer>, shown: u32) -> u32 {
     let mut drawn = bit::ARM | bit::PATH | bit::REFERENCE;
     let ctx = &surface.ctx;
-    let view = surface.view();
     surface.begin();
     if let Some(layer) = layer {
         layer.draw(ctx, view);
         drawn |= bit::ATLAS;
     }
-    grid(ctx, view, surface.width, surface.height);
-
     let planner = s.planner();
+    // The time and the method; on a narrow stage (at about 7 px a
+    // character) the method's short label. Drawn last, on top; the grid
+    // keeps its labels clear of it.
+    let t = planner.sample().t;
+    let m = planner.method();
+    let mut caption = format!("t = {t:.1} s   ·   {}", m.title());
+    if caption.chars().count() as f64 * 7.0 > surface.width - 24.0 {
+        caption = format!("t = {t:.1} s · {}", m.label());
+    }
+    let size = (surface.width, surface.height);
+    grid(ctx, view, size, caption.chars().count() as f64 * 7.0);
+
     let scene = planner.scene();
     let arm = &scene.arm;
     let base = [0.0, arm.post()];
@@ -229,14 +238,6 @@ pub fn draw(s: &Session, surface: &Surface, layer: Option<&Layer>, shown: u32) -
         target(ctx, view, s);
     }
 
-    // The time and the method; on a narrow stage (at about 7 px a
-    // character) the method's short label.
-    let t = planner.sample().t;
-    let m = planner.method();
-    let mut caption = format!("t = {t:.1} s   ·   {}", m.title());
-    if caption.chars().count() as f64 * 7.0 > surface.width - 24.0 {
-        caption = format!("t = {t:.1} s · {}", m.label());
-    }
     let font = format!("600 12px {FONT}");
     text(ctx, &font, INK, ("left", "top"), (12.0, 10.0), &caption);
     drawn
@@ -304,8 +305,19 @@ fn target(ctx: &CanvasRenderingContext2d, view: View, s: &Session) {
     ctx.stroke();
 }
 
-/// A metric grid with labelled axes through the origin.
-fn grid(ctx: &CanvasRenderingContext2d, view: View, w: f64, h: f64) {
+/// Width (CSS px) of a tick label or axis name at 11 px: about 6.5 px a
+/// character, a little more than system fonts' digits take (no
+/// `measureText` binding in the page's module).
+fn text_width(label: &str) -> f64 {
+    6.5 * label.chars().count() as f64
+}
+
+/// A metric grid with labelled axes through the origin. Every label lies
+/// inside the canvas with a 2 px edge: a tick label that would not is left
+/// out, and so is one in the caption's place (`caption` px wide at the top
+/// left); tick labels stay on the canvas when their axis leaves it, the
+/// axes' names (beside their axis, away from its labels) go with it.
+fn grid(ctx: &CanvasRenderingContext2d, view: View, (w, h): (f64, f64), caption: f64) {
     let lo = view.to_world(0.0, h);
     let hi = view.to_world(w, 0.0);
     let step = nice_step((hi[0] - lo[0]).min(hi[1] - lo[1]), 6.0);
@@ -317,14 +329,20 @@ fn grid(ctx: &CanvasRenderingContext2d, view: View, w: f64, h: f64) {
         let last = (hi / step).floor() as i64;
         (first..=last).map(move |k| k as f64 * step)
     };
+    let label = |at: (f64, f64), align: (&str, &str), s: &str| {
+        text(ctx, &font, MUTED, align, at, s);
+    };
+    // Under the X1 axis, below the caption's row when the axis is above.
+    let top = (ay + 8.0).min(h - 14.0).max(28.0);
     for x in lines(lo[0], hi[0]) {
         let (px, _) = view.to_px([x, 0.0]);
         ctx.set_stroke_style_str(if x.abs() < 1e-9 { AXIS } else { GRID });
         let px = px.round() + 0.5;
         polyline(ctx, None, &[[px, 0.0], [px, h]]);
-        if x.abs() > 1e-9 {
-            let at = (px, (ay + 8.0).min(h - 14.0));
-            text(ctx, &font, MUTED, ("center", "top"), at, &fmt_tick(x, step));
+        let tick = fmt_tick(x, step);
+        let half = 0.5 * text_width(&tick);
+        if x.abs() > 1e-9 && px - half >= 2.0 && px + half <= w - 2.0 {
+            label((px, top), ("center", "top"), &tick);
         }
     }
     for y in lines(lo[1], hi[1]) {
@@ -332,32 +350,18 @@ fn grid(ctx: &CanvasRenderingContext2d, view: View, w: f64, h: f64) {
         ctx.set_stroke_style_str(if y.abs() < 1e-9 { AXIS } else { GRID });
         let py = py.round() + 0.5;
         polyline(ctx, None, &[[0.0, py], [w, py]]);
-        if y.abs() > 1e-9 {
-            let at = ((ax - 6.0).max(28.0), py);
-            text(
-                ctx,
-                &font,
-                MUTED,
-                ("right", "middle"),
-                at,
-                &fmt_tick(y, step),
-            );
+        let tick = fmt_tick(y, step);
+        let tw = text_width(&tick);
+        let right = (ax - 6.0).min(w - 2.0).max(tw + 2.0);
+        let on_caption = py < 30.0 && right - tw < 16.0 + caption;
+        if y.abs() > 1e-9 && py >= 8.0 && py <= h - 8.0 && !on_caption {
+            label((right, py), ("right", "middle"), &tick);
         }
     }
-    text(
-        ctx,
-        &font,
-        MUTED,
-        ("right", "bottom"),
-        (w - 8.0, ay - 4.0),
-        "X₁ (m)",
-    );
-    text(
-        ctx,
-        &font,
-        MUTED,
-        ("left", "top"),
-        (ax + 6.0, 30.0),
-        "X₂ (m)",
-    );
+    if ay >= 20.0 && ay <= h {
+        label((w - 8.0, ay - 4.0), ("right", "bottom"), "X₁ (m)");
+    }
+    if ax >= 0.0 && ax + 60.0 <= w {
+        label((ax + 6.0, 30.0), ("left", "top"), "X₂ (m)");
+    }
 }

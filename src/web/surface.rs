@@ -1,5 +1,5 @@
-//! A canvas with its 2-D context, the stage's world-to-pixel view, and the
-//! few drawing helpers the renderers share.
+//! A canvas with its 2-D context and the few drawing helpers the renderers
+//! share (the stage's world-to-pixel [`View`] is the core's, `crate::view`).
 
 use std::f64::consts::PI;
 
@@ -9,12 +9,10 @@ use web_sys::{CanvasRenderingContext2d, HtmlCanvasElement};
 
 use super::style::PAPER;
 use crate::error::{positive, within};
+pub use crate::view::View;
 
 /// Largest canvas side accepted from the page (device pixels).
 const MAX_CANVAS_PX: f64 = 8192.0;
-/// World rectangle (metres) the stage always shows: x range, then y range.
-const VIEW_X: [f64; 2] = [-0.6, 2.2];
-const VIEW_Y: [f64; 2] = [-0.25, 1.95];
 
 /// A canvas and its 2-D context, with its size in CSS pixels.
 pub struct Surface {
@@ -73,41 +71,6 @@ impl Surface {
         c.fill_rect(0.0, 0.0, self.width, self.height);
         c.set_line_cap("round");
         c.set_line_join("round");
-    }
-
-    /// The world-to-canvas map for this surface's size.
-    pub fn view(&self) -> View {
-        View::fit(self.width, self.height)
-    }
-}
-
-/// The world-to-canvas map of the stage (CSS pixels, y up in the world).
-#[derive(Clone, Copy)]
-pub struct View {
-    pub scale: f64,
-    ox: f64,
-    oy: f64,
-}
-
-impl View {
-    fn fit(width: f64, height: f64) -> Self {
-        let (wx, wy) = (VIEW_X[1] - VIEW_X[0], VIEW_Y[1] - VIEW_Y[0]);
-        let scale = (width / wx).min(height / wy);
-        let cx = 0.5 * (VIEW_X[0] + VIEW_X[1]);
-        let cy = 0.5 * (VIEW_Y[0] + VIEW_Y[1]);
-        Self {
-            scale,
-            ox: 0.5 * width - scale * cx,
-            oy: 0.5 * height + scale * cy,
-        }
-    }
-
-    pub fn to_px(self, p: [f64; 2]) -> (f64, f64) {
-        (self.ox + self.scale * p[0], self.oy - self.scale * p[1])
-    }
-
-    pub fn to_world(self, x: f64, y: f64) -> [f64; 2] {
-        [(x - self.ox) / self.scale, (self.oy - y) / self.scale]
     }
 }
 

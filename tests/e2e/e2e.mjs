@@ -13,7 +13,7 @@
 //
 // The tests live in one file per part of the page, registered in this order:
 // stage.mjs, methods.mjs, page.mjs, atlas.mjs, module.mjs, playground.mjs,
-// hostile.mjs, reach.mjs, runs.mjs, self-motion.mjs, paths.mjs, embed.mjs (embedding from the page), a11y.mjs (accessibility: axe-core, the live region, phone, projector), then the page for a class (class.mjs)
+// hostile.mjs, reach.mjs, runs.mjs, self-motion.mjs, paths.mjs, embed.mjs (embedding from the page), a11y.mjs (accessibility: axe-core, the live region, phone, projector), view.mjs (the view holds the reach; zoom, pan, Fit), then the page for a class (class.mjs)
 // and the arm's joint limits (limits.mjs) and the lab's page (lab.mjs); harness.mjs
 // holds the browser and the helpers they share.
 
@@ -31,6 +31,7 @@ import './self-motion.mjs';
 import './paths.mjs';
 import './embed.mjs';
 import './a11y.mjs';
+import './view.mjs';
 import { classTests } from './class.mjs';
 import { limitsTests } from './limits.mjs';
 import { labTests } from './lab.mjs';

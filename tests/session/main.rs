@@ -29,3 +29,4 @@ mod clock;
 mod lab;
 mod runs;
 mod scene;
+mod view;
