@@ -28,7 +28,7 @@ from pathlib import Path
 # training and evaluation do not import each other both ways (the
 # training job sits above both).
 LAYERS = [
-    ["error", "palette"],
+    ["error", "palette", "json"],
     ["geometry", "qp"],
     ["arm"],
     ["kinematics"],

@@ -275,7 +275,9 @@ impl fmt::Display for Arm {
 ///
 /// Read by serde_json's number parser rather than `str::parse`: the page's
 /// module carries serde_json's for the weights files anyway, and core's own
-/// costs it 13.5 KB gzipped (178.8 -> 165.2 KB, measured with `make web`).
+/// costs it 13.5 KB gzipped (178.8 -> 165.2 KB, measured with `make web`);
+/// through the same JSON tree as the weights files ([`crate::json::Json`]),
+/// so that one monomorphisation of the parser serves both.
 /// Exact with the feature `exact-floats`; without it (the page's module)
 /// exact for decimals of up to 15 significant digits (Clinger's fast path),
 /// which is what people type, and within a unit in the last place beyond.
@@ -307,8 +309,11 @@ pub(crate) fn number(text: &str) -> std::result::Result<f64, String> {
     if body.starts_with(['-', '+']) {
         return Err(refused());
     }
-    match serde_json::from_str::<f64>(&format!("{sign}{lead}{body}")) {
-        Ok(x) if x.is_finite() => Ok(x),
+    match serde_json::from_str::<crate::json::Json>(&format!("{sign}{lead}{body}")) {
+        Ok(json) => match json.number() {
+            Some(x) if x.is_finite() => Ok(x),
+            _ => Err(refused()),
+        },
         _ => Err(refused()),
     }
 }

@@ -16,6 +16,7 @@ pub mod export;
 pub mod figure;
 pub mod geometry;
 pub mod ik;
+mod json;
 pub mod kinematics;
 pub mod networks;
 pub mod nn;

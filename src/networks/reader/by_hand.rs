@@ -1,14 +1,10 @@
 //! The page's reader of weights files by hand (see `networks::reader`):
-//! serde_json's parser builds a plain JSON tree ([`Json`], one
-//! `deserialize_any`), and the fields of [`WeightsFile`] are taken from it
+//! serde_json's parser builds a plain JSON tree ([`Json`], `crate::json`), and the fields of [`WeightsFile`] are taken from it
 //! with the checks of serde's derived readers (missing, unknown and
 //! repeated fields, types, the enums' names, the arm's constructor).
 
-use std::fmt;
-
-use serde::de::{Deserialize, Deserializer, MapAccess, SeqAccess, Visitor};
-
 use crate::arm::{Arm, JointLimits, RateLimits};
+use crate::json::Json;
 use crate::networks::file::{
     Encoding, InputRange, NetEntry, NetKind, Sampling, Training, WeightsFile,
 };
@@ -16,97 +12,24 @@ use crate::nn::lm::{LmOptions, StopReason, TrainReport};
 use crate::nn::mlp::{Layer, MapMinMax, Mlp};
 use crate::planner::Method;
 
-/// A JSON value as serde_json's parser hands it over; an object keeps its
-/// fields in order as pairs (a map type would bring its code along).
-#[derive(Debug, Clone, PartialEq)]
-pub(crate) enum Json {
-    Null,
-    Bool(bool),
-    /// A non-negative integer.
-    Uint(u64),
-    /// A negative integer.
-    Int(i64),
-    Float(f64),
-    Str(String),
-    Array(Vec<Json>),
-    Object(Vec<(String, Json)>),
-}
-
-impl Json {
-    /// What the value is, for messages (serde's words).
-    fn kind(&self) -> &'static str {
-        match self {
-            Json::Null => "null",
-            Json::Bool(_) => "a boolean",
-            Json::Uint(_) | Json::Int(_) => "an integer",
-            Json::Float(_) => "a floating point number",
-            Json::Str(_) => "a string",
-            Json::Array(_) => "a sequence",
-            Json::Object(_) => "a map",
-        }
-    }
-}
-
-struct JsonVisitor;
-
-impl<'de> Visitor<'de> for JsonVisitor {
-    type Value = Json;
-
-    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        f.write_str("any JSON value")
-    }
-    fn visit_unit<E>(self) -> Result<Json, E> {
-        Ok(Json::Null)
-    }
-    fn visit_bool<E>(self, b: bool) -> Result<Json, E> {
-        Ok(Json::Bool(b))
-    }
-    fn visit_u64<E>(self, x: u64) -> Result<Json, E> {
-        Ok(Json::Uint(x))
-    }
-    fn visit_i64<E>(self, x: i64) -> Result<Json, E> {
-        Ok(if x >= 0 {
-            Json::Uint(x as u64)
-        } else {
-            Json::Int(x)
-        })
-    }
-    fn visit_f64<E>(self, x: f64) -> Result<Json, E> {
-        Ok(Json::Float(x))
-    }
-    fn visit_str<E>(self, s: &str) -> Result<Json, E> {
-        Ok(Json::Str(s.to_owned()))
-    }
-    fn visit_string<E>(self, s: String) -> Result<Json, E> {
-        Ok(Json::Str(s))
-    }
-    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Json, A::Error> {
-        let mut items = Vec::new();
-        while let Some(item) = seq.next_element()? {
-            items.push(item);
-        }
-        Ok(Json::Array(items))
-    }
-    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Json, A::Error> {
-        let mut fields = Vec::new();
-        while let Some((key, value)) = map.next_entry::<String, Json>()? {
-            fields.push((key, value));
-        }
-        Ok(Json::Object(fields))
-    }
-}
-
-impl<'de> Deserialize<'de> for Json {
-    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        d.deserialize_any(JsonVisitor)
-    }
-}
-
 /// Why a value does not read, with the path of fields to it.
 type Read<T> = Result<T, String>;
 
+/// What a value is, for messages (serde's words).
+fn kind(v: &Json) -> &'static str {
+    match v {
+        Json::Null => "null",
+        Json::Bool(_) => "a boolean",
+        Json::Uint(_) | Json::Int(_) => "an integer",
+        Json::Float(_) => "a floating point number",
+        Json::Str(_) => "a string",
+        Json::Array(_) => "a sequence",
+        Json::Object(_) => "a map",
+    }
+}
+
 fn wrong(value: &Json, expected: &str) -> String {
-    format!("invalid type: {}, expected {expected}", value.kind())
+    format!("invalid type: {}, expected {expected}", kind(value))
 }
 
 /// An object's fields, taken one by one; what is left is refused where the
@@ -183,12 +106,7 @@ fn clip(text: &str) -> String {
 }
 
 fn float(v: Json) -> Read<f64> {
-    match v {
-        Json::Float(x) => Ok(x),
-        Json::Uint(x) => Ok(x as f64),
-        Json::Int(x) => Ok(x as f64),
-        other => Err(wrong(&other, "f64")),
-    }
+    v.number().ok_or_else(|| wrong(&v, "f64"))
 }
 
 fn unsigned(v: Json) -> Read<u64> {
