@@ -58,6 +58,16 @@ function endText(s) {
   return `run ended at t = ${fixed(s.t, 1)} s: the hand is ${metres(s.final_error)} from ${to}${near}, ${hit}`;
 }
 
+/** What the keys move (the state's `selected`), in words. */
+export function selectedText(s) {
+  if (s.selected === 'obstacle') {
+    const o = s.obstacles[s.selected_index];
+    return `obstacle ${s.selected_index + 1}${o ? ` at ${point(o.centre)}` : ''}`;
+  }
+  if (s.selected === 'joint') return `elbow ${s.selected_index} (the hand holds still)`;
+  return `the target at ${point(s.target)}`;
+}
+
 /** The drawing in words: the arm, the path and target, the obstacles, the method. */
 export function sceneSummary(s) {
   const links = s.arm.links.map((l) => fixed(l, 2)).join(', ');
@@ -109,12 +119,13 @@ export function mountAnnouncer(root, { gap = ANNOUNCE_GAP_MS } = {}) {
       if (s.collided && !seen.collided) say(collisionText(s), true);
       if (s.ended && !seen.ended) say(endText(s));
       if (s.method !== seen.method) say(`method: ${label(s.method)}`);
+      if (s.selected !== seen.selected || s.selected_index !== seen.selectedIndex) say(`selected: ${selectedText(s)}`);
     }
     if (summary && (!seen || s.revision.run !== seen.run || s.method !== seen.method)) {
       const text = sceneSummary(s);
       if (summary.textContent !== text) summary.textContent = text;
     }
-    seen = { collided: s.collided, ended: s.ended, method: s.method, run: s.revision.run };
+    seen = { collided: s.collided, ended: s.ended, method: s.method, run: s.revision.run, selected: s.selected, selectedIndex: s.selected_index };
   }
 
   return { say, sync, task: (n) => say(`task ${n}: the paper's scene, from t = 0`) };

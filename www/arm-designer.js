@@ -147,9 +147,23 @@ export function mountArmDesigner(root, demo, { setArm, attempt, show, changed })
       el.obstacleAdd.textContent = on ? 'Click on the drawing…' : 'Add obstacle';
     }
   }
-  el.obstacleAdd?.addEventListener('click', () => {
+  el.obstacleAdd?.addEventListener('click', (e) => {
     if (demo.state().obstacles.length >= mostObstacles) return show(`At most ${mostObstacles} obstacles.`, 'warn', false, el.obstacleAdd);
+    // From the keyboard (Enter or Space: a click of detail 0) there is no
+    // pointer to place it with: at the middle of the view, selected for the
+    // arrows, as the drawing's `a` key does (issue 27).
+    if (e.detail === 0 && !adding) {
+      if (attempt(() => demo.key('a', false), 'error', el.obstacleAdd)) changed();
+      return;
+    }
     setAdding(!adding);
+  });
+  // Escape leaves the placing mode.
+  root.addEventListener?.('keydown', (e) => {
+    if (adding && e.key === 'Escape') {
+      e.preventDefault();
+      setAdding(false);
+    }
   });
   el.obstacleRemove?.addEventListener('click', () => {
     const n = demo.state().obstacles.length;

@@ -47,6 +47,9 @@ export function wireStage(stage, demo, { attempt, changed, togglePlay, reset, at
 
   // ---- keyboard on the drawing: arrows move the target, Shift+arrows the obstacle, + - 0 the view
   if (!stage.hasAttribute('tabindex')) stage.tabIndex = 0;
+  // The item the keys move is ringed while the drawing has the keyboard's focus.
+  stage.addEventListener('focus', () => demo.setKeyboardFocus(stage.matches(':focus-visible')));
+  stage.addEventListener('blur', () => demo.setKeyboardFocus(false));
   const zoomKeys = { '+': 1.25, '=': 1.25, '-': 0.8, '_': 0.8 };
   stage.addEventListener('keydown', (e) => {
     if (e.ctrlKey || e.metaKey || e.altKey) return;

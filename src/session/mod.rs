@@ -15,6 +15,7 @@ mod clock;
 mod compare;
 mod history;
 mod installed;
+mod keys;
 mod pointer;
 mod revision;
 mod scenes;
@@ -35,6 +36,7 @@ use crate::twin::Twin;
 pub use clock::MAX_STEPS_PER_FRAME;
 pub use compare::MethodRun;
 pub use history::{below_floor, Point, STROBE_EVERY};
+pub use keys::FINE_NUDGE;
 pub use pointer::{Handle, DRAG_LINE_SPEED, MIN_LINE_DURATION, NUDGE};
 pub use revision::Revision;
 pub use scenes::start_pose;
@@ -84,6 +86,8 @@ pub struct Session {
     ghost_prev: Vec<f64>,
     histories: Histories,
     drag: Option<Handle>,
+    /// What the keys move (`keys.rs`): the target, an obstacle or an elbow.
+    selected: Handle,
     drag_point: Option<[f64; 2]>,
     frame_steps: usize,
     solver_ms: f64,
@@ -117,6 +121,7 @@ impl Session {
             ghost_prev: Vec::new(),
             histories: Histories::default(),
             drag: None,
+            selected: Handle::Target,
             drag_point: None,
             frame_steps: 0,
             solver_ms: 0.0,

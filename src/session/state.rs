@@ -58,6 +58,11 @@ pub struct State<'a> {
     pub floor: bool,
     /// Whether it was switched on for an out-of-reach target.
     pub auto_damping: bool,
+    /// What the keys move (`Session::selected`): `target`, `obstacle` or
+    /// `joint`.
+    pub selected: &'static str,
+    /// Which: the obstacle's index, the elbow's `k`; 0 for the target.
+    pub selected_index: usize,
     /// Whether a point of the run's path (the target, for the line) lies
     /// outside the arm's reach, with the damping on or off (the page's note
     /// said so only when the damping was switched on for it).
@@ -245,6 +250,11 @@ impl Session {
             weighting: scene.weighting,
             floor: scene.floor,
             auto_damping: summary.auto_damping,
+            selected: self.selected().name(),
+            selected_index: match self.selected() {
+                super::Handle::Target => 0,
+                super::Handle::Obstacle(i) | super::Handle::Joint(i) => i,
+            },
             out_of_reach: !p.track().reachable(&scene.arm),
             feedback: scene.feedback_gain,
             theta: &s.theta,

@@ -26,6 +26,9 @@ pub struct Demo {
     shown: u32,
     /// The stage's view: fitted to the scene, or the user's zoom.
     camera: Camera,
+    /// Whether the drawing has the keyboard's focus: the selected item is
+    /// ringed then (`setKeyboardFocus`).
+    pub(super) keyboard: bool,
 }
 
 pub(super) type JsResult<T = ()> = Result<T, JsError>;
@@ -64,6 +67,7 @@ impl Demo {
             drawn: std::cell::Cell::new(0),
             shown: 0,
             camera: Camera::default(),
+            keyboard: false,
         })
     }
 
@@ -408,19 +412,6 @@ impl Demo {
         self.session.drag_cancel();
     }
 
-    /// A key pressed on the drawing: the arrows move the target by 5 cm
-    /// (planning a new line and starting the clock), with Shift the
-    /// obstacle (stage-input.js routes `+`, `-` and `0` to `moveView` and
-    /// `fitView`). Returns whether the key was used; throws if the move was
-    /// refused (the obstacle onto the post).
-    pub fn key(&mut self, key: &str, shift: bool) -> JsResult<bool> {
-        let Some((handle, dx, dy)) = input::arrow(key, shift) else {
-            return Ok(false);
-        };
-        self.session.nudge(handle, dx, dy).map_err(js_err)?;
-        Ok(true)
-    }
-
     /// Which entries of `legend()` the last frame drew: bit `i` for entry
     /// `i` (the page's legend shows only those).
     pub fn drawn(&self) -> u32 {
@@ -437,6 +428,9 @@ impl Demo {
             self.shown,
         );
         self.drawn.set(drawn);
+        if self.keyboard {
+            self.ring_selected();
+        }
         if let Some(p) = &self.plots {
             plots::draw(&self.session, p);
         }

@@ -65,21 +65,36 @@ pub fn drag_point(surface: &Surface, view: View, x: f64, y: f64) -> [f64; 2] {
     view.to_world(clamp(x, w), clamp(y, h))
 }
 
-/// What an arrow key does on the drawing: `(handle, dx, dy)` in steps of
-/// [`crate::session::NUDGE`]; Shift moves the first obstacle instead of the
-/// target.
-pub fn arrow(key: &str, shift: bool) -> Option<(Handle, f64, f64)> {
-    let (dx, dy) = match key {
-        "ArrowLeft" => (-1.0, 0.0),
-        "ArrowRight" => (1.0, 0.0),
-        "ArrowUp" => (0.0, 1.0),
-        "ArrowDown" => (0.0, -1.0),
-        _ => return None,
+/// A key on the focused drawing ([`key`]).
+pub enum Key {
+    /// An arrow: move the selected item by `(dx, dy)` steps, `fine` with Shift.
+    Move { dx: f64, dy: f64, fine: bool },
+    /// `n` (Shift: back): select the next item.
+    Next { forward: bool },
+    /// `a`: an obstacle at the middle of the view, selected.
+    Add,
+    /// Delete or Backspace: the selected obstacle removed.
+    Remove,
+}
+
+/// What a key does on the drawing, if anything (the keyboard help in the
+/// page lists the same keys).
+pub fn key(key: &str, shift: bool) -> Option<Key> {
+    let arrow = |dx, dy| {
+        Some(Key::Move {
+            dx,
+            dy,
+            fine: shift,
+        })
     };
-    let handle = if shift {
-        Handle::Obstacle(0)
-    } else {
-        Handle::Target
-    };
-    Some((handle, dx, dy))
+    match key {
+        "ArrowLeft" => arrow(-1.0, 0.0),
+        "ArrowRight" => arrow(1.0, 0.0),
+        "ArrowUp" => arrow(0.0, 1.0),
+        "ArrowDown" => arrow(0.0, -1.0),
+        "n" | "N" => Some(Key::Next { forward: !shift }),
+        "a" | "A" => Some(Key::Add),
+        "Delete" | "Backspace" => Some(Key::Remove),
+        _ => None,
+    }
 }

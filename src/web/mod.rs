@@ -25,6 +25,8 @@ mod demo;
 #[cfg(feature = "page")]
 mod input;
 #[cfg(feature = "page")]
+mod keys;
+#[cfg(feature = "page")]
 mod lab;
 #[cfg(feature = "page")]
 mod layer;

@@ -103,20 +103,59 @@ test('a target out of reach: damping switches on, the arm stretches, nothing bre
   await on.close();
 });
 
-test('keyboard on the drawing: arrows move the target, Shift+arrows the obstacle', async () => {
+test('keyboard on the drawing: n selects the target, each obstacle, each elbow; arrows move it (Shift: 5 mm); a adds an obstacle, Delete removes it; Escape leaves placing', async () => {
   const page = await open('?task=1&method=numerical');
   await pause(page);
   const before = await state(page);
   await page.focus('#stage');
   await page.keyboard.press('ArrowRight');
   await page.keyboard.press('ArrowUp');
-  const moved = await state(page);
-  assert.ok(near(moved.target, [before.target[0] + 0.05, before.target[1] + 0.05], 1e-9), `target ${moved.target}`);
-  assert.equal(moved.running, true, 'a keyboard move starts the clock like a drag');
-  await page.keyboard.press('Shift+ArrowLeft');
-  const ob = (await state(page)).obstacle;
-  assert.ok(near(ob, [before.obstacle[0] - 0.05, before.obstacle[1]], 1e-9), `obstacle ${ob}`);
+  let s = await state(page);
+  assert.equal(s.selected, 'target');
+  assert.ok(near(s.target, [before.target[0] + 0.05, before.target[1] + 0.05], 1e-9), `target ${s.target}`);
+  assert.equal(s.running, true, 'a keyboard move starts the clock like a drag');
   assert.match(decodeURIComponent(page.url()), /target=0\.650,0\.250/);
+  await pause(page);
+  // n: the obstacle; Shift+arrows move it 5 mm.
+  await page.keyboard.press('n');
+  s = await state(page);
+  assert.deepEqual([s.selected, s.selected_index], ['obstacle', 0]);
+  await page.keyboard.press('Shift+ArrowLeft');
+  assert.ok(near((await state(page)).obstacle, [before.obstacle[0] - 0.005, before.obstacle[1]], 1e-9));
+  // n again: the first elbow; an arrow moves the arm, the hand holding still.
+  await page.keyboard.press('n');
+  s = await state(page);
+  assert.deepEqual([s.selected, s.selected_index], ['joint', 1]);
+  const hand = s.ee;
+  await page.keyboard.press('ArrowLeft');
+  const t = await state(page);
+  assert.ok(Math.hypot(t.joints[1][0] - s.joints[1][0], t.joints[1][1] - s.joints[1][1]) > 0.01, 'the elbow moved');
+  assert.ok(near(t.ee, hand, 1e-6), `the hand held: ${t.ee} vs ${hand}`);
+  // Shift+n back to the obstacle; a adds one in the middle of the view, selected; Delete removes it.
+  await page.keyboard.press('Shift+N');
+  assert.equal((await state(page)).selected, 'obstacle');
+  await page.keyboard.press('a');
+  s = await state(page);
+  assert.equal(s.obstacles.length, 2, 'added');
+  assert.deepEqual([s.selected, s.selected_index], ['obstacle', 1]);
+  await page.keyboard.press('Delete');
+  s = await state(page);
+  assert.equal(s.obstacles.length, 1, 'removed');
+  assert.equal(s.selected, 'target');
+  // The Add obstacle button from the keyboard adds one at once; with the mouse it waits for a click, and Escape leaves that.
+  await page.click('#arm-panel summary');
+  await page.focus('#obstacle-add');
+  await page.keyboard.press('Enter');
+  assert.equal((await state(page)).obstacles.length, 2, 'Enter on Add obstacle adds one');
+  await page.click('#obstacle-add');
+  assert.equal(await page.getAttribute('#obstacle-add', 'aria-pressed'), 'true', 'waiting for a click');
+  await page.keyboard.press('Escape');
+  assert.equal(await page.getAttribute('#obstacle-add', 'aria-pressed'), 'false', 'Escape leaves placing');
+  // The live region says what the keys hold.
+  await page.focus('#stage');
+  await page.keyboard.press('n');
+  await page.waitForFunction(() => /selected: obstacle 1/.test(document.getElementById('announcer')?.textContent ?? ''), null, { timeout: 5000 });
+  await page.screenshot({ path: join(shots, 'keys-selected.png') });
   clean(page);
   await page.close();
 });

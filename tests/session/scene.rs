@@ -192,3 +192,50 @@ fn a_drag_lands_on_the_millimetre() {
     s.drag_end([0.91234, 0.40049]).unwrap();
     assert_eq!(s.state().obstacles[0].centre, [0.912, 0.4]);
 }
+
+/// The keys select the target, each obstacle and each elbow in turn, and
+/// move what they select (issue 27: Shift+arrows moved only the first
+/// obstacle).
+#[test]
+fn the_keys_select_and_move_every_handle() {
+    let mut s = Session::new(1).unwrap();
+    s.add_obstacle(Obstacle::new(1.2, 1.4, 0.05)).unwrap();
+    assert_eq!(s.selected(), Handle::Target);
+    let order: Vec<Handle> = (0..5).map(|_| s.select_next(true)).collect();
+    assert_eq!(
+        order,
+        [
+            Handle::Obstacle(0),
+            Handle::Obstacle(1),
+            Handle::Joint(1),
+            Handle::Joint(2),
+            Handle::Target
+        ]
+    );
+    assert_eq!(s.select_next(false), Handle::Joint(2), "and back");
+    s.select(Handle::Obstacle(1));
+    s.nudge_selected(-1.0, 0.0, true).unwrap();
+    assert_eq!(s.state().obstacles[1].centre, [1.195, 1.4], "5 mm");
+    s.nudge_selected(0.0, 1.0, false).unwrap();
+    assert!(
+        (s.state().obstacles[1].centre[1] - 1.45).abs() < 1e-12,
+        "5 cm"
+    );
+    // An elbow moves the arm along its self-motion, the hand held.
+    s.select(Handle::Joint(1));
+    let (hand, elbow) = (s.state().ee, s.state().joints[1]);
+    s.nudge_selected(1.0, 0.0, false).unwrap();
+    let st = s.state();
+    assert!(
+        (st.ee[0] - hand[0]).hypot(st.ee[1] - hand[1]) < 1e-6,
+        "the hand holds"
+    );
+    assert!(
+        (st.joints[1][0] - elbow[0]).hypot(st.joints[1][1] - elbow[1]) > 0.01,
+        "the elbow moves"
+    );
+    // A selection whose obstacle is gone falls back to the target.
+    s.select(Handle::Obstacle(1));
+    s.remove_obstacle(1).unwrap();
+    assert_eq!(s.selected(), Handle::Target);
+}
