@@ -27,6 +27,17 @@ pub struct View {
 }
 
 impl View {
+    /// The same map on a surface of `k` CSS pixels to its unit
+    /// (`web::surface::Surface::magnified`): the world lands on the same
+    /// pixels.
+    pub fn magnified(self, k: f64) -> View {
+        View {
+            scale: self.scale / k,
+            ox: self.ox / k,
+            oy: self.oy / k,
+        }
+    }
+
     /// The view that shows the world box `[x0, x1, y0, y1]` (metres) whole
     /// on a `width` x `height` canvas, centred, at one scale for both axes,
     /// inside a margin: a twentieth of the smaller side (12 to 32 px) all

@@ -207,8 +207,13 @@ export async function mount(root, options = {}) {
     if (settings.path) initial('path', () => demo.setPath(settings.path));
     for (const [name, value] of Object.entries(settings.params ?? {})) initial(name, () => demo.setParam(name, value));
     // A shipped set other than the one in use is fetched first: it comes in when it arrives.
-    // Projector mode: the page's (or the element's) larger text and higher contrast (a11y.css).
-    if (settings.projector !== undefined) (root.host ?? root.documentElement)?.toggleAttribute('data-projector', Boolean(settings.projector));
+    // Projector mode: the page's (or the element's) larger text and higher
+    // contrast (a11y.css), and the drawing's and the plots' strokes, markers
+    // and text larger (the module's setProjector).
+    if (settings.projector !== undefined) {
+      (root.host ?? root.documentElement)?.toggleAttribute('data-projector', Boolean(settings.projector));
+      demo.setProjector(Boolean(settings.projector));
+    }
     if (settings.networks && settings.networks !== demo.state().network_set) {
       networkSet.choose(settings.networks).catch((e) => show(`networks: ${describe(e)}`, 'warn', true));
     }
@@ -289,7 +294,9 @@ export async function mount(root, options = {}) {
   const fitButton = document.createElement('button');
   Object.assign(fitButton, { type: 'button', id: 'fit-view', textContent: 'Fit' });
   fitButton.title = 'Show the whole reach (key 0); zoom with the wheel, two fingers or + and -, drag the empty drawing to pan';
-  fitButton.style.cssText = 'position: absolute; top: 6px; right: 6px; flex: none; min-height: 0; padding: 1px 8px; font-size: 12px;';
+  // On a touch screen a tap target of 44 px, as every control there (a11y.css).
+  const tap = window.matchMedia?.('(pointer: coarse)').matches ? 44 : 0;
+  fitButton.style.cssText = `position: absolute; top: 6px; right: 6px; flex: none; min-height: ${tap}px; min-width: ${tap}px; padding: 1px 8px; font-size: 12px;`;
   fitButton.addEventListener('click', () => demo.fitView());
   stage.after(fitButton);
 

@@ -9,11 +9,12 @@
 import { metres } from './format.js';
 import { method, paperMethods } from './module.js';
 
+let paper = null; // the paper's methods, asked of the module once (this runs every frame)
 /**
  * Whether method `name` avoids obstacles by the paper's criterion (the
  * triangle areas of eq. 14: the paper's methods that avoid).
  */
-const areaCriterion = (name) => Boolean(method(name)?.avoids && paperMethods().includes(name));
+const areaCriterion = (name) => Boolean(method(name)?.avoids && (paper ??= new Set(paperMethods())).has(name));
 
 /** Why the paper's criterion may hit the near obstacle of several (issue 27: read as a bug). */
 const CRITERION_TEXT =

@@ -29,7 +29,14 @@ pub struct Demo {
     /// Whether the drawing has the keyboard's focus: the selected item is
     /// ringed then (`setKeyboardFocus`).
     pub(super) keyboard: bool,
+    /// CSS pixels to the drawing's unit: 1, or [`PROJECTOR`] in projector
+    /// mode (`setProjector`).
+    pub(super) magnify: f64,
 }
+
+/// How much larger projector mode draws the strokes, markers and text of
+/// the stage and the plots.
+const PROJECTOR: f64 = 1.4;
 
 pub(super) type JsResult<T = ()> = Result<T, JsError>;
 
@@ -68,6 +75,7 @@ impl Demo {
             shown: 0,
             camera: Camera::default(),
             keyboard: false,
+            magnify: 1.0,
         })
     }
 
@@ -418,21 +426,24 @@ impl Demo {
         self.drawn.get()
     }
 
+    /// Projector mode: the stage's and the plots' strokes, markers and
+    /// text [`PROJECTOR`] times larger, the world where it was.
+    #[wasm_bindgen(js_name = setProjector)]
+    pub fn set_projector(&mut self, on: bool) {
+        self.magnify = if on { PROJECTOR } else { 1.0 };
+    }
+
     /// Redraws the stage and the plots.
     pub fn draw(&self) {
-        let drawn = stage::draw(
-            &self.session,
-            &self.stage,
-            self.view(),
-            self.layer.as_ref(),
-            self.shown,
-        );
+        let k = self.magnify;
+        let (stage, view) = (self.stage.magnified(k), self.view().magnified(k));
+        let drawn = stage::draw(&self.session, &stage, view, self.layer.as_ref(), self.shown);
         self.drawn.set(drawn);
         if self.keyboard {
-            self.ring_selected();
+            self.ring_selected(&stage, view);
         }
         if let Some(p) = &self.plots {
-            plots::draw(&self.session, p);
+            plots::draw(&self.session, &p.magnified(k));
         }
     }
 }

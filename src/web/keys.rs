@@ -56,10 +56,9 @@ impl Demo {
     }
 
     /// A dashed ring round the item the keys move.
-    pub(super) fn ring_selected(&self) {
+    pub(super) fn ring_selected(&self, stage: &super::surface::Surface, view: crate::view::View) {
         use crate::session::Handle;
         let s = &self.session;
-        let view = self.view();
         let (at, r) = match s.selected() {
             Handle::Target => (s.target_marker(), 14.0),
             Handle::Obstacle(i) => match s.obstacles().get(i) {
@@ -72,7 +71,7 @@ impl Demo {
             },
         };
         let (x, y) = view.to_px(at);
-        let ctx = &self.stage.ctx;
+        let ctx = &stage.ctx;
         ctx.set_stroke_style_str(super::style::INK);
         ctx.set_line_width(1.5);
         super::surface::dash(ctx, &[4.0, 3.0]);

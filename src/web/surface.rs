@@ -62,6 +62,20 @@ impl Surface {
         Ok(())
     }
 
+    /// This surface with `k` CSS pixels to its unit (`k > 1`: projector
+    /// mode): what is drawn in pixels (lines, text, markers) comes out `k`
+    /// times larger, and a view [`View::magnified`] by `k` keeps the world
+    /// where it was.
+    pub fn magnified(&self, k: f64) -> Surface {
+        Surface {
+            canvas: self.canvas.clone(),
+            ctx: self.ctx.clone(),
+            width: self.width / k,
+            height: self.height / k,
+            dpr: self.dpr * k,
+        }
+    }
+
     /// Clears to white and sets the CSS-pixel transform.
     pub fn begin(&self) {
         let c = &self.ctx;

@@ -11,7 +11,7 @@
 import { join } from 'node:path';
 import assert from 'node:assert/strict';
 import { createRequire } from 'node:module';
-import { browser, test, open, clean, state, shots, BASE } from './harness.mjs';
+import { browser, test, open, clean, state, shots, BASE, pause } from './harness.mjs';
 
 const AXE = createRequire(import.meta.url).resolve('axe-core/axe.min.js');
 const DESKTOP = { viewport: { width: 1366, height: 768 } };
@@ -221,8 +221,23 @@ test('a11y: projector mode: the header switch and projector=1, larger text; the 
   const off = await page.evaluate(() => ({ attr: document.documentElement.hasAttribute('data-projector'), pressed: document.getElementById('projector').getAttribute('aria-pressed'), url: location.search, font: getComputedStyle(document.body).fontSize }));
   assert.deepEqual({ attr: off.attr, pressed: off.pressed, font: off.font }, { attr: false, pressed: 'false', font: '15px' });
   assert.ok(!off.url.includes('projector'), off.url);
+  // The drawing's strokes and text grow too (the module's setProjector): more ink on the same frame.
+  const ink = () =>
+    page.evaluate(async () => {
+      await new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)));
+      const c = document.getElementById('stage');
+      const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+      let n = 0;
+      for (let i = 0; i < d.length; i += 4) if (d[i] < 120 && d[i + 1] < 120) n++;
+      return n;
+    });
+  await pause(page);
+  await page.evaluate(() => window.demo.runUntil(3));
+  const thin = await ink();
   await page.click('#projector');
   assert.ok((await page.evaluate(() => location.search)).includes('projector=1'));
+  const thick = await ink();
+  assert.ok(thick > 1.3 * thin, `the drawing's dark ink grows in projector mode: ${thin} -> ${thick} px`);
   clean(page);
   await page.close();
   // The element: the attribute, and a change of it later.

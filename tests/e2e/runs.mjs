@@ -90,7 +90,8 @@ test('page actions: a drag costs at most two calls into the module per frame and
   assert.equal(after.length, 2);
   for (let i = 0; i < 2; i++) assert.ok(await page.evaluate(([a, b]) => a === b, [before[i], after[i]]), `entry ${i + 1} kept, not rebuilt`);
   const moved = (await state(page)).obstacles[1].centre;
-  assert.match(await after[1].textContent(), new RegExp(`\\(${moved[0].toFixed(2)}, ${moved[1].toFixed(2)}\\)`), 'its text follows the drag');
+  const fields = await after[1].$$eval('input', (inputs) => inputs.slice(0, 2).map((i) => Number(i.value)));
+  assert.deepEqual(fields, moved.map((v) => Number(v.toFixed(3))), 'its fields follow the drag');
   // The second obstacle's radius, typed: that one changes, in the module.
   await page.fill('#obstacle-list li[data-index="1"] input[aria-label^="Radius"]', '0.12');
   await page.press('#obstacle-list li[data-index="1"] input[aria-label^="Radius"]', 'Enter');

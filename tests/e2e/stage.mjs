@@ -129,7 +129,8 @@ test('keyboard on the drawing: n selects the target, each obstacle, each elbow; 
   const hand = s.ee;
   await page.keyboard.press('ArrowLeft');
   const t = await state(page);
-  assert.ok(Math.hypot(t.joints[1][0] - s.joints[1][0], t.joints[1][1] - s.joints[1][1]) > 0.01, 'the elbow moved');
+  const arc = Math.hypot(...t.theta.map((v, i) => v - s.theta[i]));
+  assert.ok(Math.abs(arc - 0.1) < 0.02, `the arm moved 0.1 rad along its self-motion: ${arc}`);
   assert.ok(near(t.ee, hand, 1e-6), `the hand held: ${t.ee} vs ${hand}`);
   // Shift+n back to the obstacle; a adds one in the middle of the view, selected; Delete removes it.
   await page.keyboard.press('Shift+N');
