@@ -163,19 +163,29 @@ fn names_colours_and_the_legend_come_from_the_module() {
 }
 
 #[wasm_bindgen_test]
-fn arrow_keys_move_the_target_and_with_shift_the_obstacle() {
+fn keys_select_an_item_and_the_arrows_move_it() {
     let mut d = demo(1);
     let before = state(&d);
     assert!(d.key("ArrowRight", false).unwrap());
     let after = state(&d);
     assert!((pair(&after["target"])[0] - pair(&before["target"])[0] - 0.05).abs() < 1e-12);
+    // n selects the obstacle; Shift+arrow moves it 5 mm.
+    assert!(d.key("n", false).unwrap());
+    assert_eq!(state(&d)["selected"], "obstacle");
     assert!(d.key("ArrowDown", true).unwrap());
-    assert!((pair(&state(&d)["obstacle"])[1] - 0.45).abs() < 1e-12);
-    assert!(!d.key("a", false).unwrap(), "other keys are not used");
+    assert!((pair(&state(&d)["obstacle"])[1] - 0.495).abs() < 1e-12);
+    assert!(!d.key("q", false).unwrap(), "other keys are not used");
     // Onto the post: refused, and the obstacle stays.
     d.set_obstacle(0.09, 0.3).unwrap();
-    assert!(d.key("ArrowLeft", true).is_err());
+    assert!(d.key("ArrowLeft", false).is_err());
     assert_eq!(pair(&state(&d)["obstacle"]), [0.09, 0.3]);
+    // a adds one, selected; Delete removes it.
+    assert!(d.key("a", false).unwrap());
+    assert_eq!(state(&d)["obstacles"].as_array().unwrap().len(), 2);
+    assert_eq!(state(&d)["selected_index"], 1);
+    assert!(d.key("Delete", false).unwrap());
+    assert_eq!(state(&d)["obstacles"].as_array().unwrap().len(), 1);
+    assert_eq!(state(&d)["selected"], "target");
 }
 
 #[wasm_bindgen_test]
