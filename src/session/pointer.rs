@@ -10,7 +10,7 @@ use crate::planner::Planner;
 pub const DRAG_LINE_SPEED: f64 = 0.25;
 /// Shortest line planned after a drag (s).
 pub const MIN_LINE_DURATION: f64 = 1.0;
-/// How far one arrow key moves the target or the obstacle (m).
+/// How far one arrow key moves the selected item (m; `keys.rs`).
 pub const NUDGE: f64 = 0.05;
 
 /// `point` rounded to the millimetre (a non-finite coordinate stays so, for
