@@ -39,31 +39,8 @@ command -v node >/dev/null || { echo "e2e: node is not installed" >&2; exit 2; }
 cargo build --quiet --bin redundant-ik
 export REDUNDANT_IK="$root/target/debug/redundant-ik"
 
-log="$(mktemp -t e2e-serve.XXXXXX)"
-python3 scripts/serve.py --port 0 --dir www --quiet >"$log" 2>&1 &
-server=$!
-cleanup() {
-  kill "$server" 2>/dev/null || true
-  wait "$server" 2>/dev/null || true
-  rm -f "$log"
-}
-trap cleanup EXIT INT TERM
-
-url=""
-for _ in $(seq 1 100); do
-  url="$(grep -o 'http://127\.0\.0\.1:[0-9]*/' "$log" | head -n1 || true)"
-  [[ -n "$url" ]] && break
-  if ! kill -0 "$server" 2>/dev/null; then
-    echo "e2e: the static server did not start:" >&2
-    cat "$log" >&2
-    exit 1
-  fi
-  sleep 0.05
-done
-if [[ -z "$url" ]]; then
-  echo "e2e: the static server printed no URL" >&2
-  exit 1
-fi
-echo "e2e: serving www/ at $url"
+# shellcheck source=scripts/serve-lib.sh
+source scripts/serve-lib.sh
+serve_dir e2e www
 
 BASE_URL="$url" CHROMIUM="$chromium" node "tests/e2e/${E2E_SCRIPT:-e2e.mjs}"

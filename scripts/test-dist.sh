@@ -31,24 +31,8 @@ fi
   [[ -d node_modules/playwright-core ]] || npm ci --no-audit --no-fund --loglevel=error
 )
 
-log="$(mktemp -t dist-serve.XXXXXX)"
-python3 scripts/serve.py --port 0 --dir dist --prefix "$prefix" --quiet >"$log" 2>&1 &
-server=$!
-cleanup() {
-  kill "$server" 2>/dev/null || true
-  wait "$server" 2>/dev/null || true
-  rm -f "$log"
-}
-trap cleanup EXIT INT TERM
-
-url=""
-for _ in $(seq 1 100); do
-  url="$(grep -o "http://127\.0\.0\.1:[0-9]*$prefix" "$log" | head -n1 || true)"
-  [[ -n "$url" ]] && break
-  kill -0 "$server" 2>/dev/null || { echo "test-dist: the static server did not start:" >&2; cat "$log" >&2; exit 1; }
-  sleep 0.05
-done
-[[ -n "$url" ]] || { echo "test-dist: the static server printed no URL" >&2; exit 1; }
-echo "test-dist: serving dist/ at $url"
+# shellcheck source=scripts/serve-lib.sh
+source scripts/serve-lib.sh
+serve_dir test-dist dist --prefix "$prefix"
 
 BASE_URL="$url" CHROMIUM="$chromium" node tests/e2e/dist.mjs

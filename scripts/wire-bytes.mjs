@@ -11,25 +11,18 @@
 //
 //   node scripts/wire-bytes.mjs [DIR]     # after make web (or make dist: DIR=dist)
 
-import { spawn, execFileSync } from 'node:child_process';
+import { execFileSync } from 'node:child_process';
 import { statSync } from 'node:fs';
 import { join, resolve, dirname } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { launchChromium } from '../tests/e2e/chromium.mjs';
+import { serve } from '../tests/e2e/serve.mjs';
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 const dir = resolve(root, process.argv[2] ?? 'www');
 
-const server = spawn('python3', [join(root, 'scripts/serve.py'), '--port', '0', '--dir', dir, '--quiet']);
-const base = await new Promise((ok, fail) => {
-  let out = '';
-  server.stdout.on('data', (d) => {
-    out += d;
-    const m = out.match(/http:\/\/127\.0\.0\.1:\d+\//);
-    if (m) ok(m[0]);
-  });
-  server.on('exit', (code) => fail(new Error(`serve.py exited (${code})`)));
-});
+const server = await serve(dir);
+const base = server.url;
 
 const browser = await launchChromium();
 const context = await browser.newContext({ viewport: { width: 1280, height: 900 } });
@@ -64,7 +57,7 @@ await page.selectOption('#network-set', 'reach');
 await page.waitForFunction(() => window.demo.state().network_set === 'reach');
 await settle();
 await browser.close();
-server.kill();
+server.stop();
 if (errors.length) throw new Error(`page exceptions: ${errors.join('; ')}`);
 
 const gzip = (file) => execFileSync('gzip', ['-9', '-c', file], { maxBuffer: 1 << 26 }).length;

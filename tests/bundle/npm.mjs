@@ -9,12 +9,12 @@
 // included. Run by `make test-npm`.
 
 import assert from 'node:assert/strict';
-import { execFileSync, spawn } from 'node:child_process';
+import { execFileSync } from 'node:child_process';
 import { mkdtempSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { createInterface } from 'node:readline';
 import { open, root, run, shots, test } from './browser.mjs';
+import { serve } from '../e2e/serve.mjs';
 
 const tarball = readdirSync(join(root, 'target/npm')).find((f) => /^redundant-ik-.*\.tgz$/.test(f));
 assert.ok(tarball, 'target/npm has no tarball: run make npm');
@@ -34,11 +34,8 @@ const pages = {
 };
 for (const [name, html] of Object.entries(pages)) writeFileSync(join(scratch, name), html);
 
-const server = spawn('python3', [join(root, 'scripts/serve.py'), '--port', '0', '--dir', scratch, '--quiet'], { stdio: ['ignore', 'pipe', 'ignore'] });
-const base = await new Promise((resolve, reject) => {
-  createInterface({ input: server.stdout }).once('line', (l) => resolve(l.match(/http:\/\/127\.0\.0\.1:\d+\//)?.[0]));
-  server.once('exit', () => reject(new Error('scripts/serve.py did not start')));
-});
+const server = await serve(scratch);
+const base = server.url;
 
 const READY = 'redundant-ik-demo[data-ready="true"]';
 const fetched = (p, re) => p.requests.filter((u) => re.test(u)).map((u) => u.slice(base.length));
@@ -119,6 +116,6 @@ test('the widget: its module text alone renders the element from the traits; a t
 });
 
 await run('npm', () => {
-  server.kill();
+  server.stop();
   rmSync(scratch, { recursive: true, force: true });
 });

@@ -13,11 +13,11 @@
 // embed-fallback.png, embed-load-failed.png, embed-file.png.
 
 import { join } from 'node:path';
-import { spawn } from 'node:child_process';
 import { mkdtempSync, writeFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import assert from 'node:assert/strict';
 import { browser, test, open, clean, state, shots, BASE, here } from './harness.mjs';
+import { serve } from './serve.mjs';
 
 /** What a scene is (the settings an address or attributes give), not where the run is. */
 const scene = (s) => ({
@@ -240,20 +240,6 @@ test('embed: the Embed button shows an iframe and an element of the scene, each 
   await blankPage.close();
 });
 
-/** Starts scripts/serve.py on a free port for `dir` (with --cors if asked); resolves to { url, stop }. */
-function serve(dir, cors) {
-  return new Promise((resolve, reject) => {
-    const args = [join(here, '../../scripts/serve.py'), '--port', '0', '--dir', dir, '--quiet', ...(cors ? ['--cors'] : [])];
-    const server = spawn('python3', args);
-    let out = '';
-    server.stdout.on('data', (d) => {
-      out += d;
-      const m = out.match(/http:\/\/127\.0\.0\.1:\d+\//);
-      if (m) resolve({ url: m[0], stop: () => server.kill() });
-    });
-    server.on('exit', (code) => reject(new Error(`serve.py exited (${code}): ${out}`)));
-  });
-}
 
 test('embed: a course page on another origin shows the fallback text without CORS and runs the element with it; a module that cannot be fetched is said', async () => {
   // The course pages, served on a port of their own (another origin than www/'s).
@@ -262,7 +248,7 @@ test('embed: a course page on another origin shows the fallback text without COR
     `<script type="module" src="${base}redundant-ik-demo.js"></script>` +
     `<redundant-ik-demo id="far" task="1" method="numerical">If this text stays, the demo's script could not load: its server must send Access-Control-Allow-Origin.</redundant-ik-demo>`;
   const www = join(here, '../../www');
-  const [site, cors] = await Promise.all([serve(dir, false), serve(www, true)]);
+  const [site, cors] = await Promise.all([serve(dir), serve(www, ['--cors'])]);
   try {
     writeFileSync(join(dir, 'plain.html'), course(snippet(BASE)));
     writeFileSync(join(dir, 'cors.html'), course(snippet(cors.url)));
