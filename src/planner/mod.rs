@@ -60,6 +60,9 @@ pub struct Planner {
     track: Track,
     stats: Stats,
     auto_damping: bool,
+    /// Whether every point of the track lies in the arm's reach (found
+    /// where the track is made: the page's state reads it every frame).
+    reachable: bool,
     /// The state as the page and the CLI see it, refreshed in place.
     sample: Sample,
     ws: Workspace,
@@ -129,7 +132,8 @@ impl Planner {
         ws.pose.update(&scene.arm, theta.as_slice())?;
         let start = ws.pose.end_effector();
         let track = Track::new(scene.path.clone(), start, scene.target, 0.0, scene.tf);
-        let auto_damping = needs_auto_damping(&scene, &track);
+        let reachable = track.reachable(&scene.arm);
+        let auto_damping = scene.damping.is_none() && !reachable;
         if auto_damping {
             scene.damping = Some(DampingSchedule::default());
         }
@@ -144,6 +148,7 @@ impl Planner {
             track,
             stats: Stats::new(),
             auto_damping,
+            reachable,
             ws,
         };
         p.refresh_sample(methods::Note::default());
@@ -240,16 +245,16 @@ impl Planner {
         &self.track
     }
 
+    /// Whether every point of the path (the target, for the line) lies in
+    /// the arm's reach.
+    pub fn reachable(&self) -> bool {
+        self.reachable
+    }
+
     /// The networks in use, if any.
     pub fn networks(&self) -> Option<&Arc<dyn Surrogate>> {
         self.networks.as_ref()
     }
-}
-
-/// Whether the damping schedule must be switched on: a point of the path
-/// (the target, for the line) lies outside the workspace.
-fn needs_auto_damping(scene: &Scene, track: &Track) -> bool {
-    scene.damping.is_none() && !track.reachable(&scene.arm)
 }
 
 /// Methods that use networks need them, and networks must be trained for

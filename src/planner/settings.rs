@@ -5,7 +5,7 @@
 use std::sync::Arc;
 
 use super::methods::{DELTA, LAMBDA};
-use super::{check_networks, needs_auto_damping, Line, Method, Planner, Surrogate, Track};
+use super::{check_networks, Line, Method, Planner, Surrogate, Track};
 use crate::arm::{JointLimits, RateLimits};
 use crate::error::{coordinate, positive, Error, Result};
 use crate::ik::DampingSchedule;
@@ -54,7 +54,10 @@ impl Planner {
             ),
             path: crate::scene::Path::Line,
         };
-        if needs_auto_damping(&self.scene, &self.track) {
+        self.reachable = self.track.reachable(&self.scene.arm);
+        // The damping schedule is switched on where a point of the path
+        // (the target, for the line) lies outside the workspace.
+        if self.scene.damping.is_none() && !self.reachable {
             self.scene.damping = Some(DampingSchedule::default());
             self.auto_damping = true;
         }

@@ -255,7 +255,7 @@ impl Session {
                 super::Handle::Target => 0,
                 super::Handle::Obstacle(i) | super::Handle::Joint(i) => i,
             },
-            out_of_reach: !p.track().reachable(&scene.arm),
+            out_of_reach: !p.reachable(),
             feedback: scene.feedback_gain,
             theta: &s.theta,
             joints: &s.joints,
