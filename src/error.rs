@@ -285,9 +285,9 @@ impl fmt::Display for Error {
             Error::ObstacleOnPost { x, y, radius } => write!(
                 f,
                 "obstacle at ({}, {}) with radius {} overlaps the fixed base post; move it away from the post",
-                Mm(*x),
-                Mm(*y),
-                Mm(*radius)
+                Short(*x),
+                Short(*y),
+                Short(*radius)
             ),
             Error::Singular(msg) => write!(f, "singular pose: {msg}"),
             Error::Diverged { t } => write!(
@@ -355,12 +355,14 @@ impl fmt::Display for Num {
     }
 }
 
-/// A length in metres to the millimetre, trailing zeros dropped: a
-/// dragged obstacle's centre is quoted as `0.6`, not `0.6000000238418579`
-/// or `-0.00000007629394550197807` (issue 27).
-struct Mm(f64);
+/// A number with at most three decimals, trailing zeros dropped (a length
+/// to the millimetre, an angle to the milliradian): a dragged obstacle's
+/// centre is quoted as `0.6`, not `0.6000000238418579` or
+/// `-0.00000007629394550197807`, a preset's limit as `2.094` (issue 27).
+/// For messages and the figures' captions.
+pub(crate) struct Short(pub(crate) f64);
 
-impl fmt::Display for Mm {
+impl fmt::Display for Short {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if !self.0.is_finite() {
             return write!(f, "{}", self.0);

@@ -22,7 +22,7 @@ use plotters_backend::{
     BackendColor, BackendCoord, BackendStyle, BackendTextStyle, DrawingErrorKind,
 };
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, Short};
 use crate::planner::Method;
 use crate::scene::Scene;
 
@@ -193,12 +193,12 @@ pub fn caption(task: u32, scene: &Scene, method: Method) -> String {
         let ranges: Vec<String> = l
             .ranges()
             .iter()
-            .map(|[lo, hi]| format!("{}:{}", short(*lo), short(*hi)))
+            .map(|[lo, hi]| format!("{}:{}", Short(*lo), Short(*hi)))
             .collect();
         parts.push(format!("joint limits {} rad", ranges.join(",")));
     }
     if let Some(r) = scene.arm.rate_limits() {
-        let rates: Vec<String> = r.rates().iter().map(|x| short(*x)).collect();
+        let rates: Vec<String> = r.rates().iter().map(|x| Short(*x).to_string()).collect();
         parts.push(format!("rate limits {} rad/s", rates.join(",")));
     }
     if !scene.weighting.is_none() {
@@ -253,16 +253,6 @@ pub fn caption(task: u32, scene: &Scene, method: Method) -> String {
     }
     parts.push(format!("dt = {} s, tf = {} s", scene.dt, scene.tf));
     parts.join(" · ")
-}
-
-/// `x` with at most three decimals, trailing zeros dropped (for captions).
-fn short(x: f64) -> String {
-    let text = format!("{x:.3}");
-    let text = text.trim_end_matches('0').trim_end_matches('.');
-    match text {
-        "-0" => "0".into(),
-        t => t.into(),
-    }
 }
 
 /// Font size and line height of the caption under a figure.
