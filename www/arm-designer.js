@@ -228,14 +228,13 @@ export function mountArmDesigner(root, demo, { setArm, attempt, show, changed })
       el.obstacleList.replaceChildren(...items.map((it) => it.li));
       nearestShown = null;
     }
-    const mm = (v) => String(Number(v.toFixed(3)));
     s.obstacles.forEach((o, i) => {
       const it = items[i];
       const centre = `${o.centre[0]},${o.centre[1]}`;
       if (it.centre !== centre) {
         it.centre = centre;
-        follow(it.x, mm(o.centre[0]));
-        follow(it.y, mm(o.centre[1]));
+        follow(it.x, o.centre[0]);
+        follow(it.y, o.centre[1]);
       }
       if (it.radius !== o.radius && document.activeElement !== it.r) it.r.value = String((it.radius = o.radius));
     });

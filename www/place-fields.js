@@ -35,8 +35,8 @@ export function mountTargetFields(root, demo, { attempt, changed }) {
     const key = `${s.target[0]},${s.target[1]}`;
     if (key === shown) return;
     shown = key;
-    follow(x, mm(s.target[0]));
-    follow(y, mm(s.target[1]));
+    follow(x, s.target[0]);
+    follow(y, s.target[1]);
   };
 }
 
@@ -46,13 +46,14 @@ export function applied(...fields) {
 }
 
 /**
- * Writes `text` into a number `field` unless the user has typed there
- * something not yet applied (a focused field whose text is not the one
- * last written), so a drag never overwrites a half-typed number.
+ * Writes `metres` (to the millimetre) into a number `field` unless the
+ * user has typed there something not yet applied (a focused field whose
+ * text is not the one last written), so a drag never overwrites a
+ * half-typed number.
  */
-export function follow(field, text) {
+export function follow(field, metres) {
   const edited = field.matches(':focus') && field.value !== field.dataset.written;
   if (edited) return;
-  field.value = text;
+  field.value = mm(metres);
   field.dataset.written = field.value;
 }
