@@ -436,14 +436,20 @@ impl Demo {
     /// Redraws the stage and the plots.
     pub fn draw(&self) {
         let k = self.magnify;
-        let (stage, view) = (self.stage.magnified(k), self.view().magnified(k));
-        let drawn = stage::draw(&self.session, &stage, view, self.layer.as_ref(), self.shown);
+        // The surfaces as they are, or magnified for projector mode (a
+        // copy of their handles only then: this runs every frame).
+        let magnified = |s: &Surface| (k != 1.0).then(|| s.magnified(k));
+        let big_stage = magnified(&self.stage);
+        let stage = big_stage.as_ref().unwrap_or(&self.stage);
+        let view = self.view().magnified(k);
+        let drawn = stage::draw(&self.session, stage, view, self.layer.as_ref(), self.shown);
         self.drawn.set(drawn);
         if self.keyboard {
-            self.ring_selected(&stage, view);
+            self.ring_selected(stage, view);
         }
         if let Some(p) = &self.plots {
-            plots::draw(&self.session, &p.magnified(k));
+            let big = magnified(p);
+            plots::draw(&self.session, big.as_ref().unwrap_or(p));
         }
     }
 }
