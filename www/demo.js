@@ -293,7 +293,7 @@ export async function mount(root, options = {}) {
   // button styles, made small): back to the whole reach after a zoom.
   const fitButton = document.createElement('button');
   Object.assign(fitButton, { type: 'button', id: 'fit-view', textContent: 'Fit' });
-  fitButton.title = 'Show the whole reach (key 0); zoom with the wheel, two fingers or + and -, drag the empty drawing to pan';
+  fitButton.title = 'Show the whole reach (key 0); zoom with the wheel, two fingers or + and -, pan with the mouse on the empty drawing or two fingers';
   // On a touch screen a tap target of 44 px, as every control there (a11y.css).
   const tap = window.matchMedia?.('(pointer: coarse)').matches ? 44 : 0;
   fitButton.style.cssText = `position: absolute; top: 6px; right: 6px; flex: none; min-height: ${tap}px; min-width: ${tap}px; padding: 1px 8px; font-size: 12px;`;

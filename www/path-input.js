@@ -75,6 +75,15 @@ export function mountPath(root, demo, { attempt, changed, stage }) {
     },
     true,
   );
+  // A finger drawing the path does not scroll the page (the stage lets one
+  // finger on nothing scroll it: stage-input.js).
+  stage.addEventListener(
+    'touchstart',
+    (e) => {
+      if (drawing) e.preventDefault();
+    },
+    { passive: false },
+  );
   stage.addEventListener(
     'pointercancel',
     (e) => {

@@ -50,7 +50,7 @@ const STYLE = `
 }
 :host(:focus-visible) { outline: 2px solid #6ea0dc; outline-offset: 2px; }
 .wrap { position: relative; }
-#stage { display: block; width: 100%; aspect-ratio: 14 / 11; touch-action: none; user-select: none; }
+#stage { display: block; width: 100%; aspect-ratio: 14 / 11; touch-action: pan-y; user-select: none; }
 #stage:focus { outline: none; }
 #stage:focus-visible { outline: 2px solid #6ea0dc; outline-offset: 2px; }
 #plots { display: block; width: 100%; height: 300px; margin-top: 6px; }

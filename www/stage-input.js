@@ -1,7 +1,7 @@
 // Pointer and keyboard on the stage: drag the target and the obstacles
 // (mouse and touch), a long press or a double-click removes an obstacle, a
 // click adds one (while the playground asks for it) or picks an atlas cell,
-// the arrow keys move the target (Shift: the obstacle), + - and 0 zoom and
+// n selects an item and the arrow keys move it (Shift: fine steps), + - and 0 zoom and
 // fit, the wheel (a trackpad's pinch: ctrl+wheel) and two fingers zoom
 // about the pointer, a drag on the empty drawing pans, and the page-wide
 // keys (space plays or pauses where no control has the focus, r resets;
@@ -75,7 +75,25 @@ export function wireStage(stage, demo, { attempt, changed, togglePlay, reset, at
     if (longPress) clearTimeout(longPress.timer);
     longPress = null;
   };
-  let press = null; // { id, x, y, at, pan } of a press on no handle: a click on an atlas cell, or a pan
+  let press = null; // { id, x, y, at, pan, hold, held } of a press on no handle: a click on an atlas cell, a pan, a finger held on a cell
+  const endPress = () => {
+    if (press?.hold) clearTimeout(press.hold);
+    press = null;
+  };
+  // A touch the page takes (a grab, a pinch, placing an obstacle) does not
+  // scroll the page; one finger on nothing does (issue 27: a swipe that
+  // began on the drawing did not scroll the phone's page). The stage's
+  // touch-action is pan-y (style.css); pointerdown runs before touchstart,
+  // so `claimed` is known when touchstart may cancel the scroll.
+  let claimed = false;
+  const claim = (e) => {
+    if (claimed || e.touches.length > 1) e.preventDefault();
+  };
+  stage.addEventListener('touchstart', claim, { passive: false });
+  stage.addEventListener('touchmove', claim, { passive: false });
+  stage.addEventListener('touchend', (e) => {
+    if (e.touches.length === 0) claimed = false;
+  });
   const local = (e) => {
     const r = stage.getBoundingClientRect();
     return [e.clientX - r.left, e.clientY - r.top];
@@ -95,20 +113,35 @@ export function wireStage(stage, demo, { attempt, changed, togglePlay, reset, at
         // A second finger: the first one's drag or press becomes a pinch.
         if (held !== null) demo.pointerCancel();
         held = null;
-        press = null;
+        endPress();
         cancelLongPress();
         pinch = twoFingers();
+        claimed = true;
         e.preventDefault();
         return;
       }
     }
     if (held !== null || (e.pointerType === 'mouse' && e.button !== 0)) return;
     const [x, y] = local(e);
-    const what = playground.wantsClick() ? undefined : demo.pointerDown(x, y, slopFor(e));
+    if (e.pointerType === 'touch') atlas.leave(); // a cell's details shown by a held finger go with the next touch
+    const placing = playground.wantsClick();
+    const what = placing ? undefined : demo.pointerDown(x, y, slopFor(e));
     if (!what) {
-      press = { id: e.pointerId, x, y, at: [x, y], pan: false };
+      endPress();
+      press = { id: e.pointerId, x, y, at: [x, y], pan: false, hold: null, held: false };
+      if (e.pointerType === 'touch') {
+        claimed = placing;
+        // A finger held still on the atlas map shows that cell's numbers,
+        // as the mouse's hover does; lifting it leaves them until the next touch.
+        const mine = press;
+        press.hold = setTimeout(() => {
+          if (press !== mine) return;
+          mine.held = atlas.hover(x, y) !== undefined;
+        }, LONG_PRESS_MS);
+      }
       return;
     }
+    claimed = true;
     if (what === 'obstacle' && e.pointerType !== 'mouse') {
       // A long press on an obstacle removes it.
       const i = demo.state().dragging_obstacle;
@@ -140,6 +173,14 @@ export function wireStage(stage, demo, { attempt, changed, togglePlay, reset, at
       pinch = now;
       return;
     }
+    if (press && press.id === e.pointerId && e.pointerType === 'touch') {
+      // One finger on nothing pans nothing (two fingers do); moving it ends a hold.
+      if (press.hold && Math.hypot(x - press.x, y - press.y) >= slopFor(e)) {
+        clearTimeout(press.hold);
+        press.hold = null;
+      }
+      return;
+    }
     if (press && press.id === e.pointerId && (press.pan || Math.hypot(x - press.x, y - press.y) >= 6)) {
       if (!press.pan) stage.setPointerCapture(e.pointerId);
       press.pan = true;
@@ -156,18 +197,23 @@ export function wireStage(stage, demo, { attempt, changed, togglePlay, reset, at
       stage.style.cursor = handle ? 'grab' : cell !== undefined ? 'pointer' : 'default';
     }
   });
-  stage.addEventListener('pointerleave', () => atlas.leave());
+  // A finger leaves the drawing as it lifts: the numbers a held finger showed stay until the next touch.
+  stage.addEventListener('pointerleave', (e) => e.pointerType !== 'touch' && atlas.leave());
   const lift = (e) => {
     touches.delete(e.pointerId);
     if (touches.size < 2) pinch = null;
   };
-  stage.addEventListener('pointercancel', lift);
+  stage.addEventListener('pointercancel', (e) => {
+    lift(e);
+    // The browser took the finger to scroll the page.
+    if (press?.id === e.pointerId) endPress();
+  });
   stage.addEventListener('pointerup', (e) => {
     lift(e);
     if (!press || press.id !== e.pointerId) return;
     const [x, y] = local(e);
-    const near = !press.pan && Math.hypot(x - press.x, y - press.y) < 6;
-    press = null;
+    const near = !press.pan && !press.held && Math.hypot(x - press.x, y - press.y) < (e.pointerType === 'touch' ? slopFor(e) : 6);
+    endPress();
     if (!near) return;
     if (playground.wantsClick()) attempt(() => playground.click(x, y));
     else attempt(() => atlas.click(x, y), 'warn');

@@ -134,6 +134,28 @@ export function mountTakeaway(root, demo, { show, link }) {
     }
   });
 
+  // ---- one Tab stop for the row (WAI-ARIA's toolbar pattern) -------------
+  // The row sits under the drawing and before the controls in the document;
+  // as one Tab stop it no longer puts seven buttons between the drawing and
+  // the method menu (issue 27). The arrows, Home and End move along it; the
+  // button last used keeps the stop.
+  const bar = $('takeaway');
+  const buttons = bar ? [...bar.querySelectorAll('button')] : [];
+  const rove = (to) => {
+    for (const b of buttons) b.tabIndex = b === to ? 0 : -1;
+  };
+  rove(buttons[0]);
+  bar?.addEventListener('focusin', (e) => buttons.includes(e.target) && rove(e.target));
+  bar?.addEventListener('keydown', (e) => {
+    const at = buttons.indexOf(e.target);
+    if (at < 0 || e.ctrlKey || e.metaKey || e.altKey) return;
+    const last = buttons.length - 1;
+    const to = { ArrowRight: at + 1, ArrowDown: at + 1, ArrowLeft: at - 1, ArrowUp: at - 1, Home: 0, End: last }[e.key];
+    if (to === undefined) return;
+    e.preventDefault();
+    buttons[(to + buttons.length) % buttons.length].focus();
+  });
+
   // ---- Embed: the dialog with the two snippets -------------------------
   const dialog = $('embed-dialog');
   const open = $('embed-open');

@@ -302,3 +302,103 @@ test('a11y: the element has the live region and the drawing summary too', async 
   assert.deepEqual(problems, []);
   await context.close();
 });
+
+/** One finger from `a` to `b` (client px) through the DevTools protocol, optionally held still first. */
+async function finger(page, a, b, { steps = 12, holdMs = 0 } = {}) {
+  const cdp = await page.context().newCDPSession(page);
+  const at = ([x, y]) => [{ x, y, id: 1, radiusX: 4, radiusY: 4, force: 1 }];
+  await cdp.send('Input.dispatchTouchEvent', { type: 'touchStart', touchPoints: at(a) });
+  if (holdMs) await page.waitForTimeout(holdMs);
+  for (let i = 1; i <= steps && (a[0] !== b[0] || a[1] !== b[1]); i++) {
+    const f = i / steps;
+    await cdp.send('Input.dispatchTouchEvent', { type: 'touchMove', touchPoints: at([a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1])]) });
+  }
+  await cdp.send('Input.dispatchTouchEvent', { type: 'touchEnd', touchPoints: [] });
+  await cdp.detach();
+}
+
+test('a11y: the phone: a swipe that starts on the empty drawing scrolls the page; one on the target drags it; a finger held on an atlas cell shows its numbers', async () => {
+  const page = await open('?task=1&method=numerical', PHONE);
+  await pause(page);
+  const client = (p) => page.evaluate(([x, y]) => window.demo.worldToClient(x, y), p).then((c) => [c.x, c.y]);
+  const view = () => page.evaluate(() => JSON.stringify(window.demo.controller.demo.worldToCanvas(0, 0)));
+  // On nothing (left of the base, above the floor): the page scrolls, the view stays.
+  const empty = await client([-1.6, 0.25]);
+  const before = { view: await view(), target: (await state(page)).target };
+  await finger(page, empty, [empty[0], empty[1] - 220]);
+  await page.waitForTimeout(300);
+  const scrolled = await page.evaluate(() => scrollY);
+  assert.ok(scrolled > 100, `the page scrolled ${scrolled} px`);
+  assert.equal(await view(), before.view, 'one finger on nothing does not pan the view');
+  assert.deepEqual((await state(page)).target, before.target);
+  // On the target: the target follows, the page stays.
+  await page.evaluate(() => window.scrollTo(0, 0));
+  await page.waitForTimeout(100);
+  const s = await state(page);
+  const grab = await client(s.target);
+  await finger(page, grab, [grab[0], grab[1] - 60]);
+  await page.waitForTimeout(200);
+  assert.equal(await page.evaluate(() => scrollY), 0, 'a drag does not scroll the page');
+  assert.ok((await state(page)).target[1] > s.target[1] + 0.2, `the target moved up to ${(await state(page)).target}`);
+  // Touch and hold on an atlas cell: the tip with that cell's numbers, and no obstacle moved; the next touch hides it.
+  const atlas = await page.evaluate(() => window.demo.atlas({ methods: ['numerical'], n: 11 }));
+  await page.evaluate(() => window.scrollTo(0, 0));
+  const obstacle = (await state(page)).obstacle;
+  const k = atlas.cells.findIndex((c) => c.x < -0.5 && c.y > 0.4 && c.y < 1.5);
+  assert.ok(k >= 0, 'a cell left of the base');
+  const cell = await client([atlas.cells[k].x, atlas.cells[k].y]);
+  await finger(page, cell, cell, { holdMs: 900 });
+  await page.waitForSelector('#atlas-tip:not([hidden])', { timeout: 3000 });
+  assert.equal(await page.getAttribute('#atlas-tip', 'data-cell'), String(k));
+  assert.match(await page.textContent('#atlas-tip'), /^obstacle at/);
+  assert.deepEqual((await state(page)).obstacle, obstacle, 'a hold is not a tap: the obstacle stays');
+  await page.screenshot({ path: join(shots, 'a11y-phone-hold.png') });
+  // (A tap: a finger that stays down 600 ms is a hold, so no moves that a loaded machine could stretch.)
+  await finger(page, empty, empty);
+  assert.equal(await page.isHidden('#atlas-tip'), true, 'the next touch hides the tip');
+  clean(page);
+  await page.close();
+});
+
+test('a11y: Save and share is one Tab stop (arrows move along it), and it does not move while a run plays', async () => {
+  const page = await open('?task=1&method=qp&arm=iiwa-planar&obstacles=0.9,0.9,0.08;1.4,0.5,0.06&target=1.1,0.6&influence=0.25&weighting=wln&floor=1&path=circle:1.1,1.0&tf=6', DESKTOP);
+  // Where the row's last button is, sampled while the run plays and ends (the notes beside the drawing come and go).
+  const seen = new Set();
+  for (let i = 0; i < 40 && seen.size < 4; i++) {
+    seen.add(await page.evaluate(() => { const r = document.getElementById('embed-open').getBoundingClientRect(); return `${Math.round(r.x)},${Math.round(r.y + scrollY)}`; }));
+    await page.waitForTimeout(200);
+  }
+  assert.equal((await state(page)).ended, true, 'the run ended while sampled');
+  assert.equal(seen.size, 1, `the Embed button stayed put: ${[...seen].join(' ')}`);
+  // Tab from the drawing: the row once, then the method menu within a few stops.
+  await page.focus('#stage');
+  const stops = [];
+  for (let i = 0; i < 6 && stops.at(-1) !== 'mode'; i++) {
+    await page.keyboard.press('Tab');
+    stops.push(await page.evaluate(() => document.activeElement.id || document.activeElement.tagName));
+  }
+  assert.equal(stops.filter((id) => /^save-|^copy-link$|^embed-open$/.test(id)).length, 1, `one stop in the row: ${stops.join(' ')}`);
+  assert.ok(stops.includes('mode'), `the method menu follows: ${stops.join(' ')}`);
+  await page.focus('#save-figure-svg');
+  await page.keyboard.press('ArrowRight');
+  assert.equal(await page.evaluate(() => document.activeElement.id), 'save-figure-png');
+  await page.keyboard.press('End');
+  assert.equal(await page.evaluate(() => document.activeElement.id), 'embed-open');
+  await page.keyboard.press('ArrowRight');
+  assert.equal(await page.evaluate(() => document.activeElement.id), 'save-figure-svg', 'the arrows wrap');
+  // The button last used keeps the stop; Enter still does what it does.
+  await page.keyboard.press('End');
+  await page.focus('#mode');
+  await page.keyboard.press('Shift+Tab');
+  const back = [];
+  for (let i = 0; i < 4 && back.at(-1) !== 'embed-open'; i++) {
+    back.push(await page.evaluate(() => document.activeElement.id || document.activeElement.tagName));
+    if (back.at(-1) !== 'embed-open') await page.keyboard.press('Shift+Tab');
+  }
+  assert.equal(back.at(-1), 'embed-open', `Shift+Tab comes back to the last used button: ${back.join(' ')}`);
+  await page.keyboard.press('Enter');
+  assert.equal(await page.isVisible('#embed-dialog'), true, 'Enter opens the dialog');
+  await page.keyboard.press('Escape');
+  clean(page);
+  await page.close();
+});
