@@ -356,6 +356,19 @@ pub(crate) enum Swatch {
     Dashed(RGBColor, u32),
 }
 
+/// The size of a legend's labels (px).
+const LEGEND_TEXT: f64 = 13.0;
+
+/// The width in pixels of the box [`draw_legend`] draws for `entries`.
+pub(crate) fn legend_width(entries: &[(Swatch, String)]) -> i32 {
+    entries
+        .iter()
+        .map(|(_, l)| text_size(l, LEGEND_TEXT).0 as i32)
+        .max()
+        .unwrap_or(0)
+        + 44
+}
+
 /// Draws a legend (a framed box of swatches and labels) in `area`'s pixel
 /// coordinates, its top-left or top-right corner at `at` (`right`: `at`
 /// is the top-right corner).
@@ -365,14 +378,9 @@ pub(crate) fn draw_legend(
     at: (i32, i32),
     right: bool,
 ) -> std::result::Result<(), String> {
-    const SIZE: f64 = 13.0;
+    const SIZE: f64 = LEGEND_TEXT;
     let line = 17;
-    let width = entries
-        .iter()
-        .map(|(_, l)| text_size(l, SIZE).0 as i32)
-        .max()
-        .unwrap_or(0)
-        + 44;
+    let width = legend_width(entries);
     let height = line * entries.len() as i32 + 10;
     let x0 = if right { at.0 - width } else { at.0 };
     let y0 = at.1;

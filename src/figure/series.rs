@@ -9,8 +9,8 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
 use super::{
-    caption, caption_lines, colour, draw_caption, draw_legend, draw_title, hex, svg, why, Area,
-    Swatch, TITLE_HEIGHT,
+    caption, caption_lines, colour, draw_caption, draw_legend, draw_title, hex, legend_width, svg,
+    why, Area, Swatch, TITLE_HEIGHT,
 };
 use crate::error::Result;
 use crate::planner::{Method, Trajectory};
@@ -51,12 +51,49 @@ fn panel<'a, 'b>(
     Ok(chart)
 }
 
+/// The width of the charts of [`series_svg`] and [`compare_svg`]; their
+/// legends get a column of their own to the right (issue 27: drawn inside
+/// a chart, a legend covered curves: the θ3 curve, and in the comparison
+/// of ten methods most of the later half of the run).
+const CHARTS_WIDTH: u32 = 820;
+
+/// The width of the legends' column for `legends`, with its margins.
+fn legend_column(legends: &[&[(Swatch, String)]]) -> u32 {
+    legends
+        .iter()
+        .map(|l| legend_width(l))
+        .max()
+        .unwrap_or(0)
+        .max(0) as u32
+        + 20
+}
+
 /// A run's time series as SVG: the clearance between the links and the
 /// nearest obstacle's edge (0, contact, dashed), tracking error and joint
-/// angles, one panel each, and the caption line.
+/// angles, one panel each with its legend beside it, and the caption line.
 pub fn series_svg(task: u32, scene: &Scene, run: &Trajectory) -> Result<String> {
-    let size = (820u32, 760u32);
     let t1 = run.steps.last().map_or(0.0, |s| s.t).max(1e-9);
+    // Clearance to the nearest obstacle's edge (0: contact), as the
+    // page's plots and readouts give it.
+    let clearance: Vec<(f64, f64)> = run
+        .steps
+        .iter()
+        .filter_map(|s| s.clearance.map(|c| (s.t, c)))
+        .collect();
+    let clearance_legend = if clearance.is_empty() {
+        Vec::new()
+    } else {
+        vec![
+            (Swatch::Line(colour::ARM, 2), "nearest link".to_string()),
+            (Swatch::Dashed(colour::DANGER, 1), "contact".to_string()),
+        ]
+    };
+    let joints = scene.arm.dof();
+    let joint_legend: Vec<(Swatch, String)> = (0..joints)
+        .map(|i| (Swatch::Line(colour::joint(i), 2), format!("θ{}", i + 1)))
+        .collect();
+    let column = legend_column(&[&clearance_legend, &joint_legend]);
+    let size = (CHARTS_WIDTH + column, 760u32);
     let head = format!("Task {task}, {} over time", run.method.label());
     let (lines, foot_height) = caption_lines(&caption(task, scene, run.method), size.0);
     let size = (size.0, size.1 - 30 + foot_height);
@@ -66,15 +103,10 @@ pub fn series_svg(task: u32, scene: &Scene, run: &Trajectory) -> Result<String> 
         let h = root.dim_in_pixel().1;
         let (panels, foot) = root.split_vertically(h - foot_height);
         draw_caption(&foot, &lines)?;
+        let (panels, legends) = panels.split_horizontally(CHARTS_WIDTH);
         let areas = panels.split_evenly((3, 1));
+        let keys = legends.split_evenly((3, 1));
 
-        // Clearance to the nearest obstacle's edge (0: contact), as the
-        // page's plots and readouts give it.
-        let clearance: Vec<(f64, f64)> = run
-            .steps
-            .iter()
-            .filter_map(|s| s.clearance.map(|c| (s.t, c)))
-            .collect();
         let (lo, hi) = clearance_range(clearance.iter().map(|p| p.1));
         let mut chart = panel(&areas[0], 0.0..t1, lo..hi, "clearance to obstacle (m)")?;
         if !clearance.is_empty() {
@@ -89,12 +121,7 @@ pub fn series_svg(task: u32, scene: &Scene, run: &Trajectory) -> Result<String> 
             chart
                 .draw_series(LineSeries::new(clearance, colour::ARM.stroke_width(2)))
                 .map_err(why)?;
-            let legend = [
-                (Swatch::Line(colour::ARM, 2), "nearest link".to_string()),
-                (Swatch::Dashed(colour::DANGER, 1), "contact".to_string()),
-            ];
-            let (w, _) = areas[0].dim_in_pixel();
-            draw_legend(&areas[0], &legend, (w as i32 - 24, 16), true)?;
+            draw_legend(&keys[0], &clearance_legend, LEGEND_AT, false)?;
         }
 
         let error: Vec<(f64, f64)> = run.steps.iter().map(|s| (s.t, s.tracking_error)).collect();
@@ -114,33 +141,27 @@ pub fn series_svg(task: u32, scene: &Scene, run: &Trajectory) -> Result<String> 
         }
         let pad = ((hi - lo) * 0.1).max(0.1);
         let mut chart = panel(&areas[2], 0.0..t1, lo - pad..hi + pad, "joint angles (rad)")?;
-        let joints = scene.arm.dof();
-        let mut legend = Vec::new();
         for i in 0..joints {
-            let c = colour::joint(i);
             chart
                 .draw_series(LineSeries::new(
                     run.steps
                         .iter()
                         .filter_map(|s| s.theta.get(i).map(|v| (s.t, *v))),
-                    c.stroke_width(2),
+                    colour::joint(i).stroke_width(2),
                 ))
                 .map_err(why)?;
-            legend.push((Swatch::Line(c, 2), format!("θ{}", i + 1)));
         }
-        let (w, _) = areas[2].dim_in_pixel();
-        draw_legend(&areas[2], &legend, (w as i32 - 24, 16), true)
+        draw_legend(&keys[2], &joint_legend, LEGEND_AT, false)
     })
 }
 
-/// Colour of a method ([`Method::info`]'s).
-fn method_colour(method: Method) -> RGBColor {
-    hex(method.info().colour)
-}
+/// Where a legend's box starts in its column: level with the chart's top
+/// (the charts' margin is 12 px).
+const LEGEND_AT: (i32, i32) = (4, 12);
 
 /// Every run of one scene over time, as SVG: the clearance between the
 /// links and the nearest obstacle's edge (0, contact, dashed), and the
-/// tracking error on a log scale.
+/// tracking error on a log scale, each with its legend beside it.
 pub fn compare_svg(task: u32, scene: &Scene, runs: &[Trajectory]) -> Result<String> {
     let tf = runs
         .iter()
@@ -148,6 +169,34 @@ pub fn compare_svg(task: u32, scene: &Scene, runs: &[Trajectory]) -> Result<Stri
         .fold(0.0, f64::max)
         .max(1e-9);
     let has_obstacle = !scene.obstacles.is_empty();
+    let mut clearance_legend = Vec::new();
+    if has_obstacle {
+        clearance_legend.push((Swatch::Dashed(colour::DANGER, 1), "contact".to_string()));
+    }
+    for r in runs {
+        let min = r
+            .summary
+            .min_clearance
+            .map_or(String::new(), |d| format!(", min {d:.4} m"));
+        clearance_legend.push((
+            Swatch::Line(method_colour(r.method), 2),
+            format!("{}{min}", r.method.label()),
+        ));
+    }
+    let error_legend: Vec<(Swatch, String)> = runs
+        .iter()
+        .map(|r| {
+            (
+                Swatch::Line(method_colour(r.method), 2),
+                format!(
+                    "{}, final {:.1e} m",
+                    r.method.label(),
+                    r.summary.final_error
+                ),
+            )
+        })
+        .collect();
+    let width = CHARTS_WIDTH + legend_column(&[&clearance_legend, &error_legend]);
     let title = format!("Task {task}: the methods over time");
     let line = caption(
         task,
@@ -157,13 +206,15 @@ pub fn compare_svg(task: u32, scene: &Scene, runs: &[Trajectory]) -> Result<Stri
     let line = line
         .split_once(" · ")
         .map_or(line.clone(), |(_, rest)| rest.to_string());
-    let (lines, foot_height) = caption_lines(&line, 820);
-    svg((820, 720 + foot_height), |root| {
+    let (lines, foot_height) = caption_lines(&line, width);
+    svg((width, 720 + foot_height), |root| {
         let root = root.titled(&title, ("sans-serif", 18)).map_err(why)?;
         let h = root.dim_in_pixel().1;
         let (charts, foot) = root.split_vertically(h - foot_height);
         draw_caption(&foot, &lines)?;
+        let (charts, legends) = charts.split_horizontally(CHARTS_WIDTH);
         let (top, bottom) = charts.split_vertically(330);
+        let (top_key, bottom_key) = legends.split_vertically(330);
 
         // Clearance to the nearest obstacle's edge (0: contact).
         let (lo, hi) = clearance_range(
@@ -171,7 +222,6 @@ pub fn compare_svg(task: u32, scene: &Scene, runs: &[Trajectory]) -> Result<Stri
                 .flat_map(|r| r.steps.iter().filter_map(|s| s.clearance)),
         );
         let mut chart = panel(&top, 0.0..tf, lo..hi, "clearance to obstacle (m)")?;
-        let mut legend = Vec::new();
         if has_obstacle {
             chart
                 .draw_series(DashedLineSeries::new(
@@ -181,24 +231,16 @@ pub fn compare_svg(task: u32, scene: &Scene, runs: &[Trajectory]) -> Result<Stri
                     colour::DANGER.stroke_width(1),
                 ))
                 .map_err(why)?;
-            legend.push((Swatch::Dashed(colour::DANGER, 1), "contact".to_string()));
         }
         for r in runs {
-            let c = method_colour(r.method);
-            let min = r
-                .summary
-                .min_clearance
-                .map_or(String::new(), |d| format!(", min {d:.4} m"));
             chart
                 .draw_series(LineSeries::new(
                     r.steps.iter().filter_map(|s| s.clearance.map(|d| (s.t, d))),
-                    c.stroke_width(2),
+                    method_colour(r.method).stroke_width(2),
                 ))
                 .map_err(why)?;
-            legend.push((Swatch::Line(c, 2), format!("{}{min}", r.method.label())));
         }
-        let (w, _) = top.dim_in_pixel();
-        draw_legend(&top, &legend, (w as i32 - 24, 16), true)?;
+        draw_legend(&top_key, &clearance_legend, LEGEND_AT, false)?;
 
         // Tracking error, log scale (exact zeros drawn at the floor).
         const FLOOR: f64 = 1e-12;
@@ -222,26 +264,19 @@ pub fn compare_svg(task: u32, scene: &Scene, runs: &[Trajectory]) -> Result<Stri
             .bold_line_style(colour::BOLD)
             .draw()
             .map_err(why)?;
-        let mut legend = Vec::new();
         for r in runs {
-            let c = method_colour(r.method);
             chart
                 .draw_series(LineSeries::new(
                     r.steps.iter().map(|s| (s.t, s.tracking_error.max(FLOOR))),
-                    c.stroke_width(2),
+                    method_colour(r.method).stroke_width(2),
                 ))
                 .map_err(why)?;
-            legend.push((
-                Swatch::Line(c, 2),
-                format!(
-                    "{}, final {:.1e} m",
-                    r.method.label(),
-                    r.summary.final_error
-                ),
-            ));
         }
-        let (w, h) = bottom.dim_in_pixel();
-        let top_of_legend = h as i32 - 48 - 17 * legend.len() as i32 - 10;
-        draw_legend(&bottom, &legend, (w as i32 - 24, top_of_legend), true)
+        draw_legend(&bottom_key, &error_legend, LEGEND_AT, false)
     })
+}
+
+/// Colour of a method ([`Method::info`]'s).
+fn method_colour(method: Method) -> RGBColor {
+    hex(method.info().colour)
 }

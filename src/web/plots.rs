@@ -76,7 +76,7 @@ pub fn draw(s: &Session, surface: &Surface) {
         frame.line(ctx, &[[t0, 0.0], [t1, 0.0]]);
         dash(ctx, &[]);
         let (_, y) = frame.px(t1, 0.0);
-        let font = format!("10px {FONT}");
+        let font = format!("11px {FONT}");
         text(
             ctx,
             &font,
@@ -184,7 +184,7 @@ impl Frame {
 
     fn axes(&self, ctx: &CanvasRenderingContext2d, title: &str) {
         let bold = format!("600 11px {FONT}");
-        let small = format!("10px {FONT}");
+        let small = format!("11px {FONT}");
         text(
             ctx,
             &bold,

@@ -49,6 +49,58 @@ fn figure_writes_an_svg_and_all_writes_every_task_and_method() {
         svg.contains("min 0.1693 m"),
         "Task 2's numerical clearance to the edge"
     );
+    legends_clear_of_the_curves(&svg, "the comparison");
+
+    let plots = scratch("plots.svg");
+    ok(&[
+        "figure",
+        "--task",
+        "1",
+        "--plots",
+        "--out",
+        plots.to_str().unwrap(),
+    ]);
+    legends_clear_of_the_curves(&std::fs::read_to_string(&plots).unwrap(), "a run's plots");
+}
+
+/// Every legend box (plotters' white rectangle at opacity 0.9) lies right
+/// of every curve (a polyline of more than two points): issue 27 found the
+/// legends drawn over the θ3 curve and over most of the comparison's later
+/// half.
+fn legends_clear_of_the_curves(svg: &str, what: &str) {
+    let attr = |tag: &str, name: &str| -> Option<String> {
+        let at = tag.find(&format!(" {name}=\""))? + name.len() + 3;
+        Some(tag[at..].split('"').next()?.to_string())
+    };
+    let tags = |name: &str| -> Vec<String> {
+        svg.split(&format!("<{name} "))
+            .skip(1)
+            .map(|t| format!(" {}", t.split('>').next().unwrap_or("")))
+            .collect()
+    };
+    let boxes: Vec<f64> = tags("rect")
+        .iter()
+        .filter(|t| attr(t, "opacity").as_deref() == Some("0.9"))
+        .filter_map(|t| attr(t, "x")?.parse().ok())
+        .collect();
+    assert!(!boxes.is_empty(), "{what}: legends found");
+    let right_of_curves = tags("polyline")
+        .iter()
+        .filter_map(|t| attr(t, "points"))
+        .filter(|p| p.split_whitespace().count() > 2)
+        .flat_map(|p| {
+            p.split_whitespace()
+                .filter_map(|xy| xy.split(',').next()?.parse::<f64>().ok())
+                .collect::<Vec<_>>()
+        })
+        .fold(f64::NEG_INFINITY, f64::max);
+    assert!(right_of_curves.is_finite(), "{what}: curves found");
+    for x in boxes {
+        assert!(
+            x > right_of_curves,
+            "{what}: a legend at x = {x} over the curves (they reach {right_of_curves})"
+        );
+    }
 }
 
 /// The caption names each obstacle's radius where they differ (issue 27:
