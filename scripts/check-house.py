@@ -32,7 +32,7 @@ LAYERS = [
     ["geometry", "qp"],
     ["arm"],
     ["kinematics"],
-    ["ik", "obstacle"],
+    ["ik", "obstacle", "space"],
     ["nn", "clearance"],
     ["scene"],
     ["planner"],

@@ -140,6 +140,21 @@ pub enum Error {
         /// Obstacle radius.
         radius: f64,
     },
+    /// A method that has no rule for an arm in space (yet).
+    NotInSpace {
+        /// The method's name.
+        method: &'static str,
+        /// The methods that do, for the message.
+        choices: String,
+    },
+    /// A sphere that overlaps the fixed base of a chain in space, where the
+    /// arm cannot avoid it.
+    SphereOnBase {
+        /// Its centre.
+        centre: [f64; 3],
+        /// Its radius.
+        radius: f64,
+    },
     /// `J J^T + delta I` (eq. 17) cannot be solved: the arm is at a singular pose and no
     /// damping is on.
     Singular(String),
@@ -289,6 +304,18 @@ impl fmt::Display for Error {
                 Short(*y),
                 Short(*radius)
             ),
+            Error::NotInSpace { method, choices } => write!(
+                f,
+                "method {method} does not run an arm in space; for the Panda and the iiwa choose {choices}"
+            ),
+            Error::SphereOnBase { centre, radius } => write!(
+                f,
+                "sphere at ({}, {}, {}) with radius {} overlaps the arm's fixed base; move it away from the base",
+                Short(centre[0]),
+                Short(centre[1]),
+                Short(centre[2]),
+                Short(*radius)
+            ),
             Error::Singular(msg) => write!(f, "singular pose: {msg}"),
             Error::Diverged { t } => write!(
                 f,
@@ -382,76 +409,6 @@ pub(crate) fn clip(text: &str) -> String {
     }
 }
 
-/// Checks that `value` is finite, naming it in the error.
-pub(crate) fn finite(what: &str, value: f64) -> Result<f64> {
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        Err(Error::NonFinite { what: what.into() })
-    }
-}
-
-/// Largest coordinate (m) accepted for a target or an obstacle: far beyond
-/// any arm's reach, small enough that squared distances cannot overflow.
-pub const MAX_COORDINATE: f64 = 1.0e4;
-
-/// Checks that a coordinate or length in metres is finite and within
-/// [`MAX_COORDINATE`] of zero.
-pub(crate) fn coordinate(what: &str, value: f64) -> Result<f64> {
-    finite(what, value)?;
-    if value.abs() <= MAX_COORDINATE {
-        Ok(value)
-    } else {
-        Err(Error::TooLarge {
-            what: what.into(),
-            value,
-            max: MAX_COORDINATE,
-            unit: "m",
-        })
-    }
-}
-
-/// Checks that `value` is finite and strictly positive.
-pub(crate) fn positive(what: &str, value: f64) -> Result<f64> {
-    finite(what, value)?;
-    if value > 0.0 {
-        Ok(value)
-    } else {
-        Err(Error::NotPositive {
-            what: what.into(),
-            value,
-        })
-    }
-}
-
-/// Checks that `value` is finite and in `[min, max]`.
-pub(crate) fn within(what: &str, value: f64, min: f64, max: f64) -> Result<f64> {
-    finite(what, value)?;
-    if (min..=max).contains(&value) {
-        Ok(value)
-    } else {
-        Err(Error::OutOfRange {
-            what: what.into(),
-            value,
-            min,
-            max,
-        })
-    }
-}
-
-/// Checks that `value` is finite and not negative.
-pub(crate) fn non_negative(what: &str, value: f64) -> Result<f64> {
-    finite(what, value)?;
-    if value >= 0.0 {
-        Ok(value)
-    } else {
-        Err(Error::Negative {
-            what: what.into(),
-            value,
-        })
-    }
-}
-
 /// Names for a message: `"a, b or c"`.
 pub(crate) fn choices(names: &[&str]) -> String {
     match names.split_last() {
@@ -491,6 +448,10 @@ pub(crate) fn by_name<T: Copy>(
             choices: choices(&all.iter().map(|&t| name(t)).collect::<Vec<_>>()),
         })
 }
+
+mod checks;
+pub use checks::MAX_COORDINATE;
+pub(crate) use checks::{coordinate, finite, non_negative, positive, within};
 
 #[cfg(test)]
 mod tests;

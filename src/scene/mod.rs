@@ -8,6 +8,7 @@ use std::f64::consts::PI;
 mod file;
 mod params;
 mod path;
+mod space;
 mod weighting;
 
 use crate::arm::Arm;
@@ -19,6 +20,7 @@ pub use file::{ParamMap, SceneFile};
 pub(crate) use params::validate_gain;
 pub use params::{Param, Params, Scale, MAX_GAIN_STEP};
 pub use path::{Path, DRAWN_SPACING, MAX_LAPS, MAX_POINTS, MIN_RADIUS};
+pub use space::SpaceScene;
 pub use weighting::JointWeighting;
 
 /// The paper's final end-effector position for both tasks, `Xf = (0.60, 0.20)`.

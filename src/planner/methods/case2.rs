@@ -24,4 +24,5 @@ static ENTRY: Entry = Entry {
         params: &[&LAMBDA, &DELTA],
     },
     rule: |n| paper::rule(n, CASE2, V::Network, Phi::Exact),
+    space: None,
 };

@@ -64,6 +64,7 @@ static ENTRY: Entry = Entry {
             weights: JointWeights::new(n),
         })
     },
+    space: None,
 };
 
 #[derive(Clone)]

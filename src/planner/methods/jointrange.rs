@@ -54,6 +54,7 @@ static ENTRY: Entry = Entry {
         params: &[&JOINT_RANGE_GAIN, &DELTA],
     },
     rule: |n| projection::rule(n, gradient),
+    space: None,
 };
 
 /// `v = k_r grad w` (zero for an arm without limits).

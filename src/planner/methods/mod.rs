@@ -19,6 +19,7 @@
 mod influence;
 mod paper;
 mod projection;
+pub mod space;
 mod weighting;
 
 pub use distance::DISTANCE_GAIN;
@@ -67,6 +68,16 @@ register! {
 /// The constraints of the `qp` method's program, one file each
 /// (`qp/constraints/`): the velocity dampers and the joint-rate limit.
 pub use qp::constraints;
+
+/// The names of the methods that run an arm in space, for messages.
+pub fn space_names() -> String {
+    crate::error::choices(
+        &ALL.iter()
+            .filter(|m| m.in_space())
+            .map(|m| m.name())
+            .collect::<Vec<_>>(),
+    )
+}
 
 /// The five methods of the paper's section VI, in its order (Figs. 2-6 and
 /// 7-11). The atlas, `bench` and `eval` default to these.
@@ -240,6 +251,9 @@ pub struct Entry {
     pub info: MethodInfo,
     /// Builds the rule for an `n`-joint arm.
     pub rule: fn(n: usize) -> Box<dyn Rule>,
+    /// Builds the rule for an `n`-joint chain in space, where the method
+    /// has one.
+    pub space: Option<fn(n: usize) -> Box<dyn space::SpaceRule>>,
 }
 
 /// A redundancy-resolution method: a handle on its registration.
@@ -328,6 +342,19 @@ impl Method {
     /// Its rule for an `n`-joint arm, with its scratch space.
     pub fn rule(self, n: usize) -> Box<dyn Rule> {
         (self.0.rule)(n)
+    }
+
+    /// Its rule for an `n`-joint chain in space, or why it has none.
+    pub fn space_rule(self, n: usize) -> Result<Box<dyn space::SpaceRule>> {
+        self.0.space.map(|b| b(n)).ok_or_else(|| Error::NotInSpace {
+            method: self.name(),
+            choices: space_names(),
+        })
+    }
+
+    /// Whether it runs an arm in space.
+    pub fn in_space(self) -> bool {
+        self.0.space.is_some()
     }
 
     /// The names of [`ALL`], for messages: `"none, numerical, ... or case3"`.

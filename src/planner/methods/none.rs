@@ -21,4 +21,5 @@ static ENTRY: Entry = Entry {
         params: &[&DELTA],
     },
     rule: |n| paper::rule(n, NO_AVOIDANCE, V::Zero, Phi::Exact),
+    space: Some(|n| super::space::paper::rule(n, NO_AVOIDANCE, V::Zero)),
 };

@@ -21,4 +21,5 @@ static ENTRY: Entry = Entry {
         params: &[&LAMBDA, &DELTA, &SIGN_SMOOTHING],
     },
     rule: |n| paper::rule(n, NUMERICAL, V::Exact, Phi::Exact),
+    space: Some(|n| super::space::paper::rule(n, NUMERICAL, V::Exact)),
 };

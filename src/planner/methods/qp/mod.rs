@@ -97,6 +97,7 @@ static ENTRY: Entry = Entry {
         ],
     },
     rule: |n| Box::new(Qp::new(n)),
+    space: None,
 };
 
 /// The program's scratch space, sized for an `n`-joint arm and grown

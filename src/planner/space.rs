@@ -1,0 +1,290 @@
+//! The RK4 planner for an arm in space: the hand along its straight line
+//! at constant speed (the paper's section V with `m = 3`), each rate
+//! evaluation through the method's spatial rule, and a sample of what a
+//! run records after each step. A planner owns its poses and scratch
+//! space: a step allocates nothing.
+
+use serde::Serialize;
+
+use super::methods::space::{SpaceContext, SpaceRule};
+use super::methods::Method;
+use crate::error::{Error, Result};
+use crate::scene::SpaceScene;
+use crate::space::{clearance, SpacePose, Vec3};
+
+/// What a spatial run records after each step.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SpaceSample {
+    /// Time (s).
+    pub t: f64,
+    /// Joint angles (rad).
+    pub theta: Vec<f64>,
+    /// The hand.
+    pub hand: Vec3,
+    /// Where the line has the hand at `t`.
+    pub reference: Vec3,
+    /// `|hand - reference|` (m).
+    pub tracking_error: f64,
+    /// The smallest signed distance between the moving capsules and the
+    /// spheres (m; negative: inside), `None` without spheres.
+    pub clearance: Option<f64>,
+    /// How many joints are past a limit.
+    pub past_limits: usize,
+    /// The constraints of a program were relaxed in this step.
+    pub relaxed: bool,
+}
+
+/// A spatial run's outcome.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SpaceSummary {
+    /// Steps taken.
+    pub steps: usize,
+    /// The smallest clearance over the run (m), `None` without spheres.
+    pub min_clearance: Option<f64>,
+    /// Steps with a capsule inside a sphere.
+    pub collision_steps: usize,
+    /// Steps with a joint past a limit.
+    pub limit_steps: usize,
+    /// Steps whose program was relaxed.
+    pub relaxed_steps: usize,
+    /// The largest tracking error (m).
+    pub max_error: f64,
+    /// The hand's distance from the target at the end (m).
+    pub final_error: f64,
+}
+
+/// A spatial run: every sample from `t = 0`, and its summary.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SpaceTrajectory {
+    /// The method.
+    pub method: Method,
+    /// The samples, `t = 0` first.
+    pub samples: Vec<SpaceSample>,
+    /// The outcome.
+    pub summary: SpaceSummary,
+}
+
+/// The RK4 planner of one method on one spatial scene.
+pub struct SpacePlanner {
+    scene: SpaceScene,
+    method: Method,
+    rule: Box<dyn SpaceRule>,
+    theta: Vec<f64>,
+    step_index: usize,
+    start: Vec3,
+    pose: SpacePose,
+    stage: SpacePose,
+    k: [Vec<f64>; 4],
+    theta_stage: Vec<f64>,
+    next: Vec<f64>,
+    sample: SpaceSample,
+}
+
+impl SpacePlanner {
+    /// A planner of `method` on `scene` at `t = 0`; refused when the scene
+    /// does not validate or the method has no rule in space.
+    pub fn new(scene: SpaceScene, method: Method) -> Result<Self> {
+        scene.validate()?;
+        let n = scene.chain.dof();
+        let rule = method.space_rule(n)?;
+        let pose = SpacePose::new(&scene.chain, &scene.theta0)?;
+        let start = pose.hand();
+        let theta = scene.theta0.clone();
+        let mut planner = Self {
+            rule,
+            method,
+            theta,
+            step_index: 0,
+            start,
+            stage: pose.clone(),
+            pose,
+            k: [vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]],
+            theta_stage: vec![0.0; n],
+            next: vec![0.0; n],
+            sample: SpaceSample {
+                t: 0.0,
+                theta: vec![0.0; n],
+                hand: start,
+                reference: start,
+                tracking_error: 0.0,
+                clearance: None,
+                past_limits: 0,
+                relaxed: false,
+            },
+            scene,
+        };
+        planner.refresh_sample(false);
+        Ok(planner)
+    }
+
+    /// The scene.
+    pub fn scene(&self) -> &SpaceScene {
+        &self.scene
+    }
+
+    /// The method.
+    pub fn method(&self) -> Method {
+        self.method
+    }
+
+    /// The sample of the current state.
+    pub fn sample(&self) -> &SpaceSample {
+        &self.sample
+    }
+
+    /// The current pose.
+    pub fn pose(&self) -> &SpacePose {
+        &self.pose
+    }
+
+    /// Time (s).
+    pub fn t(&self) -> f64 {
+        self.step_index as f64 * self.scene.dt
+    }
+
+    /// Whether the run has reached `tf`.
+    pub fn done(&self) -> bool {
+        self.step_index >= self.scene.steps()
+    }
+
+    /// The line's velocity (constant).
+    fn line_velocity(&self) -> Vec3 {
+        let tf = self.scene.tf;
+        [0, 1, 2].map(|k| (self.scene.target[k] - self.start[k]) / tf)
+    }
+
+    /// Where the line has the hand at `t` (the target after `tf`).
+    pub fn reference(&self, t: f64) -> Vec3 {
+        let s = (t / self.scene.tf).clamp(0.0, 1.0);
+        [0, 1, 2].map(|k| self.start[k] + s * (self.scene.target[k] - self.start[k]))
+    }
+
+    /// The joint rates at `theta` for hand velocity `xdot` (a convenience
+    /// that allocates; the step uses the planner's scratch space).
+    pub fn theta_dot(&mut self, theta: &[f64], xdot: Vec3) -> Result<Vec<f64>> {
+        let pose = SpacePose::new(&self.scene.chain, theta)?;
+        let mut out = vec![0.0; theta.len()];
+        let cx = SpaceContext { scene: &self.scene };
+        self.rule.theta_dot(&cx, &pose, xdot, &mut out)?;
+        Ok(out)
+    }
+
+    /// One classical RK4 step; on error the state is left unchanged.
+    /// Allocation-free.
+    pub fn step(&mut self) -> Result<&SpaceSample> {
+        let h = self.scene.dt;
+        let t = self.t();
+        let v = self.line_velocity();
+        let gain = self.scene.feedback_gain;
+        let (start, target, tf) = (self.start, self.scene.target, self.scene.tf);
+        let reference = |tt: f64| {
+            let s = (tt / tf).clamp(0.0, 1.0);
+            [0, 1, 2].map(|k| start[k] + s * (target[k] - start[k]))
+        };
+        let xdot = |tt: f64, pose: &SpacePose| -> Vec3 {
+            if gain > 0.0 {
+                let (r, x) = (reference(tt), pose.hand());
+                [0, 1, 2].map(|k| v[k] + gain * (r[k] - x[k]))
+            } else {
+                v
+            }
+        };
+        let Self {
+            scene,
+            rule,
+            theta,
+            pose,
+            stage,
+            k,
+            theta_stage,
+            next,
+            ..
+        } = self;
+        let cx = SpaceContext { scene };
+        let [k1, k2, k3, k4] = k;
+        let mut note = rule.theta_dot(&cx, pose, xdot(t, pose), k1)?;
+        for (s, (c, tt)) in [(0.5 * h, t + 0.5 * h), (0.5 * h, t + 0.5 * h), (h, t + h)]
+            .into_iter()
+            .enumerate()
+        {
+            let (prev, out): (&[f64], &mut [f64]) = match s {
+                0 => (&k1[..], &mut k2[..]),
+                1 => (&k2[..], &mut k3[..]),
+                _ => (&k3[..], &mut k4[..]),
+            };
+            for ((st, th), kk) in theta_stage.iter_mut().zip(theta.iter()).zip(prev) {
+                *st = th + c * kk;
+            }
+            stage.update(&scene.chain, theta_stage)?;
+            let n2 = rule.theta_dot(&cx, stage, xdot(tt, stage), out)?;
+            note.relaxed |= n2.relaxed;
+        }
+        let w = h / 6.0;
+        let mut finite = true;
+        for (i, nx) in next.iter_mut().enumerate() {
+            *nx = theta[i] + w * (((k1[i] + 2.0 * k2[i]) + 2.0 * k3[i]) + k4[i]);
+            finite &= nx.abs() <= crate::arm::MAX_ANGLE;
+        }
+        if !finite {
+            return Err(Error::Diverged { t });
+        }
+        theta.copy_from_slice(next);
+        pose.update(&scene.chain, next)?;
+        self.step_index += 1;
+        self.refresh_sample(note.relaxed);
+        Ok(&self.sample)
+    }
+
+    fn refresh_sample(&mut self, relaxed: bool) {
+        let t = self.t();
+        let reference = self.reference(t);
+        let hand = self.pose.hand();
+        let s = &mut self.sample;
+        s.t = t;
+        s.theta.copy_from_slice(&self.theta);
+        s.hand = hand;
+        s.reference = reference;
+        s.tracking_error = dist(hand, reference);
+        s.clearance = (!self.scene.spheres.is_empty())
+            .then(|| clearance(&self.scene.chain, &self.pose, &self.scene.spheres));
+        s.past_limits = self.scene.chain.joint_limits().map_or(0, |l| {
+            l.ranges()
+                .iter()
+                .zip(&self.theta)
+                .filter(|(r, &th)| th < r[0] || th > r[1])
+                .count()
+        });
+        s.relaxed = relaxed;
+    }
+
+    /// Runs to `tf` from the current state, recording every sample.
+    pub fn run(mut self) -> Result<SpaceTrajectory> {
+        let mut samples = Vec::with_capacity(self.scene.steps() + 1);
+        samples.push(self.sample.clone());
+        while !self.done() {
+            samples.push(self.step()?.clone());
+        }
+        let target = self.scene.target;
+        let summary = SpaceSummary {
+            steps: samples.len() - 1,
+            min_clearance: samples.iter().filter_map(|s| s.clearance).reduce(f64::min),
+            collision_steps: samples
+                .iter()
+                .filter(|s| s.clearance.is_some_and(|c| c < 0.0))
+                .count(),
+            limit_steps: samples.iter().filter(|s| s.past_limits > 0).count(),
+            relaxed_steps: samples.iter().filter(|s| s.relaxed).count(),
+            max_error: samples.iter().map(|s| s.tracking_error).fold(0.0, f64::max),
+            final_error: dist(self.pose.hand(), target),
+        };
+        Ok(SpaceTrajectory {
+            method: self.method,
+            samples,
+            summary,
+        })
+    }
+}
+
+fn dist(a: Vec3, b: Vec3) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}

@@ -1,0 +1,365 @@
+//! A serial chain of revolute joints in space, from modified (Craig)
+//! Denavit-Hartenberg rows (Craig, *Introduction to Robotics*, 3rd ed.,
+//! 2005, sec. 3.4): joint `i`'s frame follows frame `i - 1` by
+//! `T = Rx(alpha_(i-1)) Tx(a_(i-1)) Rz(theta_i + offset_i) Tz(d_i)`, and the
+//! hand (the flange) sits at a fixed point of the last frame. The row of
+//! joint `i` holds `a_(i-1)`, `alpha_(i-1)`, `d_i` and `offset_i`, as
+//! Robotics Toolbox's `RevoluteMDH(a, alpha, d, offset)` and Franka's FCI
+//! table write them.
+//!
+//! The links' volumes are capsules of one radius on the segments between
+//! consecutive distinct frame origins (the base's origin, the joint frames'
+//! origins, the flange): a segment ends at a frame's origin, so it moves
+//! with the joints before that frame. Two origins coincide when `a_(i-1)`
+//! and `d_i` are both zero (a structural test, for every pose). The first
+//! segment, from the base to the first joint's origin, moves with no joint:
+//! the chain's fixed base, as the planar arm's post is.
+
+use serde::{Deserialize, Serialize};
+
+use crate::arm::{JointLimits, RateLimits};
+use crate::error::{coordinate, finite, non_negative, Error, Result};
+
+/// Fewest joints a [`Chain`] may have: three, to position a hand in space.
+pub const MIN_JOINTS: usize = 3;
+
+/// Most joints a [`Chain`] may have.
+pub const MAX_JOINTS: usize = 16;
+
+/// One modified Denavit-Hartenberg row: joint `i`'s frame from frame `i - 1`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Row {
+    /// `a_(i-1)`: along `x_(i-1)` (m).
+    pub a: f64,
+    /// `alpha_(i-1)`: about `x_(i-1)` (rad).
+    pub alpha: f64,
+    /// `d_i`: along `z_i` (m).
+    pub d: f64,
+    /// Added to `theta_i` (rad): the joint's zero in the row's terms.
+    pub offset: f64,
+}
+
+impl Row {
+    /// A row with no offset.
+    pub const fn new(a: f64, alpha: f64, d: f64) -> Self {
+        Self {
+            a,
+            alpha,
+            d,
+            offset: 0.0,
+        }
+    }
+}
+
+/// A segment of the chain's volume: from one distinct frame origin to the
+/// next, moved by joints `1..=moved_by` (none for the base).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct Segment {
+    /// The index of its start among the pose's points (see
+    /// [`super::SpacePose::points`]).
+    pub from: usize,
+    /// The index of its end.
+    pub to: usize,
+    /// How many joints, from the first, move it (0: the fixed base).
+    pub moved_by: usize,
+}
+
+/// A serial chain of revolute joints in space: a base placement, one
+/// modified DH row per joint, the flange in the last frame, the capsules'
+/// radius and the joints' limits.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Chain {
+    /// The base frame in the world: a rotation (rows) and a translation.
+    base: ([[f64; 3]; 3], [f64; 3]),
+    rows: Vec<Row>,
+    /// The flange in the last joint's frame (m).
+    flange: [f64; 3],
+    /// The capsules' radius (m).
+    radius: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    joint_limits: Option<JointLimits>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rate_limits: Option<RateLimits>,
+    /// The volume's segments, found once from the rows.
+    #[serde(skip)]
+    segments: Vec<Segment>,
+}
+
+/// The identity rotation.
+pub const IDENTITY: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+
+impl Chain {
+    /// A chain with its base at the world's origin, unrotated.
+    pub fn new(rows: Vec<Row>, flange: [f64; 3], radius: f64) -> Result<Self> {
+        Self::placed(IDENTITY, [0.0; 3], rows, flange, radius)
+    }
+
+    /// A chain whose base frame is rotated by `rotation` (a proper
+    /// rotation matrix, by rows) and moved to `origin` in the world.
+    pub fn placed(
+        rotation: [[f64; 3]; 3],
+        origin: [f64; 3],
+        rows: Vec<Row>,
+        flange: [f64; 3],
+        radius: f64,
+    ) -> Result<Self> {
+        if !(MIN_JOINTS..=MAX_JOINTS).contains(&rows.len()) {
+            return Err(Error::LinkCount {
+                found: rows.len(),
+                min: MIN_JOINTS,
+                max: MAX_JOINTS,
+            });
+        }
+        for (i, r) in rows.iter().enumerate() {
+            let j = i + 1;
+            coordinate(&format!("a of joint {j}"), r.a)?;
+            finite(&format!("alpha of joint {j}"), r.alpha)?;
+            coordinate(&format!("d of joint {j}"), r.d)?;
+            finite(&format!("offset of joint {j}"), r.offset)?;
+        }
+        for (&f, axis) in flange.iter().zip(["x", "y", "z"]) {
+            coordinate(&format!("flange {axis}"), f)?;
+        }
+        for (&o, axis) in origin.iter().zip(["x", "y", "z"]) {
+            coordinate(&format!("base {axis}"), o)?;
+        }
+        non_negative("capsule radius", radius)?;
+        coordinate("capsule radius", radius)?;
+        check_rotation(&rotation)?;
+        let segments = segments(&rows, flange);
+        Ok(Self {
+            base: (rotation, origin),
+            rows,
+            flange,
+            radius,
+            joint_limits: None,
+            rate_limits: None,
+            segments,
+        })
+    }
+
+    /// The chain with these limits (each `None` for unlimited); refused
+    /// when a list does not have one entry per joint.
+    pub fn with_limits(
+        mut self,
+        joint_limits: Option<JointLimits>,
+        rate_limits: Option<RateLimits>,
+    ) -> Result<Self> {
+        let n = self.dof();
+        if let Some(l) = &joint_limits {
+            if l.ranges().len() != n {
+                return Err(Error::DimensionMismatch {
+                    what: "joint limits".into(),
+                    expected: n,
+                    found: l.ranges().len(),
+                });
+            }
+        }
+        if let Some(r) = &rate_limits {
+            if r.rates().len() != n {
+                return Err(Error::DimensionMismatch {
+                    what: "rate limits".into(),
+                    expected: n,
+                    found: r.rates().len(),
+                });
+            }
+        }
+        self.joint_limits = joint_limits;
+        self.rate_limits = rate_limits;
+        Ok(self)
+    }
+
+    /// Number of joints `n`.
+    pub fn dof(&self) -> usize {
+        self.rows.len()
+    }
+
+    /// The modified DH rows, joint 1 first.
+    pub fn rows(&self) -> &[Row] {
+        &self.rows
+    }
+
+    /// The base frame: its rotation (rows) and origin in the world.
+    pub fn base(&self) -> ([[f64; 3]; 3], [f64; 3]) {
+        self.base
+    }
+
+    /// The flange (the hand) in the last joint's frame.
+    pub fn flange(&self) -> [f64; 3] {
+        self.flange
+    }
+
+    /// The capsules' radius (m).
+    pub fn radius(&self) -> f64 {
+        self.radius
+    }
+
+    /// The volume's segments, the fixed base first.
+    pub fn segments(&self) -> &[Segment] {
+        &self.segments
+    }
+
+    /// The joints' position limits, if any.
+    pub fn joint_limits(&self) -> Option<&JointLimits> {
+        self.joint_limits.as_ref()
+    }
+
+    /// The joints' rate limits, if any.
+    pub fn rate_limits(&self) -> Option<&RateLimits> {
+        self.rate_limits.as_ref()
+    }
+
+    /// Checks `theta` has one finite angle per joint (within
+    /// [`crate::arm::MAX_ANGLE`]).
+    pub fn check_angles(&self, theta: &[f64]) -> Result<()> {
+        if theta.len() != self.dof() {
+            return Err(Error::DimensionMismatch {
+                what: "theta".into(),
+                expected: self.dof(),
+                found: theta.len(),
+            });
+        }
+        for (i, &t) in theta.iter().enumerate() {
+            let what = format!("theta_{}", i + 1);
+            finite(&what, t)?;
+            crate::error::within(&what, t, -crate::arm::MAX_ANGLE, crate::arm::MAX_ANGLE)?;
+        }
+        Ok(())
+    }
+
+    /// An upper bound of the hand's distance from the first joint's
+    /// origin: the sum of the rows' and the flange's lengths.
+    pub fn reach(&self) -> f64 {
+        self.rows
+            .iter()
+            .skip(1)
+            .map(|r| r.a.abs() + r.d.abs())
+            .sum::<f64>()
+            + self.rows[0].a.abs()
+            + norm(self.flange)
+    }
+}
+
+/// Refuses a base rotation that is not orthonormal with determinant 1 (to
+/// 1e-9).
+fn check_rotation(r: &[[f64; 3]; 3]) -> Result<()> {
+    for (i, row) in r.iter().enumerate() {
+        for (j, v) in row.iter().enumerate() {
+            finite(&format!("base rotation ({}, {})", i + 1, j + 1), *v)?;
+        }
+    }
+    let mut worst: f64 = 0.0;
+    for i in 0..3 {
+        for j in 0..3 {
+            let dot: f64 = (0..3).map(|k| r[i][k] * r[j][k]).sum();
+            worst = worst.max((dot - if i == j { 1.0 } else { 0.0 }).abs());
+        }
+    }
+    let det = r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1])
+        - r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0])
+        + r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]);
+    if worst > 1e-9 || (det - 1.0).abs() > 1e-9 {
+        return Err(Error::Syntax {
+            what: "base rotation",
+            text: format!("{r:?}"),
+            expected: "a rotation matrix (orthonormal rows, determinant 1)".into(),
+        });
+    }
+    Ok(())
+}
+
+/// The segments between consecutive distinct origins. The pose's points
+/// are the base's origin (index 0), the origin of each joint's frame
+/// (1..=n) and the flange (n + 1). Frame `i`'s origin follows frame
+/// `i - 1`'s by `a_(i-1)` along `x_(i-1)` and `d_i` along `z_i`; both zero,
+/// the origins coincide in every pose. The base's origin and frame 1's
+/// coincide when row 1 has neither.
+fn segments(rows: &[Row], flange: [f64; 3]) -> Vec<Segment> {
+    let n = rows.len();
+    let mut out = Vec::new();
+    let mut from = 0;
+    for (i, r) in rows.iter().enumerate() {
+        // Point i + 1 is frame (i + 1)'s origin; it moves with joints 1..=i.
+        if r.a != 0.0 || r.d != 0.0 {
+            out.push(Segment {
+                from,
+                to: i + 1,
+                moved_by: i,
+            });
+            from = i + 1;
+        }
+    }
+    if flange != [0.0; 3] || from == 0 {
+        out.push(Segment {
+            from,
+            to: n + 1,
+            moved_by: n,
+        });
+    }
+    out
+}
+
+fn norm(v: [f64; 3]) -> f64 {
+    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn panda_rows() -> Vec<Row> {
+        use std::f64::consts::FRAC_PI_2 as H;
+        let a = [0.0, 0.0, 0.0, 0.0825, -0.0825, 0.0, 0.088];
+        let d = [0.333, 0.0, 0.316, 0.0, 0.384, 0.0, 0.0];
+        let alpha = [0.0, -H, H, H, -H, H, H];
+        (0..7).map(|i| Row::new(a[i], alpha[i], d[i])).collect()
+    }
+
+    #[test]
+    fn the_pandas_volume_is_six_segments_between_distinct_origins() {
+        let c = Chain::new(panda_rows(), [0.0, 0.0, 0.107], 0.06).unwrap();
+        let s: Vec<(usize, usize, usize)> = c
+            .segments()
+            .iter()
+            .map(|s| (s.from, s.to, s.moved_by))
+            .collect();
+        // Base -> frame 1 (fixed), 1 (= 2) -> 3, 3 -> 4, 4 -> 5, 5 (= 6) -> 7, 7 -> flange.
+        assert_eq!(
+            s,
+            vec![
+                (0, 1, 0),
+                (1, 3, 2),
+                (3, 4, 3),
+                (4, 5, 4),
+                (5, 7, 6),
+                (7, 8, 7)
+            ]
+        );
+    }
+
+    #[test]
+    fn a_chain_refuses_too_few_joints_bad_numbers_and_a_bad_base() {
+        let rows = panda_rows();
+        assert!(matches!(
+            Chain::new(rows[..2].to_vec(), [0.0; 3], 0.06),
+            Err(Error::LinkCount { .. })
+        ));
+        let mut bad = rows.clone();
+        bad[3].d = f64::NAN;
+        assert!(Chain::new(bad, [0.0; 3], 0.06).is_err());
+        assert!(Chain::new(rows.clone(), [0.0; 3], -0.1).is_err());
+        let skew = [[1.0, 0.1, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        assert!(Chain::placed(skew, [0.0; 3], rows.clone(), [0.0; 3], 0.06).is_err());
+        let mirror = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, -1.0]];
+        assert!(Chain::placed(mirror, [0.0; 3], rows, [0.0; 3], 0.06).is_err());
+    }
+
+    #[test]
+    fn limits_need_one_entry_per_joint() {
+        let c = Chain::new(panda_rows(), [0.0, 0.0, 0.107], 0.06).unwrap();
+        let short = JointLimits::new(vec![[-1.0, 1.0]; 6]).unwrap();
+        assert!(c.clone().with_limits(Some(short), None).is_err());
+        let rates = RateLimits::new(vec![1.0; 7]).unwrap();
+        assert!(c.with_limits(None, Some(rates)).is_ok());
+    }
+}

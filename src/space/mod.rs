@@ -1,0 +1,21 @@
+//! Arms in space: serial chains of revolute joints from modified
+//! Denavit-Hartenberg rows ([`Chain`]), the named robots ([`PRESETS`]: the
+//! Franka Panda and the KUKA LBR iiwa 14), one kinematics pass per pose
+//! ([`SpacePose`]: the joint frames, the hand and its `3 x n` positional
+//! Jacobian), spheres as obstacles and their distances to the links'
+//! capsules ([`Sphere`], [`CapsulePair`]), and the paper's criterion
+//! generalised to space ([`criterion`]). The task is the hand's position
+//! (`m = 3`); its orientation is left free. `docs/space.md` has the
+//! models, their sources and the formulas.
+
+mod chain;
+pub mod criterion;
+pub mod linalg;
+mod pose;
+mod preset;
+mod sphere;
+
+pub use chain::{Chain, Row, Segment, IDENTITY, MAX_JOINTS, MIN_JOINTS};
+pub use pose::{SpacePose, Vec3};
+pub use preset::{SpacePreset, SpaceTask, PRESETS};
+pub use sphere::{clearance, closest, CapsulePair, Sphere, SpherePlacement, MAX_SPHERES};

@@ -1,0 +1,5 @@
+//! Arms in space as a specification: the presets' tasks, the spatial
+//! planner, and the planar arm as a chain whose axes are parallel.
+
+mod kinematics;
+mod planner;
