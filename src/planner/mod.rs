@@ -23,6 +23,7 @@ mod path;
 mod record;
 pub mod self_motion;
 mod settings;
+#[cfg(feature = "space")]
 pub mod space;
 mod surrogate;
 

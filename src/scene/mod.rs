@@ -8,6 +8,7 @@ use std::f64::consts::PI;
 mod file;
 mod params;
 mod path;
+#[cfg(feature = "space")]
 mod space;
 mod weighting;
 
@@ -20,6 +21,7 @@ pub use file::{ParamMap, SceneFile};
 pub(crate) use params::validate_gain;
 pub use params::{Param, Params, Scale, MAX_GAIN_STEP};
 pub use path::{Path, DRAWN_SPACING, MAX_LAPS, MAX_POINTS, MIN_RADIUS};
+#[cfg(feature = "space")]
 pub use space::SpaceScene;
 pub use weighting::JointWeighting;
 

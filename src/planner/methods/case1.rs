@@ -24,5 +24,6 @@ static ENTRY: Entry = Entry {
         params: &[&LAMBDA, &DELTA, &SIGN_SMOOTHING, &REFINE],
     },
     rule: |n| paper::rule(n, CASE1, V::Exact, Phi::Network),
+    #[cfg(feature = "space")]
     space: None,
 };

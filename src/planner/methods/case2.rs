@@ -24,5 +24,6 @@ static ENTRY: Entry = Entry {
         params: &[&LAMBDA, &DELTA],
     },
     rule: |n| paper::rule(n, CASE2, V::Network, Phi::Exact),
+    #[cfg(feature = "space")]
     space: None,
 };

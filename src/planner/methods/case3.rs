@@ -24,5 +24,6 @@ static ENTRY: Entry = Entry {
         params: &[&LAMBDA, &DELTA, &REFINE],
     },
     rule: |n| paper::rule(n, CASE3, V::Network, Phi::Network),
+    #[cfg(feature = "space")]
     space: None,
 };

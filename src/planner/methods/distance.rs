@@ -64,6 +64,7 @@ static ENTRY: Entry = Entry {
             weights: JointWeights::new(n),
         })
     },
+    #[cfg(feature = "space")]
     space: None,
 };
 

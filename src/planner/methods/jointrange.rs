@@ -54,6 +54,7 @@ static ENTRY: Entry = Entry {
         params: &[&JOINT_RANGE_GAIN, &DELTA],
     },
     rule: |n| projection::rule(n, gradient),
+    #[cfg(feature = "space")]
     space: None,
 };
 

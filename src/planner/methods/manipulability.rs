@@ -47,6 +47,7 @@ static ENTRY: Entry = Entry {
         params: &[&MANIPULABILITY_GAIN, &DELTA],
     },
     rule: |n| projection::rule(n, gradient),
+    #[cfg(feature = "space")]
     space: None,
 };
 

@@ -73,6 +73,7 @@ static ENTRY: Entry = Entry {
             jo: vec![0.0; n],
         })
     },
+    #[cfg(feature = "space")]
     space: None,
 };
 

@@ -97,6 +97,7 @@ static ENTRY: Entry = Entry {
         ],
     },
     rule: |n| Box::new(Qp::new(n)),
+    #[cfg(feature = "space")]
     space: None,
 };
 
