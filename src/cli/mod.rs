@@ -4,8 +4,8 @@
 
 use clap::{Parser, Subcommand};
 use redundant_ik::networks::{self, NetworkSet, Variant};
-use redundant_ik::obstacle::Placement;
 use redundant_ik::run::NetworkChoice;
+use redundant_ik::space::SpacePreset;
 use redundant_ik::{Arm, Method};
 
 pub mod atlas;
@@ -14,6 +14,7 @@ pub mod eval;
 pub mod figure;
 pub mod params;
 pub mod simulate;
+pub mod space;
 pub mod train;
 
 /// Motion planning for redundant planar arms (2 to 32 links; the paper's is
@@ -64,25 +65,37 @@ pub fn main() -> i32 {
     }
 }
 
-/// Parses `X,Y` into two numbers (finiteness is checked by the core).
-pub fn parse_pair(s: &str) -> Result<[f64; 2], String> {
-    let v = parse_list(s)?;
-    match v.as_slice() {
-        [x, y] => Ok([*x, *y]),
-        _ => Err(format!("expected two numbers X,Y, got '{s}'")),
+/// An arm as `--arm` names it: a planar arm (a preset's name or
+/// `POST:L1,L2,...`), or a chain in space by its preset's name (`panda`,
+/// `iiwa14`).
+#[derive(Debug, Clone)]
+pub enum ArmChoice {
+    /// A planar arm.
+    Planar(Arm),
+    /// An arm in space.
+    Space(&'static SpacePreset),
+}
+
+/// Parses an arm: a planar preset's name (`paper`, `four`, `five`,
+/// `iiwa-planar`), an arm in space by name (`panda`, `iiwa14`), or
+/// `POST:L1,L2,...` (post height and link lengths, m), as the core reads
+/// the syntax.
+pub fn parse_arm(s: &str) -> Result<ArmChoice, String> {
+    match SpacePreset::by_key(s.trim()) {
+        Some(p) => Ok(ArmChoice::Space(p)),
+        None => parse_planar_arm(s).map(ArmChoice::Planar),
     }
 }
 
-/// Parses `X,Y` or `X,Y,R` (an obstacle; the radius is optional), as the
-/// core reads the syntax.
-pub fn parse_obstacle(s: &str) -> Result<Placement, String> {
-    s.parse().map_err(|e: redundant_ik::Error| e.to_string())
-}
-
-/// Parses an arm: a preset's name (`paper`, `four`, `five`) or
-/// `POST:L1,L2,...` (post height and link lengths, m), as the core reads
-/// the syntax.
-pub fn parse_arm(s: &str) -> Result<Arm, String> {
+/// Parses a planar arm (a planar preset's name or `POST:L1,L2,...`); an
+/// arm in space is refused by name (`train` takes planar arms only).
+pub fn parse_planar_arm(s: &str) -> Result<Arm, String> {
+    if let Some(p) = SpacePreset::by_key(s.trim()) {
+        return Err(format!(
+            "{} is an arm in space: training takes a planar arm (networks for arms in space are not built yet)",
+            p.key
+        ));
+    }
     if let Some(p) = redundant_ik::arm::PRESETS
         .iter()
         .find(|p| p.key == s.trim())
@@ -90,6 +103,18 @@ pub fn parse_arm(s: &str) -> Result<Arm, String> {
         return Ok(p.arm());
     }
     s.parse().map_err(|e: redundant_ik::Error| e.to_string())
+}
+
+/// Numbers as written, `A,B,...`: an obstacle (`X,Y[,R]` for a planar
+/// arm, `X,Y,Z[,R]` for one in space) or a target (`X,Y` or `X,Y,Z`),
+/// read by the arm's kind once the arm is known.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Numbers(pub Vec<f64>);
+
+/// Parses a comma-separated list of numbers (their count is the arm's to
+/// check).
+pub fn parse_numbers(s: &str) -> Result<Numbers, String> {
+    parse_list(s).map(Numbers)
 }
 
 /// Parses a method name (`--method`), refused at once when unknown.

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 use redundant_ik::export::{self, RunFile};
 use redundant_ik::run::Run;
-use redundant_ik::{Arm, DampingSchedule, Method, Planner, Scene, Trajectory};
+use redundant_ik::{DampingSchedule, Method, Planner, Scene, Trajectory};
 
 use std::fmt::Write as _;
 
@@ -16,7 +16,9 @@ use redundant_ik::scene::{JointWeighting, Path};
 
 use super::params::{Given, ParamArgs};
 use super::NetworkArgs;
-use super::{emit, method_help, parse_arm, parse_list, parse_method, parse_obstacle, parse_pair};
+use super::{
+    emit, method_help, parse_arm, parse_list, parse_method, parse_numbers, ArmChoice, Numbers,
+};
 
 /// Parses `--joint-limits` (the core's syntax, `LO:HI,...`).
 fn parse_joint_limits(s: &str) -> Result<JointLimits, String> {
@@ -55,9 +57,9 @@ pub struct SceneArgs {
     #[arg(long, default_value_t = 1)]
     pub task: u32,
     /// The arm, POST:L1,L2,... in metres, or a preset's name: paper (the
-    /// default, 0.5:0.6,0.85,0.6), four, five or iiwa-planar (a KUKA iiwa14 in its plane, with its limits and its own task).
+    /// default, 0.5:0.6,0.85,0.6), four, five or iiwa-planar (a KUKA iiwa14 in its plane, with its limits and its own task); in space, panda (Franka Panda) or iiwa14 (KUKA LBR iiwa 14), each with its limits and its own task (docs/space.md).
     #[arg(long, value_parser = parse_arm, allow_hyphen_values = true)]
-    pub arm: Option<Arm>,
+    pub arm: Option<ArmChoice>,
     /// Position limits of the arm's joints, LO:HI,LO:HI,... in radians,
     /// one pair per link (e.g. -2.0944:2.0944,-2.0944:2.0944,-2.0944:2.0944);
     /// the start pose must lie within them. Default: unlimited (or the
@@ -74,9 +76,9 @@ pub struct SceneArgs {
     #[arg(long, value_parser = parse_weighting, default_value = "none")]
     pub joint_weighting: JointWeighting,
     /// Obstacle centre X,Y in metres, with its own radius X,Y,R (repeat for
-    /// several obstacles).
-    #[arg(long, value_parser = parse_obstacle, allow_hyphen_values = true)]
-    pub obstacle: Vec<Placement>,
+    /// several obstacles); for an arm in space a sphere X,Y,Z or X,Y,Z,R.
+    #[arg(long, value_parser = parse_numbers, allow_hyphen_values = true)]
+    pub obstacle: Vec<Numbers>,
     /// Radius of the obstacles given without one, in metres.
     #[arg(long, allow_hyphen_values = true)]
     pub radius: Option<f64>,
@@ -93,9 +95,9 @@ pub struct SceneArgs {
     /// Final time (s), a whole number of steps.
     #[arg(long, allow_hyphen_values = true)]
     pub tf: Option<f64>,
-    /// End of the straight line X,Y in metres.
-    #[arg(long, value_parser = parse_pair, allow_hyphen_values = true)]
-    pub target: Option<[f64; 2]>,
+    /// End of the straight line X,Y in metres (X,Y,Z for an arm in space).
+    #[arg(long, value_parser = parse_numbers, allow_hyphen_values = true)]
+    pub target: Option<Numbers>,
     /// The path the hand follows at constant speed over tf: line (the
     /// straight line to --target, the default), circle:CX,CY[,LAPS] (the
     /// circle about CX,CY through the hand's start, counter-clockwise,
@@ -202,7 +204,13 @@ impl SceneArgs {
             return Ok(run.scene);
         }
         let mut s = Scene::task(self.task).map_err(|e| e.to_string())?;
-        if let Some(arm) = &self.arm {
+        if let Some(ArmChoice::Space(p)) = &self.arm {
+            return Err(format!(
+                "--arm {} is an arm in space: this command takes planar arms (simulate runs it)",
+                p.key
+            ));
+        }
+        if let Some(ArmChoice::Planar(arm)) = &self.arm {
             if !arm.same_geometry(&s.arm) {
                 s.theta0 = redundant_ik::session::start_pose(arm);
             }
@@ -220,7 +228,11 @@ impl SceneArgs {
         }
         let radius = self.radius.unwrap_or(s.obstacles[0].radius);
         if !self.obstacle.is_empty() {
-            s.obstacles = self.obstacle.iter().map(|o| o.obstacle(radius)).collect();
+            s.obstacles = self
+                .obstacle
+                .iter()
+                .map(|o| disc(o).map(|p| p.obstacle(radius)))
+                .collect::<Result<_, _>>()?;
         } else {
             for o in &mut s.obstacles {
                 o.radius = radius;
@@ -237,8 +249,16 @@ impl SceneArgs {
         if let Some(v) = self.tf {
             s.tf = v;
         }
-        if let Some(v) = self.target {
-            s.target = v;
+        if let Some(Numbers(v)) = &self.target {
+            s.target = match v[..] {
+                [x, y] => [x, y],
+                _ => {
+                    return Err(format!(
+                        "--target: a planar arm's target is X,Y, got {} numbers",
+                        v.len()
+                    ))
+                }
+            };
         }
         if let Some(v) = &self.path {
             s.path = v.clone();
@@ -263,6 +283,17 @@ impl SceneArgs {
         let nets = run.surrogate_for(method).map_err(|e| e.to_string())?;
         let traj = Planner::run(run.scene.clone(), method, nets).map_err(|e| e.to_string())?;
         Ok((run, traj))
+    }
+}
+
+/// An obstacle for a planar arm: `X,Y` or `X,Y,R`; a sphere's `X,Y,Z,R`
+/// is refused with a reason.
+fn disc(n: &Numbers) -> Result<Placement, String> {
+    match n.0[..] {
+        [x, y] => Ok(Placement { centre: [x, y], radius: None }),
+        [x, y, r] => Ok(Placement { centre: [x, y], radius: Some(r) }),
+        [_, _, _, _] => Err("--obstacle: X,Y,Z,R places a sphere, for an arm in space (--arm panda or iiwa14); a planar arm takes X,Y or X,Y,R".into()),
+        _ => Err(format!("--obstacle: a planar arm's obstacle is X,Y or X,Y,R, got {} numbers", n.0.len())),
     }
 }
 
@@ -294,6 +325,9 @@ pub struct SimulateArgs {
 
 /// Runs `redundant-ik simulate`.
 pub fn run(args: &SimulateArgs) -> Result<(), String> {
+    if let Some(ArmChoice::Space(p)) = &args.scene.arm {
+        return super::space::simulate(args, p);
+    }
     let method = args.scene.method(&args.method)?;
     let task = args.scene.task()?;
     let (run, traj) = args.scene.run(method)?;

@@ -37,7 +37,7 @@ pub struct TrainArgs {
     pub sign_smoothing: Option<f64>,
     /// The arm to train for, POST:L1,L2,... in metres (default: the
     /// paper's). Other arms sample random straight-line tasks in their reach.
-    #[arg(long, value_parser = super::parse_arm, allow_hyphen_values = true)]
+    #[arg(long, value_parser = super::parse_planar_arm, allow_hyphen_values = true)]
     pub arm: Option<redundant_ik::Arm>,
     /// Seed for sampling, the train/validation/test split and initial weights.
     #[arg(long, default_value_t = 1)]

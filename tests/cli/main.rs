@@ -66,4 +66,5 @@ mod outputs;
 mod refusals;
 mod runs;
 mod simulate;
+mod space;
 mod training;

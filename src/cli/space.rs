@@ -1,0 +1,262 @@
+//! `simulate` for an arm in space (`--arm panda`, `--arm iiwa14`): the
+//! scene from the preset's task and the scene options, the run through the
+//! spatial planner, and its summary, JSON or CSV.
+
+use std::fmt::Write as _;
+
+use redundant_ik::ik::DampingSchedule;
+use redundant_ik::planner::space::{SpacePlanner, SpaceTrajectory};
+use redundant_ik::scene::SpaceScene;
+use redundant_ik::space::{SpacePreset, Sphere};
+use redundant_ik::Method;
+use serde::Serialize;
+
+use super::simulate::{SceneArgs, SimulateArgs};
+use super::{emit, parse_list, Numbers};
+
+/// The scene of `args` for the preset `p`: its task, with the options
+/// given. Options a spatial run does not take yet are refused by name.
+pub fn scene(args: &SceneArgs, p: &'static SpacePreset) -> Result<SpaceScene, String> {
+    if args.from.is_some() {
+        return Err("--from replays a planar run; an arm in space is set by its options".into());
+    }
+    if let Some(path) = &args.path {
+        if !path.is_line() {
+            return Err(format!(
+                "--path {path}: an arm in space follows the straight line to --target (paths in space are not built yet)"
+            ));
+        }
+    }
+    let mut s = SpaceScene::preset(p);
+    if args.joint_limits.is_some() || args.rate_limits.is_some() {
+        let c = s.chain.clone();
+        s.chain = c
+            .with_limits(
+                args.joint_limits
+                    .clone()
+                    .or(s.chain.joint_limits().cloned()),
+                args.rate_limits.clone().or(s.chain.rate_limits().cloned()),
+            )
+            .map_err(|e| e.to_string())?;
+    }
+    let radius = args.radius.unwrap_or(s.spheres[0].radius);
+    if !args.obstacle.is_empty() {
+        s.spheres = args
+            .obstacle
+            .iter()
+            .map(|o| sphere(o, radius))
+            .collect::<Result<_, _>>()?;
+    } else {
+        for o in &mut s.spheres {
+            o.radius = radius;
+        }
+    }
+    if let Some(Numbers(v)) = &args.target {
+        s.target = match v[..] {
+            [x, y, z] => [x, y, z],
+            _ => {
+                return Err(format!(
+                    "--target: the hand of an arm in space goes to X,Y,Z, got {} numbers",
+                    v.len()
+                ))
+            }
+        };
+    }
+    if args.damping {
+        s.damping = Some(DampingSchedule::default());
+    }
+    s.weighting = args.joint_weighting;
+    s.floor = args.floor;
+    if let Some(v) = args.dt {
+        s.dt = v;
+    }
+    if let Some(v) = args.tf {
+        s.tf = v;
+    }
+    if let Some(v) = &args.theta0 {
+        s.theta0 = parse_list(v).map_err(|e| format!("--theta0: {e}"))?;
+    }
+    if let Some(v) = args.feedback {
+        s.feedback_gain = v;
+    }
+    s.params
+        .set_all(&args.params.values)
+        .map_err(|e| e.to_string())?;
+    s.validate().map_err(|e| e.to_string())?;
+    Ok(s)
+}
+
+/// A sphere: `X,Y,Z` or `X,Y,Z,R`; a planar disc's `X,Y` is refused with
+/// a reason.
+fn sphere(n: &Numbers, radius: f64) -> Result<Sphere, String> {
+    match n.0[..] {
+        [x, y, z] => Ok(Sphere::new([x, y, z], radius)),
+        [x, y, z, r] => Ok(Sphere::new([x, y, z], r)),
+        [_, _] => Err("--obstacle: X,Y places a disc, for a planar arm; an arm in space takes a sphere X,Y,Z or X,Y,Z,R".into()),
+        _ => Err(format!(
+            "--obstacle: a sphere is X,Y,Z or X,Y,Z,R, got {} numbers",
+            n.0.len()
+        )),
+    }
+}
+
+/// What `simulate --json` prints for an arm in space: the arm, the scene's
+/// settings, every sample (3-D points) and the summary.
+#[derive(Serialize)]
+struct SpaceRunFile<'a> {
+    format: &'static str,
+    arm: &'static str,
+    method: Method,
+    theta0: &'a [f64],
+    target: [f64; 3],
+    spheres: &'a [Sphere],
+    dt: f64,
+    tf: f64,
+    feedback_gain: f64,
+    floor: bool,
+    damping: bool,
+    params: Vec<(&'static str, f64)>,
+    samples: &'a [redundant_ik::planner::space::SpaceSample],
+    summary: redundant_ik::planner::space::SpaceSummary,
+}
+
+/// Runs `simulate` for the arm in space `p`.
+pub fn simulate(args: &SimulateArgs, p: &'static SpacePreset) -> Result<(), String> {
+    let scene = scene(&args.scene, p)?;
+    let method = args.method.method.unwrap_or(Method::NUMERICAL);
+    let traj = SpacePlanner::new(scene.clone(), method)
+        .and_then(SpacePlanner::run)
+        .map_err(|e| e.to_string())?;
+    if args.json {
+        let file = SpaceRunFile {
+            format: "redundant-ik run in space",
+            arm: p.key,
+            method,
+            theta0: &scene.theta0,
+            target: scene.target,
+            spheres: &scene.spheres,
+            dt: scene.dt,
+            tf: scene.tf,
+            feedback_gain: scene.feedback_gain,
+            floor: scene.floor,
+            damping: scene.damping.is_some(),
+            params: method
+                .params()
+                .iter()
+                .map(|q| (q.name, scene.param(q)))
+                .collect(),
+            samples: &traj.samples,
+            summary: traj.summary,
+        };
+        let text = serde_json::to_string(&file).map_err(|e| e.to_string())?;
+        return emit(&format!("{text}\n"));
+    }
+    if args.csv {
+        return emit(&csv(&traj));
+    }
+    emit(&summary(p, &scene, &traj))
+}
+
+/// One line per sample: t, the angles, the hand, the reference, the
+/// error, the clearance, the joints past a limit.
+fn csv(traj: &SpaceTrajectory) -> String {
+    let n = traj.samples.first().map_or(0, |s| s.theta.len());
+    let mut out = String::from("t");
+    for i in 1..=n {
+        let _ = write!(out, ",theta{i}");
+    }
+    out.push_str(",x,y,z,x_ref,y_ref,z_ref,tracking_error,clearance,past_limits\n");
+    for s in &traj.samples {
+        let _ = write!(out, "{}", s.t);
+        for th in &s.theta {
+            let _ = write!(out, ",{th}");
+        }
+        let [x, y, z] = s.hand;
+        let [rx, ry, rz] = s.reference;
+        let c = s.clearance.map_or(String::new(), |c| c.to_string());
+        let _ = writeln!(
+            out,
+            ",{x},{y},{z},{rx},{ry},{rz},{},{c},{}",
+            s.tracking_error, s.past_limits
+        );
+    }
+    out
+}
+
+fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &SpaceTrajectory) -> String {
+    let s = &traj.summary;
+    let mut out = String::new();
+    let list = |v: &[f64]| {
+        v.iter()
+            .map(|x| format!("{x:.4}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let point = |v: [f64; 3]| format!("({:.4}, {:.4}, {:.4})", v[0], v[1], v[2]);
+    let first = &traj.samples[0];
+    let last = traj.samples.last().unwrap_or(first);
+    let _ = writeln!(
+        out,
+        "{} | method {} | dt {} s | tf {} s",
+        p.label, traj.method, scene.dt, scene.tf
+    );
+    let _ = writeln!(
+        out,
+        "start  theta = [{}]  hand {}",
+        list(&first.theta),
+        point(first.hand)
+    );
+    let _ = writeln!(
+        out,
+        "end    theta = [{}]  hand {}  target {}",
+        list(&last.theta),
+        point(last.hand),
+        point(scene.target)
+    );
+    for sp in &scene.spheres {
+        let _ = writeln!(
+            out,
+            "sphere at {}, radius {} m (the links' capsules: radius {} m)",
+            point(sp.centre),
+            sp.radius,
+            scene.chain.radius()
+        );
+    }
+    match s.min_clearance {
+        Some(c) => {
+            let _ = writeln!(
+                out,
+                "smallest capsule-to-sphere clearance  {c:.4} m  -> {}",
+                if s.collision_steps > 0 {
+                    format!("COLLISION in {} steps", s.collision_steps)
+                } else {
+                    "no collision".into()
+                }
+            );
+        }
+        None => {
+            let _ = writeln!(out, "no spheres");
+        }
+    }
+    let _ = writeln!(
+        out,
+        "final hand error                      {:.3e} m",
+        s.final_error
+    );
+    let _ = writeln!(
+        out,
+        "largest tracking error                {:.3e} m",
+        s.max_error
+    );
+    if s.limit_steps > 0 {
+        let _ = writeln!(out, "a joint past its limit in {} steps", s.limit_steps);
+    }
+    if s.relaxed_steps > 0 {
+        let _ = writeln!(
+            out,
+            "the program's constraints were relaxed in {} steps",
+            s.relaxed_steps
+        );
+    }
+    out
+}

@@ -1,0 +1,119 @@
+//! `simulate` for the arms in space: the presets' tasks, the JSON and CSV,
+//! and the refusals of what belongs to the other kind of arm.
+
+use super::{ok, refused};
+use serde_json::Value;
+
+#[test]
+fn simulate_runs_each_arm_in_space_and_says_what_happened() {
+    let text = ok(&["simulate", "--arm", "panda"]);
+    assert!(text.starts_with("Franka Panda"), "{text}");
+    assert!(
+        text.contains("COLLISION"),
+        "the paper's gain 4 does not clear the Panda's forearm: {text}"
+    );
+    let text = ok(&["simulate", "--arm", "iiwa14", "--method", "none"]);
+    assert!(text.contains("COLLISION"), "{text}");
+    let text = ok(&["simulate", "--arm", "iiwa14", "--lambda", "16"]);
+    assert!(text.contains("no collision"), "{text}");
+}
+
+#[test]
+fn simulate_json_and_csv_carry_the_run_in_three_dimensions() {
+    let json: Value = serde_json::from_str(&ok(&[
+        "simulate",
+        "--arm",
+        "panda",
+        "--target",
+        "0.45,0.25,0.5",
+        "--obstacle",
+        "0.2,0.1,0.75,0.05",
+        "--tf",
+        "2",
+        "--json",
+    ]))
+    .unwrap();
+    assert_eq!(json["arm"], "panda");
+    assert_eq!(json["method"], "numerical");
+    let samples = json["samples"].as_array().unwrap();
+    assert_eq!(samples.len(), 41, "2 s at 0.05 s, and t = 0");
+    let last = &samples[40];
+    assert_eq!(last["hand"].as_array().unwrap().len(), 3);
+    for (got, want) in last["hand"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip([0.45, 0.25, 0.5])
+    {
+        assert!((got.as_f64().unwrap() - want).abs() < 1e-6);
+    }
+    assert_eq!(json["spheres"][0]["radius"], 0.05);
+    assert!(json["summary"]["min_clearance"].as_f64().is_some());
+    let csv = ok(&["simulate", "--arm", "iiwa14", "--csv"]);
+    let head = csv.lines().next().unwrap();
+    assert_eq!(head, "t,theta1,theta2,theta3,theta4,theta5,theta6,theta7,x,y,z,x_ref,y_ref,z_ref,tracking_error,clearance,past_limits");
+    assert_eq!(csv.lines().count(), 102);
+}
+
+#[test]
+fn the_other_kinds_obstacles_and_targets_are_refused_with_a_reason() {
+    refused(
+        &["simulate", "--arm", "panda", "--obstacle", "0.4,0.1"],
+        "disc, for a planar arm",
+    );
+    refused(
+        &[
+            "simulate",
+            "--arm",
+            "paper",
+            "--obstacle",
+            "0.4,0.1,0.2,0.05",
+        ],
+        "sphere, for an arm in space",
+    );
+    refused(
+        &["simulate", "--obstacle", "0.4,0.1,0.2,0.05"],
+        "sphere, for an arm in space",
+    );
+    refused(
+        &["simulate", "--arm", "panda", "--target", "0.4,0.2"],
+        "x,y,z",
+    );
+    refused(&["simulate", "--target", "0.4,0.2,0.3"], "x,y");
+    refused(
+        &["simulate", "--arm", "panda", "--theta0", "0,0,0,0.5,0,1,0"],
+        "joint 4's limits",
+    );
+    refused(
+        &[
+            "simulate",
+            "--arm",
+            "panda",
+            "--joint-limits",
+            "-1:1,-1:1,-1:1,-1:1,-1:1,-1:1,-1:1",
+        ],
+        "theta0",
+    );
+    refused(
+        &[
+            "simulate",
+            "--arm",
+            "panda",
+            "--obstacle",
+            "0.02,0,0.1,0.05",
+        ],
+        "fixed base",
+    );
+    refused(
+        &["simulate", "--arm", "panda", "--method", "case3"],
+        "does not run an arm in space",
+    );
+    refused(
+        &["simulate", "--arm", "panda", "--path", "points:0.4,0.1;0.4,0.2"],
+        "straight line",
+    );
+    refused(
+        &["figure", "--arm", "panda", "--out", "/dev/null"],
+        "arm in space",
+    );
+}
