@@ -38,6 +38,11 @@ pub struct BenchArgs {
     /// Newton-Schulz steps on the learned Phi (Cases 1 and 3; 0 = the paper's).
     #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=8))]
     pub refine: u32,
+    /// An arm in space (panda or iiwa14): time the RK4 step of its own task
+    /// in every method that runs it, and count its allocations, instead of
+    /// the planar figures.
+    #[arg(long)]
+    pub arm: Option<String>,
     /// Run the networks on the portable x86-64 baseline kernels instead of
     /// the AVX2 + FMA ones chosen at run time (to measure what that choice buys).
     #[arg(long)]
@@ -74,6 +79,9 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         now_ms: &now,
         allocations: Some(&count),
     };
+    if let Some(key) = &args.arm {
+        return space(key, &opts, &probes, args.json);
+    }
     let report = bench::run(&opts, &probes).map_err(|e| e.to_string())?;
     if args.json {
         let json = serde_json::to_string(&report).map_err(|e| e.to_string())?;
@@ -134,4 +142,47 @@ fn table(r: &Report, layers: [String; 2]) -> String {
         ));
     }
     s
+}
+
+/// `bench --arm KEY`: the RK4 step of the arm in space's own task in every
+/// method that runs it (ns, median of the timed batches) and its
+/// allocations per step.
+fn space(key: &str, opts: &Options, probes: &bench::Probes, json: bool) -> Result<(), String> {
+    use redundant_ik::bench::space as sb;
+    let preset = redundant_ik::space::SpacePreset::by_key(key).ok_or_else(|| {
+        format!("--arm {key}: bench --arm takes an arm in space, panda or iiwa14")
+    })?;
+    let count = crate::allocations;
+    let mut rows = Vec::new();
+    for m in redundant_ik::planner::methods::ALL
+        .iter()
+        .filter(|m| m.in_space())
+    {
+        let ns = sb::step_ns(key, *m, opts, probes).map_err(|e| e.to_string())?;
+        let allocs = sb::allocs_per_step(key, *m, &count).map_err(|e| e.to_string())?;
+        rows.push((m.name(), ns, allocs));
+    }
+    if json {
+        let obj: serde_json::Map<String, serde_json::Value> = rows
+            .iter()
+            .map(|(m, ns, a)| {
+                (
+                    m.to_string(),
+                    serde_json::json!({ "step_ns": ns, "allocs_per_step": a }),
+                )
+            })
+            .collect();
+        return emit(&format!(
+            "{}\n",
+            serde_json::json!({ "arm": key, "methods": obj })
+        ));
+    }
+    let mut s = format!(
+        "median of timed batches after a warm-up; {}, its own task\n\nmethod              RK4 step   allocs/step\n",
+        preset.label
+    );
+    for (m, ns, a) in rows {
+        s.push_str(&format!("{m:<14} {ns:>10.1} ns {a:>12}\n"));
+    }
+    emit(&s)
 }

@@ -83,6 +83,10 @@ pub struct Chain {
     /// The volume's segments, found once from the rows.
     #[serde(skip)]
     segments: Vec<Segment>,
+    /// `(sin, cos)` of each row's `alpha`, taken once: a pose's pass then
+    /// takes one sine and cosine per joint, of its angle.
+    #[serde(skip)]
+    twists: Vec<(f64, f64)>,
 }
 
 /// The identity rotation.
@@ -127,7 +131,12 @@ impl Chain {
         coordinate("capsule radius", radius)?;
         check_rotation(&rotation)?;
         let segments = segments(&rows, flange);
+        let twists = rows
+            .iter()
+            .map(|r| crate::kinematics::sin_cos(r.alpha))
+            .collect();
         Ok(Self {
+            twists,
             base: (rotation, origin),
             rows,
             flange,
@@ -177,6 +186,12 @@ impl Chain {
     /// The modified DH rows, joint 1 first.
     pub fn rows(&self) -> &[Row] {
         &self.rows
+    }
+
+    /// `(sin alpha, cos alpha)` of each row.
+    #[inline]
+    pub fn twists(&self) -> &[(f64, f64)] {
+        &self.twists
     }
 
     /// The base frame: its rotation (rows) and origin in the world.

@@ -81,10 +81,9 @@ impl SpacePose {
         ];
         let mut o = origin;
         self.points[0] = o;
-        for (i, row) in chain.rows().iter().enumerate() {
+        for (i, (row, &(sa, ca))) in chain.rows().iter().zip(chain.twists()).enumerate() {
             // Tx(a) along the previous x, then Rx(alpha).
             o = add(o, scale(axes[0], row.a));
-            let (sa, ca) = sin_cos(row.alpha);
             let y = add(scale(axes[1], ca), scale(axes[2], sa));
             let z = add(scale(axes[1], -sa), scale(axes[2], ca));
             let x = axes[0];

@@ -109,11 +109,45 @@ fn the_other_kinds_obstacles_and_targets_are_refused_with_a_reason() {
         "does not run an arm in space",
     );
     refused(
-        &["simulate", "--arm", "panda", "--path", "points:0.4,0.1;0.4,0.2"],
+        &[
+            "simulate",
+            "--arm",
+            "panda",
+            "--path",
+            "points:0.4,0.1;0.4,0.2",
+        ],
         "straight line",
     );
     refused(
         &["figure", "--arm", "panda", "--out", "/dev/null"],
         "arm in space",
     );
+}
+
+#[test]
+fn bench_times_the_arms_in_space_and_no_step_allocates() {
+    for arm in ["panda", "iiwa14"] {
+        let json: Value = serde_json::from_str(&ok(&[
+            "bench",
+            "--arm",
+            arm,
+            "--json",
+            "--batches",
+            "5",
+            "--batch-ms",
+            "1",
+        ]))
+        .unwrap();
+        let methods = json["methods"].as_object().unwrap();
+        assert!(methods.contains_key("numerical"), "{json}");
+        for (m, v) in methods {
+            assert_eq!(
+                v["allocs_per_step"].as_f64(),
+                Some(0.0),
+                "{arm} {m} allocates"
+            );
+            assert!(v["step_ns"].as_f64().unwrap() > 0.0);
+        }
+    }
+    super::refused(&["bench", "--arm", "paper"], "arm in space");
 }

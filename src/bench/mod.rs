@@ -9,6 +9,9 @@
 //! has run for at least [`Options::batch_ms`], so coarse browser clocks still
 //! give exact-enough means.
 
+#[cfg(feature = "space")]
+pub mod space;
+
 use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
