@@ -20,10 +20,12 @@ export function classTests(h) {
     page.waitForFunction(() => window.demo.state().ended && !window.demo.state().running, null, { timeout });
 
 
-  test('class: a dropped target runs its line to the end; the clock stops and the hand holds within 1 mm for 5 s, in every method', async () => {
+  test('class: a dropped target runs its line to the end; the clock stops and the hand holds within 1 mm, for 5 s in the first method and 1 s in each other', async () => {
     const page = await open('?task=1&method=numerical');
     await page.selectOption('#speed', '8');
-    for (const m of await methodsOf(page)) {
+    // The clock's stop is the session's, one code for every method: 5 s of
+    // page time in the first, 1 s in the others (5 s each was 50 s of CI).
+    for (const [i, m] of (await methodsOf(page)).entries()) {
       await selectMethod(page, m.name);
       await page.click('#task1');
       await waitEnded(page);
@@ -38,9 +40,9 @@ export function classTests(h) {
       close(end.tf, end.line.duration, 1e-9, `${m.name}: the line's end`);
       assert.equal(await page.textContent('#play'), 'Replay');
       assert.match(await page.textContent('#run-note'), /The run ended at t = .* holds still/);
-      // 5 s of page time: no clock runs on, the hand stays within 1 mm.
+      // No clock runs on, the hand stays within 1 mm.
       let worst = 0;
-      for (let k = 0; k < 10; k++) {
+      for (let k = 0; k < (i === 0 ? 10 : 2); k++) {
         await page.waitForTimeout(500);
         const s = await state(page);
         assert.equal(s.t, end.t, `${m.name}: the clock runs on`);
