@@ -147,6 +147,13 @@ pub enum Error {
         /// The methods that do, for the message.
         choices: String,
     },
+    /// An atlas slice whose cells all lie beyond the arm's reach.
+    SliceMissesReach {
+        /// The plane, as written.
+        slice: String,
+        /// The reach from the shoulder (m).
+        reach: f64,
+    },
     /// A sphere that overlaps the fixed base of a chain in space, where the
     /// arm cannot avoid it.
     SphereOnBase {
@@ -307,6 +314,11 @@ impl fmt::Display for Error {
             Error::NotInSpace { method, choices } => write!(
                 f,
                 "method {method} does not run an arm in space; for the Panda and the iiwa choose {choices}"
+            ),
+            Error::SliceMissesReach { slice, reach } => write!(
+                f,
+                "no cell of the slice {slice} lies within the arm's reach ({} m of its shoulder): choose a plane through the arm",
+                Short(*reach)
             ),
             Error::SphereOnBase { centre, radius } => write!(
                 f,

@@ -14,6 +14,8 @@
 mod geometry;
 mod grid;
 mod read;
+#[cfg(feature = "space")]
+pub mod space;
 mod summary;
 
 use std::sync::Arc;

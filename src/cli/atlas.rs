@@ -30,9 +30,14 @@ pub struct AtlasArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub region: Option<String>,
     /// Methods to map, comma-separated; `paper` (the default) for the
-    /// paper's five, `all` for every method.
-    #[arg(long = "methods", alias = "modes", default_value = "paper")]
-    pub methods: String,
+    /// paper's five, `all` for every method (for an arm in space the
+    /// default is every method that runs in space).
+    #[arg(long = "methods", alias = "modes")]
+    pub methods: Option<String>,
+    /// For an arm in space: the plane of the sphere's centres, xy:Z0, xz:Y0
+    /// or yz:X0 (default: the vertical plane through the task's line).
+    #[arg(long, allow_hyphen_values = true)]
+    pub slice: Option<String>,
     /// Print the whole atlas as one JSON object instead of the table.
     #[arg(long, conflicts_with = "csv")]
     pub json: bool,
@@ -57,8 +62,17 @@ pub fn parse_methods(s: &str) -> Result<Vec<Method>, String> {
 
 /// Runs `redundant-ik atlas`.
 pub fn run(args: &AtlasArgs) -> Result<(), String> {
+    if let Some(super::ArmChoice::Space(p)) = &args.scene.arm {
+        return super::space::atlas(args, p);
+    }
+    if args.slice.is_some() {
+        return Err(
+            "--slice chooses the plane of an atlas of an arm in space (--arm panda or iiwa14)"
+                .into(),
+        );
+    }
     let scene = args.scene.scene()?;
-    let methods = parse_methods(&args.methods)?;
+    let methods = parse_methods(args.methods.as_deref().unwrap_or("paper"))?;
     let grid = match &args.region {
         Some(r) => match parse_list(r).map_err(|e| format!("--region: {e}"))?[..] {
             [x0, x1, y0, y1] => Grid::new([x0, x1, y0, y1], args.grid),

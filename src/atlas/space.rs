@@ -1,0 +1,325 @@
+//! The atlas of an arm in space, on a slice: the task's sphere centred on
+//! every point of a grid on an axis-aligned plane, in every chosen method,
+//! each outcome classified as the planar atlas's ([`Class`]). The default
+//! plane is the vertical one through the task's line; the default region a
+//! square of 0.8 m about the line's middle, cut at the floor (a map of the
+//! whole reach would be mostly cells no link comes near, which every method
+//! passes).
+
+use std::fmt;
+use std::str::FromStr;
+
+use serde::Serialize;
+
+use super::{Class, Grid};
+use crate::error::{Error, Result, Short};
+use crate::planner::space::SpacePlanner;
+use crate::planner::{Method, REACH_TOLERANCE};
+use crate::scene::SpaceScene;
+use crate::space::{clearance, closest, SpacePose, Sphere, Vec3};
+
+/// The side of the default region (m).
+pub const DEFAULT_SIDE: f64 = 0.8;
+
+/// The default grid's points per side.
+pub const DEFAULT_SLICE_GRID: usize = 21;
+
+/// An axis-aligned plane: the coordinate it fixes and its value (m).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum Plane {
+    /// `z = value`: the grid's axes are `x` and `y`.
+    Xy(f64),
+    /// `y = value`: the axes `x` and `z`.
+    Xz(f64),
+    /// `x = value`: the axes `y` and `z`.
+    Yz(f64),
+}
+
+impl Plane {
+    /// The vertical plane through the scene's line: `x = ` the line's
+    /// middle where the line runs more along `y` than along `x`, else `y
+    /// = ` its middle.
+    pub fn through_line(scene: &SpaceScene) -> Self {
+        let (a, b) = (scene.start(), scene.target);
+        let mid = [0, 1, 2].map(|k| 0.5 * (a[k] + b[k]));
+        if (b[0] - a[0]).abs() <= (b[1] - a[1]).abs() {
+            Plane::Yz(mid[0])
+        } else {
+            Plane::Xz(mid[1])
+        }
+    }
+
+    /// The point of the plane at grid coordinates `(u, v)`.
+    pub fn point(self, u: f64, v: f64) -> Vec3 {
+        match self {
+            Plane::Xy(z) => [u, v, z],
+            Plane::Xz(y) => [u, y, v],
+            Plane::Yz(x) => [x, u, v],
+        }
+    }
+
+    /// A point's grid coordinates `(u, v)`.
+    pub fn coordinates(self, p: Vec3) -> (f64, f64) {
+        match self {
+            Plane::Xy(_) => (p[0], p[1]),
+            Plane::Xz(_) => (p[0], p[2]),
+            Plane::Yz(_) => (p[1], p[2]),
+        }
+    }
+
+    /// The names of the grid's axes.
+    pub fn axes(self) -> [&'static str; 2] {
+        match self {
+            Plane::Xy(_) => ["x", "y"],
+            Plane::Xz(_) => ["x", "z"],
+            Plane::Yz(_) => ["y", "z"],
+        }
+    }
+}
+
+/// `xy:Z0`, `xz:Y0` or `yz:X0` (the command line's `--slice`).
+impl FromStr for Plane {
+    type Err = Error;
+    fn from_str(text: &str) -> Result<Self> {
+        let syntax = |expected: &str| Error::Syntax {
+            what: "slice",
+            text: text.to_string(),
+            expected: expected.into(),
+        };
+        let (axes, value) = text.split_once(':').ok_or_else(|| {
+            syntax("xy:Z0, xz:Y0 or yz:X0 (the plane and the coordinate it fixes, m)")
+        })?;
+        let v: f64 = value
+            .trim()
+            .parse()
+            .map_err(|_| syntax("a number after the colon"))?;
+        crate::error::coordinate("slice coordinate", v)?;
+        match axes.trim() {
+            "xy" => Ok(Plane::Xy(v)),
+            "xz" => Ok(Plane::Xz(v)),
+            "yz" => Ok(Plane::Yz(v)),
+            _ => Err(syntax("the plane xy, xz or yz")),
+        }
+    }
+}
+
+impl fmt::Display for Plane {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Plane::Xy(z) => write!(f, "xy:{}", Short(*z)),
+            Plane::Xz(y) => write!(f, "xz:{}", Short(*y)),
+            Plane::Yz(x) => write!(f, "yz:{}", Short(*x)),
+        }
+    }
+}
+
+/// One run's record on a slice.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SliceOutcome {
+    /// The class.
+    pub class: Class,
+    /// The smallest capsule-to-sphere clearance over the run (m).
+    pub min_clearance: Option<f64>,
+    /// The hand's distance from the target at the end (m).
+    pub final_error: Option<f64>,
+    /// Steps with a joint past a limit.
+    pub limit_steps: usize,
+    /// Steps whose program was relaxed (infeasible dampers).
+    pub relaxed_steps: usize,
+    /// Why the run stopped, for `failed`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+}
+
+/// One grid point: the sphere's centre and its outcome in each method.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SliceCell {
+    /// The sphere's centre.
+    pub centre: Vec3,
+    /// One outcome per method, in the atlas's order.
+    pub outcomes: Vec<SliceOutcome>,
+}
+
+/// A finished slice atlas.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SliceAtlas {
+    /// The arm's preset key, if it is one.
+    pub arm: Option<&'static str>,
+    /// The plane.
+    pub plane: Plane,
+    /// The grid on the plane (`region` in the plane's coordinates).
+    pub grid: Grid,
+    /// The sphere's radius (m).
+    pub radius: f64,
+    /// The methods, in order.
+    pub methods: Vec<Method>,
+    /// The cells, row by row (`v` outer, `u` inner).
+    pub cells: Vec<SliceCell>,
+}
+
+/// The default region on `plane` for `scene`: a square of
+/// [`DEFAULT_SIDE`] about the line's middle, above the floor.
+pub fn default_region(scene: &SpaceScene, plane: Plane) -> [f64; 4] {
+    let (a, b) = (scene.start(), scene.target);
+    let (u, v) = plane.coordinates([0, 1, 2].map(|k| 0.5 * (a[k] + b[k])));
+    let h = 0.5 * DEFAULT_SIDE;
+    let r = scene.spheres.first().map_or(0.05, |s| s.radius);
+    let bottom = if matches!(plane, Plane::Xy(_)) {
+        v - h
+    } else {
+        (v - h).max(r)
+    };
+    [u - h, u + h, bottom, bottom + DEFAULT_SIDE]
+}
+
+/// Classifies what the sphere `s` does before any run: on the arm at the
+/// start or on the fixed base (`start_overlap`), within reach of the
+/// hand's line (`path_blocked`: the flange's capsule follows the line), or
+/// nothing (`None`).
+fn before(scene: &SpaceScene, pose: &SpacePose, s: &Sphere) -> Option<Class> {
+    if s.validate(&scene.chain).is_err()
+        || clearance(&scene.chain, pose, std::slice::from_ref(s)) <= 0.0
+    {
+        return Some(Class::StartOverlap);
+    }
+    let (_, d) = closest(s.centre, scene.start(), scene.target);
+    (d <= s.radius + scene.chain.radius()).then_some(Class::PathBlocked)
+}
+
+/// The run of one method with the scene's first sphere at `centre`.
+fn outcome(scene: &SpaceScene, method: Method, pre: Option<Class>) -> SliceOutcome {
+    if pre == Some(Class::StartOverlap) {
+        return SliceOutcome {
+            class: Class::StartOverlap,
+            min_clearance: None,
+            final_error: None,
+            limit_steps: 0,
+            relaxed_steps: 0,
+            error: None,
+        };
+    }
+    match SpacePlanner::new(scene.clone(), method).and_then(SpacePlanner::run) {
+        Ok(run) => {
+            let s = run.summary;
+            let class = pre.unwrap_or(if s.collision_steps > 0 {
+                Class::Collision
+            } else if s.limit_steps > 0 {
+                Class::Limit
+            } else if s.final_error > REACH_TOLERANCE {
+                Class::Missed
+            } else {
+                Class::Success
+            });
+            SliceOutcome {
+                class,
+                min_clearance: s.min_clearance,
+                final_error: Some(s.final_error),
+                limit_steps: s.limit_steps,
+                relaxed_steps: s.relaxed_steps,
+                error: None,
+            }
+        }
+        Err(e) => SliceOutcome {
+            class: pre.unwrap_or(Class::Failed),
+            min_clearance: None,
+            final_error: None,
+            limit_steps: 0,
+            relaxed_steps: 0,
+            error: Some(e.to_string()),
+        },
+    }
+}
+
+/// Runs the atlas: the scene's first sphere (its radius kept) on every
+/// cell of `grid` on `plane`, in each of `methods`. Refused when a method
+/// does not run in space, or when no cell of the grid lies within the
+/// arm's reach of its first joint (a plane that misses the arm).
+pub fn slice(
+    scene: &SpaceScene,
+    plane: Plane,
+    grid: Grid,
+    methods: &[Method],
+) -> Result<SliceAtlas> {
+    grid.validate()?;
+    scene.validate()?;
+    for m in methods {
+        m.space_rule(scene.chain.dof())?;
+    }
+    let radius = scene.spheres.first().map_or(0.05, |s| s.radius);
+    let pose = SpacePose::new(&scene.chain, &scene.theta0)?;
+    let shoulder = pose.joint_origin(0);
+    let reach = scene.chain.reach() + radius + scene.chain.radius();
+    let [u0, u1, v0, v1] = grid.region;
+    let step = |a: f64, b: f64, i: usize| a + (b - a) * i as f64 / (grid.n - 1) as f64;
+    let centres: Vec<Vec3> = (0..grid.n)
+        .flat_map(|j| (0..grid.n).map(move |i| (i, j)))
+        .map(|(i, j)| plane.point(step(u0, u1, i), step(v0, v1, j)))
+        .collect();
+    let near = |c: &Vec3| {
+        (0..3)
+            .map(|k| (c[k] - shoulder[k]).powi(2))
+            .sum::<f64>()
+            .sqrt()
+            <= reach
+    };
+    if !centres.iter().any(near) {
+        return Err(Error::SliceMissesReach {
+            slice: plane.to_string(),
+            reach,
+        });
+    }
+    let run_cell = |c: &Vec3| {
+        let mut s = scene.clone();
+        let sphere = Sphere::new(*c, radius);
+        if s.spheres.is_empty() {
+            s.spheres.push(sphere);
+        } else {
+            s.spheres[0] = sphere;
+        }
+        let pre = before(&s, &pose, &sphere);
+        SliceCell {
+            centre: *c,
+            outcomes: methods.iter().map(|m| outcome(&s, *m, pre)).collect(),
+        }
+    };
+    #[cfg(all(feature = "parallel", not(target_family = "wasm")))]
+    let cells = {
+        use rayon::prelude::*;
+        centres.par_iter().map(run_cell).collect()
+    };
+    #[cfg(not(all(feature = "parallel", not(target_family = "wasm"))))]
+    let cells = centres.iter().map(run_cell).collect();
+    Ok(SliceAtlas {
+        arm: None,
+        plane,
+        grid,
+        radius,
+        methods: methods.to_vec(),
+        cells,
+    })
+}
+
+impl SliceAtlas {
+    /// Method `k`'s count of `class`.
+    pub fn count(&self, k: usize, class: Class) -> usize {
+        self.cells
+            .iter()
+            .filter(|c| c.outcomes[k].class == class)
+            .count()
+    }
+
+    /// Cells where avoidance is possible (neither on the arm at the start
+    /// nor on the path).
+    pub fn avoidable(&self) -> usize {
+        self.cells
+            .iter()
+            .filter(|c| c.outcomes.first().is_some_and(|o| o.class.avoidable()))
+            .count()
+    }
+
+    /// Method `k`'s success rate over the avoidable cells.
+    pub fn success_rate(&self, k: usize) -> Option<f64> {
+        let n = self.avoidable();
+        (n > 0).then(|| self.count(k, Class::Success) as f64 / n as f64)
+    }
+}
