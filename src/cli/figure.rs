@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 use redundant_ik::figure;
 use redundant_ik::planner::methods;
-use redundant_ik::{Planner, Scene, Trajectory};
+use redundant_ik::{Method, Planner, Scene, Trajectory};
 
 use super::simulate::{MethodArg, SceneArgs};
 
@@ -55,6 +55,20 @@ pub fn run(args: &FigureArgs) -> Result<(), String> {
         return Err("--every must be at least 1".into());
     }
     let e = |x: redundant_ik::Error| x.to_string();
+    if let Some(super::ArmChoice::Space(p)) = &args.scene.arm {
+        if args.compare || args.all || args.plots || args.ellipse {
+            return Err("for an arm in space, figure draws the run's poses (two views); --compare, --all, --plots and --ellipse are not built for it yet".into());
+        }
+        let scene = super::space::scene(&args.scene, p)?;
+        let method = args.method.method.unwrap_or(Method::NUMERICAL);
+        let traj = redundant_ik::planner::space::SpacePlanner::new(scene.clone(), method)
+            .and_then(redundant_ik::planner::space::SpacePlanner::run)
+            .map_err(e)?;
+        return write(
+            &args.out,
+            &figure::space_svg(p.label, &scene, &traj, args.every).map_err(e)?,
+        );
+    }
     let task = args.scene.task()?;
     if args.compare {
         let scene = args.scene.scene()?;

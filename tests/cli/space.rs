@@ -119,8 +119,15 @@ fn the_other_kinds_obstacles_and_targets_are_refused_with_a_reason() {
         "straight line",
     );
     refused(
-        &["figure", "--arm", "panda", "--out", "/dev/null"],
-        "arm in space",
+        &[
+            "figure",
+            "--arm",
+            "panda",
+            "--compare",
+            "--out",
+            "/dev/null",
+        ],
+        "not built",
     );
 }
 
@@ -196,4 +203,22 @@ fn atlas_maps_a_slice_of_each_arm_in_space() {
         "does not run an arm in space",
     );
     refused(&["atlas", "--slice", "xz:0"], "arm in space");
+}
+
+#[test]
+fn figure_draws_a_run_of_an_arm_in_space_in_two_views() {
+    let out = super::scratch("panda.svg");
+    ok(&[
+        "figure",
+        "--arm",
+        "panda",
+        "--lambda",
+        "64",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(svg.contains("Franka Panda (7 joints, in space), Numerical: min clearance 0.0036 m, past a joint limit in 25 steps"), "the title's verdict");
+    assert!(svg.contains("oblique view") && svg.contains("from above"));
+    assert!(svg.matches("<polyline").count() > 40, "the poses are drawn");
 }

@@ -1,0 +1,247 @@
+//! The stroboscopic figure of a run of an arm in space: two orthographic
+//! views side by side, an oblique one (azimuth -55 degrees, elevation 20: from the front left, the arm across the view)
+//! and the view from above, each with the floor's grid, the fixed base,
+//! the chain every few steps, the start and final poses, the hand's line
+//! and trace, and the spheres (an orthographic view draws a sphere as a
+//! circle of its radius, so the drawn gap between a capsule's outline and a
+//! sphere is true where both lie across the line of sight).
+
+use plotters::prelude::*;
+
+use super::{colour, draw_legend, draw_title, svg, why, Area, Swatch, TITLE_HEIGHT};
+use crate::error::Result;
+use crate::planner::space::SpaceTrajectory;
+use crate::scene::SpaceScene;
+use crate::space::{SpacePose, Vec3};
+
+/// An orthographic view: `(right, up)` screen axes in the world.
+#[derive(Clone, Copy)]
+struct View {
+    right: Vec3,
+    up: Vec3,
+    name: &'static str,
+}
+
+impl View {
+    /// The camera at azimuth `az` (from `+x` toward `+y`) and elevation
+    /// `el` (degrees), looking at the origin.
+    fn oblique(az: f64, el: f64) -> Self {
+        let (a, e) = (az.to_radians(), el.to_radians());
+        // Toward the camera: (cos e cos a, cos e sin a, sin e).
+        let right = [-a.sin(), a.cos(), 0.0];
+        let up = [-e.sin() * a.cos(), -e.sin() * a.sin(), e.cos()];
+        Self {
+            right,
+            up,
+            name: "oblique view",
+        }
+    }
+
+    fn top() -> Self {
+        Self {
+            right: [1.0, 0.0, 0.0],
+            up: [0.0, 1.0, 0.0],
+            name: "from above (x right, y up)",
+        }
+    }
+
+    fn project(&self, p: Vec3) -> (f64, f64) {
+        let d = |a: Vec3| a[0] * p[0] + a[1] * p[1] + a[2] * p[2];
+        (d(self.right), d(self.up))
+    }
+}
+
+/// The chain's points at `theta` (base, each distinct origin, the flange).
+fn points(scene: &SpaceScene, theta: &[f64]) -> Result<Vec<Vec3>> {
+    let pose = SpacePose::new(&scene.chain, theta)?;
+    let mut out = vec![pose.points()[0]];
+    for s in scene.chain.segments() {
+        out.push(pose.points()[s.to]);
+    }
+    Ok(out)
+}
+
+/// The figure of `run` (of `scene`, the arm called `arm`) as SVG, the chain
+/// drawn every `every` steps.
+pub fn space_svg(
+    arm: &str,
+    scene: &SpaceScene,
+    run: &SpaceTrajectory,
+    every: usize,
+) -> Result<String> {
+    let every = every.max(1);
+    let poses: Vec<Vec<Vec3>> = run
+        .samples
+        .iter()
+        .map(|s| points(scene, &s.theta))
+        .collect::<Result<_>>()?;
+    let s = &run.summary;
+    let verdict = match s.min_clearance {
+        Some(c) if s.collision_steps > 0 => format!("collides, min clearance {c:.4} m"),
+        Some(c) => format!("min clearance {c:.4} m"),
+        None => "no sphere".into(),
+    };
+    let limits = if s.limit_steps > 0 {
+        format!(", past a joint limit in {} steps", s.limit_steps)
+    } else {
+        String::new()
+    };
+    let head = format!(
+        "{arm}, {}: {verdict}{limits}, final error {:.1e} m",
+        run.method.label(),
+        s.final_error
+    );
+    let size = (1100u32, 620u32);
+    svg(size, |root| {
+        let (head_area, body) = root.split_vertically(TITLE_HEIGHT);
+        draw_title(&head_area, &head, run.method.description())?;
+        let (left, right) = body.split_horizontally(size.0 / 2);
+        panel(&left, View::oblique(-55.0, 20.0), scene, run, &poses, every)?;
+        panel(&right, View::top(), scene, run, &poses, every)?;
+        let legend = [
+            (
+                Swatch::Dashed(colour::MUTED, 1),
+                "the hand's line".to_string(),
+            ),
+            (Swatch::Line(RGBColor(255, 127, 14), 2), "hand".into()),
+            (Swatch::Line(RGBColor(31, 119, 180), 3), "start pose".into()),
+            (Swatch::Line(BLACK, 3), "final pose".into()),
+            (
+                Swatch::Line(RGBColor(90, 110, 160), 1),
+                format!("every {every}th pose"),
+            ),
+        ];
+        let (w, h) = body.dim_in_pixel();
+        draw_legend(
+            &body,
+            &legend,
+            (w as i32 - 10, h as i32 - 17 * legend.len() as i32 - 20),
+            true,
+        )
+    })
+}
+
+/// One view: its bounds from everything drawn, equal scales, then the
+/// floor grid, the spheres, the poses and the line.
+fn panel(
+    area: &Area<'_>,
+    view: View,
+    scene: &SpaceScene,
+    run: &SpaceTrajectory,
+    poses: &[Vec<Vec3>],
+    every: usize,
+) -> std::result::Result<(), String> {
+    let mut pts: Vec<(f64, f64)> = poses.iter().flatten().map(|p| view.project(*p)).collect();
+    for sp in &scene.spheres {
+        let (u, v) = view.project(sp.centre);
+        pts.extend([
+            (u - sp.radius, v - sp.radius),
+            (u + sp.radius, v + sp.radius),
+        ]);
+    }
+    let g = 0.6;
+    for corner in [[-g, -g, 0.0], [g, -g, 0.0], [-g, g, 0.0], [g, g, 0.0]] {
+        pts.push(view.project(corner));
+    }
+    let (mut u0, mut u1, mut v0, mut v1) = pts.iter().fold(
+        (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ),
+        |(a, b, c, d), &(u, v)| (a.min(u), b.max(u), c.min(v), d.max(v)),
+    );
+    // Equal scales: widen the shorter side.
+    let (w, h) = area.dim_in_pixel();
+    let (pw, ph) = (w as f64 - 40.0, h as f64 - 60.0);
+    let scale = (pw / (u1 - u0)).min(ph / (v1 - v0));
+    let (cu, cv) = (0.5 * (u0 + u1), 0.5 * (v0 + v1));
+    (u0, u1) = (cu - 0.5 * pw / scale, cu + 0.5 * pw / scale);
+    (v0, v1) = (cv - 0.5 * ph / scale, cv + 0.5 * ph / scale);
+    let mut chart = ChartBuilder::on(area)
+        .margin(20)
+        .caption(
+            view.name,
+            ("sans-serif", 13).into_font().color(&colour::MUTED),
+        )
+        .build_cartesian_2d(u0..u1, v0..v1)
+        .map_err(why)?;
+    // The floor's grid, 0.1 m apart, over +-0.6 m.
+    let steps = 12;
+    for k in 0..=steps {
+        let t = -g + 2.0 * g * k as f64 / steps as f64;
+        for line in [[[t, -g, 0.0], [t, g, 0.0]], [[-g, t, 0.0], [g, t, 0.0]]] {
+            chart
+                .draw_series(LineSeries::new(
+                    line.iter().map(|p| view.project(*p)),
+                    colour::LIGHT.stroke_width(1),
+                ))
+                .map_err(why)?;
+        }
+    }
+    // The spheres, filled.
+    for sp in &scene.spheres {
+        let (u, v) = view.project(sp.centre);
+        let outline: Vec<(f64, f64)> = (0..=72)
+            .map(|i| {
+                let a = i as f64 / 72.0 * std::f64::consts::TAU;
+                (u + sp.radius * a.cos(), v + sp.radius * a.sin())
+            })
+            .collect();
+        chart
+            .draw_series(std::iter::once(Polygon::new(
+                outline,
+                colour::DANGER.mix(0.35).filled(),
+            )))
+            .map_err(why)?;
+    }
+    // Intermediate poses, faint; the base, thick.
+    let n = poses.len();
+    let faint = RGBColor(90, 110, 160).mix(0.45);
+    for (i, p) in poses.iter().enumerate() {
+        if i == 0 || i + 1 == n || i % every != 0 {
+            continue;
+        }
+        chart
+            .draw_series(LineSeries::new(
+                p.iter().map(|q| view.project(*q)),
+                faint.stroke_width(1),
+            ))
+            .map_err(why)?;
+    }
+    if let Some(first) = poses.first() {
+        chart
+            .draw_series(LineSeries::new(
+                first[..2].iter().map(|q| view.project(*q)),
+                BLACK.stroke_width(6),
+            ))
+            .map_err(why)?;
+    }
+    // The line and the hand's trace.
+    let (a, b) = (run.samples[0].reference, scene.target);
+    chart
+        .draw_series(DashedLineSeries::new(
+            [a, b].iter().map(|q| view.project(*q)),
+            5,
+            4,
+            colour::MUTED.stroke_width(1),
+        ))
+        .map_err(why)?;
+    chart
+        .draw_series(LineSeries::new(
+            run.samples.iter().map(|s| view.project(s.hand)),
+            RGBColor(255, 127, 14).stroke_width(2),
+        ))
+        .map_err(why)?;
+    for (p, c) in [(&poses[0], RGBColor(31, 119, 180)), (&poses[n - 1], BLACK)] {
+        let q: Vec<(f64, f64)> = p.iter().map(|x| view.project(*x)).collect();
+        chart
+            .draw_series(LineSeries::new(q.clone(), c.stroke_width(3)))
+            .map_err(why)?;
+        chart
+            .draw_series(q.iter().map(|x| Circle::new(*x, 3, c.filled())))
+            .map_err(why)?;
+    }
+    Ok(())
+}
