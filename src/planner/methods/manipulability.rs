@@ -48,7 +48,7 @@ static ENTRY: Entry = Entry {
     },
     rule: |n| projection::rule(n, gradient),
     #[cfg(feature = "space")]
-    space: None,
+    space: Some(super::space::manipulability::rule),
 };
 
 /// `v = k_m grad w`.
