@@ -3,6 +3,7 @@
 //! `manipulability` and `jointrange` methods, and weighted least norm
 //! (Chan and Dubey) on the spatial chains.
 
+use redundant_ik::arm::JointLimits;
 use redundant_ik::nn::Rng;
 use redundant_ik::planner::methods::space::{eq18, eq18_weighted};
 use redundant_ik::planner::methods::{
@@ -11,8 +12,8 @@ use redundant_ik::planner::methods::{
 use redundant_ik::planner::space::{SpacePlanner, SpaceTrajectory};
 use redundant_ik::scene::{JointWeighting, SpaceScene};
 use redundant_ik::space::manipulability::{manipulability, manipulability_gradient_into};
-use redundant_ik::space::{criterion, Chain, SpacePose, PRESETS};
-use redundant_ik::Method;
+use redundant_ik::space::{criterion, Chain, Row, SpacePose, Sphere, PRESETS};
+use redundant_ik::{Arm, Method, Planner, Pose, Scene};
 
 /// A pose within the chain's limits, from `rng`.
 fn random_theta(chain: &Chain, rng: &mut Rng) -> Vec<f64> {
@@ -356,5 +357,102 @@ fn weighting_changes_nothing_on_a_chain_without_limits_or_far_from_them() {
         assert_eq!(a.summary.limit_steps, 0);
         assert_eq!(b.summary.limit_steps, 0);
         assert!(b.summary.max_error < 1e-6);
+    }
+}
+
+/// The planar paper arm with +-2 rad limits, and the same arm as a chain in
+/// space whose axes are parallel (every axis the world's `+y`, the planar
+/// `(x, y)` the world's `(x, z)`, as in `planner.rs`), with the same limits.
+fn planar_twins() -> (Arm, Chain) {
+    use std::f64::consts::FRAC_PI_2;
+    let limits = || JointLimits::new(vec![[-2.0, 2.0]; 3]).unwrap();
+    let arm = Arm::paper().with_limits(Some(limits()), None).unwrap();
+    let links = arm.links();
+    let mut rows = vec![Row {
+        a: 0.0,
+        alpha: 0.0,
+        d: 0.0,
+        offset: -FRAC_PI_2,
+    }];
+    rows.extend(links[..2].iter().map(|&l| Row::new(l, 0.0, 0.0)));
+    let turn = [[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]];
+    let chain = Chain::placed(
+        turn,
+        [0.0, 0.0, arm.post()],
+        rows,
+        [links[2], 0.0, 0.0],
+        0.0,
+    )
+    .unwrap()
+    .with_limits(Some(limits()), None)
+    .unwrap();
+    (arm, chain)
+}
+
+/// On a chain whose axes are parallel the manipulability is the planar
+/// arm's, and weighted least norm weights as in the plane: the rates of
+/// every method in space with `wln` are the planar weighted ones.
+#[test]
+fn a_chain_whose_axes_are_parallel_has_the_planar_manipulability_and_weights() {
+    let (arm, chain) = planar_twins();
+    let poses = [
+        vec![0.3, 1.2, -0.4],
+        vec![1.9, -1.85, 1.7],
+        vec![-1.95, 1.9, -1.9],
+        vec![1.5, 1.95, 0.2],
+    ];
+    for theta in &poses {
+        let (plane, space) = (
+            Pose::new(&arm, theta).unwrap(),
+            SpacePose::new(&chain, theta).unwrap(),
+        );
+        assert!((plane.manipulability() - manipulability(&space)).abs() < 1e-14);
+        let (mut a, mut b) = (vec![0.0; 3], vec![0.0; 3]);
+        plane.manipulability_gradient_into(1e-6, &mut a);
+        manipulability_gradient_into(&space, 1e-6, &mut b);
+        for (x, y) in a.iter().zip(&b) {
+            assert!((x - y).abs() < 1e-13, "{a:?} against {b:?}");
+        }
+    }
+    let mut planar = Scene::task1();
+    planar.arm = arm;
+    planar.theta0 = vec![0.3, 1.2, -0.4];
+    planar.params.set(&DELTA, 0.02).unwrap();
+    planar.weighting = JointWeighting::Wln;
+    let o = planar.obstacles[0].centre;
+    let mut space = SpaceScene::preset(&PRESETS[0]);
+    space.chain = chain;
+    space.theta0 = planar.theta0.clone();
+    space.target = [planar.target[0], 0.0, planar.target[1]];
+    space.spheres = vec![Sphere::new([o[0], 0.0, o[1]], 0.05)];
+    space.params = planar.params.clone();
+    space.weighting = JointWeighting::Wln;
+    let mut unweighted = planar.clone();
+    unweighted.weighting = JointWeighting::None;
+    for m in methods::ALL.iter().copied().filter(|m| m.in_space()) {
+        let (plane, flat) = (
+            Planner::new(planar.clone(), m, None).unwrap(),
+            Planner::new(unweighted.clone(), m, None).unwrap(),
+        );
+        let mut spatial = SpacePlanner::new(space.clone(), m).unwrap();
+        let mut weighted_somewhere = false;
+        for theta in &poses {
+            for xdot in [[0.1, -0.2], [-0.3, 0.1]] {
+                let rates = |p: &Planner| {
+                    p.theta_dot(
+                        &nalgebra::DVector::from_vec(theta.clone()),
+                        &nalgebra::Vector2::new(xdot[0], xdot[1]),
+                    )
+                    .unwrap()
+                };
+                let (want, plain) = (rates(&plane), rates(&flat));
+                weighted_somewhere |= (&want - &plain).amax() > 1e-6;
+                let got = spatial.theta_dot(theta, [xdot[0], 0.0, xdot[1]]).unwrap();
+                for (g, w) in got.iter().zip(want.iter()) {
+                    assert!((g - w).abs() < 1e-12, "{m}: {got:?} against {want:?}");
+                }
+            }
+        }
+        assert!(weighted_somewhere, "{m}: no pose was weighted");
     }
 }
