@@ -32,10 +32,10 @@
 use super::pose::{add, cross, dot, norm, SpacePose, Vec3};
 
 /// Whether every joint axis of `pose` is parallel to the first (the chain
-/// moves its hand in a plane).
+/// moves its hand in a plane; true of a chain of one joint, or none).
 pub fn axes_parallel(pose: &SpacePose) -> bool {
-    let z0 = pose.axis(0);
-    (1..pose.dof()).all(|i| norm(cross(z0, pose.axis(i))) <= 1e-12)
+    let n = pose.dof();
+    n == 0 || (1..n).all(|i| norm(cross(pose.axis(0), pose.axis(i))) <= 1e-12)
 }
 
 /// `det(A)` of `A = J J^T`, or `e_2(A)` for a chain whose axes are

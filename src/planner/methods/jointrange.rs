@@ -12,7 +12,9 @@
 //! limit. The quadratic is bounded and smooth everywhere; the weighting is
 //! where the barrier belongs (it divides rates, never multiplies them).
 //! An arm without limits has no range to keep to: `v = 0`, and the method
-//! is eq. (5) with no secondary task (`none`'s rates).
+//! is eq. (5) with no secondary task (`none`'s rates). In space the same
+//! `v` over the chain's limits ([`range_gradient_into`],
+//! `space::jointrange`).
 
 use super::paper::DELTA;
 use super::{projection, Context, Entry, Group, Method, MethodInfo, Needs};

@@ -27,6 +27,10 @@
 //! the weighted joints only ever grow in number). A weighted joint then
 //! moves less toward its limit (`w_i` grows without bound at it); the
 //! weights jump where a joint turns back (a property of the method).
+//!
+//! Nothing here but [`JointWeights::update`] and [`JointWeights::eq18`]
+//! knows the planar arm: the spatial weights (`space::weighting`) are these
+//! weights over a chain's limits ([`JointWeights::update_at`]).
 
 use super::Context;
 use crate::arm::JointLimits;
