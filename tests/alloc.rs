@@ -164,3 +164,32 @@ fn the_counter_does_count() {
     });
     assert!(n >= 1);
 }
+
+/// A step of every method in space allocates nothing either: on each
+/// preset with its sphere, the damping schedule, feedback and weighted
+/// least norm from a start near a limit (the weights' solves run).
+#[cfg(feature = "space")]
+#[test]
+fn a_spatial_step_allocates_nothing_in_any_method_in_space() {
+    use redundant_ik::planner::space::SpacePlanner;
+    use redundant_ik::scene::{JointWeighting, SpaceScene};
+    use redundant_ik::space::PRESETS;
+    for p in PRESETS {
+        let mut scene = SpaceScene::preset(&p);
+        let [lo, hi] = scene.chain.joint_limits().unwrap().ranges()[0];
+        scene.theta0[0] = lo + 0.1 * (hi - lo);
+        scene.damping = Some(DampingSchedule::default());
+        scene.feedback_gain = 1.0;
+        scene.weighting = JointWeighting::Wln;
+        for m in methods::ALL.iter().filter(|m| m.in_space()) {
+            let mut planner = SpacePlanner::new(scene.clone(), *m).unwrap();
+            planner.step().unwrap();
+            let n = allocations_in(|| {
+                for _ in 0..20 {
+                    planner.step().unwrap();
+                }
+            });
+            assert_eq!(n, 0, "{} {m}: {n} allocations in 20 steps", p.key);
+        }
+    }
+}

@@ -11,6 +11,7 @@
 mod chain;
 pub mod criterion;
 pub mod linalg;
+pub mod manipulability;
 mod pose;
 mod preset;
 mod sphere;

@@ -3,4 +3,5 @@
 
 mod atlas;
 mod kinematics;
+mod lab;
 mod planner;

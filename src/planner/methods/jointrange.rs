@@ -12,10 +12,13 @@
 //! limit. The quadratic is bounded and smooth everywhere; the weighting is
 //! where the barrier belongs (it divides rates, never multiplies them).
 //! An arm without limits has no range to keep to: `v = 0`, and the method
-//! is eq. (5) with no secondary task (`none`'s rates).
+//! is eq. (5) with no secondary task (`none`'s rates). In space the same
+//! `v` over the chain's limits ([`range_gradient_into`],
+//! `space::jointrange`).
 
 use super::paper::DELTA;
 use super::{projection, Context, Entry, Group, Method, MethodInfo, Needs};
+use crate::arm::JointLimits;
 use crate::kinematics::Pose;
 use crate::scene::{Param, Scale};
 
@@ -55,19 +58,35 @@ static ENTRY: Entry = Entry {
     },
     rule: |n| projection::rule(n, gradient),
     #[cfg(feature = "space")]
-    space: None,
+    space: Some(super::space::jointrange::rule),
 };
 
 /// `v = k_r grad w` (zero for an arm without limits).
 fn gradient(cx: &Context<'_>, pose: &Pose, v: &mut [f64]) {
     let scene = cx.scene;
-    let Some(limits) = scene.arm.joint_limits() else {
+    range_gradient_into(
+        scene.arm.joint_limits(),
+        scene.param(&JOINT_RANGE_GAIN),
+        pose.theta(),
+        v,
+    );
+}
+
+/// `v_i = -k_r (theta_i - mid_i) / (n (hi_i - lo_i)^2)` for the angles
+/// `theta` into `v`, zero without `limits`: dimension-free, the planar and
+/// the spatial rule's.
+pub(super) fn range_gradient_into(
+    limits: Option<&JointLimits>,
+    gain: f64,
+    theta: &[f64],
+    v: &mut [f64],
+) {
+    let Some(limits) = limits else {
         v.iter_mut().for_each(|x| *x = 0.0);
         return;
     };
     let n = v.len() as f64;
-    let gain = scene.param(&JOINT_RANGE_GAIN);
-    for ((vi, &t), &[lo, hi]) in v.iter_mut().zip(pose.theta()).zip(limits.ranges()) {
+    for ((vi, &t), &[lo, hi]) in v.iter_mut().zip(theta).zip(limits.ranges()) {
         let range = hi - lo;
         *vi = -gain * (t - 0.5 * (lo + hi)) / (n * range * range);
     }

@@ -5,7 +5,8 @@
 //! checked against finite differences on random arms of 2-6 links); `w` is
 //! floored at 1e-6 m^2, where a singular pose leaves it undefined. It
 //! avoids no obstacle: it is the field's second classic criterion, beside
-//! the paper's.
+//! the paper's. In space: `space::manipulability`, the same gain, with
+//! `w` of the hand's `3 x n` Jacobian ([`crate::space::manipulability`]).
 
 use super::paper::DELTA;
 use super::{projection, Context, Entry, Group, Method, MethodInfo, Needs};
@@ -48,7 +49,7 @@ static ENTRY: Entry = Entry {
     },
     rule: |n| projection::rule(n, gradient),
     #[cfg(feature = "space")]
-    space: None,
+    space: Some(super::space::manipulability::rule),
 };
 
 /// `v = k_m grad w`.

@@ -27,12 +27,17 @@
 //! the weighted joints only ever grow in number). A weighted joint then
 //! moves less toward its limit (`w_i` grows without bound at it); the
 //! weights jump where a joint turns back (a property of the method).
+//!
+//! Nothing here but [`JointWeights::update`] and [`JointWeights::eq18`]
+//! knows the planar arm: the spatial weights (`space::weighting`) are these
+//! weights over a chain's limits ([`JointWeights::update_at`]).
 
 use super::Context;
+use crate::arm::JointLimits;
 use crate::error::Result;
 use crate::ik;
 use crate::kinematics::Pose;
-use crate::scene::Scene;
+use crate::scene::{JointWeighting, Scene};
 
 /// The weights' scratch space: `dH/dtheta` and `W^-1` (`n` entries each).
 #[derive(Debug, Clone)]
@@ -60,13 +65,31 @@ impl JointWeights {
     /// `W^-1` at `pose` for the unweighted rates `rates` (see the module
     /// documentation); `false` when every weight is 1 (the rates stand).
     pub(super) fn update(&mut self, scene: &Scene, pose: &Pose, rates: &[f64]) -> bool {
-        if scene.weighting.is_none() {
+        self.update_at(
+            scene.weighting,
+            scene.arm.joint_limits(),
+            pose.theta(),
+            rates,
+        )
+    }
+
+    /// [`JointWeights::update`] from what it reads, which knows no arm: the
+    /// scene's weighting, the joints' limits, the angles `theta` and the
+    /// unweighted rates (the spatial weights call it too).
+    pub(super) fn update_at(
+        &mut self,
+        weighting: JointWeighting,
+        limits: Option<&JointLimits>,
+        theta: &[f64],
+        rates: &[f64],
+    ) -> bool {
+        if weighting.is_none() {
             return false;
         }
-        let Some(limits) = scene.arm.joint_limits() else {
+        let Some(limits) = limits else {
             return false;
         };
-        limits.range_gradient_into(pose.theta(), &mut self.grad);
+        limits.range_gradient_into(theta, &mut self.grad);
         self.winv.iter_mut().for_each(|w| *w = 1.0);
         self.widen(rates)
     }

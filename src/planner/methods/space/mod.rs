@@ -5,7 +5,11 @@
 //! [`Entry::space`](super::Entry); [`Method::space_rule`](super::Method)
 //! refuses the others with a clear error.
 
+pub(super) mod jointrange;
+pub(super) mod manipulability;
 pub(super) mod paper;
+mod projection;
+pub(super) mod weighting;
 
 use super::Note;
 use crate::error::Result;
@@ -76,6 +80,41 @@ pub fn eq18(
     let phi = solve_spd3(a, rhs)?;
     for ((o, col), vi) in out.iter_mut().zip(jac.chunks_exact(3)).zip(v) {
         *o = col[0] * phi[0] + col[1] * phi[1] + col[2] * phi[2] + vi;
+    }
+    Ok(())
+}
+
+/// Eq. (18) weighted by a diagonal `W` given as its inverse `winv` (`n`
+/// entries), with `m = 3`: `J+ = W^-1 J^T (J W^-1 J^T + delta I)^-1`, the
+/// null-space vector in the same metric (as the planar
+/// [`crate::ik::theta_dot_weighted_into`]):
+/// `(J W^-1 J^T + delta I) varphi = Xdot - J W^-1 v`,
+/// `theta_dot = W^-1 (J^T varphi + v)` into `out`.
+pub fn eq18_weighted(
+    pose: &SpacePose,
+    winv: &[f64],
+    xdot: [f64; 3],
+    v: &[f64],
+    delta: f64,
+    out: &mut [f64],
+) -> Result<()> {
+    let jac = pose.jacobian();
+    let mut a = [[0.0; 3]; 3];
+    let mut rhs = xdot;
+    for ((col, vi), w) in jac.chunks_exact(3).zip(v).zip(winv) {
+        for r in 0..3 {
+            for c in 0..3 {
+                a[r][c] += col[r] * (w * col[c]);
+            }
+            rhs[r] -= col[r] * (w * vi);
+        }
+    }
+    for (i, row) in a.iter_mut().enumerate() {
+        row[i] += delta;
+    }
+    let phi = solve_spd3(a, rhs)?;
+    for (((o, col), vi), w) in out.iter_mut().zip(jac.chunks_exact(3)).zip(v).zip(winv) {
+        *o = w * ((col[0] * phi[0] + col[1] * phi[1] + col[2] * phi[2]) + vi);
     }
     Ok(())
 }

@@ -1,10 +1,12 @@
 //! The paper's rule in space: eq. (18) with the hand's `3 x n` Jacobian and
 //! the obstacle vector of the criterion generalised to space
 //! ([`crate::space::criterion`]), or none. The learned routes (Cases 1-3)
-//! need networks trained for the arm in space.
+//! need networks trained for the arm in space. With the scene's joint
+//! weighting, eq. (18) is weighted as in the plane (`super::weighting`).
 
 use super::super::paper::{DELTA, LAMBDA, SIGN_SMOOTHING, V};
-use super::{eq18, SpaceContext, SpaceRule};
+use super::weighting::SpaceJointWeights;
+use super::{SpaceContext, SpaceRule};
 use crate::error::{Error, Result};
 use crate::planner::methods::{Method, Note};
 use crate::space::{criterion, SpacePose};
@@ -15,6 +17,7 @@ struct Paper {
     method: Method,
     v_from: V,
     v: Vec<f64>,
+    weights: SpaceJointWeights,
 }
 
 /// The rule of `method` for an `n`-joint chain, `v` from `v_from`.
@@ -23,6 +26,7 @@ pub(in crate::planner::methods) fn rule(n: usize, method: Method, v_from: V) -> 
         method,
         v_from,
         v: vec![0.0; n],
+        weights: SpaceJointWeights::new(n),
     })
 }
 
@@ -53,7 +57,7 @@ impl SpaceRule for Paper {
             }
         }
         let delta = scene.param(&DELTA) + cx.scheduled_delta(pose);
-        eq18(pose, xdot, &self.v, delta, out)?;
+        self.weights.eq18(cx, pose, xdot, &self.v, delta, out)?;
         Ok(Note::default())
     }
 
