@@ -2,4 +2,5 @@
 //! planner, and the planar arm as a chain whose axes are parallel.
 
 mod kinematics;
+mod modern;
 mod planner;

@@ -5,7 +5,10 @@
 //! [`Entry::space`](super::Entry); [`Method::space_rule`](super::Method)
 //! refuses the others with a clear error.
 
+pub(super) mod distance;
 pub(super) mod paper;
+pub(super) mod priority;
+pub(super) mod qp;
 
 use super::Note;
 use crate::error::Result;

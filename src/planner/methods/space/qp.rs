@@ -1,0 +1,127 @@
+//! The QP with velocity dampers in space: the program of `methods/qp`
+//! (its module documentation has the formulas) with the hand's `3 x n`
+//! Jacobian, the area vector of the criterion in space
+//! ([`crate::space::criterion`]) and the spatial rows of every constraint
+//! of [`constraints::ALL`] (each constraint's file: the dampers of the
+//! capsule pairs and the floor, the joint-limit dampers, the rate limit).
+//!
+//! With no row binding, `theta_dot = v + J^T (J J^T + I / w')^-1 (Xdot -
+//! J v)`, eq. (18) with `m = 3`; where one binds, the task slack
+//! `s = Xdot - J theta_dot` (3 entries) eliminated,
+//! `H = I + w' J^T J`, `g = v + w' J^T Xdot`, `w' = 1 / (1 / w + delta)`,
+//! solved by [`crate::qp::solve`] over `A = -G`, `b = -h`; where no rate
+//! satisfies every row, every bound relaxed to `max(h, 0)`.
+
+use super::super::paper::{DELTA, LAMBDA, SIGN_SMOOTHING};
+use super::super::qp::constraints::{self, Rows, SpaceConstraint};
+use super::super::qp::SLACK_WEIGHT;
+use super::super::Note;
+use super::{eq18, SpaceContext, SpaceRule};
+use crate::error::{Error, Result};
+use crate::qp as solver;
+use crate::space::{criterion, SpacePose};
+
+/// The spatial program's scratch space, sized for an `n`-joint chain and
+/// grown (once) when more rows appear than ever before.
+#[derive(Clone)]
+struct SpaceQp {
+    constraints: Vec<Box<dyn SpaceConstraint>>,
+    rows: Rows,
+    /// The area vector `v`.
+    v: Vec<f64>,
+    /// `H` (row-major `n x n`) and the linear term.
+    h: Vec<f64>,
+    lin: Vec<f64>,
+    /// The rows as the solver takes them, `A x >= b`.
+    a: Vec<f64>,
+    b: Vec<f64>,
+    ws: solver::Workspace,
+}
+
+/// The rule of `qp` for an `n`-joint chain.
+pub(in crate::planner::methods) fn rule(n: usize) -> Box<dyn SpaceRule> {
+    // Dampers for 8 spheres per joint and the floor, the joint-limit
+    // dampers and the rate limits.
+    let m = 9 * n + 2 * n + 2 * n;
+    Box::new(SpaceQp {
+        constraints: constraints::ALL.iter().map(|c| (c.space)(n)).collect(),
+        rows: Rows::with_capacity(n, m),
+        v: vec![0.0; n],
+        h: vec![0.0; n * n],
+        lin: vec![0.0; n],
+        a: Vec::with_capacity(m * n),
+        b: Vec::with_capacity(m),
+        ws: solver::Workspace::with_capacity(n, m),
+    })
+}
+
+impl SpaceQp {
+    /// Solves the program over the current rows into `out`.
+    fn solve(&mut self, out: &mut [f64]) -> Result<solver::Solution> {
+        self.a.clear();
+        self.a.extend(self.rows.g().iter().map(|g| -g));
+        self.b.clear();
+        self.b.extend(self.rows.h().iter().map(|h| -h));
+        solver::solve(&mut self.ws, &self.h, &self.lin, &self.a, &self.b, out)
+    }
+}
+
+impl SpaceRule for SpaceQp {
+    fn theta_dot(
+        &mut self,
+        cx: &SpaceContext<'_>,
+        pose: &SpacePose,
+        xdot: [f64; 3],
+        out: &mut [f64],
+    ) -> Result<Note> {
+        let n = pose.dof();
+        let s = cx.scene;
+        criterion::null_space_vector_into(
+            &s.chain,
+            pose,
+            s.spheres.iter().map(|sp| sp.centre),
+            s.param(&LAMBDA),
+            s.param(&SIGN_SMOOTHING),
+            &mut self.v,
+        );
+        let damping = 1.0 / s.param(&SLACK_WEIGHT) + s.param(&DELTA) + cx.scheduled_delta(pose);
+        // The unconstrained minimum: eq. (18) with m = 3.
+        eq18(pose, xdot, &self.v, damping, out)?;
+        self.rows.clear(n);
+        for constraint in &mut self.constraints {
+            constraint.rows(cx, pose, &mut self.rows)?;
+        }
+        if !self.rows.broken_by(out) {
+            return Ok(Note::default());
+        }
+        // H = I + w' J^T J, g = v + w' J^T Xdot over J's three rows.
+        let w = 1.0 / damping;
+        let jac = pose.jacobian();
+        for (r, jr) in jac.chunks_exact(3).enumerate() {
+            for (c, jc) in jac.chunks_exact(3).enumerate() {
+                let jtj = jr[0] * jc[0] + jr[1] * jc[1] + jr[2] * jc[2];
+                self.h[r * n + c] = f64::from(u8::from(r == c)) + w * jtj;
+            }
+            let jtx = jr[0] * xdot[0] + jr[1] * xdot[1] + jr[2] * xdot[2];
+            self.lin[r] = self.v[r] + w * jtx;
+        }
+        match self.solve(out) {
+            Ok(_) => Ok(Note::default()),
+            Err(Error::Infeasible { .. }) => {
+                // No capsule may approach; none must move away:
+                // theta_dot = 0 is feasible.
+                self.rows.h_mut().iter_mut().for_each(|h| *h = h.max(0.0));
+                self.solve(out)?;
+                Ok(Note {
+                    relaxed: true,
+                    ..Note::default()
+                })
+            }
+            Err(e) => Err(e),
+        }
+    }
+
+    fn boxed_clone(&self) -> Box<dyn SpaceRule> {
+        Box::new(self.clone())
+    }
+}
