@@ -11,7 +11,6 @@ use redundant_ik::planner::space::{SpacePlanner, SpaceSummary};
 use redundant_ik::scene::SpaceScene;
 use redundant_ik::space::{SpacePairs, SpacePose, Sphere, PRESETS};
 use redundant_ik::planner::methods::{DISTANCE, PRIORITY, QP};
-use redundant_ik::Method;
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
@@ -87,71 +86,134 @@ fn forearm(scene: &SpaceScene) -> ([f64; 3], [f64; 3]) {
     pose.segment(s)
 }
 
+/// Two spheres of radius 5 cm on opposite sides of the forearm, at
+/// fraction `at` of its length, each 1 cm from its capsule (within the
+/// stop distance `d_s = 2 cm`): one damper asks the forearm to move one
+/// way, the other the opposite way, so no rate keeps both.
+fn squeezed(scene: &SpaceScene, at: f64) -> SpaceScene {
+    let (a, b) = forearm(scene);
+    let q = [0, 1, 2].map(|k| a[k] + at * (b[k] - a[k]));
+    let u = [0, 1, 2].map(|k| b[k] - a[k]);
+    // A unit normal to the forearm, horizontal: u x z, normalised.
+    let c = [u[1], -u[0], 0.0];
+    let l = (c[0] * c[0] + c[1] * c[1]).sqrt();
+    let off = scene.chain.radius() + 0.05 + 0.01;
+    let mut s = scene.clone();
+    s.spheres = [1.0, -1.0]
+        .map(|side| Sphere::new([0, 1, 2].map(|k| q[k] + side * off * c[k] / l), 0.05))
+        .to_vec();
+    s
+}
+
 #[test]
-fn diag() {
-    for p in PRESETS {
-        let mut scene = SpaceScene::preset(&p);
-        let (a, b) = forearm(&scene);
-        let q = [0, 1, 2].map(|k| 0.5 * (a[k] + b[k]));
-        let u = [0, 1, 2].map(|k| b[k] - a[k]);
-        // A unit normal to the forearm: u x z, normalised.
-        let c = [u[1], -u[0], 0.0];
-        let l = (c[0] * c[0] + c[1] * c[1]).sqrt();
-        let off = scene.chain.radius() + 0.05 + 0.01;
-        scene.spheres = [1.0, -1.0]
-            .map(|s| Sphere::new([0, 1, 2].map(|k| q[k] + s * off * c[k] / l), 0.05))
-            .to_vec();
-        let (s, b) = rows_hold_at_every_step(p.key, &scene);
-        eprintln!("{} squeezed {s:?} binding {b}", p.key);
+fn on_both_presets_tasks_qp_keeps_every_row_every_capsule_out_of_the_sphere_and_every_joint_within_its_limits() {
+    // Measured: the Panda starts 3.6 mm from its sphere and ends 0.36 mm
+    // from its target (the dampers bind on 112 rows, the task slack pays);
+    // the iiwa starts 2.7 mm from its sphere and ends 4 µm from its target.
+    for (p, reach) in PRESETS.iter().zip([1e-3, 1e-5]) {
+        let scene = SpaceScene::preset(p);
+        let (summary, binding) = rows_hold_at_every_step(p.key, &scene);
+        assert!(binding > 0, "{}: no damper bound, the test says little", p.key);
+        assert_eq!(summary.collision_steps, 0, "{}: {summary:?}", p.key);
+        assert_eq!(summary.limit_steps, 0, "{}: {summary:?}", p.key);
+        assert_eq!(summary.relaxed_steps, 0, "{}: {summary:?}", p.key);
+        let start = SpacePose::new(&scene.chain, &scene.theta0).unwrap();
+        let c0 = redundant_ik::space::clearance(&scene.chain, &start, &scene.spheres);
+        // Inside the stop distance from the start, the clearance never shrinks.
+        assert!(c0 < scene.param(&STOP_DISTANCE), "{}: {c0}", p.key);
+        assert!(
+            summary.min_clearance.unwrap() >= c0 - 1e-9,
+            "{}: {summary:?} from {c0}",
+            p.key
+        );
+        assert!(summary.final_error < reach, "{}: {summary:?}", p.key);
     }
 }
 
 #[test]
-fn diag2() {
-    use redundant_ik::planner::methods::{DELTA, LAMBDA, SIGN_SMOOTHING, SLACK_WEIGHT};
-    let p = PRESETS[1];
-    let mut scene = SpaceScene::preset(&p);
-    let (a, b) = forearm(&scene);
-    let q = [0, 1, 2].map(|k| 0.5 * (a[k] + b[k]));
-    let u = [0, 1, 2].map(|k| b[k] - a[k]);
-    let c = [u[1], -u[0], 0.0];
-    let l = (c[0] * c[0] + c[1] * c[1]).sqrt();
-    let off = scene.chain.radius() + 0.05 + 0.01;
-    scene.spheres = [1.0, -1.0]
-        .map(|s| Sphere::new([0, 1, 2].map(|k| q[k] + s * off * c[k] / l), 0.05))
-        .to_vec();
-    let mut pl = SpacePlanner::new(scene.clone(), QP).unwrap();
-    let start = pl.pose().hand();
-    let xdot = [0, 1, 2].map(|k| (scene.target[k] - start[k]) / scene.tf);
-    for _ in 0..5 {
-        let r = pl.step().unwrap().relaxed;
-        eprintln!("t {} relaxed {r}", pl.t());
-    }
-    let theta = pl.sample().theta.clone();
-    let pose = SpacePose::new(&scene.chain, &theta).unwrap();
-    let n = theta.len();
-    let rows = rows_at(&scene, &pose);
-    let mut v = vec![0.0; n];
-    redundant_ik::space::criterion::null_space_vector_into(&scene.chain, &pose, scene.spheres.iter().map(|s| s.centre), scene.param(&LAMBDA), scene.param(&SIGN_SMOOTHING), &mut v);
-    let w = 1.0 / (1.0 / scene.param(&SLACK_WEIGHT) + scene.param(&DELTA));
-    let jac = pose.jacobian();
-    let mut h = vec![0.0; n * n];
-    let mut g = vec![0.0; n];
-    for r in 0..n {
-        for c in 0..n {
-            h[r * n + c] = if r == c { 1.0 } else { 0.0 } + w * dot(&jac[3 * r..3 * r + 3], &jac[3 * c..3 * c + 3]);
+fn distance_and_priority_keep_every_capsule_out_of_the_sphere_on_both_presets_tasks() {
+    for p in PRESETS {
+        let scene = SpaceScene::preset(&p);
+        for m in [DISTANCE, PRIORITY] {
+            let run = SpacePlanner::new(scene.clone(), m)
+                .and_then(|pl| pl.run())
+                .unwrap();
+            assert_eq!(run.summary.collision_steps, 0, "{} {m}: {:?}", p.key, run.summary);
+            assert!(run.summary.final_error < 1e-2, "{} {m}: {:?}", p.key, run.summary);
         }
-        g[r] = v[r] + w * dot(&jac[3 * r..3 * r + 3], &xdot);
     }
-    let am: Vec<f64> = rows.iter().flat_map(|(_, gg, _)| gg.iter().map(|x| -x)).collect();
-    let bm: Vec<f64> = rows.iter().map(|(_, _, hh)| -hh).collect();
-    let mut ws = redundant_ik::qp::Workspace::default();
-    let mut x = vec![0.0; n];
-    let res = redundant_ik::qp::solve(&mut ws, &h, &g, &am, &bm, &mut x);
-    eprintln!("res {res:?} x {x:?} active {:?}", ws.active());
-    for (i, (what, gg, hh)) in rows.iter().enumerate() {
-        eprintln!("{i} {what} {:?} h {hh} rate {}", gg, dot(gg, &x));
+}
+
+#[test]
+fn the_damper_rows_are_minus_n_jq_with_the_damper_bound_for_spheres_and_the_floor() {
+    let mut scene = SpaceScene::preset(&PRESETS[0]);
+    scene.floor = true;
+    // Every pair counts, the floor's too (the arm stands 0.3 m and more
+    // above it).
+    scene.params.set(&INFLUENCE, 5.0).unwrap();
+    scene.params.set(&DAMPER_GAIN, 0.7).unwrap();
+    let pose = SpacePose::new(&scene.chain, &scene.theta0).unwrap();
+    let (di, ds, xi) = (5.0, scene.param(&STOP_DISTANCE), 0.7);
+    let dampers: Vec<_> = rows_at(&scene, &pose)
+        .into_iter()
+        .filter(|(what, _, _)| *what == "damper")
+        .collect();
+    let segments = scene.chain.segments();
+    let moving: Vec<usize> = (0..segments.len()).filter(|&k| segments[k].moved_by > 0).collect();
+    assert_eq!(dampers.len(), 2 * moving.len(), "one sphere and the floor per moving capsule");
+    let n = pose.dof();
+    let mut jq = vec![0.0; 3 * n];
+    let r = scene.chain.radius();
+    for (i, &k) in moving.iter().enumerate() {
+        let s = segments[k];
+        let (a, b) = pose.segment(&s);
+        // The sphere's row: -n . J_Q at the axis point nearest the centre.
+        let sp = scene.spheres[0];
+        let (t, d) = redundant_ik::space::closest(sp.centre, a, b);
+        let q = [0, 1, 2].map(|j| a[j] + t * (b[j] - a[j]));
+        let normal = [0, 1, 2].map(|j| (q[j] - sp.centre[j]) / d);
+        pose.point_jacobian_into(q, s.moved_by, &mut jq);
+        let (_, g, h) = &dampers[i];
+        for (c, gc) in g.iter().enumerate() {
+            let want = -dot(&normal, &jq[3 * c..3 * c + 3]);
+            assert!((gc - want).abs() < 1e-12, "segment {k}: {g:?}");
+        }
+        let dist = d - r - sp.radius;
+        assert!((h - xi * (dist - ds) / (di - ds)).abs() < 1e-12, "segment {k}: {h}");
+        // The floor's: its lower end, d = z - r, n = +z.
+        let end = if b[2] < a[2] { b } else { a };
+        pose.point_jacobian_into(end, s.moved_by, &mut jq);
+        let (_, g, h) = &dampers[moving.len() + i];
+        for (c, gc) in g.iter().enumerate() {
+            assert!((gc + jq[3 * c + 2]).abs() < 1e-12, "floor, segment {k}: {g:?}");
+        }
+        assert!((h - xi * (end[2] - r - ds) / (di - ds)).abs() < 1e-12, "floor {k}: {h}");
     }
-    let rates = pl.theta_dot(&theta, xdot).unwrap();
-    eprintln!("rates {rates:?}");
+    // The same pairs as SpacePairs lists them, in the same order.
+    let mut pairs = SpacePairs::default();
+    pairs.update(&scene.chain, &pose, &scene.spheres, 5.0);
+    pairs.add_floor(&scene.chain, &pose, 5.0);
+    assert_eq!(pairs.len(), dampers.len());
+    // Without the floor its rows go.
+    scene.floor = false;
+    let count = rows_at(&scene, &pose).iter().filter(|(w, _, _)| *w == "damper").count();
+    assert_eq!(count, moving.len());
+}
+
+/// At three quarters of its length the forearm alone is squeezed; at its
+/// middle the iiwa's upper arm is close to the spheres too, four nearly
+/// opposite active rows on which the solver loses its digits (the program
+/// then holds the arm still: `methods/space/qp.rs`). Either way the steps
+/// are relaxed and keep the relaxed rows.
+#[test]
+fn a_forearm_squeezed_between_two_spheres_gives_relaxed_steps_that_keep_the_relaxed_rows() {
+    for p in PRESETS {
+        for at in [0.75, 0.5] {
+            let scene = squeezed(&SpaceScene::preset(&p), at);
+            let (summary, _) = rows_hold_at_every_step(p.key, &scene);
+            assert!(summary.relaxed_steps > 0, "{} at {at}: {summary:?}", p.key);
+            assert_eq!(summary.collision_steps, 0, "{} at {at}: {summary:?}", p.key);
+            assert_eq!(summary.limit_steps, 0, "{} at {at}: {summary:?}", p.key);
+        }
+    }
 }

@@ -11,6 +11,15 @@
 //! `H = I + w' J^T J`, `g = v + w' J^T Xdot`, `w' = 1 / (1 / w + delta)`,
 //! solved by [`crate::qp::solve`] over `A = -G`, `b = -h`; where no rate
 //! satisfies every row, every bound relaxed to `max(h, 0)`.
+//!
+//! One check the planar program does not make: the rates must keep every
+//! row (to [`ROW_TOLERANCE`]). The dual active-set method loses its digits
+//! on nearly opposite active rows (a forearm squeezed between two spheres;
+//! the planar program's known case, `tests/constraints.rs`) and can return
+//! rates that break one. Such a solution is not taken: the program is
+//! relaxed as where it is infeasible, and where the relaxed one's solution
+//! breaks a row too the arm holds still, `theta_dot = 0`, which keeps every
+//! relaxed row. Both are relaxed steps.
 
 use super::super::paper::{DELTA, LAMBDA, SIGN_SMOOTHING};
 use super::super::qp::constraints::{self, Rows, SpaceConstraint};
@@ -55,14 +64,40 @@ pub(in crate::planner::methods) fn rule(n: usize) -> Box<dyn SpaceRule> {
     })
 }
 
+/// How far rates may break a row, relative to `1 + |h|`, before the
+/// program refuses them.
+pub const ROW_TOLERANCE: f64 = 1e-7;
+
+/// Why a solve was not taken.
+enum Refused {
+    /// No rate keeps every row, or the solver's rates break one.
+    Unsolved,
+    /// Anything else (a dimension mismatch): an error.
+    Error(Error),
+}
+
 impl SpaceQp {
-    /// Solves the program over the current rows into `out`.
-    fn solve(&mut self, out: &mut [f64]) -> Result<solver::Solution> {
+    /// Solves the program over the current rows into `out` and checks the
+    /// rates keep them.
+    fn solve(&mut self, out: &mut [f64]) -> std::result::Result<(), Refused> {
         self.a.clear();
         self.a.extend(self.rows.g().iter().map(|g| -g));
         self.b.clear();
         self.b.extend(self.rows.h().iter().map(|h| -h));
-        solver::solve(&mut self.ws, &self.h, &self.lin, &self.a, &self.b, out)
+        match solver::solve(&mut self.ws, &self.h, &self.lin, &self.a, &self.b, out) {
+            Ok(_) => {}
+            Err(Error::Infeasible { .. } | Error::QpFailed { .. }) => return Err(Refused::Unsolved),
+            Err(e) => return Err(Refused::Error(e)),
+        }
+        let kept = self.rows.iter().all(|(row, h)| {
+            let rate: f64 = row.iter().zip(out.iter()).map(|(g, t)| g * t).sum();
+            rate <= h + ROW_TOLERANCE * (1.0 + h.abs())
+        });
+        if kept {
+            Ok(())
+        } else {
+            Err(Refused::Unsolved)
+        }
     }
 }
 
@@ -105,19 +140,25 @@ impl SpaceRule for SpaceQp {
             let jtx = jr[0] * xdot[0] + jr[1] * xdot[1] + jr[2] * xdot[2];
             self.lin[r] = self.v[r] + w * jtx;
         }
+        let relaxed = Note {
+            relaxed: true,
+            ..Note::default()
+        };
         match self.solve(out) {
-            Ok(_) => Ok(Note::default()),
-            Err(Error::Infeasible { .. }) => {
-                // No capsule may approach; none must move away:
-                // theta_dot = 0 is feasible.
-                self.rows.h_mut().iter_mut().for_each(|h| *h = h.max(0.0));
-                self.solve(out)?;
-                Ok(Note {
-                    relaxed: true,
-                    ..Note::default()
-                })
+            Ok(()) => return Ok(Note::default()),
+            Err(Refused::Error(e)) => return Err(e),
+            Err(Refused::Unsolved) => {}
+        }
+        // No capsule may approach; none must move away (theta_dot = 0 is
+        // feasible).
+        self.rows.h_mut().iter_mut().for_each(|h| *h = h.max(0.0));
+        match self.solve(out) {
+            Ok(()) => Ok(relaxed),
+            Err(Refused::Error(e)) => Err(e),
+            Err(Refused::Unsolved) => {
+                out.iter_mut().for_each(|t| *t = 0.0);
+                Ok(relaxed)
             }
-            Err(e) => Err(e),
         }
     }
 
