@@ -7,10 +7,10 @@
 use redundant_ik::planner::methods::constraints::{self, Rows};
 use redundant_ik::planner::methods::space::SpaceContext;
 use redundant_ik::planner::methods::{DAMPER_GAIN, INFLUENCE, STOP_DISTANCE};
+use redundant_ik::planner::methods::{DISTANCE, PRIORITY, QP};
 use redundant_ik::planner::space::{SpacePlanner, SpaceSummary};
 use redundant_ik::scene::SpaceScene;
 use redundant_ik::space::{SpacePairs, SpacePose, Sphere, PRESETS};
-use redundant_ik::planner::methods::{DISTANCE, PRIORITY, QP};
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
@@ -55,7 +55,10 @@ fn rows_hold_at_every_step(name: &str, scene: &SpaceScene) -> (SpaceSummary, usi
             let bound = if sample.relaxed { h.max(0.0) } else { h };
             let rate = dot(&g, &rates);
             let tol = 1e-9 * (1.0 + bound.abs());
-            assert!(rate <= bound + tol, "{name}, t = {t}: {what} row {g:?}: {rate} > {bound}");
+            assert!(
+                rate <= bound + tol,
+                "{name}, t = {t}: {what} row {g:?}: {rate} > {bound}"
+            );
             binding += usize::from(rate > bound - tol);
         }
         samples.push(sample);
@@ -106,14 +109,19 @@ fn squeezed(scene: &SpaceScene, at: f64) -> SpaceScene {
 }
 
 #[test]
-fn on_both_presets_tasks_qp_keeps_every_row_every_capsule_out_of_the_sphere_and_every_joint_within_its_limits() {
+fn on_both_presets_tasks_qp_keeps_every_row_every_capsule_out_of_the_sphere_and_every_joint_within_its_limits(
+) {
     // Measured: the Panda starts 3.6 mm from its sphere and ends 0.36 mm
     // from its target (the dampers bind on 112 rows, the task slack pays);
     // the iiwa starts 2.7 mm from its sphere and ends 4 µm from its target.
     for (p, reach) in PRESETS.iter().zip([1e-3, 1e-5]) {
         let scene = SpaceScene::preset(p);
         let (summary, binding) = rows_hold_at_every_step(p.key, &scene);
-        assert!(binding > 0, "{}: no damper bound, the test says little", p.key);
+        assert!(
+            binding > 0,
+            "{}: no damper bound, the test says little",
+            p.key
+        );
         assert_eq!(summary.collision_steps, 0, "{}: {summary:?}", p.key);
         assert_eq!(summary.limit_steps, 0, "{}: {summary:?}", p.key);
         assert_eq!(summary.relaxed_steps, 0, "{}: {summary:?}", p.key);
@@ -138,8 +146,17 @@ fn distance_and_priority_keep_every_capsule_out_of_the_sphere_on_both_presets_ta
             let run = SpacePlanner::new(scene.clone(), m)
                 .and_then(|pl| pl.run())
                 .unwrap();
-            assert_eq!(run.summary.collision_steps, 0, "{} {m}: {:?}", p.key, run.summary);
-            assert!(run.summary.final_error < 1e-2, "{} {m}: {:?}", p.key, run.summary);
+            assert_eq!(
+                run.summary.collision_steps, 0,
+                "{} {m}: {:?}",
+                p.key, run.summary
+            );
+            assert!(
+                run.summary.final_error < 1e-2,
+                "{} {m}: {:?}",
+                p.key,
+                run.summary
+            );
         }
     }
 }
@@ -159,8 +176,14 @@ fn the_damper_rows_are_minus_n_jq_with_the_damper_bound_for_spheres_and_the_floo
         .filter(|(what, _, _)| *what == "damper")
         .collect();
     let segments = scene.chain.segments();
-    let moving: Vec<usize> = (0..segments.len()).filter(|&k| segments[k].moved_by > 0).collect();
-    assert_eq!(dampers.len(), 2 * moving.len(), "one sphere and the floor per moving capsule");
+    let moving: Vec<usize> = (0..segments.len())
+        .filter(|&k| segments[k].moved_by > 0)
+        .collect();
+    assert_eq!(
+        dampers.len(),
+        2 * moving.len(),
+        "one sphere and the floor per moving capsule"
+    );
     let n = pose.dof();
     let mut jq = vec![0.0; 3 * n];
     let r = scene.chain.radius();
@@ -179,15 +202,24 @@ fn the_damper_rows_are_minus_n_jq_with_the_damper_bound_for_spheres_and_the_floo
             assert!((gc - want).abs() < 1e-12, "segment {k}: {g:?}");
         }
         let dist = d - r - sp.radius;
-        assert!((h - xi * (dist - ds) / (di - ds)).abs() < 1e-12, "segment {k}: {h}");
+        assert!(
+            (h - xi * (dist - ds) / (di - ds)).abs() < 1e-12,
+            "segment {k}: {h}"
+        );
         // The floor's: its lower end, d = z - r, n = +z.
         let end = if b[2] < a[2] { b } else { a };
         pose.point_jacobian_into(end, s.moved_by, &mut jq);
         let (_, g, h) = &dampers[moving.len() + i];
         for (c, gc) in g.iter().enumerate() {
-            assert!((gc + jq[3 * c + 2]).abs() < 1e-12, "floor, segment {k}: {g:?}");
+            assert!(
+                (gc + jq[3 * c + 2]).abs() < 1e-12,
+                "floor, segment {k}: {g:?}"
+            );
         }
-        assert!((h - xi * (end[2] - r - ds) / (di - ds)).abs() < 1e-12, "floor {k}: {h}");
+        assert!(
+            (h - xi * (end[2] - r - ds) / (di - ds)).abs() < 1e-12,
+            "floor {k}: {h}"
+        );
     }
     // The same pairs as SpacePairs lists them, in the same order.
     let mut pairs = SpacePairs::default();
@@ -196,7 +228,10 @@ fn the_damper_rows_are_minus_n_jq_with_the_damper_bound_for_spheres_and_the_floo
     assert_eq!(pairs.len(), dampers.len());
     // Without the floor its rows go.
     scene.floor = false;
-    let count = rows_at(&scene, &pose).iter().filter(|(w, _, _)| *w == "damper").count();
+    let count = rows_at(&scene, &pose)
+        .iter()
+        .filter(|(w, _, _)| *w == "damper")
+        .count();
     assert_eq!(count, moving.len());
 }
 

@@ -86,7 +86,9 @@ impl SpaceQp {
         self.b.extend(self.rows.h().iter().map(|h| -h));
         match solver::solve(&mut self.ws, &self.h, &self.lin, &self.a, &self.b, out) {
             Ok(_) => {}
-            Err(Error::Infeasible { .. } | Error::QpFailed { .. }) => return Err(Refused::Unsolved),
+            Err(Error::Infeasible { .. } | Error::QpFailed { .. }) => {
+                return Err(Refused::Unsolved)
+            }
             Err(e) => return Err(Refused::Error(e)),
         }
         let kept = self.rows.iter().all(|(row, h)| {
