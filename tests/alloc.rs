@@ -185,7 +185,17 @@ fn a_spatial_step_allocates_nothing_in_any_method() {
         squeezed.spheres = [1.0, -1.0]
             .map(|s| Sphere::new([0, 1, 2].map(|k| q[k] + s * off * c[k] / l), 0.05))
             .to_vec();
-        for (k, scene) in [task, busy, squeezed].into_iter().enumerate() {
+        // As many spheres as a scene may hold, every pair within the
+        // influence distance, the floor's too: the most rows there can be.
+        let mut crowded = busy.clone();
+        crowded.params.set(&methods::INFLUENCE, 50.0).unwrap();
+        crowded.spheres = (0..redundant_ik::space::MAX_SPHERES)
+            .map(|i| {
+                let a = i as f64 * std::f64::consts::TAU / 8.0;
+                Sphere::new([1.2 * a.cos(), 1.2 * a.sin(), 1.0], 0.05)
+            })
+            .collect();
+        for (k, scene) in [task, busy, squeezed, crowded].into_iter().enumerate() {
             for method in methods::ALL.iter().copied().filter(|m| m.in_space()) {
                 let mut p = SpacePlanner::new(scene.clone(), method).unwrap();
                 let mut relaxed = false;

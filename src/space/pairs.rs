@@ -13,7 +13,7 @@
 //! ([`SpacePose::point_jacobian_into`]).
 
 use super::pose::{cross, dot, sub, SpacePose, Vec3};
-use super::{CapsulePair, Chain, Sphere};
+use super::{CapsulePair, Chain, Sphere, MAX_SPHERES};
 
 /// What a capsule keeps clear of.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -96,6 +96,13 @@ pub struct SpacePairs {
 }
 
 impl SpacePairs {
+    /// The most pairs an `n`-joint chain can have: every one of its at
+    /// most `n + 1` moving segments with each of [`MAX_SPHERES`] spheres
+    /// and the floor.
+    pub const fn most(n: usize) -> usize {
+        (MAX_SPHERES + 1) * (n + 1)
+    }
+
     /// Room for `capacity` pairs.
     pub fn with_capacity(capacity: usize) -> Self {
         Self {

@@ -29,7 +29,7 @@ struct Distance {
 /// The rule of `distance` for an `n`-joint chain.
 pub(in crate::planner::methods) fn rule(n: usize) -> Box<dyn SpaceRule> {
     Box::new(Distance {
-        pairs: SpacePairs::with_capacity(9 * n),
+        pairs: SpacePairs::with_capacity(SpacePairs::most(n)),
         row: vec![0.0; n],
         v: vec![0.0; n],
     })

@@ -32,7 +32,7 @@ struct Priority {
 /// The rule of `priority` for an `n`-joint chain.
 pub(in crate::planner::methods) fn rule(n: usize) -> Box<dyn SpaceRule> {
     Box::new(Priority {
-        pairs: SpacePairs::with_capacity(9 * n),
+        pairs: SpacePairs::with_capacity(SpacePairs::most(n)),
         zero: vec![0.0; n],
         jo: vec![0.0; n],
     })

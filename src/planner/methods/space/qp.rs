@@ -28,7 +28,7 @@ use super::super::Note;
 use super::{eq18, SpaceContext, SpaceRule};
 use crate::error::{Error, Result};
 use crate::qp as solver;
-use crate::space::{criterion, SpacePose};
+use crate::space::{criterion, SpacePairs, SpacePose};
 
 /// The spatial program's scratch space, sized for an `n`-joint chain and
 /// grown (once) when more rows appear than ever before.
@@ -49,9 +49,9 @@ struct SpaceQp {
 
 /// The rule of `qp` for an `n`-joint chain.
 pub(in crate::planner::methods) fn rule(n: usize) -> Box<dyn SpaceRule> {
-    // Dampers for 8 spheres per joint and the floor, the joint-limit
-    // dampers and the rate limits.
-    let m = 9 * n + 2 * n + 2 * n;
+    // Every damper a chain can have, the joint-limit dampers and the
+    // rate limits: the rows never grow.
+    let m = SpacePairs::most(n) + 2 * n + 2 * n;
     Box::new(SpaceQp {
         constraints: constraints::ALL.iter().map(|c| (c.space)(n)).collect(),
         rows: Rows::with_capacity(n, m),

@@ -146,9 +146,9 @@ mod space {
 
     impl SpaceDamper {
         pub fn new(n: usize) -> Self {
-            // 8 spheres per joint's segment before the buffer grows.
+            // Every pair a chain can have: the buffer never grows.
             Self {
-                pairs: SpacePairs::with_capacity(8 * n + n),
+                pairs: SpacePairs::with_capacity(SpacePairs::most(n)),
             }
         }
     }
