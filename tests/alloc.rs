@@ -156,6 +156,63 @@ fn theta_dot_into_allocates_nothing() {
     }
 }
 
+/// In space: every method with a spatial rule on both presets' tasks, with
+/// the floor, the damping schedule and feedback, and with the forearm
+/// squeezed between two spheres (qp's relaxed program).
+#[cfg(feature = "space")]
+#[test]
+fn a_spatial_step_allocates_nothing_in_any_method() {
+    use redundant_ik::planner::space::SpacePlanner;
+    use redundant_ik::scene::SpaceScene;
+    use redundant_ik::space::{SpacePose, Sphere, PRESETS};
+    for preset in PRESETS {
+        let task = SpaceScene::preset(&preset);
+        let mut busy = task.clone();
+        busy.floor = true;
+        busy.damping = Some(DampingSchedule::default());
+        busy.feedback_gain = 1.0;
+        busy.params.set(&methods::INFLUENCE, 0.8).unwrap();
+        // Two spheres 1 cm from the forearm on opposite sides.
+        let pose = SpacePose::new(&task.chain, &task.theta0).unwrap();
+        let segments = task.chain.segments();
+        let last = segments[segments.len() - 2];
+        let (a, b) = pose.segment(&last);
+        let q = [0, 1, 2].map(|k| a[k] + 0.75 * (b[k] - a[k]));
+        let c = [b[1] - a[1], a[0] - b[0], 0.0];
+        let l = c[0].hypot(c[1]);
+        let off = task.chain.radius() + 0.06;
+        let mut squeezed = task.clone();
+        squeezed.spheres = [1.0, -1.0]
+            .map(|s| Sphere::new([0, 1, 2].map(|k| q[k] + s * off * c[k] / l), 0.05))
+            .to_vec();
+        // As many spheres as a scene may hold, every pair within the
+        // influence distance, the floor's too: the most rows there can be.
+        let mut crowded = busy.clone();
+        crowded.params.set(&methods::INFLUENCE, 50.0).unwrap();
+        crowded.spheres = (0..redundant_ik::space::MAX_SPHERES)
+            .map(|i| {
+                let a = i as f64 * std::f64::consts::TAU / 8.0;
+                Sphere::new([1.2 * a.cos(), 1.2 * a.sin(), 1.0], 0.05)
+            })
+            .collect();
+        for (k, scene) in [task, busy, squeezed, crowded].into_iter().enumerate() {
+            for method in methods::ALL.iter().copied().filter(|m| m.in_space()) {
+                let mut p = SpacePlanner::new(scene.clone(), method).unwrap();
+                let mut relaxed = false;
+                let n = allocations_in(|| {
+                    for _ in 0..20 {
+                        relaxed |= p.step().unwrap().relaxed;
+                    }
+                });
+                assert_eq!(n, 0, "{} {method}: {n} allocations in 20 steps", preset.key);
+                if k == 2 && method == methods::QP {
+                    assert!(relaxed, "{}: the squeeze did not relax qp", preset.key);
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn the_counter_does_count() {
     // The tests above could not fail if the counter saw nothing.

@@ -12,11 +12,13 @@ mod chain;
 pub mod criterion;
 pub mod linalg;
 pub mod manipulability;
+mod pairs;
 mod pose;
 mod preset;
 mod sphere;
 
 pub use chain::{Chain, Row, Segment, IDENTITY, MAX_JOINTS, MIN_JOINTS};
+pub use pairs::{Obstruction, SpacePair, SpacePairs};
 pub use pose::{SpacePose, Vec3};
 pub use preset::{SpacePreset, SpaceTask, PRESETS};
 pub use sphere::{clearance, closest, CapsulePair, Sphere, SpherePlacement, MAX_SPHERES};

@@ -454,6 +454,11 @@ fn a_chain_whose_axes_are_parallel_has_the_planar_manipulability_and_weights() {
                 }
             }
         }
-        assert!(weighted_somewhere, "{m}: no pose was weighted");
+        // The weighting reaches the methods of eq. (5) only (MethodInfo::weighting).
+        assert_eq!(
+            weighted_somewhere,
+            m.info().weighting,
+            "{m}: weighted at some pose"
+        );
     }
 }

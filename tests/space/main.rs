@@ -4,4 +4,5 @@
 mod atlas;
 mod kinematics;
 mod lab;
+mod modern;
 mod planner;

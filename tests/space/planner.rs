@@ -26,14 +26,21 @@ fn without_spheres_every_method_keeps_the_hand_on_its_line() {
             let run = SpacePlanner::new(scene.clone(), m)
                 .and_then(|pl| pl.run())
                 .unwrap();
+            // qp's task slack is eq. (5) damped by 1 / w (1e-6 at the
+            // default slack weight): the hand drifts by its order.
+            let tol = if m.reads(&methods::SLACK_WEIGHT) {
+                1e-5
+            } else {
+                1e-6
+            };
             assert!(
-                run.summary.max_error < 1e-6,
+                run.summary.max_error < tol,
                 "{} {m}: off the line by {:e}",
                 p.key,
                 run.summary.max_error
             );
             assert!(
-                run.summary.final_error < 1e-6,
+                run.summary.final_error < tol,
                 "{} {m}: {:e} from the target",
                 p.key,
                 run.summary.final_error

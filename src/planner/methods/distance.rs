@@ -65,7 +65,7 @@ static ENTRY: Entry = Entry {
         })
     },
     #[cfg(feature = "space")]
-    space: None,
+    space: Some(super::space::distance::rule),
 };
 
 #[derive(Clone)]

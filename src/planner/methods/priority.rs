@@ -74,7 +74,7 @@ static ENTRY: Entry = Entry {
         })
     },
     #[cfg(feature = "space")]
-    space: None,
+    space: Some(super::space::priority::rule),
 };
 
 #[derive(Clone)]

@@ -98,7 +98,7 @@ static ENTRY: Entry = Entry {
     },
     rule: |n| Box::new(Qp::new(n)),
     #[cfg(feature = "space")]
-    space: None,
+    space: Some(super::space::qp::rule),
 };
 
 /// The program's scratch space, sized for an `n`-joint arm and grown

@@ -5,10 +5,13 @@
 //! [`Entry::space`](super::Entry); [`Method::space_rule`](super::Method)
 //! refuses the others with a clear error.
 
+pub(super) mod distance;
 pub(super) mod jointrange;
 pub(super) mod manipulability;
 pub(super) mod paper;
+pub(super) mod priority;
 mod projection;
+pub(super) mod qp;
 pub(super) mod weighting;
 
 use super::Note;

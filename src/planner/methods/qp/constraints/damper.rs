@@ -11,6 +11,12 @@
 //! below `d_s` it must move away. As rows `G theta_dot <= h`:
 //! `G = -n^T J_p`, `h = xi (c - d_s) / (d_i - d_s)`, one per pair, obstacle
 //! by obstacle, each from the first link.
+//!
+//! In space ([`SpaceDamper`]) the pairs are a moving capsule and a sphere,
+//! or the floor `z = 0` where the scene has one
+//! ([`crate::space::SpacePairs`]: signed surface distance `d`, normal `n`,
+//! point Jacobian `J_Q`), with the same bound:
+//! `n . J_Q theta_dot >= -xi (d - d_s) / (d_i - d_s)`.
 
 use super::{Constraint, ConstraintInfo, Entry, Rows};
 use crate::clearance::Pairs;
@@ -18,7 +24,7 @@ use crate::error::Result;
 use crate::kinematics::Pose;
 use crate::planner::methods::Context;
 use crate::planner::methods::{INFLUENCE, STOP_DISTANCE};
-use crate::scene::{Param, Scale, Scene};
+use crate::scene::{Param, Params, Scale};
 
 /// The velocity dampers (`damper`).
 pub static DAMPER: Entry = Entry {
@@ -29,6 +35,8 @@ pub static DAMPER: Entry = Entry {
         params: PARAMS,
     },
     build: |n| Box::new(Damper::new(n)),
+    #[cfg(feature = "space")]
+    space: |n| Box::new(space::SpaceDamper::new(n)),
 };
 
 /// Damper gain `xi` (m/s): how fast a link may approach an obstacle at the
@@ -64,12 +72,12 @@ struct Gains {
 }
 
 impl Gains {
-    /// The parameters of [`PARAMS`] in `scene`.
-    fn of(scene: &Scene) -> Self {
+    /// The parameters of [`PARAMS`] in a scene's `params`.
+    fn of(params: &Params) -> Self {
         Self {
-            influence: scene.param(&INFLUENCE),
-            stop: scene.param(&STOP_DISTANCE),
-            gain: scene.param(&DAMPER_GAIN),
+            influence: params.get(&INFLUENCE),
+            stop: params.get(&STOP_DISTANCE),
+            gain: params.get(&DAMPER_GAIN),
         }
     }
 
@@ -98,7 +106,7 @@ impl Damper {
 
 impl Constraint for Damper {
     fn rows(&mut self, cx: &Context<'_>, pose: &Pose, rows: &mut Rows) -> Result<()> {
-        let gains = Gains::of(cx.scene);
+        let gains = Gains::of(&cx.scene.params);
         self.pairs.update(pose, &cx.scene.obstacles, gains.influence);
         if let Some(post) = cx.scene.ground() {
             self.pairs.add_ground(pose, post, gains.influence);
@@ -120,10 +128,63 @@ impl Constraint for Damper {
     }
 }
 
+/// The dampers for a chain in space.
+#[cfg(feature = "space")]
+mod space {
+    use super::super::{ConstraintInfo, Rows, SpaceConstraint};
+    use super::{Gains, DAMPER};
+    use crate::error::Result;
+    use crate::planner::methods::space::SpaceContext;
+    use crate::space::{SpacePairs, SpacePose};
+
+    /// The capsule pairs of a pose within the influence distance, kept
+    /// between poses.
+    #[derive(Clone)]
+    pub struct SpaceDamper {
+        pairs: SpacePairs,
+    }
+
+    impl SpaceDamper {
+        pub fn new(n: usize) -> Self {
+            // Every pair a chain can have: the buffer never grows.
+            Self {
+                pairs: SpacePairs::with_capacity(SpacePairs::most(n)),
+            }
+        }
+    }
+
+    impl SpaceConstraint for SpaceDamper {
+        fn rows(&mut self, cx: &SpaceContext<'_>, pose: &SpacePose, rows: &mut Rows) -> Result<()> {
+            let scene = cx.scene;
+            let gains = Gains::of(&scene.params);
+            self.pairs
+                .update(&scene.chain, pose, &scene.spheres, gains.influence);
+            if scene.floor {
+                self.pairs.add_floor(&scene.chain, pose, gains.influence);
+            }
+            for pair in self.pairs.as_slice() {
+                let row = rows.push(gains.bound(pair.distance));
+                pair.gradient_into(pose, row);
+                row.iter_mut().for_each(|g| *g = -*g);
+            }
+            Ok(())
+        }
+
+        fn boxed_clone(&self) -> Box<dyn SpaceConstraint> {
+            Box::new(self.clone())
+        }
+
+        fn info(&self) -> &'static ConstraintInfo {
+            &DAMPER.info
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::obstacle::Obstacle;
+    use crate::scene::Scene;
 
     #[test]
     fn a_pair_within_the_influence_distance_gives_the_row_minus_n_jp_and_the_damper_bound() {

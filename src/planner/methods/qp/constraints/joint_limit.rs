@@ -15,12 +15,15 @@
 //! `+e_i` for the upper limit, `-e_i` for the lower, joint by joint, only
 //! where `rho_i < rho_infl`. An arm without position limits gets no rows.
 //! NEO's defaults: `rho_infl = 0.9 rad`, `rho_s = 0.05 rad`, `xi_q = 1`.
+//! A chain in space gets the same rows from its own limits
+//! ([`crate::space::Chain::joint_limits`]).
 
 use super::{Constraint, ConstraintInfo, Entry, Rows};
 use crate::error::Result;
 use crate::kinematics::Pose;
 use crate::planner::methods::Context;
-use crate::scene::{Param, Scale};
+use crate::arm::JointLimits;
+use crate::scene::{Param, Params, Scale};
 
 /// The joint-limit dampers (`joint_limit`).
 pub static JOINT_LIMIT: Entry = Entry {
@@ -31,6 +34,8 @@ pub static JOINT_LIMIT: Entry = Entry {
         params: PARAMS,
     },
     build: |_| Box::new(JointLimit),
+    #[cfg(feature = "space")]
+    space: |_| Box::new(JointLimit),
 };
 
 /// Influence angle `rho_infl` (rad): a joint closer than this to a limit
@@ -97,25 +102,31 @@ const PARAMS: &[&Param] = &[&LIMIT_INFLUENCE, &LIMIT_STOP, &LIMIT_GAIN];
 #[derive(Clone, Copy)]
 struct JointLimit;
 
+/// The dampers' rows for joints at `theta` within `limits` (none without
+/// limits), with the parameters of [`PARAMS`] in `params`.
+fn limit_rows(params: &Params, limits: Option<&JointLimits>, theta: &[f64], rows: &mut Rows) {
+    let Some(limits) = limits else {
+        return;
+    };
+    let (infl, stop, gain) = (
+        params.get(&LIMIT_INFLUENCE),
+        params.get(&LIMIT_STOP),
+        params.get(&LIMIT_GAIN),
+    );
+    let damper = |rho: f64| gain * (rho - stop) / (infl - stop);
+    for (i, (&[lo, hi], &t)) in limits.ranges().iter().zip(theta).enumerate() {
+        for (rho, sign) in [(hi - t, 1.0), (t - lo, -1.0)] {
+            if rho < infl {
+                rows.push(damper(rho))[i] = sign;
+            }
+        }
+    }
+}
+
 impl Constraint for JointLimit {
     fn rows(&mut self, cx: &Context<'_>, pose: &Pose, rows: &mut Rows) -> Result<()> {
         let scene = cx.scene;
-        let Some(limits) = scene.arm.joint_limits() else {
-            return Ok(());
-        };
-        let (infl, stop, gain) = (
-            scene.param(&LIMIT_INFLUENCE),
-            scene.param(&LIMIT_STOP),
-            scene.param(&LIMIT_GAIN),
-        );
-        let damper = |rho: f64| gain * (rho - stop) / (infl - stop);
-        for (i, (&[lo, hi], &t)) in limits.ranges().iter().zip(pose.theta()).enumerate() {
-            for (rho, sign) in [(hi - t, 1.0), (t - lo, -1.0)] {
-                if rho < infl {
-                    rows.push(damper(rho))[i] = sign;
-                }
-            }
-        }
+        limit_rows(&scene.params, scene.arm.joint_limits(), pose.theta(), rows);
         Ok(())
     }
 
@@ -128,10 +139,31 @@ impl Constraint for JointLimit {
     }
 }
 
+#[cfg(feature = "space")]
+impl super::SpaceConstraint for JointLimit {
+    fn rows(
+        &mut self,
+        cx: &crate::planner::methods::space::SpaceContext<'_>,
+        pose: &crate::space::SpacePose,
+        rows: &mut Rows,
+    ) -> Result<()> {
+        let scene = cx.scene;
+        limit_rows(&scene.params, scene.chain.joint_limits(), pose.theta(), rows);
+        Ok(())
+    }
+
+    fn boxed_clone(&self) -> Box<dyn super::SpaceConstraint> {
+        Box::new(*self)
+    }
+
+    fn info(&self) -> &'static ConstraintInfo {
+        &JOINT_LIMIT.info
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::arm::JointLimits;
     use crate::scene::Scene;
 
     #[test]

@@ -8,11 +8,21 @@
 //! [`register!`](self) below. The program (`qp/mod.rs`) builds every
 //! constraint of [`ALL`] once per planner and asks each for its rows at
 //! every rate evaluation, in the order of [`ALL`].
+//!
+//! In space (feature `space`) each constraint has a second type beside
+//! the planar one in its file, a [`SpaceConstraint`] with the same rows
+//! for a chain's [`SpacePose`] and the same parameters, built by
+//! [`Entry::space`]; the spatial program (`methods/space/qp.rs`) stacks
+//! them in the same order.
 
 use crate::error::Result;
 use crate::kinematics::Pose;
 use crate::planner::methods::Context;
 use crate::scene::Param;
+#[cfg(feature = "space")]
+use crate::planner::methods::space::SpaceContext;
+#[cfg(feature = "space")]
+use crate::space::SpacePose;
 
 /// One line per constraint, in the order of the program's rows: declares
 /// the constraint's module and puts its entry into [`ALL`].
@@ -54,6 +64,9 @@ pub struct Entry {
     pub info: ConstraintInfo,
     /// Builds the constraint for an `n`-joint arm.
     pub build: fn(n: usize) -> Box<dyn Constraint>,
+    /// Builds the constraint for an `n`-joint chain in space.
+    #[cfg(feature = "space")]
+    pub space: fn(n: usize) -> Box<dyn SpaceConstraint>,
 }
 
 /// One kind of linear inequality on the joint rates: its rows
@@ -74,6 +87,29 @@ pub trait Constraint: Send + Sync {
 }
 
 impl Clone for Box<dyn Constraint> {
+    fn clone(&self) -> Self {
+        self.boxed_clone()
+    }
+}
+
+/// A constraint for a chain in space: its rows `G theta_dot <= h` at a
+/// [`SpacePose`], appended to `rows` with no allocation, as
+/// [`Constraint::rows`] does for a planar pose.
+#[cfg(feature = "space")]
+pub trait SpaceConstraint: Send + Sync {
+    /// Appends this constraint's rows at `pose` (the scene's spheres,
+    /// floor and parameters from `cx`) to `rows`.
+    fn rows(&mut self, cx: &SpaceContext<'_>, pose: &SpacePose, rows: &mut Rows) -> Result<()>;
+
+    /// A copy with its own scratch space.
+    fn boxed_clone(&self) -> Box<dyn SpaceConstraint>;
+
+    /// What it is.
+    fn info(&self) -> &'static ConstraintInfo;
+}
+
+#[cfg(feature = "space")]
+impl Clone for Box<dyn SpaceConstraint> {
     fn clone(&self) -> Self {
         self.boxed_clone()
     }

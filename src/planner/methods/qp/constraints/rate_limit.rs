@@ -9,13 +9,15 @@
 //! constraint, so no two parallel rows meet in the solver's active set. As
 //! rows `G theta_dot <= h`, two per joint `i`, in the joints' order: `-e_i`
 //! (`theta_dot_i >= -L_i`), then `+e_i` (`theta_dot_i <= L_i`), each with
-//! `h = L_i`.
+//! `h = L_i`. A chain in space gets the same rows from its own rate
+//! limits ([`crate::space::Chain::rate_limits`]).
 
 use super::{Constraint, ConstraintInfo, Entry, Rows};
 use crate::error::Result;
 use crate::kinematics::Pose;
 use crate::planner::methods::Context;
-use crate::scene::{Param, Scale, Scene};
+use crate::arm::RateLimits;
+use crate::scene::{Param, Params, Scale};
 
 /// The joint-rate limit (`rate_limit`).
 pub static RATE_BOUNDS: Entry = Entry {
@@ -26,6 +28,8 @@ pub static RATE_BOUNDS: Entry = Entry {
         params: PARAMS,
     },
     build: |_| Box::new(RateLimit),
+    #[cfg(feature = "space")]
+    space: |_| Box::new(RateLimit),
 };
 
 /// The joints' rate limit (rad/s), as NEO bounds a robot's joint
@@ -51,9 +55,24 @@ pub static RATE_LIMIT: Param = Param {
 /// The scene's parameters the limit reads: [`limit_of`] reads them.
 const PARAMS: &[&Param] = &[&RATE_LIMIT];
 
-/// The limit `L` (rad/s) of [`PARAMS`] in `scene`.
-fn limit_of(scene: &Scene) -> f64 {
-    scene.param(&RATE_LIMIT)
+/// The limit `L` (rad/s) of [`PARAMS`] in a scene's `params`.
+fn limit_of(params: &Params) -> f64 {
+    params.get(&RATE_LIMIT)
+}
+
+/// The rows of `n` joints with the arm's own rate limits `own`, if any.
+fn rate_rows(params: &Params, own: Option<&RateLimits>, n: usize, rows: &mut Rows) {
+    let limit = limit_of(params);
+    let own = own.map(|r| r.rates());
+    for i in 0..n {
+        let bound = own
+            .and_then(|r| r.get(i))
+            .copied()
+            .map_or(limit, |r| r.min(limit));
+        for sign in [-1.0, 1.0] {
+            rows.push(bound)[i] = sign;
+        }
+    }
 }
 
 /// The limit has no scratch space: its rows depend on the arm's joints only.
@@ -62,15 +81,8 @@ struct RateLimit;
 
 impl Constraint for RateLimit {
     fn rows(&mut self, cx: &Context<'_>, pose: &Pose, rows: &mut Rows) -> Result<()> {
-        let limit = limit_of(cx.scene);
-        let arm = cx.scene.arm.rate_limits().map(|r| r.rates());
-        for i in 0..pose.dof() {
-            let own = arm.and_then(|r| r.get(i)).copied();
-            let bound = own.map_or(limit, |r| r.min(limit));
-            for sign in [-1.0, 1.0] {
-                rows.push(bound)[i] = sign;
-            }
-        }
+        let scene = cx.scene;
+        rate_rows(&scene.params, scene.arm.rate_limits(), pose.dof(), rows);
         Ok(())
     }
 
@@ -83,9 +95,32 @@ impl Constraint for RateLimit {
     }
 }
 
+#[cfg(feature = "space")]
+impl super::SpaceConstraint for RateLimit {
+    fn rows(
+        &mut self,
+        cx: &crate::planner::methods::space::SpaceContext<'_>,
+        pose: &crate::space::SpacePose,
+        rows: &mut Rows,
+    ) -> Result<()> {
+        let scene = cx.scene;
+        rate_rows(&scene.params, scene.chain.rate_limits(), pose.dof(), rows);
+        Ok(())
+    }
+
+    fn boxed_clone(&self) -> Box<dyn super::SpaceConstraint> {
+        Box::new(*self)
+    }
+
+    fn info(&self) -> &'static ConstraintInfo {
+        &RATE_BOUNDS.info
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::Scene;
 
     #[test]
     fn each_joint_gets_the_rows_minus_e_i_and_plus_e_i_bounded_by_the_limit() {
