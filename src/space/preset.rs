@@ -103,10 +103,11 @@ pub const PRESETS: [SpacePreset; 2] = [
         task: SpaceTask {
             theta0: &[0.0, -0.3, 0.0, -2.2, 0.0, 2.0, std::f64::consts::FRAC_PI_4],
             // From qr's hand (0.474, 0, 0.516), 0.3 m sideways; the
-            // sphere sits just above where the forearm passes without
-            // avoidance, which it enters by 2 cm (docs/space.md).
+            // sphere, 10 cm clear of the arm at the start, sits above and
+            // ahead of where the forearm ends without avoidance, which it
+            // enters by 2 cm (docs/space.md).
             target: [0.474, 0.3, 0.516],
-            sphere: [0.19, 0.08, 0.73, 0.06],
+            sphere: [0.215, 0.21, 0.7, 0.06],
         },
     },
     // KUKA LBR iiwa 14 as Drake describes it: RobotLocomotion/models,
@@ -158,10 +159,11 @@ pub const PRESETS: [SpacePreset; 2] = [
         ],
         task: SpaceTask {
             theta0: &[0.0, 0.6, 0.0, -1.75, 0.0, 1.0, 0.0],
-            // From q0's hand (0.496, 0, 0.302), 0.3 m sideways, past a
-            // sphere above the forearm's path without avoidance.
+            // From q0's hand (0.496, 0, 0.302), 0.3 m sideways; the
+            // sphere, 13 cm clear at the start, sits above and ahead of
+            // where the forearm ends without avoidance.
             target: [0.5, 0.3, 0.3],
-            sphere: [0.38, 0.11, 0.67, 0.06],
+            sphere: [0.39, 0.26, 0.63, 0.06],
         },
     },
 ];

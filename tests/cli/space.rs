@@ -218,7 +218,7 @@ fn figure_draws_a_run_of_an_arm_in_space_in_two_views() {
         out.to_str().unwrap(),
     ]);
     let svg = std::fs::read_to_string(&out).unwrap();
-    assert!(svg.contains("Franka Panda (7 joints, in space), Numerical: min clearance 0.0036 m, past a joint limit in 25 steps"), "the title's verdict");
+    assert!(svg.contains("Franka Panda (7 joints, in space), Numerical: min clearance 0.1005 m, past a joint limit in 6 steps"), "the title's verdict");
     assert!(svg.contains("oblique view") && svg.contains("from above"));
     assert!(svg.matches("<polyline").count() > 40, "the poses are drawn");
 }
