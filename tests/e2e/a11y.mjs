@@ -352,6 +352,11 @@ test('a11y: the phone: a swipe that starts on the empty drawing scrolls the page
   assert.equal(await page.getAttribute('#atlas-tip', 'data-cell'), String(k));
   assert.match(await page.textContent('#atlas-tip'), /^obstacle at/);
   assert.deepEqual((await state(page)).obstacle, obstacle, 'a hold is not a tap: the obstacle stays');
+  const inside = await page.evaluate(() => {
+    const [t, s] = ['atlas-tip', 'stage'].map((id) => document.getElementById(id).getBoundingClientRect());
+    return t.left >= s.left - 1 && t.right <= s.right + 1;
+  });
+  assert.ok(inside, 'the numbers stay within the drawing');
   await page.screenshot({ path: join(shots, 'a11y-phone-hold.png') });
   // (A tap: a finger that stays down 600 ms is a hold, so no moves that a loaded machine could stretch.)
   await finger(page, empty, empty);
