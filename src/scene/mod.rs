@@ -192,28 +192,44 @@ impl Scene {
         for ob in &self.obstacles {
             ob.validate(&self.arm)?;
         }
-        self.params.validate()?;
-        if let Some(d) = &self.damping {
-            d.validate()?;
-        }
-        positive("time step dt", self.dt)?;
-        validate_gain(self.feedback_gain, self.dt)?;
-        positive("final time tf", self.tf)?;
-        let ratio = self.tf / self.dt;
-        if (ratio - ratio.round()).abs() > 1e-9 * ratio.max(1.0) {
-            return Err(Error::NotWholeSteps {
-                tf: self.tf,
-                dt: self.dt,
-            });
-        }
-        if ratio.round() > MAX_STEPS {
-            return Err(Error::TooManySteps {
-                steps: ratio,
-                max: MAX_STEPS,
-            });
-        }
-        Ok(())
+        validate_settings(
+            &self.params,
+            self.damping.as_ref(),
+            self.dt,
+            self.tf,
+            self.feedback_gain,
+        )
     }
+}
+
+/// Checks what a planar and a spatial scene share: the parameters, the
+/// damping schedule, `dt`, the feedback gain and `tf` (a whole number of
+/// steps, at most [`MAX_STEPS`]).
+pub(crate) fn validate_settings(
+    params: &Params,
+    damping: Option<&DampingSchedule>,
+    dt: f64,
+    tf: f64,
+    feedback_gain: f64,
+) -> Result<()> {
+    params.validate()?;
+    if let Some(d) = damping {
+        d.validate()?;
+    }
+    positive("time step dt", dt)?;
+    validate_gain(feedback_gain, dt)?;
+    positive("final time tf", tf)?;
+    let ratio = tf / dt;
+    if (ratio - ratio.round()).abs() > 1e-9 * ratio.max(1.0) {
+        return Err(Error::NotWholeSteps { tf, dt });
+    }
+    if ratio.round() > MAX_STEPS {
+        return Err(Error::TooManySteps {
+            steps: ratio,
+            max: MAX_STEPS,
+        });
+    }
+    Ok(())
 }
 
 /// Most RK4 steps a run may take.

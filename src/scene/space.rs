@@ -2,8 +2,8 @@
 //! line, spheres and the integration settings; the methods' parameters are
 //! the planar scene's ([`Params`]), read by the same declarations.
 
-use super::{validate_gain, JointWeighting, Params, MAX_STEPS};
-use crate::error::{coordinate, positive, Error, Result};
+use super::{JointWeighting, Params};
+use crate::error::{coordinate, Error, Result};
 use crate::ik::DampingSchedule;
 use crate::space::{Chain, SpacePose, SpacePreset, Sphere, Vec3, MAX_SPHERES};
 
@@ -106,26 +106,12 @@ impl SpaceScene {
         for s in &self.spheres {
             s.validate(&self.chain)?;
         }
-        self.params.validate()?;
-        if let Some(d) = &self.damping {
-            d.validate()?;
-        }
-        positive("time step dt", self.dt)?;
-        validate_gain(self.feedback_gain, self.dt)?;
-        positive("final time tf", self.tf)?;
-        let ratio = self.tf / self.dt;
-        if (ratio - ratio.round()).abs() > 1e-9 * ratio.max(1.0) {
-            return Err(Error::NotWholeSteps {
-                tf: self.tf,
-                dt: self.dt,
-            });
-        }
-        if ratio.round() > MAX_STEPS {
-            return Err(Error::TooManySteps {
-                steps: ratio,
-                max: MAX_STEPS,
-            });
-        }
-        Ok(())
+        super::validate_settings(
+            &self.params,
+            self.damping.as_ref(),
+            self.dt,
+            self.tf,
+            self.feedback_gain,
+        )
     }
 }

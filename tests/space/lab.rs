@@ -12,7 +12,7 @@ use redundant_ik::planner::methods::{
 use redundant_ik::planner::space::{SpacePlanner, SpaceTrajectory};
 use redundant_ik::scene::{JointWeighting, SpaceScene};
 use redundant_ik::space::manipulability::{manipulability, manipulability_gradient_into};
-use redundant_ik::space::{criterion, Chain, Row, SpacePose, Sphere, PRESETS};
+use redundant_ik::space::{criterion, Chain, SpacePose, Sphere, PRESETS};
 use redundant_ik::{Arm, Method, Planner, Pose, Scene};
 
 /// A pose within the chain's limits, from `rng`.
@@ -365,28 +365,11 @@ fn on_a_chain_without_limits_the_weighting_changes_nothing() {
 /// space whose axes are parallel (every axis the world's `+y`, the planar
 /// `(x, y)` the world's `(x, z)`, as in `planner.rs`), with the same limits.
 fn planar_twins() -> (Arm, Chain) {
-    use std::f64::consts::FRAC_PI_2;
     let limits = || JointLimits::new(vec![[-2.0, 2.0]; 3]).unwrap();
     let arm = Arm::paper().with_limits(Some(limits()), None).unwrap();
-    let links = arm.links();
-    let mut rows = vec![Row {
-        a: 0.0,
-        alpha: 0.0,
-        d: 0.0,
-        offset: -FRAC_PI_2,
-    }];
-    rows.extend(links[..2].iter().map(|&l| Row::new(l, 0.0, 0.0)));
-    let turn = [[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]];
-    let chain = Chain::placed(
-        turn,
-        [0.0, 0.0, arm.post()],
-        rows,
-        [links[2], 0.0, 0.0],
-        0.0,
-    )
-    .unwrap()
-    .with_limits(Some(limits()), None)
-    .unwrap();
+    let chain = super::planar_as_chain(&arm)
+        .with_limits(Some(limits()), None)
+        .unwrap();
     (arm, chain)
 }
 

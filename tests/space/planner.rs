@@ -5,7 +5,7 @@
 use redundant_ik::planner::methods::{self, DELTA};
 use redundant_ik::planner::space::SpacePlanner;
 use redundant_ik::scene::SpaceScene;
-use redundant_ik::space::{Chain, Row, SpacePreset, Sphere, PRESETS};
+use redundant_ik::space::{SpacePreset, Sphere, PRESETS};
 use redundant_ik::{Arm, Error, Method, Planner, Scene};
 
 /// Every method with a rule in space.
@@ -101,25 +101,8 @@ fn the_presets_tasks_hit_without_avoidance_and_the_hand_stays_on_the_line() {
 /// solve, and the rates are the planar ones.
 #[test]
 fn a_chain_whose_axes_are_parallel_gives_the_planar_rates() {
-    use std::f64::consts::FRAC_PI_2;
     let arm = Arm::paper();
-    let links = arm.links();
-    let mut rows = vec![Row {
-        a: 0.0,
-        alpha: 0.0,
-        d: 0.0,
-        offset: -FRAC_PI_2,
-    }];
-    rows.extend(links[..2].iter().map(|&l| Row::new(l, 0.0, 0.0)));
-    let turn = [[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]];
-    let chain = Chain::placed(
-        turn,
-        [0.0, 0.0, arm.post()],
-        rows,
-        [links[2], 0.0, 0.0],
-        0.0,
-    )
-    .unwrap();
+    let chain = super::planar_as_chain(&arm);
     let mut planar = Scene::task1();
     planar.params.set(&DELTA, 0.02).unwrap();
     let o = planar.obstacles[0].centre;
