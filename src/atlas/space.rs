@@ -8,11 +8,13 @@
 
 use std::fmt;
 use std::str::FromStr;
+use std::sync::Arc;
 
 use serde::Serialize;
 
 use super::{Class, Grid};
 use crate::error::{Error, Result, Short};
+use crate::networks::space::SpaceNetworks;
 use crate::planner::space::SpacePlanner;
 use crate::planner::{Method, REACH_TOLERANCE};
 use crate::scene::SpaceScene;
@@ -187,7 +189,12 @@ fn before(scene: &SpaceScene, pose: &SpacePose, s: &Sphere) -> Option<Class> {
 }
 
 /// The run of one method with the scene's first sphere at `centre`.
-fn outcome(scene: &SpaceScene, method: Method, pre: Option<Class>) -> SliceOutcome {
+fn outcome(
+    scene: &SpaceScene,
+    method: Method,
+    pre: Option<Class>,
+    networks: Option<&Arc<SpaceNetworks>>,
+) -> SliceOutcome {
     if pre == Some(Class::StartOverlap) {
         return SliceOutcome {
             class: Class::StartOverlap,
@@ -198,7 +205,8 @@ fn outcome(scene: &SpaceScene, method: Method, pre: Option<Class>) -> SliceOutco
             error: None,
         };
     }
-    match SpacePlanner::new(scene.clone(), method).and_then(SpacePlanner::run) {
+    let nets = networks.filter(|_| method.uses_networks()).cloned();
+    match SpacePlanner::with_networks(scene.clone(), method, nets).and_then(SpacePlanner::run) {
         Ok(run) => {
             let s = run.summary;
             let class = pre.unwrap_or(if s.collision_steps > 0 {
@@ -239,11 +247,20 @@ pub fn slice(
     plane: Plane,
     grid: Grid,
     methods: &[Method],
+    networks: Option<&Arc<SpaceNetworks>>,
 ) -> Result<SliceAtlas> {
     grid.validate()?;
     scene.validate()?;
     for m in methods {
         m.space_rule(scene.chain.dof())?;
+        if m.uses_networks() && networks.is_none() {
+            return Err(Error::NetworksUnavailable(format!(
+                "method {m} needs networks trained for this arm in space"
+            )));
+        }
+    }
+    if let Some(nets) = networks {
+        nets.check_chain(&scene.chain)?;
     }
     let radius = scene.spheres.first().map_or(0.05, |s| s.radius);
     let pose = SpacePose::new(&scene.chain, &scene.theta0)?;
@@ -279,7 +296,10 @@ pub fn slice(
         let pre = before(&s, &pose, &sphere);
         SliceCell {
             centre: *c,
-            outcomes: methods.iter().map(|m| outcome(&s, *m, pre)).collect(),
+            outcomes: methods
+                .iter()
+                .map(|m| outcome(&s, *m, pre, networks))
+                .collect(),
         }
     };
     #[cfg(all(feature = "parallel", not(target_family = "wasm")))]

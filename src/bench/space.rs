@@ -2,8 +2,11 @@
 //! arms in space (`redundant-ik bench --arm panda`): each preset's own
 //! task, restarted at its end.
 
+use std::sync::Arc;
+
 use super::{time_ns, Options, Probes};
-use crate::error::Result;
+use crate::error::{Error, Result};
+use crate::networks::space::{SpaceNetworkSet, SpaceNetworks};
 use crate::planner::space::SpacePlanner;
 use crate::planner::Method;
 use crate::scene::SpaceScene;
@@ -12,7 +15,8 @@ use crate::scene::SpaceScene;
 /// (ns); the run restarts at `tf`.
 pub fn step_ns(key: &str, method: Method, opts: &Options, probes: &Probes) -> Result<f64> {
     let scene = SpaceScene::by_key(key)?;
-    let fresh = || SpacePlanner::new(scene.clone(), method);
+    let nets = shipped_networks(key, method)?;
+    let fresh = || SpacePlanner::with_networks(scene.clone(), method, nets.clone());
     let mut p = fresh()?;
     time_ns(opts, probes, || {
         if p.done() {
@@ -26,11 +30,26 @@ pub fn step_ns(key: &str, method: Method, opts: &Options, probes: &Probes) -> Re
 /// Heap allocations per RK4 step over one whole run of the preset `key`'s
 /// task in `method`, once the planner exists.
 pub fn allocs_per_step(key: &str, method: Method, count: &dyn Fn() -> u64) -> Result<f64> {
-    let mut p = SpacePlanner::new(SpaceScene::by_key(key)?, method)?;
+    let nets = shipped_networks(key, method)?;
+    let mut p = SpacePlanner::with_networks(SpaceScene::by_key(key)?, method, nets)?;
     let n = p.scene().steps();
     let before = count();
     for _ in 0..n {
         std::hint::black_box(p.step()?);
     }
     Ok((count() - before) as f64 / n as f64)
+}
+
+/// The networks shipped for the preset `key` when `method` learns (none
+/// otherwise); a learned method on a preset with none is refused.
+pub fn shipped_networks(key: &str, method: Method) -> Result<Option<Arc<SpaceNetworks>>> {
+    if !method.uses_networks() {
+        return Ok(None);
+    }
+    SpaceNetworkSet::for_arm(key)
+        .ok_or_else(|| {
+            Error::NetworksUnavailable(format!("no networks are shipped for the arm '{key}'"))
+        })?
+        .load()
+        .map(Some)
 }

@@ -157,6 +157,10 @@ fn space(key: &str, opts: &Options, probes: &bench::Probes, json: bool) -> Resul
     for m in redundant_ik::planner::methods::ALL
         .iter()
         .filter(|m| m.in_space())
+        .filter(|m| {
+            !m.uses_networks()
+                || redundant_ik::networks::space::SpaceNetworkSet::for_arm(key).is_some()
+        })
     {
         let ns = sb::step_ns(key, *m, opts, probes).map_err(|e| e.to_string())?;
         let allocs = sb::allocs_per_step(key, *m, &count).map_err(|e| e.to_string())?;

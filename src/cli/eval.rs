@@ -32,9 +32,14 @@ pub struct EvalArgs {
     /// the task runs (Cases 1 and 3; 0 = the paper's).
     #[arg(long, default_value_t = 0)]
     pub refine: u32,
-    /// Shipped network set to evaluate: paper or reach (docs/learning.md).
-    #[arg(long, default_value = "paper", value_parser = ["paper", "reach"])]
+    /// Shipped network set to evaluate: paper or reach (docs/learning.md),
+    /// or panda-reach with --arm panda (docs/space.md).
+    #[arg(long, default_value = "paper", value_parser = ["paper", "reach", "panda-reach"])]
     pub networks: String,
+    /// An arm in space (panda): the accuracy of its networks and the
+    /// learned methods on its task.
+    #[arg(long)]
+    pub arm: Option<String>,
     /// A Phi weights file to evaluate instead of the embedded one (needs --v).
     #[arg(long, requires = "v")]
     pub phi: Option<String>,
@@ -84,6 +89,14 @@ fn read(path: &str) -> Result<String, String> {
 pub fn run(args: &EvalArgs) -> Result<(), String> {
     if args.samples == 0 || args.samples > 1_000_000 {
         return Err("--samples must be between 1 and 1000000".into());
+    }
+    if let Some(key) = &args.arm {
+        let p = redundant_ik::space::SpacePreset::by_key(key)
+            .ok_or_else(|| format!("--arm {key}: eval --arm takes an arm in space (panda)"))?;
+        return super::space::eval(args, p);
+    }
+    if args.networks == "panda-reach" {
+        return Err("--networks panda-reach is the Panda's: add --arm panda".into());
     }
     let e = |e: redundant_ik::Error| e.to_string();
     let (candidates, task_nets) = match (&args.phi, &args.v) {

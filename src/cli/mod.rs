@@ -88,11 +88,11 @@ pub fn parse_arm(s: &str) -> Result<ArmChoice, String> {
 }
 
 /// Parses a planar arm (a planar preset's name or `POST:L1,L2,...`); an
-/// arm in space is refused by name (`train` takes planar arms only).
+/// arm in space is refused by name.
 pub fn parse_planar_arm(s: &str) -> Result<Arm, String> {
     if let Some(p) = SpacePreset::by_key(s.trim()) {
         return Err(format!(
-            "{} is an arm in space: training takes a planar arm (networks for arms in space are not built yet)",
+            "{} is an arm in space; this takes a planar arm",
             p.key
         ));
     }
@@ -159,9 +159,10 @@ pub fn emit(text: &str) -> Result<(), String> {
 pub struct NetworkArgs {
     /// Shipped network set: paper (trained by the paper's recipe, near its
     /// tasks) or reach (angle features, trained over the whole reach;
-    /// docs/learning.md).
+    /// docs/learning.md); for the Panda in space, panda-reach (its
+    /// default; docs/space.md).
     #[arg(long, default_value = "paper", value_parser = parse_set)]
-    pub networks: NetworkSet,
+    pub networks: SetArg,
     /// The paper's set's Phi network: equivariant (default, most accurate),
     /// plain (the paper's 3-35-14-6) or rows (the paper's three 3-35-14-2
     /// nets).
@@ -188,7 +189,7 @@ impl NetworkArgs {
     /// the weights files themselves (a run file then replays without them).
     pub fn choice(&self) -> Result<NetworkChoice, String> {
         if self.phi_weights.is_none() && self.v_weights.is_none() && self.phi_variant.is_none() {
-            return Ok(NetworkChoice::Set(self.networks));
+            return Ok(NetworkChoice::Set(self.planar_set()?));
         }
         let (phi, v) = self.texts()?;
         Ok(NetworkChoice::Files { phi, v })
@@ -196,7 +197,7 @@ impl NetworkArgs {
 
     /// The JSON text of the selected weights files.
     fn texts(&self) -> Result<(String, String), String> {
-        let (phi_shipped, v_shipped) = match (self.networks, self.phi_variant) {
+        let (phi_shipped, v_shipped) = match (self.planar_set()?, self.phi_variant) {
             (NetworkSet::Paper, variant) => (
                 networks::embedded_phi_json(variant.unwrap_or(networks::DEFAULT_PHI_VARIANT)),
                 networks::V_PLAIN_JSON,
@@ -220,9 +221,37 @@ impl NetworkArgs {
 }
 
 /// A `--networks` set, refused at once when unknown.
-fn parse_set(s: &str) -> Result<NetworkSet, String> {
-    s.parse()
-        .map_err(|_| format!("unknown --networks '{s}': use paper or reach"))
+/// A shipped set named by `--networks`: a planar one or one for an arm in
+/// space.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SetArg {
+    /// A set for the paper's planar arm.
+    Planar(NetworkSet),
+    /// A set for an arm in space.
+    Space(redundant_ik::networks::space::SpaceNetworkSet),
+}
+
+impl NetworkArgs {
+    /// The planar set; a set for an arm in space is refused by name.
+    pub fn planar_set(&self) -> Result<NetworkSet, String> {
+        match self.networks {
+            SetArg::Planar(s) => Ok(s),
+            SetArg::Space(s) => Err(format!(
+                "--networks {} is for the arm in space '{}', not a planar arm",
+                s.name(),
+                s.arm()
+            )),
+        }
+    }
+}
+
+fn parse_set(s: &str) -> Result<SetArg, String> {
+    if let Ok(set) = s.parse() {
+        return Ok(SetArg::Planar(set));
+    }
+    s.parse().map(SetArg::Space).map_err(|_| {
+        format!("unknown --networks '{s}': use paper or reach (planar) or panda-reach (the Panda)")
+    })
 }
 
 /// A `--phi-variant`, refused at once when unknown (even where no network runs).

@@ -20,8 +20,9 @@ pub struct TrainArgs {
     /// the tasks visit) or `reach` (networks for the whole workspace: angle
     /// features, Phi over the whole joint torus, v from runs with obstacles
     /// anywhere in the reach, the sign smoothed; docs/learning.md).
-    #[arg(long, default_value = "paper", value_parser = ["paper", "reach"])]
-    pub recipe: String,
+    /// Default: paper for a planar arm; an arm in space has reach only.
+    #[arg(long, value_parser = ["paper", "reach"])]
+    pub recipe: Option<String>,
     /// plain (paper), rows (phi only: one 2-output net per row of Phi) or
     /// equivariant (rotation-equivariant inputs). Default: plain for the
     /// paper's recipe, equivariant for reach.
@@ -35,10 +36,12 @@ pub struct TrainArgs {
     /// Default: the recipe's (0 for paper, 0.1 for reach).
     #[arg(long)]
     pub sign_smoothing: Option<f64>,
-    /// The arm to train for, POST:L1,L2,... in metres (default: the
-    /// paper's). Other arms sample random straight-line tasks in their reach.
-    #[arg(long, value_parser = super::parse_planar_arm, allow_hyphen_values = true)]
-    pub arm: Option<redundant_ik::Arm>,
+    /// The arm to train for, POST:L1,L2,... in metres or a preset's name
+    /// (default: the paper's). Other planar arms sample random
+    /// straight-line tasks in their reach. An arm in space (panda, iiwa14)
+    /// trains by the whole-reach recipe in space (docs/space.md).
+    #[arg(long, value_parser = super::parse_arm, allow_hyphen_values = true)]
+    pub arm: Option<super::ArmChoice>,
     /// Seed for sampling, the train/validation/test split and initial weights.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -77,7 +80,7 @@ pub struct TrainArgs {
     pub quiet: bool,
 }
 
-fn parse_hidden(s: &str) -> Result<Vec<usize>, String> {
+pub(super) fn parse_hidden(s: &str) -> Result<Vec<usize>, String> {
     let v: Vec<usize> = s
         .split(',')
         .map(|p| {
@@ -101,8 +104,17 @@ pub fn run(args: &TrainArgs) -> Result<(), String> {
         "v" => NetKind::V,
         other => return Err(format!("unknown network '{other}': use phi or v")),
     };
-    let recipe: Recipe = args.recipe.parse().map_err(|e| format!("{e}"))?;
-    let arm = args.arm.clone().unwrap_or_else(redundant_ik::Arm::paper);
+    let arm = match args.arm.clone() {
+        Some(super::ArmChoice::Space(p)) => return super::space::train(args, net, p),
+        Some(super::ArmChoice::Planar(a)) => a,
+        None => redundant_ik::Arm::paper(),
+    };
+    let recipe: Recipe = args
+        .recipe
+        .as_deref()
+        .unwrap_or("paper")
+        .parse()
+        .map_err(|e| format!("{e}"))?;
     let mut spec = recipe.spec(&arm, net, args.seed);
     match (&args.variant, recipe) {
         (Some(v), _) => spec.variant = v.parse().map_err(|e| format!("{e}"))?,

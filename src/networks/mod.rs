@@ -14,6 +14,8 @@ mod builtin;
 pub mod file;
 pub mod inputs;
 mod reader;
+#[cfg(feature = "space")]
+pub mod space;
 
 use serde::{Deserialize, Serialize};
 

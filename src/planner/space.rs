@@ -4,11 +4,14 @@
 //! run records after each step. A planner owns its poses and scratch
 //! space: a step allocates nothing.
 
+use std::sync::Arc;
+
 use serde::Serialize;
 
 use super::methods::space::{SpaceContext, SpaceRule};
-use super::methods::Method;
+use super::methods::{Method, Note};
 use crate::error::{Error, Result};
+use crate::networks::space::SpaceNetworks;
 use crate::scene::SpaceScene;
 use crate::space::{clearance, SpacePose, Vec3};
 
@@ -32,6 +35,9 @@ pub struct SpaceSample {
     pub past_limits: usize,
     /// The constraints of a program were relaxed in this step.
     pub relaxed: bool,
+    /// The exact route stood in for the learned `Phi` in this step (the
+    /// damping schedule was active, or the refinement could not converge).
+    pub phi_handover: bool,
 }
 
 /// A spatial run's outcome.
@@ -47,6 +53,8 @@ pub struct SpaceSummary {
     pub limit_steps: usize,
     /// Steps whose program was relaxed.
     pub relaxed_steps: usize,
+    /// Steps where the exact route stood in for the learned `Phi`.
+    pub handover_steps: usize,
     /// The largest tracking error (m).
     pub max_error: f64,
     /// The hand's distance from the target at the end (m).
@@ -67,6 +75,7 @@ pub struct SpaceTrajectory {
 /// The RK4 planner of one method on one spatial scene.
 pub struct SpacePlanner {
     scene: SpaceScene,
+    networks: Option<Arc<SpaceNetworks>>,
     method: Method,
     rule: Box<dyn SpaceRule>,
     theta: Vec<f64>,
@@ -84,13 +93,27 @@ impl SpacePlanner {
     /// A planner of `method` on `scene` at `t = 0`; refused when the scene
     /// does not validate or the method has no rule in space.
     pub fn new(scene: SpaceScene, method: Method) -> Result<Self> {
+        Self::with_networks(scene, method, None)
+    }
+
+    /// A planner of `method` on `scene` with `networks` for the learned
+    /// routes (Cases 1-3), refused when they were trained for another arm.
+    pub fn with_networks(
+        scene: SpaceScene,
+        method: Method,
+        networks: Option<Arc<SpaceNetworks>>,
+    ) -> Result<Self> {
         scene.validate()?;
+        if let Some(nets) = &networks {
+            nets.check_chain(&scene.chain)?;
+        }
         let n = scene.chain.dof();
         let rule = method.space_rule(n)?;
         let pose = SpacePose::new(&scene.chain, &scene.theta0)?;
         let start = pose.hand();
         let theta = scene.theta0.clone();
         let mut planner = Self {
+            networks,
             rule,
             method,
             theta,
@@ -110,10 +133,11 @@ impl SpacePlanner {
                 clearance: None,
                 past_limits: 0,
                 relaxed: false,
+                phi_handover: false,
             },
             scene,
         };
-        planner.refresh_sample(false);
+        planner.refresh_sample(Note::default());
         Ok(planner)
     }
 
@@ -164,7 +188,10 @@ impl SpacePlanner {
     pub fn theta_dot(&mut self, theta: &[f64], xdot: Vec3) -> Result<Vec<f64>> {
         let pose = SpacePose::new(&self.scene.chain, theta)?;
         let mut out = vec![0.0; theta.len()];
-        let cx = SpaceContext { scene: &self.scene };
+        let cx = SpaceContext {
+            scene: &self.scene,
+            networks: self.networks.as_deref(),
+        };
         self.rule.theta_dot(&cx, &pose, xdot, &mut out)?;
         Ok(out)
     }
@@ -191,6 +218,7 @@ impl SpacePlanner {
         };
         let Self {
             scene,
+            networks,
             rule,
             theta,
             pose,
@@ -200,7 +228,10 @@ impl SpacePlanner {
             next,
             ..
         } = self;
-        let cx = SpaceContext { scene };
+        let cx = SpaceContext {
+            scene,
+            networks: networks.as_deref(),
+        };
         let [k1, k2, k3, k4] = k;
         let mut note = rule.theta_dot(&cx, pose, xdot(t, pose), k1)?;
         for (s, (c, tt)) in [(0.5 * h, t + 0.5 * h), (0.5 * h, t + 0.5 * h), (h, t + h)]
@@ -218,6 +249,7 @@ impl SpacePlanner {
             stage.update(&scene.chain, theta_stage)?;
             let n2 = rule.theta_dot(&cx, stage, xdot(tt, stage), out)?;
             note.relaxed |= n2.relaxed;
+            note.handover |= n2.handover;
         }
         let w = h / 6.0;
         let mut finite = true;
@@ -231,11 +263,11 @@ impl SpacePlanner {
         theta.copy_from_slice(next);
         pose.update(&scene.chain, next)?;
         self.step_index += 1;
-        self.refresh_sample(note.relaxed);
+        self.refresh_sample(note);
         Ok(&self.sample)
     }
 
-    fn refresh_sample(&mut self, relaxed: bool) {
+    fn refresh_sample(&mut self, note: Note) {
         let t = self.t();
         let reference = self.reference(t);
         let hand = self.pose.hand();
@@ -254,7 +286,8 @@ impl SpacePlanner {
                 .filter(|(r, &th)| th < r[0] || th > r[1])
                 .count()
         });
-        s.relaxed = relaxed;
+        s.relaxed = note.relaxed;
+        s.phi_handover = note.handover;
     }
 
     /// Runs to `tf` from the current state, recording every sample.
@@ -274,6 +307,7 @@ impl SpacePlanner {
                 .count(),
             limit_steps: samples.iter().filter(|s| s.past_limits > 0).count(),
             relaxed_steps: samples.iter().filter(|s| s.relaxed).count(),
+            handover_steps: samples.iter().filter(|s| s.phi_handover).count(),
             max_error: samples.iter().map(|s| s.tracking_error).fold(0.0, f64::max),
             final_error: dist(self.pose.hand(), target),
         };

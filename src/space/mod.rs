@@ -13,7 +13,8 @@ pub mod criterion;
 pub mod linalg;
 pub mod manipulability;
 mod pairs;
-mod pose;
+pub mod phi;
+pub(crate) mod pose;
 mod preset;
 mod sphere;
 

@@ -6,6 +6,8 @@
 
 mod preset;
 pub mod sampling;
+#[cfg(feature = "space")]
+pub mod space;
 pub mod tasks;
 
 use serde::{Deserialize, Serialize};

@@ -13,8 +13,11 @@ fn every_cell_is_the_run_of_its_sphere() {
     let scene = SpaceScene::by_key("panda").unwrap();
     let plane = Plane::through_line(&scene);
     let grid = Grid::new(default_region(&scene, plane), 7).unwrap();
-    let methods = [Method::NO_AVOIDANCE, Method::NUMERICAL];
-    let a = slice(&scene, plane, grid, &methods).unwrap();
+    let methods = [Method::NO_AVOIDANCE, Method::NUMERICAL, Method::CASE3];
+    let nets = redundant_ik::networks::space::SpaceNetworkSet::PandaReach
+        .load()
+        .unwrap();
+    let a = slice(&scene, plane, grid, &methods, Some(&nets)).unwrap();
     assert_eq!(a.cells.len(), 49);
     let mut run = 0;
     for c in &a.cells {
@@ -30,7 +33,7 @@ fn every_cell_is_the_run_of_its_sphere() {
             }
             let mut s = scene.clone();
             s.spheres = vec![Sphere::new(c.centre, a.radius)];
-            let direct = SpacePlanner::new(s, *m)
+            let direct = SpacePlanner::with_networks(s, *m, Some(nets.clone()))
                 .and_then(SpacePlanner::run)
                 .unwrap();
             assert_eq!(o.min_clearance, direct.summary.min_clearance);
@@ -61,12 +64,12 @@ fn a_slice_is_read_as_written_and_one_that_misses_the_arm_is_refused() {
     let scene = SpaceScene::by_key("iiwa14").unwrap();
     let far = Plane::Yz(5.0);
     let grid = Grid::new(default_region(&scene, far), 5).unwrap();
-    let e = slice(&scene, far, grid, &[Method::NUMERICAL]).unwrap_err();
+    let e = slice(&scene, far, grid, &[Method::NUMERICAL], None).unwrap_err();
     assert!(matches!(e, Error::SliceMissesReach { .. }), "{e}");
     let near = Plane::Xz(0.0);
     let grid = Grid::new(default_region(&scene, near), 5).unwrap();
     assert!(matches!(
-        slice(&scene, near, grid, &[Method::CASE3]),
-        Err(Error::NotInSpace { .. })
+        slice(&scene, near, grid, &[Method::CASE3], None),
+        Err(Error::NetworksUnavailable(_))
     ));
 }

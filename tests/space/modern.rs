@@ -19,7 +19,10 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// Every constraint's rows at `pose`, in the program's order, each with
 /// the constraint's name.
 fn rows_at(scene: &SpaceScene, pose: &SpacePose) -> Vec<(&'static str, Vec<f64>, f64)> {
-    let cx = SpaceContext { scene };
+    let cx = SpaceContext {
+        scene,
+        networks: None,
+    };
     let n = pose.dof();
     let mut out = Vec::new();
     for entry in constraints::ALL {

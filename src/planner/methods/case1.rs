@@ -25,5 +25,5 @@ static ENTRY: Entry = Entry {
     },
     rule: |n| paper::rule(n, CASE1, V::Exact, Phi::Network),
     #[cfg(feature = "space")]
-    space: None,
+    space: Some(|n| super::space::paper::rule(n, CASE1, V::Exact, Phi::Network)),
 };

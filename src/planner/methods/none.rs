@@ -22,5 +22,5 @@ static ENTRY: Entry = Entry {
     },
     rule: |n| paper::rule(n, NO_AVOIDANCE, V::Zero, Phi::Exact),
     #[cfg(feature = "space")]
-    space: Some(|n| super::space::paper::rule(n, NO_AVOIDANCE, V::Zero)),
+    space: Some(|n| super::space::paper::rule(n, NO_AVOIDANCE, V::Zero, Phi::Exact)),
 };

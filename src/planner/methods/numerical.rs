@@ -22,5 +22,5 @@ static ENTRY: Entry = Entry {
     },
     rule: |n| paper::rule(n, NUMERICAL, V::Exact, Phi::Exact),
     #[cfg(feature = "space")]
-    space: Some(|n| super::space::paper::rule(n, NUMERICAL, V::Exact)),
+    space: Some(|n| super::space::paper::rule(n, NUMERICAL, V::Exact, Phi::Exact)),
 };

@@ -14,8 +14,9 @@ mod projection;
 pub(super) mod qp;
 pub(super) mod weighting;
 
-use super::Note;
-use crate::error::Result;
+use super::{Method, Note};
+use crate::error::{Error, Result};
+use crate::networks::space::SpaceNetworks;
 use crate::scene::SpaceScene;
 use crate::space::linalg::{smallest_singular_value3, solve_spd3};
 use crate::space::SpacePose;
@@ -25,9 +26,23 @@ use crate::space::SpacePose;
 pub struct SpaceContext<'a> {
     /// The scene, with its current target, spheres and gains.
     pub scene: &'a SpaceScene,
+    /// The networks the learned routes (Cases 1-3) run with, if any.
+    pub networks: Option<&'a SpaceNetworks>,
 }
 
 impl SpaceContext<'_> {
+    /// The networks `method` needs, or a clear error without them.
+    pub fn networks_for(&self, method: Method) -> Result<&SpaceNetworks> {
+        self.networks.ok_or_else(|| {
+            Error::NetworksUnavailable(format!(
+                "method {method} needs networks trained for this arm in space (--networks {})",
+                crate::networks::space::SpaceNetworkSet::ALL
+                    .map(|s| s.name())
+                    .join(" or ")
+            ))
+        })
+    }
+
     /// The damping the schedule adds at `pose` (zero when it is off).
     #[inline]
     pub fn scheduled_delta(&self, pose: &SpacePose) -> f64 {

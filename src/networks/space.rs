@@ -1,0 +1,432 @@
+//! The networks of section V for an arm in space: `Phi(theta)`, the
+//! pseudoinverse of the hand's `3 x n` Jacobian (`n x 3`), and the area
+//! gradient `g(theta, O)` of the criterion generalised to space
+//! ([`crate::space::criterion`], `v = lambda / 4 g`), with their weights
+//! file ([`SpaceWeightsFile`]) and the shipped set for the Panda
+//! ([`SpaceNetworkSet::PandaReach`]).
+//!
+//! Both networks are rotation-equivariant about the first joint's axis, as
+//! the planar `reach` networks are about `theta_1`: every joint beyond the
+//! first turns rigidly with it, so with `R = R(a_1, theta_1)` the rotation
+//! by `theta_1` about that (fixed) axis, `J(theta) = R J(0, theta_2..)`,
+//! `J+(theta) = J+(0, theta_2..) R^T`, and the areas of the arm at
+//! `theta` about `O` are those of the arm at `(0, theta_2..)` about `O' =
+//! R^T (O - p_1) + p_1` (`p_1` a point of the axis). The networks read
+//! `(sin, cos)` of `theta_2..theta_n` (and `O'`); `docs/space.md` has how
+//! they were trained and how they do.
+
+use std::sync::{Arc, OnceLock};
+
+use serde::{Deserialize, Serialize};
+
+use super::file::{InputRange, NetEntry, NetKind};
+use crate::error::{Error, Result};
+use crate::kinematics::sin_cos;
+use crate::nn::adam::AdamOptions;
+use crate::nn::Kernel;
+use crate::space::pose::{cross, dot, sub};
+use crate::space::{Chain, Row, SpacePose, Vec3, MAX_JOINTS};
+
+/// The `format` of a spatial weights file.
+pub const SPACE_FORMAT: &str = "redundant-ik-space-weights-1";
+
+/// Most inputs of a spatial network: `2 (n - 1) + 3`.
+const MAX_SPACE_INPUTS: usize = 2 * MAX_JOINTS + 1;
+
+/// A weights file of one spatial network.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpaceWeightsFile {
+    /// Always [`SPACE_FORMAT`].
+    pub format: String,
+    /// `phi` or `v`.
+    pub net: NetKind,
+    /// The tool's version that wrote it.
+    pub tool_version: String,
+    /// The preset the networks were trained for (`panda`).
+    pub arm: String,
+    /// Its rows and flange, so that a file is refused for another geometry.
+    pub rows: Vec<Row>,
+    /// The flange offset in the last frame (m).
+    pub flange: Vec3,
+    /// The inputs' names and the box training saw.
+    pub range: InputRange,
+    /// How it was trained.
+    pub training: SpaceTraining,
+    /// The network (one).
+    pub nets: Vec<NetEntry>,
+}
+
+/// How a spatial network was trained.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpaceTraining {
+    /// Seed of sampling, split and initial weights.
+    pub seed: u64,
+    /// Samples drawn.
+    pub samples: usize,
+    /// Hidden layer widths.
+    pub hidden: Vec<usize>,
+    /// The optimiser's options.
+    pub adam: AdamOptions,
+    /// How the samples were drawn.
+    pub sampling: SpaceSampling,
+    /// Wall-clock time of the training (s), when measured.
+    #[serde(default)]
+    pub seconds: Option<f64>,
+}
+
+/// How the samples of a spatial network were drawn.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpaceSampling {
+    /// `Phi`: poses uniform within the joint limits, those with
+    /// `sigma_min(J)` below this floor left out (m).
+    pub sigma_floor: f64,
+    /// `v`: random straight-line tasks whose numerical runs give the poses.
+    pub tasks: usize,
+    /// `v`: spheres per task, each a run.
+    pub obstacles_per_task: usize,
+    /// `v`: the lines' length (m).
+    pub line_length: f64,
+    /// `v`: the box the spheres' centres are drawn from, lower corner (m).
+    pub obstacle_min: Vec3,
+    /// `v`: its upper corner (m).
+    pub obstacle_max: Vec3,
+    /// `v`: noise added to each visited angle (rad).
+    pub theta_noise: f64,
+    /// `v`: noise added to each coordinate of the run's centre (m).
+    pub obstacle_noise: f64,
+    /// `v`: the smoothing `eps` of the criterion's norm in the targets (m^2).
+    pub sign_smoothing: f64,
+}
+
+/// Inputs and outputs of a spatial network of `kind` for `n` joints.
+pub fn space_shape(kind: NetKind, n: usize) -> (usize, usize) {
+    let angles = 2 * (n - 1);
+    match kind {
+        NetKind::Phi => (angles, 3 * n),
+        NetKind::V => (angles + 3, n),
+    }
+}
+
+/// The inputs' names, as the file's range lists them.
+pub fn space_input_names(kind: NetKind, n: usize) -> Vec<String> {
+    let mut names: Vec<String> = (2..=n)
+        .flat_map(|i| [format!("sin theta{i}"), format!("cos theta{i}")])
+        .collect();
+    if kind == NetKind::V {
+        names.extend(["o1_rotated", "o2_rotated", "o3_rotated"].map(String::from));
+    }
+    names
+}
+
+impl SpaceWeightsFile {
+    /// A file from its JSON text, checked ([`SpaceWeightsFile::validate`]).
+    pub fn from_json(text: &str) -> Result<Self> {
+        if text.len() > super::MAX_FILE_BYTES {
+            return Err(Error::Weights(format!(
+                "the file has {} bytes, more than the {} a weights file may have",
+                text.len(),
+                super::MAX_FILE_BYTES
+            )));
+        }
+        let file: Self = serde_json::from_str(text)
+            .map_err(|e| Error::Weights(format!("not a spatial weights file: {e}")))?;
+        file.validate()?;
+        Ok(file)
+    }
+
+    /// Whether the file is whole: its format, one network of the shape its
+    /// kind needs for its arm's joints, a range of as many inputs.
+    pub fn validate(&self) -> Result<()> {
+        if self.format != SPACE_FORMAT {
+            return Err(Error::Weights(format!(
+                "format '{}' is not supported (expected '{SPACE_FORMAT}')",
+                self.format
+            )));
+        }
+        let n = self.rows.len();
+        if !(2..=MAX_JOINTS).contains(&n) {
+            return Err(Error::Weights(format!(
+                "the arm has {n} rows; a chain has 2 to {MAX_JOINTS}"
+            )));
+        }
+        let (n_in, n_out) = space_shape(self.net, n);
+        let [entry] = &self.nets[..] else {
+            return Err(Error::Weights(format!(
+                "a spatial file holds one network, this one {}",
+                self.nets.len()
+            )));
+        };
+        entry
+            .mlp
+            .validate()
+            .map_err(|e| Error::Weights(format!("network: {e}")))?;
+        if entry.mlp.inputs() != n_in || entry.mlp.outputs() != n_out {
+            return Err(Error::Weights(format!(
+                "the network has {} inputs and {} outputs; a {} network of a {n}-joint arm needs {n_in} and {n_out}",
+                entry.mlp.inputs(),
+                entry.mlp.outputs(),
+                match self.net {
+                    NetKind::Phi => "Phi",
+                    NetKind::V => "v",
+                }
+            )));
+        }
+        let r = &self.range;
+        if r.min.len() != n_in || r.max.len() != n_in || r.names.len() != n_in {
+            return Err(Error::Weights(format!(
+                "trained range has {} names / {} min / {} max entries, expected {n_in}",
+                r.names.len(),
+                r.min.len(),
+                r.max.len()
+            )));
+        }
+        let geometry = self
+            .rows
+            .iter()
+            .flat_map(|r| [r.a, r.alpha, r.d, r.offset])
+            .chain(self.flange);
+        if geometry
+            .chain(r.min.iter().copied())
+            .chain(r.max.iter().copied())
+            .any(|x| !x.is_finite())
+        {
+            return Err(Error::Weights(
+                "the arm or the range has a non-finite number".into(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The JSON text, as the shipped files are written.
+    pub fn to_json(&self) -> Result<String> {
+        serde_json::to_string(self).map_err(|e| Error::Weights(e.to_string()))
+    }
+}
+
+/// A `Phi` network and a `v` network for one arm in space, in their
+/// run-time form.
+#[derive(Debug, Clone)]
+pub struct SpaceNetworks {
+    phi: SpaceWeightsFile,
+    v: SpaceWeightsFile,
+    phi_kernel: Kernel,
+    v_kernel: Kernel,
+}
+
+impl SpaceNetworks {
+    /// Pairs a `Phi` file and a `v` file of the same arm.
+    pub fn new(phi: SpaceWeightsFile, v: SpaceWeightsFile) -> Result<Self> {
+        phi.validate()?;
+        v.validate()?;
+        if phi.net != NetKind::Phi || v.net != NetKind::V {
+            return Err(Error::Weights(
+                "expected a Phi file and then a v file".into(),
+            ));
+        }
+        if phi.arm != v.arm || phi.rows != v.rows || phi.flange != v.flange {
+            return Err(Error::Weights(
+                "the Phi and v files were trained for different arms".into(),
+            ));
+        }
+        let phi_kernel = Kernel::new(&phi.nets[0].mlp);
+        let v_kernel = Kernel::new(&v.nets[0].mlp);
+        Ok(Self {
+            phi,
+            v,
+            phi_kernel,
+            v_kernel,
+        })
+    }
+
+    /// Networks from the JSON text of a `Phi` file and a `v` file.
+    pub fn from_json(phi: &str, v: &str) -> Result<Self> {
+        let phi = SpaceWeightsFile::from_json(phi).map_err(|e| prefix("Phi file", e))?;
+        let v = SpaceWeightsFile::from_json(v).map_err(|e| prefix("v file", e))?;
+        Self::new(phi, v)
+    }
+
+    /// The `Phi` file.
+    pub fn phi_file(&self) -> &SpaceWeightsFile {
+        &self.phi
+    }
+
+    /// The `v` file.
+    pub fn v_file(&self) -> &SpaceWeightsFile {
+        &self.v
+    }
+
+    /// Refused unless the networks were trained for `chain`'s geometry.
+    pub fn check_chain(&self, chain: &Chain) -> Result<()> {
+        if chain.rows() == &self.phi.rows[..] && chain.flange() == self.phi.flange {
+            Ok(())
+        } else {
+            Err(Error::NetworksUnavailable(format!(
+                "the networks were trained for the arm '{}', not for this one",
+                self.phi.arm
+            )))
+        }
+    }
+
+    /// Learned `Phi` at `pose`, row-major `n x 3` into `out`, allocation-free.
+    pub fn phi(&self, pose: &SpacePose, out: &mut [f64]) -> Result<()> {
+        let n = pose.dof();
+        self.check_dof(n, out.len(), 3 * n)?;
+        let mut buf = [0.0; MAX_SPACE_INPUTS];
+        let k = encode(pose.theta(), &mut buf);
+        self.phi_kernel.forward(&buf[..k], out);
+        let (s, c) = sin_cos(pose.theta()[0]);
+        let axis = pose.axis(0);
+        for row in out.chunks_exact_mut(3) {
+            let r = rotate([row[0], row[1], row[2]], axis, s, c);
+            row.copy_from_slice(&r);
+        }
+        finite(out, "Phi network output")
+    }
+
+    /// Learned area gradient `g(theta, O)` at `pose` into `out` (`n`),
+    /// allocation-free.
+    pub fn area_gradient(&self, pose: &SpacePose, o: Vec3, out: &mut [f64]) -> Result<()> {
+        let n = pose.dof();
+        self.check_dof(n, out.len(), n)?;
+        let mut buf = [0.0; MAX_SPACE_INPUTS];
+        let k = encode(pose.theta(), &mut buf);
+        let o = rotated_obstacle(pose, o);
+        buf[k..k + 3].copy_from_slice(&o);
+        self.v_kernel.forward(&buf[..k + 3], out);
+        finite(out, "v network output")
+    }
+
+    /// Whether `pose` (and the obstacle `o`) lie in the boxes training saw.
+    pub fn in_range(&self, pose: &SpacePose, o: Option<Vec3>) -> bool {
+        let mut buf = [0.0; MAX_SPACE_INPUTS];
+        let k = encode(pose.theta(), &mut buf);
+        let mut ok = self.phi.range.contains(&buf[..k]);
+        if let Some(o) = o {
+            buf[k..k + 3].copy_from_slice(&rotated_obstacle(pose, o));
+            ok &= self.v.range.contains(&buf[..k + 3]);
+        }
+        ok
+    }
+
+    fn check_dof(&self, n: usize, len: usize, want: usize) -> Result<()> {
+        if n != self.phi.rows.len() || len != want {
+            return Err(Error::DimensionMismatch {
+                what: "pose or output for the spatial networks".into(),
+                expected: self.phi.rows.len(),
+                found: n,
+            });
+        }
+        Ok(())
+    }
+}
+
+/// `(sin, cos)` of `theta_2..theta_n` into `buf`; how many entries.
+fn encode(theta: &[f64], buf: &mut [f64]) -> usize {
+    let rest = &theta[1..theta.len().min(MAX_JOINTS)];
+    for (pair, a) in buf.chunks_exact_mut(2).zip(rest) {
+        let (s, c) = sin_cos(*a);
+        pair[0] = s;
+        pair[1] = c;
+    }
+    2 * rest.len()
+}
+
+/// `x` turned by the angle of `(s, c)` about the unit `axis` (Rodrigues).
+fn rotate(x: Vec3, axis: Vec3, s: f64, c: f64) -> Vec3 {
+    let (k, ax) = (cross(axis, x), dot(axis, x) * (1.0 - c));
+    [0, 1, 2].map(|i| x[i] * c + k[i] * s + axis[i] * ax)
+}
+
+/// `O' = R^T (O - p_1) + p_1`: the obstacle as the arm at `theta_1 = 0`
+/// sees it.
+pub fn rotated_obstacle(pose: &SpacePose, o: Vec3) -> Vec3 {
+    let (s, c) = sin_cos(pose.theta()[0]);
+    let p1 = pose.joint_origin(0);
+    let r = rotate(sub(o, p1), pose.axis(0), -s, c);
+    [0, 1, 2].map(|i| r[i] + p1[i])
+}
+
+fn finite(out: &[f64], what: &str) -> Result<()> {
+    if out.iter().all(|x| x.is_finite()) {
+        Ok(())
+    } else {
+        Err(Error::NonFinite { what: what.into() })
+    }
+}
+
+fn prefix(what: &str, e: Error) -> Error {
+    match e {
+        Error::Weights(m) => Error::Weights(format!("{what}: {m}")),
+        other => other,
+    }
+}
+
+/// The shipped network sets for arms in space.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum SpaceNetworkSet {
+    /// The Panda's, trained by `redundant-ik train --arm panda` (the
+    /// whole-reach recipe in space): `weights/phi-panda-reach.json` and
+    /// `weights/v-panda-reach.json`.
+    #[serde(rename = "panda-reach")]
+    PandaReach,
+}
+
+impl SpaceNetworkSet {
+    /// Every set.
+    pub const ALL: [SpaceNetworkSet; 1] = [SpaceNetworkSet::PandaReach];
+
+    /// The name in `--networks` and the address.
+    pub fn name(self) -> &'static str {
+        match self {
+            SpaceNetworkSet::PandaReach => "panda-reach",
+        }
+    }
+
+    /// The preset it was trained for.
+    pub fn arm(self) -> &'static str {
+        match self {
+            SpaceNetworkSet::PandaReach => "panda",
+        }
+    }
+
+    /// The set shipped for the preset `key`, if there is one.
+    pub fn for_arm(key: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|s| s.arm() == key)
+    }
+
+    /// The networks, parsed once per process.
+    pub fn load(self) -> Result<Arc<SpaceNetworks>> {
+        static PANDA: OnceLock<std::result::Result<Arc<SpaceNetworks>, String>> = OnceLock::new();
+        let cell = match self {
+            SpaceNetworkSet::PandaReach => &PANDA,
+        };
+        cell.get_or_init(|| {
+            let (phi, v) = self.files();
+            SpaceNetworks::from_json(phi, v)
+                .map(Arc::new)
+                .map_err(|e| e.to_string())
+        })
+        .clone()
+        .map_err(Error::Weights)
+    }
+
+    /// The JSON text of its `Phi` and `v` files.
+    pub fn files(self) -> (&'static str, &'static str) {
+        match self {
+            SpaceNetworkSet::PandaReach => (
+                include_str!("../../weights/phi-panda-reach.json"),
+                include_str!("../../weights/v-panda-reach.json"),
+            ),
+        }
+    }
+}
+
+impl std::str::FromStr for SpaceNetworkSet {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        crate::error::by_name("network set in space", s, &Self::ALL, Self::name)
+    }
+}
