@@ -169,7 +169,7 @@ pub struct SceneArgs {
 
 impl SceneArgs {
     /// The text of `--from`'s file (at most a run file's size), if given.
-    pub fn from_text(&self) -> Result<Option<String>, String> {
+    pub fn run_text(&self) -> Result<Option<String>, String> {
         let Some(path) = &self.from else {
             return Ok(None);
         };
@@ -190,7 +190,7 @@ impl SceneArgs {
 
     /// The run file of `--from`, read and checked, if given.
     pub fn run_file(&self) -> Result<Option<RunFile>, String> {
-        let (Some(path), Some(text)) = (&self.from, self.from_text()?) else {
+        let (Some(path), Some(text)) = (&self.from, self.run_text()?) else {
             return Ok(None);
         };
         let run = RunFile::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))?;

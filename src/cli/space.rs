@@ -112,7 +112,7 @@ fn space_path(v: &PathArg) -> Result<SpacePath, String> {
 /// The spatial run file of `--from`, if it names one, read and checked
 /// (no scene option may go with it); `None` for a planar run's file.
 pub fn run_file(args: &SceneArgs) -> Result<Option<SpaceRunFile>, String> {
-    let (Some(path), Some(text)) = (&args.from, args.from_text()?) else {
+    let (Some(path), Some(text)) = (&args.from, args.run_text()?) else {
         return Ok(None);
     };
     if !is_space_run(&text) {

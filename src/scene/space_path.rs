@@ -71,18 +71,18 @@ pub(crate) fn circle_plane(
 ) -> std::result::Result<([Vec3; 2], f64), &'static str> {
     let d = sub(start, centre);
     let r = norm(d);
-    if !(r >= MIN_RADIUS) {
+    if r.is_nan() || r < MIN_RADIUS {
         return Err("the centre is the hand's start: the circle would have radius 0");
     }
     let size = norm(normal);
-    if !(size > 0.0) {
+    if size.is_nan() || size <= 0.0 {
         return Err("the normal N is zero: it must give the circle's plane");
     }
     let u = scale(d, 1.0 / r);
     let n = scale(normal, 1.0 / size);
     let across = sub(n, scale(u, dot(n, u)));
     let sine = norm(across);
-    if !(sine >= MIN_NORMAL_SINE) {
+    if sine.is_nan() || sine < MIN_NORMAL_SINE {
         return Err(
             "the normal N is parallel to the hand's start minus the centre: no plane through C with it holds the start",
         );
