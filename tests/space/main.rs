@@ -5,6 +5,7 @@ mod atlas;
 mod kinematics;
 mod lab;
 mod modern;
+mod paths;
 mod planner;
 
 use redundant_ik::space::{Chain, Row};
