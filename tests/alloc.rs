@@ -225,11 +225,12 @@ fn the_counter_does_count() {
 
 /// A step of every method in space allocates nothing either: on each
 /// preset with its sphere, the damping schedule, feedback and weighted
-/// least norm from a start near a limit (the weights' solves run).
+/// least norm from a start near a limit (the weights' solves run), along
+/// the line, a circle and a polyline.
 #[cfg(feature = "space")]
 #[test]
 fn a_spatial_step_allocates_nothing_in_any_method_in_space() {
-    use redundant_ik::scene::{JointWeighting, SpaceScene};
+    use redundant_ik::scene::{JointWeighting, SpacePath, SpaceScene};
     use redundant_ik::space::PRESETS;
     for p in PRESETS {
         let mut scene = SpaceScene::preset(&p);
@@ -238,17 +239,37 @@ fn a_spatial_step_allocates_nothing_in_any_method_in_space() {
         scene.damping = Some(DampingSchedule::default());
         scene.feedback_gain = 1.0;
         scene.weighting = JointWeighting::Wln;
-        for m in methods::ALL.iter().filter(|m| m.in_space()) {
-            let Some(mut planner) = planner_with_shipped(&scene, p.key, *m) else {
-                continue;
-            };
-            planner.step().unwrap();
-            let n = allocations_in(|| {
-                for _ in 0..20 {
-                    planner.step().unwrap();
-                }
-            });
-            assert_eq!(n, 0, "{} {m}: {n} allocations in 20 steps", p.key);
+        let x = scene.start();
+        let paths = [
+            SpacePath::Line,
+            SpacePath::Circle {
+                centre: [x[0], x[1], x[2] - 0.1],
+                normal: [1.0, 0.0, 0.0],
+                laps: 1,
+            },
+            SpacePath::Points(vec![
+                [x[0], x[1] + 0.1, x[2]],
+                [x[0] - 0.1, x[1] + 0.1, x[2] + 0.1],
+            ]),
+        ];
+        for path in paths {
+            scene.path = path;
+            for m in methods::ALL.iter().filter(|m| m.in_space()) {
+                let Some(mut planner) = planner_with_shipped(&scene, p.key, *m) else {
+                    continue;
+                };
+                planner.step().unwrap();
+                let n = allocations_in(|| {
+                    for _ in 0..20 {
+                        planner.step().unwrap();
+                    }
+                });
+                assert_eq!(
+                    n, 0,
+                    "{} {m} {}: {n} allocations in 20 steps",
+                    p.key, scene.path
+                );
+            }
         }
     }
 }

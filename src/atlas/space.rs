@@ -18,7 +18,7 @@ use crate::networks::space::SpaceNetworks;
 use crate::planner::space::SpacePlanner;
 use crate::planner::{Method, REACH_TOLERANCE};
 use crate::scene::SpaceScene;
-use crate::space::{clearance, closest, SpacePose, Sphere, Vec3};
+use crate::space::{clearance, SpacePose, Sphere, Vec3};
 
 /// The side of the default region (m).
 pub const DEFAULT_SIDE: f64 = 0.8;
@@ -176,7 +176,7 @@ pub fn default_region(scene: &SpaceScene, plane: Plane) -> [f64; 4] {
 
 /// Classifies what the sphere `s` does before any run: on the arm at the
 /// start or on the fixed base (`start_overlap`), within reach of the
-/// hand's line (`path_blocked`: the flange's capsule follows the line), or
+/// hand's path (`path_blocked`: the flange's capsule follows the path), or
 /// nothing (`None`).
 fn before(scene: &SpaceScene, pose: &SpacePose, s: &Sphere) -> Option<Class> {
     if s.validate(&scene.chain).is_err()
@@ -184,7 +184,9 @@ fn before(scene: &SpaceScene, pose: &SpacePose, s: &Sphere) -> Option<Class> {
     {
         return Some(Class::StartOverlap);
     }
-    let (_, d) = closest(s.centre, scene.start(), scene.target);
+    let d = scene
+        .path
+        .distance_to(s.centre, scene.start(), scene.target);
     (d <= s.radius + scene.chain.radius()).then_some(Class::PathBlocked)
 }
 

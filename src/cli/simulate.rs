@@ -12,7 +12,7 @@ use std::fmt::Write as _;
 use redundant_ik::arm::{JointLimits, RateLimits};
 use redundant_ik::obstacle::Placement;
 use redundant_ik::planner::methods::{DELTA, LAMBDA};
-use redundant_ik::scene::{JointWeighting, Path};
+use redundant_ik::scene::{JointWeighting, Path, SpacePath};
 
 use super::params::{Given, ParamArgs};
 use super::NetworkArgs;
@@ -35,10 +35,54 @@ fn parse_weighting(s: &str) -> Result<JointWeighting, String> {
     s.parse().map_err(|e: redundant_ik::Error| e.to_string())
 }
 
-/// Parses `--path` (the core's syntax, `line`, `circle:CX,CY[,LAPS]` or
-/// `points:X,Y;X,Y;...`).
-fn parse_path(s: &str) -> Result<Path, String> {
-    s.parse().map_err(|e: redundant_ik::Error| e.to_string())
+/// `--path` as given, read both ways: as a planar path (`line`,
+/// `circle:CX,CY[,LAPS]`, `points:X,Y;X,Y;...`) and as a path in space
+/// (`circle:CX,CY,CZ,NX,NY,NZ[,LAPS]`, `points:X,Y,Z;...`); the arm's kind
+/// picks one when the scene is built (`--arm` may come after `--path`).
+#[derive(Debug, Clone)]
+pub struct PathArg {
+    /// The text given.
+    pub text: String,
+    /// The planar path, or why the text is not one.
+    pub planar: Result<Path, String>,
+    /// The path in space, or why the text is not one.
+    pub space: Result<SpacePath, String>,
+}
+
+impl PathArg {
+    /// The planar path, or a refusal that names a path in space as one.
+    pub fn planar(&self) -> Result<Path, String> {
+        self.planar.clone().map_err(|e| match &self.space {
+            Ok(_) => format!(
+                "--path {}: a path in space (for --arm panda or iiwa14); a planar arm takes line, circle:CX,CY[,LAPS] or points:X,Y;X,Y;...",
+                self.text
+            ),
+            Err(_) => e,
+        })
+    }
+}
+
+/// What an [`redundant_ik::Error::Syntax`] expected, else its message.
+fn expected(e: redundant_ik::Error) -> String {
+    match e {
+        redundant_ik::Error::Syntax { expected, .. } => expected,
+        other => other.to_string(),
+    }
+}
+
+/// Parses `--path` (the core's syntaxes, [`PathArg`]): refused here when
+/// it is neither a planar path nor one in space.
+fn parse_path(s: &str) -> Result<PathArg, String> {
+    let planar = s.parse::<Path>();
+    let space = s.parse::<SpacePath>();
+    match (planar, space) {
+        (Err(p), Err(q)) => Err(format!("{p} (for an arm in space: {})", expected(q))),
+        (planar, space) => Ok(PathArg {
+            text: s.to_string(),
+            planar: planar.map_err(|e| e.to_string()),
+            space: space.map_err(|e| e.to_string()),
+        }),
+    }
 }
 
 /// Scene options shared by `simulate`, `figure` and `atlas`.
@@ -102,9 +146,12 @@ pub struct SceneArgs {
     /// straight line to --target, the default), circle:CX,CY[,LAPS] (the
     /// circle about CX,CY through the hand's start, counter-clockwise,
     /// LAPS whole laps, default 1) or points:X,Y;X,Y;... (the polyline from
-    /// the hand through the points, ending at the last; at most 64).
+    /// the hand through the points, ending at the last; at most 64). For
+    /// an arm in space circle:CX,CY,CZ,NX,NY,NZ[,LAPS] (in the plane
+    /// through C with normal N, counter-clockwise seen from N's tip) or
+    /// points:X,Y,Z;X,Y,Z;... (docs/space.md).
     #[arg(long, value_parser = parse_path, allow_hyphen_values = true)]
-    pub path: Option<Path>,
+    pub path: Option<PathArg>,
     /// Initial joint angles in radians, one per link (default: the task's
     /// for the paper's arm, else the page's start pose for the arm).
     #[arg(long, allow_hyphen_values = true)]
@@ -121,8 +168,8 @@ pub struct SceneArgs {
 }
 
 impl SceneArgs {
-    /// The run file of `--from`, read and checked, if given.
-    pub fn run_file(&self) -> Result<Option<RunFile>, String> {
+    /// The text of `--from`'s file (at most a run file's size), if given.
+    pub fn run_text(&self) -> Result<Option<String>, String> {
         let Some(path) = &self.from else {
             return Ok(None);
         };
@@ -136,8 +183,16 @@ impl SceneArgs {
                 export::MAX_RUN_FILE_BYTES
             ));
         }
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        std::fs::read_to_string(path)
+            .map(Some)
+            .map_err(|e| format!("cannot read {}: {e}", path.display()))
+    }
+
+    /// The run file of `--from`, read and checked, if given.
+    pub fn run_file(&self) -> Result<Option<RunFile>, String> {
+        let (Some(path), Some(text)) = (&self.from, self.run_text()?) else {
+            return Ok(None);
+        };
         let run = RunFile::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))?;
         // The file is the whole scene: an option beside it would be ignored.
         if let Some(flag) = self.beside_from().first() {
@@ -261,7 +316,7 @@ impl SceneArgs {
             };
         }
         if let Some(v) = &self.path {
-            s.path = v.clone();
+            s.path = v.planar()?;
         }
         if let Some(v) = &self.theta0 {
             s.theta0 = parse_list(v).map_err(|e| format!("--theta0: {e}"))?;
@@ -325,6 +380,9 @@ pub struct SimulateArgs {
 
 /// Runs `redundant-ik simulate`.
 pub fn run(args: &SimulateArgs) -> Result<(), String> {
+    if let Some(file) = super::space::run_file(&args.scene)? {
+        return super::space::replay(args, file);
+    }
     if let Some(ArmChoice::Space(p)) = &args.scene.arm {
         return super::space::simulate(args, p);
     }

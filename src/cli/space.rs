@@ -1,34 +1,28 @@
 //! `simulate` for an arm in space (`--arm panda`, `--arm iiwa14`): the
-//! scene from the preset's task and the scene options, the run through the
-//! spatial planner, and its summary, JSON or CSV.
+//! scene from the preset's task and the scene options (or a spatial run
+//! file's, `--from`), the run through the spatial planner, and its summary,
+//! the run file (JSON, `redundant_ik::export::SpaceRunFile`) or CSV.
 
 use std::fmt::Write as _;
 use std::sync::Arc;
 
+use redundant_ik::export::{is_space_run, SpaceRunFile};
 use redundant_ik::ik::DampingSchedule;
 use redundant_ik::networks::space::{SpaceNetworkSet, SpaceNetworks};
 use redundant_ik::networks::{NetKind, NetworkSet};
 use redundant_ik::planner::space::{SpacePlanner, SpaceTrajectory};
-use redundant_ik::scene::SpaceScene;
+use redundant_ik::scene::{SpacePath, SpaceScene};
 use redundant_ik::space::{SpacePreset, Sphere};
 use redundant_ik::Method;
-use serde::Serialize;
 
-use super::simulate::{SceneArgs, SimulateArgs};
+use super::simulate::{PathArg, SceneArgs, SimulateArgs};
 use super::{emit, parse_list, Numbers};
 
 /// The scene of `args` for the preset `p`: its task, with the options
 /// given. Options a spatial run does not take yet are refused by name.
 pub fn scene(args: &SceneArgs, p: &'static SpacePreset) -> Result<SpaceScene, String> {
     if args.from.is_some() {
-        return Err("--from replays a planar run; an arm in space is set by its options".into());
-    }
-    if let Some(path) = &args.path {
-        if !path.is_line() {
-            return Err(format!(
-                "--path {path}: an arm in space follows the straight line to --target (paths in space are not built yet)"
-            ));
-        }
+        return Err("--from gives the whole scene; --arm cannot change it".into());
     }
     let mut s = SpaceScene::preset(p);
     if args.joint_limits.is_some() || args.rate_limits.is_some() {
@@ -82,6 +76,9 @@ pub fn scene(args: &SceneArgs, p: &'static SpacePreset) -> Result<SpaceScene, St
     if let Some(v) = args.feedback {
         s.feedback_gain = v;
     }
+    if let Some(v) = &args.path {
+        s.path = space_path(v)?;
+    }
     s.params
         .set_all(&args.params.values)
         .map_err(|e| e.to_string())?;
@@ -103,24 +100,46 @@ fn sphere(n: &Numbers, radius: f64) -> Result<Sphere, String> {
     }
 }
 
-/// What `simulate --json` prints for an arm in space: the arm, the scene's
-/// settings, every sample (3-D points) and the summary.
-#[derive(Serialize)]
-struct SpaceRunFile<'a> {
-    format: &'static str,
-    arm: &'static str,
-    method: Method,
-    theta0: &'a [f64],
-    target: [f64; 3],
-    spheres: &'a [Sphere],
-    dt: f64,
-    tf: f64,
-    feedback_gain: f64,
-    floor: bool,
-    damping: bool,
-    params: Vec<(&'static str, f64)>,
-    samples: &'a [redundant_ik::planner::space::SpaceSample],
-    summary: redundant_ik::planner::space::SpaceSummary,
+/// The path in space of `--path`, or a refusal that names a planar path
+/// as one.
+fn space_path(v: &PathArg) -> Result<SpacePath, String> {
+    v.space.clone().map_err(|e| match &v.planar {
+        Ok(_) => format!(
+            "--path {}: a planar path; an arm in space takes line, circle:CX,CY,CZ,NX,NY,NZ[,LAPS] or points:X,Y,Z;X,Y,Z;...",
+            v.text
+        ),
+        Err(_) => e,
+    })
+}
+
+/// The spatial run file of `--from`, if it names one, read and checked
+/// (no scene option may go with it); `None` for a planar run's file.
+pub fn run_file(args: &SceneArgs) -> Result<Option<SpaceRunFile>, String> {
+    let (Some(path), Some(text)) = (&args.from, args.run_text()?) else {
+        return Ok(None);
+    };
+    if !is_space_run(&text) {
+        return Ok(None);
+    }
+    let file = SpaceRunFile::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    if let Some(flag) = args.beside_from().first() {
+        return Err(format!(
+            "--from gives the whole scene; {flag} cannot change it"
+        ));
+    }
+    Ok(Some(file))
+}
+
+/// `simulate --from` of a spatial run: its scene again, with its method
+/// unless `--method` is given.
+pub fn replay(args: &SimulateArgs, file: SpaceRunFile) -> Result<(), String> {
+    let p = SpacePreset::by_key(file.arm).ok_or("the run file's arm is not a preset")?;
+    let method = args.method.method.unwrap_or(file.method);
+    let nets = match file.networks.filter(|_| method.uses_networks()) {
+        Some(set) => Some(set.load().map_err(|e| e.to_string())?),
+        None => networks(&args.scene.networks, p, &[method])?,
+    };
+    output(args, p, file.scene, method, nets)
 }
 
 /// Runs `simulate` for the arm in space `p`.
@@ -128,31 +147,36 @@ pub fn simulate(args: &SimulateArgs, p: &'static SpacePreset) -> Result<(), Stri
     let scene = scene(&args.scene, p)?;
     let method = args.method.method.unwrap_or(Method::NUMERICAL);
     let nets = networks(&args.scene.networks, p, &[method])?;
+    output(args, p, scene, method, nets)
+}
+
+/// The shipped set `nets` is, if it is one (the user's files are not).
+fn shipped_set(nets: &SpaceNetworks) -> Option<SpaceNetworkSet> {
+    SpaceNetworkSet::ALL.into_iter().find(|s| {
+        let (phi, v) = s.files();
+        SpaceNetworks::from_json(phi, v)
+            .is_ok_and(|n| n.phi_file() == nets.phi_file() && n.v_file() == nets.v_file())
+    })
+}
+
+/// Runs `scene` with `method` (and the networks of the learned methods)
+/// and prints what `args` ask for: the run file (`--json`, what `--from`
+/// replays), CSV or a summary.
+fn output(
+    args: &SimulateArgs,
+    p: &'static SpacePreset,
+    scene: SpaceScene,
+    method: Method,
+    nets: Option<Arc<SpaceNetworks>>,
+) -> Result<(), String> {
+    let used = nets.clone();
     let traj = SpacePlanner::with_networks(scene.clone(), method, nets)
         .and_then(SpacePlanner::run)
         .map_err(|e| e.to_string())?;
     if args.json {
-        let file = SpaceRunFile {
-            format: "redundant-ik run in space",
-            arm: p.key,
-            method,
-            theta0: &scene.theta0,
-            target: scene.target,
-            spheres: &scene.spheres,
-            dt: scene.dt,
-            tf: scene.tf,
-            feedback_gain: scene.feedback_gain,
-            floor: scene.floor,
-            damping: scene.damping.is_some(),
-            params: method
-                .params()
-                .iter()
-                .map(|q| (q.name, scene.param(q)))
-                .collect(),
-            samples: &traj.samples,
-            summary: traj.summary,
-        };
-        let text = serde_json::to_string(&file).map_err(|e| e.to_string())?;
+        let mut file = SpaceRunFile::new(p, scene, traj);
+        file.networks = used.as_deref().and_then(shipped_set);
+        let text = file.to_json();
         return emit(&format!("{text}\n"));
     }
     if args.csv {
@@ -210,12 +234,16 @@ fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &SpaceTrajectory) -> Strin
         list(&first.theta),
         point(first.hand)
     );
+    let goal = if scene.path.is_line() {
+        format!("target {}", point(scene.target))
+    } else {
+        format!("path {} ending at {}", scene.path, point(scene.path_end()))
+    };
     let _ = writeln!(
         out,
-        "end    theta = [{}]  hand {}  target {}",
+        "end    theta = [{}]  hand {}  {goal}",
         list(&last.theta),
-        point(last.hand),
-        point(scene.target)
+        point(last.hand)
     );
     for sp in &scene.spheres {
         let _ = writeln!(

@@ -79,6 +79,13 @@ impl RunFile {
                 text.len()
             )));
         }
+        #[cfg(feature = "space")]
+        if super::is_space_run(text) {
+            return Err(refuse(
+                "a run of an arm in space: simulate --from replays it (this reads planar runs)"
+                    .into(),
+            ));
+        }
         let run: Self = serde_json::from_str(text)
             .map_err(|e| refuse(format!("not the JSON of simulate --json: {e}")))?;
         run.scene.validate()?;

@@ -218,11 +218,11 @@ fn panel(
             ))
             .map_err(why)?;
     }
-    // The line and the hand's trace.
-    let (a, b) = (run.samples[0].reference, scene.target);
+    // The path (a circle through 96 chords) and the hand's trace.
+    let outline = scene.path.outline(scene.start(), scene.target, 96);
     chart
         .draw_series(DashedLineSeries::new(
-            [a, b].iter().map(|q| view.project(*q)),
+            outline.iter().map(|q| view.project(*q)),
             5,
             4,
             colour::MUTED.stroke_width(1),

@@ -15,6 +15,7 @@
 //! the sample and the summary), the records (`record.rs`), the learned
 //! replacements' interface (`surrogate.rs`) and the methods (`methods/`).
 
+mod along;
 mod integrate;
 pub mod methods;
 mod observe;

@@ -16,15 +16,15 @@
 //! RK4 stage sees the same value, the published numbers). A circle's
 //! `Xdot` turns within a step, so the planner evaluates it at each RK4
 //! stage's own time ([`Track::velocity`]); a polyline's too (its corners).
-//! Sines and cosines by [`sin_cos`], the page's module's one.
-
-use std::f64::consts::TAU;
+//! The maths of the timing is `along.rs`, shared with the arms in space;
+//! sines and cosines by `crate::kinematics::sin_cos`, the page's module's
+//! one.
 
 use nalgebra::Vector2;
 
+use super::along::{self, polyline_at, Circle};
 use super::Line;
 use crate::arm::Arm;
-use crate::kinematics::sin_cos;
 use crate::scene::Path;
 
 /// A path with its timing: `line` runs from the start to the path's end
@@ -61,53 +61,8 @@ impl Track {
     fn at(&self, s: f64, after: bool) -> ([f64; 2], [f64; 2]) {
         let start = self.line.start;
         match &self.path {
-            Path::Circle { centre, laps } => {
-                let (dx, dy) = (start[0] - centre[0], start[1] - centre[1]);
-                let (r, sweep) = (dx.hypot(dy), TAU * f64::from(*laps));
-                let (sin, cos) = sin_cos(dy.atan2(dx) + sweep * s);
-                let v = r * sweep;
-                (
-                    [centre[0] + r * cos, centre[1] + r * sin],
-                    [-v * sin, v * cos],
-                )
-            }
-            Path::Points(points) => {
-                let mut total = 0.0;
-                let mut prev = start;
-                for &q in points {
-                    total += (q[0] - prev[0]).hypot(q[1] - prev[1]);
-                    prev = q;
-                }
-                let arc = s * total;
-                let (mut walked, mut prev) = (0.0, start);
-                let mut found = ([start, start], 0.0, 0.0);
-                for &q in points {
-                    let len = (q[0] - prev[0]).hypot(q[1] - prev[1]);
-                    if len > 0.0 {
-                        found = ([prev, q], walked, len);
-                        let inside = if after {
-                            arc < walked + len
-                        } else {
-                            arc <= walked + len
-                        };
-                        if inside {
-                            break;
-                        }
-                    }
-                    walked += len;
-                    prev = q;
-                }
-                let ([a, b], from, len) = found;
-                if len == 0.0 {
-                    return (start, [0.0, 0.0]);
-                }
-                let u = ((arc - from) / len).clamp(0.0, 1.0);
-                let k = total / len;
-                (
-                    [a[0] + u * (b[0] - a[0]), a[1] + u * (b[1] - a[1])],
-                    [k * (b[0] - a[0]), k * (b[1] - a[1])],
-                )
-            }
+            Path::Circle { centre, laps } => Circle::planar(*centre, start, *laps).at(s),
+            Path::Points(points) => polyline_at(start, points, s, after),
             Path::Line => {
                 let [a, b] = [start, self.line.end];
                 let d = [b[0] - a[0], b[1] - a[1]];
@@ -117,7 +72,7 @@ impl Track {
     }
 
     fn fraction(&self, t: f64) -> f64 {
-        ((t - self.line.t0) / self.line.duration).clamp(0.0, 1.0)
+        along::fraction(t, self.line.t0, self.line.duration)
     }
 
     /// Reference point `X_ref(t)`: the start before `t0`, the end after.
@@ -143,7 +98,7 @@ impl Track {
     /// step's first stages, or the one before it, for its last).
     pub fn velocity(&self, t_mid: f64, t: f64, after: bool) -> Vector2<f64> {
         let l = &self.line;
-        if self.path.is_line() || !(t_mid > l.t0 && t_mid < l.t0 + l.duration) {
+        if self.path.is_line() || !along::moving(t_mid, l.t0, l.duration) {
             return l.velocity_at(t_mid);
         }
         let d = self.at(self.fraction(t), after).1;

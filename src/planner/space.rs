@@ -1,12 +1,17 @@
-//! The RK4 planner for an arm in space: the hand along its straight line
-//! at constant speed (the paper's section V with `m = 3`), each rate
+//! The RK4 planner for an arm in space: the hand along its path at
+//! constant speed (the paper's section V with `m = 3`; the straight line,
+//! a circle or a polyline, [`SpaceTrack`]), each rate
 //! evaluation through the method's spatial rule, and a sample of what a
 //! run records after each step. A planner owns its poses and scratch
 //! space: a step allocates nothing.
 
 use std::sync::Arc;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
+
+mod track;
+
+pub use track::SpaceTrack;
 
 use super::methods::space::{SpaceContext, SpaceRule};
 use super::methods::{Method, Note};
@@ -16,7 +21,8 @@ use crate::scene::SpaceScene;
 use crate::space::{clearance, SpacePose, Vec3};
 
 /// What a spatial run records after each step.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct SpaceSample {
     /// Time (s).
     pub t: f64,
@@ -24,7 +30,7 @@ pub struct SpaceSample {
     pub theta: Vec<f64>,
     /// The hand.
     pub hand: Vec3,
-    /// Where the line has the hand at `t`.
+    /// Where the path has the hand at `t`.
     pub reference: Vec3,
     /// `|hand - reference|` (m).
     pub tracking_error: f64,
@@ -41,7 +47,8 @@ pub struct SpaceSample {
 }
 
 /// A spatial run's outcome.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct SpaceSummary {
     /// Steps taken.
     pub steps: usize,
@@ -57,7 +64,8 @@ pub struct SpaceSummary {
     pub handover_steps: usize,
     /// The largest tracking error (m).
     pub max_error: f64,
-    /// The hand's distance from the target at the end (m).
+    /// The hand's distance from the path's end (the target, for the line)
+    /// at the end (m).
     pub final_error: f64,
 }
 
@@ -80,7 +88,7 @@ pub struct SpacePlanner {
     rule: Box<dyn SpaceRule>,
     theta: Vec<f64>,
     step_index: usize,
-    start: Vec3,
+    track: SpaceTrack,
     pose: SpacePose,
     stage: SpacePose,
     k: [Vec<f64>; 4],
@@ -91,7 +99,8 @@ pub struct SpacePlanner {
 
 impl SpacePlanner {
     /// A planner of `method` on `scene` at `t = 0`; refused when the scene
-    /// does not validate or the method has no rule in space.
+    /// (its path included) does not validate or the method has no rule in
+    /// space.
     pub fn new(scene: SpaceScene, method: Method) -> Result<Self> {
         Self::with_networks(scene, method, None)
     }
@@ -111,6 +120,7 @@ impl SpacePlanner {
         let rule = method.space_rule(n)?;
         let pose = SpacePose::new(&scene.chain, &scene.theta0)?;
         let start = pose.hand();
+        let track = SpaceTrack::new(&scene.path, start, scene.target, scene.tf)?;
         let theta = scene.theta0.clone();
         let mut planner = Self {
             networks,
@@ -118,7 +128,7 @@ impl SpacePlanner {
             method,
             theta,
             step_index: 0,
-            start,
+            track,
             stage: pose.clone(),
             pose,
             k: [vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]],
@@ -171,16 +181,14 @@ impl SpacePlanner {
         self.step_index >= self.scene.steps()
     }
 
-    /// The line's velocity (constant).
-    fn line_velocity(&self) -> Vec3 {
-        let tf = self.scene.tf;
-        [0, 1, 2].map(|k| (self.scene.target[k] - self.start[k]) / tf)
+    /// The path being tracked, with its timing.
+    pub fn track(&self) -> &SpaceTrack {
+        &self.track
     }
 
-    /// Where the line has the hand at `t` (the target after `tf`).
+    /// Where the path has the hand at `t` (its end after `tf`).
     pub fn reference(&self, t: f64) -> Vec3 {
-        let s = (t / self.scene.tf).clamp(0.0, 1.0);
-        [0, 1, 2].map(|k| self.start[k] + s * (self.scene.target[k] - self.start[k]))
+        self.track.reference(t)
     }
 
     /// The joint rates at `theta` for hand velocity `xdot` (a convenience
@@ -201,16 +209,16 @@ impl SpacePlanner {
     pub fn step(&mut self) -> Result<&SpaceSample> {
         let h = self.scene.dt;
         let t = self.t();
-        let v = self.line_velocity();
+        let t_mid = t + 0.5 * h;
         let gain = self.scene.feedback_gain;
-        let (start, target, tf) = (self.start, self.scene.target, self.scene.tf);
-        let reference = |tt: f64| {
-            let s = (tt / tf).clamp(0.0, 1.0);
-            [0, 1, 2].map(|k| start[k] + s * (target[k] - start[k]))
-        };
-        let xdot = |tt: f64, pose: &SpacePose| -> Vec3 {
+        // The commanded hand velocity at a stage of time `tt`: the path's
+        // Xdot (a line's constant; a circle's or a polyline's at `tt`
+        // itself, the segment after a corner but at the last stage) plus,
+        // when K > 0, K (X_ref(tt) - X(theta)).
+        let xdot = |track: &SpaceTrack, tt: f64, last: bool, pose: &SpacePose| -> Vec3 {
+            let v = track.velocity(t_mid, tt, !last);
             if gain > 0.0 {
-                let (r, x) = (reference(tt), pose.hand());
+                let (r, x) = (track.reference(tt), pose.hand());
                 [0, 1, 2].map(|k| v[k] + gain * (r[k] - x[k]))
             } else {
                 v
@@ -219,6 +227,7 @@ impl SpacePlanner {
         let Self {
             scene,
             networks,
+            track,
             rule,
             theta,
             pose,
@@ -233,7 +242,7 @@ impl SpacePlanner {
             networks: networks.as_deref(),
         };
         let [k1, k2, k3, k4] = k;
-        let mut note = rule.theta_dot(&cx, pose, xdot(t, pose), k1)?;
+        let mut note = rule.theta_dot(&cx, pose, xdot(track, t, false, pose), k1)?;
         for (s, (c, tt)) in [(0.5 * h, t + 0.5 * h), (0.5 * h, t + 0.5 * h), (h, t + h)]
             .into_iter()
             .enumerate()
@@ -247,7 +256,7 @@ impl SpacePlanner {
                 *st = th + c * kk;
             }
             stage.update(&scene.chain, theta_stage)?;
-            let n2 = rule.theta_dot(&cx, stage, xdot(tt, stage), out)?;
+            let n2 = rule.theta_dot(&cx, stage, xdot(track, tt, s == 2, stage), out)?;
             note.relaxed |= n2.relaxed;
             note.handover |= n2.handover;
         }
@@ -297,7 +306,7 @@ impl SpacePlanner {
         while !self.done() {
             samples.push(self.step()?.clone());
         }
-        let target = self.scene.target;
+        let target = self.track.end();
         let summary = SpaceSummary {
             steps: samples.len() - 1,
             min_clearance: samples.iter().filter_map(|s| s.clearance).reduce(f64::min),

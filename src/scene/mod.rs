@@ -10,6 +10,8 @@ mod params;
 mod path;
 #[cfg(feature = "space")]
 mod space;
+#[cfg(feature = "space")]
+mod space_path;
 mod weighting;
 
 use crate::arm::Arm;
@@ -23,6 +25,10 @@ pub use params::{Param, Params, Scale, MAX_GAIN_STEP};
 pub use path::{Path, DRAWN_SPACING, MAX_LAPS, MAX_POINTS, MIN_RADIUS};
 #[cfg(feature = "space")]
 pub use space::SpaceScene;
+#[cfg(feature = "space")]
+pub(crate) use space_path::circle_plane;
+#[cfg(feature = "space")]
+pub use space_path::{SpacePath, MIN_NORMAL_SINE};
 pub use weighting::JointWeighting;
 
 /// The paper's final end-effector position for both tasks, `Xf = (0.60, 0.20)`.

@@ -30,8 +30,9 @@ use crate::kinematics::sin_cos;
 pub const MAX_POINTS: usize = 64;
 /// Most laps a `circle:` path may run.
 pub const MAX_LAPS: u32 = 1000;
-/// What a refusal of the laps says (with [`MAX_LAPS`]).
-const LAPS: &str = "LAPS must be a whole number from 1 to 1000";
+/// What a refusal of the laps says (with [`MAX_LAPS`]; the spatial
+/// path's too).
+pub(super) const LAPS: &str = "LAPS must be a whole number from 1 to 1000";
 /// What a refusal of the points' count says (with [`MAX_POINTS`]).
 const COUNT: &str = "expected 1 to 64 points X,Y";
 /// Smallest radius of a `circle:` path (m): its centre must lie this far
@@ -184,6 +185,12 @@ impl Path {
     }
 }
 
+/// `laps` as a whole number of laps from 1 to [`MAX_LAPS`], if it is one
+/// (the planar and the spatial circle's rule).
+pub(super) fn whole_laps(laps: f64) -> Option<u32> {
+    (laps.fract() == 0.0 && (1.0..=f64::from(MAX_LAPS)).contains(&laps)).then_some(laps as u32)
+}
+
 fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
     (a[0] - b[0]).hypot(a[1] - b[1])
 }
@@ -211,12 +218,9 @@ impl FromStr for Path {
                     [x, y, laps] => ([x, y], laps),
                     _ => return Err(refuse("expected circle:CX,CY or circle:CX,CY,LAPS")),
                 };
-                if laps.fract() != 0.0 || !(1.0..=f64::from(MAX_LAPS)).contains(&laps) {
-                    return Err(refuse(LAPS));
-                }
                 Ok(Path::Circle {
                     centre,
-                    laps: laps as u32,
+                    laps: whole_laps(laps).ok_or_else(|| refuse(LAPS))?,
                 })
             }
             "points" => {

@@ -1,8 +1,9 @@
-//! A run of an arm in space: a chain, a start pose, the hand's straight
-//! line, spheres and the integration settings; the methods' parameters are
+//! A run of an arm in space: a chain, a start pose, the hand's path (the
+//! straight line, a circle or a polyline), spheres and the integration
+//! settings; the methods' parameters are
 //! the planar scene's ([`Params`]), read by the same declarations.
 
-use super::{JointWeighting, Params};
+use super::{JointWeighting, Params, SpacePath};
 use crate::error::{coordinate, Error, Result};
 use crate::ik::DampingSchedule;
 use crate::space::{Chain, SpacePose, SpacePreset, Sphere, Vec3, MAX_SPHERES};
@@ -14,8 +15,11 @@ pub struct SpaceScene {
     pub chain: Chain,
     /// Joint angles at `t = 0` (rad).
     pub theta0: Vec<f64>,
-    /// The end of the hand's straight line (m).
+    /// The end of the hand's straight line (m), for [`SpacePath::Line`].
     pub target: Vec3,
+    /// What the hand follows at constant speed over `tf`: the straight
+    /// line to `target`, a circle or a polyline ([`SpacePath`]).
+    pub path: SpacePath,
     /// The spheres; their centres are the points `O` of the criterion.
     pub spheres: Vec<Sphere>,
     /// Optional damping schedule added to `delta` near singular poses.
@@ -44,6 +48,7 @@ impl SpaceScene {
             chain: p.chain(),
             theta0: p.task.theta0.to_vec(),
             target: p.task.target,
+            path: SpacePath::Line,
             spheres: vec![Sphere::new([x, y, z], r)],
             damping: None,
             dt: 0.05,
@@ -76,6 +81,12 @@ impl SpaceScene {
         SpacePose::new(&self.chain, &self.theta0).map_or([f64::NAN; 3], |p| p.hand())
     }
 
+    /// Where the path ends: the target for the line, the start for a
+    /// circle, the last point.
+    pub fn path_end(&self) -> Vec3 {
+        self.path.end(self.start(), self.target)
+    }
+
     /// The value of parameter `p`.
     #[inline]
     pub fn param(&self, p: &'static super::Param) -> f64 {
@@ -96,6 +107,7 @@ impl SpaceScene {
         for (&c, axis) in self.target.iter().zip(["x", "y", "z"]) {
             coordinate(&format!("target {axis}"), c)?;
         }
+        self.path.validate(self.start())?;
         if self.spheres.len() > MAX_SPHERES {
             return Err(Error::DimensionMismatch {
                 what: "spheres (at most)".into(),

@@ -133,7 +133,7 @@ fn the_other_kinds_obstacles_and_targets_are_refused_with_a_reason() {
             "--path",
             "points:0.4,0.1;0.4,0.2",
         ],
-        "straight line",
+        "a planar path",
     );
     refused(
         &[
@@ -326,4 +326,198 @@ fn the_learned_methods_train_evaluate_and_run_for_the_panda() {
         ],
         "trained for the arm 'panda'",
     );
+}
+
+#[test]
+fn simulate_follows_a_circle_and_a_polyline_in_space() {
+    let run = super::json(&[
+        "simulate",
+        "--arm",
+        "panda",
+        "--path",
+        "circle:0.47,0,0.42,1,0,0",
+        "--feedback",
+        "1",
+        "--json",
+    ]);
+    assert_eq!(run["path"], "circle:0.47,0,0.42,1,0,0");
+    assert!(
+        run["summary"]["max_error"].as_f64().unwrap() < 1e-7,
+        "{}",
+        run["summary"]
+    );
+    let samples = run["samples"].as_array().unwrap();
+    let point = |v: &Value| -> [f64; 3] { [0, 1, 2].map(|k| v[k].as_f64().unwrap()) };
+    let (c, n) = ([0.47, 0.0, 0.42], [1.0, 0.0, 0.0]);
+    let u = point(&samples[0]["hand"]);
+    let u = [u[0] - c[0], u[1] - c[1], u[2] - c[2]];
+    let r = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
+    // N made perpendicular to start - C.
+    let along = (n[0] * u[0] + n[1] * u[1] + n[2] * u[2]) / (r * r);
+    let m = [0, 1, 2].map(|k| n[k] - along * u[k]);
+    for s in samples {
+        let q = point(&s["reference"]);
+        let d = [0, 1, 2].map(|k| q[k] - c[k]);
+        let dist = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        assert!((dist - r).abs() < 1e-12, "on the circle: {dist} vs {r}");
+        let h = d[0] * m[0] + d[1] * m[1] + d[2] * m[2];
+        assert!(h.abs() < 1e-12, "in its plane: {h}");
+    }
+    let text = ok(&[
+        "simulate",
+        "--arm",
+        "iiwa14",
+        "--path",
+        "points:0.55,0.1,0.35;0.5,0.15,0.45;0.45,0,0.4",
+        "--feedback",
+        "1",
+    ]);
+    assert!(
+        text.contains(
+            "path points:0.55,0.1,0.35;0.5,0.15,0.45;0.45,0,0.4 ending at (0.4500, 0.0000, 0.4000)"
+        ),
+        "{text}"
+    );
+}
+
+#[test]
+fn malformed_paths_and_the_other_kinds_paths_are_refused_with_a_reason() {
+    let panda =
+        |path: &str, what: &str| refused(&["simulate", "--arm", "panda", "--path", path], what);
+    panda("circle:0.4,0.1", "a planar path");
+    panda("circle:0.4,0.1,2", "a planar path");
+    panda(
+        "circle:0.4,0,0.5,1",
+        "for an arm in space: expected circle:cx,cy,cz,nx,ny,nz",
+    );
+    panda("circle:0.4,0,0.5,0,0,0", "normal n is zero");
+    panda(
+        "circle:0.4,0,0.5,0.0737240401117622,0,0.0155132061520507",
+        "parallel",
+    );
+    panda(
+        "circle:0.4737240401117622,0,0.5155132061520507,0,0,1",
+        "radius 0",
+    );
+    panda("circle:0.4,0,0.5,0,0,1,0.5", "whole number");
+    panda("circle:nan,0,0.5,0,0,1", "path");
+    panda("points:0.4,0.1,0.5;0.4,0.2", "x,y,z for each point");
+    panda(
+        &format!("points:{}", vec!["0.4,0.1,0.5"; 65].join(";")),
+        "1 to 64 points x,y,z",
+    );
+    refused(
+        &["simulate", "--path", "circle:0.4,0,0.5,0,0,1"],
+        "a path in space",
+    );
+    refused(
+        &["simulate", "--path", "points:0.4,0.1,0.5"],
+        "a path in space",
+    );
+    refused(
+        &[
+            "figure",
+            "--path",
+            "points:0.4,0.1,0.5",
+            "--out",
+            "/dev/null",
+        ],
+        "a path in space",
+    );
+}
+
+#[test]
+fn simulate_from_replays_a_spatial_run_to_the_same_json() {
+    for args in [
+        &["--arm", "panda", "--tf", "2"][..],
+        &[
+            "--arm",
+            "iiwa14",
+            "--path",
+            "circle:0.5,0,0.2,1,0.5,0.2,2",
+            "--feedback",
+            "1",
+            "--damping",
+            "--joint-weighting",
+            "wln",
+            "--lambda",
+            "8",
+            "--floor",
+            "--method",
+            "distance",
+        ][..],
+        &[
+            "--arm",
+            "panda",
+            "--path",
+            "points:0.5,0.1,0.5;0.45,0.15,0.6",
+            "--joint-limits",
+            "-2.8:2.8,-1.7:1.7,-2.8:2.8,-3:-0.07,-2.8:2.8,-0.01:3.7,-2.8:2.8",
+            "--rate-limits",
+            "2,2,2,2,2.5,2.5,2.5",
+            "--obstacle",
+            "0.3,0.2,0.7,0.05",
+            "--method",
+            "qp",
+        ][..],
+    ] {
+        let mut all = vec!["simulate"];
+        all.extend_from_slice(args);
+        all.push("--json");
+        let first = ok(&all);
+        let file = super::scratch("space-run.json");
+        std::fs::write(&file, &first).unwrap();
+        let path = file.to_str().unwrap();
+        let again = ok(&["simulate", "--from", path, "--json"]);
+        assert_eq!(again, first, "{args:?}");
+        // The file's method unless another is asked for.
+        let none: Value = serde_json::from_str(&ok(&[
+            "simulate", "--from", path, "--method", "none", "--json",
+        ]))
+        .unwrap();
+        assert_eq!(none["method"], "none");
+    }
+}
+
+#[test]
+fn from_refuses_flags_beside_a_spatial_run_and_a_bad_file() {
+    let file = super::scratch("space-guard.json");
+    std::fs::write(
+        &file,
+        ok(&["simulate", "--arm", "panda", "--tf", "0.5", "--json"]),
+    )
+    .unwrap();
+    let path = file.to_str().unwrap();
+    for (flag, value) in [
+        ("--lambda", "3"),
+        ("--arm", "panda"),
+        ("--path", "circle:0.4,0,0.5,0,0,1"),
+        ("--tf", "1"),
+        ("--obstacle", "0.3,0.2,0.7"),
+        ("--feedback", "1"),
+    ] {
+        refused(&["simulate", "--from", path, flag, value], flag);
+    }
+    refused(&["simulate", "--from", path, "--floor"], "--floor");
+    // The planar commands send it to simulate.
+    refused(
+        &["figure", "--from", path, "--out", "/dev/null"],
+        "arm in space",
+    );
+    let text = std::fs::read_to_string(&file).unwrap();
+    for (bad, what) in [
+        (text[..text.len() / 3].to_string(), "not json"),
+        (
+            text.replacen("space-run/1", "space-run/7", 1),
+            "not supported",
+        ),
+        (text.replacen("\"tf\":0.5", "\"tf\":1e300", 1), "tf"),
+        (
+            text.replacen("\"method\":\"numerical\"", "\"method\":\"case2\"", 1),
+            "space",
+        ),
+    ] {
+        std::fs::write(&file, bad).unwrap();
+        refused(&["simulate", "--from", path], what);
+    }
 }

@@ -6,6 +6,7 @@ mod kinematics;
 mod lab;
 mod modern;
 mod networks;
+mod paths;
 mod planner;
 
 use redundant_ik::space::{Chain, Row};

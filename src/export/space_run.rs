@@ -1,0 +1,246 @@
+//! A run of an arm in space as a file: what `simulate --arm panda --json`
+//! prints and `simulate --from` replays, everything a replay needs (the
+//! preset's name, the limits, the start pose, the path, the spheres, the
+//! settings and every declared parameter) with every sample and the
+//! summary. Versioned by its first field, `format` ([`SPACE_RUN_FORMAT`]):
+//! a reader refuses a version it does not know, and the files written
+//! before this one (`"redundant-ik run in space"`, which lacked the limits,
+//! the weighting and the other methods' parameters) with a reason.
+
+use serde::{Deserialize, Serialize};
+
+use crate::networks::space::SpaceNetworkSet;
+
+use super::MAX_RUN_FILE_BYTES;
+use crate::arm::{JointLimits, RateLimits};
+use crate::error::{Error, Result};
+use crate::ik::DampingSchedule;
+use crate::planner::params::{all, by_name};
+use crate::planner::space::{SpaceSample, SpaceSummary, SpaceTrajectory};
+use crate::planner::Method;
+use crate::scene::{JointWeighting, ParamMap, Params, SpacePath, SpaceScene};
+use crate::space::{SpacePreset, Sphere, Vec3};
+
+/// The `format` of a spatial run file this version writes and reads.
+pub const SPACE_RUN_FORMAT: &str = "redundant-ik-space-run/1";
+/// The `format` of the spatial runs printed before files could be
+/// replayed (refused with a reason).
+const UNVERSIONED: &str = "redundant-ik run in space";
+/// The start of every version's `format`.
+const FAMILY: &str = "redundant-ik-space-run/";
+
+/// One spatial run and what it did.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpaceRunFile {
+    /// The preset's name (`panda`, `iiwa14`): its chain.
+    pub arm: &'static str,
+    /// The method.
+    pub method: Method,
+    /// Everything that defines the motion (the chain is the preset's with
+    /// the scene's limits).
+    pub scene: SpaceScene,
+    /// One sample per RK4 step, the start first.
+    pub samples: Vec<SpaceSample>,
+    /// The outcome.
+    pub summary: SpaceSummary,
+    /// The shipped network set a learned method ran with (`None`: no
+    /// learned method, or the user's own weights files, which a replay
+    /// takes again from the command line).
+    pub networks: Option<SpaceNetworkSet>,
+}
+
+/// The JSON form of a [`SpaceRunFile`]: one flat object.
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Fields {
+    format: String,
+    arm: String,
+    method: Method,
+    theta0: Vec<f64>,
+    target: Vec3,
+    path: SpacePath,
+    spheres: Vec<Sphere>,
+    joint_limits: Option<JointLimits>,
+    rate_limits: Option<RateLimits>,
+    damping: Option<DampingSchedule>,
+    dt: f64,
+    tf: f64,
+    feedback_gain: f64,
+    /// Every declared parameter, by name.
+    params: ParamMap,
+    joint_weighting: JointWeighting,
+    floor: bool,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    networks: Option<SpaceNetworkSet>,
+    samples: Vec<SpaceSample>,
+    summary: SpaceSummary,
+}
+
+/// Just the version, to tell a spatial run file from a planar one.
+#[derive(Deserialize)]
+struct Probe {
+    #[serde(default)]
+    format: Option<String>,
+}
+
+/// The `format` field of `text`, if it is a JSON object that has one; an
+/// error where it is not JSON.
+fn format_of(text: &str) -> serde_json::Result<Option<String>> {
+    Ok(serde_json::from_str::<Probe>(text)?.format)
+}
+
+/// Whether `text` claims to be a run of an arm in space (any version, the
+/// unversioned output included; a file cut short too, by the `format` its
+/// first bytes name): the readers of planar runs send it here.
+pub fn is_space_run(text: &str) -> bool {
+    match format_of(text) {
+        Ok(f) => f.is_some_and(|f| f == UNVERSIONED || f.starts_with(FAMILY)),
+        Err(_) => {
+            let head = &text.as_bytes()[..text.len().min(256)];
+            [FAMILY, UNVERSIONED]
+                .iter()
+                .any(|f| head.windows(f.len()).any(|w| w == f.as_bytes()))
+        }
+    }
+}
+
+impl SpaceRunFile {
+    /// The file of `traj`, the run of `scene` on the preset `arm`.
+    pub fn new(arm: &'static SpacePreset, scene: SpaceScene, traj: SpaceTrajectory) -> Self {
+        Self {
+            arm: arm.key,
+            method: traj.method,
+            scene,
+            samples: traj.samples,
+            summary: traj.summary,
+            networks: None,
+        }
+    }
+
+    /// The JSON text (one line). Serialising these types cannot fail (no
+    /// map has keys other than strings).
+    pub fn to_json(&self) -> String {
+        let s = &self.scene;
+        let fields = Fields {
+            format: SPACE_RUN_FORMAT.into(),
+            arm: self.arm.into(),
+            method: self.method,
+            theta0: s.theta0.clone(),
+            target: s.target,
+            path: s.path.clone(),
+            spheres: s.spheres.clone(),
+            joint_limits: s.chain.joint_limits().cloned(),
+            rate_limits: s.chain.rate_limits().cloned(),
+            damping: s.damping,
+            dt: s.dt,
+            tf: s.tf,
+            feedback_gain: s.feedback_gain,
+            params: ParamMap(
+                all()
+                    .iter()
+                    .map(|p| (p.name.to_string(), s.param(p)))
+                    .collect(),
+            ),
+            joint_weighting: s.weighting,
+            floor: s.floor,
+            networks: self.networks,
+            samples: self.samples.clone(),
+            summary: self.summary,
+        };
+        serde_json::to_string(&fields).unwrap_or_default()
+    }
+
+    /// A spatial run file read back: its version, its preset, its scene
+    /// (validated, as user input), its method (one that runs in space)
+    /// and its samples' sizes are checked.
+    pub fn from_json(text: &str) -> Result<Self> {
+        let refuse = |expected: String| Error::Syntax {
+            what: "run file in space",
+            text: text.chars().take(48).collect(),
+            expected,
+        };
+        if text.len() > MAX_RUN_FILE_BYTES {
+            return Err(refuse(format!(
+                "{} bytes, more than the {MAX_RUN_FILE_BYTES} allowed",
+                text.len()
+            )));
+        }
+        let format = format_of(text).map_err(|e| refuse(format!("not JSON: {e}")))?;
+        match format.as_deref() {
+            Some(SPACE_RUN_FORMAT) => {}
+            Some(UNVERSIONED) => {
+                return Err(refuse(
+                    "written before runs in space could be replayed (it lacks the limits, the weighting and the parameters): run it again to replay it".into(),
+                ))
+            }
+            Some(other) => {
+                return Err(refuse(format!(
+                    "format '{}' is not supported (expected '{SPACE_RUN_FORMAT}')",
+                    crate::error::clip(other)
+                )))
+            }
+            None => {
+                return Err(refuse(format!(
+                    "not a run in space: expected a JSON object with \"format\": \"{SPACE_RUN_FORMAT}\""
+                )))
+            }
+        }
+        let f: Fields = serde_json::from_str(text)
+            .map_err(|e| refuse(format!("not the JSON of simulate --arm ... --json: {e}")))?;
+        let preset = SpacePreset::by_key(&f.arm).ok_or_else(|| Error::UnknownName {
+            kind: "arm in space",
+            name: crate::error::clip(&f.arm),
+            choices: crate::error::choices(
+                &crate::space::PRESETS
+                    .iter()
+                    .map(|p| p.key)
+                    .collect::<Vec<_>>(),
+            ),
+        })?;
+        if !f.method.in_space() {
+            return Err(refuse(format!(
+                "method {} does not run an arm in space",
+                f.method
+            )));
+        }
+        let mut values = Vec::with_capacity(f.params.0.len());
+        for (name, v) in &f.params.0 {
+            values.push((by_name(name)?, *v));
+        }
+        let mut params = Params::default();
+        params.set_all(&values)?;
+        let mut scene = SpaceScene::preset(preset);
+        scene.chain = scene.chain.with_limits(f.joint_limits, f.rate_limits)?;
+        scene.theta0 = f.theta0;
+        scene.target = f.target;
+        scene.path = f.path;
+        scene.spheres = f.spheres;
+        scene.damping = f.damping;
+        scene.dt = f.dt;
+        scene.tf = f.tf;
+        scene.feedback_gain = f.feedback_gain;
+        scene.params = params;
+        scene.weighting = f.joint_weighting;
+        scene.floor = f.floor;
+        scene.validate()?;
+        let n = scene.chain.dof();
+        if f.samples.is_empty() {
+            return Err(refuse("a run has its start sample at least".into()));
+        }
+        if let Some(s) = f.samples.iter().find(|s| s.theta.len() != n) {
+            return Err(Error::DimensionMismatch {
+                what: format!("the angles of the sample at t = {}", s.t),
+                expected: n,
+                found: s.theta.len(),
+            });
+        }
+        Ok(Self {
+            networks: f.networks,
+            arm: preset.key,
+            method: f.method,
+            scene,
+            samples: f.samples,
+            summary: f.summary,
+        })
+    }
+}
