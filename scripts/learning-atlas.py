@@ -18,7 +18,7 @@ import sys
 BIN = sys.argv[1] if len(sys.argv) > 1 else "target/release/redundant-ik"
 REGIONS = [("whole reach", []), ("box [0.3, 0.8]²", ["--region", "0.3,0.8,0.3,0.8"])]
 SETS = ["paper", "reach"]
-LOOPS = [(0, 0), (0, 1), (1, 0), (1, 1), (2, 0), (2, 1)]  # (refine, K)
+LOOPS = [(0, 0), (0, 1), (1, 0), (1, 1), (2, 0), (2, 1), (4, 0), (4, 1)]  # (refine, K)
 METHODS = ["case1", "case2", "case3"]
 
 

@@ -124,7 +124,9 @@ pub fn phi_weighted_into(jac: &[f64], winv: &[f64], delta: f64, out: &mut [f64])
 /// as [`damp_phi`] does. With `A = J J^T`, `B = J W^-1 J^T` and an exact
 /// `Phi_0 = J^T A^-1`: `P = A^-1`, `M_W = (B + delta I) A^-1`, and
 /// `M_I = I + delta P`, so `Phi_W = W^-1 J^T (B + delta I)^-1`, the weighted
-/// damped pseudoinverse exactly. With `W = I` it is [`damp_phi`]'s
+/// damped pseudoinverse exactly (and, to the refinement's accuracy, for a
+/// `Phi_0` refined by [`super::refine_phi`], which converges to
+/// `J^T A^-1`). With `W = I` it is [`damp_phi`]'s
 /// `Phi_0 (I + delta P)^-1`: the network's own error is kept as it is, not
 /// corrected, so the rates move with the weights continuously from those
 /// of the unweighted route. Refused where a 2x2 matrix is singular.

@@ -220,7 +220,11 @@ fn a_run_file_written_before_the_parameters_moved_loads_and_replays_as_it_ran() 
     }
     assert!(read.summary.success == (!read.summary.collided && read.summary.reached));
     let again: Value = json(&["simulate", "--from", path, "--json"]);
-    assert_eq!(again["steps"], old["steps"], "the same steps");
+    // The same steps, but not bit for bit: the file's Case 1 run refines
+    // Phi twice, and the refinement has since projected Phi onto the range
+    // of J^T (ik::refine_phi), which moves its angles by up to 1.03e-5 rad
+    // in these four steps (measured). Flags and every other field agree.
+    assert_close(&again["steps"], &old["steps"], 1e-4, "steps");
     // It names its method `mode` (in the summary too), as files did before
     // "method"; the replay writes `method`.
     assert_eq!(read.method.name(), "case1");
@@ -228,4 +232,31 @@ fn a_run_file_written_before_the_parameters_moved_loads_and_replays_as_it_ran() 
     assert_eq!(again["method"], old["mode"]);
     assert_eq!(again["summary"]["method"], old["summary"]["mode"]);
     assert!(again.get("mode").is_none() && again["summary"].get("mode").is_none());
+}
+
+/// `a` and `b` agree field by field, numbers to within `tol`.
+fn assert_close(a: &Value, b: &Value, tol: f64, at: &str) {
+    match (a, b) {
+        (Value::Number(x), Value::Number(y)) => {
+            let (x, y) = (x.as_f64().unwrap(), y.as_f64().unwrap());
+            assert!((x - y).abs() <= tol, "{at}: {x} vs {y}");
+        }
+        (Value::Array(x), Value::Array(y)) => {
+            assert_eq!(x.len(), y.len(), "{at}");
+            for (i, (x, y)) in x.iter().zip(y).enumerate() {
+                assert_close(x, y, tol, &format!("{at}[{i}]"));
+            }
+        }
+        (Value::Object(x), Value::Object(y)) => {
+            assert_eq!(
+                x.keys().collect::<Vec<_>>(),
+                y.keys().collect::<Vec<_>>(),
+                "{at}"
+            );
+            for (k, x) in x {
+                assert_close(x, &y[k], tol, &format!("{at}.{k}"));
+            }
+        }
+        _ => assert_eq!(a, b, "{at}"),
+    }
 }

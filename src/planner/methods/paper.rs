@@ -73,11 +73,20 @@ pub static SIGN_SMOOTHING: Param = Param {
     above: None,
 };
 
-/// Newton-Schulz steps that refine a learned `Phi` with the pose's `J`
-/// (Cases 1 and 3, [`ik::refine_phi`]); the paper's 0 uses the network's
-/// `Phi` as it is. Each step squares the error `J Phi - I`, so after 8 any
-/// error below 0.9 is below 1e-5 and further steps change nothing a run
-/// can see.
+/// Newton-Schulz steps `Phi <- Phi (2I - J Phi)` that refine a learned
+/// `Phi` toward the pseudoinverse of eq. (20) (`delta = 0`) with the pose's
+/// `J` (Cases 1 and 3, [`ik::refine_phi`]); the paper's 0 uses the
+/// network's `Phi` as it is. Right after the first step, and not counted
+/// as one, the projection `Phi <- J^T (Phi^T Phi)` puts `Phi` in the range
+/// of `J^T`: `J+` is its fixed point, so the steps converge to `J+` itself
+/// and the null-space projector `I - Phi J` becomes the orthogonal one
+/// (without it they converge to a right inverse with the network's range,
+/// whose projector stays oblique). After the first step and the projection
+/// the error `J Phi - I` is of the order of the network's error squared,
+/// and each further step squares it, so from a network error of 0.1 the
+/// error is at rounding after 5 and further steps change nothing a run
+/// can see; where the network is far from any inverse the steps diverge
+/// and the run stops with an error.
 pub static REFINE: Param = Param {
     name: "refine",
     flag: "--refine",
@@ -190,8 +199,10 @@ impl Rule for Paper {
     /// Eq. (18), `(J J^T + delta I) varphi = Xdot - J v`,
     /// `theta_dot = J^T varphi + v`, or eq. (21),
     /// `theta_dot = Phi (Xdot - J v) + v` with `Phi` from the network,
-    /// refined by the scene's `refine` Newton-Schulz steps with the pose's
-    /// `J` ([`ik::refine_phi`]) and damped by a constant `delta` through
+    /// refined toward the pseudoinverse by the scene's `refine`
+    /// Newton-Schulz steps with the pose's `J` and the projection
+    /// `Phi <- J^T (Phi^T Phi)` after the first ([`ik::refine_phi`]) and
+    /// damped by a constant `delta` through
     /// [`ik::damp_phi`]. Where the damping
     /// schedule is active (a near-singular pose, where `Phi` is unbounded and
     /// no network fits it), the exact damped `Phi` of eq. (20) stands in for
