@@ -93,7 +93,7 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
     if let Some(key) = &args.arm {
         let p = redundant_ik::space::SpacePreset::by_key(key)
             .ok_or_else(|| format!("--arm {key}: eval --arm takes an arm in space (panda)"))?;
-        return super::space::eval(args, p);
+        return super::space_networks::eval(args, p);
     }
     if args.networks == "panda-reach" {
         return Err("--networks panda-reach is the Panda's: add --arm panda".into());

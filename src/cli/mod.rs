@@ -13,8 +13,10 @@ pub mod bench;
 pub mod eval;
 pub mod figure;
 pub mod params;
+pub mod path_arg;
 pub mod simulate;
 pub mod space;
+pub mod space_networks;
 pub mod train;
 
 /// Motion planning for redundant planar arms (2 to 32 links; the paper's is

@@ -12,9 +12,10 @@ use std::fmt::Write as _;
 use redundant_ik::arm::{JointLimits, RateLimits};
 use redundant_ik::obstacle::Placement;
 use redundant_ik::planner::methods::{DELTA, LAMBDA};
-use redundant_ik::scene::{JointWeighting, Path, SpacePath};
+use redundant_ik::scene::JointWeighting;
 
 use super::params::{Given, ParamArgs};
+use super::path_arg::{parse_path, PathArg};
 use super::NetworkArgs;
 use super::{
     emit, method_help, parse_arm, parse_list, parse_method, parse_numbers, ArmChoice, Numbers,
@@ -33,56 +34,6 @@ fn parse_rate_limits(s: &str) -> Result<RateLimits, String> {
 /// Parses `--joint-weighting` (`none` or `wln`).
 fn parse_weighting(s: &str) -> Result<JointWeighting, String> {
     s.parse().map_err(|e: redundant_ik::Error| e.to_string())
-}
-
-/// `--path` as given, read both ways: as a planar path (`line`,
-/// `circle:CX,CY[,LAPS]`, `points:X,Y;X,Y;...`) and as a path in space
-/// (`circle:CX,CY,CZ,NX,NY,NZ[,LAPS]`, `points:X,Y,Z;...`); the arm's kind
-/// picks one when the scene is built (`--arm` may come after `--path`).
-#[derive(Debug, Clone)]
-pub struct PathArg {
-    /// The text given.
-    pub text: String,
-    /// The planar path, or why the text is not one.
-    pub planar: Result<Path, String>,
-    /// The path in space, or why the text is not one.
-    pub space: Result<SpacePath, String>,
-}
-
-impl PathArg {
-    /// The planar path, or a refusal that names a path in space as one.
-    pub fn planar(&self) -> Result<Path, String> {
-        self.planar.clone().map_err(|e| match &self.space {
-            Ok(_) => format!(
-                "--path {}: a path in space (for --arm panda or iiwa14); a planar arm takes line, circle:CX,CY[,LAPS] or points:X,Y;X,Y;...",
-                self.text
-            ),
-            Err(_) => e,
-        })
-    }
-}
-
-/// What an [`redundant_ik::Error::Syntax`] expected, else its message.
-fn expected(e: redundant_ik::Error) -> String {
-    match e {
-        redundant_ik::Error::Syntax { expected, .. } => expected,
-        other => other.to_string(),
-    }
-}
-
-/// Parses `--path` (the core's syntaxes, [`PathArg`]): refused here when
-/// it is neither a planar path nor one in space.
-fn parse_path(s: &str) -> Result<PathArg, String> {
-    let planar = s.parse::<Path>();
-    let space = s.parse::<SpacePath>();
-    match (planar, space) {
-        (Err(p), Err(q)) => Err(format!("{p} (for an arm in space: {})", expected(q))),
-        (planar, space) => Ok(PathArg {
-            text: s.to_string(),
-            planar: planar.map_err(|e| e.to_string()),
-            space: space.map_err(|e| e.to_string()),
-        }),
-    }
 }
 
 /// Scene options shared by `simulate`, `figure` and `atlas`.

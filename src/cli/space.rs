@@ -9,13 +9,13 @@ use std::sync::Arc;
 use redundant_ik::export::{is_space_run, SpaceRunFile};
 use redundant_ik::ik::DampingSchedule;
 use redundant_ik::networks::space::{SpaceNetworkSet, SpaceNetworks};
-use redundant_ik::networks::{NetKind, NetworkSet};
 use redundant_ik::planner::space::{SpacePlanner, SpaceTrajectory};
 use redundant_ik::scene::{SpacePath, SpaceScene};
 use redundant_ik::space::{SpacePreset, Sphere};
 use redundant_ik::Method;
 
-use super::simulate::{PathArg, SceneArgs, SimulateArgs};
+use super::path_arg::PathArg;
+use super::simulate::{SceneArgs, SimulateArgs};
 use super::{emit, parse_list, Numbers};
 
 /// The scene of `args` for the preset `p`: its task, with the options
@@ -137,7 +137,7 @@ pub fn replay(args: &SimulateArgs, file: SpaceRunFile) -> Result<(), String> {
     let method = args.method.method.unwrap_or(file.method);
     let nets = match file.networks.filter(|_| method.uses_networks()) {
         Some(set) => Some(set.load().map_err(|e| e.to_string())?),
-        None => networks(&args.scene.networks, p, &[method])?,
+        None => super::space_networks::networks(&args.scene.networks, p, &[method])?,
     };
     output(args, p, file.scene, method, nets)
 }
@@ -146,17 +146,8 @@ pub fn replay(args: &SimulateArgs, file: SpaceRunFile) -> Result<(), String> {
 pub fn simulate(args: &SimulateArgs, p: &'static SpacePreset) -> Result<(), String> {
     let scene = scene(&args.scene, p)?;
     let method = args.method.method.unwrap_or(Method::NUMERICAL);
-    let nets = networks(&args.scene.networks, p, &[method])?;
+    let nets = super::space_networks::networks(&args.scene.networks, p, &[method])?;
     output(args, p, scene, method, nets)
-}
-
-/// The shipped set `nets` is, if it is one (the user's files are not).
-fn shipped_set(nets: &SpaceNetworks) -> Option<SpaceNetworkSet> {
-    SpaceNetworkSet::ALL.into_iter().find(|s| {
-        let (phi, v) = s.files();
-        SpaceNetworks::from_json(phi, v)
-            .is_ok_and(|n| n.phi_file() == nets.phi_file() && n.v_file() == nets.v_file())
-    })
 }
 
 /// Runs `scene` with `method` (and the networks of the learned methods)
@@ -175,7 +166,7 @@ fn output(
         .map_err(|e| e.to_string())?;
     if args.json {
         let mut file = SpaceRunFile::new(p, scene, traj);
-        file.networks = used.as_deref().and_then(shipped_set);
+        file.networks = used.as_deref().and_then(super::space_networks::shipped_set);
         let text = file.to_json();
         return emit(&format!("{text}\n"));
     }
@@ -316,7 +307,7 @@ pub fn atlas(args: &super::atlas::AtlasArgs, p: &'static SpacePreset) -> Result<
             .filter(|m| !m.uses_networks() || SpaceNetworkSet::for_arm(p.key).is_some())
             .collect(),
     };
-    let nets = networks(&args.scene.networks, p, &methods)?;
+    let nets = super::space_networks::networks(&args.scene.networks, p, &methods)?;
     let region = match &args.region {
         Some(r) => match parse_list(r).map_err(|e| format!("--region: {e}"))?[..] {
             [a, b, c, d] => [a, b, c, d],
@@ -402,208 +393,5 @@ pub fn atlas(args: &super::atlas::AtlasArgs, p: &'static SpacePreset) -> Result<
         );
     }
     let _ = writeln!(out, "\nsuccess: no collision, no joint past a limit and within 5 mm of the target, over the cells where avoidance is possible");
-    emit(&out)
-}
-
-/// The networks the learned methods among `methods` run with on the preset
-/// `p`: `--phi-weights` and `--v-weights` (spatial weights files, both),
-/// else `--networks` (a set trained for `p`; left at its planar default,
-/// the set shipped for `p`). `None` when no method of `methods` learns.
-pub fn networks(
-    args: &super::NetworkArgs,
-    p: &SpacePreset,
-    methods: &[Method],
-) -> Result<Option<Arc<SpaceNetworks>>, String> {
-    if !methods.iter().any(|m| m.uses_networks()) {
-        return Ok(None);
-    }
-    if args.phi_variant.is_some() {
-        return Err("--phi-variant picks among the paper set's planar Phi networks".into());
-    }
-    match (&args.phi_weights, &args.v_weights) {
-        (Some(phi), Some(v)) => {
-            let (phi, v) = (super::read_weights_file(phi)?, super::read_weights_file(v)?);
-            return SpaceNetworks::from_json(&phi, &v)
-                .map(|n| Some(Arc::new(n)))
-                .map_err(|e| e.to_string());
-        }
-        (None, None) => {}
-        _ => {
-            return Err(
-                "an arm in space takes its own networks as --phi-weights and --v-weights together"
-                    .into(),
-            )
-        }
-    }
-    let set = match args.networks {
-        super::SetArg::Space(s) => s,
-        super::SetArg::Planar(NetworkSet::Paper) => SpaceNetworkSet::for_arm(p.key).ok_or_else(|| {
-            format!(
-                "no networks are shipped for {}: train them (redundant-ik train --arm {} --net phi|v --out FILE) and give --phi-weights and --v-weights",
-                p.key, p.key
-            )
-        })?,
-        super::SetArg::Planar(s) => {
-            return Err(format!(
-                "--networks {}: a set for the planar arm, not for {}",
-                s.name(),
-                p.key
-            ))
-        }
-    };
-    if set.arm() != p.key {
-        return Err(format!(
-            "--networks {} was trained for {}, not for {}",
-            set.name(),
-            set.arm(),
-            p.key
-        ));
-    }
-    set.load().map(Some).map_err(|e| e.to_string())
-}
-
-/// `redundant-ik train --arm panda`: the whole-reach recipe in space
-/// ([`redundant_ik::training::space`]), by Adam, with a progress bar.
-pub fn train(
-    args: &super::train::TrainArgs,
-    net: NetKind,
-    p: &'static SpacePreset,
-) -> Result<(), String> {
-    use indicatif::{ProgressBar, ProgressStyle};
-    use redundant_ik::training::space::{train_space, SpaceTrainSpec};
-    for (given, flag) in [
-        (args.variant.is_some(), "--variant"),
-        (args.encoding.is_some(), "--encoding"),
-        (args.optimiser.is_some(), "--optimiser"),
-        (
-            args.recipe.as_deref().is_some_and(|r| r != "reach"),
-            "--recipe paper",
-        ),
-    ] {
-        if given {
-            return Err(format!(
-                "{flag}: an arm in space trains by the whole-reach recipe in space only (equivariant, (sin, cos) angles, Adam)"
-            ));
-        }
-    }
-    let mut spec = SpaceTrainSpec::reach(p, net, args.seed);
-    if let Some(n) = args.samples {
-        spec.samples = n;
-    }
-    if let Some(n) = args.epochs {
-        if n == 0 {
-            return Err("--epochs must be at least 1".into());
-        }
-        spec.adam.max_epochs = n;
-    }
-    if let Some(b) = args.batch {
-        spec.adam.batch = b;
-    }
-    if let Some(r) = args.learning_rate {
-        spec.adam.learning_rate = r;
-    }
-    if let Some(h) = &args.hidden {
-        spec.hidden = super::train::parse_hidden(h)?;
-    }
-    if let Some(f) = args.sigma_floor {
-        spec.sampling.sigma_floor = f;
-    }
-    if let Some(n) = args.noise {
-        spec.sampling.theta_noise = n;
-    }
-    if let Some(eps) = args.sign_smoothing {
-        spec.sampling.sign_smoothing = eps;
-    }
-    let epochs = spec.adam.max_epochs;
-    let bar = if args.quiet {
-        ProgressBar::hidden()
-    } else {
-        ProgressBar::new(epochs as u64)
-    };
-    bar.set_style(
-        ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} epochs  {msg}")
-            .map_err(|e| e.to_string())?
-            .progress_chars("=> "),
-    );
-    #[allow(clippy::disallowed_methods)] // the native CLI has a clock
-    let start = std::time::Instant::now();
-    let mut file = train_space(&spec, |r| {
-        bar.set_position(r.epoch as u64);
-        bar.set_message(format!("train {:.3e}  val {:.3e}", r.train_mse, r.val_mse));
-        true
-    })
-    .map_err(|e| e.to_string())?;
-    bar.finish_and_clear();
-    let seconds = start.elapsed().as_secs_f64();
-    file.training.seconds = Some((seconds * 10.0).round() / 10.0);
-    let json = file.to_json().map_err(|e| e.to_string())?;
-    std::fs::write(&args.out, json + "\n")
-        .map_err(|e| format!("cannot write {}: {e}", args.out))?;
-    let r = &file.nets[0].report;
-    emit(&format!(
-        "{} network for {}, whole reach in space, {} samples, seed {}, trained in {seconds:.1} s -> {}\n  {:?}: {} epochs (best {}), stop: {:?}; MSE (mapminmax units) train {:.3e}, val {:.3e}, test {:.3e}\n",
-        args.net, p.key, spec.samples, spec.seed, args.out,
-        file.nets[0].mlp.sizes, r.epochs, r.best_epoch, r.stop, r.train_mse, r.val_mse, r.test_mse
-    ))
-}
-
-/// `redundant-ik eval --arm panda`: the median relative errors of the
-/// networks on fresh samples of their training distributions, and the
-/// preset's task in every paper method with the given refinement and
-/// feedback.
-pub fn eval(args: &super::eval::EvalArgs, p: &'static SpacePreset) -> Result<(), String> {
-    use redundant_ik::planner::methods::{self, REFINE};
-    use redundant_ik::training::space::space_accuracy;
-    if args.samples == 0 || args.samples > 100_000 {
-        return Err("--samples must be between 1 and 100000 for an arm in space".into());
-    }
-    if args.json || args.variant.is_some() {
-        return Err("--json and --variant are not built for an arm in space (one Phi network, a text report)".into());
-    }
-    let nets = match (&args.phi, &args.v) {
-        (Some(phi), Some(v)) => Arc::new(
-            SpaceNetworks::from_json(
-                &super::read_weights_file(std::path::Path::new(phi))?,
-                &super::read_weights_file(std::path::Path::new(v))?,
-            )
-            .map_err(|e| e.to_string())?,
-        ),
-        _ => SpaceNetworkSet::for_arm(p.key)
-            .ok_or_else(|| format!("no networks are shipped for {}: give --phi and --v", p.key))?
-            .load()
-            .map_err(|e| e.to_string())?,
-    };
-    let (phi_err, v_err) =
-        space_accuracy(p, &nets, args.samples, args.seed).map_err(|e| e.to_string())?;
-    let mut scene = SpaceScene::preset(p);
-    scene.feedback_gain = args.feedback;
-    scene
-        .params
-        .set(&REFINE, f64::from(args.refine))
-        .map_err(|e| e.to_string())?;
-    let mut out = format!(
-        "Networks for {}: median relative error on {} fresh samples (seed {})\n  Phi {:?}: {phi_err:.3e}\n  v   {:?}: {v_err:.3e}\n\nThe task (refine {}, K = {}):\n",
-        p.key,
-        args.samples,
-        args.seed,
-        nets.phi_file().nets[0].mlp.sizes,
-        nets.v_file().nets[0].mlp.sizes,
-        args.refine,
-        args.feedback
-    );
-    for m in methods::PAPER {
-        let run = SpacePlanner::with_networks(scene.clone(), m, Some(nets.clone()))
-            .and_then(SpacePlanner::run)
-            .map_err(|e| e.to_string())?;
-        let s = run.summary;
-        let _ = writeln!(
-            out,
-            "  {:<14} clearance {:>8.4} m  collision steps {:>3}  final error {:.3e} m",
-            m.label(),
-            s.min_clearance.unwrap_or(f64::INFINITY),
-            s.collision_steps,
-            s.final_error
-        );
-    }
     emit(&out)
 }

@@ -105,7 +105,7 @@ pub fn run(args: &TrainArgs) -> Result<(), String> {
         other => return Err(format!("unknown network '{other}': use phi or v")),
     };
     let arm = match args.arm.clone() {
-        Some(super::ArmChoice::Space(p)) => return super::space::train(args, net, p),
+        Some(super::ArmChoice::Space(p)) => return super::space_networks::train(args, net, p),
         Some(super::ArmChoice::Planar(a)) => a,
         None => redundant_ik::Arm::paper(),
     };

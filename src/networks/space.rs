@@ -430,3 +430,17 @@ impl std::str::FromStr for SpaceNetworkSet {
         crate::error::by_name("network set in space", s, &Self::ALL, Self::name)
     }
 }
+
+impl crate::planner::SpaceSurrogate for SpaceNetworks {
+    fn check_chain(&self, chain: &Chain) -> Result<()> {
+        SpaceNetworks::check_chain(self, chain)
+    }
+
+    fn phi(&self, pose: &SpacePose, out: &mut [f64]) -> Result<()> {
+        SpaceNetworks::phi(self, pose, out)
+    }
+
+    fn area_gradient(&self, pose: &SpacePose, o: Vec3, out: &mut [f64]) -> Result<()> {
+        SpaceNetworks::area_gradient(self, pose, o, out)
+    }
+}

@@ -42,6 +42,8 @@ use crate::scene::Scene;
 pub use methods::{Group, Method, MethodInfo, Needs};
 pub use path::Track;
 pub use record::{Line, Sample, Summary, Trajectory};
+#[cfg(feature = "space")]
+pub use surrogate::SpaceSurrogate;
 pub use surrogate::Surrogate;
 
 use methods::Rule;

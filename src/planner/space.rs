@@ -15,8 +15,8 @@ pub use track::SpaceTrack;
 
 use super::methods::space::{SpaceContext, SpaceRule};
 use super::methods::{Method, Note};
+use super::SpaceSurrogate;
 use crate::error::{Error, Result};
-use crate::networks::space::SpaceNetworks;
 use crate::scene::SpaceScene;
 use crate::space::{clearance, SpacePose, Vec3};
 
@@ -83,7 +83,7 @@ pub struct SpaceTrajectory {
 /// The RK4 planner of one method on one spatial scene.
 pub struct SpacePlanner {
     scene: SpaceScene,
-    networks: Option<Arc<SpaceNetworks>>,
+    networks: Option<Arc<dyn SpaceSurrogate>>,
     method: Method,
     rule: Box<dyn SpaceRule>,
     theta: Vec<f64>,
@@ -102,7 +102,7 @@ impl SpacePlanner {
     /// (its path included) does not validate or the method has no rule in
     /// space.
     pub fn new(scene: SpaceScene, method: Method) -> Result<Self> {
-        Self::with_networks(scene, method, None)
+        Self::with_networks(scene, method, None::<Arc<NoNetworks>>)
     }
 
     /// A planner of `method` on `scene` with `networks` for the learned
@@ -110,8 +110,9 @@ impl SpacePlanner {
     pub fn with_networks(
         scene: SpaceScene,
         method: Method,
-        networks: Option<Arc<SpaceNetworks>>,
+        networks: Option<Arc<impl SpaceSurrogate + 'static>>,
     ) -> Result<Self> {
+        let networks = networks.map(|n| n as Arc<dyn SpaceSurrogate>);
         scene.validate()?;
         if let Some(nets) = &networks {
             nets.check_chain(&scene.chain)?;
@@ -330,4 +331,19 @@ impl SpacePlanner {
 
 fn dist(a: Vec3, b: Vec3) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+/// The type of "no networks" for [`SpacePlanner::new`].
+struct NoNetworks;
+
+impl SpaceSurrogate for NoNetworks {
+    fn check_chain(&self, _: &crate::space::Chain) -> Result<()> {
+        Ok(())
+    }
+    fn phi(&self, _: &SpacePose, _: &mut [f64]) -> Result<()> {
+        Err(Error::NetworksUnavailable("no networks".into()))
+    }
+    fn area_gradient(&self, _: &SpacePose, _: Vec3, _: &mut [f64]) -> Result<()> {
+        Err(Error::NetworksUnavailable("no networks".into()))
+    }
 }

@@ -1,5 +1,6 @@
-//! The learned replacements a planner may use: the interface the trained
-//! networks implement ([`crate::networks::Networks`]).
+//! The learned replacements a planner may use: the interfaces the trained
+//! networks implement ([`crate::networks::Networks`] in the plane,
+//! `crate::networks::space::SpaceNetworks` in space).
 
 use crate::arm::Arm;
 use crate::error::Result;
@@ -25,4 +26,22 @@ pub trait Surrogate: Send + Sync {
     fn phi_in_range(&self, pose: &Pose) -> bool;
     /// Whether `(theta, O)` lies in the range the `v` network was trained on.
     fn v_in_range(&self, pose: &Pose, o: [f64; 2]) -> bool;
+}
+
+/// Learned replacements for an arm in space: `Phi(theta)` (`n x 3`) and
+/// the area gradient of the criterion in space. Implemented by
+/// `crate::networks::space::SpaceNetworks`.
+#[cfg(feature = "space")]
+pub trait SpaceSurrogate: Send + Sync {
+    /// Refused unless the networks were trained for `chain`'s geometry.
+    fn check_chain(&self, chain: &crate::space::Chain) -> Result<()>;
+    /// Learned `Phi` at `pose`, row-major `n x 3` into `out`.
+    fn phi(&self, pose: &crate::space::SpacePose, out: &mut [f64]) -> Result<()>;
+    /// Learned area gradient `g(theta, O)` into `out` (`n` entries).
+    fn area_gradient(
+        &self,
+        pose: &crate::space::SpacePose,
+        o: crate::space::Vec3,
+        out: &mut [f64],
+    ) -> Result<()>;
 }

@@ -273,7 +273,23 @@ pub fn pseudoinverse(jac: &[f64], out: &mut [f64]) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::nn::rng::Rng;
+
+    /// A small generator for the tests (`space` sits below `nn`, whose
+    /// `Rng` it may not use): xorshift64*, uniform in `[lo, hi)`.
+    struct Rng(u64);
+
+    impl Rng {
+        fn new(seed: u64) -> Self {
+            Self(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
+        }
+        fn range(&mut self, lo: f64, hi: f64) -> f64 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            let u = (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64;
+            lo + (hi - lo) * u
+        }
+    }
 
     fn random_jac(n: usize, rng: &mut Rng) -> Vec<f64> {
         (0..3 * n).map(|_| rng.range(-1.0, 1.0)).collect()

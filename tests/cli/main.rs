@@ -67,4 +67,5 @@ mod refusals;
 mod runs;
 mod simulate;
 mod space;
+mod space_networks;
 mod training;

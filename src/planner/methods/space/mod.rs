@@ -16,7 +16,7 @@ pub(super) mod weighting;
 
 use super::{Method, Note};
 use crate::error::{Error, Result};
-use crate::networks::space::SpaceNetworks;
+use crate::planner::SpaceSurrogate;
 use crate::scene::SpaceScene;
 use crate::space::linalg::{smallest_singular_value3, solve_spd3};
 use crate::space::SpacePose;
@@ -27,18 +27,15 @@ pub struct SpaceContext<'a> {
     /// The scene, with its current target, spheres and gains.
     pub scene: &'a SpaceScene,
     /// The networks the learned routes (Cases 1-3) run with, if any.
-    pub networks: Option<&'a SpaceNetworks>,
+    pub networks: Option<&'a dyn SpaceSurrogate>,
 }
 
 impl SpaceContext<'_> {
     /// The networks `method` needs, or a clear error without them.
-    pub fn networks_for(&self, method: Method) -> Result<&SpaceNetworks> {
+    pub fn networks_for(&self, method: Method) -> Result<&dyn SpaceSurrogate> {
         self.networks.ok_or_else(|| {
             Error::NetworksUnavailable(format!(
-                "method {method} needs networks trained for this arm in space (--networks {})",
-                crate::networks::space::SpaceNetworkSet::ALL
-                    .map(|s| s.name())
-                    .join(" or ")
+                "method {method} needs networks trained for this arm in space (the Panda's: --networks panda-reach)"
             ))
         })
     }

@@ -1,0 +1,227 @@
+//! The networks of an arm in space on the command line: which ones a
+//! learned method runs with (`--networks panda-reach`, `--phi-weights`,
+//! `--v-weights`), `train --arm panda` and `eval --arm panda`.
+
+use std::fmt::Write as _;
+use std::sync::Arc;
+
+use redundant_ik::networks::space::{SpaceNetworkSet, SpaceNetworks};
+use redundant_ik::networks::{NetKind, NetworkSet};
+use redundant_ik::planner::space::SpacePlanner;
+use redundant_ik::scene::SpaceScene;
+use redundant_ik::space::SpacePreset;
+use redundant_ik::Method;
+
+use super::emit;
+
+/// The networks the learned methods among `methods` run with on the preset
+/// `p`: `--phi-weights` and `--v-weights` (spatial weights files, both),
+/// else `--networks` (a set trained for `p`; left at its planar default,
+/// the set shipped for `p`). `None` when no method of `methods` learns.
+pub fn networks(
+    args: &super::NetworkArgs,
+    p: &SpacePreset,
+    methods: &[Method],
+) -> Result<Option<Arc<SpaceNetworks>>, String> {
+    if !methods.iter().any(|m| m.uses_networks()) {
+        return Ok(None);
+    }
+    if args.phi_variant.is_some() {
+        return Err("--phi-variant picks among the paper set's planar Phi networks".into());
+    }
+    match (&args.phi_weights, &args.v_weights) {
+        (Some(phi), Some(v)) => {
+            let (phi, v) = (super::read_weights_file(phi)?, super::read_weights_file(v)?);
+            return SpaceNetworks::from_json(&phi, &v)
+                .map(|n| Some(Arc::new(n)))
+                .map_err(|e| e.to_string());
+        }
+        (None, None) => {}
+        _ => {
+            return Err(
+                "an arm in space takes its own networks as --phi-weights and --v-weights together"
+                    .into(),
+            )
+        }
+    }
+    let set = match args.networks {
+        super::SetArg::Space(s) => s,
+        super::SetArg::Planar(NetworkSet::Paper) => SpaceNetworkSet::for_arm(p.key).ok_or_else(|| {
+            format!(
+                "no networks are shipped for {}: train them (redundant-ik train --arm {} --net phi|v --out FILE) and give --phi-weights and --v-weights",
+                p.key, p.key
+            )
+        })?,
+        super::SetArg::Planar(s) => {
+            return Err(format!(
+                "--networks {}: a set for the planar arm, not for {}",
+                s.name(),
+                p.key
+            ))
+        }
+    };
+    if set.arm() != p.key {
+        return Err(format!(
+            "--networks {} was trained for {}, not for {}",
+            set.name(),
+            set.arm(),
+            p.key
+        ));
+    }
+    set.load().map(Some).map_err(|e| e.to_string())
+}
+
+/// `redundant-ik train --arm panda`: the whole-reach recipe in space
+/// ([`redundant_ik::training::space`]), by Adam, with a progress bar.
+pub fn train(
+    args: &super::train::TrainArgs,
+    net: NetKind,
+    p: &'static SpacePreset,
+) -> Result<(), String> {
+    use indicatif::{ProgressBar, ProgressStyle};
+    use redundant_ik::training::space::{train_space, SpaceTrainSpec};
+    for (given, flag) in [
+        (args.variant.is_some(), "--variant"),
+        (args.encoding.is_some(), "--encoding"),
+        (args.optimiser.is_some(), "--optimiser"),
+        (
+            args.recipe.as_deref().is_some_and(|r| r != "reach"),
+            "--recipe paper",
+        ),
+    ] {
+        if given {
+            return Err(format!(
+                "{flag}: an arm in space trains by the whole-reach recipe in space only (equivariant, (sin, cos) angles, Adam)"
+            ));
+        }
+    }
+    let mut spec = SpaceTrainSpec::reach(p, net, args.seed);
+    if let Some(n) = args.samples {
+        spec.samples = n;
+    }
+    if let Some(n) = args.epochs {
+        if n == 0 {
+            return Err("--epochs must be at least 1".into());
+        }
+        spec.adam.max_epochs = n;
+    }
+    if let Some(b) = args.batch {
+        spec.adam.batch = b;
+    }
+    if let Some(r) = args.learning_rate {
+        spec.adam.learning_rate = r;
+    }
+    if let Some(h) = &args.hidden {
+        spec.hidden = super::train::parse_hidden(h)?;
+    }
+    if let Some(f) = args.sigma_floor {
+        spec.sampling.sigma_floor = f;
+    }
+    if let Some(n) = args.noise {
+        spec.sampling.theta_noise = n;
+    }
+    if let Some(eps) = args.sign_smoothing {
+        spec.sampling.sign_smoothing = eps;
+    }
+    let epochs = spec.adam.max_epochs;
+    let bar = if args.quiet {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::new(epochs as u64)
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} epochs  {msg}")
+            .map_err(|e| e.to_string())?
+            .progress_chars("=> "),
+    );
+    #[allow(clippy::disallowed_methods)] // the native CLI has a clock
+    let start = std::time::Instant::now();
+    let mut file = train_space(&spec, |r| {
+        bar.set_position(r.epoch as u64);
+        bar.set_message(format!("train {:.3e}  val {:.3e}", r.train_mse, r.val_mse));
+        true
+    })
+    .map_err(|e| e.to_string())?;
+    bar.finish_and_clear();
+    let seconds = start.elapsed().as_secs_f64();
+    file.training.seconds = Some((seconds * 10.0).round() / 10.0);
+    let json = file.to_json().map_err(|e| e.to_string())?;
+    std::fs::write(&args.out, json + "\n")
+        .map_err(|e| format!("cannot write {}: {e}", args.out))?;
+    let r = &file.nets[0].report;
+    emit(&format!(
+        "{} network for {}, whole reach in space, {} samples, seed {}, trained in {seconds:.1} s -> {}\n  {:?}: {} epochs (best {}), stop: {:?}; MSE (mapminmax units) train {:.3e}, val {:.3e}, test {:.3e}\n",
+        args.net, p.key, spec.samples, spec.seed, args.out,
+        file.nets[0].mlp.sizes, r.epochs, r.best_epoch, r.stop, r.train_mse, r.val_mse, r.test_mse
+    ))
+}
+
+/// `redundant-ik eval --arm panda`: the median relative errors of the
+/// networks on fresh samples of their training distributions, and the
+/// preset's task in every paper method with the given refinement and
+/// feedback.
+pub fn eval(args: &super::eval::EvalArgs, p: &'static SpacePreset) -> Result<(), String> {
+    use redundant_ik::planner::methods::{self, REFINE};
+    use redundant_ik::training::space::space_accuracy;
+    if args.samples == 0 || args.samples > 100_000 {
+        return Err("--samples must be between 1 and 100000 for an arm in space".into());
+    }
+    if args.json || args.variant.is_some() {
+        return Err("--json and --variant are not built for an arm in space (one Phi network, a text report)".into());
+    }
+    let nets = match (&args.phi, &args.v) {
+        (Some(phi), Some(v)) => Arc::new(
+            SpaceNetworks::from_json(
+                &super::read_weights_file(std::path::Path::new(phi))?,
+                &super::read_weights_file(std::path::Path::new(v))?,
+            )
+            .map_err(|e| e.to_string())?,
+        ),
+        _ => SpaceNetworkSet::for_arm(p.key)
+            .ok_or_else(|| format!("no networks are shipped for {}: give --phi and --v", p.key))?
+            .load()
+            .map_err(|e| e.to_string())?,
+    };
+    let (phi_err, v_err) =
+        space_accuracy(p, &nets, args.samples, args.seed).map_err(|e| e.to_string())?;
+    let mut scene = SpaceScene::preset(p);
+    scene.feedback_gain = args.feedback;
+    scene
+        .params
+        .set(&REFINE, f64::from(args.refine))
+        .map_err(|e| e.to_string())?;
+    let mut out = format!(
+        "Networks for {}: median relative error on {} fresh samples (seed {})\n  Phi {:?}: {phi_err:.3e}\n  v   {:?}: {v_err:.3e}\n\nThe task (refine {}, K = {}):\n",
+        p.key,
+        args.samples,
+        args.seed,
+        nets.phi_file().nets[0].mlp.sizes,
+        nets.v_file().nets[0].mlp.sizes,
+        args.refine,
+        args.feedback
+    );
+    for m in methods::PAPER {
+        let run = SpacePlanner::with_networks(scene.clone(), m, Some(nets.clone()))
+            .and_then(SpacePlanner::run)
+            .map_err(|e| e.to_string())?;
+        let s = run.summary;
+        let _ = writeln!(
+            out,
+            "  {:<14} clearance {:>8.4} m  collision steps {:>3}  final error {:.3e} m",
+            m.label(),
+            s.min_clearance.unwrap_or(f64::INFINITY),
+            s.collision_steps,
+            s.final_error
+        );
+    }
+    emit(&out)
+}
+
+/// The shipped set `nets` is, if it is one (the user's files are not).
+pub fn shipped_set(nets: &SpaceNetworks) -> Option<SpaceNetworkSet> {
+    SpaceNetworkSet::ALL.into_iter().find(|s| {
+        let (phi, v) = s.files();
+        SpaceNetworks::from_json(phi, v)
+            .is_ok_and(|n| n.phi_file() == nets.phi_file() && n.v_file() == nets.v_file())
+    })
+}
