@@ -14,7 +14,7 @@ use crate::scene::SpaceScene;
 /// One RK4 step of the preset `key`'s task in `method`, sample included
 /// (ns); the run restarts at `tf`.
 pub fn step_ns(key: &str, method: Method, opts: &Options, probes: &Probes) -> Result<f64> {
-    let scene = SpaceScene::by_key(key)?;
+    let scene = task(key, opts.refine)?;
     let nets = shipped_networks(key, method)?;
     let fresh = || SpacePlanner::with_networks(scene.clone(), method, nets.clone());
     let mut p = fresh()?;
@@ -29,9 +29,14 @@ pub fn step_ns(key: &str, method: Method, opts: &Options, probes: &Probes) -> Re
 
 /// Heap allocations per RK4 step over one whole run of the preset `key`'s
 /// task in `method`, once the planner exists.
-pub fn allocs_per_step(key: &str, method: Method, count: &dyn Fn() -> u64) -> Result<f64> {
+pub fn allocs_per_step(
+    key: &str,
+    method: Method,
+    opts: &Options,
+    count: &dyn Fn() -> u64,
+) -> Result<f64> {
     let nets = shipped_networks(key, method)?;
-    let mut p = SpacePlanner::with_networks(SpaceScene::by_key(key)?, method, nets)?;
+    let mut p = SpacePlanner::with_networks(task(key, opts.refine)?, method, nets)?;
     let n = p.scene().steps();
     let before = count();
     for _ in 0..n {
@@ -52,4 +57,13 @@ pub fn shipped_networks(key: &str, method: Method) -> Result<Option<Arc<SpaceNet
         })?
         .load()
         .map(Some)
+}
+
+/// The preset `key`'s task with `refine` refinement steps (Cases 1 and 3).
+fn task(key: &str, refine: u32) -> Result<SpaceScene> {
+    let mut scene = SpaceScene::by_key(key)?;
+    scene
+        .params
+        .set(&crate::planner::methods::REFINE, f64::from(refine))?;
+    Ok(scene)
 }

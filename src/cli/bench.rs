@@ -29,7 +29,8 @@ pub struct BenchArgs {
     #[arg(long)]
     pub no_atlas: bool,
     /// Methods to time, comma-separated; `paper` (the default) for the
-    /// paper's five, `all` for every method.
+    /// paper's five, `all` for every method (with --arm, every method by
+    /// default).
     #[arg(long = "methods", alias = "modes", default_value = "paper")]
     pub methods: String,
     /// The shipped network set the network methods run: paper or reach.
@@ -80,7 +81,9 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         allocations: Some(&count),
     };
     if let Some(key) = &args.arm {
-        return space(key, &opts, &probes, args.json);
+        // For an arm in space the default is every method.
+        let all = args.methods == "paper";
+        return space(key, &opts, all, &probes, args.json);
     }
     let report = bench::run(&opts, &probes).map_err(|e| e.to_string())?;
     if args.json {
@@ -147,7 +150,13 @@ fn table(r: &Report, layers: [String; 2]) -> String {
 /// `bench --arm KEY`: the RK4 step of the arm in space's own task in every
 /// method that runs it (ns, median of the timed batches) and its
 /// allocations per step.
-fn space(key: &str, opts: &Options, probes: &bench::Probes, json: bool) -> Result<(), String> {
+fn space(
+    key: &str,
+    opts: &Options,
+    all: bool,
+    probes: &bench::Probes,
+    json: bool,
+) -> Result<(), String> {
     use redundant_ik::bench::space as sb;
     let preset = redundant_ik::space::SpacePreset::by_key(key).ok_or_else(|| {
         format!("--arm {key}: bench --arm takes an arm in space, panda or iiwa14")
@@ -156,14 +165,14 @@ fn space(key: &str, opts: &Options, probes: &bench::Probes, json: bool) -> Resul
     let mut rows = Vec::new();
     for m in redundant_ik::planner::methods::ALL
         .iter()
-        .filter(|m| m.in_space())
+        .filter(|m| all || opts.methods.contains(m))
         .filter(|m| {
             !m.uses_networks()
                 || redundant_ik::networks::space::SpaceNetworkSet::for_arm(key).is_some()
         })
     {
         let ns = sb::step_ns(key, *m, opts, probes).map_err(|e| e.to_string())?;
-        let allocs = sb::allocs_per_step(key, *m, &count).map_err(|e| e.to_string())?;
+        let allocs = sb::allocs_per_step(key, *m, opts, &count).map_err(|e| e.to_string())?;
         rows.push((m.name(), ns, allocs));
     }
     if json {
