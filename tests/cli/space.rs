@@ -425,8 +425,8 @@ fn from_refuses_flags_beside_a_spatial_run_and_a_bad_file() {
         ),
         (text.replacen("\"tf\":0.5", "\"tf\":1e300", 1), "tf"),
         (
-            text.replacen("\"method\":\"numerical\"", "\"method\":\"case2\"", 1),
-            "space",
+            text.replacen("\"method\":\"numerical\"", "\"method\":\"case9\"", 1),
+            "case9",
         ),
     ] {
         std::fs::write(&file, bad).unwrap();

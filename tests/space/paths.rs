@@ -228,8 +228,8 @@ fn a_corrupt_or_hostile_run_file_in_space_is_an_error() {
         ),
         (edit("\"arm\":\"panda\"", "\"arm\":\"ur5\""), "unknown arm"),
         (
-            edit("\"method\":\"numerical\"", "\"method\":\"case1\""),
-            "space",
+            edit("\"method\":\"numerical\"", "\"method\":\"case9\""),
+            "case9",
         ),
         (edit("\"dt\":0.05", "\"dt\":-1"), "positive"),
         (edit("\"path\":\"line\"", "\"path\":\"circle:1\""), "circle"),
