@@ -51,12 +51,16 @@ pub fn shipped_networks(key: &str, method: Method) -> Result<Option<Arc<SpaceNet
     if !method.uses_networks() {
         return Ok(None);
     }
-    SpaceNetworkSet::for_arm(key)
-        .ok_or_else(|| {
-            Error::NetworksUnavailable(format!("no networks are shipped for the arm '{key}'"))
-        })?
-        .load()
-        .map(Some)
+    let set = SpaceNetworkSet::for_arm(key).ok_or_else(|| {
+        Error::NetworksUnavailable(format!("no networks are shipped for the arm '{key}'"))
+    })?;
+    #[cfg(feature = "embedded-weights")]
+    return set.load().map(Some);
+    #[cfg(not(feature = "embedded-weights"))]
+    Err(Error::NetworksUnavailable(format!(
+        "this build has no weights built in: the set '{}' must be handed to it",
+        set.name()
+    )))
 }
 
 /// The preset `key`'s task with `refine` refinement steps (Cases 1 and 3).

@@ -15,6 +15,7 @@
 //! `(sin, cos)` of `theta_2..theta_n` (and `O'`); `docs/space.md` has how
 //! they were trained and how they do.
 
+#[cfg(feature = "embedded-weights")]
 use std::sync::{Arc, OnceLock};
 
 use serde::{Deserialize, Serialize};
@@ -397,7 +398,10 @@ impl SpaceNetworkSet {
         Self::ALL.into_iter().find(|s| s.arm() == key)
     }
 
-    /// The networks, parsed once per process.
+    /// The networks, parsed once per process (from the files built into
+    /// the tool; a module built without them, the page's and the workers',
+    /// is handed their text, [`Self::file_names`]).
+    #[cfg(feature = "embedded-weights")]
     pub fn load(self) -> Result<Arc<SpaceNetworks>> {
         static PANDA: OnceLock<std::result::Result<Arc<SpaceNetworks>, String>> = OnceLock::new();
         let cell = match self {
@@ -413,7 +417,16 @@ impl SpaceNetworkSet {
         .map_err(Error::Weights)
     }
 
+    /// The names of its `Phi` and `v` files in `weights/` (where the page
+    /// fetches them from).
+    pub fn file_names(self) -> [&'static str; 2] {
+        match self {
+            SpaceNetworkSet::PandaReach => ["phi-panda-reach.json", "v-panda-reach.json"],
+        }
+    }
+
     /// The JSON text of its `Phi` and `v` files.
+    #[cfg(feature = "embedded-weights")]
     pub fn files(self) -> (&'static str, &'static str) {
         match self {
             SpaceNetworkSet::PandaReach => (
