@@ -33,7 +33,7 @@ setup:
 ## section wasm-bindgen needs). The built-in networks' weights files go
 ## beside the page (www/weights/), which fetches them and hands them to
 ## its workers: neither module embeds them (docs/web.md, "Bytes on the wire").
-PAGE = -- --no-default-features --features page
+PAGE = -- --no-default-features --features page,space
 WORKER = --out-name redundant_ik_worker -- --no-default-features --features worker
 web: setup
 	$(WASM_ENV) $(PAGE_ENV) $(WASM_BUILD) --out-dir www/pkg $(PAGE)
@@ -118,7 +118,7 @@ lint: setup
 	cargo clippy --all-targets -- -D warnings
 	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --tests -- -D warnings
 	$(WASM_SIMD_ENV) cargo clippy --target wasm32-unknown-unknown --lib --tests -- -D warnings
-	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features page -- -D warnings
+	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features page,space -- -D warnings
 	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features worker -- -D warnings
 
 test-native:

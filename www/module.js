@@ -40,6 +40,9 @@ export {
   trainingPresets,
   paperMethods,
   Demo,
+  SpaceDemo,
+  spacePresets,
+  spaceNetworkSets,
 } from './pkg/redundant_ik.js';
 /** The built-in networks' weights files, `[phi, v]` (served in weights/). */
 export { builtinWeightsFiles };

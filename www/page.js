@@ -9,12 +9,14 @@
 // start, the page says so and disables its controls instead of showing a
 // blank stage.
 
-import { loadModule, describe, methods, methodGroups, fillLimits, moduleBuild, moduleMemoryBytes, limits, networkMethodLabels } from './module.js';
+import { loadModule, describe, methods, methodGroups, fillLimits, moduleBuild, moduleMemoryBytes, limits, networkMethodLabels, spacePresets, formatJointLimits, formatRateLimits } from './module.js';
 import { mountTour } from './tour.js';
 import { bench } from './jobs.js';
 import { mount } from './demo.js';
 import { readAddress, writeAddress, isEmbedded } from './address.js';
 import { mountBenchPanel } from './bench-panel.js';
+import { spaceArmOf, readSpaceAddress, writeSpaceAddress } from './space-address.js';
+import { mountSpace } from './space-demo.js';
 
 /** The methods, each with what it computes: the "The methods" list of the page. */
 function explainMethods(list) {
@@ -129,6 +131,10 @@ async function start() {
     const note = document.getElementById('network-note');
     if (note) note.dataset.original = note.innerHTML;
     followLayout();
+    if (spaceArmOf(location.search)) {
+      await startSpace();
+      return;
+    }
     const { problems, ...settings } = readAddress(location.search);
     const controller = await mount(document, {
       ...settings,
@@ -174,6 +180,59 @@ async function start() {
       `The simulation could not start: ${describe(e)}. ` + 'It needs a current browser with WebAssembly, served over http (make demo).';
     console.warn(e);
   }
+}
+
+/** The page with an arm in space (arm=panda, arm=iiwa14): space-demo.js on the same stage. */
+async function startSpace() {
+  const { problems, ...settings } = readSpaceAddress(location.search);
+  const controller = await mountSpace(document, {
+    ...settings,
+    problems,
+    problemsLabel: 'Ignored in the address',
+    keyboard: document,
+    onChange: (s, preset) => writeSpaceAddress(s, preset),
+  });
+  const preset = controller.preset;
+  const arms = document.getElementById('arm-preset');
+  if (arms) {
+    // The designer offers every preset; another arm opens its own page.
+    arms.replaceChildren();
+    const plane = document.createElement('optgroup');
+    plane.label = 'In the plane';
+    for (const p of limits().arm_presets) plane.append(new Option(p.label, p.key));
+    const space = document.createElement('optgroup');
+    space.label = 'In space';
+    for (const p of spacePresets()) space.append(new Option(`${p.label} (${p.rows.length} joints, 3-D)`, p.key));
+    arms.append(plane, space);
+    arms.value = preset.key;
+    arms.addEventListener('change', () => (location.search = `?arm=${arms.value}`));
+    const lim = document.getElementById('arm-limits');
+    const rates = document.getElementById('arm-rates');
+    if (lim) Object.assign(lim, { value: formatJointLimits(Float64Array.from(preset.joint_limits.flat())), readOnly: true });
+    if (rates) Object.assign(rates, { value: formatRateLimits(Float64Array.from(preset.rate_limits)), readOnly: true });
+    const source = document.createElement('p');
+    source.className = 'hint';
+    source.id = 'space-arm-source';
+    source.textContent = `${preset.label}: ${preset.source}`;
+    arms.closest('.row, p, div')?.after(source);
+  }
+  writeSpaceAddress(controller.state(), preset);
+  window.demo = {
+    state: () => controller.state(),
+    worldToClient: (x, y, z) => controller.worldToClient(x, y, z),
+    runUntil: (t) => controller.runUntil(t),
+    bench: (options) => bench(options),
+    compare: () => controller.compare(),
+    runFile: () => controller.runFile(),
+    atlas: (options) => controller.atlas(options),
+    networks: () => controller.networks,
+    methods: () => structuredClone(methods()),
+    build: moduleBuild(),
+    wasmMemoryBytes: () => moduleMemoryBytes(),
+    controller,
+    readyMs: performance.now(),
+  };
+  document.body.dataset.ready = 'true';
 }
 
 if (isEmbedded()) document.documentElement.dataset.embed = 'true';

@@ -69,6 +69,26 @@ pub struct SpaceSummary {
     pub final_error: f64,
 }
 
+impl SpaceSummary {
+    /// The outcome of a run's `samples` (`t = 0` first) whose path ends at
+    /// `end` (the final error is NaN without samples).
+    pub fn of(samples: &[SpaceSample], end: Vec3) -> Self {
+        Self {
+            steps: samples.len().saturating_sub(1),
+            min_clearance: samples.iter().filter_map(|s| s.clearance).reduce(f64::min),
+            collision_steps: samples
+                .iter()
+                .filter(|s| s.clearance.is_some_and(|c| c < 0.0))
+                .count(),
+            limit_steps: samples.iter().filter(|s| s.past_limits > 0).count(),
+            relaxed_steps: samples.iter().filter(|s| s.relaxed).count(),
+            handover_steps: samples.iter().filter(|s| s.phi_handover).count(),
+            max_error: samples.iter().map(|s| s.tracking_error).fold(0.0, f64::max),
+            final_error: samples.last().map_or(f64::NAN, |s| dist(s.hand, end)),
+        }
+    }
+}
+
 /// A spatial run: every sample from `t = 0`, and its summary.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SpaceTrajectory {
@@ -307,20 +327,7 @@ impl SpacePlanner {
         while !self.done() {
             samples.push(self.step()?.clone());
         }
-        let target = self.track.end();
-        let summary = SpaceSummary {
-            steps: samples.len() - 1,
-            min_clearance: samples.iter().filter_map(|s| s.clearance).reduce(f64::min),
-            collision_steps: samples
-                .iter()
-                .filter(|s| s.clearance.is_some_and(|c| c < 0.0))
-                .count(),
-            limit_steps: samples.iter().filter(|s| s.past_limits > 0).count(),
-            relaxed_steps: samples.iter().filter(|s| s.relaxed).count(),
-            handover_steps: samples.iter().filter(|s| s.phi_handover).count(),
-            max_error: samples.iter().map(|s| s.tracking_error).fold(0.0, f64::max),
-            final_error: dist(self.pose.hand(), target),
-        };
+        let summary = SpaceSummary::of(&samples, self.track.end());
         Ok(SpaceTrajectory {
             method: self.method,
             samples,

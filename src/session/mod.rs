@@ -21,6 +21,8 @@ mod revision;
 mod scenes;
 mod self_motion;
 mod settings;
+#[cfg(feature = "space")]
+pub mod space;
 mod state;
 
 use crate::arm::{Arm, JointLimits, RateLimits};

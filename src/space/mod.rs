@@ -20,7 +20,7 @@ mod sphere;
 
 pub use chain::{Chain, Row, Segment, IDENTITY, MAX_JOINTS, MIN_JOINTS};
 pub use pairs::{Obstruction, SpacePair, SpacePairs};
-pub(crate) use pose::{cross, dot, norm, scale, sub};
+pub(crate) use pose::{add, cross, dot, norm, scale, sub};
 pub use pose::{SpacePose, Vec3};
 pub use preset::{SpacePreset, SpaceTask, PRESETS};
 pub use sphere::{clearance, closest, CapsulePair, Sphere, SpherePlacement, MAX_SPHERES};

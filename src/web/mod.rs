@@ -34,6 +34,10 @@ mod layer;
 mod plots;
 #[cfg(feature = "page")]
 mod scene;
+#[cfg(all(feature = "page", feature = "space"))]
+mod space_demo;
+#[cfg(all(feature = "page", feature = "space"))]
+mod space_stage;
 #[cfg(feature = "page")]
 mod stage;
 #[cfg(feature = "page")]
@@ -56,6 +60,8 @@ use crate::networks::{self, NetworkSet};
 
 #[cfg(feature = "page")]
 pub use demo::Demo;
+#[cfg(all(feature = "page", feature = "space"))]
+pub use space_demo::SpaceDemo;
 #[cfg(feature = "worker")]
 pub use takeaway::*;
 #[cfg(feature = "worker")]

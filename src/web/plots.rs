@@ -9,7 +9,9 @@ use web_sys::CanvasRenderingContext2d;
 use super::style::*;
 use super::surface::{dash, polyline, text, Surface};
 use crate::palette::joint_series;
-use crate::session::Session;
+use std::collections::VecDeque;
+
+use crate::session::{Point, Session};
 
 /// Width of one key of a panel's legend (its swatch and `θ₁`), px.
 const KEY_SPACING: f64 = 34.0;
@@ -41,9 +43,15 @@ pub fn fmt_tick(v: f64, step: f64) -> String {
 
 /// Draws the session's time series on `surface`.
 pub fn draw(s: &Session, surface: &Surface) {
+    let limits = s.arm().joint_limits().map_or(&[][..], |l| l.ranges());
+    draw_points(s.history(), limits, surface);
+}
+
+/// Draws a run's time series (`history`, the joints' `limits`) on
+/// `surface`: clearance, tracking error, joint angles.
+pub fn draw_points(history: &VecDeque<Point>, limits: &[[f64; 2]], surface: &Surface) {
     surface.begin();
     let ctx = &surface.ctx;
-    let history = s.history();
     let (t0, t1) = match (history.front(), history.back()) {
         (Some(a), Some(b)) => (a.t, b.t.max(a.t + 10.0)),
         _ => (0.0, 10.0),
@@ -103,7 +111,6 @@ pub fn draw(s: &Session, surface: &Surface) {
         (lo, hi) = (-PI, PI);
     }
     // The joints' limits, in view, each shaded beyond in its joint's colour.
-    let limits = s.arm().joint_limits().map_or(&[][..], |l| l.ranges());
     for r in limits {
         lo = lo.min(r[0]);
         hi = hi.max(r[1]);

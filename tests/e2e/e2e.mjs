@@ -32,6 +32,7 @@ import './paths.mjs';
 import './embed.mjs';
 import './a11y.mjs';
 import './view.mjs';
+import './space.mjs';
 import { classTests } from './class.mjs';
 import { limitsTests } from './limits.mjs';
 import { labTests } from './lab.mjs';

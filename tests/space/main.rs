@@ -8,6 +8,7 @@ mod modern;
 mod networks;
 mod paths;
 mod planner;
+mod session;
 
 use redundant_ik::space::{Chain, Row};
 use redundant_ik::Arm;

@@ -1,0 +1,512 @@
+//! The interactive session of an arm in space, the page's 3-D stage
+//! without the browser: a preset's scene (its task, spheres, target), the
+//! method and its networks, the run, the clock that plays it, the camera
+//! ([`Camera`]) and the pointer and keys that orbit it and drag the target
+//! and the spheres in the plane facing it (`pointer.rs`), and the snapshot
+//! the page reads (`state.rs`).
+//!
+//! A run here is computed whole whenever its scene changes (a preset's
+//! task is 100 RK4 steps: about 0.15 ms in numerical and 1 ms in Case 3
+//! natively, `redundant-ik bench --arm panda`), and the clock plays it: so
+//! dragging a sphere against the forearm at `t` shows at once what that
+//! run does there, the trail and the plots included, and the comparison,
+//! the run file and the atlas read the very run on screen.
+
+mod camera;
+mod pointer;
+mod state;
+
+use std::collections::VecDeque;
+use std::sync::Arc;
+
+pub use camera::{Camera, Projection, DISTANCE, FIELD_OF_VIEW, NEAR, PITCH};
+pub use pointer::{SpaceHandle, KEY_ORBIT};
+pub use state::{SpaceMethodRun, SpaceState};
+
+use super::history::Point;
+use super::MAX_STEPS_PER_FRAME;
+use crate::error::{finite, within, Error, Result};
+use crate::export::SpaceRunFile;
+use crate::networks::space::{SpaceNetworkSet, SpaceNetworks};
+use crate::planner::methods::{Method, ALL};
+use crate::planner::params::by_name;
+use crate::planner::space::{SpacePlanner, SpaceSample, SpaceSummary, SpaceTrajectory};
+use crate::scene::{JointWeighting, SpaceScene};
+use crate::space::{SpacePose, SpacePreset, Sphere, Vec3, MAX_SPHERES, PRESETS};
+
+/// A spatial run played on the page: see the module documentation.
+#[derive(Clone)]
+pub struct SpaceSession {
+    preset: &'static SpacePreset,
+    scene: SpaceScene,
+    method: Method,
+    networks: Option<Arc<SpaceNetworks>>,
+    network_set: Option<SpaceNetworkSet>,
+    /// Every sample of the run from `t = 0` (up to a failed step).
+    samples: Vec<SpaceSample>,
+    summary: SpaceSummary,
+    /// Why the run stopped before `tf`, if it did.
+    failure: Option<String>,
+    /// The sample shown.
+    index: usize,
+    running: bool,
+    speed: f64,
+    backlog: f64,
+    /// The pose of the sample shown (one kinematics pass per change).
+    pose: SpacePose,
+    camera: Camera,
+    home: Camera,
+    selected: SpaceHandle,
+    drag: Option<pointer::Drag>,
+    /// Counts the runs computed (the page redraws what depends on it).
+    runs: u64,
+}
+
+impl SpaceSession {
+    /// The preset `key`'s task (`panda`, `iiwa14`) in `method`, paused at
+    /// `t = 0`; learned methods need [`SpaceSession::install_networks`]
+    /// first.
+    pub fn new(key: &str, method: Method) -> Result<Self> {
+        let preset = PRESETS
+            .iter()
+            .find(|p| p.key == key)
+            .ok_or_else(|| Error::UnknownName {
+                kind: "arm in space",
+                name: key.into(),
+                choices: crate::error::choices(&PRESETS.iter().map(|p| p.key).collect::<Vec<_>>()),
+            })?;
+        let scene = SpaceScene::preset(preset);
+        let pose = SpacePose::new(&scene.chain, &scene.theta0)?;
+        let home = Camera::looking_at(home_focus(&scene), 2.3 * scene.chain.reach().max(0.3));
+        let mut s = Self {
+            preset,
+            scene,
+            method: Method::NUMERICAL,
+            networks: None,
+            network_set: None,
+            samples: Vec::new(),
+            summary: empty_summary(),
+            failure: None,
+            index: 0,
+            running: false,
+            speed: 1.0,
+            backlog: 0.0,
+            pose,
+            camera: home,
+            home,
+            selected: SpaceHandle::Target,
+            drag: None,
+            runs: 0,
+        };
+        s.set_method(method)?;
+        Ok(s)
+    }
+
+    /// The preset.
+    pub fn preset(&self) -> &'static SpacePreset {
+        self.preset
+    }
+
+    /// The scene.
+    pub fn scene(&self) -> &SpaceScene {
+        &self.scene
+    }
+
+    /// The method.
+    pub fn method(&self) -> Method {
+        self.method
+    }
+
+    /// The shipped set installed, if one is.
+    pub fn network_set(&self) -> Option<SpaceNetworkSet> {
+        self.network_set
+    }
+
+    /// Whether networks are installed.
+    pub fn has_networks(&self) -> bool {
+        self.networks.is_some()
+    }
+
+    /// Installs the networks of `phi_json` and `v_json` (the weights files'
+    /// text; `set` names the shipped set they are, if they are one);
+    /// refused, changing nothing, when they do not read or were trained for
+    /// another chain.
+    pub fn install_networks(
+        &mut self,
+        phi_json: &str,
+        v_json: &str,
+        set: Option<SpaceNetworkSet>,
+    ) -> Result<()> {
+        let nets = SpaceNetworks::from_json(phi_json, v_json)?;
+        nets.check_chain(&self.scene.chain)?;
+        self.networks = Some(Arc::new(nets));
+        self.network_set = set;
+        if self.method.uses_networks() {
+            self.recompute();
+        }
+        Ok(())
+    }
+
+    /// Switches to `method`; refused, changing nothing, when it has no rule
+    /// in space or needs networks the session has not.
+    pub fn set_method(&mut self, method: Method) -> Result<()> {
+        method.space_rule(self.scene.chain.dof())?;
+        if method.uses_networks() && self.networks.is_none() {
+            return Err(Error::NetworksUnavailable(format!(
+                "{} needs networks for the {}: they have not loaded",
+                method.label(),
+                self.preset.label
+            )));
+        }
+        self.method = method;
+        self.recompute();
+        Ok(())
+    }
+
+    /// Sets parameter `name` (as the address and the command line name
+    /// it); refused, changing nothing, when unknown or out of its range.
+    pub fn set_param(&mut self, name: &str, value: f64) -> Result<()> {
+        let p = by_name(name)?;
+        let mut scene = self.scene.clone();
+        scene.params.set(p, value)?;
+        self.apply(scene)
+    }
+
+    /// How the methods of eq. (5) use the joint limits.
+    pub fn set_weighting(&mut self, weighting: JointWeighting) -> Result<()> {
+        let mut scene = self.scene.clone();
+        scene.weighting = weighting;
+        self.apply(scene)
+    }
+
+    /// Whether the floor `z = 0` is an obstacle.
+    pub fn set_floor(&mut self, floor: bool) -> Result<()> {
+        let mut scene = self.scene.clone();
+        scene.floor = floor;
+        self.apply(scene)
+    }
+
+    /// The closed-loop gain `K` (1/s; 0: the paper's open loop).
+    pub fn set_feedback(&mut self, gain: f64) -> Result<()> {
+        within("feedback gain", gain, 0.0, 100.0)?;
+        let mut scene = self.scene.clone();
+        scene.feedback_gain = gain;
+        self.apply(scene)
+    }
+
+    /// The end of the hand's line (m); refused, changing nothing, where
+    /// the scene does not validate.
+    pub fn set_target(&mut self, target: Vec3) -> Result<()> {
+        let mut scene = self.scene.clone();
+        scene.target = target;
+        self.apply(scene)
+    }
+
+    /// Moves sphere `i` to `centre`, its radius kept.
+    pub fn move_sphere(&mut self, i: usize, centre: Vec3) -> Result<()> {
+        let mut scene = self.scene.clone();
+        let n = scene.spheres.len();
+        let s = scene.spheres.get_mut(i).ok_or_else(|| no_sphere(i, n))?;
+        s.centre = centre;
+        self.apply(scene)
+    }
+
+    /// Replaces the spheres by `flat` (`[x, y, z, r, ...]`, m).
+    pub fn set_spheres(&mut self, flat: &[f64]) -> Result<()> {
+        if flat.len() % 4 != 0 {
+            return Err(Error::Syntax {
+                what: "spheres",
+                text: format!("{} numbers", flat.len()),
+                expected: "four numbers per sphere: x, y, z, r".into(),
+            });
+        }
+        if flat.len() / 4 > MAX_SPHERES {
+            return Err(Error::OutOfRange {
+                what: "number of spheres".into(),
+                value: (flat.len() / 4) as f64,
+                min: 0.0,
+                max: MAX_SPHERES as f64,
+            });
+        }
+        let mut scene = self.scene.clone();
+        scene.spheres = flat
+            .chunks(4)
+            .map(|c| Sphere::new([c[0], c[1], c[2]], c[3]))
+            .collect();
+        self.apply(scene)
+    }
+
+    /// Adds a sphere of radius `r` at `centre`; returns its index.
+    pub fn add_sphere(&mut self, centre: Vec3, r: f64) -> Result<usize> {
+        let mut flat: Vec<f64> = self.flat_spheres();
+        flat.extend_from_slice(&[centre[0], centre[1], centre[2], r]);
+        self.set_spheres(&flat)?;
+        let i = self.scene.spheres.len() - 1;
+        self.selected = SpaceHandle::Sphere(i);
+        Ok(i)
+    }
+
+    /// Removes sphere `i`.
+    pub fn remove_sphere(&mut self, i: usize) -> Result<()> {
+        if i >= self.scene.spheres.len() {
+            return Err(no_sphere(i, self.scene.spheres.len()));
+        }
+        let mut scene = self.scene.clone();
+        scene.spheres.remove(i);
+        self.apply(scene)?;
+        self.selected = SpaceHandle::Target;
+        Ok(())
+    }
+
+    /// The spheres as `[x, y, z, r, ...]`.
+    pub fn flat_spheres(&self) -> Vec<f64> {
+        self.scene
+            .spheres
+            .iter()
+            .flat_map(|s| [s.centre[0], s.centre[1], s.centre[2], s.radius])
+            .collect()
+    }
+
+    /// Back to the preset's own task (its target, sphere and settings), the
+    /// method and networks kept.
+    pub fn load_task(&mut self) -> Result<()> {
+        self.scene = SpaceScene::preset(self.preset);
+        self.selected = SpaceHandle::Target;
+        self.index = 0;
+        self.recompute();
+        Ok(())
+    }
+
+    /// Takes `scene` when it validates (and the method still runs on it),
+    /// then recomputes the run, the time shown kept.
+    fn apply(&mut self, scene: SpaceScene) -> Result<()> {
+        scene.validate()?;
+        self.scene = scene;
+        self.recompute();
+        Ok(())
+    }
+
+    /// Runs the scene from `t = 0` to `tf` (or to the first failed step)
+    /// and shows the sample at the time shown before.
+    fn recompute(&mut self) {
+        let (samples, failure) = run(&self.scene, self.method, self.networks.clone());
+        let end = self.scene.path_end();
+        self.summary = summary(&samples, end);
+        self.samples = samples;
+        self.failure = failure;
+        self.runs += 1;
+        let last = self.samples.len().saturating_sub(1);
+        self.show(self.index.min(last));
+    }
+
+    fn show(&mut self, index: usize) {
+        self.index = index;
+        if let Some(s) = self.samples.get(index) {
+            // The chain and the angles were checked when the run made them.
+            let _ = self.pose.update(&self.scene.chain, &s.theta);
+        }
+    }
+
+    /// The run as the command line would write it (`simulate --arm A
+    /// --json`): every sample, the summary and the networks' set.
+    pub fn run_file(&self) -> SpaceRunFile {
+        let mut f = SpaceRunFile::new(self.preset, self.scene.clone(), self.trajectory());
+        f.networks = if self.method.uses_networks() {
+            self.network_set
+        } else {
+            None
+        };
+        f
+    }
+
+    /// The whole run.
+    pub fn trajectory(&self) -> SpaceTrajectory {
+        SpaceTrajectory {
+            method: self.method,
+            samples: self.samples.clone(),
+            summary: self.summary,
+        }
+    }
+
+    /// The sample shown.
+    pub fn sample(&self) -> Option<&SpaceSample> {
+        self.samples.get(self.index)
+    }
+
+    /// Every sample of the run.
+    pub fn samples(&self) -> &[SpaceSample] {
+        &self.samples
+    }
+
+    /// The samples up to the one shown (what the trail and plots draw).
+    pub fn played(&self) -> &[SpaceSample] {
+        &self.samples[..(self.index + 1).min(self.samples.len())]
+    }
+
+    /// The plots' points of [`SpaceSession::played`].
+    pub fn points(&self) -> VecDeque<Point> {
+        self.played()
+            .iter()
+            .map(|s| Point {
+                t: s.t,
+                clearance: s.clearance,
+                error: s.tracking_error,
+                theta: s.theta.clone(),
+            })
+            .collect()
+    }
+
+    /// The pose shown.
+    pub fn pose(&self) -> &SpacePose {
+        &self.pose
+    }
+
+    /// The whole run's outcome (what it does by `tf`).
+    pub fn summary(&self) -> &SpaceSummary {
+        &self.summary
+    }
+
+    /// How many runs the session has computed.
+    pub fn runs(&self) -> u64 {
+        self.runs
+    }
+
+    // ---- the clock ------------------------------------------------------
+
+    /// Whether the sample shown is the run's last.
+    pub fn ended(&self) -> bool {
+        self.index + 1 >= self.samples.len()
+    }
+
+    /// Starts or pauses the clock; starting an ended run replays it.
+    pub fn set_running(&mut self, running: bool) {
+        if running && !self.running {
+            self.backlog = 0.0;
+            if self.ended() {
+                self.show(0);
+            }
+        }
+        self.running = running;
+    }
+
+    /// Whether the clock runs.
+    pub fn running(&self) -> bool {
+        self.running
+    }
+
+    /// Playback speed (times real time).
+    pub fn set_speed(&mut self, speed: f64) -> Result<()> {
+        self.speed = within("speed", speed, 0.05, 64.0)?;
+        Ok(())
+    }
+
+    /// Back to `t = 0`, paused.
+    pub fn reset(&mut self) {
+        self.running = false;
+        self.backlog = 0.0;
+        self.show(0);
+    }
+
+    /// One step forward, paused.
+    pub fn step(&mut self) {
+        self.running = false;
+        let last = self.samples.len().saturating_sub(1);
+        self.show((self.index + 1).min(last));
+    }
+
+    /// Shows the first sample at or after `time` (s), or the last.
+    pub fn run_until(&mut self, time: f64) -> Result<()> {
+        finite("time", time)?;
+        let i = self
+            .samples
+            .iter()
+            .position(|s| s.t >= time - 1e-9)
+            .unwrap_or(self.samples.len().saturating_sub(1));
+        self.show(i.max(self.index));
+        Ok(())
+    }
+
+    /// Advances the clock by `elapsed_ms` of real time at the speed (at
+    /// most [`MAX_STEPS_PER_FRAME`] samples); the clock stops at the end.
+    pub fn tick(&mut self, elapsed_ms: f64) {
+        if !(self.running && elapsed_ms.is_finite() && elapsed_ms > 0.0) {
+            return;
+        }
+        self.backlog += elapsed_ms.min(250.0) / 1000.0 * self.speed / self.scene.dt;
+        let n = (self.backlog.floor() as usize).min(MAX_STEPS_PER_FRAME);
+        self.backlog = (self.backlog - n as f64).clamp(0.0, 1.0);
+        let last = self.samples.len().saturating_sub(1);
+        self.show((self.index + n).min(last));
+        if self.ended() {
+            self.running = false;
+        }
+    }
+
+    // ---- the comparison -------------------------------------------------
+
+    /// Every method that can run here (the learned ones where networks are
+    /// installed) on this scene, each run whole: its outcome, or why it
+    /// failed.
+    pub fn compare(&self) -> Vec<SpaceMethodRun> {
+        ALL.iter()
+            .filter(|m| m.in_space() && (!m.uses_networks() || self.networks.is_some()))
+            .map(|&m| {
+                let (samples, failure) = run(&self.scene, m, self.networks.clone());
+                SpaceMethodRun {
+                    method: m,
+                    summary: summary(&samples, self.scene.path_end()),
+                    failure,
+                }
+            })
+            .collect()
+    }
+}
+
+/// The camera's focus for a scene: between the base, the hand's start and
+/// the path's end, at their mean height.
+fn home_focus(scene: &SpaceScene) -> Vec3 {
+    let (a, b) = (scene.start(), scene.path_end());
+    let base = scene.chain.base().1;
+    [0, 1, 2].map(|i| (a[i] + b[i] + base[i]) / 3.0)
+}
+
+/// `scene` run in `method` from `t = 0` to `tf`: the samples up to the
+/// first step that failed, and why it did.
+fn run(
+    scene: &SpaceScene,
+    method: Method,
+    networks: Option<Arc<SpaceNetworks>>,
+) -> (Vec<SpaceSample>, Option<String>) {
+    let mut p = match SpacePlanner::with_networks(scene.clone(), method, networks) {
+        Ok(p) => p,
+        Err(e) => return (Vec::new(), Some(e.to_string())),
+    };
+    let mut samples = Vec::with_capacity(scene.steps() + 1);
+    samples.push(p.sample().clone());
+    while !p.done() {
+        match p.step() {
+            Ok(s) => samples.push(s.clone()),
+            Err(e) => return (samples, Some(e.to_string())),
+        }
+    }
+    (samples, None)
+}
+
+/// The outcome of `samples`, as [`SpacePlanner::run`] gives it.
+fn summary(samples: &[SpaceSample], end: Vec3) -> SpaceSummary {
+    SpaceSummary::of(samples, end)
+}
+
+fn empty_summary() -> SpaceSummary {
+    SpaceSummary::of(&[], [0.0; 3])
+}
+
+/// Sphere `i` (from 0) asked of a scene of `n`.
+fn no_sphere(i: usize, n: usize) -> Error {
+    Error::OutOfRange {
+        what: "sphere number".into(),
+        value: (i + 1) as f64,
+        min: 1.0,
+        max: n as f64,
+    }
+}

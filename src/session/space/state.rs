@@ -1,0 +1,171 @@
+//! The snapshot of a spatial session the page reads every frame, and a
+//! method's row of the comparison.
+
+use serde::Serialize;
+
+use super::SpaceSession;
+use crate::planner::methods::Method;
+use crate::planner::params;
+use crate::planner::space::SpaceSummary;
+use crate::scene::JointWeighting;
+use crate::session::ByName;
+use crate::space::Vec3;
+
+/// The snapshot the page reads every frame.
+#[derive(Debug, Serialize)]
+pub struct SpaceState<'a> {
+    /// `"space"`: what tells the page's code this snapshot from the plane's.
+    pub kind: &'static str,
+    /// The preset's key (`panda`, `iiwa14`) and what a menu says of it.
+    pub arm: &'static str,
+    /// See `arm`.
+    pub arm_label: &'static str,
+    /// The number of joints.
+    pub dof: usize,
+    /// Method name.
+    pub method: &'static str,
+    /// The shipped network set installed (`panda-reach`), if one is.
+    pub network_set: Option<&'static str>,
+    /// Whether networks are installed.
+    pub has_networks: bool,
+    /// Time shown (s), the run's final time, and whether the clock runs
+    /// and the run has ended.
+    pub t: f64,
+    /// See `t`.
+    pub tf: f64,
+    /// See `t`.
+    pub running: bool,
+    /// See `t`.
+    pub ended: bool,
+    /// Playback speed.
+    pub speed: f64,
+    /// Joint angles shown (rad).
+    pub theta: &'a [f64],
+    /// The joints' ranges `[lo, hi]` (rad).
+    pub joint_limits: Option<&'a [[f64; 2]]>,
+    /// The hand, where the path has it now, and the line's end (m).
+    pub hand: Vec3,
+    /// See `hand`.
+    pub reference: Vec3,
+    /// See `hand`.
+    pub target: Vec3,
+    /// `|hand - reference|` (m).
+    pub tracking_error: f64,
+    /// The spheres, `[x, y, z, r]` each (m).
+    pub spheres: Vec<[f64; 4]>,
+    /// The smallest clearance between the links and the spheres now and so
+    /// far (m; negative: inside), `None` without spheres.
+    pub clearance: Option<f64>,
+    /// See `clearance`.
+    pub min_clearance: Option<f64>,
+    /// A link is inside a sphere now; one was earlier in the run.
+    pub collision: bool,
+    /// See `collision`.
+    pub collided: bool,
+    /// When the run first has a link inside a sphere (s), if it does.
+    pub first_collision: Option<f64>,
+    /// Joints past a limit now.
+    pub past_limits: usize,
+    /// The whole run's outcome (what it does by `tf`).
+    pub summary: &'a SpaceSummary,
+    /// Why the run stopped before `tf`, if it did.
+    pub failure: Option<&'a str>,
+    /// What the keys move: `target` or `sphere 2`.
+    pub selected: String,
+    /// What the pointer holds, if anything.
+    pub dragging: Option<String>,
+    /// The obstacle gain λ (the method's `lambda`).
+    pub lambda: f64,
+    /// Every parameter of the methods by name, and those the method reads.
+    pub params: ByName<f64>,
+    /// See `params`.
+    pub reads: Vec<&'static str>,
+    /// How the methods of eq. (5) use the joint limits.
+    pub weighting: JointWeighting,
+    /// Whether the floor is an obstacle.
+    pub floor: bool,
+    /// Closed-loop gain `K`.
+    pub feedback: f64,
+    /// The camera: yaw and pitch (rad), distance (m).
+    pub view: [f64; 3],
+    /// Counts the runs computed (changes whenever the run does).
+    pub run_revision: u64,
+}
+
+/// A method's row of the comparison.
+#[derive(Debug, Clone, Serialize)]
+pub struct SpaceMethodRun {
+    /// The method.
+    pub method: Method,
+    /// Its run's outcome.
+    pub summary: SpaceSummary,
+    /// Why its run stopped before `tf`, if it did.
+    pub failure: Option<String>,
+}
+
+impl SpaceSession {
+    /// The snapshot.
+    pub fn state(&self) -> SpaceState<'_> {
+        let sample = self.sample();
+        let played = self.played();
+        let clearance = sample.and_then(|s| s.clearance);
+        let c = &self.camera;
+        SpaceState {
+            kind: "space",
+            arm: self.preset.key,
+            arm_label: self.preset.label,
+            dof: self.scene.chain.dof(),
+            method: self.method.name(),
+            network_set: self.network_set.map(|s| s.name()),
+            has_networks: self.networks.is_some(),
+            t: sample.map_or(0.0, |s| s.t),
+            tf: self.scene.tf,
+            running: self.running,
+            ended: self.ended(),
+            speed: self.speed,
+            theta: self.pose.theta(),
+            joint_limits: self.scene.chain.joint_limits().map(|l| l.ranges()),
+            hand: self.pose.hand(),
+            reference: sample.map_or(self.pose.hand(), |s| s.reference),
+            target: self.scene.target,
+            tracking_error: sample.map_or(0.0, |s| s.tracking_error),
+            spheres: self
+                .scene
+                .spheres
+                .iter()
+                .map(|s| [s.centre[0], s.centre[1], s.centre[2], s.radius])
+                .collect(),
+            clearance,
+            min_clearance: played.iter().filter_map(|s| s.clearance).reduce(f64::min),
+            collision: clearance.is_some_and(|c| c < 0.0),
+            collided: played.iter().any(|s| s.clearance.is_some_and(|c| c < 0.0)),
+            first_collision: self
+                .samples
+                .iter()
+                .find(|s| s.clearance.is_some_and(|c| c < 0.0))
+                .map(|s| s.t),
+            past_limits: sample.map_or(0, |s| s.past_limits),
+            summary: &self.summary,
+            failure: self.failure.as_deref(),
+            selected: self.selected().describe(),
+            dragging: self.dragging().map(|h| h.describe()),
+            lambda: self.scene.param(&crate::planner::methods::LAMBDA),
+            params: ByName(
+                params::all()
+                    .iter()
+                    .map(|p| (p.name, self.scene.param(p)))
+                    .collect(),
+            ),
+            reads: params::all()
+                .iter()
+                .filter(|p| self.method.reads(p))
+                .map(|p| p.name)
+                .collect(),
+            weighting: self.scene.weighting,
+            floor: self.scene.floor,
+            feedback: self.scene.feedback_gain,
+            view: [c.yaw, c.pitch, c.distance],
+            run_revision: self.runs,
+        }
+    }
+}

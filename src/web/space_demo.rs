@@ -1,0 +1,372 @@
+//! `SpaceDemo`: an arm in space on one canvas, bound to JavaScript (the
+//! page's 3-D stage). Each method forwards to the
+//! [`SpaceSession`] and maps the core's errors to exceptions; drawing goes
+//! to [`super::space_stage`] and the plane's [`super::plots`].
+
+use wasm_bindgen::prelude::*;
+use web_sys::HtmlCanvasElement;
+
+use super::demo::{finite, JsResult};
+use super::space_stage::{self, SliceLayer};
+use super::surface::Surface;
+use super::{js_err, plots, to_js};
+use crate::atlas::Grid;
+use crate::networks::space::SpaceNetworkSet;
+use crate::planner::Method;
+use crate::session::space::{SpaceSession, KEY_ORBIT};
+
+/// How far a pixel of pointer travel turns the view (rad).
+const ORBIT_PER_PX: f64 = 0.008;
+
+/// One arm in space drawn on one canvas. Several can live on a page.
+#[wasm_bindgen]
+pub struct SpaceDemo {
+    session: SpaceSession,
+    stage: Surface,
+    plots: Option<Surface>,
+    layer: Option<SliceLayer>,
+    keyboard: bool,
+}
+
+impl SpaceDemo {
+    fn projection(&self) -> crate::session::space::Projection {
+        self.session.projection(self.stage.width, self.stage.height)
+    }
+}
+
+#[wasm_bindgen]
+impl SpaceDemo {
+    /// The preset `arm`'s task (`panda`, `iiwa14`) in `method` (default
+    /// `numerical`), drawn on `stage`, its plots on `plots` if given;
+    /// paused at `t = 0`.
+    #[wasm_bindgen(constructor)]
+    pub fn new(
+        stage: HtmlCanvasElement,
+        plots: Option<HtmlCanvasElement>,
+        arm: &str,
+        method: Option<String>,
+    ) -> JsResult<SpaceDemo> {
+        let method = match method {
+            Some(m) => m.parse::<Method>().map_err(js_err)?,
+            None => Method::NUMERICAL,
+        };
+        let session = SpaceSession::new(arm, method).map_err(js_err)?;
+        Ok(Self {
+            session,
+            stage: Surface::new(stage)?,
+            plots: plots.map(Surface::new).transpose()?,
+            layer: None,
+            keyboard: false,
+        })
+    }
+
+    /// The weights files' text of the arm's networks; `set` names the
+    /// shipped set they are (`panda-reach`), if they are one.
+    #[wasm_bindgen(js_name = installNetworks)]
+    pub fn install_networks(&mut self, phi: &str, v: &str, set: Option<String>) -> JsResult {
+        let set = set
+            .map(|s| s.parse::<SpaceNetworkSet>())
+            .transpose()
+            .map_err(js_err)?;
+        self.session.install_networks(phi, v, set).map_err(js_err)
+    }
+
+    /// Switches method (by name).
+    #[wasm_bindgen(js_name = setMethod)]
+    pub fn set_method(&mut self, method: &str) -> JsResult {
+        let m = method.parse::<Method>().map_err(js_err)?;
+        self.session.set_method(m).map_err(js_err)
+    }
+
+    /// Sets a method's parameter by name (`lambda`, `influence`, ...).
+    #[wasm_bindgen(js_name = setParam)]
+    pub fn set_param(&mut self, name: &str, value: f64) -> JsResult {
+        self.session.set_param(name, value).map_err(js_err)
+    }
+
+    /// `none` or `wln`.
+    #[wasm_bindgen(js_name = setWeighting)]
+    pub fn set_weighting(&mut self, name: &str) -> JsResult {
+        let w = name.parse().map_err(js_err)?;
+        self.session.set_weighting(w).map_err(js_err)
+    }
+
+    /// Whether the floor is an obstacle.
+    #[wasm_bindgen(js_name = setFloor)]
+    pub fn set_floor(&mut self, on: bool) -> JsResult {
+        self.session.set_floor(on).map_err(js_err)
+    }
+
+    /// Closed-loop gain `K` (1/s).
+    #[wasm_bindgen(js_name = setFeedback)]
+    pub fn set_feedback(&mut self, gain: f64) -> JsResult {
+        self.session.set_feedback(gain).map_err(js_err)
+    }
+
+    /// Playback speed (times real time).
+    #[wasm_bindgen(js_name = setSpeed)]
+    pub fn set_speed(&mut self, speed: f64) -> JsResult {
+        self.session.set_speed(speed).map_err(js_err)
+    }
+
+    /// The end of the hand's line (m).
+    #[wasm_bindgen(js_name = setTarget)]
+    pub fn set_target(&mut self, x: f64, y: f64, z: f64) -> JsResult {
+        self.session.set_target([x, y, z]).map_err(js_err)
+    }
+
+    /// The spheres, `[x, y, z, r, ...]` (m).
+    #[wasm_bindgen(js_name = setSpheres)]
+    pub fn set_spheres(&mut self, flat: Vec<f64>) -> JsResult {
+        self.session.set_spheres(&flat).map_err(js_err)
+    }
+
+    /// Adds a sphere; returns its index.
+    #[wasm_bindgen(js_name = addSphere)]
+    pub fn add_sphere(&mut self, x: f64, y: f64, z: f64, r: f64) -> JsResult<usize> {
+        self.session.add_sphere([x, y, z], r).map_err(js_err)
+    }
+
+    /// Removes sphere `i` (from 0).
+    #[wasm_bindgen(js_name = removeSphere)]
+    pub fn remove_sphere(&mut self, i: usize) -> JsResult {
+        self.session.remove_sphere(i).map_err(js_err)
+    }
+
+    /// The preset's own task again.
+    #[wasm_bindgen(js_name = loadTask)]
+    pub fn load_task(&mut self) -> JsResult {
+        self.session.load_task().map_err(js_err)
+    }
+
+    /// Back to `t = 0`, paused.
+    pub fn reset(&mut self) {
+        self.session.reset();
+    }
+
+    /// One step, paused.
+    pub fn step(&mut self) {
+        self.session.step();
+    }
+
+    /// Starts (replaying an ended run) or pauses the clock.
+    #[wasm_bindgen(js_name = setRunning)]
+    pub fn set_running(&mut self, running: bool) {
+        self.session.set_running(running);
+    }
+
+    /// Whether the clock runs.
+    #[wasm_bindgen(getter)]
+    pub fn running(&self) -> bool {
+        self.session.running()
+    }
+
+    /// Shows the run at `time` (s).
+    #[wasm_bindgen(js_name = runUntil)]
+    pub fn run_until(&mut self, time: f64) -> JsResult {
+        self.session.run_until(time).map_err(js_err)
+    }
+
+    /// Advances the clock by `elapsed_ms`, draws, and returns the state.
+    pub fn frame(&mut self, elapsed_ms: f64) -> JsResult<JsValue> {
+        self.session.tick(elapsed_ms);
+        self.draw();
+        self.state()
+    }
+
+    /// The snapshot as a plain object (`docs/web.md`, "The page in space").
+    pub fn state(&self) -> JsResult<JsValue> {
+        to_js(&self.session.state())
+    }
+
+    /// Draws the stage and the plots.
+    pub fn draw(&self) {
+        space_stage::draw(
+            &self.session,
+            &self.stage,
+            self.layer.as_ref(),
+            self.keyboard,
+        );
+        if let Some(p) = &self.plots {
+            let limits = self
+                .session
+                .scene()
+                .chain
+                .joint_limits()
+                .map_or(&[][..], |l| l.ranges());
+            plots::draw_points(&self.session.points(), limits, p);
+        }
+    }
+
+    /// Sizes the stage (CSS px, device-pixel ratio).
+    pub fn resize(&mut self, width: f64, height: f64, dpr: f64) -> JsResult {
+        self.stage.resize(width, height, dpr)
+    }
+
+    /// Sizes the plots.
+    #[wasm_bindgen(js_name = resizePlots)]
+    pub fn resize_plots(&mut self, width: f64, height: f64, dpr: f64) -> JsResult {
+        match &mut self.plots {
+            Some(p) => p.resize(width, height, dpr),
+            None => Ok(()),
+        }
+    }
+
+    /// Whether the drawing has the keyboard (the selected item is ringed).
+    #[wasm_bindgen(js_name = setKeyboardFocus)]
+    pub fn set_keyboard_focus(&mut self, on: bool) {
+        self.keyboard = on;
+    }
+
+    /// The item under canvas pixel `(x, y)` (`target`, `sphere 1`, ...).
+    pub fn hover(&self, x: f64, y: f64, slop: f64) -> Option<String> {
+        let proj = self.projection();
+        self.session
+            .handle_at(&proj, x, y, slop)
+            .map(|h| h.describe())
+    }
+
+    /// Grabs the item under `(x, y)`; `undefined` on the empty drawing
+    /// (where a drag orbits).
+    #[wasm_bindgen(js_name = pointerDown)]
+    pub fn pointer_down(&mut self, x: f64, y: f64, slop: f64) -> Option<String> {
+        let proj = self.projection();
+        self.session
+            .pointer_down(&proj, x, y, slop)
+            .map(|h| h.describe())
+    }
+
+    /// Moves the item held under `(x, y)`.
+    #[wasm_bindgen(js_name = pointerMove)]
+    pub fn pointer_move(&mut self, x: f64, y: f64) -> JsResult {
+        let proj = self.projection();
+        self.session.pointer_move(&proj, x, y).map_err(js_err)
+    }
+
+    /// Lets go.
+    #[wasm_bindgen(js_name = pointerUp)]
+    pub fn pointer_up(&mut self) {
+        self.session.pointer_up();
+    }
+
+    /// Orbits by a pointer's travel of `(dx, dy)` CSS px.
+    pub fn orbit(&mut self, dx: f64, dy: f64) -> JsResult {
+        finite("orbit", dx)?;
+        finite("orbit", dy)?;
+        self.session
+            .orbit(-dx * ORBIT_PER_PX, dy * ORBIT_PER_PX)
+            .map_err(js_err)
+    }
+
+    /// Orbits by `steps` of the orbit key (15 degrees) about the vertical
+    /// and `up` steps up.
+    #[wasm_bindgen(js_name = orbitSteps)]
+    pub fn orbit_steps(&mut self, steps: f64, up: f64) -> JsResult {
+        self.session
+            .orbit(steps * KEY_ORBIT, up * KEY_ORBIT)
+            .map_err(js_err)
+    }
+
+    /// Zooms in by `factor` (out below 1); returns the factor applied.
+    pub fn zoom(&mut self, factor: f64) -> JsResult<f64> {
+        self.session.zoom(factor).map_err(js_err)
+    }
+
+    /// Sets the view: yaw and pitch (rad), distance (m).
+    #[wasm_bindgen(js_name = setView)]
+    pub fn set_view(&mut self, yaw: f64, pitch: f64, distance: f64) -> JsResult {
+        self.session.set_view(yaw, pitch, distance).map_err(js_err)
+    }
+
+    /// Back to the preset's view.
+    #[wasm_bindgen(js_name = resetView)]
+    pub fn reset_view(&mut self) {
+        self.session.reset_view();
+    }
+
+    /// Selects the next item for the keys; returns what it is.
+    #[wasm_bindgen(js_name = selectNext)]
+    pub fn select_next(&mut self, forward: bool) -> String {
+        self.session.select_next(forward).describe()
+    }
+
+    /// Moves the selected item by `(dx, dy)` key steps along the view's
+    /// right and up.
+    pub fn nudge(&mut self, dx: f64, dy: f64, fine: bool) -> JsResult {
+        let proj = self.projection();
+        self.session.nudge(&proj, dx, dy, fine).map_err(js_err)
+    }
+
+    /// The canvas pixel of world point `(x, y, z)`: `[x, y, depth]`.
+    #[wasm_bindgen(js_name = worldToCanvas)]
+    pub fn world_to_canvas(&self, x: f64, y: f64, z: f64) -> Vec<f64> {
+        self.projection().project([x, y, z]).to_vec()
+    }
+
+    /// The run as `redundant-ik simulate --arm A --json` writes it (what
+    /// `simulate --from` replays and the workers' jobs read).
+    #[wasm_bindgen(js_name = runFile)]
+    pub fn run_file(&self) -> String {
+        self.session.run_file().to_json()
+    }
+
+    /// Every method that can run here on this scene, run whole:
+    /// `[{ method, summary, failure }]`.
+    #[wasm_bindgen(js_name = compareMethods)]
+    pub fn compare_methods(&self) -> JsResult<JsValue> {
+        to_js(&self.session.compare())
+    }
+
+    /// Shows a slice atlas on its plane (`xz:0.2`, ...): `region` `[u0,
+    /// u1, v0, v1]`, `n` points per side, one class per cell.
+    #[wasm_bindgen(js_name = setAtlasLayer)]
+    pub fn set_atlas_layer(
+        &mut self,
+        plane: &str,
+        region: Vec<f64>,
+        n: usize,
+        classes: Vec<u8>,
+    ) -> JsResult {
+        let plane = plane.parse().map_err(js_err)?;
+        let region: [f64; 4] = region
+            .try_into()
+            .map_err(|_| JsError::new("an atlas region is [u0, u1, v0, v1]"))?;
+        let grid = Grid::new(region, n).map_err(js_err)?;
+        self.layer = Some(SliceLayer::new(plane, grid, classes).map_err(js_err)?);
+        Ok(())
+    }
+
+    /// Hides the atlas.
+    #[wasm_bindgen(js_name = clearAtlasLayer)]
+    pub fn clear_atlas_layer(&mut self) {
+        self.layer = None;
+    }
+}
+
+/// The arms in space (`arm=panda`): each preset's key, label, source and
+/// licence, joints and limits, as the core has them.
+#[wasm_bindgen(js_name = spacePresets)]
+pub fn space_presets() -> JsResult<JsValue> {
+    to_js(&crate::space::PRESETS)
+}
+
+/// The shipped network sets in space: `[{ name, arm, files: [phi, v] }]`,
+/// the files under `weights/`.
+#[wasm_bindgen(js_name = spaceNetworkSets)]
+pub fn space_network_sets() -> JsResult<JsValue> {
+    #[derive(serde::Serialize)]
+    struct Set {
+        name: &'static str,
+        arm: &'static str,
+        files: [&'static str; 2],
+    }
+    let sets: Vec<Set> = SpaceNetworkSet::ALL
+        .iter()
+        .map(|s| Set {
+            name: s.name(),
+            arm: s.arm(),
+            files: s.file_names(),
+        })
+        .collect();
+    to_js(&sets)
+}

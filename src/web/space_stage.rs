@@ -1,0 +1,365 @@
+//! The spatial stage: an arm in space drawn in perspective on the same 2-D
+//! canvas as the plane's (no WebGL: a handful of capsules and spheres is
+//! a painter's job). The floor's grid and the shadows on it are the depth
+//! cues; the links (capsules of the chain's radius, outlined), the joints
+//! and the spheres are painted far to near; then the path, the trail, the
+//! target and the reference point, an axis cross and the caption. A slice
+//! atlas's map lies on its plane under the arm ([`SliceLayer`]).
+
+use std::cmp::Ordering;
+
+use web_sys::CanvasRenderingContext2d;
+
+use super::style::{rgba, ACCENT, ARM, AXIS, DANGER, FONT, GRID, INK, LAYER_ALPHA, MUTED, TEAL};
+use super::surface::{dash, disc, text, Surface};
+use crate::atlas::space::Plane;
+use crate::atlas::{Class, Grid};
+use crate::error::{Error, Result};
+use crate::session::space::{Projection, SpaceHandle, SpaceSession, NEAR};
+use crate::space::Vec3;
+
+/// Half the floor grid's side (m) and its spacing.
+const FLOOR_HALF: f64 = 1.0;
+const FLOOR_STEP: f64 = 0.1;
+
+/// A slice atlas shown on its plane: the grid of sphere centres on it and
+/// one class per cell (rows from the plane's `v0`, each from `u0`; the
+/// order of `atlasClasses()`).
+pub struct SliceLayer {
+    plane: Plane,
+    grid: Grid,
+    classes: Vec<u8>,
+}
+
+impl SliceLayer {
+    /// A checked layer: the grid valid, one known class per cell.
+    pub fn new(plane: Plane, grid: Grid, classes: Vec<u8>) -> Result<Self> {
+        grid.validate()?;
+        if classes.len() != grid.cells() {
+            return Err(Error::DimensionMismatch {
+                what: "slice atlas classes".into(),
+                expected: grid.cells(),
+                found: classes.len(),
+            });
+        }
+        if let Some(&bad) = classes
+            .iter()
+            .find(|&&c| usize::from(c) >= Class::ALL.len())
+        {
+            return Err(Error::OutOfRange {
+                what: "atlas class index".into(),
+                value: f64::from(bad),
+                min: 0.0,
+                max: (Class::ALL.len() - 1) as f64,
+            });
+        }
+        Ok(Self {
+            plane,
+            grid,
+            classes,
+        })
+    }
+
+    fn draw(&self, ctx: &CanvasRenderingContext2d, proj: &Projection) {
+        let g = &self.grid;
+        let [u0, u1, v0, v1] = g.region;
+        let (du, dv) = ((u1 - u0) / (g.n - 1) as f64, (v1 - v0) / (g.n - 1) as f64);
+        ctx.set_global_alpha(LAYER_ALPHA);
+        for j in 0..g.n {
+            for i in 0..g.n {
+                let class = Class::ALL[usize::from(self.classes[j * g.n + i])];
+                let (u, v) = (g.x(i), g.y(j));
+                let corners = [(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5)]
+                    .map(|(a, b)| self.plane.point(u + a * du, v + b * dv));
+                ctx.set_fill_style_str(class.colour());
+                if polygon(ctx, proj, &corners) {
+                    ctx.fill();
+                }
+            }
+        }
+        ctx.set_global_alpha(1.0);
+    }
+}
+
+/// What is painted in depth order.
+enum Item {
+    Link(Vec3, Vec3),
+    Joint(Vec3),
+    Sphere(usize),
+}
+
+/// Draws `s` on `surface`; `layer` is a slice atlas to show, `focus` rings
+/// the selected item (the drawing has the keyboard).
+pub fn draw(s: &SpaceSession, surface: &Surface, layer: Option<&SliceLayer>, focus: bool) {
+    let ctx = &surface.ctx;
+    surface.begin();
+    let proj = s.projection(surface.width, surface.height);
+    let scene = s.scene();
+    let chain = &scene.chain;
+    let pose = s.pose();
+    let r = chain.radius();
+    let st = s.state();
+
+    floor(ctx, &proj);
+    if let Some(l) = layer {
+        l.draw(ctx, &proj);
+    }
+    // Shadows: the links and the spheres dropped straight onto the floor.
+    let shadow = rgba(INK, 0.13);
+    ctx.set_stroke_style_str(&shadow);
+    ctx.set_fill_style_str(&shadow);
+    let links: Vec<(Vec3, Vec3)> = chain.segments().iter().map(|g| pose.segment(g)).collect();
+    for &(a, b) in &links {
+        let (a0, b0) = ([a[0], a[1], 0.0], [b[0], b[1], 0.0]);
+        segment(ctx, &proj, a0, b0, 2.0 * r);
+    }
+    for sp in &scene.spheres {
+        let c = sp.centre;
+        let ring: Vec<Vec3> = (0..24)
+            .map(|k| {
+                let a = k as f64 * std::f64::consts::TAU / 24.0;
+                [c[0] + sp.radius * a.cos(), c[1] + sp.radius * a.sin(), 0.0]
+            })
+            .collect();
+        if polygon(ctx, &proj, &ring) {
+            ctx.fill();
+        }
+    }
+
+    // The path and the trail, under the arm.
+    let played = s.played();
+    if let Some(first) = s.samples().first() {
+        let outline = scene.path.outline(first.hand, scene.target, 96);
+        ctx.set_stroke_style_str(MUTED);
+        ctx.set_line_width(1.2);
+        dash(ctx, &[5.0, 4.0]);
+        path(ctx, &proj, outline.iter().copied());
+        dash(ctx, &[]);
+    }
+    ctx.set_stroke_style_str(ACCENT);
+    ctx.set_line_width(2.0);
+    path(ctx, &proj, played.iter().map(|p| p.hand));
+
+    // The arm and the spheres, far to near.
+    let mut items: Vec<(f64, Item)> = links
+        .iter()
+        .map(|&(a, b)| (0.5 * (proj.depth(a) + proj.depth(b)), Item::Link(a, b)))
+        .chain(
+            pose.points()
+                .iter()
+                .map(|&p| (proj.depth(p), Item::Joint(p))),
+        )
+        .chain(
+            scene
+                .spheres
+                .iter()
+                .enumerate()
+                .map(|(i, sp)| (proj.depth(sp.centre), Item::Sphere(i))),
+        )
+        .collect();
+    items.sort_by(|a, b| b.0.partial_cmp(&a.0).unwrap_or(Ordering::Equal));
+    let hit = st.collision;
+    for (_, item) in &items {
+        match *item {
+            Item::Link(a, b) => {
+                ctx.set_stroke_style_str(INK);
+                segment_px(ctx, &proj, a, b, 2.0 * r, 2.0);
+                ctx.set_stroke_style_str(&rgba(ARM, 0.85));
+                segment_px(ctx, &proj, a, b, 2.0 * r, 0.0);
+            }
+            Item::Joint(p) => {
+                let [x, y, z] = proj.project(p);
+                if z > NEAR {
+                    ctx.set_fill_style_str(INK);
+                    disc(ctx, x, y, (0.3 * r * proj.pixels_per_metre(z)).max(1.5));
+                    ctx.fill();
+                }
+            }
+            Item::Sphere(i) => {
+                let sp = &scene.spheres[i];
+                let [x, y, z] = proj.project(sp.centre);
+                if z > NEAR {
+                    let rad = sp.radius * proj.pixels_per_metre(z);
+                    ctx.set_fill_style_str(&rgba(DANGER, if hit { 0.55 } else { 0.28 }));
+                    disc(ctx, x, y, rad);
+                    ctx.fill();
+                    ctx.set_stroke_style_str(DANGER);
+                    ctx.set_line_width(1.5);
+                    ctx.stroke();
+                    // A highlight toward the light, for roundness.
+                    ctx.set_fill_style_str(&rgba("#ffffff", 0.45));
+                    disc(ctx, x - 0.35 * rad, y - 0.35 * rad, 0.25 * rad);
+                    ctx.fill();
+                }
+            }
+        }
+    }
+
+    // The target and where the hand should be now.
+    marker(ctx, &proj, scene.target, 8.0, TEAL);
+    let [x, y, z] = proj.project(st.reference);
+    if z > NEAR {
+        ctx.set_fill_style_str(MUTED);
+        disc(ctx, x, y, 3.5);
+        ctx.fill();
+    }
+    if focus {
+        let h = s.selected();
+        if let Some(c) = s.handle_centre(h) {
+            let [x, y, z] = proj.project(c);
+            let rad = match h {
+                SpaceHandle::Target => 12.0,
+                SpaceHandle::Sphere(i) => scene.spheres[i].radius * proj.pixels_per_metre(z) + 4.0,
+            };
+            ctx.set_stroke_style_str(INK);
+            ctx.set_line_width(1.5);
+            dash(ctx, &[3.0, 3.0]);
+            disc(ctx, x, y, rad);
+            ctx.stroke();
+            dash(ctx, &[]);
+        }
+    }
+    axes(ctx, &proj, surface.height);
+    let caption = format!("t = {:.1} s   ·   {}", st.t, s.method().title());
+    text(
+        ctx,
+        &format!("12px {FONT}"),
+        INK,
+        ("left", "top"),
+        (10.0, 8.0),
+        &caption,
+    );
+}
+
+/// The floor's grid around the base, its axes darker.
+fn floor(ctx: &CanvasRenderingContext2d, proj: &Projection) {
+    let n = (2.0 * FLOOR_HALF / FLOOR_STEP).round() as i32;
+    ctx.set_line_width(1.0);
+    for k in 0..=n {
+        let c = -FLOOR_HALF + f64::from(k) * FLOOR_STEP;
+        let axis = c.abs() < 1e-9;
+        ctx.set_stroke_style_str(if axis { AXIS } else { GRID });
+        path(
+            ctx,
+            proj,
+            [[c, -FLOOR_HALF, 0.0], [c, FLOOR_HALF, 0.0]].into_iter(),
+        );
+        path(
+            ctx,
+            proj,
+            [[-FLOOR_HALF, c, 0.0], [FLOOR_HALF, c, 0.0]].into_iter(),
+        );
+    }
+}
+
+/// A small axis cross in the bottom left corner: x, y and z as the camera
+/// sees them.
+fn axes(ctx: &CanvasRenderingContext2d, proj: &Projection, height: f64) {
+    let (r, u) = proj.screen_axes();
+    let (ox, oy) = (28.0, height - 28.0);
+    let font = format!("11px {FONT}");
+    for (k, (label, colour)) in [("x", DANGER), ("y", "#2e7d32"), ("z", ARM)]
+        .iter()
+        .enumerate()
+    {
+        let (dx, dy) = (r[k] * 18.0, -u[k] * 18.0);
+        ctx.set_stroke_style_str(colour);
+        ctx.set_line_width(2.0);
+        ctx.begin_path();
+        ctx.move_to(ox, oy);
+        ctx.line_to(ox + dx, oy + dy);
+        ctx.stroke();
+        text(
+            ctx,
+            &font,
+            colour,
+            ("center", "middle"),
+            (ox + 1.3 * dx, oy + 1.3 * dy),
+            label,
+        );
+    }
+}
+
+/// Strokes the polyline through world points, breaking it where a point
+/// lies behind the eye.
+fn path(ctx: &CanvasRenderingContext2d, proj: &Projection, pts: impl Iterator<Item = Vec3>) {
+    ctx.begin_path();
+    let mut pen = false;
+    for p in pts {
+        let [x, y, z] = proj.project(p);
+        if z <= NEAR {
+            pen = false;
+            continue;
+        }
+        if pen {
+            ctx.line_to(x, y);
+        } else {
+            ctx.move_to(x, y);
+            pen = true;
+        }
+    }
+    ctx.stroke();
+}
+
+/// A segment `a`-`b` as a round-capped stroke `width` metres wide at its
+/// mean depth, plus `extra` pixels.
+fn segment_px(
+    ctx: &CanvasRenderingContext2d,
+    proj: &Projection,
+    a: Vec3,
+    b: Vec3,
+    width: f64,
+    extra: f64,
+) {
+    let (pa, pb) = (proj.project(a), proj.project(b));
+    if pa[2] <= NEAR || pb[2] <= NEAR {
+        return;
+    }
+    let z = 0.5 * (pa[2] + pb[2]);
+    ctx.set_line_width(width * proj.pixels_per_metre(z) + extra);
+    ctx.begin_path();
+    ctx.move_to(pa[0], pa[1]);
+    ctx.line_to(pb[0], pb[1]);
+    ctx.stroke();
+}
+
+fn segment(ctx: &CanvasRenderingContext2d, proj: &Projection, a: Vec3, b: Vec3, width: f64) {
+    segment_px(ctx, proj, a, b, width, 0.0);
+}
+
+/// Traces the closed polygon through world points; false (nothing traced)
+/// when one lies behind the eye.
+fn polygon(ctx: &CanvasRenderingContext2d, proj: &Projection, pts: &[Vec3]) -> bool {
+    ctx.begin_path();
+    for (i, &p) in pts.iter().enumerate() {
+        let [x, y, z] = proj.project(p);
+        if z <= NEAR {
+            return false;
+        }
+        if i == 0 {
+            ctx.move_to(x, y);
+        } else {
+            ctx.line_to(x, y);
+        }
+    }
+    ctx.close_path();
+    true
+}
+
+/// The target: a ring with a cross, `size` px.
+fn marker(ctx: &CanvasRenderingContext2d, proj: &Projection, p: Vec3, size: f64, colour: &str) {
+    let [x, y, z] = proj.project(p);
+    if z <= NEAR {
+        return;
+    }
+    ctx.set_stroke_style_str(colour);
+    ctx.set_line_width(2.0);
+    disc(ctx, x, y, size);
+    ctx.stroke();
+    ctx.begin_path();
+    ctx.move_to(x - size - 3.0, y);
+    ctx.line_to(x + size + 3.0, y);
+    ctx.move_to(x, y - size - 3.0);
+    ctx.line_to(x, y + size + 3.0);
+    ctx.stroke();
+}

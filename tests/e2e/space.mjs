@@ -1,0 +1,233 @@
+// End-to-end tests of the page with an arm in space (arm=panda, arm=iiwa14):
+// the 3-D stage from the address, orbit and zoom and the drag of a sphere
+// and the target with the mouse, a finger and the keys (the sphere stays
+// under the pointer within 2 px), every method's run, the comparison, the
+// slice atlas against the module's own run of its cells, the run file
+// read back by `simulate --from`, a 390 px phone, axe, and screenshots of
+// the Panda before, during and after a run from three views. Registered
+// by e2e.mjs.
+
+import assert from 'node:assert/strict';
+import { join } from 'node:path';
+import { createRequire } from 'node:module';
+import { test, open, clean, state, shots } from './harness.mjs';
+import { cli, download, close } from './class-helpers.mjs';
+
+const client = (page, p) => page.evaluate(([x, y, z]) => window.demo.worldToClient(x, y, z), p);
+const paused = async (page) => {
+  await page.evaluate(() => window.demo.controller.demo.setRunning(false));
+};
+
+test('space: the Panda and the iiwa open from the address on the 3-D stage', async () => {
+  for (const [arm, dof, label] of [
+    ['panda', 7, /Panda/],
+    ['iiwa14', 7, /iiwa/],
+  ]) {
+    const page = await open(`?arm=${arm}&method=qp`);
+    const s = await state(page);
+    assert.equal(s.kind, 'space');
+    assert.equal(s.arm, arm);
+    assert.equal(s.dof, dof);
+    assert.equal(s.method, 'qp');
+    assert.match(s.arm_label, label);
+    assert.equal(await page.getAttribute('html', 'data-space'), arm);
+    // The plane's controls are hidden; the method menu, Play and the readouts are there.
+    assert.equal(await page.isVisible('#self-motion'), false);
+    assert.equal(await page.isVisible('#task2'), false);
+    assert.ok(await page.isVisible('#mode'));
+    assert.match(await page.textContent('#task1'), /Task/);
+    // The drawing is not blank: the arm's colour is on it.
+    const inked = await page.evaluate(() => {
+      const c = document.getElementById('stage');
+      const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+      let n = 0;
+      for (let i = 0; i < d.length; i += 4) if (d[i] < 120 && d[i + 2] > 100) n++;
+      return n;
+    });
+    assert.ok(inked > 500, `the arm is drawn (${inked} px)`);
+    assert.match(page.url(), new RegExp(`arm=${arm}`));
+    clean(page);
+    await page.close();
+  }
+});
+
+test('space: a sphere dragged with the mouse stays under the pointer within 2 px, and the run follows it', async () => {
+  const page = await open('?arm=panda&method=numerical&autoplay=0');
+  await paused(page);
+  const s0 = await state(page);
+  const c = await client(page, s0.spheres[0]);
+  await page.mouse.move(c.x, c.y);
+  await page.mouse.down();
+  for (const [dx, dy] of [
+    [20, -10],
+    [45, 12],
+    [-30, 25],
+  ]) {
+    await page.mouse.move(c.x + dx, c.y + dy, { steps: 6 });
+    const s = await state(page);
+    const at = await client(page, s.spheres[0]);
+    assert.ok(Math.hypot(at.x - (c.x + dx), at.y - (c.y + dy)) <= 2, `the sphere is at (${at.x}, ${at.y}), the pointer at (${c.x + dx}, ${c.y + dy})`);
+    assert.equal(s.dragging, 'sphere 1');
+  }
+  await page.mouse.up();
+  const s1 = await state(page);
+  assert.notDeepEqual(s1.spheres[0], s0.spheres[0]);
+  assert.ok(s1.run_revision > s0.run_revision, 'the run was computed again');
+  assert.match(page.url(), /obstacles=/, 'the address has the moved sphere');
+  assert.match(await page.textContent('#announcer'), /moved: sphere 1 at x/);
+  clean(page);
+  await page.close();
+});
+
+test('space: the empty drawing orbits with the mouse, the wheel zooms, the keys orbit, zoom, reset and move the selected item', async () => {
+  const page = await open('?arm=panda&method=numerical&autoplay=0');
+  await paused(page);
+  const box = await page.locator('#stage').boundingBox();
+  const [yaw0, pitch0, d0] = (await state(page)).view;
+  await page.mouse.move(box.x + 30, box.y + box.height - 60);
+  await page.mouse.down();
+  await page.mouse.move(box.x + 130, box.y + box.height - 90, { steps: 8 });
+  await page.mouse.up();
+  const [yaw1, pitch1] = (await state(page)).view;
+  assert.ok(Math.abs(yaw1 - yaw0) > 0.5, `the yaw turned (${yaw0} -> ${yaw1})`);
+  assert.ok(pitch1 < pitch0, 'dragging up lowers the eye');
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.wheel(0, -300);
+  assert.ok((await state(page)).view[2] < d0, 'the wheel zooms in');
+  await page.focus('#stage');
+  await page.keyboard.press('0');
+  assert.deepEqual((await state(page)).view, [yaw0, pitch0, d0], '0 resets the view');
+  await page.keyboard.press('o');
+  close((await state(page)).view[0], yaw0 + Math.PI / 12, 1e-9, 'o orbits by 15 degrees');
+  assert.match(await page.textContent('#announcer'), /view from \d+ degrees round/);
+  await page.keyboard.press('n');
+  assert.equal((await state(page)).selected, 'sphere 1');
+  const before = (await state(page)).spheres[0];
+  await page.keyboard.press('ArrowRight');
+  const after = (await state(page)).spheres[0];
+  close(Math.hypot(after[0] - before[0], after[1] - before[1], after[2] - before[2]), 0.05, 2e-4, 'an arrow moves it 5 cm');
+  assert.match(await page.textContent('#announcer'), /sphere 1 at x/);
+  await page.keyboard.press('n');
+  assert.equal((await state(page)).selected, 'target');
+  const t0 = (await state(page)).target;
+  await page.keyboard.press('Shift+ArrowUp');
+  const t1 = (await state(page)).target;
+  close(Math.hypot(t1[0] - t0[0], t1[1] - t0[1], t1[2] - t0[2]), 0.005, 2e-4, 'Shift+arrow moves the target 5 mm');
+  clean(page);
+  await page.close();
+});
+
+test('space: touch: one finger drags the target under it, two fingers orbit and zoom', async () => {
+  const page = await open('?arm=panda&method=numerical&autoplay=0', { hasTouch: true, isMobile: true, viewport: { width: 390, height: 800 } });
+  await paused(page);
+  const s0 = await state(page);
+  const a = await client(page, s0.target);
+  const cdp = await page.context().newCDPSession(page);
+  const pt = (id, x, y) => ({ x, y, id, radiusX: 4, radiusY: 4, force: 1 });
+  await cdp.send('Input.dispatchTouchEvent', { type: 'touchStart', touchPoints: [pt(1, a.x, a.y)] });
+  for (let i = 1; i <= 6; i++) await cdp.send('Input.dispatchTouchEvent', { type: 'touchMove', touchPoints: [pt(1, a.x + 4 * i, a.y - 3 * i)] });
+  const mid = await state(page);
+  const at = await client(page, mid.target);
+  assert.ok(Math.hypot(at.x - (a.x + 24), at.y - (a.y - 18)) <= 2, 'the target is under the finger');
+  await cdp.send('Input.dispatchTouchEvent', { type: 'touchEnd', touchPoints: [] });
+  const [yaw0, , d0] = (await state(page)).view;
+  const box = await page.locator('#stage').boundingBox();
+  const [cx, cy] = [box.x + box.width / 2, box.y + box.height / 2];
+  await cdp.send('Input.dispatchTouchEvent', { type: 'touchStart', touchPoints: [pt(1, cx - 40, cy), pt(2, cx + 40, cy)] });
+  for (let i = 1; i <= 6; i++) {
+    await cdp.send('Input.dispatchTouchEvent', { type: 'touchMove', touchPoints: [pt(1, cx - 40 - 8 * i + 10 * i, cy), pt(2, cx + 40 + 8 * i + 10 * i, cy)] });
+  }
+  await cdp.send('Input.dispatchTouchEvent', { type: 'touchEnd', touchPoints: [] });
+  await cdp.detach();
+  const [yaw1, , d1] = (await state(page)).view;
+  assert.ok(d1 < d0, `two fingers spread zoom in (${d0} -> ${d1})`);
+  assert.ok(Math.abs(yaw1 - yaw0) > 0.1, 'their midpoint moving orbits');
+  // A phone never scrolls sideways.
+  const wide = await page.evaluate(() => document.documentElement.scrollWidth - document.documentElement.clientWidth);
+  assert.ok(wide <= 0, `no sideways scroll (${wide} px)`);
+  await page.screenshot({ path: join(shots, 'space-phone.png'), fullPage: false });
+  clean(page);
+  await page.close();
+});
+
+test('space: every method runs the Panda task to its end, the learned ones with the shipped networks; the comparison agrees', async () => {
+  const page = await open('?arm=panda&method=numerical&autoplay=0');
+  await page.evaluate(() => window.demo.networks());
+  const names = await page.evaluate(() => [...document.querySelectorAll('#mode option')].filter((o) => !o.disabled).map((o) => o.value));
+  assert.equal(names.length, 10, `every method is offered: ${names}`);
+  const summaries = {};
+  for (const m of names) {
+    await page.selectOption('#mode', m);
+    const s = await page.evaluate(() => window.demo.runUntil(1e9));
+    assert.equal(s.method, m);
+    assert.equal(s.failure, null, `${m} ran to the end`);
+    assert.ok(s.ended);
+    close(s.t, s.tf, 1e-9, `${m} reached tf`);
+    summaries[m] = s.summary;
+  }
+  await page.click('#compare-panel summary');
+  await page.click('#compare');
+  const rows = await page.evaluate(() => window.demo.compare());
+  assert.equal(rows.length, 10);
+  for (const r of rows) assert.deepEqual(r.summary, summaries[r.method], `${r.method}: the comparison is the stage's run`);
+  assert.ok(summaries.numerical.collision_steps > 0, 'the paper criterion collides on this task');
+  assert.equal(summaries.qp.collision_steps, 0, 'the QP does not');
+  assert.equal(await page.locator('#compare-body tr').count(), 10);
+  clean(page);
+  await page.close();
+});
+
+test('space: the run saved from the page reads back with simulate --from, step for step', async () => {
+  const page = await open('?arm=panda&method=qp&autoplay=0&target=0.45,0.28,0.55');
+  await paused(page);
+  const json = await download(page, '#save-run-json');
+  const run = JSON.parse(json.text);
+  assert.equal(run.format, 'redundant-ik-space-run/1');
+  assert.equal(run.method, 'qp');
+  assert.deepEqual(run.target, [0.45, 0.28, 0.55]);
+  const back = JSON.parse(cli(['simulate', '--from', json.path, '--json']));
+  assert.equal(back.samples.length, run.samples.length);
+  back.samples.forEach((s, k) => s.theta.forEach((v, i) => close(v, run.samples[k].theta[i], 1e-9, `step ${k} theta${i + 1}`)));
+  const csv = await download(page, '#save-run-csv');
+  assert.equal(csv.text.trim().split('\n').length, run.samples.length + 1);
+  const png = await download(page, '#save-figure-png');
+  assert.ok(png.text.length > 1000);
+  clean(page);
+  await page.close();
+});
+
+test('space: axe finds nothing serious on the Panda page', async () => {
+  const page = await open('?arm=panda&method=qp&autoplay=0');
+  await page.addScriptTag({ path: createRequire(import.meta.url).resolve('axe-core/axe.min.js') });
+  const result = await page.evaluate(async () => {
+    document.querySelectorAll('details').forEach((d) => (d.open = true));
+    const r = await window.axe.run(document, { resultTypes: ['violations'] });
+    return r.violations.filter((v) => v.impact === 'serious' || v.impact === 'critical').map((v) => `${v.id}: ${v.nodes.map((n) => n.target.join(' ')).join(', ')}`);
+  });
+  assert.deepEqual(result, [], 'no serious or critical violations');
+  clean(page);
+  await page.close();
+});
+
+test('space: screenshots of the Panda before, during and after a run, from three views', async () => {
+  const page = await open('?arm=panda&method=numerical&autoplay=0&obstacles=0.215,0.21,0.7,0.06;0.45,0.05,0.35,0.05');
+  await paused(page);
+  const views = { front: [0, 0.2], side: [Math.PI / 2, 0.25], above: [0.45, 1.2] };
+  for (const [name, [yaw, pitch]] of Object.entries(views)) {
+    for (const [when, t] of [
+      ['before', 0],
+      ['during', 2.5],
+      ['after', 5],
+    ]) {
+      await page.evaluate(([yaw, pitch, t]) => {
+        const d = window.demo.controller.demo;
+        d.setView(yaw, pitch, window.demo.state().view[2]);
+        d.reset();
+        window.demo.runUntil(t);
+      }, [yaw, pitch, t]);
+      await page.locator('#stage').screenshot({ path: join(shots, `space-panda-${name}-${when}.png`) });
+    }
+  }
+  clean(page);
+  await page.close();
+});

@@ -1,0 +1,88 @@
+// The address of a scene in space (arm=panda or arm=iiwa14): what it asks
+// for, and the state written back into it. Keys: arm, method, lambda and
+// the methods' other parameters by name, target=X,Y,Z,
+// obstacles=X,Y,Z,R;X,Y,Z,R (the spheres, m), feedback, weighting, floor,
+// networks, view=YAW,PITCH,DISTANCE (degrees, degrees, m), embed and
+// projector as the plane's address has them (address.js). Numbers are
+// checked by the module; what does not parse here is returned as a
+// problem and shown, the rest applied.
+
+import { params, spacePresets } from './module.js';
+
+/** The spatial preset an address names (`arm=panda`), or null. */
+export function spaceArmOf(search) {
+  const arm = new URLSearchParams(search).get('arm');
+  return arm && spacePresets().some((p) => p.key === arm) ? arm : null;
+}
+
+const numbers = (text, count) => {
+  const v = text.split(',').map((x) => Number(x.trim()));
+  if (v.length !== count || v.some((x) => !Number.isFinite(x))) throw new Error(`expected ${count} numbers separated by commas`);
+  return v;
+};
+
+/** The settings of a spatial address, and its problems (`key: why`). */
+export function readSpaceAddress(search) {
+  const q = new URLSearchParams(search);
+  const problems = [];
+  const read = (key, parse) => {
+    const v = q.get(key);
+    if (v === null) return undefined;
+    try {
+      return parse(v);
+    } catch (e) {
+      problems.push(`${key}: ${e.message}`);
+      return undefined;
+    }
+  };
+  const settings = {
+    arm: q.get('arm'),
+    method: q.get('method') ?? q.get('mode') ?? undefined,
+    target: read('target', (v) => numbers(v, 3)),
+    obstacles: read('obstacles', (v) => v.split(';').filter((x) => x.trim()).flatMap((x) => numbers(x, 4))),
+    feedback: read('feedback', (v) => numbers(v, 1)[0]),
+    weighting: q.get('weighting') ?? undefined,
+    floor: q.has('floor') ? q.get('floor') === '1' : undefined,
+    view: read('view', (v) => numbers(v, 3)),
+    projector: q.get('projector') === '1' || undefined,
+    autoplay: q.has('autoplay') ? q.get('autoplay') !== '0' : undefined,
+    params: {},
+  };
+  for (const p of params()) {
+    const v = read(p.name, (x) => numbers(x, 1)[0]);
+    if (v !== undefined) settings.params[p.name] = v;
+  }
+  return { ...settings, problems };
+}
+
+const exact = (v) => String(Math.round(v * 1e4) / 1e4);
+
+/** The query of spatial state `s` (what "Copy link" and the Embed snippets give). */
+export function spaceQuery(s, preset) {
+  const q = new URLSearchParams();
+  q.set('arm', s.arm);
+  q.set('method', s.method);
+  if (s.target.some((v, i) => Math.abs(v - preset.task.target[i]) > 1e-9)) q.set('target', s.target.map(exact).join(','));
+  const own = preset.task.sphere;
+  const same = s.spheres.length === 1 && s.spheres[0].every((v, i) => Math.abs(v - own[i]) < 1e-9);
+  if (!same) q.set('obstacles', s.spheres.map((sp) => sp.map(exact).join(',')).join(';'));
+  if (s.feedback > 0) q.set('feedback', String(s.feedback));
+  if (s.weighting !== 'none') q.set('weighting', s.weighting);
+  if (s.floor) q.set('floor', '1');
+  for (const p of params()) {
+    if (s.params[p.name] !== undefined && s.params[p.name] !== p.default) q.set(p.name, String(s.params[p.name]));
+  }
+  const [yaw, pitch, d] = s.view;
+  q.set('view', [(yaw * 180) / Math.PI, (pitch * 180) / Math.PI, d].map((v) => String(Math.round(v * 10) / 10)).join(','));
+  return q;
+}
+
+/** Writes `s` into the page's address (history.replaceState); returns it. */
+export function writeSpaceAddress(s, preset) {
+  const q = spaceQuery(s, preset);
+  const here = new URLSearchParams(location.search);
+  if (here.get('embed') === '1') q.set('embed', '1');
+  if (document.documentElement.hasAttribute('data-projector')) q.set('projector', '1');
+  history.replaceState(null, '', `${location.pathname}?${q}`);
+  return location.href;
+}

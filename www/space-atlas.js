@@ -1,0 +1,179 @@
+// The slice atlas of an arm in space, in the Atlas panel (html[data-space]):
+// the sphere moved over a grid on a plane (the vertical one through the
+// line by default, or xy, xz, yz at a height or offset the panel takes), each
+// cell run whole in every method ticked, in a Web Worker (jobs.js
+// spaceAtlas: progress and cancel), then its table of outcomes by method and
+// the map of one method drawn on its plane in the view (SpaceDemo's
+// setAtlasLayer), the same cells `redundant-ik atlas --arm A --json` gives.
+
+import { atlasClasses, methods, describe, spaceNetworkSets, assetUrl } from './module.js';
+import * as jobs from './jobs.js';
+
+const pct = (x) => `${(100 * x).toFixed(1)}%`;
+
+/** Wires the spatial Atlas panel; returns { sync(state), run(options), result() }. */
+export function mountSpaceAtlas(root, demo, { show, say, preset }) {
+  const panel = root.querySelector('#atlas-panel');
+  if (!panel) return { sync() {}, run: async () => null, result: () => null };
+  const summary = panel.querySelector('summary');
+  panel.replaceChildren(summary);
+  summary.textContent = 'Slice atlas: where a sphere on a plane makes each method fail';
+  const intro = document.createElement('p');
+  intro.textContent = `Moves the sphere over a grid on a plane (by default the vertical plane through the hand's line), runs the ${preset.label}'s task from t = 0 in each method ticked for every cell, in the background, and draws the chosen method's map on that plane in the view.`;
+  const form = document.createElement('div');
+  form.className = 'row';
+  const plane = document.createElement('input');
+  Object.assign(plane, { id: 'space-atlas-plane', type: 'text', value: '', placeholder: 'through the line, or xz:0.2, xy:0.5, yz:0.4', spellcheck: false });
+  const planeLabel = document.createElement('label');
+  planeLabel.append('Plane ', plane);
+  const n = document.createElement('select');
+  n.id = 'space-atlas-n';
+  for (const k of [11, 21, 31]) n.append(new Option(`${k} x ${k}`, String(k), k === 21, k === 21));
+  const nLabel = document.createElement('label');
+  nLabel.append('Grid ', n);
+  form.append(planeLabel, nLabel);
+  const boxes = document.createElement('fieldset');
+  boxes.className = 'atlas-modes';
+  boxes.id = 'space-atlas-methods';
+  const legend = document.createElement('legend');
+  legend.textContent = 'Methods';
+  boxes.append(legend);
+  for (const m of methods()) {
+    const l = document.createElement('label');
+    const b = document.createElement('input');
+    Object.assign(b, { type: 'checkbox', value: m.name, checked: true });
+    b.dataset.networks = String(Boolean(m.networks.phi || m.networks.v));
+    l.append(b, ` ${m.label}`);
+    boxes.append(l);
+  }
+  const buttons = document.createElement('p');
+  buttons.className = 'row buttons';
+  const go = Object.assign(document.createElement('button'), { type: 'button', id: 'space-atlas-run', textContent: 'Compute the atlas' });
+  const cancel = Object.assign(document.createElement('button'), { type: 'button', id: 'space-atlas-cancel', textContent: 'Cancel', hidden: true });
+  const progress = Object.assign(document.createElement('progress'), { id: 'space-atlas-progress', max: 1, value: 0, hidden: true });
+  buttons.append(go, cancel, progress);
+  const status = Object.assign(document.createElement('p'), { id: 'space-atlas-status' });
+  status.setAttribute('role', 'status');
+  const showRow = document.createElement('p');
+  showRow.className = 'row';
+  const which = Object.assign(document.createElement('select'), { id: 'space-atlas-show' });
+  const hide = Object.assign(document.createElement('button'), { type: 'button', id: 'space-atlas-hide', textContent: 'Hide the map' });
+  const whichLabel = document.createElement('label');
+  whichLabel.append('Map of ', which);
+  showRow.append(whichLabel, hide);
+  showRow.hidden = true;
+  const table = document.createElement('table');
+  table.className = 'compare';
+  table.id = 'space-atlas-table';
+  panel.append(intro, form, boxes, buttons, status, showRow, table);
+
+  const classes = atlasClasses();
+  let last = null;
+  let controller = null;
+
+  function draw(k) {
+    if (!last) return;
+    const cls = last.cells.map((c) => classes.findIndex((x) => x.name === c.outcomes[k].class));
+    demo.setAtlasLayer(last.plane, Float64Array.from(last.grid.region), last.grid.n, Uint8Array.from(cls));
+  }
+  which.addEventListener('change', () => draw(Number(which.value)));
+  hide.addEventListener('click', () => {
+    demo.clearAtlasLayer();
+    showRow.hidden = true;
+  });
+
+  function tabulate(a) {
+    const head = document.createElement('tr');
+    for (const h of ['method', ...classes.map((c) => c.label), 'success where avoidable']) {
+      const th = document.createElement('th');
+      th.textContent = h;
+      head.append(th);
+    }
+    const rows = a.methods.map((m, k) => {
+      const tr = document.createElement('tr');
+      tr.dataset.method = m;
+      const counts = classes.map((c) => a.cells.filter((cell) => cell.outcomes[k].class === c.name).length);
+      const avoidable = a.cells.filter((cell) => cell.outcomes.some((o) => o.class === 'success')).length;
+      const rate = avoidable ? counts[0] / avoidable : NaN;
+      for (const v of [methods().find((x) => x.name === m)?.label ?? m, ...counts.map(String), Number.isFinite(rate) ? pct(rate) : '—']) {
+        const td = document.createElement('td');
+        td.textContent = v;
+        tr.append(td);
+      }
+      return tr;
+    });
+    const thead = document.createElement('thead');
+    thead.append(head);
+    const tbody = document.createElement('tbody');
+    tbody.append(...rows);
+    table.replaceChildren(thead, tbody);
+    which.replaceChildren(...a.methods.map((m, k) => new Option(methods().find((x) => x.name === m)?.label ?? m, String(k))));
+  }
+
+  /** Computes the atlas (options: { methods, plane, n }); resolves to its JSON object. */
+  async function run(options = {}) {
+    const s = demo.state();
+    const wanted = options.methods ?? [...boxes.querySelectorAll('input:checked')].map((b) => b.value);
+    const learned = methods().filter((m) => wanted.includes(m.name) && (m.networks.phi || m.networks.v));
+    const chosen = s.has_networks ? wanted : wanted.filter((m) => !learned.some((l) => l.name === m));
+    let networks;
+    if (s.has_networks && learned.length) {
+      const set = spaceNetworkSets().find((x) => x.arm === s.arm);
+      const [phi, v] = await Promise.all(set.files.map((f) => fetch(assetUrl(`weights/${f}`)).then((r) => r.text())));
+      networks = { phi, v };
+    }
+    controller?.abort();
+    controller = new AbortController();
+    go.hidden = true;
+    cancel.hidden = false;
+    progress.hidden = false;
+    progress.value = 0;
+    status.textContent = 'Computing…';
+    const started = performance.now();
+    try {
+      const { result, ms } = await jobs.spaceAtlas({
+        run: demo.runFile(),
+        methods: chosen,
+        plane: options.plane ?? (plane.value.trim() || undefined),
+        n: options.n ?? Number(n.value),
+        networks,
+        signal: controller.signal,
+        onProgress: (p) => (progress.value = p.total ? p.done / p.total : 0),
+      });
+      last = typeof result === 'string' ? JSON.parse(result) : result;
+      revision = s.run_revision;
+      delete status.dataset.stale;
+      tabulate(last);
+      showRow.hidden = false;
+      draw(0);
+      const took = ms ?? performance.now() - started;
+      const text = `Atlas on ${last.plane}: ${last.cells.length} cells x ${last.methods.length} methods in ${(took / 1000).toFixed(1)} s.`;
+      status.textContent = text;
+      status.dataset.ms = String(Math.round(took));
+      say(text);
+      return last;
+    } catch (e) {
+      status.textContent = e.name === 'AbortError' ? 'Cancelled.' : `The atlas failed: ${describe(e)}`;
+      if (e.name !== 'AbortError') show(status.textContent, 'error', true);
+      return null;
+    } finally {
+      go.hidden = false;
+      cancel.hidden = true;
+      progress.hidden = true;
+    }
+  }
+  go.addEventListener('click', () => run());
+  cancel.addEventListener('click', () => controller?.abort());
+  let revision = -1;
+  return {
+    sync(s) {
+      // A map drawn for another scene is stale: said once, kept until hidden or recomputed.
+      if (last && s.run_revision !== revision && !status.dataset.stale) {
+        status.dataset.stale = 'true';
+        status.textContent += ' The scene has changed since: compute it again for this one.';
+      }
+    },
+    run,
+    result: () => last,
+  };
+}

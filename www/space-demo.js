@@ -1,0 +1,322 @@
+// The page with an arm in space (arm=panda, arm=iiwa14): `mountSpace(root,
+// options)` puts a SpaceDemo (src/web/space_demo.rs) on the same canvas as
+// the plane's demo and wires the controls that apply in space: the method
+// menu (every method; the learned ones once the arm's shipped networks
+// have loaded), Play, Step, Reset, Task, the speed, λ and the method's
+// parameters (method-params.js), Correct drift, the readouts, the legend,
+// the comparison, the run's file, the view's reset, the address and the
+// live region; the stage's pointer, touch and keys are space-input.js's.
+// Controls of the plane only (the path, self-motion, the designer's links,
+// training) are hidden by style.css under html[data-space].
+
+import { SpaceDemo, loadModule, describe, methodGroups, assetUrl, spacePresets, spaceNetworkSets, limits } from './module.js';
+import { fixed, metres } from './format.js';
+import { mountMethodParams } from './method-params.js';
+import { wireSpaceStage } from './space-input.js';
+import { messenger } from './messages.js';
+import { writeSpaceAddress } from './space-address.js';
+import { mountSpacePanels } from './space-panels.js';
+
+const READOUTS = {
+  t: (s) => fixed(s.t, 1),
+  error: (s) => metres(s.tracking_error),
+  clearance: (s) => (s.clearance === null ? '—' : fixed(s.clearance, 3)),
+  min_clearance: (s) => (s.min_clearance === null ? '—' : fixed(s.min_clearance, 3)),
+  collision: (s) => (s.collision ? 'now' : s.collided ? 'earlier' : 'none'),
+  manipulability: () => '—',
+  sigma: () => '—',
+  delta: () => '—',
+  solver: () => '—',
+};
+
+/** What the stage draws, for its legend (the renderer's colours, by CSS custom property). */
+const LEGEND = [
+  ['arm', 'The arm: its links as capsules of the collision radius', 'var(--arm)'],
+  ['sphere', 'A sphere (red when a link is inside it)', 'var(--danger)'],
+  ['target', "The target: the end of the hand's line", 'var(--teal)'],
+  ['path', 'The path (dashed) and where the hand has been', 'var(--accent)'],
+  ['reference', 'Where the hand should be now', 'var(--muted)'],
+  ['shadow', 'Shadows on the floor (grid: 0.1 m)', 'rgba(31, 41, 51, 0.3)'],
+];
+
+/** The shipped networks of `arm`, fetched and installed; resolves to null or the reason they are not. */
+async function installNetworks(demo, arm) {
+  const set = spaceNetworkSets().find((s) => s.arm === arm);
+  if (!set) return `no networks are shipped for this arm`;
+  try {
+    const texts = await Promise.all(
+      set.files.map(async (f) => {
+        const r = await fetch(assetUrl(`weights/${f}`));
+        if (!r.ok) throw new Error(`${f}: HTTP ${r.status}`);
+        return r.text();
+      }),
+    );
+    demo.installNetworks(texts[0], texts[1], set.name);
+    return null;
+  } catch (e) {
+    return describe(e);
+  }
+}
+
+/**
+ * Starts the spatial demo on `root` (the page's document). Options: arm
+ * (a spatial preset's key), method, target [x, y, z], obstacles (flat x, y,
+ * z, r, ...), params { name: value }, feedback, weighting, floor, view
+ * [yaw°, pitch°, distance], autoplay, keyboard, problems (shown), onChange
+ * (after user changes). Returns a controller with state(), demo,
+ * worldToClient(x, y, z), runUntil(t), compare(), runFile().
+ */
+export async function mountSpace(root, options) {
+  const $ = (id) => root.querySelector('#' + id);
+  await loadModule();
+  const preset = spacePresets().find((p) => p.key === options.arm);
+  const stage = $('stage');
+  const plots = $('plots');
+  const demo = new SpaceDemo(stage, plots ?? undefined, preset.key, undefined);
+  document.documentElement.dataset.space = preset.key;
+  const messages = messenger(root);
+  const show = messages.show;
+  const attempt = (fn, kind = 'error', near = undefined) => messages.attempt(fn, kind, near, describe);
+  const announcer = $('announcer');
+  const say = (text) => {
+    if (announcer) announcer.textContent = text;
+  };
+  const changed = () => {
+    if (options.onChange) options.onChange(demo.state(), preset);
+  };
+
+  // ---- the method menu: every method; the learned ones when networks are in
+  const menu = $('mode');
+  menu.replaceChildren();
+  for (const g of methodGroups()) {
+    const group = document.createElement('optgroup');
+    group.label = g.label;
+    for (const m of g.methods) {
+      const o = new Option(`${m.label}: ${m.description}`, m.name);
+      o.dataset.networks = String(Boolean(m.networks.phi || m.networks.v));
+      group.append(o);
+    }
+    menu.append(group);
+  }
+  const learned = [...menu.options].filter((o) => o.dataset.networks === 'true');
+  for (const o of learned) o.disabled = true;
+  const networks = installNetworks(demo, preset.key).then((why) => {
+    for (const o of learned) o.disabled = Boolean(why);
+    if (why) for (const o of learned) o.title = `No networks for the ${preset.label}: ${why}`;
+    return why;
+  });
+  menu.addEventListener('change', async () => {
+    const wanted = menu.value;
+    if (attempt(() => demo.setMethod(wanted), 'error', menu)) {
+      say(`method: ${menu.selectedOptions[0]?.textContent ?? wanted}`);
+      changed();
+    }
+  });
+
+  // ---- settings from the address, each on its own -------------------------
+  const refused = [...(options.problems ?? [])];
+  const initial = (name, fn) => {
+    try {
+      fn();
+    } catch (e) {
+      refused.push(`${name}: ${describe(e)}`);
+    }
+  };
+  if (options.obstacles) initial('obstacles', () => demo.setSpheres(Float64Array.from(options.obstacles)));
+  if (options.target) initial('target', () => demo.setTarget(...options.target));
+  for (const [name, value] of Object.entries(options.params ?? {})) initial(name, () => demo.setParam(name, value));
+  if (options.feedback !== undefined) initial('feedback', () => demo.setFeedback(options.feedback));
+  if (options.weighting) initial('weighting', () => demo.setWeighting(options.weighting));
+  if (options.floor !== undefined) initial('floor', () => demo.setFloor(options.floor));
+  if (options.view) initial('view', () => demo.setView((options.view[0] * Math.PI) / 180, (options.view[1] * Math.PI) / 180, options.view[2]));
+  if (options.projector) document.documentElement.toggleAttribute('data-projector', true);
+  const wanted = options.method;
+  if (wanted) {
+    const needs = learned.some((o) => o.value === wanted);
+    if (needs) {
+      const why = await networks;
+      if (why) refused.push(`method: ${why}`);
+      else initial('method', () => demo.setMethod(wanted));
+    } else initial('method', () => demo.setMethod(wanted));
+  }
+  if (refused.length) show(`${options.problemsLabel ?? 'Not applied'}: ${refused.join('; ')}`, 'warn', true);
+
+  // ---- controls ------------------------------------------------------------
+  const play = $('play');
+  const togglePlay = () => {
+    demo.setRunning(!demo.running);
+    messages.clear();
+  };
+  const reset = () => {
+    demo.reset();
+    messages.clear();
+  };
+  play?.addEventListener('click', togglePlay);
+  $('step')?.addEventListener('click', () => demo.step());
+  $('reset')?.addEventListener('click', reset);
+  const task = $('task1');
+  if (task) {
+    task.textContent = 'Task';
+    task.title = `The ${preset.label}'s own task: its start pose, line and sphere`;
+    task.addEventListener('click', () => {
+      if (attempt(() => demo.loadTask(), 'error', task)) {
+        say(`the ${preset.label}'s task loaded`);
+        changed();
+      }
+    });
+  }
+  const speed = $('speed');
+  speed?.addEventListener('change', () => attempt(() => demo.setSpeed(Number(speed.value)), 'error', speed));
+  if (speed) attempt(() => demo.setSpeed(Number(speed.value)));
+  const feedback = $('feedback');
+  feedback?.addEventListener('change', () => {
+    if (attempt(() => demo.setFeedback(feedback.checked ? limits().drift_gain : 0), 'error', feedback)) changed();
+  });
+  const floor = $('floor');
+  floor?.addEventListener('change', () => {
+    if (attempt(() => demo.setFloor(floor.checked), 'error', floor)) changed();
+  });
+  // Spheres: one more beside the line (selected, so the keys move it), or the last one less.
+  $('obstacle-add')?.addEventListener('click', () => {
+    const s = demo.state();
+    const [x, y, z] = s.target;
+    if (attempt(() => demo.addSphere(x - 0.1, y - 0.15, z + 0.15, 0.05), 'error', $('obstacle-add'))) {
+      say(`sphere ${demo.state().spheres.length} added and selected: the arrow keys move it`);
+      changed();
+    }
+  });
+  $('obstacle-remove')?.addEventListener('click', () => {
+    const n = demo.state().spheres.length;
+    if (n && attempt(() => demo.removeSphere(n - 1), 'error', $('obstacle-remove'))) {
+      say(`sphere ${n} removed`);
+      changed();
+    }
+  });
+  const syncParams = mountMethodParams(root, demo, { attempt, changed });
+  wireSpaceStage(stage, demo, { attempt, changed, say, togglePlay, reset, keyboard: options.keyboard });
+  const view = document.createElement('button');
+  Object.assign(view, { type: 'button', id: 'fit-view', textContent: 'Reset view' });
+  view.title = 'Back to the first view (key 0); orbit by dragging the empty drawing (or Shift+drag, two fingers, keys o and u), zoom with the wheel, two fingers or + and -';
+  const tap = window.matchMedia?.('(pointer: coarse)').matches ? 44 : 0;
+  view.style.cssText = `position: absolute; top: 6px; right: 6px; flex: none; min-height: ${tap}px; min-width: ${tap}px; padding: 1px 8px; font-size: 12px;`;
+  view.addEventListener('click', () => {
+    demo.resetView();
+    say('view reset');
+  });
+  stage.after(view);
+  stage.setAttribute(
+    'aria-label',
+    `The ${preset.label} in 3-D, the spheres and the path. Drag the target or a sphere; drag the empty drawing to orbit. With the keyboard: n selects the next item, the arrows move it in the view's plane, o and u orbit, + and - zoom, 0 resets the view.`,
+  );
+
+  // ---- legend --------------------------------------------------------------
+  const legend = $('legend');
+  if (legend) {
+    legend.replaceChildren(
+      ...LEGEND.map(([key, label, colour]) => {
+        const li = document.createElement('li');
+        li.dataset.key = key;
+        const sw = document.createElement('span');
+        sw.className = 'key key-line';
+        sw.style.setProperty('--swatch', colour);
+        li.append(sw, label);
+        return li;
+      }),
+    );
+  }
+
+  const panels = mountSpacePanels(root, demo, { attempt, show, say, preset });
+
+  // ---- size ------------------------------------------------------------------
+  const fit = (canvas, resize) => {
+    const apply = () => {
+      const r = canvas.getBoundingClientRect();
+      if (r.width > 0 && r.height > 0) attempt(() => resize(r.width, r.height, window.devicePixelRatio || 1));
+    };
+    new ResizeObserver(apply).observe(canvas);
+    apply();
+  };
+  fit(stage, (w, h, d) => demo.resize(w, h, d));
+  if (plots) fit(plots, (w, h, d) => demo.resizePlots(w, h, d));
+
+  // ---- readouts, the live region and the loop ----------------------------------
+  const readouts = [...root.querySelectorAll('[data-readout]')];
+  const summary = $('stage-summary');
+  let seen = { revision: -1, collided: false, ended: true, running: false };
+  function update(s) {
+    if (menu.value !== s.method) menu.value = s.method;
+    if (play) {
+      play.textContent = s.running ? 'Pause' : 'Play';
+      play.setAttribute('aria-pressed', String(s.running));
+    }
+    if (feedback) feedback.checked = s.feedback > 0;
+    if (floor) floor.checked = s.floor;
+    syncParams(s);
+    for (const r of readouts) {
+      const f = READOUTS[r.dataset.readout];
+      if (!f) continue;
+      const text = f(s);
+      if (r.textContent !== text) r.textContent = text;
+      if (r.dataset.readout === 'collision') r.dataset.level = s.collision ? 'bad' : s.collided ? 'warn' : 'ok';
+    }
+    // Said as it happens: the first collision of a run played, its end.
+    if (s.running && s.collided && !seen.collided) say(`collision at t = ${fixed(s.first_collision ?? s.t, 1)} s: a link is inside a sphere`);
+    if (s.ended && !seen.ended && seen.running) {
+      const m = s.summary;
+      const clear = m.min_clearance === null ? '' : `, smallest clearance ${metres(m.min_clearance)}`;
+      say(`run ended: final error ${metres(m.final_error)}${clear}${m.collision_steps ? `, a link inside a sphere for ${m.collision_steps} steps` : ', no collision'}${m.limit_steps ? `, ${m.limit_steps} steps past a joint limit` : ''}`);
+    }
+    if (s.run_revision !== seen.revision && summary) {
+      const m = s.summary;
+      summary.textContent = `The ${s.arm_label} (${s.dof} joints) in ${menu.selectedOptions[0]?.textContent ?? s.method}; ${s.spheres.length} sphere(s); the run ${m.collision_steps ? `collides for ${m.collision_steps} steps` : 'does not collide'} and ends ${metres(m.final_error)} from its target${s.failure ? `; it stopped early: ${s.failure}` : ''}.`;
+      if (s.failure) show(`The run stopped at t = ${fixed(s.t, 2)} s: ${s.failure}`, 'warn', true);
+    }
+    seen = { revision: s.run_revision, collided: s.collided && s.t > 0, ended: s.ended, running: s.running };
+    panels.sync(s);
+    return s;
+  }
+  if (options.autoplay ?? !(typeof matchMedia === 'function' && matchMedia('(prefers-reduced-motion: reduce)').matches)) demo.setRunning(true);
+  let last = performance.now();
+  let stopped = false;
+  function tick(now) {
+    if (stopped) return;
+    const elapsed = now - last;
+    last = now;
+    try {
+      update(demo.frame(elapsed));
+    } catch (e) {
+      show(describe(e), 'error', true);
+    }
+    requestAnimationFrame(tick);
+  }
+  update(demo.frame(0));
+  const loading = $('loading');
+  if (loading) loading.hidden = true;
+  requestAnimationFrame((now) => {
+    last = now;
+    requestAnimationFrame(tick);
+  });
+
+  return {
+    demo,
+    preset,
+    networks,
+    state: () => demo.state(),
+    worldToClient(x, y, z) {
+      const [cx, cy] = demo.worldToCanvas(x, y, z);
+      const r = stage.getBoundingClientRect();
+      return { x: r.left + cx, y: r.top + cy };
+    },
+    runUntil(t) {
+      demo.runUntil(t);
+      return update(demo.frame(0));
+    },
+    compare: () => panels.compare(),
+    runFile: () => demo.runFile(),
+    atlas: (o) => panels.atlas(o),
+    show,
+    stop() {
+      stopped = true;
+    },
+  };
+}

@@ -1,0 +1,128 @@
+// The panels around the 3-D stage (an arm in space): the comparison of
+// every method on the scene as it is (run whole in the page's module, as
+// the stage's run is), Save and share (the run as `simulate --arm A --json`
+// writes it, which `simulate --from` replays, and as CSV; the drawing and
+// the plots as PNG; the link; the Embed dialog's iframe), and the slice
+// atlas (space-atlas.js).
+
+import { fixed, metres } from './format.js';
+import { method } from './module.js';
+import { saveText, saveBlob, csv } from './download.js';
+import { spaceQuery } from './space-address.js';
+import { mountSpaceAtlas } from './space-atlas.js';
+
+/** A run file's samples as CSV: t, the joint angles, the hand, its reference, the errors. */
+export function spaceRunCsv(run) {
+  const n = run.samples[0]?.theta.length ?? 0;
+  const header = ['t', ...Array.from({ length: n }, (_, i) => `theta${i + 1}`), 'x', 'y', 'z', 'ref_x', 'ref_y', 'ref_z', 'tracking_error', 'clearance', 'past_limits'];
+  const rows = run.samples.map((s) => [s.t, ...s.theta, ...s.hand, ...s.reference, s.tracking_error, s.clearance ?? '', s.past_limits]);
+  return csv(header, rows);
+}
+
+/** Wires the panels; returns { sync(state), compare(), atlas(options) }. */
+export function mountSpacePanels(root, demo, { attempt, show, say, preset }) {
+  const $ = (id) => root.querySelector('#' + id);
+  const stem = () => {
+    const s = demo.state();
+    return `redundant-ik-${s.arm}-${s.method}`;
+  };
+
+  // ---- the comparison ---------------------------------------------------------
+  const body = $('compare-body');
+  const status = $('compare-status');
+  const csvButton = $('compare-csv');
+  let rows = null;
+  function compare() {
+    let result = null;
+    if (!attempt(() => (result = demo.compareMethods()), 'error', $('compare'))) return null;
+    rows = result;
+    body?.replaceChildren(
+      ...rows.map((r) => {
+        const tr = document.createElement('tr');
+        tr.dataset.method = r.method;
+        const m = r.summary;
+        const cells = [
+          method(r.method)?.label ?? r.method,
+          m.min_clearance === null ? '—' : fixed(m.min_clearance, 3),
+          m.collision_steps ? `yes (${m.collision_steps} steps)` : 'no',
+          r.failure ? `stopped: ${r.failure}` : metres(m.final_error),
+        ];
+        for (const c of cells) {
+          const td = document.createElement('td');
+          td.textContent = c;
+          tr.append(td);
+        }
+        if (m.collision_steps) tr.dataset.level = 'bad';
+        return tr;
+      }),
+    );
+    const hits = rows.filter((r) => r.summary.collision_steps > 0).length;
+    const text = `${rows.length} methods on the ${preset.label}'s scene: ${hits} collide.`;
+    if (status) status.textContent = text;
+    if (csvButton) csvButton.disabled = false;
+    say(text);
+    return rows;
+  }
+  $('compare')?.addEventListener('click', compare);
+  csvButton?.addEventListener('click', () => {
+    if (!rows) return;
+    const header = ['method', 'min_clearance', 'collision_steps', 'limit_steps', 'relaxed_steps', 'handover_steps', 'max_error', 'final_error', 'failure'];
+    const lines = rows.map((r) => {
+      const m = r.summary;
+      return [r.method, m.min_clearance ?? '', m.collision_steps, m.limit_steps, m.relaxed_steps, m.handover_steps, m.max_error, m.final_error, r.failure ?? ''];
+    });
+    saveText(`${stem()}-compare.csv`, csv(header, lines), 'text/csv');
+  });
+
+  // ---- Save and share ------------------------------------------------------------
+  const canvasPng = (id, suffix) => {
+    const canvas = $(id);
+    canvas?.toBlob((blob) => blob && saveBlob(`${stem()}-${suffix}.png`, blob), 'image/png');
+  };
+  $('save-run-json')?.addEventListener('click', () => saveText(`${stem()}.json`, demo.runFile(), 'application/json'));
+  $('save-run-csv')?.addEventListener('click', () => saveText(`${stem()}.csv`, spaceRunCsv(JSON.parse(demo.runFile())), 'text/csv'));
+  $('save-figure-png')?.addEventListener('click', () => canvasPng('stage', 'view'));
+  $('save-plots-png')?.addEventListener('click', () => canvasPng('plots', 'plots'));
+  for (const id of ['save-figure-svg', 'save-plots-svg']) {
+    const b = $(id);
+    if (b) {
+      b.disabled = true;
+      b.title = 'Not for an arm in space yet: redundant-ik figure --arm draws its two orthographic views from the run file';
+    }
+  }
+  const link = () => `${location.origin}${location.pathname}?${spaceQuery(demo.state(), preset)}`;
+  $('copy-link')?.addEventListener('click', async () => {
+    const text = link();
+    try {
+      await navigator.clipboard.writeText(text);
+      show('Link copied.', 'info');
+    } catch (_) {
+      const field = $('link-text');
+      if (field) {
+        field.hidden = false;
+        field.value = text;
+        field.select();
+      }
+    }
+  });
+  const dialog = $('embed-dialog');
+  $('embed-open')?.addEventListener('click', () => {
+    if (!dialog) return;
+    const frame = $('embed-iframe');
+    const element = $('embed-element');
+    const q = spaceQuery(demo.state(), preset);
+    q.set('embed', '1');
+    if (frame) frame.value = `<iframe src="${location.origin}${location.pathname}?${q}" title="The ${preset.label} and redundancy resolution" width="720" height="540" style="border: 0" loading="lazy"></iframe>`;
+    if (element) element.value = '<!-- The <redundant-ik-demo> element shows the planar arms; for an arm in space, use the iframe above. -->';
+    dialog.showModal?.();
+  });
+
+  const atlas = mountSpaceAtlas(root, demo, { attempt, show, say, preset });
+  return {
+    sync(s) {
+      atlas.sync(s);
+    },
+    compare,
+    atlas: (o) => atlas.run(o),
+  };
+}
