@@ -21,24 +21,40 @@ WORKER_OPT = CARGO_PROFILE_RELEASE_OPT_LEVEL=s
 setup:
 	bash scripts/setup-wasm.sh
 
-## Build the release wasm packages into www/pkg: the page's module
-## (feature page: the demo and its drawing) and the workers' module (feature
-## worker: the atlas and the benchmark, which run in Web Workers), each
-## twice: a baseline build and one with wasm SIMD (+simd128) for the
-## networks' kernels; the page loads the SIMD ones where the browser
-## validates SIMD, else the baseline (some hardened browser modes switch SIMD
-## off). Each pair shares its JS glue (checked). Optimised for size (the
-## page's at opt-level z, the workers' at s; 3 is 13 KB gzipped larger),
-## then the debug `name` section stripped (cargo's strip also drops a
-## section wasm-bindgen needs). The built-in networks' weights files go
-## beside the page (www/weights/), which fetches them and hands them to
-## its workers: neither module embeds them (docs/web.md, "Bytes on the wire").
-PAGE = -- --no-default-features --features page,space
+## Build the release wasm packages into www/pkg: the page's module in two
+## builds, the plane's (feature page: the demo and its drawing) and one with
+## the arms in space too (page,space: the Panda and the iiwa; the page loads
+## it only for arm=panda or another preset named by its key, so the planar
+## page's download stays as it was), both loaded by the space build's JS
+## glue (scripts/check-glue.py checks that it fits the planar build); and
+## the workers' module (feature worker: the atlas and the benchmark, which
+## run in Web Workers). Each twice: a baseline build and one with wasm SIMD
+## (+simd128) for the networks' kernels; the page loads the SIMD ones where
+## the browser validates SIMD, else the baseline (some hardened browser
+## modes switch SIMD off). Each pair shares its JS glue (checked).
+## Optimised for size (the page's at opt-level z, the workers' at s; 3 is
+## 13 KB gzipped larger), then the debug `name` section stripped (cargo's
+## strip also drops a section wasm-bindgen needs). The built-in networks'
+## weights files go beside the page (www/weights/), which fetches them and
+## hands them to its workers: no module embeds them (docs/web.md, "Bytes on
+## the wire").
+PAGE = -- --no-default-features --features page
+PAGE_SPACE = -- --no-default-features --features page,space
+SPACE_ENV = CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_TARGET_DIR=target/wasm-page-space
+SPACE_SIMD_ENV = CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_TARGET_DIR=target/wasm-page-space-simd
 WORKER = --out-name redundant_ik_worker -- --no-default-features --features worker
 web: setup
+	$(WASM_ENV) $(SPACE_ENV) $(WASM_BUILD) --out-dir target/pkg-space $(PAGE_SPACE)
+	$(WASM_SIMD_ENV) $(SPACE_SIMD_ENV) $(WASM_BUILD) --out-dir target/pkg-space-simd $(PAGE_SPACE)
+	cmp target/pkg-space/redundant_ik.js target/pkg-space-simd/redundant_ik.js
 	$(WASM_ENV) $(PAGE_ENV) $(WASM_BUILD) --out-dir www/pkg $(PAGE)
 	$(WASM_SIMD_ENV) $(PAGE_SIMD_ENV) $(WASM_BUILD) --out-dir target/pkg-simd $(PAGE)
 	cmp www/pkg/redundant_ik.js target/pkg-simd/redundant_ik.js
+	python3 scripts/check-glue.py www/pkg/redundant_ik_bg.wasm target/pkg-space/redundant_ik_bg.wasm
+	python3 scripts/check-glue.py target/pkg-simd/redundant_ik_bg.wasm target/pkg-space-simd/redundant_ik_bg.wasm
+	cp target/pkg-space/redundant_ik.js www/pkg/redundant_ik.js
+	cp target/pkg-space/redundant_ik_bg.wasm www/pkg/redundant_ik_space_bg.wasm
+	cp target/pkg-space-simd/redundant_ik_bg.wasm www/pkg/redundant_ik_space_simd_bg.wasm
 	cp target/pkg-simd/redundant_ik_bg.wasm www/pkg/redundant_ik_simd_bg.wasm
 	$(WASM_ENV) $(WORKER_OPT) $(WASM_BUILD) --out-dir target/pkg-worker $(WORKER)
 	$(WASM_SIMD_ENV) $(WORKER_OPT) $(WASM_BUILD) --out-dir target/pkg-worker-simd $(WORKER)

@@ -23,6 +23,7 @@ ROOT = Path(__file__).resolve().parent.parent
 # (file, literal): the page's own words that happen to spell a core name.
 ALLOWED = {
     ("www/demo.js", "none"): "the collision readout's word when nothing was hit",
+    ("www/space-demo.js", "none"): "the collision readout's word when nothing was hit (the 3-D stage's)",
     ("www/page.js", "paper"): "a data attribute value for the stylesheet (paper's arm or other)",
     ("www/index.html", "distance"): "a readout's key (data-readout), not the method",
     ("www/index.html", "manipulability"): "a readout's key (data-readout), not the method",

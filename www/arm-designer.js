@@ -5,7 +5,7 @@
 // addObstacle, setObstacles) and this file shows its refusals.
 
 import { applied, follow } from './place-fields.js';
-import { limits, formatArm, parseJointLimits, formatJointLimits, parseRateLimits, formatRateLimits, spacePresets } from './module.js';
+import { limits, formatArm, parseJointLimits, formatJointLimits, parseRateLimits, formatRateLimits } from './module.js';
 
 /**
  * `[[x, y, r?], ...]` (or `{ x, y, r }` each) flat as the module takes it:
@@ -75,10 +75,11 @@ export function mountArmDesigner(root, demo, { setArm, attempt, show, changed })
   if (el.preset && !el.preset.options.length) {
     for (const p of presets) el.preset.add(new Option(p.label, p.key));
     el.preset.add(new Option('Custom', 'custom'));
-    // The arms in space open the page's 3-D stage (arm=panda).
+    // The arms in space open the page's 3-D stage: arm=space (the first of
+    // them) loads the build that holds them, which lists them all.
     const space = document.createElement('optgroup');
     space.label = 'In space';
-    for (const p of spacePresets()) space.append(new Option(`${p.label} (${p.rows.length} joints, 3-D)`, p.key));
+    space.append(new Option('Arms in space (3-D)…', 'space'));
     el.preset.append(space);
   }
 
@@ -121,8 +122,8 @@ export function mountArmDesigner(root, demo, { setArm, attempt, show, changed })
   el.rates?.addEventListener('change', () => applyLimits(el.rates));
 
   el.preset?.addEventListener('change', () => {
-    if (spacePresets().some((p) => p.key === el.preset.value)) {
-      location.search = `?arm=${el.preset.value}`;
+    if (el.preset.value === 'space') {
+      location.search = '?arm=space';
       return;
     }
     const p = presets.find((p) => p.key === el.preset.value);

@@ -69,6 +69,33 @@ const BUILDS = {
   baseline: 'pkg/redundant_ik_bg.wasm',
 };
 
+/** The same two with the arms in space too (feature space), loaded by the same glue for arm=panda and the like. */
+const SPACE_BUILDS = {
+  simd: 'pkg/redundant_ik_space_simd_bg.wasm',
+  baseline: 'pkg/redundant_ik_space_bg.wasm',
+};
+
+/**
+ * Whether the page asks for a build with the arms in space: its address
+ * names an arm by a preset's key (`arm=panda`; a planar arm written out,
+ * `0.5:1,1,1`, is not a key). The space build holds the planar page too,
+ * so a planar preset's key loads it harmlessly.
+ */
+export function asksForSpace(search = globalThis.location?.search ?? '') {
+  return /^[A-Za-z][\w-]*$/.test(new URLSearchParams(search).get('arm') ?? '');
+}
+
+/** Whether the module loaded holds the arms in space (SpaceDemo, spacePresets). */
+export function moduleHasSpace() {
+  return withSpace;
+}
+
+/** Whether this build carries `path` (a single-file build carries only some files). */
+function carries(path) {
+  const inline = globalThis.__REDUNDANT_IK_ASSETS__;
+  return !inline || Object.hasOwn(inline, path);
+}
+
 /** The same two builds of the workers' module (the atlas, the benchmark, the trainer). */
 const WORKER_BUILDS = {
   simd: 'pkg/redundant_ik_worker_simd_bg.wasm',
@@ -89,6 +116,7 @@ function simdSupported() {
 let module = null;
 let build = null;
 let memory = null;
+let withSpace = false;
 
 /** Which build the page runs: 'simd' or 'baseline' (null before loading). */
 export function moduleBuild() {
@@ -200,12 +228,16 @@ export function builtinWeightsUrl(name) {
  * Loads and starts the WebAssembly module once per page: the SIMD build
  * where the browser supports SIMD (the networks run about twice as fast),
  * else, or if it fails to start, the baseline build; then the built-in
- * networks.
+ * networks. The first call decides which: with the arms in space where
+ * `space` (default: the address asks for it, asksForSpace) and this build
+ * carries them, else the plane's.
  */
-export function loadModule() {
+export function loadModule({ space = asksForSpace() } = {}) {
   if (!module) {
+    const builds = space && carries(SPACE_BUILDS.simd) && carries(SPACE_BUILDS.baseline) ? SPACE_BUILDS : BUILDS;
+    withSpace = builds === SPACE_BUILDS;
     const start = async (which) => {
-      const exports = await init({ module_or_path: assetUrl(BUILDS[which]) });
+      const exports = await init({ module_or_path: assetUrl(builds[which]) });
       memory = exports.memory;
       build = which;
       // The drawing's colours, for the stylesheet (var(--arm), ...).

@@ -9,7 +9,7 @@
 // start, the page says so and disables its controls instead of showing a
 // blank stage.
 
-import { loadModule, describe, methods, methodGroups, fillLimits, moduleBuild, moduleMemoryBytes, limits, networkMethodLabels, spacePresets, formatJointLimits, formatRateLimits } from './module.js';
+import { loadModule, describe, methods, methodGroups, fillLimits, moduleBuild, moduleMemoryBytes, limits, networkMethodLabels, spacePresets, formatJointLimits, formatRateLimits, asksForSpace, moduleHasSpace } from './module.js';
 import { mountTour } from './tour.js';
 import { bench } from './jobs.js';
 import { mount } from './demo.js';
@@ -136,6 +136,10 @@ async function start() {
       return;
     }
     const { problems, ...settings } = readAddress(location.search);
+    // An arm in space asked for where this build has none (the single-file page carries the planar arms only).
+    if (asksForSpace() && !moduleHasSpace() && !limits().arm_presets.some((p) => p.key === new URLSearchParams(location.search).get('arm'))) {
+      problems.push('arm: the arms in space are not in this build of the page (the single-file page carries the planar arms only): open the served page');
+    }
     const controller = await mount(document, {
       ...settings,
       problems,
@@ -182,6 +186,16 @@ async function start() {
   }
 }
 
+/** The prose that describes the arm, for an arm in space. */
+function describeSpaceArm(preset) {
+  const n = preset.rows.length;
+  const lede = document.getElementById('lede-text');
+  if (lede) lede.textContent = `The ${preset.label}, ${word(n)} joints in space, moves its hand along a straight line past spheres: the hand's position takes three of its joints' freedoms, and the planner spends the ${word(n - 3)} spare ones keeping its links clear. Orbit the view, drag the target or a sphere, switch methods.`;
+  const see = document.getElementById('what-you-see');
+  if (see) see.textContent = `The ${preset.label} (${preset.source}) drawn in perspective: its links as capsules of the radius the clearance is measured to, the spheres, their shadows on the floor's 0.1 m grid. The hand follows the dashed line to the target at constant speed over the run; its orientation is left free.`;
+  for (const el of document.querySelectorAll('[data-arm="links"]')) el.textContent = word(n);
+}
+
 /** The page with an arm in space (arm=panda, arm=iiwa14): space-demo.js on the same stage. */
 async function startSpace() {
   const { problems, ...settings } = readSpaceAddress(location.search);
@@ -193,6 +207,7 @@ async function startSpace() {
     onChange: (s, preset) => writeSpaceAddress(s, preset),
   });
   const preset = controller.preset;
+  describeSpaceArm(preset);
   const arms = document.getElementById('arm-preset');
   if (arms) {
     // The designer offers every preset; another arm opens its own page.

@@ -7,12 +7,18 @@
 // checked by the module; what does not parse here is returned as a
 // problem and shown, the rest applied.
 
-import { params, spacePresets } from './module.js';
+import { params, spacePresets, moduleHasSpace, limits } from './module.js';
 
-/** The spatial preset an address names (`arm=panda`), or null. */
+/**
+ * The spatial preset an address names (`arm=panda`; `arm=space`: the first
+ * of them, what the planar page's designer opens), or null (also where the
+ * module loaded has no arms in space).
+ */
 export function spaceArmOf(search) {
   const arm = new URLSearchParams(search).get('arm');
-  return arm && spacePresets().some((p) => p.key === arm) ? arm : null;
+  if (!arm || !moduleHasSpace()) return null;
+  if (arm === 'space') return spacePresets()[0].key;
+  return spacePresets().some((p) => p.key === arm) ? arm : null;
 }
 
 const numbers = (text, count) => {
@@ -36,7 +42,7 @@ export function readSpaceAddress(search) {
     }
   };
   const settings = {
-    arm: q.get('arm'),
+    arm: spaceArmOf(search),
     method: q.get('method') ?? q.get('mode') ?? undefined,
     target: read('target', (v) => numbers(v, 3)),
     obstacles: read('obstacles', (v) => v.split(';').filter((x) => x.trim()).flatMap((x) => numbers(x, 4))),
@@ -67,7 +73,7 @@ export function spaceQuery(s, preset) {
   const same = s.spheres.length === 1 && s.spheres[0].every((v, i) => Math.abs(v - own[i]) < 1e-9);
   if (!same) q.set('obstacles', s.spheres.map((sp) => sp.map(exact).join(',')).join(';'));
   if (s.feedback > 0) q.set('feedback', String(s.feedback));
-  if (s.weighting !== 'none') q.set('weighting', s.weighting);
+  if (s.weighting !== limits().joint_weightings[0][0]) q.set('weighting', s.weighting);
   if (s.floor) q.set('floor', '1');
   for (const p of params()) {
     if (s.params[p.name] !== undefined && s.params[p.name] !== p.default) q.set(p.name, String(s.params[p.name]));

@@ -1,5 +1,7 @@
-// "Try this": a tour for class in five steps, each one click ("Show me")
-// that sets the scene through the page's own controls, and two sentences.
+// "Try this": a tour for class in six steps, each one click ("Show me")
+// that sets the scene through the page's own controls, and two sentences;
+// the last one opens an arm in space (arm=space: the first preset, the
+// Panda) on the same page.
 // A card at the top of the controls, never over the drawing: it can be
 // skipped or closed at any step, and the page keeps working meanwhile.
 // The step's outcome is read from the run itself, not written here.
@@ -108,6 +110,14 @@ export function mountTour(root, controller) {
         if (!s) return '';
         const pct = (r) => (r?.rate === null || r?.rate === undefined ? '–' : `${Math.round(100 * r.rate)}%`);
         return `This atlas (${controller.atlasDescription()}): Case 3 succeeds in ${pct(s.inside_trained_region)} of the cells inside the box and ${pct(s.outside_trained_region)} outside it (the numerical route: ${pct(a.summary.numerical?.avoidable)} overall).`;
+      },
+    },
+    {
+      title: 'Beyond the plane: a real arm in space',
+      text: "The same question on a seven-joint Franka Panda, whose forearm passes a sphere: in 3-D the paper's criterion at its gain still lets a link hit it. Show me opens it in the numerical route; orbit the view by dragging, then pick the QP with velocity dampers in the menu and watch it stay clear.",
+      show: () => {
+        location.search = `?arm=space&method=${EXACT}`;
+        return new Promise(() => {});
       },
     },
   ];

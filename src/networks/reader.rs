@@ -21,6 +21,11 @@ use crate::error::{Error, Result};
 
 #[cfg(any(test, not(any(feature = "worker", feature = "cli", feature = "eval"))))]
 mod by_hand;
+#[cfg(all(
+    feature = "space",
+    any(test, not(any(feature = "worker", feature = "cli", feature = "eval")))
+))]
+pub(crate) mod space;
 #[cfg(test)]
 mod tests;
 
@@ -39,6 +44,28 @@ impl WeightsFile {
         #[cfg(not(any(feature = "worker", feature = "cli", feature = "eval")))]
         let file = by_hand::read(json);
         let file = file.map_err(|e| Error::Weights(format!("not a valid weights file: {e}")))?;
+        file.validate()?;
+        Ok(file)
+    }
+}
+
+#[cfg(feature = "space")]
+impl crate::networks::space::SpaceWeightsFile {
+    /// A file from its JSON text, checked ([`SpaceWeightsFile::validate`]).
+    pub fn from_json(text: &str) -> Result<Self> {
+        if text.len() > MAX_FILE_BYTES {
+            return Err(Error::Weights(format!(
+                "the file has {} bytes, more than the {} a weights file may have",
+                text.len(),
+                MAX_FILE_BYTES
+            )));
+        }
+        // The page's module reads it by hand (`networks::reader::space`).
+        #[cfg(any(feature = "worker", feature = "cli", feature = "eval"))]
+        let file = serde_json::from_str::<Self>(text).map_err(|e| e.to_string());
+        #[cfg(not(any(feature = "worker", feature = "cli", feature = "eval")))]
+        let file = space::read(text);
+        let file = file.map_err(|e| Error::Weights(format!("not a spatial weights file: {e}")))?;
         file.validate()?;
         Ok(file)
     }

@@ -123,21 +123,6 @@ pub fn space_input_names(kind: NetKind, n: usize) -> Vec<String> {
 }
 
 impl SpaceWeightsFile {
-    /// A file from its JSON text, checked ([`SpaceWeightsFile::validate`]).
-    pub fn from_json(text: &str) -> Result<Self> {
-        if text.len() > super::MAX_FILE_BYTES {
-            return Err(Error::Weights(format!(
-                "the file has {} bytes, more than the {} a weights file may have",
-                text.len(),
-                super::MAX_FILE_BYTES
-            )));
-        }
-        let file: Self = serde_json::from_str(text)
-            .map_err(|e| Error::Weights(format!("not a spatial weights file: {e}")))?;
-        file.validate()?;
-        Ok(file)
-    }
-
     /// Whether the file is whole: its format, one network of the shape its
     /// kind needs for its arm's joints, a range of as many inputs.
     pub fn validate(&self) -> Result<()> {

@@ -62,8 +62,9 @@ pub fn eigenvalues_sym3(a: [[f64; 3]; 3]) -> [f64; 3] {
         + b(0, 2) * (b(1, 0) * b(2, 1) - b(1, 1) * b(2, 0));
     let r = (det / 2.0).clamp(-1.0, 1.0);
     let phi = r.acos() / 3.0;
-    let e1 = q + 2.0 * p * phi.cos();
-    let e3 = q + 2.0 * p * (phi + 2.0 * std::f64::consts::PI / 3.0).cos();
+    // The kinematics' cosine (libm's would add its argument reduction to the page's module).
+    let e1 = q + 2.0 * p * crate::kinematics::sin_cos(phi).1;
+    let e3 = q + 2.0 * p * crate::kinematics::sin_cos(phi + 2.0 * std::f64::consts::PI / 3.0).1;
     [e1, 3.0 * q - e1 - e3, e3]
 }
 

@@ -10,7 +10,9 @@ use super::demo::{finite, JsResult};
 use super::space_stage::{self, SliceLayer};
 use super::surface::Surface;
 use super::{js_err, plots, to_js};
+use crate::atlas::space::Plane;
 use crate::atlas::Grid;
+use crate::export::SpaceRunFile;
 use crate::networks::space::SpaceNetworkSet;
 use crate::planner::Method;
 use crate::session::space::{SpaceSession, KEY_ORBIT};
@@ -307,7 +309,15 @@ impl SpaceDemo {
     /// `simulate --from` replays and the workers' jobs read).
     #[wasm_bindgen(js_name = runFile)]
     pub fn run_file(&self) -> String {
-        self.session.run_file().to_json()
+        let s = &self.session;
+        let mut file = SpaceRunFile::new(s.preset(), s.scene().clone(), s.trajectory());
+        // The set a learned method ran with, so the command line replays it so.
+        file.networks = s
+            .method()
+            .uses_networks()
+            .then(|| s.network_set())
+            .flatten();
+        file.to_json()
     }
 
     /// Every method that can run here on this scene, run whole:
@@ -317,17 +327,26 @@ impl SpaceDemo {
         to_js(&self.session.compare())
     }
 
-    /// Shows a slice atlas on its plane (`xz:0.2`, ...): `region` `[u0,
-    /// u1, v0, v1]`, `n` points per side, one class per cell.
+    /// Shows a slice atlas on its plane, `axes` (`xy`, `xz` or `yz`) at
+    /// `at` (m) along the third: `region` `[u0, u1, v0, v1]`, `n` points per
+    /// side, one class per cell. (Not the plane's text `xz:0.2`: its number
+    /// parser would add 4 KB to the page's module.)
     #[wasm_bindgen(js_name = setAtlasLayer)]
     pub fn set_atlas_layer(
         &mut self,
-        plane: &str,
+        axes: &str,
+        at: f64,
         region: Vec<f64>,
         n: usize,
         classes: Vec<u8>,
     ) -> JsResult {
-        let plane = plane.parse().map_err(js_err)?;
+        let at = finite("plane offset", at)?;
+        let plane = match axes {
+            "xy" => Plane::Xy(at),
+            "xz" => Plane::Xz(at),
+            "yz" => Plane::Yz(at),
+            _ => return Err(JsError::new("a slice's plane is xy, xz or yz")),
+        };
         let region: [f64; 4] = region
             .try_into()
             .map_err(|_| JsError::new("an atlas region is [u0, u1, v0, v1]"))?;

@@ -10,11 +10,14 @@ use std::cmp::Ordering;
 
 use web_sys::CanvasRenderingContext2d;
 
-use super::style::{rgba, ACCENT, ARM, AXIS, DANGER, FONT, GRID, INK, LAYER_ALPHA, MUTED, TEAL};
+use super::style::{
+    rgba, ACCENT, ARM, AXIS, DANGER, FONT, GRID, INK, LAYER_ALPHA, MUTED, PAPER, POST, TEAL,
+};
 use super::surface::{dash, disc, text, Surface};
 use crate::atlas::space::Plane;
 use crate::atlas::{Class, Grid};
 use crate::error::{Error, Result};
+use crate::kinematics::sin_cos;
 use crate::session::space::{Projection, SpaceHandle, SpaceSession, NEAR};
 use crate::space::Vec3;
 
@@ -101,6 +104,22 @@ pub fn draw(s: &SpaceSession, surface: &Surface, layer: Option<&SliceLayer>, foc
     let st = s.state();
 
     floor(ctx, &proj);
+    // The base: a plate on the floor under the first joint.
+    let base = chain.base().1;
+    let plate: Vec<Vec3> = (0..24)
+        .map(|k| {
+            let a = k as f64 * std::f64::consts::TAU / 24.0;
+            [
+                base[0] + 2.0 * r * a.cos(),
+                base[1] + 2.0 * r * a.sin(),
+                0.0,
+            ]
+        })
+        .collect();
+    ctx.set_fill_style_str(&rgba(POST, 0.5));
+    if polygon(ctx, &proj, &plate) {
+        ctx.fill();
+    }
     if let Some(l) = layer {
         l.draw(ctx, &proj);
     }
@@ -117,8 +136,8 @@ pub fn draw(s: &SpaceSession, surface: &Surface, layer: Option<&SliceLayer>, foc
         let c = sp.centre;
         let ring: Vec<Vec3> = (0..24)
             .map(|k| {
-                let a = k as f64 * std::f64::consts::TAU / 24.0;
-                [c[0] + sp.radius * a.cos(), c[1] + sp.radius * a.sin(), 0.0]
+                let (sa, ca) = sin_cos(k as f64 * std::f64::consts::TAU / 24.0);
+                [c[0] + sp.radius * ca, c[1] + sp.radius * sa, 0.0]
             })
             .collect();
         if polygon(ctx, &proj, &ring) {
@@ -158,14 +177,27 @@ pub fn draw(s: &SpaceSession, surface: &Surface, layer: Option<&SliceLayer>, foc
         )
         .collect();
     items.sort_by(|a, b| b.0.partial_cmp(&a.0).unwrap_or(Ordering::Equal));
+    // Depth as a cue: the nearest link in full colour, the farthest paler.
+    let (near, far) = items
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (z, _)| {
+            (lo.min(*z), hi.max(*z))
+        });
+    let shade = |z: f64| 0.95 - 0.4 * ((z - near) / (far - near).max(1e-9)).clamp(0.0, 1.0);
     let hit = st.collision;
-    for (_, item) in &items {
+    for (z, item) in &items {
         match *item {
             Item::Link(a, b) => {
                 ctx.set_stroke_style_str(INK);
                 segment_px(ctx, &proj, a, b, 2.0 * r, 2.0);
-                ctx.set_stroke_style_str(&rgba(ARM, 0.85));
+                // Over white, so that a paler link hides what is behind it.
+                ctx.set_stroke_style_str(PAPER);
                 segment_px(ctx, &proj, a, b, 2.0 * r, 0.0);
+                ctx.set_stroke_style_str(&rgba(ARM, shade(*z)));
+                segment_px(ctx, &proj, a, b, 2.0 * r, 0.0);
+                // The link's axis, the stick of the stick-and-capsule drawing.
+                ctx.set_stroke_style_str(&rgba(PAPER, 0.35));
+                segment_px(ctx, &proj, a, b, 0.0, 1.5);
             }
             Item::Joint(p) => {
                 let [x, y, z] = proj.project(p);
@@ -220,7 +252,12 @@ pub fn draw(s: &SpaceSession, surface: &Surface, layer: Option<&SliceLayer>, foc
         }
     }
     axes(ctx, &proj, surface.height);
-    let caption = format!("t = {:.1} s   ·   {}", st.t, s.method().title());
+    // The time and the method; on a narrow stage the method's short label
+    // (about 7 px a character, clear of the view's button at the right).
+    let mut caption = format!("t = {:.1} s   ·   {}", st.t, s.method().title());
+    if caption.chars().count() as f64 * 7.0 > surface.width - 120.0 {
+        caption = format!("t = {:.1} s · {}", st.t, s.method().label());
+    }
     text(
         ctx,
         &format!("12px {FONT}"),

@@ -168,7 +168,7 @@ test('a11y: the phone: a one-line introduction with More, the plots right under 
     const tops = new Set([...range.getClientRects()].map((r) => Math.round(r.top)));
     return { text: c.textContent, lines: tops.size };
   });
-  assert.deepEqual(count, { text: '1 of 5', lines: 1 }, 'the count on one line');
+  assert.deepEqual(count, { text: '1 of 6', lines: 1 }, 'the count on one line');
   await page.evaluate(() => document.querySelectorAll('details').forEach((d) => (d.open = true)));
   await page.selectOption('#atlas-n', '11');
   await page.click('#atlas-run');

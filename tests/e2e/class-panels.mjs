@@ -68,7 +68,7 @@ export function classPanelTests(h) {
     await page.close();
   });
 
-  test('class: the tour runs its five steps to the end, each one click, and can be skipped', async () => {
+  test('class: the tour runs its six steps to the end, each one click, and can be skipped; the last opens the Panda', async () => {
     const page = await open('?task=2&method=qp');
     await page.click('#tour-open');
     assert.equal(await page.isVisible('#tour'), true);
@@ -101,8 +101,19 @@ export function classPanelTests(h) {
       await page.screenshot({ path: join(shots, `class-tour-${k + 1}.png`) });
       await page.click('#tour-next');
     }
-    assert.equal(await page.isVisible('#tour'), false, 'done');
-    assert.equal(await page.getAttribute('#tour', 'data-done'), 'true');
+    // The sixth opens the first arm in space with the numerical route, where a link hits the sphere.
+    assert.equal(await page.getAttribute('#tour', 'data-step'), '6');
+    assert.equal(await page.textContent('#tour-next'), 'Done');
+    await Promise.all([page.waitForNavigation(), page.click('#tour-show')]);
+    await page.waitForSelector('body[data-ready="true"]');
+    const panda = await page.evaluate(() => window.demo.runUntil(1e9));
+    assert.equal(panda.kind, 'space');
+    assert.equal(panda.method, 'numerical');
+    assert.ok(panda.collided, 'the criterion at its gain lets a link hit the sphere');
+    await page.screenshot({ path: join(shots, 'class-tour-6.png') });
+    await page.goBack();
+    await page.waitForSelector('body[data-ready="true"]');
+    assert.equal((await state(page)).kind, undefined, 'back on the plane');
     // Skipped at once: the page goes on as it was.
     await page.click('#tour-open');
     const before = (await state(page)).method;

@@ -231,3 +231,35 @@ test('space: screenshots of the Panda before, during and after a run, from three
   clean(page);
   await page.close();
 });
+
+test("space: the slice atlas in a worker equals the page module's own runs of its cells, and its map lies on its plane", async () => {
+  const page = await open('?arm=panda&method=qp&autoplay=0');
+  await paused(page);
+  await page.click('#atlas-panel summary');
+  const atlas = await page.evaluate(() => window.demo.atlas({ n: 5, methods: ['numerical', 'qp'] }));
+  assert.ok(atlas, 'the atlas finished');
+  assert.equal(atlas.cells.length, 25);
+  assert.deepEqual(atlas.methods, ['numerical', 'qp']);
+  assert.match(await page.textContent('#space-atlas-status'), /25 cells x 2 methods/);
+  assert.equal(await page.locator('#space-atlas-table tbody tr').count(), 2);
+  const radius = (await state(page)).spheres[0][3];
+  for (const k of [0, 7, 12, 18, 24]) {
+    const cell = atlas.cells[k];
+    if (cell.outcomes.every((o) => o.class === 'start_overlap' || o.class === 'path_blocked')) continue;
+    const rows = await page.evaluate(([c, r]) => {
+      window.demo.controller.demo.setSpheres(Float64Array.of(c[0], c[1], c[2], r));
+      return window.demo.compare();
+    }, [cell.centre, radius]);
+    for (const [i, m] of atlas.methods.entries()) {
+      const o = cell.outcomes[i];
+      const row = rows.find((r) => r.method === m);
+      if (o.class === 'start_overlap' || o.class === 'path_blocked') continue;
+      close(row.summary.min_clearance, o.min_clearance, 1e-9, `cell ${k} ${m}: min clearance`);
+      assert.equal(row.summary.collision_steps > 0, o.class === 'collision', `cell ${k} ${m}: ${o.class}`);
+    }
+  }
+  // The map of the first method is drawn on the plane: pixels of the atlas colours appear.
+  await page.locator('#stage').screenshot({ path: join(shots, 'space-atlas.png') });
+  clean(page);
+  await page.close();
+});

@@ -13,6 +13,17 @@ use redundant_ik::scene::SpaceScene;
 use redundant_ik::session::space::{Camera, SpaceHandle, SpaceSession, DISTANCE, PITCH};
 use redundant_ik::session::NUDGE;
 
+/// The session's run as the page writes its file (`SpaceDemo.runFile`).
+fn run_file(s: &SpaceSession) -> SpaceRunFile {
+    let mut f = SpaceRunFile::new(s.preset(), s.scene().clone(), s.trajectory());
+    f.networks = s
+        .method()
+        .uses_networks()
+        .then(|| s.network_set())
+        .flatten();
+    f
+}
+
 const W: f64 = 800.0;
 const H: f64 = 600.0;
 
@@ -124,7 +135,7 @@ fn the_arrow_keys_move_the_selected_item_in_the_plane_facing_the_camera() {
 fn the_run_file_reads_back_as_the_run_on_screen() {
     let mut s = panda(QP);
     s.set_target([0.45, 0.25, 0.55]).unwrap();
-    let text = s.run_file().to_json();
+    let text = run_file(&s).to_json();
     let back = SpaceRunFile::from_json(&text).expect("the page's run file reads");
     assert_eq!(back.method, QP);
     assert_eq!(&back.samples[..], s.samples());
@@ -161,7 +172,7 @@ fn a_learned_method_waits_for_its_networks_and_then_runs() {
     s.set_method(Method::CASE3).unwrap();
     assert_eq!(s.samples().len(), s.scene().steps() + 1);
     assert_eq!(
-        s.run_file().networks,
+        run_file(&s).networks,
         Some(SpaceNetworkSet::PandaReach),
         "the run file names the set"
     );

@@ -13,7 +13,7 @@ use crate::nn::mlp::{Layer, MapMinMax, Mlp};
 use crate::planner::Method;
 
 /// Why a value does not read, with the path of fields to it.
-type Read<T> = Result<T, String>;
+pub(super) type Read<T> = Result<T, String>;
 
 /// What a value is, for messages (serde's words).
 fn kind(v: &Json) -> &'static str {
@@ -28,19 +28,19 @@ fn kind(v: &Json) -> &'static str {
     }
 }
 
-fn wrong(value: &Json, expected: &str) -> String {
+pub(super) fn wrong(value: &Json, expected: &str) -> String {
     format!("invalid type: {}, expected {expected}", kind(value))
 }
 
 /// An object's fields, taken one by one; what is left is refused where the
 /// struct refuses unknown fields.
-struct Fields {
+pub(super) struct Fields {
     what: &'static str,
     pairs: Vec<(String, Json)>,
 }
 
 impl Fields {
-    fn of(what: &'static str, value: Json) -> Read<Self> {
+    pub(super) fn of(what: &'static str, value: Json) -> Read<Self> {
         let Json::Object(pairs) = value else {
             return Err(wrong(&value, &format!("struct {what}")));
         };
@@ -62,7 +62,11 @@ impl Fields {
     }
 
     /// An optional field read by `read`, `None` when absent.
-    fn optional<T>(&mut self, key: &str, read: impl FnOnce(Json) -> Read<T>) -> Read<Option<T>> {
+    pub(super) fn optional<T>(
+        &mut self,
+        key: &str,
+        read: impl FnOnce(Json) -> Read<T>,
+    ) -> Read<Option<T>> {
         match self.take_any(key, None) {
             Some(v) => read(v).map(Some).map_err(|e| format!("{key}: {e}")),
             None => Ok(None),
@@ -70,7 +74,7 @@ impl Fields {
     }
 
     /// A field that must be present.
-    fn required<T>(&mut self, key: &str, read: impl FnOnce(Json) -> Read<T>) -> Read<T> {
+    pub(super) fn required<T>(&mut self, key: &str, read: impl FnOnce(Json) -> Read<T>) -> Read<T> {
         self.required_as(key, None, read)
     }
 
@@ -87,12 +91,12 @@ impl Fields {
     }
 
     /// A field that must be present and whose value the page does not read.
-    fn present(&mut self, key: &str) -> Read<()> {
+    pub(super) fn present(&mut self, key: &str) -> Read<()> {
         self.required(key, |_| Ok(()))
     }
 
     /// Refuses the fields not taken (`deny_unknown_fields`).
-    fn done(self) -> Read<()> {
+    pub(super) fn done(self) -> Read<()> {
         match self.pairs.first() {
             Some((key, _)) => Err(format!("{}: unknown field `{}`", self.what, clip(key))),
             None => Ok(()),
@@ -101,22 +105,22 @@ impl Fields {
 }
 
 /// A key quoted in a message, cut to 40 characters (a file can be hostile).
-fn clip(text: &str) -> String {
+pub(super) fn clip(text: &str) -> String {
     crate::error::clip(text)
 }
 
-fn float(v: Json) -> Read<f64> {
+pub(super) fn float(v: Json) -> Read<f64> {
     v.number().ok_or_else(|| wrong(&v, "f64"))
 }
 
-fn unsigned(v: Json) -> Read<u64> {
+pub(super) fn unsigned(v: Json) -> Read<u64> {
     match v {
         Json::Uint(x) => Ok(x),
         other => Err(wrong(&other, "an unsigned integer")),
     }
 }
 
-fn count(v: Json) -> Read<usize> {
+pub(super) fn count(v: Json) -> Read<usize> {
     let x = unsigned(v)?;
     usize::try_from(x).map_err(|_| format!("{x} is out of range for usize"))
 }
@@ -133,14 +137,14 @@ fn boolean(v: Json) -> Read<bool> {
     }
 }
 
-fn string(v: Json) -> Read<String> {
+pub(super) fn string(v: Json) -> Read<String> {
     match v {
         Json::Str(s) => Ok(s),
         other => Err(wrong(&other, "a string")),
     }
 }
 
-fn list<T>(v: Json, read: impl Fn(Json) -> Read<T>) -> Read<Vec<T>> {
+pub(super) fn list<T>(v: Json, read: impl Fn(Json) -> Read<T>) -> Read<Vec<T>> {
     match v {
         Json::Array(items) => items
             .into_iter()
@@ -151,7 +155,7 @@ fn list<T>(v: Json, read: impl Fn(Json) -> Read<T>) -> Read<Vec<T>> {
     }
 }
 
-fn floats(v: Json) -> Read<Vec<f64>> {
+pub(super) fn floats(v: Json) -> Read<Vec<f64>> {
     list(v, float)
 }
 
@@ -166,7 +170,7 @@ fn pair(v: Json) -> Read<[f64; 2]> {
     }
 }
 
-fn nullable<T>(v: Json, read: impl FnOnce(Json) -> Read<T>) -> Read<Option<T>> {
+pub(super) fn nullable<T>(v: Json, read: impl FnOnce(Json) -> Read<T>) -> Read<Option<T>> {
     match v {
         Json::Null => Ok(None),
         v => read(v).map(Some),
@@ -180,7 +184,7 @@ fn named<T: std::str::FromStr<Err = crate::error::Error>>(v: Json) -> Read<T> {
         .map_err(|e: crate::error::Error| e.to_string())
 }
 
-fn net_kind(v: Json) -> Read<NetKind> {
+pub(super) fn net_kind(v: Json) -> Read<NetKind> {
     match string(v)?.as_str() {
         "phi" => Ok(NetKind::Phi),
         "v" => Ok(NetKind::V),
@@ -239,7 +243,7 @@ fn mlp(v: Json) -> Read<Mlp> {
     })
 }
 
-fn net_entry(v: Json) -> Read<NetEntry> {
+pub(super) fn net_entry(v: Json) -> Read<NetEntry> {
     let mut f = Fields::of("NetEntry", v)?;
     let mlp = f.required("mlp", mlp)?;
     f.present("report")?;
@@ -250,7 +254,7 @@ fn net_entry(v: Json) -> Read<NetEntry> {
     })
 }
 
-fn range(v: Json) -> Read<InputRange> {
+pub(super) fn range(v: Json) -> Read<InputRange> {
     let mut f = Fields::of("InputRange", v)?;
     let range = InputRange {
         names: f.required("names", |v| list(v, string))?,

@@ -173,3 +173,39 @@ fn a_deep_tree_is_refused() {
     let deep = format!("{}{}", "[".repeat(100_000), "]".repeat(100_000));
     assert!(read(&deep).is_err());
 }
+
+/// Every shipped spatial weights file reads to the same file with the
+/// page's reader as with the derived one (the optimiser's options, which
+/// the page does not read, at their defaults).
+#[cfg(all(
+    feature = "space",
+    any(feature = "worker", feature = "cli", feature = "eval")
+))]
+#[test]
+fn the_page_reads_the_spatial_weights_files_as_the_derived_reader_does() {
+    use crate::networks::space::SpaceWeightsFile;
+    let mut n = 0;
+    for entry in std::fs::read_dir("weights").expect("the weights folder") {
+        let path = entry.expect("an entry").path();
+        let text = std::fs::read_to_string(&path).expect("readable");
+        if !text.contains(crate::networks::space::SPACE_FORMAT) {
+            continue;
+        }
+        let mut derived: SpaceWeightsFile =
+            serde_json::from_str(&text).expect("the derived reader");
+        derived.training.adam = crate::nn::adam::AdamOptions::default();
+        for net in &mut derived.nets {
+            net.report = super::by_hand::unread_report();
+        }
+        let by_hand = super::space::read(&text).expect("the page's reader");
+        assert_eq!(by_hand, derived, "{}", path.display());
+        // A field too many, or one missing, is refused as the derived reader refuses it.
+        let extra = text.replacen('{', "{\"extra\": 1, ", 1);
+        assert!(super::space::read(&extra).is_err());
+        assert!(serde_json::from_str::<SpaceWeightsFile>(&extra).is_err());
+        let missing = text.replacen("\"tool_version\"", "\"tool_versio\"", 1);
+        assert!(super::space::read(&missing).is_err());
+        n += 1;
+    }
+    assert_eq!(n, 2, "the Panda's two files");
+}

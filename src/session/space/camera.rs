@@ -7,6 +7,8 @@
 //! through the one [`Projection`] of a frame.
 
 use crate::error::{finite, Result};
+// The kinematics' own sine and cosine: libm's would add 7 KB to the page's module.
+use crate::kinematics::sin_cos;
 use crate::space::{cross, dot, norm, scale, sub, Vec3};
 
 /// The pitch the user may choose (rad): from slightly below the floor's
@@ -67,8 +69,8 @@ impl Camera {
 
     /// The eye's position (m).
     pub fn eye(&self) -> Vec3 {
-        let (sy, cy) = self.yaw.sin_cos();
-        let (sp, cp) = self.pitch.sin_cos();
+        let (sy, cy) = sin_cos(self.yaw);
+        let (sp, cp) = sin_cos(self.pitch);
         let d = self.distance;
         [
             self.focus[0] + d * cp * cy,
@@ -88,11 +90,13 @@ impl Camera {
             if norm(r) > 1e-9 {
                 unit(r)
             } else {
-                [self.yaw.sin(), -self.yaw.cos(), 0.0]
+                let (sy, cy) = sin_cos(self.yaw);
+                [sy, -cy, 0.0]
             }
         };
         let u = cross(r, f);
-        let focal = 0.5 * width.min(height).max(1.0) / (0.5 * FIELD_OF_VIEW).tan();
+        let (s, c) = sin_cos(0.5 * FIELD_OF_VIEW);
+        let focal = 0.5 * width.min(height).max(1.0) * c / s;
         Projection {
             eye,
             right: r,

@@ -10,9 +10,11 @@
 //! natively, `redundant-ik bench --arm panda`), and the clock plays it: so
 //! dragging a sphere against the forearm at `t` shows at once what that
 //! run does there, the trail and the plots included, and the comparison,
-//! the run file and the atlas read the very run on screen.
+//! the run file and the atlas read the very run on screen (the clock and
+//! the comparison are `clock.rs`).
 
 mod camera;
+mod clock;
 mod pointer;
 mod state;
 
@@ -24,11 +26,9 @@ pub use pointer::{SpaceHandle, KEY_ORBIT};
 pub use state::{SpaceMethodRun, SpaceState};
 
 use super::history::Point;
-use super::MAX_STEPS_PER_FRAME;
-use crate::error::{finite, within, Error, Result};
-use crate::export::SpaceRunFile;
+use crate::error::{within, Error, Result};
 use crate::networks::space::{SpaceNetworkSet, SpaceNetworks};
-use crate::planner::methods::{Method, ALL};
+use crate::planner::methods::Method;
 use crate::planner::params::by_name;
 use crate::planner::space::{SpacePlanner, SpaceSample, SpaceSummary, SpaceTrajectory};
 use crate::scene::{JointWeighting, SpaceScene};
@@ -77,7 +77,7 @@ impl SpaceSession {
             })?;
         let scene = SpaceScene::preset(preset);
         let pose = SpacePose::new(&scene.chain, &scene.theta0)?;
-        let home = Camera::looking_at(home_focus(&scene), 2.3 * scene.chain.reach().max(0.3));
+        let home = Camera::looking_at(home_focus(&scene), 1.8 * scene.chain.reach().max(0.3));
         let mut s = Self {
             preset,
             scene,
@@ -213,7 +213,7 @@ impl SpaceSession {
 
     /// Replaces the spheres by `flat` (`[x, y, z, r, ...]`, m).
     pub fn set_spheres(&mut self, flat: &[f64]) -> Result<()> {
-        if flat.len() % 4 != 0 {
+        if !flat.len().is_multiple_of(4) {
             return Err(Error::Syntax {
                 what: "spheres",
                 text: format!("{} numbers", flat.len()),
@@ -307,18 +307,6 @@ impl SpaceSession {
         }
     }
 
-    /// The run as the command line would write it (`simulate --arm A
-    /// --json`): every sample, the summary and the networks' set.
-    pub fn run_file(&self) -> SpaceRunFile {
-        let mut f = SpaceRunFile::new(self.preset, self.scene.clone(), self.trajectory());
-        f.networks = if self.method.uses_networks() {
-            self.network_set
-        } else {
-            None
-        };
-        f
-    }
-
     /// The whole run.
     pub fn trajectory(&self) -> SpaceTrajectory {
         SpaceTrajectory {
@@ -370,96 +358,6 @@ impl SpaceSession {
     pub fn runs(&self) -> u64 {
         self.runs
     }
-
-    // ---- the clock ------------------------------------------------------
-
-    /// Whether the sample shown is the run's last.
-    pub fn ended(&self) -> bool {
-        self.index + 1 >= self.samples.len()
-    }
-
-    /// Starts or pauses the clock; starting an ended run replays it.
-    pub fn set_running(&mut self, running: bool) {
-        if running && !self.running {
-            self.backlog = 0.0;
-            if self.ended() {
-                self.show(0);
-            }
-        }
-        self.running = running;
-    }
-
-    /// Whether the clock runs.
-    pub fn running(&self) -> bool {
-        self.running
-    }
-
-    /// Playback speed (times real time).
-    pub fn set_speed(&mut self, speed: f64) -> Result<()> {
-        self.speed = within("speed", speed, 0.05, 64.0)?;
-        Ok(())
-    }
-
-    /// Back to `t = 0`, paused.
-    pub fn reset(&mut self) {
-        self.running = false;
-        self.backlog = 0.0;
-        self.show(0);
-    }
-
-    /// One step forward, paused.
-    pub fn step(&mut self) {
-        self.running = false;
-        let last = self.samples.len().saturating_sub(1);
-        self.show((self.index + 1).min(last));
-    }
-
-    /// Shows the first sample at or after `time` (s), or the last.
-    pub fn run_until(&mut self, time: f64) -> Result<()> {
-        finite("time", time)?;
-        let i = self
-            .samples
-            .iter()
-            .position(|s| s.t >= time - 1e-9)
-            .unwrap_or(self.samples.len().saturating_sub(1));
-        self.show(i.max(self.index));
-        Ok(())
-    }
-
-    /// Advances the clock by `elapsed_ms` of real time at the speed (at
-    /// most [`MAX_STEPS_PER_FRAME`] samples); the clock stops at the end.
-    pub fn tick(&mut self, elapsed_ms: f64) {
-        if !(self.running && elapsed_ms.is_finite() && elapsed_ms > 0.0) {
-            return;
-        }
-        self.backlog += elapsed_ms.min(250.0) / 1000.0 * self.speed / self.scene.dt;
-        let n = (self.backlog.floor() as usize).min(MAX_STEPS_PER_FRAME);
-        self.backlog = (self.backlog - n as f64).clamp(0.0, 1.0);
-        let last = self.samples.len().saturating_sub(1);
-        self.show((self.index + n).min(last));
-        if self.ended() {
-            self.running = false;
-        }
-    }
-
-    // ---- the comparison -------------------------------------------------
-
-    /// Every method that can run here (the learned ones where networks are
-    /// installed) on this scene, each run whole: its outcome, or why it
-    /// failed.
-    pub fn compare(&self) -> Vec<SpaceMethodRun> {
-        ALL.iter()
-            .filter(|m| m.in_space() && (!m.uses_networks() || self.networks.is_some()))
-            .map(|&m| {
-                let (samples, failure) = run(&self.scene, m, self.networks.clone());
-                SpaceMethodRun {
-                    method: m,
-                    summary: summary(&samples, self.scene.path_end()),
-                    failure,
-                }
-            })
-            .collect()
-    }
 }
 
 /// The camera's focus for a scene: between the base, the hand's start and
@@ -472,7 +370,7 @@ fn home_focus(scene: &SpaceScene) -> Vec3 {
 
 /// `scene` run in `method` from `t = 0` to `tf`: the samples up to the
 /// first step that failed, and why it did.
-fn run(
+pub(super) fn run(
     scene: &SpaceScene,
     method: Method,
     networks: Option<Arc<SpaceNetworks>>,
@@ -493,7 +391,7 @@ fn run(
 }
 
 /// The outcome of `samples`, as [`SpacePlanner::run`] gives it.
-fn summary(samples: &[SpaceSample], end: Vec3) -> SpaceSummary {
+pub(super) fn summary(samples: &[SpaceSample], end: Vec3) -> SpaceSummary {
     SpaceSummary::of(samples, end)
 }
 

@@ -1,0 +1,91 @@
+//! The page's reader of the spatial weights files by hand, as
+//! [`super::by_hand`] reads the planar ones: serde's derived reader of
+//! [`SpaceWeightsFile`] put 31 KB raw on the page's module with the arms
+//! in space (serde_json's deserializer monomorphised for its structs,
+//! `make web`, docs/web.md); this one takes the fields from the plain JSON
+//! tree the planar reader already parses, with the derived reader's checks
+//! (missing, unknown and repeated fields, types, the kind's name). What
+//! the page does not use, the optimiser's options, takes the default.
+
+use super::by_hand::{
+    count, float, floats, list, net_entry, net_kind, nullable, range, string, unsigned, Fields,
+    Read,
+};
+use crate::json::Json;
+use crate::networks::space::{SpaceSampling, SpaceTraining, SpaceWeightsFile};
+use crate::nn::adam::AdamOptions;
+use crate::space::{Row, Vec3};
+
+fn triple(v: Json) -> Read<Vec3> {
+    let xs = floats(v)?;
+    <[f64; 3]>::try_from(xs.as_slice())
+        .map_err(|_| format!("invalid length {}, expected 3 numbers", xs.len()))
+}
+
+fn row(v: Json) -> Read<Row> {
+    let mut f = Fields::of("Row", v)?;
+    let r = Row {
+        a: f.required("a", float)?,
+        alpha: f.required("alpha", float)?,
+        d: f.required("d", float)?,
+        offset: f.required("offset", float)?,
+    };
+    f.done()?;
+    Ok(r)
+}
+
+fn sampling(v: Json) -> Read<SpaceSampling> {
+    let mut f = Fields::of("SpaceSampling", v)?;
+    let s = SpaceSampling {
+        sigma_floor: f.required("sigma_floor", float)?,
+        tasks: f.required("tasks", count)?,
+        obstacles_per_task: f.required("obstacles_per_task", count)?,
+        line_length: f.required("line_length", float)?,
+        obstacle_min: f.required("obstacle_min", triple)?,
+        obstacle_max: f.required("obstacle_max", triple)?,
+        theta_noise: f.required("theta_noise", float)?,
+        obstacle_noise: f.required("obstacle_noise", float)?,
+        sign_smoothing: f.required("sign_smoothing", float)?,
+    };
+    f.done()?;
+    Ok(s)
+}
+
+fn training(v: Json) -> Read<SpaceTraining> {
+    let mut f = Fields::of("SpaceTraining", v)?;
+    let seed = f.required("seed", unsigned)?;
+    let samples = f.required("samples", count)?;
+    let hidden = f.required("hidden", |v| list(v, count))?;
+    f.present("adam")?;
+    let sampling = f.required("sampling", sampling)?;
+    let seconds = f.optional("seconds", |v| nullable(v, float))?.flatten();
+    f.done()?;
+    Ok(SpaceTraining {
+        seed,
+        samples,
+        hidden,
+        adam: AdamOptions::default(),
+        sampling,
+        seconds,
+    })
+}
+
+/// A spatial weights file's fields from its JSON text (not yet
+/// validated), or why not.
+pub(crate) fn read(json: &str) -> Read<SpaceWeightsFile> {
+    let tree: Json = serde_json::from_str(json).map_err(|e| e.to_string())?;
+    let mut f = Fields::of("SpaceWeightsFile", tree)?;
+    let file = SpaceWeightsFile {
+        format: f.required("format", string)?,
+        net: f.required("net", net_kind)?,
+        tool_version: f.required("tool_version", string)?,
+        arm: f.required("arm", string)?,
+        rows: f.required("rows", |v| list(v, row))?,
+        flange: f.required("flange", triple)?,
+        range: f.required("range", range)?,
+        training: f.required("training", training)?,
+        nets: f.required("nets", |v| list(v, net_entry))?,
+    };
+    f.done()?;
+    Ok(file)
+}

@@ -1,0 +1,34 @@
+//! What the page lets a user take away of a run in space, made in the
+//! workers' module: its figure as SVG, the two orthographic views that
+//! `redundant-ik figure --arm A --from FILE` draws (the library's
+//! [`crate::figure::space_svg`], so the page and the command line draw the
+//! same file). The page's module makes the run file itself
+//! (`SpaceDemo.runFile`); this reads it back, as `simulate --from` does.
+
+use wasm_bindgen::prelude::*;
+
+use super::js_err;
+use crate::export::SpaceRunFile;
+use crate::figure;
+use crate::planner::space::SpaceTrajectory;
+use crate::session::STROBE_EVERY;
+use crate::space::PRESETS;
+
+/// The figure of the run in `run_json` (a `redundant-ik-space-run/1`
+/// file, `SpaceDemo.runFile()`) as SVG, the chain drawn every
+/// [`STROBE_EVERY`]th step. Throws with the core's message on a file that
+/// does not read.
+#[wasm_bindgen(js_name = spaceFigure)]
+pub fn space_figure(run_json: &str) -> Result<String, JsError> {
+    let file = SpaceRunFile::from_json(run_json).map_err(js_err)?;
+    let label = PRESETS
+        .iter()
+        .find(|p| p.key == file.arm)
+        .map_or(file.arm, |p| p.label);
+    let traj = SpaceTrajectory {
+        method: file.method,
+        samples: file.samples,
+        summary: file.summary,
+    };
+    figure::space_svg(label, &file.scene, &traj, STROBE_EVERY).map_err(js_err)
+}
