@@ -11,7 +11,7 @@
 
 import { loadModule, describe, methods, methodGroups, fillLimits, moduleBuild, moduleMemoryBytes, limits, networkMethodLabels } from './module.js';
 import { mountTour } from './tour.js';
-import { bench } from './jobs.js';
+import { bench, spaceAtlas } from './jobs.js';
 import { mount } from './demo.js';
 import { readAddress, writeAddress, isEmbedded } from './address.js';
 import { mountBenchPanel } from './bench-panel.js';
@@ -146,6 +146,7 @@ async function start() {
       worldToClient: (x, y) => controller.worldToClient(x, y),
       runUntil: (t) => controller.runUntil(t),
       bench: (options) => bench(options),
+      spaceAtlas: (options) => spaceAtlas(options),
       atlas: (options) => controller.atlas(options),
       useNetworks: (name) => controller.useNetworks(name),
       atlasResult: () => controller.atlasResult(),

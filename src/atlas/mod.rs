@@ -16,8 +16,6 @@ mod grid;
 mod read;
 #[cfg(feature = "space")]
 pub mod space;
-#[cfg(feature = "space")]
-mod space_job;
 mod summary;
 
 use std::sync::Arc;

@@ -12,13 +12,15 @@ use std::sync::Arc;
 
 use serde::Serialize;
 
-pub use super::space_job::SliceJob;
+mod job;
+
 use super::{Class, Grid};
 use crate::error::{Error, Result, Short};
 use crate::networks::space::SpaceNetworks;
 use crate::planner::Method;
 use crate::scene::SpaceScene;
 use crate::space::Vec3;
+pub use job::SliceJob;
 
 /// The side of the default region (m).
 pub const DEFAULT_SIDE: f64 = 0.8;

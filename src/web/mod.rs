@@ -34,6 +34,8 @@ mod layer;
 mod plots;
 #[cfg(feature = "page")]
 mod scene;
+#[cfg(feature = "worker")]
+mod space_atlas;
 #[cfg(feature = "page")]
 mod stage;
 #[cfg(feature = "page")]
@@ -56,6 +58,8 @@ use crate::networks::{self, NetworkSet};
 
 #[cfg(feature = "page")]
 pub use demo::Demo;
+#[cfg(feature = "worker")]
+pub use space_atlas::SpaceAtlasJob;
 #[cfg(feature = "worker")]
 pub use takeaway::*;
 #[cfg(feature = "worker")]

@@ -9,8 +9,8 @@
 
 use std::sync::Arc;
 
-use super::space::{Plane, SliceAtlas, SliceCell, SliceOutcome};
-use super::{Class, Grid};
+use super::{Plane, SliceAtlas, SliceCell, SliceOutcome};
+use crate::atlas::{Class, Grid};
 use crate::error::{Error, Result};
 use crate::networks::space::SpaceNetworks;
 use crate::planner::space::SpacePlanner;
@@ -19,7 +19,7 @@ use crate::scene::SpaceScene;
 use crate::space::{clearance, SpacePose, Sphere, Vec3};
 
 /// A slice atlas being computed, a chunk of cells at a time: what
-/// [`super::space::slice`] runs, and what the page's worker runs a row at
+/// [`super::slice`] runs, and what the page's worker runs a row at
 /// a time (`SpaceAtlasJob`, src/web/space_atlas.rs).
 #[derive(Clone)]
 pub struct SliceJob {
@@ -37,7 +37,7 @@ pub struct SliceJob {
 }
 
 impl SliceJob {
-    /// Checks the request as [`super::space::slice`] does and builds one
+    /// Checks the request as [`super::slice`] does and builds one
     /// planner per method: refused when a method does not run in space,
     /// a learned one has no networks (or networks for another arm), or no
     /// cell of the grid lies within the arm's reach of its first joint.
