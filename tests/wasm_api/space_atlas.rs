@@ -74,5 +74,5 @@ fn a_space_atlas_job_refuses_what_it_cannot_run_with_a_reason() {
             .contains("Phi file")
     );
     let bad = SpaceAtlasJob::new("{\"format\": \"redundant-ik-run/1\"}", JsValue::UNDEFINED);
-    assert!(message(bad.err().unwrap()).contains("run in space"));
+    assert!(message(bad.err().unwrap()).contains("redundant-ik-space-run/1"));
 }
