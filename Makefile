@@ -43,6 +43,9 @@ PAGE_SPACE = -- --no-default-features --features page,space
 SPACE_ENV = CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_TARGET_DIR=target/wasm-page-space
 SPACE_SIMD_ENV = CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_TARGET_DIR=target/wasm-page-space-simd
 WORKER = --out-name redundant_ik_worker -- --no-default-features --features worker
+WORKER_SPACE = --out-name redundant_ik_worker -- --no-default-features --features worker,space
+WORKER_SPACE_ENV = CARGO_TARGET_DIR=target/wasm-worker-space
+WORKER_SPACE_SIMD_ENV = CARGO_TARGET_DIR=target/wasm-worker-space-simd
 web: setup
 	$(WASM_ENV) $(SPACE_ENV) $(WASM_BUILD) --out-dir target/pkg-space $(PAGE_SPACE)
 	$(WASM_SIMD_ENV) $(SPACE_SIMD_ENV) $(WASM_BUILD) --out-dir target/pkg-space-simd $(PAGE_SPACE)
@@ -56,11 +59,18 @@ web: setup
 	cp target/pkg-space/redundant_ik_bg.wasm www/pkg/redundant_ik_space_bg.wasm
 	cp target/pkg-space-simd/redundant_ik_bg.wasm www/pkg/redundant_ik_space_simd_bg.wasm
 	cp target/pkg-simd/redundant_ik_bg.wasm www/pkg/redundant_ik_simd_bg.wasm
+	$(WASM_ENV) $(WORKER_OPT) $(WORKER_SPACE_ENV) $(WASM_BUILD) --out-dir target/pkg-worker-space $(WORKER_SPACE)
+	$(WASM_SIMD_ENV) $(WORKER_OPT) $(WORKER_SPACE_SIMD_ENV) $(WASM_BUILD) --out-dir target/pkg-worker-space-simd $(WORKER_SPACE)
+	cmp target/pkg-worker-space/redundant_ik_worker.js target/pkg-worker-space-simd/redundant_ik_worker.js
 	$(WASM_ENV) $(WORKER_OPT) $(WASM_BUILD) --out-dir target/pkg-worker $(WORKER)
 	$(WASM_SIMD_ENV) $(WORKER_OPT) $(WASM_BUILD) --out-dir target/pkg-worker-simd $(WORKER)
 	cmp target/pkg-worker/redundant_ik_worker.js target/pkg-worker-simd/redundant_ik_worker.js
-	cp target/pkg-worker/redundant_ik_worker.js target/pkg-worker/redundant_ik_worker_bg.wasm www/pkg/
+	python3 scripts/check-glue.py target/pkg-worker/redundant_ik_worker_bg.wasm target/pkg-worker-space/redundant_ik_worker_bg.wasm
+	python3 scripts/check-glue.py target/pkg-worker-simd/redundant_ik_worker_bg.wasm target/pkg-worker-space-simd/redundant_ik_worker_bg.wasm
+	cp target/pkg-worker-space/redundant_ik_worker.js target/pkg-worker/redundant_ik_worker_bg.wasm www/pkg/
 	cp target/pkg-worker-simd/redundant_ik_worker_bg.wasm www/pkg/redundant_ik_worker_simd_bg.wasm
+	cp target/pkg-worker-space/redundant_ik_worker_bg.wasm www/pkg/redundant_ik_worker_space_bg.wasm
+	cp target/pkg-worker-space-simd/redundant_ik_worker_bg.wasm www/pkg/redundant_ik_worker_space_simd_bg.wasm
 	for f in www/pkg/*.wasm; do python3 scripts/strip-wasm-names.py $$f; done
 	mkdir -p www/weights && cp weights/*.json www/weights/
 	@for f in www/pkg/*.wasm; do echo "$$f: $$(stat -c %s $$f) B, gzip -9 $$(gzip -9 -c $$f | wc -c) B"; done
@@ -136,6 +146,7 @@ lint: setup
 	$(WASM_SIMD_ENV) cargo clippy --target wasm32-unknown-unknown --lib --tests -- -D warnings
 	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features page,space -- -D warnings
 	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features worker -- -D warnings
+	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features worker,space -- -D warnings
 
 test-native:
 	cargo test

@@ -19,3 +19,9 @@ for _ in $(seq 1 100); do
 done
 [[ -n "$url" ]] || { echo "bench-web: the static server did not start" >&2; exit 1; }
 BASE_URL="$url" RUNS="${RUNS:-3}" node scripts/bench-web.mjs
+# The Panda's slice atlas in a worker against the native tool's (needs it built).
+if [[ -x target/release/redundant-ik ]]; then
+  BASE_URL="$url" RUNS="${RUNS:-3}" node scripts/space-atlas-web.mjs
+else
+  echo "bench-web: the slice atlas skipped (cargo build --release first)" >&2
+fi

@@ -1,12 +1,13 @@
 #!/usr/bin/env python3
-"""Checks that one wasm-bindgen glue file can load two builds of the page's
-module (make web): the planar build (feature page) and the build with the
-arms in space (page,space), whose glue the page ships. The planar module
-must import nothing the glue does not provide (its imports a subset of the
-space build's, by name), and every export the glue may call and the planar
-module lacks must be a binding of the arms in space (SpaceDemo,
-spacePresets, spaceNetworkSets), which the page calls only on the space
-build. Usage: check-glue.py PLANAR.wasm SPACE.wasm
+"""Checks that one wasm-bindgen glue file can load two builds of a module
+(make web): the planar build (feature page, or worker) and the build with
+the arms in space (page,space or worker,space), whose glue the page ships.
+The planar module must import nothing the glue does not provide (its
+imports a subset of the space build's, by name), and every export the glue
+may call and the planar module lacks must be a binding of the arms in space
+(SpaceDemo, spacePresets, SpaceAtlasJob, spaceFigure, ...: named space...),
+which the page and its workers call only on the space build.
+Usage: check-glue.py PLANAR.wasm SPACE.wasm
 """
 import re
 import sys
@@ -65,7 +66,7 @@ def names(path):
 
 planar, space = (names(p) for p in sys.argv[1:3])
 extra_imports = planar[0] - space[0]
-SPACE_ONLY = re.compile(r"^(__wbg_)?spacedemo_|^space[A-Z]")
+SPACE_ONLY = re.compile(r"^(__wbg_)?space[a-z]*_|^space[A-Z]")
 missing = sorted(e for e in space[1] - planar[1] if not SPACE_ONLY.match(e))
 if extra_imports or missing:
     print(f"check-glue: the space build's glue cannot load {sys.argv[1]}:")

@@ -274,6 +274,36 @@ fn a_spatial_step_allocates_nothing_in_any_method_in_space() {
     }
 }
 
+/// What the slice atlas does for each cell allocates nothing: moving a
+/// spatial planner's sphere, resetting it to `t = 0` and running it to
+/// `tf` keeping only the summary, in every method on both presets.
+#[cfg(feature = "space")]
+#[test]
+fn a_spatial_planner_moved_and_reset_runs_without_allocating() {
+    use redundant_ik::scene::SpaceScene;
+    use redundant_ik::space::{Sphere, PRESETS};
+    for p in PRESETS {
+        let mut scene = SpaceScene::preset(&p);
+        scene.tf = 0.2;
+        let s = scene.spheres[0];
+        for m in methods::ALL.iter().filter(|m| m.in_space()) {
+            let Some(mut planner) = planner_with_shipped(&scene, p.key, *m) else {
+                continue;
+            };
+            planner.run_summary().unwrap();
+            let n = allocations_in(|| {
+                for dz in [0.05, -0.05] {
+                    let c = [s.centre[0], s.centre[1], s.centre[2] + dz];
+                    planner.set_sphere(0, Sphere::new(c, s.radius)).unwrap();
+                    planner.reset();
+                    planner.run_summary().unwrap();
+                }
+            });
+            assert_eq!(n, 0, "{} {m}: {n} allocations", p.key);
+        }
+    }
+}
+
 /// A spatial planner of `method` with the networks shipped for the preset
 /// `key` where it learns; `None` for a learned method on a preset with
 /// none (only the Panda has a set).

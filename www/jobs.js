@@ -63,6 +63,29 @@ export async function bench({ onProgress, signal, batchMs = 20 } = {}) {
 }
 
 /**
+ * The slice atlas of an arm in space in a worker (`SpaceAtlasJob`,
+ * src/web/space_atlas.rs; `redundant-ik atlas --arm A --json`): `run` is a
+ * spatial run file's JSON text (`simulate --arm A --json`, format
+ * `redundant-ik-space-run/1`), whose scene is mapped; `methods` (names;
+ * absent: every method in space, the learned ones only with networks),
+ * `plane` ('xz:0.0'; absent: the vertical plane through the line), `n`
+ * (points per side; absent: 21), `region` ([u0, u1, v0, v1]; absent: the
+ * default square) and `networks` ({ phi, v }: the weights files' text, for
+ * Cases 1-3; the Panda's are weights/phi-panda-reach.json and
+ * weights/v-panda-reach.json) are the job's options.
+ * `onProgress({ done, total, label })` follows it row by row; `signal`
+ * (an AbortSignal) cancels it (rejects with an `AbortError`). Resolves to
+ * `{ json, atlas, ms }`: the JSON text of `atlas --arm A --json`, that
+ * text parsed, and the job's time inside the worker (ms).
+ */
+export async function spaceAtlas({ run, methods, plane, n, region, networks, onProgress, signal } = {}) {
+  const options = { methods, plane, n, region, networks };
+  for (const k of Object.keys(options)) if (options[k] === undefined) delete options[k];
+  const { result, ms } = await runWorker({ kind: 'space-atlas', run, options }, { onProgress, signal });
+  return { json: result, atlas: JSON.parse(result), ms };
+}
+
+/**
  * A job's controls while it runs (`on`) and after: the button that starts
  * it disabled, its cancel button and its progress bar (from 0) shown.
  */

@@ -96,10 +96,14 @@ function carries(path) {
   return !inline || Object.hasOwn(inline, path);
 }
 
-/** The same two builds of the workers' module (the atlas, the benchmark, the trainer). */
+/** The same two builds of the workers' module (the atlas, the benchmark, the trainer), and with the arms in space. */
 const WORKER_BUILDS = {
   simd: 'pkg/redundant_ik_worker_simd_bg.wasm',
   baseline: 'pkg/redundant_ik_worker_bg.wasm',
+};
+const SPACE_WORKER_BUILDS = {
+  simd: 'pkg/redundant_ik_worker_space_simd_bg.wasm',
+  baseline: 'pkg/redundant_ik_worker_space_bg.wasm',
 };
 
 /** Whether this browser validates wasm SIMD (v128, as wasm-feature-detect checks it). */
@@ -125,7 +129,7 @@ export function moduleBuild() {
 
 /** The workers' .wasm of the build the page runs (null before loading). */
 export function workerModuleUrl() {
-  return build && assetUrl(WORKER_BUILDS[build]);
+  return build && assetUrl((withSpace ? SPACE_WORKER_BUILDS : WORKER_BUILDS)[build]);
 }
 
 /** Bytes of the page module's linear memory (it grows, never shrinks; the soak watches it). */
@@ -234,7 +238,7 @@ export function builtinWeightsUrl(name) {
  */
 export function loadModule({ space = asksForSpace() } = {}) {
   if (!module) {
-    const builds = space && carries(SPACE_BUILDS.simd) && carries(SPACE_BUILDS.baseline) ? SPACE_BUILDS : BUILDS;
+    const builds = space && [SPACE_BUILDS, SPACE_WORKER_BUILDS].every((b) => carries(b.simd) && carries(b.baseline)) ? SPACE_BUILDS : BUILDS;
     withSpace = builds === SPACE_BUILDS;
     const start = async (which) => {
       const exports = await init({ module_or_path: assetUrl(builds[which]) });

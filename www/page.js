@@ -11,7 +11,7 @@
 
 import { loadModule, describe, methods, methodGroups, fillLimits, moduleBuild, moduleMemoryBytes, limits, networkMethodLabels, spacePresets, formatJointLimits, formatRateLimits, asksForSpace, moduleHasSpace } from './module.js';
 import { mountTour } from './tour.js';
-import { bench } from './jobs.js';
+import { bench, spaceAtlas } from './jobs.js';
 import { mount } from './demo.js';
 import { readAddress, writeAddress, isEmbedded } from './address.js';
 import { mountBenchPanel } from './bench-panel.js';
@@ -240,6 +240,7 @@ async function startSpace() {
     compare: () => controller.compare(),
     runFile: () => controller.runFile(),
     atlas: (options) => controller.atlas(options),
+    spaceAtlas: (options) => spaceAtlas(options),
     networks: () => controller.networks,
     methods: () => structuredClone(methods()),
     build: moduleBuild(),

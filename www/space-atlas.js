@@ -7,9 +7,15 @@
 // setAtlasLayer), the same cells `redundant-ik atlas --arm A --json` gives.
 
 import { atlasClasses, methods, describe, spaceNetworkSets, assetUrl } from './module.js';
-import * as jobs from './jobs.js';
+import { spaceAtlas } from './jobs.js';
 
 const pct = (x) => `${(100 * x).toFixed(1)}%`;
+
+/** An atlas's plane (`{ Xz: 0.2 }` in its JSON) as its axes and offset: `['xz', 0.2]`. */
+const planeOf = (a) => {
+  const [axes, at] = Object.entries(a.plane)[0];
+  return [axes.toLowerCase(), at];
+};
 
 /** Wires the spatial Atlas panel; returns { sync(state), run(options), result() }. */
 export function mountSpaceAtlas(root, demo, { show, say, preset }) {
@@ -74,7 +80,8 @@ export function mountSpaceAtlas(root, demo, { show, say, preset }) {
   function draw(k) {
     if (!last) return;
     const cls = last.cells.map((c) => classes.findIndex((x) => x.name === c.outcomes[k].class));
-    demo.setAtlasLayer(last.plane, Float64Array.from(last.grid.region), last.grid.n, Uint8Array.from(cls));
+    const [axes, at] = planeOf(last);
+    demo.setAtlasLayer(axes, at, Float64Array.from(last.grid.region), last.grid.n, Uint8Array.from(cls));
   }
   which.addEventListener('change', () => draw(Number(which.value)));
   hide.addEventListener('click', () => {
@@ -131,7 +138,7 @@ export function mountSpaceAtlas(root, demo, { show, say, preset }) {
     status.textContent = 'Computing…';
     const started = performance.now();
     try {
-      const { result, ms } = await jobs.spaceAtlas({
+      const { atlas: result, ms } = await spaceAtlas({
         run: demo.runFile(),
         methods: chosen,
         plane: options.plane ?? (plane.value.trim() || undefined),
@@ -140,14 +147,15 @@ export function mountSpaceAtlas(root, demo, { show, say, preset }) {
         signal: controller.signal,
         onProgress: (p) => (progress.value = p.total ? p.done / p.total : 0),
       });
-      last = typeof result === 'string' ? JSON.parse(result) : result;
+      last = result;
       revision = s.run_revision;
       delete status.dataset.stale;
       tabulate(last);
       showRow.hidden = false;
       draw(0);
       const took = ms ?? performance.now() - started;
-      const text = `Atlas on ${last.plane}: ${last.cells.length} cells x ${last.methods.length} methods in ${(took / 1000).toFixed(1)} s.`;
+      const [axes, at] = planeOf(last);
+      const text = `Atlas on ${axes}:${Math.round(at * 1000) / 1000}: ${last.cells.length} cells x ${last.methods.length} methods in ${(took / 1000).toFixed(1)} s.`;
       status.textContent = text;
       status.dataset.ms = String(Math.round(took));
       say(text);

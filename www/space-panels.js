@@ -6,7 +6,8 @@
 // atlas (space-atlas.js).
 
 import { fixed, metres } from './format.js';
-import { method } from './module.js';
+import { method, describe } from './module.js';
+import { runWorker } from './jobs.js';
 import { saveText, saveBlob, csv } from './download.js';
 import { spaceQuery } from './space-address.js';
 import { mountSpaceAtlas } from './space-atlas.js';
@@ -83,12 +84,19 @@ export function mountSpacePanels(root, demo, { attempt, show, say, preset }) {
   $('save-run-csv')?.addEventListener('click', () => saveText(`${stem()}.csv`, spaceRunCsv(JSON.parse(demo.runFile())), 'text/csv'));
   $('save-figure-png')?.addEventListener('click', () => canvasPng('stage', 'view'));
   $('save-plots-png')?.addEventListener('click', () => canvasPng('plots', 'plots'));
-  for (const id of ['save-figure-svg', 'save-plots-svg']) {
-    const b = $(id);
-    if (b) {
-      b.disabled = true;
-      b.title = 'Not for an arm in space yet: redundant-ik figure --arm draws its two orthographic views from the run file';
+  // The figure: the run's two orthographic views, as redundant-ik figure --arm A draws them (in a worker).
+  $('save-figure-svg')?.addEventListener('click', async () => {
+    try {
+      const { result } = await runWorker({ kind: 'space-figure', run: demo.runFile() });
+      saveText(`${stem()}.svg`, result, 'image/svg+xml');
+    } catch (e) {
+      show(`The figure could not be made: ${describe(e)}`, 'error', true);
     }
+  });
+  const plotsSvg = $('save-plots-svg');
+  if (plotsSvg) {
+    plotsSvg.disabled = true;
+    plotsSvg.title = 'Not for an arm in space yet: save the plots as PNG, or the run as CSV';
   }
   const link = () => `${location.origin}${location.pathname}?${spaceQuery(demo.state(), preset)}`;
   $('copy-link')?.addEventListener('click', async () => {

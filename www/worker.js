@@ -10,6 +10,10 @@
 //       methods of benchMethods(); the result names benchVerdict()'s pair
 //   { kind: 'atlas', wasm, run, options: { methods, n, region, task, feedback, refine, networks } }
 //       the atlas of `redundant-ik atlas`, one row of cells per chunk
+//   { kind: 'space-atlas', wasm, run, options: { methods, plane, n, region, networks: { phi, v } } }
+//       the slice atlas of an arm in space (`redundant-ik atlas --arm A`), one
+//       row per chunk; `run` is a spatial run file's JSON text, the result the
+//       JSON text of `atlas --arm A --json` (src/web/space_atlas.rs)
 //   { kind: 'train', wasm, request: { arm, net, preset, samples, epochs, seed }, run }
 //       training of the networks for an arm and their check, a progress
 //       message per epoch (with the epoch's numbers in `epoch`)
@@ -33,6 +37,7 @@
 
 import init, {
   AtlasJob,
+  SpaceAtlasJob,
   trainNetworks,
   trainNetwork,
   concludeTraining,
@@ -43,6 +48,7 @@ import init, {
   benchVerdict,
   runFiles,
   atlasFiles,
+  spaceFigure,
   provideBuiltinNetworks,
   builtinNetworksFailed,
   lastPanic,
@@ -68,6 +74,22 @@ function bench({ batchMs = 20 }) {
 
 function atlas({ run, options }) {
   const job = new AtlasJob(run, options ?? {});
+  try {
+    const total = job.total;
+    const chunk = job.row;
+    self.postMessage({ type: 'progress', done: 0, total, label: 'cells' });
+    while (job.done < total) {
+      const done = job.advance(chunk);
+      self.postMessage({ type: 'progress', done, total, label: 'cells' });
+    }
+    return job.finish();
+  } finally {
+    job.free();
+  }
+}
+
+function spaceAtlas({ run, options }) {
+  const job = new SpaceAtlasJob(run, options ?? {});
   try {
     const total = job.total;
     const chunk = job.row;
@@ -124,6 +146,8 @@ self.onmessage = async ({ data }) => {
     let result;
     if (data.kind === 'bench') result = bench(data);
     else if (data.kind === 'atlas') result = atlas(data);
+    else if (data.kind === 'space-atlas') result = spaceAtlas(data);
+    else if (data.kind === 'space-figure') result = spaceFigure(data.run);
     else if (data.kind === 'train') result = train(data);
     else if (data.kind === 'train-net') result = trainNet(data);
     else if (data.kind === 'conclude') result = concludeTraining(data.request, data.phi, data.v);

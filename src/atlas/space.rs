@@ -12,13 +12,15 @@ use std::sync::Arc;
 
 use serde::Serialize;
 
+mod job;
+
 use super::{Class, Grid};
 use crate::error::{Error, Result, Short};
 use crate::networks::space::SpaceNetworks;
-use crate::planner::space::SpacePlanner;
-use crate::planner::{Method, REACH_TOLERANCE};
+use crate::planner::Method;
 use crate::scene::SpaceScene;
-use crate::space::{clearance, SpacePose, Sphere, Vec3};
+use crate::space::Vec3;
+pub use job::SliceJob;
 
 /// The side of the default region (m).
 pub const DEFAULT_SIDE: f64 = 0.8;
@@ -174,76 +176,12 @@ pub fn default_region(scene: &SpaceScene, plane: Plane) -> [f64; 4] {
     [u - h, u + h, bottom, bottom + DEFAULT_SIDE]
 }
 
-/// Classifies what the sphere `s` does before any run: on the arm at the
-/// start or on the fixed base (`start_overlap`), within reach of the
-/// hand's path (`path_blocked`: the flange's capsule follows the path), or
-/// nothing (`None`).
-fn before(scene: &SpaceScene, pose: &SpacePose, s: &Sphere) -> Option<Class> {
-    if s.validate(&scene.chain).is_err()
-        || clearance(&scene.chain, pose, std::slice::from_ref(s)) <= 0.0
-    {
-        return Some(Class::StartOverlap);
-    }
-    let d = scene
-        .path
-        .distance_to(s.centre, scene.start(), scene.target);
-    (d <= s.radius + scene.chain.radius()).then_some(Class::PathBlocked)
-}
-
-/// The run of one method with the scene's first sphere at `centre`.
-fn outcome(
-    scene: &SpaceScene,
-    method: Method,
-    pre: Option<Class>,
-    networks: Option<&Arc<SpaceNetworks>>,
-) -> SliceOutcome {
-    if pre == Some(Class::StartOverlap) {
-        return SliceOutcome {
-            class: Class::StartOverlap,
-            min_clearance: None,
-            final_error: None,
-            limit_steps: 0,
-            relaxed_steps: 0,
-            error: None,
-        };
-    }
-    let nets = networks.filter(|_| method.uses_networks()).cloned();
-    match SpacePlanner::with_networks(scene.clone(), method, nets).and_then(SpacePlanner::run) {
-        Ok(run) => {
-            let s = run.summary;
-            let class = pre.unwrap_or(if s.collision_steps > 0 {
-                Class::Collision
-            } else if s.limit_steps > 0 {
-                Class::Limit
-            } else if s.final_error > REACH_TOLERANCE {
-                Class::Missed
-            } else {
-                Class::Success
-            });
-            SliceOutcome {
-                class,
-                min_clearance: s.min_clearance,
-                final_error: Some(s.final_error),
-                limit_steps: s.limit_steps,
-                relaxed_steps: s.relaxed_steps,
-                error: None,
-            }
-        }
-        Err(e) => SliceOutcome {
-            class: pre.unwrap_or(Class::Failed),
-            min_clearance: None,
-            final_error: None,
-            limit_steps: 0,
-            relaxed_steps: 0,
-            error: Some(e.to_string()),
-        },
-    }
-}
-
 /// Runs the atlas: the scene's first sphere (its radius kept) on every
-/// cell of `grid` on `plane`, in each of `methods`. Refused when a method
-/// does not run in space, or when no cell of the grid lies within the
-/// arm's reach of its first joint (a plane that misses the arm).
+/// cell of `grid` on `plane`, in each of `methods` (a [`SliceJob`] run to
+/// the end, across the machine's cores with the feature `parallel`).
+/// Refused when a method does not run in space, or when no cell of the
+/// grid lies within the arm's reach of its first joint (a plane that
+/// misses the arm).
 pub fn slice(
     scene: &SpaceScene,
     plane: Plane,
@@ -251,74 +189,12 @@ pub fn slice(
     methods: &[Method],
     networks: Option<&Arc<SpaceNetworks>>,
 ) -> Result<SliceAtlas> {
-    grid.validate()?;
-    scene.validate()?;
-    for m in methods {
-        m.space_rule(scene.chain.dof())?;
-        if m.uses_networks() && networks.is_none() {
-            return Err(Error::NetworksUnavailable(format!(
-                "method {m} needs networks trained for this arm in space"
-            )));
-        }
-    }
-    if let Some(nets) = networks {
-        nets.check_chain(&scene.chain)?;
-    }
-    let radius = scene.spheres.first().map_or(0.05, |s| s.radius);
-    let pose = SpacePose::new(&scene.chain, &scene.theta0)?;
-    let shoulder = pose.joint_origin(0);
-    let reach = scene.chain.reach() + radius + scene.chain.radius();
-    let [u0, u1, v0, v1] = grid.region;
-    let step = |a: f64, b: f64, i: usize| a + (b - a) * i as f64 / (grid.n - 1) as f64;
-    let centres: Vec<Vec3> = (0..grid.n)
-        .flat_map(|j| (0..grid.n).map(move |i| (i, j)))
-        .map(|(i, j)| plane.point(step(u0, u1, i), step(v0, v1, j)))
-        .collect();
-    let near = |c: &Vec3| {
-        (0..3)
-            .map(|k| (c[k] - shoulder[k]).powi(2))
-            .sum::<f64>()
-            .sqrt()
-            <= reach
-    };
-    if !centres.iter().any(near) {
-        return Err(Error::SliceMissesReach {
-            slice: plane.to_string(),
-            reach,
-        });
-    }
-    let run_cell = |c: &Vec3| {
-        let mut s = scene.clone();
-        let sphere = Sphere::new(*c, radius);
-        if s.spheres.is_empty() {
-            s.spheres.push(sphere);
-        } else {
-            s.spheres[0] = sphere;
-        }
-        let pre = before(&s, &pose, &sphere);
-        SliceCell {
-            centre: *c,
-            outcomes: methods
-                .iter()
-                .map(|m| outcome(&s, *m, pre, networks))
-                .collect(),
-        }
-    };
+    let mut job = SliceJob::new(scene, plane, grid, methods, networks)?;
     #[cfg(all(feature = "parallel", not(target_family = "wasm")))]
-    let cells = {
-        use rayon::prelude::*;
-        centres.par_iter().map(run_cell).collect()
-    };
+    job.advance_parallel(usize::MAX);
     #[cfg(not(all(feature = "parallel", not(target_family = "wasm"))))]
-    let cells = centres.iter().map(run_cell).collect();
-    Ok(SliceAtlas {
-        arm: None,
-        plane,
-        grid,
-        radius,
-        methods: methods.to_vec(),
-        cells,
-    })
+    job.advance(usize::MAX);
+    job.finish()
 }
 
 impl SliceAtlas {

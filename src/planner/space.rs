@@ -18,7 +18,7 @@ use super::methods::{Method, Note};
 use super::SpaceSurrogate;
 use crate::error::{Error, Result};
 use crate::scene::SpaceScene;
-use crate::space::{clearance, SpacePose, Vec3};
+use crate::space::{clearance, SpacePose, Sphere, Vec3};
 
 /// What a spatial run records after each step.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -47,7 +47,7 @@ pub struct SpaceSample {
 }
 
 /// A spatial run's outcome.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SpaceSummary {
     /// Steps taken.
@@ -73,19 +73,14 @@ impl SpaceSummary {
     /// The outcome of a run's `samples` (`t = 0` first) whose path ends at
     /// `end` (the final error is NaN without samples).
     pub fn of(samples: &[SpaceSample], end: Vec3) -> Self {
-        Self {
-            steps: samples.len().saturating_sub(1),
-            min_clearance: samples.iter().filter_map(|s| s.clearance).reduce(f64::min),
-            collision_steps: samples
-                .iter()
-                .filter(|s| s.clearance.is_some_and(|c| c < 0.0))
-                .count(),
-            limit_steps: samples.iter().filter(|s| s.past_limits > 0).count(),
-            relaxed_steps: samples.iter().filter(|s| s.relaxed).count(),
-            handover_steps: samples.iter().filter(|s| s.phi_handover).count(),
-            max_error: samples.iter().map(|s| s.tracking_error).fold(0.0, f64::max),
-            final_error: samples.last().map_or(f64::NAN, |s| dist(s.hand, end)),
+        let Some((first, rest)) = samples.split_first() else {
+            return Tally(Self::default()).summary(f64::NAN);
+        };
+        let mut tally = Tally::new(first);
+        for s in rest {
+            tally.add(s);
         }
+        tally.summary(dist(samples[samples.len() - 1].hand, end))
     }
 }
 
@@ -100,7 +95,9 @@ pub struct SpaceTrajectory {
     pub summary: SpaceSummary,
 }
 
-/// The RK4 planner of one method on one spatial scene.
+/// The RK4 planner of one method on one spatial scene. A copy has its own
+/// state and scratch space (an atlas across threads runs one per thread).
+#[derive(Clone)]
 pub struct SpacePlanner {
     scene: SpaceScene,
     networks: Option<Arc<dyn SpaceSurrogate>>,
@@ -320,19 +317,118 @@ impl SpacePlanner {
         s.phi_handover = note.handover;
     }
 
+    /// Puts sphere `index` at `sphere` (or adds it, for `index` equal to
+    /// the number of spheres); it takes effect at the next step, and the
+    /// current sample's clearance is measured again. Allocation-free but
+    /// for an added sphere (the scene's list grows). Refused, changing nothing, where the sphere
+    /// does not validate (on the base, not finite) or `index` is past the
+    /// end.
+    pub fn set_sphere(&mut self, index: usize, sphere: Sphere) -> Result<()> {
+        let count = self.scene.spheres.len();
+        if index > count {
+            return Err(Error::OutOfRange {
+                what: "sphere index".into(),
+                value: index as f64,
+                min: 0.0,
+                max: count as f64,
+            });
+        }
+        sphere.validate_at(&self.scene.chain, &self.pose)?;
+        if index == count {
+            if count >= crate::space::MAX_SPHERES {
+                return Err(Error::DimensionMismatch {
+                    what: "spheres (at most)".into(),
+                    expected: crate::space::MAX_SPHERES,
+                    found: count + 1,
+                });
+            }
+            self.scene.spheres.push(sphere);
+        } else {
+            self.scene.spheres[index] = sphere;
+        }
+        let note = Note {
+            relaxed: self.sample.relaxed,
+            handover: self.sample.phi_handover,
+        };
+        self.refresh_sample(note);
+        Ok(())
+    }
+
+    /// Back to the scene's start pose at `t = 0`: the state a new planner
+    /// of the same scene starts in (the path's timing depends on the start
+    /// pose only, which has not moved). Allocation-free.
+    pub fn reset(&mut self) {
+        self.theta.copy_from_slice(&self.scene.theta0);
+        // theta0 was validated (length, finiteness) when the scene entered.
+        let _ = self.pose.update(&self.scene.chain, &self.scene.theta0);
+        self.step_index = 0;
+        self.refresh_sample(Note::default());
+    }
+
     /// Runs to `tf` from the current state, recording every sample.
     pub fn run(mut self) -> Result<SpaceTrajectory> {
         let mut samples = Vec::with_capacity(self.scene.steps() + 1);
+        let mut tally = Tally::new(&self.sample);
         samples.push(self.sample.clone());
         while !self.done() {
-            samples.push(self.step()?.clone());
+            let s = self.step()?;
+            tally.add(s);
+            samples.push(s.clone());
         }
-        let summary = SpaceSummary::of(&samples, self.track.end());
+        let summary = tally.summary(dist(self.pose.hand(), self.track.end()));
         Ok(SpaceTrajectory {
             method: self.method,
             samples,
             summary,
         })
+    }
+
+    /// Runs to `tf` from the current state keeping only the summary (the
+    /// summary [`Self::run`] gives, to the last bit): nothing is allocated
+    /// (what an atlas of thousands of runs needs). The planner is left at
+    /// the end, or where a step failed (the error is returned).
+    pub fn run_summary(&mut self) -> Result<SpaceSummary> {
+        let mut tally = Tally::new(&self.sample);
+        while !self.done() {
+            tally.add(self.step()?);
+        }
+        Ok(tally.summary(dist(self.pose.hand(), self.track.end())))
+    }
+}
+
+/// A run's summary gathered sample by sample, the start first.
+struct Tally(SpaceSummary);
+
+impl Tally {
+    fn new(first: &SpaceSample) -> Self {
+        let mut t = Tally(SpaceSummary::default());
+        t.count(first);
+        t
+    }
+
+    /// One more step's sample.
+    fn add(&mut self, s: &SpaceSample) {
+        self.0.steps += 1;
+        self.count(s);
+    }
+
+    fn count(&mut self, s: &SpaceSample) {
+        let t = &mut self.0;
+        if let Some(c) = s.clearance {
+            t.min_clearance = Some(t.min_clearance.map_or(c, |m| m.min(c)));
+            t.collision_steps += usize::from(c < 0.0);
+        }
+        t.limit_steps += usize::from(s.past_limits > 0);
+        t.relaxed_steps += usize::from(s.relaxed);
+        t.handover_steps += usize::from(s.phi_handover);
+        t.max_error = t.max_error.max(s.tracking_error);
+    }
+
+    fn summary(self, final_error: f64) -> SpaceSummary {
+        SpaceSummary {
+            final_error,
+            ..self.0
+        }
     }
 }
 

@@ -41,13 +41,19 @@ impl Sphere {
     /// the chain's fixed base (the segments no joint moves), which cannot
     /// move out of its way.
     pub fn validate(&self, chain: &Chain) -> Result<()> {
-        for (&c, axis) in self.centre.iter().zip(["x", "y", "z"]) {
-            coordinate(&format!("sphere {axis}"), c)?;
+        // The fixed segments do not depend on the angles: any pose shows them.
+        self.validate_at(chain, &SpacePose::new(chain, &vec![0.0; chain.dof()])?)
+    }
+
+    /// [`Self::validate`] with a pose of `chain` at hand (any angles: it
+    /// shows the fixed base), allocating nothing (a planner moving its
+    /// sphere for every cell of an atlas).
+    pub fn validate_at(&self, chain: &Chain, pose: &SpacePose) -> Result<()> {
+        for (&c, what) in self.centre.iter().zip(["sphere x", "sphere y", "sphere z"]) {
+            coordinate(what, c)?;
         }
         positive("sphere radius", self.radius)?;
         coordinate("sphere radius", self.radius)?;
-        // The fixed segments do not depend on the angles: any pose shows them.
-        let pose = SpacePose::new(chain, &vec![0.0; chain.dof()])?;
         for s in chain.segments().iter().filter(|s| s.moved_by == 0) {
             let (a, b) = pose.segment(s);
             if closest(self.centre, a, b).1 <= self.radius + chain.radius() {

@@ -34,10 +34,14 @@ mod layer;
 mod plots;
 #[cfg(feature = "page")]
 mod scene;
+#[cfg(all(feature = "worker", feature = "space"))]
+mod space_atlas;
 #[cfg(all(feature = "page", feature = "space"))]
 mod space_demo;
 #[cfg(all(feature = "page", feature = "space"))]
 mod space_stage;
+#[cfg(all(feature = "worker", feature = "space"))]
+mod space_takeaway;
 #[cfg(feature = "page")]
 mod stage;
 #[cfg(feature = "page")]
@@ -60,8 +64,12 @@ use crate::networks::{self, NetworkSet};
 
 #[cfg(feature = "page")]
 pub use demo::Demo;
+#[cfg(all(feature = "worker", feature = "space"))]
+pub use space_atlas::SpaceAtlasJob;
 #[cfg(all(feature = "page", feature = "space"))]
 pub use space_demo::SpaceDemo;
+#[cfg(all(feature = "worker", feature = "space"))]
+pub use space_takeaway::space_figure;
 #[cfg(feature = "worker")]
 pub use takeaway::*;
 #[cfg(feature = "worker")]

@@ -192,6 +192,10 @@ test('space: the run saved from the page reads back with simulate --from, step f
   assert.equal(csv.text.trim().split('\n').length, run.samples.length + 1);
   const png = await download(page, '#save-figure-png');
   assert.ok(png.text.length > 1000);
+  // The figure as the command line draws it from the same file.
+  const svg = await download(page, '#save-figure-svg');
+  assert.match(svg.text, /^<svg|<\?xml/);
+  assert.match(svg.text, /Franka Panda/);
   clean(page);
   await page.close();
 });

@@ -2,6 +2,7 @@
 //! planner, and the planar arm as a chain whose axes are parallel.
 
 mod atlas;
+mod atlas_job;
 mod kinematics;
 mod lab;
 mod modern;

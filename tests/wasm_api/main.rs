@@ -52,3 +52,4 @@ fn pair(v: &Value) -> [f64; 2] {
 mod atlas;
 mod panels;
 mod scene;
+mod space_atlas;

@@ -1,0 +1,190 @@
+//! The slice atlas of an arm in space in a Web Worker (feature `worker`):
+//! [`SpaceAtlasJob`], the core's [`SliceJob`] a row at a time, so that the
+//! worker can post progress between rows and the page can cancel (by
+//! terminating the worker). Its result is the JSON text `redundant-ik
+//! atlas --arm A --json` prints, written by the same serializer.
+
+use serde::Deserialize;
+use wasm_bindgen::prelude::*;
+
+use super::js_err;
+use crate::atlas::space::{default_region, Plane, SliceJob, DEFAULT_SLICE_GRID};
+use crate::atlas::{Grid, MAX_GRID};
+use crate::error;
+use crate::export::SpaceRunFile;
+use crate::networks::space::{SpaceNetworkSet, SpaceNetworks};
+use crate::planner::{methods, Method};
+
+/// The options of a slice atlas as the page passes them.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Options {
+    /// Method names (`"all"` and `"paper"` too); every method that runs in
+    /// space when absent, the learned ones only with `networks`.
+    methods: Option<Vec<String>>,
+    /// `xy:Z0`, `xz:Y0` or `yz:X0`; the vertical plane through the line
+    /// when absent.
+    plane: Option<String>,
+    /// Points per side; 21 when absent.
+    n: Option<f64>,
+    /// `[u0, u1, v0, v1]` in the plane's axes; the default region when
+    /// absent.
+    region: Option<Vec<f64>>,
+    /// The weights files' text, for the learned methods.
+    networks: Option<Texts>,
+}
+
+/// The JSON text of a `Phi` and a `v` weights file.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Texts {
+    phi: String,
+    v: String,
+}
+
+/// The slice atlas of an arm in space being computed in a worker.
+///
+/// ```js
+/// const job = new SpaceAtlasJob(runText, {
+///   methods: ['numerical', 'case3'], // names, or ['all']; absent: every method in space
+///                                    // (the learned ones only with networks)
+///   plane: 'xz:0.0',                 // xy:Z0 | xz:Y0 | yz:X0; absent: the vertical plane through the line
+///   n: 21,                           // points per side, 2 to 201; absent: 21
+///   region: [u0, u1, v0, v1],        // in the plane's axes (m); absent: the default square
+///   networks: { phi, v },            // the weights files' text (the Panda's: weights/phi-panda-reach.json
+///                                    // and weights/v-panda-reach.json); needed by case1-3 only
+/// });
+/// while (job.done < job.total) job.advance(job.row); // post progress between chunks
+/// const json = job.finish();                          // the text of `atlas --arm A --json`
+/// job.free();
+/// ```
+///
+/// `runText` is a spatial run file's JSON (`redundant-ik-space-run/1`, what
+/// `simulate --arm A --json` writes): its scene is mapped, its own sphere
+/// moved over the grid; its method is not used. `options` is an object or
+/// its JSON text; an unknown field is refused by name. The constructor
+/// throws with the core's message on bad input (a method that does not
+/// run in space, a learned one without networks, networks of another arm,
+/// a plane that misses the arm). Cancel by no longer calling `advance`
+/// (the page terminates the worker).
+#[wasm_bindgen]
+pub struct SpaceAtlasJob {
+    job: SliceJob,
+    arm: &'static str,
+}
+
+#[wasm_bindgen]
+impl SpaceAtlasJob {
+    /// See the type's documentation.
+    #[wasm_bindgen(constructor)]
+    pub fn new(run: &str, options: JsValue) -> Result<SpaceAtlasJob, JsError> {
+        let file = SpaceRunFile::from_json(run).map_err(js_err)?;
+        let o = read_options(options)?;
+        let scene = file.scene;
+        let methods = match o.methods {
+            None => methods::ALL
+                .iter()
+                .copied()
+                .filter(|m| m.in_space() && (o.networks.is_some() || !m.uses_networks()))
+                .collect(),
+            Some(names) => Method::parse_list(&names.join(",")).map_err(js_err)?,
+        };
+        let plane = match o.plane.as_deref() {
+            None => Plane::through_line(&scene),
+            Some(text) => text.parse::<Plane>().map_err(js_err)?,
+        };
+        let n = match o.n {
+            None => DEFAULT_SLICE_GRID,
+            Some(n) => {
+                let n = error::within("grid points per side", n, 2.0, MAX_GRID as f64)
+                    .map_err(js_err)?;
+                if n.fract() != 0.0 {
+                    return Err(JsError::new(&format!(
+                        "grid points per side must be a whole number (got {n})"
+                    )));
+                }
+                n as usize
+            }
+        };
+        let region = match o.region.as_deref() {
+            None => default_region(&scene, plane),
+            Some(&[a, b, c, d]) => [a, b, c, d],
+            Some(other) => {
+                return Err(JsError::new(&format!(
+                    "region needs four numbers [u0, u1, v0, v1] in the plane's axes, got {}",
+                    other.len()
+                )))
+            }
+        };
+        let grid = Grid::new(region, n).map_err(js_err)?;
+        let learned = methods.iter().find(|m| m.uses_networks());
+        let networks = match (learned, o.networks) {
+            (None, _) => None,
+            (Some(_), Some(t)) => Some(std::sync::Arc::new(
+                SpaceNetworks::from_json(&t.phi, &t.v).map_err(js_err)?,
+            )),
+            (Some(m), None) => {
+                let files = SpaceNetworkSet::for_arm(file.arm).map_or_else(
+                    || format!("no networks are shipped for {}", file.arm),
+                    |s| {
+                        let [phi, v] = s.file_names();
+                        format!("its set's files are weights/{phi} and weights/{v}")
+                    },
+                );
+                return Err(JsError::new(&format!(
+                    "method {m} needs networks: pass options.networks = {{ phi, v }}, the weights files' text ({files})"
+                )));
+            }
+        };
+        let job =
+            SliceJob::new(&scene, plane, grid, &methods, networks.as_ref()).map_err(js_err)?;
+        Ok(SpaceAtlasJob { job, arm: file.arm })
+    }
+
+    /// Cells in the grid.
+    #[wasm_bindgen(getter)]
+    pub fn total(&self) -> usize {
+        self.job.total()
+    }
+
+    /// Cells computed so far.
+    #[wasm_bindgen(getter)]
+    pub fn done(&self) -> usize {
+        self.job.done()
+    }
+
+    /// Points per side: a sensible chunk is one row.
+    #[wasm_bindgen(getter)]
+    pub fn row(&self) -> usize {
+        self.job.row()
+    }
+
+    /// Computes up to `cells` more cells; returns how many are done in all.
+    pub fn advance(&mut self, cells: usize) -> usize {
+        self.job.advance(cells)
+    }
+
+    /// The finished atlas as the JSON text of `redundant-ik atlas --arm A
+    /// --json` (a `SliceAtlas`: `arm`, `plane`, `grid`, `radius`,
+    /// `methods`, `cells` of `{ centre, outcomes }`); throws while cells
+    /// are missing.
+    pub fn finish(&self) -> Result<String, JsError> {
+        let mut atlas = self.job.clone().finish().map_err(js_err)?;
+        atlas.arm = Some(self.arm);
+        serde_json::to_string(&atlas).map_err(|e| JsError::new(&e.to_string()))
+    }
+}
+
+/// The options as an object or as JSON text (absent: every default).
+fn read_options(options: JsValue) -> Result<Options, JsError> {
+    let text = if options.is_undefined() || options.is_null() {
+        "{}".to_string()
+    } else if let Some(text) = options.as_string() {
+        text
+    } else {
+        js_sys::JSON::stringify(&options)
+            .map_err(|_| JsError::new("slice atlas options: not an object"))?
+            .into()
+    };
+    serde_json::from_str(&text).map_err(|e| JsError::new(&format!("slice atlas options: {e}")))
+}

@@ -1,0 +1,78 @@
+//! The slice atlas of an arm in space in the workers' module
+//! (`SpaceAtlasJob`): read from a spatial run file's text, advanced a
+//! chunk at a time, finished as the JSON text the native `atlas --arm A
+//! --json` writes for the same scene.
+
+use super::*;
+use redundant_ik::atlas::space::{default_region, slice, Plane};
+use redundant_ik::atlas::Grid;
+use redundant_ik::export::SpaceRunFile;
+use redundant_ik::planner::space::SpacePlanner;
+use redundant_ik::scene::SpaceScene;
+use redundant_ik::space::SpacePreset;
+use redundant_ik::web::SpaceAtlasJob;
+use redundant_ik::Method;
+use wasm_bindgen_test::wasm_bindgen_test;
+
+/// The run file `simulate --arm panda --json` writes.
+fn panda_run() -> (SpaceScene, String) {
+    let p = SpacePreset::by_key("panda").unwrap();
+    let scene = SpaceScene::preset(p);
+    let traj = SpacePlanner::new(scene.clone(), Method::NUMERICAL)
+        .and_then(SpacePlanner::run)
+        .unwrap();
+    (scene.clone(), SpaceRunFile::new(p, scene, traj).to_json())
+}
+
+#[wasm_bindgen_test]
+fn a_space_atlas_job_is_the_native_slice_a_row_at_a_time() {
+    let (scene, run) = panda_run();
+    let options = js_sys::JSON::parse(r#"{"methods": ["none", "qp"], "n": 4}"#).unwrap();
+    let mut job = SpaceAtlasJob::new(&run, options).unwrap();
+    assert_eq!((job.total(), job.done(), job.row()), (16, 0, 4));
+    assert!(message(job.finish().err().unwrap()).contains("cells computed"));
+    assert_eq!(job.advance(4), 4);
+    assert_eq!(job.advance(100), 16);
+    let plane = Plane::through_line(&scene);
+    let grid = Grid::new(default_region(&scene, plane), 4).unwrap();
+    let mut native = slice(
+        &scene,
+        plane,
+        grid,
+        &[Method::NO_AVOIDANCE, redundant_ik::planner::methods::QP],
+        None,
+    )
+    .unwrap();
+    native.arm = Some("panda");
+    assert_eq!(
+        job.finish().unwrap(),
+        serde_json::to_string(&native).unwrap()
+    );
+    // The options as JSON text, with a plane and a region of their own.
+    let text =
+        r#"{"methods": ["numerical"], "n": 3, "plane": "xz:0.0", "region": [0.2, 0.6, 0.2, 0.6]}"#;
+    let mut job = SpaceAtlasJob::new(&run, JsValue::from_str(text)).unwrap();
+    job.advance(9);
+    let a: serde_json::Value = serde_json::from_str(&job.finish().unwrap()).unwrap();
+    assert_eq!(a["plane"], serde_json::json!({ "Xz": 0.0 }));
+    assert_eq!(a["grid"]["region"], serde_json::json!([0.2, 0.6, 0.2, 0.6]));
+}
+
+#[wasm_bindgen_test]
+fn a_space_atlas_job_refuses_what_it_cannot_run_with_a_reason() {
+    let (_, run) = panda_run();
+    let refusal = |options: &str| {
+        let o = js_sys::JSON::parse(options).unwrap();
+        message(SpaceAtlasJob::new(&run, o).err().unwrap())
+    };
+    assert!(refusal(r#"{"methods": ["case3"]}"#).contains("options.networks"));
+    assert!(refusal(r#"{"method": ["qp"]}"#).contains("unknown field"));
+    assert!(refusal(r#"{"n": 2.5}"#).contains("whole number"));
+    assert!(refusal(r#"{"plane": "yz:5.0"}"#).contains("slice"));
+    assert!(
+        refusal(r#"{"networks": {"phi": "{}", "v": "{}"}, "methods": ["case1"]}"#)
+            .contains("Phi file")
+    );
+    let bad = SpaceAtlasJob::new("{\"format\": \"redundant-ik-run/1\"}", JsValue::UNDEFINED);
+    assert!(message(bad.err().unwrap()).contains("redundant-ik-space-run/1"));
+}
