@@ -190,7 +190,7 @@ async function start() {
 function describeSpaceArm(preset) {
   const n = preset.rows.length;
   const lede = document.getElementById('lede-text');
-  if (lede) lede.textContent = `The ${preset.label}, ${word(n)} joints in space, moves its hand along a straight line past spheres: the hand's position takes three of its joints' freedoms, and the planner spends the ${word(n - 3)} spare ones keeping its links clear. Orbit the view, drag the target or a sphere, switch methods.`;
+  if (lede) lede.textContent = `The ${preset.label} moves its hand along a straight line past spheres: the hand's position takes three of its ${word(n)} joints' freedoms, and the planner spends the ${word(n - 3)} spare ones keeping its links clear. Orbit the view, drag the target or a sphere, switch methods.`;
   const see = document.getElementById('what-you-see');
   if (see) see.textContent = `The ${preset.label} (${preset.source}) drawn in perspective: its links as capsules of the radius the clearance is measured to, the spheres, their shadows on the floor's 0.1 m grid. The hand follows the dashed line to the target at constant speed over the run; its orientation is left free.`;
   for (const el of document.querySelectorAll('[data-arm="links"]')) el.textContent = word(n);
@@ -217,7 +217,7 @@ async function startSpace() {
     for (const p of limits().arm_presets) plane.append(new Option(p.label, p.key));
     const space = document.createElement('optgroup');
     space.label = 'In space';
-    for (const p of spacePresets()) space.append(new Option(`${p.label} (${p.rows.length} joints, 3-D)`, p.key));
+    for (const p of spacePresets()) space.append(new Option(p.label, p.key));
     arms.append(plane, space);
     arms.value = preset.key;
     arms.addEventListener('change', () => (location.search = `?arm=${arms.value}`));

@@ -19,12 +19,19 @@
 use super::file::{WeightsFile, MAX_FILE_BYTES};
 use crate::error::{Error, Result};
 
-#[cfg(any(test, not(any(feature = "worker", feature = "cli", feature = "eval"))))]
-mod by_hand;
-#[cfg(all(
-    feature = "space",
-    any(test, not(any(feature = "worker", feature = "cli", feature = "eval")))
+#[cfg(any(
+    test,
+    not(any(feature = "worker", feature = "cli", feature = "eval")),
+    all(feature = "space", not(feature = "cli"))
 ))]
+// In the workers' build with the arms in space only its helpers are used
+// (by `space`): the planar files go through the derived reader there.
+#[cfg_attr(any(feature = "worker", feature = "eval"), allow(dead_code))]
+mod by_hand;
+// The spatial files by hand in the page's and the workers' modules (the
+// workers' with the arms in space read the Panda's networks for the atlas
+// and the benchmark), with serde's derived reader in the tool.
+#[cfg(all(feature = "space", any(test, not(feature = "cli"))))]
 pub(crate) mod space;
 #[cfg(test)]
 mod tests;
@@ -60,10 +67,10 @@ impl crate::networks::space::SpaceWeightsFile {
                 MAX_FILE_BYTES
             )));
         }
-        // The page's module reads it by hand (`networks::reader::space`).
-        #[cfg(any(feature = "worker", feature = "cli", feature = "eval"))]
+        // The page's and the workers' modules read it by hand (`networks::reader::space`).
+        #[cfg(feature = "cli")]
         let file = serde_json::from_str::<Self>(text).map_err(|e| e.to_string());
-        #[cfg(not(any(feature = "worker", feature = "cli", feature = "eval")))]
+        #[cfg(not(feature = "cli"))]
         let file = space::read(text);
         let file = file.map_err(|e| Error::Weights(format!("not a spatial weights file: {e}")))?;
         file.validate()?;
