@@ -34,6 +34,8 @@ mod layer;
 mod plots;
 #[cfg(feature = "page")]
 mod scene;
+#[cfg(all(feature = "worker", feature = "space"))]
+mod space_bench;
 #[cfg(feature = "page")]
 mod stage;
 #[cfg(feature = "page")]
@@ -56,6 +58,8 @@ use crate::networks::{self, NetworkSet};
 
 #[cfg(feature = "page")]
 pub use demo::Demo;
+#[cfg(all(feature = "worker", feature = "space"))]
+pub use space_bench::*;
 #[cfg(feature = "worker")]
 pub use takeaway::*;
 #[cfg(feature = "worker")]
