@@ -4,10 +4,18 @@
 // cells, the paper's five methods, in a worker; the page's Atlas panel itself
 // ticks every method) as often and prints its median; then the
 // time from navigation to data-ready (five loads in fresh contexts) and the
-// Case 3 solver time per animation frame and per step (docs/web.md). These
-// are measurements on a shared machine: printed, never judged.
+// Case 3 solver time per animation frame and per step (docs/web.md). After
+// the planar benchmark it runs the Panda's (window.demo.bench({ arm: 'panda' }):
+// the RK4 step of its task per method, its networks' forward passes) as often,
+// and, where the native tool is built (NATIVE, default
+// target/release/redundant-ik), runs `redundant-ik bench --json --no-lm
+// --no-atlas` and `bench --arm panda --json` right there and prints the
+// page's step times over the native ones. These are measurements on a
+// shared machine: printed, never judged.
 //
-//   BASE_URL=http://127.0.0.1:8000/ RUNS=3 [BUILD=baseline] node scripts/bench-web.mjs
+//   BASE_URL=http://127.0.0.1:8000/ RUNS=3 [BUILD=baseline] [BENCH_ONLY=1] node scripts/bench-web.mjs
+//
+// BENCH_ONLY=1 stops after the two benchmarks (no atlas, loads or frames).
 //
 // BUILD=baseline makes the page believe wasm SIMD is missing, so it loads the
 // baseline module (as a browser with SIMD switched off would).
@@ -16,6 +24,8 @@
 // under tests/e2e by scripts/e2e.sh) and Debian's Chromium.
 
 // playwright-core comes from tests/e2e/node_modules, through the shared launcher.
+import { execFileSync } from 'node:child_process';
+import { existsSync } from 'node:fs';
 import { launchChromium } from '../tests/e2e/chromium.mjs';
 
 const BASE = process.env.BASE_URL ?? 'http://127.0.0.1:8000/';
@@ -57,6 +67,47 @@ for (const key of ['theta_dot_ns', 'step_ns', 'forward_ns']) {
 }
 const build = await page.evaluate(() => window.demo.build);
 console.log(`median of ${RUNS} (${build} build): ${JSON.stringify(out)}`);
+
+// ---- the Panda's step, and both against the native tool ----------------------
+// On the page in space, whose workers' build holds the arms in space.
+const spacePage = await open('?arm=panda&method=numerical&autoplay=0');
+const panda = [];
+for (let i = 0; i < RUNS; i++) {
+  const r = await spacePage.evaluate(() => window.demo.bench({ arm: 'panda' }));
+  panda.push(r);
+  console.log(JSON.stringify(r));
+}
+const pandaOut = { step_ns: {}, forward_ns: {} };
+for (const key of ['step_ns', 'forward_ns']) {
+  for (const k of Object.keys(panda[0][key] ?? {})) pandaOut[key][k] = median(panda.map((r) => r[key][k]));
+}
+console.log(`median of ${RUNS} (${build} build), panda: ${JSON.stringify(pandaOut)}`);
+await spacePage.close();
+const NATIVE = process.env.NATIVE ?? 'target/release/redundant-ik';
+if (existsSync(NATIVE)) {
+  const native = (args) => JSON.parse(execFileSync(NATIVE, ['bench', '--json', ...args], { encoding: 'utf8' }));
+  const planar = native(['--no-lm', '--no-atlas']);
+  const space = native(['--arm', 'panda']);
+  const ratios = (page, nat) =>
+    Object.entries(page)
+      .filter(([m]) => nat[m] !== undefined)
+      .map(([m, ns]) => `${m} ${(ns / 1000).toFixed(2)} / ${(nat[m] / 1000).toFixed(2)} us = ${(ns / nat[m]).toFixed(2)}x`)
+      .join(', ');
+  const pandaNative = Object.fromEntries(Object.entries(space.methods).map(([m, f]) => [m, f.step_ns]));
+  console.log(`native (${planar.kernels}): planar ${JSON.stringify({ step_ns: planar.step_ns, forward_ns: planar.forward_ns })}`);
+  console.log(`native (${planar.kernels}): panda step_ns ${JSON.stringify(pandaNative)}`);
+  console.log(`page / native (${build} build), Task 1 RK4 step: ${ratios(out.step_ns, planar.step_ns)}`);
+  console.log(
+    `page / native (${build} build), forward: phi ${(out.forward_ns.phi / planar.forward_ns.phi).toFixed(2)}x, v ${(out.forward_ns.v / planar.forward_ns.v).toFixed(2)}x`,
+  );
+  console.log(`page / native (${build} build), Panda RK4 step: ${ratios(pandaOut.step_ns, pandaNative)}`);
+} else {
+  console.log(`no native tool at ${NATIVE} (cargo build --release): no ratios`);
+}
+if (process.env.BENCH_ONLY) {
+  await browser.close();
+  process.exit(0);
+}
 const atlas = [];
 for (let i = 0; i < RUNS; i++) {
   const r = await page.evaluate(async () => {

@@ -25,3 +25,5 @@ if [[ -x target/release/redundant-ik ]]; then
 else
   echo "bench-web: the slice atlas skipped (cargo build --release first)" >&2
 fi
+# The frame time while orbiting and dragging the Panda, and while dragging in the plane.
+BASE_URL="$url" node scripts/frame-time.mjs

@@ -56,9 +56,17 @@ export async function runWorker(job, { onProgress, signal } = {}) {
  * AbortSignal) cancels it. Resolves to `{ theta_dot_ns: {method: ns},
  * step_ns: {method: ns}, forward_ns: {phi, v}, verdict: [learned, exact] }`
  * (`verdict`: the two methods whose step times the panel compares).
+ *
+ * With `arm` an arm in space (`'panda'`, `'iiwa14'`), as `redundant-ik bench
+ * --arm KEY`: the RK4 step of its own task in every method that runs there
+ * (`methods` to choose; `refine` Newton-Schulz steps on the learned Phi) and
+ * the forward passes of its networks, whose weights files the worker fetches
+ * from weights/ beside the page; `theta_dot_ns` is empty and `arm` names it.
  */
-export async function bench({ onProgress, signal, batchMs = 20 } = {}) {
-  const { result } = await runWorker({ kind: 'bench', batchMs }, { onProgress, signal });
+export async function bench({ onProgress, signal, batchMs = 20, arm, methods, refine = 0 } = {}) {
+  const job = { kind: 'bench', batchMs };
+  if (arm !== undefined) Object.assign(job, { arm, methods, refine, weights: weightsLocation() });
+  const { result } = await runWorker(job, { onProgress, signal });
   return result;
 }
 
@@ -83,6 +91,16 @@ export async function spaceAtlas({ run, methods, plane, n, region, networks, onP
   for (const k of Object.keys(options)) if (options[k] === undefined) delete options[k];
   const { result, ms } = await runWorker({ kind: 'space-atlas', run, options }, { onProgress, signal });
   return { json: result, atlas: JSON.parse(result), ms };
+}
+
+/**
+ * Where a worker finds the weights files: the URL of weights/ beside the
+ * page, or, in a single-file build, the map of the files it carries inline.
+ */
+function weightsLocation() {
+  const inline = globalThis.__REDUNDANT_IK_ASSETS__;
+  if (!inline) return assetUrl('weights/');
+  return Object.fromEntries(Object.entries(inline).filter(([k]) => k.startsWith('weights/')).map(([k, v]) => [k.slice(8), v]));
 }
 
 /**

@@ -8,6 +8,11 @@
 //   { kind: 'bench', wasm, batchMs }
 //       the code behind `redundant-ik bench`, one figure per call, over the
 //       methods of benchMethods(); the result names benchVerdict()'s pair
+//   { kind: 'bench', wasm, batchMs, arm, methods, refine, weights }
+//       the same for an arm in space (`redundant-ik bench --arm KEY`): the
+//       RK4 step of its own task per method and its networks' forward passes;
+//       the networks' files (benchSpaceNetworkFiles(arm)) fetched from
+//       `weights` (the URL of weights/, or a map of name to URL)
 //   { kind: 'atlas', wasm, run, options: { methods, n, region, task, feedback, refine, networks } }
 //       the atlas of `redundant-ik atlas`, one row of cells per chunk
 //   { kind: 'space-atlas', wasm, run, options: { methods, plane, n, region, networks: { phi, v } } }
@@ -46,6 +51,10 @@ import init, {
   benchForward,
   benchMethods,
   benchVerdict,
+  benchSpaceMethods,
+  benchSpaceNetworkFiles,
+  benchSpaceStep,
+  benchSpaceForward,
   runFiles,
   atlasFiles,
   spaceFigure,
@@ -64,6 +73,30 @@ function bench({ batchMs = 20 }) {
     ...timed.map((m) => [`step ${m}`, () => (result.step_ns[m] = benchStep(m, batchMs))]),
     ['forward passes', () => (result.forward_ns = benchForward(batchMs))],
   ];
+  for (const [i, [label, run]] of jobs.entries()) {
+    self.postMessage({ type: 'progress', done: i, total: jobs.length, label });
+    run();
+  }
+  self.postMessage({ type: 'progress', done: jobs.length, total: jobs.length, label: 'done' });
+  return result;
+}
+
+/** The text of the weights file `name` from `weights` (a base URL or a map of name to URL). */
+async function weightsText(weights, name) {
+  const url = typeof weights === 'string' ? new URL(name, weights).href : weights?.[name];
+  if (!url) throw new Error(`this build does not carry weights/${name}`);
+  const r = await fetch(url);
+  if (!r.ok) throw new Error(`weights/${name}: HTTP ${r.status}`);
+  return r.text();
+}
+
+async function benchSpace({ batchMs = 20, arm, methods, refine = 0, weights }) {
+  const timed = methods ?? benchSpaceMethods(arm);
+  const files = benchSpaceNetworkFiles(arm);
+  const [phi, v] = files.length ? await Promise.all(files.map((f) => weightsText(weights, f))) : [undefined, undefined];
+  const result = { arm, theta_dot_ns: {}, step_ns: {}, forward_ns: null, verdict: benchVerdict() };
+  const jobs = timed.map((m) => [`step ${m}`, () => (result.step_ns[m] = benchSpaceStep(arm, m, batchMs, refine, phi, v))]);
+  if (phi !== undefined) jobs.push(['forward passes', () => (result.forward_ns = benchSpaceForward(arm, batchMs, phi, v))]);
   for (const [i, [label, run]] of jobs.entries()) {
     self.postMessage({ type: 'progress', done: i, total: jobs.length, label });
     run();
@@ -144,7 +177,7 @@ self.onmessage = async ({ data }) => {
     }
     const t0 = performance.now();
     let result;
-    if (data.kind === 'bench') result = bench(data);
+    if (data.kind === 'bench') result = data.arm === undefined ? bench(data) : await benchSpace(data);
     else if (data.kind === 'atlas') result = atlas(data);
     else if (data.kind === 'space-atlas') result = spaceAtlas(data);
     else if (data.kind === 'space-figure') result = spaceFigure(data.run);

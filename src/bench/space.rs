@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use super::{time_ns, Options, Probes};
+use super::{time_ns, Forward, Options, Probes};
 use crate::error::{Error, Result};
 use crate::networks::space::{SpaceNetworkSet, SpaceNetworks};
 use crate::planner::space::SpacePlanner;
@@ -14,8 +14,25 @@ use crate::scene::SpaceScene;
 /// One RK4 step of the preset `key`'s task in `method`, sample included
 /// (ns); the run restarts at `tf`.
 pub fn step_ns(key: &str, method: Method, opts: &Options, probes: &Probes) -> Result<f64> {
+    step_ns_with(key, method, shipped_networks(key, method)?, opts, probes)
+}
+
+/// [`step_ns`] with the networks given (the workers' module, which is
+/// handed the weights files' text): `None` for the methods without.
+pub fn step_ns_with(
+    key: &str,
+    method: Method,
+    nets: Option<Arc<SpaceNetworks>>,
+    opts: &Options,
+    probes: &Probes,
+) -> Result<f64> {
+    if method.uses_networks() && nets.is_none() {
+        return Err(Error::NetworksUnavailable(format!(
+            "{} needs the networks of the arm '{key}'",
+            method.name()
+        )));
+    }
     let scene = task(key, opts.refine)?;
-    let nets = shipped_networks(key, method)?;
     let fresh = || SpacePlanner::with_networks(scene.clone(), method, nets.clone());
     let mut p = fresh()?;
     time_ns(opts, probes, || {
@@ -43,6 +60,35 @@ pub fn allocs_per_step(
         std::hint::black_box(p.step()?);
     }
     Ok((count() - before) as f64 / n as f64)
+}
+
+/// Forward passes of the spatial `Phi` and `v` networks at the preset
+/// `key`'s start pose, `v` for its first sphere (ns).
+pub fn forward_ns(
+    key: &str,
+    nets: &SpaceNetworks,
+    opts: &Options,
+    probes: &Probes,
+) -> Result<Forward> {
+    let scene = task(key, 0)?;
+    nets.check_chain(&scene.chain)?;
+    let pose = crate::space::SpacePose::new(&scene.chain, &scene.theta0)?;
+    let n = pose.dof();
+    let o = scene.spheres.first().map_or([0.5, 0.0, 0.5], |s| s.centre);
+    let mut out = vec![0.0; 3 * n];
+    let phi = time_ns(opts, probes, || {
+        nets.phi(std::hint::black_box(&pose), &mut out)
+    })?;
+    let mut g = vec![0.0; n];
+    let v = time_ns(opts, probes, || {
+        nets.area_gradient(std::hint::black_box(&pose), o, &mut g)
+    })?;
+    Ok(Forward {
+        phi,
+        v,
+        phi_plain: None,
+        phi_rows: None,
+    })
 }
 
 /// The networks shipped for the preset `key` when `method` learns (none

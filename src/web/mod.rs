@@ -36,6 +36,8 @@ mod plots;
 mod scene;
 #[cfg(all(feature = "worker", feature = "space"))]
 mod space_atlas;
+#[cfg(all(feature = "worker", feature = "space"))]
+mod space_bench;
 #[cfg(all(feature = "page", feature = "space"))]
 mod space_demo;
 #[cfg(all(feature = "page", feature = "space"))]
@@ -66,6 +68,8 @@ use crate::networks::{self, NetworkSet};
 pub use demo::Demo;
 #[cfg(all(feature = "worker", feature = "space"))]
 pub use space_atlas::SpaceAtlasJob;
+#[cfg(all(feature = "worker", feature = "space"))]
+pub use space_bench::*;
 #[cfg(all(feature = "page", feature = "space"))]
 pub use space_demo::SpaceDemo;
 #[cfg(all(feature = "worker", feature = "space"))]

@@ -321,7 +321,7 @@ pub fn conclude_training(
 
 /// The benchmark's options: `batch_ms` is the shortest timed batch (1 to
 /// 1000 ms); each figure is the median of seven batches after a warm-up.
-fn bench_options(batch_ms: f64) -> Result<bench::Options, JsError> {
+pub(super) fn bench_options(batch_ms: f64) -> Result<bench::Options, JsError> {
     crate::error::within("batch length (ms)", batch_ms, 1.0, 1000.0).map_err(js_err)?;
     Ok(bench::Options {
         batch_ms,
@@ -329,7 +329,7 @@ fn bench_options(batch_ms: f64) -> Result<bench::Options, JsError> {
     })
 }
 
-fn probes() -> bench::Probes<'static> {
+pub(super) fn probes() -> bench::Probes<'static> {
     bench::Probes {
         now_ms: &now_ms,
         allocations: None,
