@@ -42,18 +42,22 @@ export function mountBenchPanel(root) {
     result.textContent = 'Measuring…';
     abort = new AbortController();
     try {
+      // On the page in space (html[data-space]), its arm's task (the workers' build with the arms in space).
+      const arm = document.documentElement.dataset.space || undefined;
       const r = await bench({
+        arm,
         signal: abort.signal,
         onProgress: ({ done, total, label }) => {
           if (progress) progress.value = done / total;
           result.textContent = `Measuring… ${label}`;
         },
       });
-      const nat = await nativeFigures();
+      // The native figures shipped beside the page are the plane's (make bench-native).
+      const nat = arm ? null : await nativeFigures();
       // One row per method timed, in the worker's order.
       body?.replaceChildren(
         ...Object.keys(r.step_ns).map((m) =>
-          row([method(m)?.label ?? m, nanoseconds(r.theta_dot_ns[m]), nanoseconds(r.step_ns[m]), nanoseconds(nat?.step_ns?.[m])]),
+          row([method(m)?.label ?? m, nanoseconds(r.theta_dot_ns?.[m]), nanoseconds(r.step_ns[m]), nanoseconds(nat?.step_ns?.[m])]),
         ),
       );
       if (table) table.hidden = false;

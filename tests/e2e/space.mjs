@@ -267,3 +267,17 @@ test("space: the slice atlas in a worker equals the page module's own runs of it
   clean(page);
   await page.close();
 });
+
+test("space: the benchmark panel times the Panda's step in every method, in a worker, while the page draws", async () => {
+  const page = await open('?arm=panda&method=numerical&autoplay=0');
+  await page.click('#bench-panel summary');
+  await page.click('#bench');
+  await page.waitForFunction(() => /Per RK4 step/.test(document.getElementById('bench-result').textContent), null, { timeout: 120000 });
+  const rows = await page.locator('#bench-body tr').count();
+  assert.equal(rows, 10, 'a row per method that runs in space');
+  const d = await page.evaluate(() => ({ ...document.getElementById('bench-result').dataset }));
+  assert.ok(Number(d.learnedNs) > 0 && Number(d.exactNs) > 0);
+  console.log(`measure: the Panda in the page's benchmark: ${d.learned} ${(d.learnedNs / 1000).toFixed(2)} us, ${d.exact} ${(d.exactNs / 1000).toFixed(2)} us per RK4 step`);
+  clean(page);
+  await page.close();
+});
