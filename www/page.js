@@ -241,7 +241,7 @@ async function startSpace() {
     runFile: () => controller.runFile(),
     atlas: (options) => controller.atlas(options),
     spaceAtlas: (options) => spaceAtlas(options),
-    networks: () => controller.networks,
+    networks: () => controller.networks(),
     methods: () => structuredClone(methods()),
     build: moduleBuild(),
     wasmMemoryBytes: () => moduleMemoryBytes(),

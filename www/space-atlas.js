@@ -122,10 +122,11 @@ export function mountSpaceAtlas(root, demo, { show, say, preset }) {
     const s = demo.state();
     const wanted = options.methods ?? [...boxes.querySelectorAll('input:checked')].map((b) => b.value);
     const learned = methods().filter((m) => wanted.includes(m.name) && (m.networks.phi || m.networks.v));
-    const chosen = s.has_networks ? wanted : wanted.filter((m) => !learned.some((l) => l.name === m));
+    // The learned methods with the arm's shipped networks, fetched for the worker (none shipped: left out).
+    const set = spaceNetworkSets().find((x) => x.arm === s.arm);
+    const chosen = set ? wanted : wanted.filter((m) => !learned.some((l) => l.name === m));
     let networks;
-    if (s.has_networks && learned.length) {
-      const set = spaceNetworkSets().find((x) => x.arm === s.arm);
+    if (set && learned.length) {
       const [phi, v] = await Promise.all(set.files.map((f) => fetch(assetUrl(`weights/${f}`)).then((r) => r.text())));
       networks = { phi, v };
     }

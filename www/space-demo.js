@@ -98,18 +98,34 @@ export async function mountSpace(root, options) {
     }
     menu.append(group);
   }
+  // The learned methods fetch the arm's shipped networks when first chosen
+  // (the Panda's two files are 227 KB gzipped: not on the first load).
   const learned = [...menu.options].filter((o) => o.dataset.networks === 'true');
-  for (const o of learned) o.disabled = true;
-  const networks = installNetworks(demo, preset.key).then((why) => {
-    for (const o of learned) o.disabled = Boolean(why);
-    if (why) for (const o of learned) o.title = `No networks for the ${preset.label}: ${why}`;
-    return why;
-  });
+  const shipped = spaceNetworkSets().find((x) => x.arm === preset.key);
+  for (const o of learned) {
+    o.disabled = !shipped;
+    o.title = shipped ? `Fetches the ${preset.label}'s networks (${shipped.name}) first` : `No networks are shipped for the ${preset.label}`;
+  }
+  let networks = null;
+  const ensureNetworks = () => (networks ??= installNetworks(demo, preset.key));
+  const choose = async (wanted) => {
+    if (learned.some((o) => o.value === wanted) && !demo.state().has_networks) {
+      show(`Fetching the ${preset.label}'s networks…`, 'info', false, menu);
+      const why = await ensureNetworks();
+      if (why) throw new Error(why);
+      messages.clear();
+    }
+    demo.setMethod(wanted);
+  };
   menu.addEventListener('change', async () => {
     const wanted = menu.value;
-    if (attempt(() => demo.setMethod(wanted), 'error', menu)) {
+    try {
+      await choose(wanted);
       say(`method: ${menu.selectedOptions[0]?.textContent ?? wanted}`);
       changed();
+    } catch (e) {
+      show(describe(e), 'error', true, menu);
+      menu.value = demo.state().method;
     }
   });
 
@@ -130,14 +146,12 @@ export async function mountSpace(root, options) {
   if (options.floor !== undefined) initial('floor', () => demo.setFloor(options.floor));
   if (options.view) initial('view', () => demo.setView((options.view[0] * Math.PI) / 180, (options.view[1] * Math.PI) / 180, options.view[2]));
   if (options.projector) document.documentElement.toggleAttribute('data-projector', true);
-  const wanted = options.method;
-  if (wanted) {
-    const needs = learned.some((o) => o.value === wanted);
-    if (needs) {
-      const why = await networks;
-      if (why) refused.push(`method: ${why}`);
-      else initial('method', () => demo.setMethod(wanted));
-    } else initial('method', () => demo.setMethod(wanted));
+  if (options.method) {
+    try {
+      await choose(options.method);
+    } catch (e) {
+      refused.push(`method: ${describe(e)}`);
+    }
   }
   if (refused.length) show(`${options.problemsLabel ?? 'Not applied'}: ${refused.join('; ')}`, 'warn', true);
 
@@ -300,7 +314,7 @@ export async function mountSpace(root, options) {
   return {
     demo,
     preset,
-    networks,
+    networks: ensureNetworks,
     state: () => demo.state(),
     worldToClient(x, y, z) {
       const [cx, cy] = demo.worldToCanvas(x, y, z);
