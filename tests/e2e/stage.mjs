@@ -155,7 +155,7 @@ test('keyboard on the drawing: n selects the target, each obstacle, each elbow; 
   // The live region says what the keys hold.
   await page.focus('#stage');
   await page.keyboard.press('n');
-  await page.waitForFunction(() => /selected: obstacle 1/.test(document.getElementById('announcer')?.textContent ?? ''), null, { timeout: 5000 });
+  await page.waitForFunction(() => /selected: obstacle 1/.test(document.getElementById('announcer')?.textContent ?? ''), null, { timeout: 15000 });
   await page.screenshot({ path: join(shots, 'keys-selected.png') });
   clean(page);
   await page.close();
