@@ -121,7 +121,8 @@ export async function mountSpace(root, options) {
     const wanted = menu.value;
     try {
       await choose(wanted);
-      say(`method: ${menu.selectedOptions[0]?.textContent ?? wanted}`);
+      // By the value chosen: the menu follows the state, which switched only now.
+      say(`method: ${[...menu.options].find((o) => o.value === wanted)?.textContent ?? wanted}`);
       changed();
     } catch (e) {
       show(describe(e), 'error', true, menu);

@@ -9,6 +9,7 @@ import { fixed, metres } from './format.js';
 import { method, describe } from './module.js';
 import { runWorker } from './jobs.js';
 import { saveText, saveBlob, csv } from './download.js';
+import { wireEmbedDialog } from './takeaway.js';
 import { spaceQuery } from './space-address.js';
 import { mountSpaceAtlas } from './space-atlas.js';
 
@@ -113,16 +114,13 @@ export function mountSpacePanels(root, demo, { attempt, show, say, preset }) {
       }
     }
   });
-  const dialog = $('embed-dialog');
-  $('embed-open')?.addEventListener('click', () => {
-    if (!dialog) return;
-    const frame = $('embed-iframe');
-    const element = $('embed-element');
+  wireEmbedDialog(root, () => {
     const q = spaceQuery(demo.state(), preset);
     q.set('embed', '1');
-    if (frame) frame.value = `<iframe src="${location.origin}${location.pathname}?${q}" title="The ${preset.label} and redundancy resolution" width="720" height="540" style="border: 0" loading="lazy"></iframe>`;
-    if (element) element.value = '<!-- The <redundant-ik-demo> element shows the planar arms; for an arm in space, use the iframe above. -->';
-    dialog.showModal?.();
+    return {
+      iframe: `<iframe src="${location.origin}${location.pathname}?${q}" title="The ${preset.label} and redundancy resolution" width="720" height="540" style="border: 0" loading="lazy"></iframe>`,
+      element: '<!-- The <redundant-ik-demo> element shows the planar arms; for an arm in space, use the iframe above. -->',
+    };
   });
 
   const atlas = mountSpaceAtlas(root, demo, { attempt, show, say, preset });

@@ -49,6 +49,43 @@ export function embedSnippets(s, page = location.href) {
 }
 
 /**
+ * Wires the Embed dialog under `root` (`#embed-open`, `#embed-dialog`,
+ * `#embed-iframe`, `#embed-element`, their `-copy` buttons, `#embed-status`):
+ * `snippets()` gives `{ iframe, element }` when it opens; the copy buttons
+ * copy (or select) them; closing gives the focus back to the button.
+ */
+export function wireEmbedDialog(root, snippets) {
+  const $ = (id) => root.querySelector('#' + id);
+  const dialog = $('embed-dialog');
+  const open = $('embed-open');
+  const status = $('embed-status');
+  if (!dialog || !open) return;
+  open.addEventListener('click', () => {
+    const { iframe, element } = snippets();
+    $('embed-iframe').value = iframe;
+    $('embed-element').value = element;
+    if (status) status.textContent = '';
+    dialog.showModal();
+  });
+  for (const [button, area, what] of [
+    ['embed-iframe-copy', 'embed-iframe', 'The iframe'],
+    ['embed-element-copy', 'embed-element', 'The element'],
+  ]) {
+    $(button)?.addEventListener('click', async () => {
+      const box = $(area);
+      box.select();
+      try {
+        await navigator.clipboard.writeText(box.value);
+        status.textContent = `${what} is copied: paste it into the other page's HTML.`;
+      } catch (_) {
+        status.textContent = `${what} is selected: copy it with Ctrl+C (the browser did not let the page copy it).`;
+      }
+    });
+  }
+  dialog.addEventListener('close', () => open.focus());
+}
+
+/**
  * Wires `#save-figure-svg`, `#save-figure-png`, `#save-plots-svg`,
  * `#save-plots-png`, `#save-run-csv`, `#save-run-json`, `#copy-link`,
  * `#link-text` and the Embed dialog (`#embed-open`, `#embed-dialog`,
@@ -157,32 +194,7 @@ export function mountTakeaway(root, demo, { show, link }) {
   });
 
   // ---- Embed: the dialog with the two snippets -------------------------
-  const dialog = $('embed-dialog');
-  const open = $('embed-open');
-  const status = $('embed-status');
-  open?.addEventListener('click', () => {
-    const { iframe, element } = embedSnippets(demo.state());
-    $('embed-iframe').value = iframe;
-    $('embed-element').value = element;
-    status.textContent = '';
-    dialog.showModal();
-  });
-  for (const [button, area, what] of [
-    ['embed-iframe-copy', 'embed-iframe', 'The iframe'],
-    ['embed-element-copy', 'embed-element', 'The element'],
-  ]) {
-    $(button)?.addEventListener('click', async () => {
-      const box = $(area);
-      box.select();
-      try {
-        await navigator.clipboard.writeText(box.value);
-        status.textContent = `${what} is copied: paste it into the other page's HTML.`;
-      } catch (_) {
-        status.textContent = `${what} is selected: copy it with Ctrl+C (the browser did not let the page copy it).`;
-      }
-    });
-  }
-  dialog?.addEventListener('close', () => open?.focus());
+  wireEmbedDialog(root, () => embedSnippets(demo.state()));
 
   return { files };
 }
