@@ -105,8 +105,8 @@ async function benchSpace({ batchMs = 20, arm, methods, refine = 0, weights }) {
   return result;
 }
 
-function atlas({ run, options }) {
-  const job = new AtlasJob(run, options ?? {});
+/** An atlas job (AtlasJob or SpaceAtlasJob) run a row at a time, posting progress. */
+function cells(job) {
   try {
     const total = job.total;
     const chunk = job.row;
@@ -121,21 +121,8 @@ function atlas({ run, options }) {
   }
 }
 
-function spaceAtlas({ run, options }) {
-  const job = new SpaceAtlasJob(run, options ?? {});
-  try {
-    const total = job.total;
-    const chunk = job.row;
-    self.postMessage({ type: 'progress', done: 0, total, label: 'cells' });
-    while (job.done < total) {
-      const done = job.advance(chunk);
-      self.postMessage({ type: 'progress', done, total, label: 'cells' });
-    }
-    return job.finish();
-  } finally {
-    job.free();
-  }
-}
+const atlas = ({ run, options }) => cells(new AtlasJob(run, options ?? {}));
+const spaceAtlas = ({ run, options }) => cells(new SpaceAtlasJob(run, options ?? {}));
 
 function train({ request, run }) {
   // Progress: epochs done over the most epochs of the networks asked for
