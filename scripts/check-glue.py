@@ -1,13 +1,19 @@
 #!/usr/bin/env python3
-"""Checks that one wasm-bindgen glue file can load two builds of a module
-(make web): the planar build (feature page, or worker) and the build with
-the arms in space (page,space or worker,space), whose glue the page ships.
-The planar module must import nothing the glue does not provide (its
-imports a subset of the space build's, by name), and every export the glue
-may call and the planar module lacks must be a binding of the arms in space
-(SpaceDemo, spacePresets, SpaceAtlasJob, spaceFigure, benchSpaceStep, ...: every name with "space" in it),
-which the page and its workers call only on the space build.
-Usage: check-glue.py PLANAR.wasm SPACE.wasm
+"""Checks that one wasm-bindgen glue file can load a build of a module
+(make web). The glue is a build of both parts (the page's: page,space; the
+workers': worker,space), and each part is a build of its own: the plane's
+(feature page, or worker) and, for the page, the arms in space's
+(canvas,space). A part must import nothing the glue does not provide (its
+imports a subset of the glue build's, by name), and every export the glue
+may call and the part lacks must belong to the other part, which the page
+and its workers call only where that part is loaded:
+  plane: the bindings of the arms in space (SpaceDemo, spacePresets,
+         SpaceAtlasJob, spaceFigure, benchSpaceStep, ...: every name with
+         "space" in it);
+  space: the planar page's Demo (demo_*) and its shipped network sets'
+         loaders (provideBuiltinNetworks, networksError,
+         builtinNetworksFailed), which module.js calls only on the plane.
+Usage: check-glue.py GLUE.wasm PART.wasm plane|space
 """
 import re
 import sys
@@ -64,15 +70,20 @@ def names(path):
     return imports, exports
 
 
-planar, space = (names(p) for p in sys.argv[1:3])
-extra_imports = planar[0] - space[0]
-SPACE_ONLY = re.compile(r"space", re.IGNORECASE)
-missing = sorted(e for e in space[1] - planar[1] if not SPACE_ONLY.search(e))
+glue_path, part_path, which = sys.argv[1:4]
+OTHER = {
+    "plane": re.compile(r"space", re.IGNORECASE),
+    "space": re.compile(r"^(demo_|__wbg_demo_free$|provideBuiltinNetworks$|networksError$|builtinNetworksFailed$)"),
+}[which]
+glue, part = names(glue_path), names(part_path)
+extra_imports = part[0] - glue[0]
+lacking = glue[1] - part[1]
+missing = sorted(e for e in lacking if not OTHER.search(e))
 if extra_imports or missing:
-    print(f"check-glue: the space build's glue cannot load {sys.argv[1]}:")
+    print(f"check-glue: the glue of {glue_path} cannot load {part_path} ({which}):")
     for x in sorted(extra_imports):
         print(f"  it imports {x}, which the glue does not provide")
     for x in missing:
         print(f"  it lacks the export {x}, which the glue calls")
     sys.exit(1)
-print(f"check-glue: one glue loads both builds ({len(space[1] - planar[1])} exports of the arms in space only)")
+print(f"check-glue: the glue loads {part_path} ({len(lacking)} exports of the other part absent)")

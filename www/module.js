@@ -19,6 +19,8 @@ import init, {
   palette,
   methodGroupLabels as moduleGroupLabels,
 } from './pkg/redundant_ik.js';
+// The keys of the arms in space, read from the module by make web (scripts/space-arms.mjs).
+import { SPACE_ARMS } from './pkg/space-arms.js';
 
 // The arm, limits and obstacle syntax (`parseArm(text)`, `formatArm(post,
 // links)`, `parseJointLimits(text)` and `formatJointLimits(flat)` for
@@ -69,23 +71,25 @@ const BUILDS = {
   baseline: 'pkg/redundant_ik_bg.wasm',
 };
 
-/** The same two with the arms in space too (feature space), loaded by the same glue for arm=panda and the like. */
+/** The same two for the arms in space (features canvas,space: no planar demo), loaded by the same glue for arm=panda and the like. */
 const SPACE_BUILDS = {
   simd: 'pkg/redundant_ik_space_simd_bg.wasm',
   baseline: 'pkg/redundant_ik_space_bg.wasm',
 };
 
 /**
- * Whether the page asks for a build with the arms in space: its address
- * names an arm by a preset's key (`arm=panda`; a planar arm written out,
- * `0.5:1,1,1`, is not a key). The space build holds the planar page too,
- * so a planar preset's key loads it harmlessly.
+ * Whether the page asks for the build with the arms in space: its address
+ * names one by its preset's key (`arm=panda`), or `arm=space` (the first).
+ * Every other address (a planar preset's key such as `arm=iiwa-planar`, an
+ * arm written out, `0.5:1,1,1`) gets the plane's build: the space build
+ * has no planar demo.
  */
 export function asksForSpace(search = globalThis.location?.search ?? '') {
-  return /^[A-Za-z][\w-]*$/.test(new URLSearchParams(search).get('arm') ?? '');
+  const arm = new URLSearchParams(search).get('arm') ?? '';
+  return arm === 'space' || SPACE_ARMS.includes(arm);
 }
 
-/** Whether the module loaded holds the arms in space (SpaceDemo, spacePresets). */
+/** Whether the module loaded is the build with the arms in space (SpaceDemo, spacePresets; no planar Demo). */
 export function moduleHasSpace() {
   return withSpace;
 }
@@ -154,6 +158,8 @@ const setFailures = new Map();
  * networks then say why.
  */
 export function loadNetworkSet(set = moduleNetworkSets()[0]) {
+  // The build with the arms in space runs no planar networks (nor loads them).
+  if (withSpace) return Promise.resolve('the planar networks are not in the build with the arms in space');
   if (!fetchedSets.has(set)) {
     fetchedSets.set(
       set,
@@ -197,6 +203,8 @@ export function loadNetworkSet(set = moduleNetworkSets()[0]) {
  * text, or `{ name: { error } }` with why they could not be fetched.
  */
 export async function networkSetsFor(names = []) {
+  // The jobs of the page in space read the spatial networks' files themselves.
+  if (withSpace) return {};
   const known = moduleNetworkSets();
   const out = {};
   for (const name of new Set([known[0], ...names])) {
@@ -260,7 +268,7 @@ export function loadModule({ space = asksForSpace() } = {}) {
         }
       }
       if (!started) await start('baseline');
-      await loadNetworkSet();
+      if (!withSpace) await loadNetworkSet();
     })();
   }
   return module;

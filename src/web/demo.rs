@@ -7,7 +7,7 @@ use web_sys::HtmlCanvasElement;
 
 use super::layer::Layer;
 use super::surface::Surface;
-use super::{input, js_err, now_ms, plots, stage, to_js};
+use super::{finite, input, js_err, now_ms, plots, stage, to_js, JsResult};
 use crate::atlas::Grid;
 use crate::planner::Method;
 use crate::session::Session;
@@ -37,12 +37,6 @@ pub struct Demo {
 /// How much larger projector mode draws the strokes, markers and text of
 /// the stage and the plots.
 const PROJECTOR: f64 = 1.4;
-
-pub(super) type JsResult<T = ()> = Result<T, JsError>;
-
-pub(super) fn finite(what: &str, value: f64) -> JsResult<f64> {
-    crate::error::finite(what, value).map_err(js_err)
-}
 
 impl Demo {
     /// The stage's view now (`crate::view::Camera`): what it draws, hit-tests

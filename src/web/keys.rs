@@ -4,8 +4,8 @@
 
 use wasm_bindgen::prelude::*;
 
-use super::demo::{Demo, JsResult};
-use super::{input, js_err};
+use super::demo::Demo;
+use super::{input, js_err, JsResult};
 
 #[wasm_bindgen]
 impl Demo {

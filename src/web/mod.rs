@@ -30,7 +30,7 @@ mod keys;
 mod lab;
 #[cfg(feature = "page")]
 mod layer;
-#[cfg(feature = "page")]
+#[cfg(feature = "canvas")]
 mod plots;
 #[cfg(feature = "page")]
 mod scene;
@@ -38,17 +38,17 @@ mod scene;
 mod space_atlas;
 #[cfg(all(feature = "worker", feature = "space"))]
 mod space_bench;
-#[cfg(all(feature = "page", feature = "space"))]
+#[cfg(all(feature = "canvas", feature = "space"))]
 mod space_demo;
-#[cfg(all(feature = "page", feature = "space"))]
+#[cfg(all(feature = "canvas", feature = "space"))]
 mod space_stage;
 #[cfg(all(feature = "worker", feature = "space"))]
 mod space_takeaway;
 #[cfg(feature = "page")]
 mod stage;
-#[cfg(feature = "page")]
+#[cfg(feature = "canvas")]
 mod style;
-#[cfg(feature = "page")]
+#[cfg(feature = "canvas")]
 mod surface;
 #[cfg(feature = "worker")]
 mod takeaway;
@@ -59,7 +59,6 @@ use std::cell::RefCell;
 
 use serde::Serialize;
 use wasm_bindgen::prelude::*;
-use wasm_bindgen::JsCast;
 
 use crate::error::Error;
 use crate::networks::{self, NetworkSet};
@@ -70,7 +69,7 @@ pub use demo::Demo;
 pub use space_atlas::SpaceAtlasJob;
 #[cfg(all(feature = "worker", feature = "space"))]
 pub use space_bench::*;
-#[cfg(all(feature = "page", feature = "space"))]
+#[cfg(all(feature = "canvas", feature = "space"))]
 pub use space_demo::SpaceDemo;
 #[cfg(all(feature = "worker", feature = "space"))]
 pub use space_takeaway::space_figure;
@@ -83,10 +82,11 @@ thread_local! {
     /// Message of the last panic, for the page to show.
     static LAST_PANIC: RefCell<Option<String>> = const { RefCell::new(None) };
     /// The global `performance` object: the window's, or the worker's.
+    #[cfg(any(feature = "page", feature = "worker"))]
     static PERFORMANCE: Option<web_sys::Performance> =
         js_sys::Reflect::get(&js_sys::global(), &JsValue::from_str("performance"))
             .ok()
-            .and_then(|p| p.dyn_into::<web_sys::Performance>().ok());
+            .and_then(|p| wasm_bindgen::JsCast::dyn_into::<web_sys::Performance>(p).ok());
 }
 
 /// Installs the panic hook: the message goes to the console and is kept for
@@ -119,6 +119,7 @@ fn network_set(set: Option<String>) -> Result<NetworkSet, JsError> {
         .map_or(Ok(NetworkSet::Paper), |s| s.parse().map_err(js_err))
 }
 
+#[cfg(any(feature = "page", feature = "worker"))]
 /// Whether a shipped network set (`paper` when absent) loads: `null` when
 /// it does, else the reason (an unknown set's name included).
 #[wasm_bindgen(js_name = networksError)]
@@ -154,6 +155,7 @@ pub fn builtin_weights_files(set: Option<String>) -> Vec<String> {
         .unwrap_or_default()
 }
 
+#[cfg(any(feature = "page", feature = "worker"))]
 /// Hands the module a shipped set (`paper` when absent): the JSON text of
 /// the two files of [`builtin_weights_files`]. Throws if they do not load
 /// (the reason then stays what [`networks_error`] says). Only the first
@@ -167,6 +169,7 @@ pub fn provide_builtin_networks(
     networks::provide_builtin(network_set(set)?, Ok((phi_json, v_json))).map_err(js_err)
 }
 
+#[cfg(any(feature = "page", feature = "worker"))]
 /// Tells the module why a shipped set (`paper` when absent) could not be
 /// fetched; the methods that need it then say so.
 #[wasm_bindgen(js_name = builtinNetworksFailed)]
@@ -388,7 +391,7 @@ pub fn parse_obstacles(text: &str) -> Result<Vec<f64>, JsError> {
         .collect())
 }
 
-#[cfg(feature = "page")]
+#[cfg(feature = "canvas")]
 /// The colours the drawing uses, `{ name: css colour }`: the page sets them
 /// as CSS custom properties (`--arm`, ...), so the stylesheet has no copy.
 #[wasm_bindgen]
@@ -398,7 +401,7 @@ pub fn palette() -> Result<JsValue, JsError> {
 
 /// The legend of the drawing: `[{ key, label, swatch, kind }]`, each swatch
 /// the colour (with the alpha) that the renderer draws that element with.
-#[cfg(feature = "page")]
+#[cfg(feature = "canvas")]
 #[wasm_bindgen]
 pub fn legend() -> Result<JsValue, JsError> {
     to_js(&style::legend())
@@ -408,7 +411,7 @@ pub fn legend() -> Result<JsValue, JsError> {
 /// `[{ name, label, colour, swatch }]`: `colour` is `#rrggbb` (the command
 /// line's SVG draws it), `swatch` the translucent colour the layer is drawn
 /// with.
-#[cfg(feature = "page")]
+#[cfg(feature = "canvas")]
 #[wasm_bindgen(js_name = atlasClasses)]
 pub fn atlas_classes() -> Result<JsValue, JsError> {
     #[derive(Serialize)]
@@ -446,11 +449,22 @@ fn to_js<T: Serialize>(value: &T) -> Result<JsValue, JsError> {
     js_sys::JSON::parse(&text).map_err(|_| JsError::new("JSON.parse refused the module's JSON"))
 }
 
+/// What a binding returns: a value, or an exception with the core's message.
+#[cfg(feature = "canvas")]
+type JsResult<T = ()> = Result<T, JsError>;
+
+/// A number from JavaScript, refused unless finite (NaN included).
+#[cfg(feature = "canvas")]
+fn finite(what: &str, value: f64) -> JsResult<f64> {
+    crate::error::finite(what, value).map_err(js_err)
+}
+
 fn js_err(e: Error) -> JsError {
     JsError::new(&e.to_string())
 }
 
 /// `performance.now()` in a page or a worker (0 where there is none).
+#[cfg(any(feature = "page", feature = "worker"))]
 fn now_ms() -> f64 {
     PERFORMANCE.with(|p| p.as_ref().map_or(0.0, |p| p.now()))
 }

@@ -11,7 +11,9 @@ use super::surface::{dash, polyline, text, Surface};
 use crate::palette::joint_series;
 use std::collections::VecDeque;
 
-use crate::session::{Point, Session};
+use crate::session::Point;
+#[cfg(feature = "page")]
+use crate::session::Session;
 
 /// Width of one key of a panel's legend (its swatch and `θ₁`), px.
 const KEY_SPACING: f64 = 34.0;
@@ -42,6 +44,7 @@ pub fn fmt_tick(v: f64, step: f64) -> String {
 }
 
 /// Draws the session's time series on `surface`.
+#[cfg(feature = "page")]
 pub fn draw(s: &Session, surface: &Surface) {
     let limits = s.arm().joint_limits().map_or(&[][..], |l| l.ranges());
     draw_points(s.history(), limits, surface);

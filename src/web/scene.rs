@@ -6,8 +6,8 @@
 
 use wasm_bindgen::prelude::*;
 
-use super::demo::{finite, Demo, JsResult};
-use super::{input, js_err, to_js};
+use super::demo::Demo;
+use super::{finite, input, js_err, to_js, JsResult};
 use crate::arm::Arm;
 use crate::error::Error;
 use crate::obstacle::Obstacle;

@@ -6,10 +6,9 @@
 use wasm_bindgen::prelude::*;
 use web_sys::HtmlCanvasElement;
 
-use super::demo::{finite, JsResult};
 use super::space_stage::{self, SliceLayer};
 use super::surface::Surface;
-use super::{js_err, plots, to_js};
+use super::{finite, js_err, plots, to_js, JsResult};
 use crate::atlas::space::Plane;
 use crate::atlas::Grid;
 use crate::export::SpaceRunFile;

@@ -66,6 +66,7 @@ impl Surface {
     /// mode): what is drawn in pixels (lines, text, markers) comes out `k`
     /// times larger, and a view [`View::magnified`] by `k` keeps the world
     /// where it was.
+    #[cfg(feature = "page")]
     pub fn magnified(&self, k: f64) -> Surface {
         Surface {
             canvas: self.canvas.clone(),
