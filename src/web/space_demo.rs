@@ -27,6 +27,12 @@ pub struct SpaceDemo {
     plots: Option<Surface>,
     layer: Option<SliceLayer>,
     keyboard: bool,
+    /// Whether the drawing is out of date: every binding that may change
+    /// what is drawn sets it, and [`SpaceDemo::frame`] draws only then or
+    /// while the clock runs. An idle page in space then costs no drawing
+    /// (it painted the arm, the floor and the plots 60 times a second, which
+    /// slowed its workers' benchmark on 2 cores; docs/web.md).
+    stale: bool,
 }
 
 impl SpaceDemo {
@@ -58,6 +64,7 @@ impl SpaceDemo {
             plots: plots.map(Surface::new).transpose()?,
             layer: None,
             keyboard: false,
+            stale: true,
         })
     }
 
@@ -65,6 +72,7 @@ impl SpaceDemo {
     /// shipped set they are (`panda-reach`), if they are one.
     #[wasm_bindgen(js_name = installNetworks)]
     pub fn install_networks(&mut self, phi: &str, v: &str, set: Option<String>) -> JsResult {
+        self.stale = true;
         let set = set
             .map(|s| s.parse::<SpaceNetworkSet>())
             .transpose()
@@ -75,6 +83,7 @@ impl SpaceDemo {
     /// Switches method (by name).
     #[wasm_bindgen(js_name = setMethod)]
     pub fn set_method(&mut self, method: &str) -> JsResult {
+        self.stale = true;
         let m = method.parse::<Method>().map_err(js_err)?;
         self.session.set_method(m).map_err(js_err)
     }
@@ -82,12 +91,14 @@ impl SpaceDemo {
     /// Sets a method's parameter by name (`lambda`, `influence`, ...).
     #[wasm_bindgen(js_name = setParam)]
     pub fn set_param(&mut self, name: &str, value: f64) -> JsResult {
+        self.stale = true;
         self.session.set_param(name, value).map_err(js_err)
     }
 
     /// `none` or `wln`.
     #[wasm_bindgen(js_name = setWeighting)]
     pub fn set_weighting(&mut self, name: &str) -> JsResult {
+        self.stale = true;
         let w = name.parse().map_err(js_err)?;
         self.session.set_weighting(w).map_err(js_err)
     }
@@ -95,64 +106,75 @@ impl SpaceDemo {
     /// Whether the floor is an obstacle.
     #[wasm_bindgen(js_name = setFloor)]
     pub fn set_floor(&mut self, on: bool) -> JsResult {
+        self.stale = true;
         self.session.set_floor(on).map_err(js_err)
     }
 
     /// Closed-loop gain `K` (1/s).
     #[wasm_bindgen(js_name = setFeedback)]
     pub fn set_feedback(&mut self, gain: f64) -> JsResult {
+        self.stale = true;
         self.session.set_feedback(gain).map_err(js_err)
     }
 
     /// Playback speed (times real time).
     #[wasm_bindgen(js_name = setSpeed)]
     pub fn set_speed(&mut self, speed: f64) -> JsResult {
+        self.stale = true;
         self.session.set_speed(speed).map_err(js_err)
     }
 
     /// The end of the hand's line (m).
     #[wasm_bindgen(js_name = setTarget)]
     pub fn set_target(&mut self, x: f64, y: f64, z: f64) -> JsResult {
+        self.stale = true;
         self.session.set_target([x, y, z]).map_err(js_err)
     }
 
     /// The spheres, `[x, y, z, r, ...]` (m).
     #[wasm_bindgen(js_name = setSpheres)]
     pub fn set_spheres(&mut self, flat: Vec<f64>) -> JsResult {
+        self.stale = true;
         self.session.set_spheres(&flat).map_err(js_err)
     }
 
     /// Adds a sphere; returns its index.
     #[wasm_bindgen(js_name = addSphere)]
     pub fn add_sphere(&mut self, x: f64, y: f64, z: f64, r: f64) -> JsResult<usize> {
+        self.stale = true;
         self.session.add_sphere([x, y, z], r).map_err(js_err)
     }
 
     /// Removes sphere `i` (from 0).
     #[wasm_bindgen(js_name = removeSphere)]
     pub fn remove_sphere(&mut self, i: usize) -> JsResult {
+        self.stale = true;
         self.session.remove_sphere(i).map_err(js_err)
     }
 
     /// The preset's own task again.
     #[wasm_bindgen(js_name = loadTask)]
     pub fn load_task(&mut self) -> JsResult {
+        self.stale = true;
         self.session.load_task().map_err(js_err)
     }
 
     /// Back to `t = 0`, paused.
     pub fn reset(&mut self) {
+        self.stale = true;
         self.session.reset();
     }
 
     /// One step, paused.
     pub fn step(&mut self) {
+        self.stale = true;
         self.session.step();
     }
 
     /// Starts (replaying an ended run) or pauses the clock.
     #[wasm_bindgen(js_name = setRunning)]
     pub fn set_running(&mut self, running: bool) {
+        self.stale = true;
         self.session.set_running(running);
     }
 
@@ -165,13 +187,19 @@ impl SpaceDemo {
     /// Shows the run at `time` (s).
     #[wasm_bindgen(js_name = runUntil)]
     pub fn run_until(&mut self, time: f64) -> JsResult {
+        self.stale = true;
         self.session.run_until(time).map_err(js_err)
     }
 
-    /// Advances the clock by `elapsed_ms`, draws, and returns the state.
+    /// Advances the clock by `elapsed_ms`, draws if anything changed (or
+    /// the clock ran), and returns the state.
     pub fn frame(&mut self, elapsed_ms: f64) -> JsResult<JsValue> {
+        let was_running = self.session.running();
         self.session.tick(elapsed_ms);
-        self.draw();
+        if self.stale || was_running || self.session.running() {
+            self.draw();
+            self.stale = false;
+        }
         self.state()
     }
 
@@ -201,12 +229,14 @@ impl SpaceDemo {
 
     /// Sizes the stage (CSS px, device-pixel ratio).
     pub fn resize(&mut self, width: f64, height: f64, dpr: f64) -> JsResult {
+        self.stale = true;
         self.stage.resize(width, height, dpr)
     }
 
     /// Sizes the plots.
     #[wasm_bindgen(js_name = resizePlots)]
     pub fn resize_plots(&mut self, width: f64, height: f64, dpr: f64) -> JsResult {
+        self.stale = true;
         match &mut self.plots {
             Some(p) => p.resize(width, height, dpr),
             None => Ok(()),
@@ -216,6 +246,7 @@ impl SpaceDemo {
     /// Whether the drawing has the keyboard (the selected item is ringed).
     #[wasm_bindgen(js_name = setKeyboardFocus)]
     pub fn set_keyboard_focus(&mut self, on: bool) {
+        self.stale = true;
         self.keyboard = on;
     }
 
@@ -231,6 +262,7 @@ impl SpaceDemo {
     /// (where a drag orbits).
     #[wasm_bindgen(js_name = pointerDown)]
     pub fn pointer_down(&mut self, x: f64, y: f64, slop: f64) -> Option<String> {
+        self.stale = true;
         let proj = self.projection();
         self.session
             .pointer_down(&proj, x, y, slop)
@@ -240,6 +272,7 @@ impl SpaceDemo {
     /// Moves the item held under `(x, y)`.
     #[wasm_bindgen(js_name = pointerMove)]
     pub fn pointer_move(&mut self, x: f64, y: f64) -> JsResult {
+        self.stale = true;
         let proj = self.projection();
         self.session.pointer_move(&proj, x, y).map_err(js_err)
     }
@@ -247,11 +280,13 @@ impl SpaceDemo {
     /// Lets go.
     #[wasm_bindgen(js_name = pointerUp)]
     pub fn pointer_up(&mut self) {
+        self.stale = true;
         self.session.pointer_up();
     }
 
     /// Orbits by a pointer's travel of `(dx, dy)` CSS px.
     pub fn orbit(&mut self, dx: f64, dy: f64) -> JsResult {
+        self.stale = true;
         finite("orbit", dx)?;
         finite("orbit", dy)?;
         self.session
@@ -263,6 +298,7 @@ impl SpaceDemo {
     /// and `up` steps up.
     #[wasm_bindgen(js_name = orbitSteps)]
     pub fn orbit_steps(&mut self, steps: f64, up: f64) -> JsResult {
+        self.stale = true;
         self.session
             .orbit(steps * KEY_ORBIT, up * KEY_ORBIT)
             .map_err(js_err)
@@ -270,30 +306,35 @@ impl SpaceDemo {
 
     /// Zooms in by `factor` (out below 1); returns the factor applied.
     pub fn zoom(&mut self, factor: f64) -> JsResult<f64> {
+        self.stale = true;
         self.session.zoom(factor).map_err(js_err)
     }
 
     /// Sets the view: yaw and pitch (rad), distance (m).
     #[wasm_bindgen(js_name = setView)]
     pub fn set_view(&mut self, yaw: f64, pitch: f64, distance: f64) -> JsResult {
+        self.stale = true;
         self.session.set_view(yaw, pitch, distance).map_err(js_err)
     }
 
     /// Back to the preset's view.
     #[wasm_bindgen(js_name = resetView)]
     pub fn reset_view(&mut self) {
+        self.stale = true;
         self.session.reset_view();
     }
 
     /// Selects the next item for the keys; returns what it is.
     #[wasm_bindgen(js_name = selectNext)]
     pub fn select_next(&mut self, forward: bool) -> String {
+        self.stale = true;
         self.session.select_next(forward).describe()
     }
 
     /// Moves the selected item by `(dx, dy)` key steps along the view's
     /// right and up.
     pub fn nudge(&mut self, dx: f64, dy: f64, fine: bool) -> JsResult {
+        self.stale = true;
         let proj = self.projection();
         self.session.nudge(&proj, dx, dy, fine).map_err(js_err)
     }
@@ -351,12 +392,14 @@ impl SpaceDemo {
             .map_err(|_| JsError::new("an atlas region is [u0, u1, v0, v1]"))?;
         let grid = Grid::new(region, n).map_err(js_err)?;
         self.layer = Some(SliceLayer::new(plane, grid, classes).map_err(js_err)?);
+        self.stale = true;
         Ok(())
     }
 
     /// Hides the atlas.
     #[wasm_bindgen(js_name = clearAtlasLayer)]
     pub fn clear_atlas_layer(&mut self) {
+        self.stale = true;
         self.layer = None;
     }
 }

@@ -51,6 +51,33 @@ test('space: the Panda and the iiwa open from the address on the 3-D stage', asy
   }
 });
 
+test("space: an arm in space's key loads the space build (no planar demo, no planar networks); a planar preset's key loads the plane's", async () => {
+  const loaded = (page) =>
+    page.evaluate(() => performance.getEntriesByType('resource').map((e) => new URL(e.name).pathname.split('/').pop()).filter((n) => /\.(wasm|json)$/.test(n)));
+  const space = await open('?arm=panda&method=numerical');
+  const files = await loaded(space);
+  assert.ok(files.some((f) => /^redundant_ik_space(_simd)?_bg\.wasm$/.test(f)), files.join(' '));
+  assert.ok(!files.some((f) => /^redundant_ik(_simd)?_bg\.wasm$/.test(f)), `the planar module is not fetched: ${files.join(' ')}`);
+  // The planar networks' weights files are not fetched on the page in space.
+  const planarWeights = await space.evaluate(() => import('./module.js').then((m) => m.builtinWeightsFiles('paper')));
+  assert.ok(!files.some((f) => planarWeights.includes(f)), files.join(' '));
+  assert.equal(await space.evaluate(() => import('./module.js').then((m) => m.moduleHasSpace())), true);
+  // The space build holds no planar demo: its constructor has no export to call.
+  const demo = await space.evaluate(() => import('./module.js').then((m) => { try { new m.Demo(document.createElement('canvas')); return 'constructed'; } catch (e) { return String(e); } }));
+  assert.notEqual(demo, 'constructed');
+  clean(space);
+  await space.close();
+  const plane = await open('?arm=iiwa-planar&method=numerical');
+  const planeFiles = await loaded(plane);
+  assert.ok(planeFiles.some((f) => /^redundant_ik(_simd)?_bg\.wasm$/.test(f)), planeFiles.join(' '));
+  assert.ok(!planeFiles.some((f) => f.includes('space')), planeFiles.join(' '));
+  assert.equal(await plane.evaluate(() => import('./module.js').then((m) => m.moduleHasSpace())), false);
+  const preset = await plane.evaluate(() => import('./module.js').then((m) => m.limits().arm_presets.find((p) => p.key === 'iiwa-planar')));
+  assert.deepEqual((await state(plane)).arm.joint_limits, preset.joint_limits);
+  clean(plane);
+  await plane.close();
+});
+
 test('space: a sphere dragged with the mouse stays under the pointer within 2 px, and the run follows it', async () => {
   const page = await open('?arm=panda&method=numerical&autoplay=0');
   await paused(page);
