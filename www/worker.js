@@ -95,7 +95,16 @@ async function benchSpace({ batchMs = 20, arm, methods, refine = 0, weights }) {
   const files = benchSpaceNetworkFiles(arm);
   const [phi, v] = files.length ? await Promise.all(files.map((f) => weightsText(weights, f))) : [undefined, undefined];
   const result = { arm, theta_dot_ns: {}, step_ns: {}, forward_ns: null, verdict: benchVerdict() };
-  const jobs = timed.map((m) => [`step ${m}`, () => (result.step_ns[m] = benchSpaceStep(arm, m, batchMs, refine, phi, v))]);
+  // A warm-up pass first, its figures dropped: each job runs in a fresh
+  // worker, whose module V8 compiles lazily and optimises (TurboFan) only
+  // once a function is hot, in the background; timed cold, the first
+  // methods ran 2-3 times slower than the same code a pass later
+  // (docs/web.md, "Numerical route against Case 3 in the browser"). The
+  // planar benchmark gets its warm-up from its theta_dot figures.
+  const jobs = [
+    ...timed.map((m) => [`warm-up ${m}`, () => benchSpaceStep(arm, m, batchMs, refine, phi, v)]),
+    ...timed.map((m) => [`step ${m}`, () => (result.step_ns[m] = benchSpaceStep(arm, m, batchMs, refine, phi, v))]),
+  ];
   if (phi !== undefined) jobs.push(['forward passes', () => (result.forward_ns = benchSpaceForward(arm, batchMs, phi, v))]);
   for (const [i, [label, run]] of jobs.entries()) {
     self.postMessage({ type: 'progress', done: i, total: jobs.length, label });
