@@ -8,7 +8,11 @@
 //!
 //! Two modules are built from this layer (features `page` and `worker`):
 //! the page's, which draws, and the Web Workers', which computes (the atlas,
-//! the benchmark), so the page loads only what it draws with.
+//! the benchmark), so the page loads only what it draws with. With the arms
+//! in space (feature `space`) each has a build of its own: the page's is
+//! `canvas,space` ([`style`], [`surface`] and [`plots`], which both pages
+//! draw with, and `SpaceDemo`, without the planar `Demo`), the workers'
+//! `worker,space`.
 //!
 //! One file per concern: [`demo`] (the `Demo` binding), [`scene`] (its
 //! bindings for the arm, several obstacles, trained networks and runs off
