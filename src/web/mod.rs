@@ -56,6 +56,8 @@ mod style;
 mod surface;
 #[cfg(feature = "worker")]
 mod takeaway;
+#[cfg(all(feature = "canvas", feature = "space"))]
+mod tracked;
 #[cfg(feature = "worker")]
 mod worker;
 

@@ -8,6 +8,7 @@ use web_sys::HtmlCanvasElement;
 
 use super::space_stage::{self, SliceLayer};
 use super::surface::Surface;
+use super::tracked::Tracked;
 use super::{finite, js_err, plots, to_js, JsResult};
 use crate::atlas::space::Plane;
 use crate::atlas::Grid;
@@ -22,22 +23,37 @@ const ORBIT_PER_PX: f64 = 0.008;
 /// One arm in space drawn on one canvas. Several can live on a page.
 #[wasm_bindgen]
 pub struct SpaceDemo {
+    /// What is drawn, and whether the drawing is out of date: a binding
+    /// changes it only through [`Tracked::edit`], which marks it stale, and
+    /// [`SpaceDemo::frame`] draws only then or while the clock runs. An idle
+    /// page in space then costs no drawing (it painted the arm, the floor
+    /// and the plots 60 times a second, which slowed its workers' benchmark
+    /// on 2 cores; docs/web.md).
+    drawn: Tracked<Drawn>,
+}
+
+/// The session and the surfaces it is drawn on.
+struct Drawn {
     session: SpaceSession,
     stage: Surface,
     plots: Option<Surface>,
     layer: Option<SliceLayer>,
     keyboard: bool,
-    /// Whether the drawing is out of date: every binding that may change
-    /// what is drawn sets it, and [`SpaceDemo::frame`] draws only then or
-    /// while the clock runs. An idle page in space then costs no drawing
-    /// (it painted the arm, the floor and the plots 60 times a second, which
-    /// slowed its workers' benchmark on 2 cores; docs/web.md).
-    stale: bool,
 }
 
 impl SpaceDemo {
+    fn session(&self) -> &SpaceSession {
+        &self.drawn.get().session
+    }
+
+    /// The session, to change (the drawing is stale from now on).
+    fn session_mut(&mut self) -> &mut SpaceSession {
+        &mut self.drawn.edit().session
+    }
+
     fn projection(&self) -> crate::session::space::Projection {
-        self.session.projection(self.stage.width, self.stage.height)
+        let d = self.drawn.get();
+        d.session.projection(d.stage.width, d.stage.height)
     }
 }
 
@@ -59,12 +75,13 @@ impl SpaceDemo {
         };
         let session = SpaceSession::new(arm, method).map_err(js_err)?;
         Ok(Self {
-            session,
-            stage: Surface::new(stage)?,
-            plots: plots.map(Surface::new).transpose()?,
-            layer: None,
-            keyboard: false,
-            stale: true,
+            drawn: Tracked::new(Drawn {
+                session,
+                stage: Surface::new(stage)?,
+                plots: plots.map(Surface::new).transpose()?,
+                layer: None,
+                keyboard: false,
+            }),
         })
     }
 
@@ -72,172 +89,153 @@ impl SpaceDemo {
     /// shipped set they are (`panda-reach`), if they are one.
     #[wasm_bindgen(js_name = installNetworks)]
     pub fn install_networks(&mut self, phi: &str, v: &str, set: Option<String>) -> JsResult {
-        self.stale = true;
         let set = set
             .map(|s| s.parse::<SpaceNetworkSet>())
             .transpose()
             .map_err(js_err)?;
-        self.session.install_networks(phi, v, set).map_err(js_err)
+        self.session_mut()
+            .install_networks(phi, v, set)
+            .map_err(js_err)
     }
 
     /// Switches method (by name).
     #[wasm_bindgen(js_name = setMethod)]
     pub fn set_method(&mut self, method: &str) -> JsResult {
-        self.stale = true;
         let m = method.parse::<Method>().map_err(js_err)?;
-        self.session.set_method(m).map_err(js_err)
+        self.session_mut().set_method(m).map_err(js_err)
     }
 
     /// Sets a method's parameter by name (`lambda`, `influence`, ...).
     #[wasm_bindgen(js_name = setParam)]
     pub fn set_param(&mut self, name: &str, value: f64) -> JsResult {
-        self.stale = true;
-        self.session.set_param(name, value).map_err(js_err)
+        self.session_mut().set_param(name, value).map_err(js_err)
     }
 
     /// `none` or `wln`.
     #[wasm_bindgen(js_name = setWeighting)]
     pub fn set_weighting(&mut self, name: &str) -> JsResult {
-        self.stale = true;
         let w = name.parse().map_err(js_err)?;
-        self.session.set_weighting(w).map_err(js_err)
+        self.session_mut().set_weighting(w).map_err(js_err)
     }
 
     /// Whether the floor is an obstacle.
     #[wasm_bindgen(js_name = setFloor)]
     pub fn set_floor(&mut self, on: bool) -> JsResult {
-        self.stale = true;
-        self.session.set_floor(on).map_err(js_err)
+        self.session_mut().set_floor(on).map_err(js_err)
     }
 
     /// Closed-loop gain `K` (1/s).
     #[wasm_bindgen(js_name = setFeedback)]
     pub fn set_feedback(&mut self, gain: f64) -> JsResult {
-        self.stale = true;
-        self.session.set_feedback(gain).map_err(js_err)
+        self.session_mut().set_feedback(gain).map_err(js_err)
     }
 
     /// Playback speed (times real time).
     #[wasm_bindgen(js_name = setSpeed)]
     pub fn set_speed(&mut self, speed: f64) -> JsResult {
-        self.stale = true;
-        self.session.set_speed(speed).map_err(js_err)
+        self.session_mut().set_speed(speed).map_err(js_err)
     }
 
     /// The end of the hand's line (m).
     #[wasm_bindgen(js_name = setTarget)]
     pub fn set_target(&mut self, x: f64, y: f64, z: f64) -> JsResult {
-        self.stale = true;
-        self.session.set_target([x, y, z]).map_err(js_err)
+        self.session_mut().set_target([x, y, z]).map_err(js_err)
     }
 
     /// The spheres, `[x, y, z, r, ...]` (m).
     #[wasm_bindgen(js_name = setSpheres)]
     pub fn set_spheres(&mut self, flat: Vec<f64>) -> JsResult {
-        self.stale = true;
-        self.session.set_spheres(&flat).map_err(js_err)
+        self.session_mut().set_spheres(&flat).map_err(js_err)
     }
 
     /// Adds a sphere; returns its index.
     #[wasm_bindgen(js_name = addSphere)]
     pub fn add_sphere(&mut self, x: f64, y: f64, z: f64, r: f64) -> JsResult<usize> {
-        self.stale = true;
-        self.session.add_sphere([x, y, z], r).map_err(js_err)
+        self.session_mut().add_sphere([x, y, z], r).map_err(js_err)
     }
 
     /// Removes sphere `i` (from 0).
     #[wasm_bindgen(js_name = removeSphere)]
     pub fn remove_sphere(&mut self, i: usize) -> JsResult {
-        self.stale = true;
-        self.session.remove_sphere(i).map_err(js_err)
+        self.session_mut().remove_sphere(i).map_err(js_err)
     }
 
     /// The preset's own task again.
     #[wasm_bindgen(js_name = loadTask)]
     pub fn load_task(&mut self) -> JsResult {
-        self.stale = true;
-        self.session.load_task().map_err(js_err)
+        self.session_mut().load_task().map_err(js_err)
     }
 
     /// Back to `t = 0`, paused.
     pub fn reset(&mut self) {
-        self.stale = true;
-        self.session.reset();
+        self.session_mut().reset();
     }
 
     /// One step, paused.
     pub fn step(&mut self) {
-        self.stale = true;
-        self.session.step();
+        self.session_mut().step();
     }
 
     /// Starts (replaying an ended run) or pauses the clock.
     #[wasm_bindgen(js_name = setRunning)]
     pub fn set_running(&mut self, running: bool) {
-        self.stale = true;
-        self.session.set_running(running);
+        self.session_mut().set_running(running);
     }
 
     /// Whether the clock runs.
     #[wasm_bindgen(getter)]
     pub fn running(&self) -> bool {
-        self.session.running()
+        self.session().running()
     }
 
     /// Shows the run at `time` (s).
     #[wasm_bindgen(js_name = runUntil)]
     pub fn run_until(&mut self, time: f64) -> JsResult {
-        self.stale = true;
-        self.session.run_until(time).map_err(js_err)
+        self.session_mut().run_until(time).map_err(js_err)
     }
 
     /// Advances the clock by `elapsed_ms`, draws if anything changed (or
     /// the clock ran), and returns the state.
     pub fn frame(&mut self, elapsed_ms: f64) -> JsResult<JsValue> {
-        let was_running = self.session.running();
-        self.session.tick(elapsed_ms);
-        if self.stale || was_running || self.session.running() {
+        let was_running = self.session().running();
+        // The tick changes the drawing only while the clock runs, checked here.
+        self.drawn.edit_untracked().session.tick(elapsed_ms);
+        let stale = self.drawn.take_stale();
+        if stale || was_running || self.session().running() {
             self.draw();
-            self.stale = false;
         }
         self.state()
     }
 
     /// The snapshot as a plain object (`docs/web.md`, "The page in space").
     pub fn state(&self) -> JsResult<JsValue> {
-        to_js(&self.session.state())
+        to_js(&self.session().state())
     }
 
     /// Draws the stage and the plots.
     pub fn draw(&self) {
-        space_stage::draw(
-            &self.session,
-            &self.stage,
-            self.layer.as_ref(),
-            self.keyboard,
-        );
-        if let Some(p) = &self.plots {
-            let limits = self
+        let d = self.drawn.get();
+        space_stage::draw(&d.session, &d.stage, d.layer.as_ref(), d.keyboard);
+        if let Some(p) = &d.plots {
+            let limits = d
                 .session
                 .scene()
                 .chain
                 .joint_limits()
                 .map_or(&[][..], |l| l.ranges());
-            plots::draw_points(&self.session.points(), limits, p);
+            plots::draw_points(&d.session.points(), limits, p);
         }
     }
 
     /// Sizes the stage (CSS px, device-pixel ratio).
     pub fn resize(&mut self, width: f64, height: f64, dpr: f64) -> JsResult {
-        self.stale = true;
-        self.stage.resize(width, height, dpr)
+        self.drawn.edit().stage.resize(width, height, dpr)
     }
 
     /// Sizes the plots.
     #[wasm_bindgen(js_name = resizePlots)]
     pub fn resize_plots(&mut self, width: f64, height: f64, dpr: f64) -> JsResult {
-        self.stale = true;
-        match &mut self.plots {
+        match &mut self.drawn.edit().plots {
             Some(p) => p.resize(width, height, dpr),
             None => Ok(()),
         }
@@ -246,14 +244,13 @@ impl SpaceDemo {
     /// Whether the drawing has the keyboard (the selected item is ringed).
     #[wasm_bindgen(js_name = setKeyboardFocus)]
     pub fn set_keyboard_focus(&mut self, on: bool) {
-        self.stale = true;
-        self.keyboard = on;
+        self.drawn.edit().keyboard = on;
     }
 
     /// The item under canvas pixel `(x, y)` (`target`, `sphere 1`, ...).
     pub fn hover(&self, x: f64, y: f64, slop: f64) -> Option<String> {
         let proj = self.projection();
-        self.session
+        self.session()
             .handle_at(&proj, x, y, slop)
             .map(|h| h.describe())
     }
@@ -262,9 +259,8 @@ impl SpaceDemo {
     /// (where a drag orbits).
     #[wasm_bindgen(js_name = pointerDown)]
     pub fn pointer_down(&mut self, x: f64, y: f64, slop: f64) -> Option<String> {
-        self.stale = true;
         let proj = self.projection();
-        self.session
+        self.session_mut()
             .pointer_down(&proj, x, y, slop)
             .map(|h| h.describe())
     }
@@ -272,24 +268,21 @@ impl SpaceDemo {
     /// Moves the item held under `(x, y)`.
     #[wasm_bindgen(js_name = pointerMove)]
     pub fn pointer_move(&mut self, x: f64, y: f64) -> JsResult {
-        self.stale = true;
         let proj = self.projection();
-        self.session.pointer_move(&proj, x, y).map_err(js_err)
+        self.session_mut().pointer_move(&proj, x, y).map_err(js_err)
     }
 
     /// Lets go.
     #[wasm_bindgen(js_name = pointerUp)]
     pub fn pointer_up(&mut self) {
-        self.stale = true;
-        self.session.pointer_up();
+        self.session_mut().pointer_up();
     }
 
     /// Orbits by a pointer's travel of `(dx, dy)` CSS px.
     pub fn orbit(&mut self, dx: f64, dy: f64) -> JsResult {
-        self.stale = true;
         finite("orbit", dx)?;
         finite("orbit", dy)?;
-        self.session
+        self.session_mut()
             .orbit(-dx * ORBIT_PER_PX, dy * ORBIT_PER_PX)
             .map_err(js_err)
     }
@@ -298,45 +291,43 @@ impl SpaceDemo {
     /// and `up` steps up.
     #[wasm_bindgen(js_name = orbitSteps)]
     pub fn orbit_steps(&mut self, steps: f64, up: f64) -> JsResult {
-        self.stale = true;
-        self.session
+        self.session_mut()
             .orbit(steps * KEY_ORBIT, up * KEY_ORBIT)
             .map_err(js_err)
     }
 
     /// Zooms in by `factor` (out below 1); returns the factor applied.
     pub fn zoom(&mut self, factor: f64) -> JsResult<f64> {
-        self.stale = true;
-        self.session.zoom(factor).map_err(js_err)
+        self.session_mut().zoom(factor).map_err(js_err)
     }
 
     /// Sets the view: yaw and pitch (rad), distance (m).
     #[wasm_bindgen(js_name = setView)]
     pub fn set_view(&mut self, yaw: f64, pitch: f64, distance: f64) -> JsResult {
-        self.stale = true;
-        self.session.set_view(yaw, pitch, distance).map_err(js_err)
+        self.session_mut()
+            .set_view(yaw, pitch, distance)
+            .map_err(js_err)
     }
 
     /// Back to the preset's view.
     #[wasm_bindgen(js_name = resetView)]
     pub fn reset_view(&mut self) {
-        self.stale = true;
-        self.session.reset_view();
+        self.session_mut().reset_view();
     }
 
     /// Selects the next item for the keys; returns what it is.
     #[wasm_bindgen(js_name = selectNext)]
     pub fn select_next(&mut self, forward: bool) -> String {
-        self.stale = true;
-        self.session.select_next(forward).describe()
+        self.session_mut().select_next(forward).describe()
     }
 
     /// Moves the selected item by `(dx, dy)` key steps along the view's
     /// right and up.
     pub fn nudge(&mut self, dx: f64, dy: f64, fine: bool) -> JsResult {
-        self.stale = true;
         let proj = self.projection();
-        self.session.nudge(&proj, dx, dy, fine).map_err(js_err)
+        self.session_mut()
+            .nudge(&proj, dx, dy, fine)
+            .map_err(js_err)
     }
 
     /// The canvas pixel of world point `(x, y, z)`: `[x, y, depth]`.
@@ -349,7 +340,7 @@ impl SpaceDemo {
     /// `simulate --from` replays and the workers' jobs read).
     #[wasm_bindgen(js_name = runFile)]
     pub fn run_file(&self) -> String {
-        let s = &self.session;
+        let s = self.session();
         let mut file = SpaceRunFile::new(s.preset(), s.scene().clone(), s.trajectory());
         // The set a learned method ran with, so the command line replays it so.
         file.networks = s
@@ -364,7 +355,7 @@ impl SpaceDemo {
     /// `[{ method, summary, failure }]`.
     #[wasm_bindgen(js_name = compareMethods)]
     pub fn compare_methods(&self) -> JsResult<JsValue> {
-        to_js(&self.session.compare())
+        to_js(&self.session().compare())
     }
 
     /// Shows a slice atlas on its plane, `axes` (`xy`, `xz` or `yz`) at
@@ -391,16 +382,14 @@ impl SpaceDemo {
             .try_into()
             .map_err(|_| JsError::new("an atlas region is [u0, u1, v0, v1]"))?;
         let grid = Grid::new(region, n).map_err(js_err)?;
-        self.layer = Some(SliceLayer::new(plane, grid, classes).map_err(js_err)?);
-        self.stale = true;
+        self.drawn.edit().layer = Some(SliceLayer::new(plane, grid, classes).map_err(js_err)?);
         Ok(())
     }
 
     /// Hides the atlas.
     #[wasm_bindgen(js_name = clearAtlasLayer)]
     pub fn clear_atlas_layer(&mut self) {
-        self.stale = true;
-        self.layer = None;
+        self.drawn.edit().layer = None;
     }
 }
 
