@@ -10,7 +10,9 @@
 // and, where the native tool is built (NATIVE, default
 // target/release/redundant-ik), runs `redundant-ik bench --json --no-lm
 // --no-atlas` and `bench --arm panda --json` right there and prints the
-// page's step times over the native ones. These are measurements on a
+// page's step times over the native ones. Each benchmark runs in both of the
+// networks' precisions (`precision: 'f64'` and `'f32'`, alternated), the
+// native f64 figures the reference of every ratio. These are measurements on a
 // shared machine: printed, never judged.
 //
 //   BASE_URL=http://127.0.0.1:8000/ RUNS=3 [BUILD=baseline] [BENCH_ONLY=1] node scripts/bench-web.mjs
@@ -49,58 +51,86 @@ async function open(query) {
   return page;
 }
 
-const page = await open('?task=1&method=numerical');
-await page.evaluate(() => window.demo.controller.demo.setRunning(false));
-const runs = [];
-for (let i = 0; i < RUNS; i++) {
-  const r = await page.evaluate(() => window.demo.bench());
-  runs.push(r);
-  console.log(JSON.stringify(r));
-}
 const median = (xs) => {
   const s = [...xs].sort((a, b) => a - b);
   return s.length % 2 ? s[(s.length - 1) / 2] : (s[s.length / 2 - 1] + s[s.length / 2]) / 2;
 };
-const out = { theta_dot_ns: {}, step_ns: {}, forward_ns: {} };
-for (const key of ['theta_dot_ns', 'step_ns', 'forward_ns']) {
-  for (const k of Object.keys(runs[0][key])) out[key][k] = median(runs.map((r) => r[key][k]));
+/** The median of each figure under `keys` over `runs`. */
+const medians = (runs, keys) => {
+  const out = {};
+  for (const key of keys) {
+    out[key] = {};
+    for (const k of Object.keys(runs[0][key] ?? {})) out[key][k] = median(runs.map((r) => r[key][k]));
+  }
+  return out;
+};
+// Both precisions of the networks' kernels, alternated run by run so that
+// the machine's drift falls on both alike.
+const PRECISIONS = ['f64', 'f32'];
+const page = await open('?task=1&method=numerical');
+await page.evaluate(() => window.demo.controller.demo.setRunning(false));
+const runs = { f64: [], f32: [] };
+for (let i = 0; i < RUNS; i++) {
+  for (const precision of PRECISIONS) {
+    const r = await page.evaluate((precision) => window.demo.bench({ precision }), precision);
+    runs[precision].push(r);
+    console.log(JSON.stringify(r));
+  }
 }
+const out = Object.fromEntries(PRECISIONS.map((p) => [p, medians(runs[p], ['theta_dot_ns', 'step_ns', 'forward_ns'])]));
 const build = await page.evaluate(() => window.demo.build);
-console.log(`median of ${RUNS} (${build} build): ${JSON.stringify(out)}`);
+for (const p of PRECISIONS) console.log(`median of ${RUNS} (${build} build, ${p}): ${JSON.stringify(out[p])}`);
 
 // ---- the Panda's step, and both against the native tool ----------------------
 // On the page in space, whose workers' build holds the arms in space.
 const spacePage = await open('?arm=panda&method=numerical&autoplay=0');
-const panda = [];
+const panda = { f64: [], f32: [] };
 for (let i = 0; i < RUNS; i++) {
-  const r = await spacePage.evaluate(() => window.demo.bench({ arm: 'panda' }));
-  panda.push(r);
-  console.log(JSON.stringify(r));
+  for (const precision of PRECISIONS) {
+    const r = await spacePage.evaluate((precision) => window.demo.bench({ arm: 'panda', precision }), precision);
+    panda[precision].push(r);
+    console.log(JSON.stringify(r));
+  }
 }
-const pandaOut = { step_ns: {}, forward_ns: {} };
-for (const key of ['step_ns', 'forward_ns']) {
-  for (const k of Object.keys(panda[0][key] ?? {})) pandaOut[key][k] = median(panda.map((r) => r[key][k]));
-}
-console.log(`median of ${RUNS} (${build} build), panda: ${JSON.stringify(pandaOut)}`);
+const pandaOut = Object.fromEntries(PRECISIONS.map((p) => [p, medians(panda[p], ['step_ns', 'forward_ns'])]));
+for (const p of PRECISIONS) console.log(`median of ${RUNS} (${build} build, ${p}), panda: ${JSON.stringify(pandaOut[p])}`);
 await spacePage.close();
 const NATIVE = process.env.NATIVE ?? 'target/release/redundant-ik';
 if (existsSync(NATIVE)) {
+  // The native tool as often, alternated likewise; its f64 kernels (AVX2 +
+  // FMA where the CPU has them) are the reference of every ratio.
   const native = (args) => JSON.parse(execFileSync(NATIVE, ['bench', '--json', ...args], { encoding: 'utf8' }));
-  const planar = native(['--no-lm', '--no-atlas']);
-  const space = native(['--arm', 'panda']);
+  const nat = { f64: { planar: [], panda: [] }, f32: { planar: [], panda: [] } };
+  for (let i = 0; i < RUNS; i++) {
+    for (const p of PRECISIONS) {
+      nat[p].planar.push(native(['--no-lm', '--no-atlas', '--precision', p]));
+      const space = native(['--arm', 'panda', '--precision', p]);
+      nat[p].panda.push({ step_ns: Object.fromEntries(Object.entries(space.methods).map(([m, f]) => [m, f.step_ns])) });
+    }
+  }
+  const planar = Object.fromEntries(PRECISIONS.map((p) => [p, medians(nat[p].planar, ['step_ns', 'forward_ns'])]));
+  const pandaNative = Object.fromEntries(PRECISIONS.map((p) => [p, medians(nat[p].panda, ['step_ns']).step_ns]));
+  const kernels = nat.f64.planar[0].kernels;
   const ratios = (page, nat) =>
     Object.entries(page)
       .filter(([m]) => nat[m] !== undefined)
       .map(([m, ns]) => `${m} ${(ns / 1000).toFixed(2)} / ${(nat[m] / 1000).toFixed(2)} us = ${(ns / nat[m]).toFixed(2)}x`)
       .join(', ');
-  const pandaNative = Object.fromEntries(Object.entries(space.methods).map(([m, f]) => [m, f.step_ns]));
-  console.log(`native (${planar.kernels}): planar ${JSON.stringify({ step_ns: planar.step_ns, forward_ns: planar.forward_ns })}`);
-  console.log(`native (${planar.kernels}): panda step_ns ${JSON.stringify(pandaNative)}`);
-  console.log(`page / native (${build} build), Task 1 RK4 step: ${ratios(out.step_ns, planar.step_ns)}`);
-  console.log(
-    `page / native (${build} build), forward: phi ${(out.forward_ns.phi / planar.forward_ns.phi).toFixed(2)}x, v ${(out.forward_ns.v / planar.forward_ns.v).toFixed(2)}x`,
-  );
-  console.log(`page / native (${build} build), Panda RK4 step: ${ratios(pandaOut.step_ns, pandaNative)}`);
+  for (const p of PRECISIONS) {
+    console.log(`native (${kernels}, ${p}), median of ${RUNS}: planar ${JSON.stringify(planar[p])}`);
+    console.log(`native (${kernels}, ${p}), median of ${RUNS}: panda step_ns ${JSON.stringify(pandaNative[p])}`);
+  }
+  for (const p of PRECISIONS) {
+    const f = out[p].forward_ns;
+    const n = planar.f64.forward_ns;
+    console.log(`page (${build} build, ${p}) / native (f64), Task 1 RK4 step: ${ratios(out[p].step_ns, planar.f64.step_ns)}`);
+    console.log(`page (${build} build, ${p}) / native (f64), forward: phi ${(f.phi / n.phi).toFixed(2)}x, v ${(f.v / n.v).toFixed(2)}x`);
+    console.log(`page (${build} build, ${p}) / native (f64), Panda RK4 step: ${ratios(pandaOut[p].step_ns, pandaNative.f64)}`);
+  }
+  const learned = ['case1', 'case2', 'case3'];
+  const only = (o) => Object.fromEntries(Object.entries(o).filter(([m]) => learned.includes(m)));
+  console.log(`page (${build} build, f32) / native (f32), Task 1 RK4 step: ${ratios(only(out.f32.step_ns), planar.f32.step_ns)}`);
+  console.log(`page (${build} build, f32) / native (f32), Panda RK4 step: ${ratios(only(pandaOut.f32.step_ns), pandaNative.f32)}`);
 } else {
   console.log(`no native tool at ${NATIVE} (cargo build --release): no ratios`);
 }

@@ -62,9 +62,12 @@ export async function runWorker(job, { onProgress, signal } = {}) {
  * (`methods` to choose; `refine` Newton-Schulz steps on the learned Phi) and
  * the forward passes of its networks, whose weights files the worker fetches
  * from weights/ beside the page; `theta_dot_ns` is empty and `arm` names it.
+ *
+ * `precision` is the networks' arithmetic, `'f64'` (the default, the page's
+ * runs) or `'f32'` (`redundant-ik bench --precision f32`); the result names it.
  */
-export async function bench({ onProgress, signal, batchMs = 20, arm, methods, refine = 0 } = {}) {
-  const job = { kind: 'bench', batchMs };
+export async function bench({ onProgress, signal, batchMs = 20, arm, methods, refine = 0, precision = 'f64' } = {}) {
+  const job = { kind: 'bench', batchMs, precision };
   if (arm !== undefined) Object.assign(job, { arm, methods, refine, weights: weightsLocation() });
   const { result } = await runWorker(job, { onProgress, signal });
   return result;

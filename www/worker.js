@@ -5,10 +5,10 @@
 // cancelled, so a cancelled job stops at once and leaves nothing behind.
 //
 // Messages in:
-//   { kind: 'bench', wasm, batchMs }
+//   { kind: 'bench', wasm, batchMs, precision }
 //       the code behind `redundant-ik bench`, one figure per call, over the
 //       methods of benchMethods(); the result names benchVerdict()'s pair
-//   { kind: 'bench', wasm, batchMs, arm, methods, refine, weights }
+//   { kind: 'bench', wasm, batchMs, arm, methods, refine, weights, precision }
 //       the same for an arm in space (`redundant-ik bench --arm KEY`): the
 //       RK4 step of its own task per method and its networks' forward passes;
 //       the networks' files (benchSpaceNetworkFiles(arm)) fetched from
@@ -64,14 +64,14 @@ import init, {
 } from './pkg/redundant_ik_worker.js';
 import { describeError } from './errors.js';
 
-function bench({ batchMs = 20 }) {
+function bench({ batchMs = 20, precision = 'f64' }) {
   // The methods `redundant-ik bench` times, and the two whose step times are the verdict.
   const timed = benchMethods();
-  const result = { theta_dot_ns: {}, step_ns: {}, forward_ns: null, verdict: benchVerdict() };
+  const result = { theta_dot_ns: {}, step_ns: {}, forward_ns: null, verdict: benchVerdict(), precision };
   const jobs = [
-    ...timed.map((m) => [`θ̇ ${m}`, () => (result.theta_dot_ns[m] = benchThetaDot(m, batchMs))]),
-    ...timed.map((m) => [`step ${m}`, () => (result.step_ns[m] = benchStep(m, batchMs))]),
-    ['forward passes', () => (result.forward_ns = benchForward(batchMs))],
+    ...timed.map((m) => [`θ̇ ${m}`, () => (result.theta_dot_ns[m] = benchThetaDot(m, batchMs, precision))]),
+    ...timed.map((m) => [`step ${m}`, () => (result.step_ns[m] = benchStep(m, batchMs, precision))]),
+    ['forward passes', () => (result.forward_ns = benchForward(batchMs, precision))],
   ];
   for (const [i, [label, run]] of jobs.entries()) {
     self.postMessage({ type: 'progress', done: i, total: jobs.length, label });
@@ -90,11 +90,11 @@ async function weightsText(weights, name) {
   return r.text();
 }
 
-async function benchSpace({ batchMs = 20, arm, methods, refine = 0, weights }) {
+async function benchSpace({ batchMs = 20, arm, methods, refine = 0, weights, precision = 'f64' }) {
   const timed = methods ?? benchSpaceMethods(arm);
   const files = benchSpaceNetworkFiles(arm);
   const [phi, v] = files.length ? await Promise.all(files.map((f) => weightsText(weights, f))) : [undefined, undefined];
-  const result = { arm, theta_dot_ns: {}, step_ns: {}, forward_ns: null, verdict: benchVerdict() };
+  const result = { arm, theta_dot_ns: {}, step_ns: {}, forward_ns: null, verdict: benchVerdict(), precision };
   // A warm-up pass first, its figures dropped: each job runs in a fresh
   // worker, whose module V8 compiles lazily and optimises (TurboFan) only
   // once a function is hot, in the background; timed cold, the first
@@ -102,10 +102,10 @@ async function benchSpace({ batchMs = 20, arm, methods, refine = 0, weights }) {
   // (docs/web.md, "Numerical route against Case 3 in the browser"). The
   // planar benchmark gets its warm-up from its theta_dot figures.
   const jobs = [
-    ...timed.map((m) => [`warm-up ${m}`, () => benchSpaceStep(arm, m, batchMs, refine, phi, v)]),
-    ...timed.map((m) => [`step ${m}`, () => (result.step_ns[m] = benchSpaceStep(arm, m, batchMs, refine, phi, v))]),
+    ...timed.map((m) => [`warm-up ${m}`, () => benchSpaceStep(arm, m, batchMs, refine, phi, v, precision)]),
+    ...timed.map((m) => [`step ${m}`, () => (result.step_ns[m] = benchSpaceStep(arm, m, batchMs, refine, phi, v, precision))]),
   ];
-  if (phi !== undefined) jobs.push(['forward passes', () => (result.forward_ns = benchSpaceForward(arm, batchMs, phi, v))]);
+  if (phi !== undefined) jobs.push(['forward passes', () => (result.forward_ns = benchSpaceForward(arm, batchMs, phi, v, precision))]);
   for (const [i, [label, run]] of jobs.entries()) {
     self.postMessage({ type: 'progress', done: i, total: jobs.length, label });
     run();

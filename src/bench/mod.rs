@@ -19,12 +19,10 @@ use serde::{Deserialize, Serialize};
 use crate::atlas;
 use crate::error::{Error, Result};
 use crate::nalgebra::Vector2;
-#[cfg(feature = "embedded-weights")]
-use crate::networks::Networks;
-use crate::networks::{Encoding, NetworkSet, Sampling, Variant};
+use crate::networks::{Encoding, NetworkSet, Networks, Sampling, Variant};
 use crate::nn::lm::{LmOptions, LmTrainer};
 use crate::nn::mlp::{MapMinMax, Mlp};
-use crate::nn::Rng;
+use crate::nn::{Precision, Rng};
 use crate::planner::{methods, Method, Planner, Surrogate};
 use crate::scene::Scene;
 use crate::training;
@@ -59,6 +57,9 @@ pub struct Options {
     /// Newton-Schulz steps on the learned `Phi` (0, the paper's, by default).
     #[serde(default)]
     pub refine: u32,
+    /// The networks' kernels' arithmetic (`f64` by default).
+    #[serde(default)]
+    pub precision: Precision,
 }
 
 fn paper_methods() -> Vec<Method> {
@@ -76,6 +77,7 @@ impl Default for Options {
             methods: paper_methods(),
             networks: NetworkSet::Paper,
             refine: 0,
+            precision: Precision::F64,
         }
     }
 }
@@ -221,7 +223,16 @@ fn median(v: &mut [f64]) -> f64 {
 }
 
 fn shipped(opts: &Options) -> Result<Arc<dyn Surrogate>> {
-    Ok(crate::networks::builtin_set(opts.networks)?)
+    Ok(shipped_networks(opts)?)
+}
+
+/// The options' shipped set in the options' precision.
+fn shipped_networks(opts: &Options) -> Result<Arc<Networks>> {
+    let nets = crate::networks::builtin_set(opts.networks)?;
+    Ok(match opts.precision {
+        Precision::F64 => nets,
+        p => Arc::new(Networks::clone(&nets).with_precision(p)),
+    })
 }
 
 /// Task 1 with the refinement the options ask for.
@@ -284,7 +295,7 @@ pub fn allocs_per_step(method: Method, opts: &Options, count: &dyn Fn() -> u64) 
 /// Forward passes of the `Phi` and `v` networks of the options' set (ns).
 pub fn forward_ns(opts: &Options, probes: &Probes) -> Result<Forward> {
     let theta = Scene::task1().theta0;
-    let nets = crate::networks::builtin_set(opts.networks)?;
+    let nets = shipped_networks(opts)?;
     let mut out = [0.0; 6];
     let phi = time_ns(opts, probes, || {
         nets.phi_into(std::hint::black_box(&theta), &mut out)

@@ -14,11 +14,13 @@ use crate::scene::SpaceScene;
 /// One RK4 step of the preset `key`'s task in `method`, sample included
 /// (ns); the run restarts at `tf`.
 pub fn step_ns(key: &str, method: Method, opts: &Options, probes: &Probes) -> Result<f64> {
-    step_ns_with(key, method, shipped_networks(key, method)?, opts, probes)
+    let nets = shipped_networks(key, method)?;
+    step_ns_with(key, method, nets, opts, probes)
 }
 
 /// [`step_ns`] with the networks given (the workers' module, which is
-/// handed the weights files' text): `None` for the methods without.
+/// handed the weights files' text): `None` for the methods without. They
+/// run in the options' precision.
 pub fn step_ns_with(
     key: &str,
     method: Method,
@@ -32,6 +34,7 @@ pub fn step_ns_with(
             method.name()
         )));
     }
+    let nets = nets.map(|n| in_precision(n, opts));
     let scene = task(key, opts.refine)?;
     let fresh = || SpacePlanner::with_networks(scene.clone(), method, nets.clone());
     let mut p = fresh()?;
@@ -52,7 +55,7 @@ pub fn allocs_per_step(
     opts: &Options,
     count: &dyn Fn() -> u64,
 ) -> Result<f64> {
-    let nets = shipped_networks(key, method)?;
+    let nets = shipped_networks(key, method)?.map(|n| in_precision(n, opts));
     let mut p = SpacePlanner::with_networks(task(key, opts.refine)?, method, nets)?;
     let n = p.scene().steps();
     let before = count();
@@ -62,14 +65,25 @@ pub fn allocs_per_step(
     Ok((count() - before) as f64 / n as f64)
 }
 
+/// The networks in the options' precision.
+fn in_precision(nets: Arc<SpaceNetworks>, opts: &Options) -> Arc<SpaceNetworks> {
+    if nets.precision() == opts.precision {
+        nets
+    } else {
+        Arc::new(SpaceNetworks::clone(&nets).with_precision(opts.precision))
+    }
+}
+
 /// Forward passes of the spatial `Phi` and `v` networks at the preset
-/// `key`'s start pose, `v` for its first sphere (ns).
+/// `key`'s start pose, `v` for its first sphere (ns), in the options'
+/// precision.
 pub fn forward_ns(
     key: &str,
-    nets: &SpaceNetworks,
+    nets: Arc<SpaceNetworks>,
     opts: &Options,
     probes: &Probes,
 ) -> Result<Forward> {
+    let nets = in_precision(nets, opts);
     let scene = task(key, 0)?;
     nets.check_chain(&scene.chain)?;
     let pose = crate::space::SpacePose::new(&scene.chain, &scene.theta0)?;

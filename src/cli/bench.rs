@@ -44,6 +44,10 @@ pub struct BenchArgs {
     /// the planar figures.
     #[arg(long)]
     pub arm: Option<String>,
+    /// The networks' arithmetic: f64 (the default) or f32 (the kernels the
+    /// page can run, `window.demo.bench({ precision: 'f32' })`).
+    #[arg(long, default_value = "f64")]
+    pub precision: redundant_ik::nn::Precision,
     /// Run the networks on the portable x86-64 baseline kernels instead of
     /// the AVX2 + FMA ones chosen at run time (to measure what that choice buys).
     #[arg(long)]
@@ -70,6 +74,7 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
             .parse()
             .map_err(|e: redundant_ik::Error| e.to_string())?,
         refine: args.refine,
+        precision: args.precision,
     };
     redundant_ik::nn::kernel::set_runtime_dispatch(!args.baseline_kernels);
     #[allow(clippy::disallowed_methods)] // the native CLI has a clock

@@ -22,7 +22,7 @@ use serde::{Deserialize, Serialize};
 use crate::arm::Arm;
 use crate::error::{Error, Result};
 use crate::kinematics::Pose;
-use crate::nn::Kernel;
+use crate::nn::{Kernel, Precision};
 use crate::planner::Surrogate;
 
 pub use builtin::*;
@@ -97,6 +97,25 @@ impl Networks {
             phi_kernels,
             v_kernel,
         })
+    }
+
+    /// The same networks computing in `precision` (their kernels built
+    /// again, natively and in the workers' module; `f64` is what [`Networks::new`] builds).
+    #[cfg(any(not(target_family = "wasm"), feature = "worker"))]
+    pub fn with_precision(mut self, precision: Precision) -> Self {
+        self.phi_kernels = self
+            .phi
+            .nets
+            .iter()
+            .map(|e| Kernel::with_precision(&e.mlp, precision))
+            .collect();
+        self.v_kernel = Kernel::with_precision(&self.v.nets[0].mlp, precision);
+        self
+    }
+
+    /// The arithmetic of the networks' kernels.
+    pub fn precision(&self) -> Precision {
+        self.v_kernel.precision()
     }
 
     /// Networks from the JSON text of a `Phi` weights file and a `v` weights

@@ -24,7 +24,7 @@ use super::file::{InputRange, NetEntry, NetKind};
 use crate::error::{Error, Result};
 use crate::kinematics::sin_cos;
 use crate::nn::adam::AdamOptions;
-use crate::nn::Kernel;
+use crate::nn::{Kernel, Precision};
 use crate::space::pose::{cross, dot, sub};
 use crate::space::{Chain, Row, SpacePose, Vec3, MAX_JOINTS};
 
@@ -225,6 +225,20 @@ impl SpaceNetworks {
             phi_kernel,
             v_kernel,
         })
+    }
+
+    /// The same networks computing in `precision` (their kernels built
+    /// again, natively and in the workers' module; `f64` is what [`SpaceNetworks::new`] builds).
+    #[cfg(any(not(target_family = "wasm"), feature = "worker"))]
+    pub fn with_precision(mut self, precision: Precision) -> Self {
+        self.phi_kernel = Kernel::with_precision(&self.phi.nets[0].mlp, precision);
+        self.v_kernel = Kernel::with_precision(&self.v.nets[0].mlp, precision);
+        self
+    }
+
+    /// The arithmetic of the networks' kernels.
+    pub fn precision(&self) -> Precision {
+        self.v_kernel.precision()
     }
 
     /// Networks from the JSON text of a `Phi` file and a `v` file.

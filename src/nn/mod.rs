@@ -3,7 +3,7 @@
 //! `trainlm`-style Levenberg-Marquardt trainer ([`lm`], with [`kronecker`]
 //! and [`cholesky`]), Adam with minibatches for networks too wide for it
 //! ([`adam`], with the batched passes of [`backprop`]), what both share
-//! ([`data`], [`report`]), the run-time [`kernel`] and a seeded PRNG ([`Rng`]).
+//! ([`data`], [`report`]), the run-time [`kernel`] in either [`precision`] and a seeded PRNG ([`Rng`]).
 //! Nothing here knows the planner, the paper's networks or their training
 //! (the weights file is [`crate::networks::file`], the training data are
 //! drawn in `crate::training`). Everything here is single-threaded and
@@ -19,6 +19,7 @@ pub mod kernel;
 pub mod kronecker;
 pub mod lm;
 pub mod mlp;
+pub mod precision;
 pub mod report;
 pub mod rng;
 
@@ -27,5 +28,6 @@ pub use data::Dataset;
 pub use kernel::Kernel;
 pub use lm::{LmOptions, LmTrainer};
 pub use mlp::{MapMinMax, Mlp};
+pub use precision::Precision;
 pub use report::{EpochReport, StopReason, TrainReport};
 pub use rng::Rng;

@@ -50,7 +50,8 @@ fn networks(phi: Option<String>, v: Option<String>) -> Result<Option<Arc<SpaceNe
 /// One RK4 step of the preset `arm`'s task in `method`, sample included,
 /// in nanoseconds; `phi` and `v` are the networks' weights files' text
 /// (needed by Cases 1-3, ignored otherwise); `refine` Newton-Schulz steps
-/// on the learned `Phi`.
+/// on the learned `Phi`; `precision` the networks' arithmetic (`f64` when
+/// absent, or `f32`).
 #[wasm_bindgen(js_name = benchSpaceStep)]
 pub fn bench_space_step(
     arm: &str,
@@ -59,6 +60,7 @@ pub fn bench_space_step(
     refine: u32,
     phi: Option<String>,
     v: Option<String>,
+    precision: Option<String>,
 ) -> Result<f64, JsError> {
     let method: Method = method.parse().map_err(js_err)?;
     let nets = if method.uses_networks() {
@@ -68,22 +70,25 @@ pub fn bench_space_step(
     };
     let opts = crate::bench::Options {
         refine,
-        ..bench_options(batch_ms)?
+        ..bench_options(batch_ms, precision)?
     };
     sb::step_ns_with(arm, method, nets, &opts, &probes()).map_err(js_err)
 }
 
 /// Forward passes of the preset `arm`'s networks (from their files' text)
-/// at its start pose, in nanoseconds: `{ phi, v }`.
+/// at its start pose in `precision` (`f64` when absent), in nanoseconds:
+/// `{ phi, v }`.
 #[wasm_bindgen(js_name = benchSpaceForward)]
 pub fn bench_space_forward(
     arm: &str,
     batch_ms: f64,
     phi: String,
     v: String,
+    precision: Option<String>,
 ) -> Result<JsValue, JsError> {
     let nets = networks(Some(phi), Some(v))?
         .ok_or_else(|| JsError::new("the networks' files are missing"))?;
-    let f = sb::forward_ns(arm, &nets, &bench_options(batch_ms)?, &probes()).map_err(js_err)?;
+    let opts = bench_options(batch_ms, precision)?;
+    let f = sb::forward_ns(arm, nets, &opts, &probes()).map_err(js_err)?;
     to_js(&f)
 }

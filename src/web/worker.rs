@@ -320,11 +320,21 @@ pub fn conclude_training(
 // ---- the benchmark -------------------------------------------------------
 
 /// The benchmark's options: `batch_ms` is the shortest timed batch (1 to
-/// 1000 ms); each figure is the median of seven batches after a warm-up.
-pub(super) fn bench_options(batch_ms: f64) -> Result<bench::Options, JsError> {
+/// 1000 ms); each figure is the median of seven batches after a warm-up;
+/// the networks compute in `precision` (`f64` when absent, or `f32`).
+pub(super) fn bench_options(
+    batch_ms: f64,
+    precision: Option<String>,
+) -> Result<bench::Options, JsError> {
     crate::error::within("batch length (ms)", batch_ms, 1.0, 1000.0).map_err(js_err)?;
+    let precision = precision
+        .map(|p| p.parse::<crate::nn::Precision>())
+        .transpose()
+        .map_err(js_err)?
+        .unwrap_or_default();
     Ok(bench::Options {
         batch_ms,
+        precision,
         ..bench::Options::default()
     })
 }
@@ -359,23 +369,28 @@ pub fn bench_verdict() -> Vec<String> {
 
 /// One `theta_dot` of `method` at Task 1's start pose, in nanoseconds (the
 /// code behind `redundant-ik bench`; one figure per call, so a Web Worker can
-/// report progress between them).
+/// report progress between them); the networks in `precision` (`f64` when
+/// absent, or `f32`).
 #[wasm_bindgen(js_name = benchThetaDot)]
-pub fn bench_theta_dot(method: &str, batch_ms: f64) -> Result<f64, JsError> {
+pub fn bench_theta_dot(
+    method: &str,
+    batch_ms: f64,
+    precision: Option<String>,
+) -> Result<f64, JsError> {
     let method: Method = method.parse().map_err(js_err)?;
-    bench::theta_dot_ns(method, &bench_options(batch_ms)?, &probes()).map_err(js_err)
+    bench::theta_dot_ns(method, &bench_options(batch_ms, precision)?, &probes()).map_err(js_err)
 }
 
 /// One RK4 step of Task 1 in `method`, sample included, in nanoseconds.
 #[wasm_bindgen(js_name = benchStep)]
-pub fn bench_step(method: &str, batch_ms: f64) -> Result<f64, JsError> {
+pub fn bench_step(method: &str, batch_ms: f64, precision: Option<String>) -> Result<f64, JsError> {
     let method: Method = method.parse().map_err(js_err)?;
-    bench::step_ns(method, &bench_options(batch_ms)?, &probes()).map_err(js_err)
+    bench::step_ns(method, &bench_options(batch_ms, precision)?, &probes()).map_err(js_err)
 }
 
 /// Forward passes of the shipped networks in nanoseconds: `{ phi, v }`.
 #[wasm_bindgen(js_name = benchForward)]
-pub fn bench_forward(batch_ms: f64) -> Result<JsValue, JsError> {
-    let f = bench::forward_ns(&bench_options(batch_ms)?, &probes()).map_err(js_err)?;
+pub fn bench_forward(batch_ms: f64, precision: Option<String>) -> Result<JsValue, JsError> {
+    let f = bench::forward_ns(&bench_options(batch_ms, precision)?, &probes()).map_err(js_err)?;
     to_js(&f)
 }

@@ -305,6 +305,10 @@ test("space: the benchmark panel times the Panda's step in every method, in a wo
   const d = await page.evaluate(() => ({ ...document.getElementById('bench-result').dataset }));
   assert.ok(Number(d.learnedNs) > 0 && Number(d.exactNs) > 0);
   console.log(`measure: the Panda in the page's benchmark: ${d.learned} ${(d.learnedNs / 1000).toFixed(2)} us, ${d.exact} ${(d.exactNs / 1000).toFixed(2)} us per RK4 step`);
+  // The networks' f32 kernels, as `redundant-ik bench --precision f32`.
+  const f32 = await page.evaluate(() => window.demo.bench({ arm: 'panda', methods: ['case3'], precision: 'f32' }));
+  assert.equal(f32.precision, 'f32');
+  assert.ok(f32.step_ns.case3 > 0 && f32.forward_ns.phi > 0 && f32.forward_ns.v > 0, JSON.stringify(f32));
   clean(page);
   await page.close();
 });

@@ -44,3 +44,4 @@ mod files;
 mod kernels;
 mod mlp;
 mod shipped;
+mod single;

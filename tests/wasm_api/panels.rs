@@ -61,19 +61,27 @@ fn closed_loop_feedback_shrinks_the_networks_drift_and_survives_a_task_load() {
 #[wasm_bindgen_test]
 fn the_in_browser_benchmark_returns_costs_or_refuses_bad_input() {
     use redundant_ik::web::{bench_forward, bench_step, bench_theta_dot};
-    for method in ["numerical", "case3"] {
-        let ns = bench_step(method, 1.0).unwrap();
-        assert!(ns.is_finite() && ns > 0.0, "{method}: {ns}");
-        let ns = bench_theta_dot(method, 1.0).unwrap();
-        assert!(ns.is_finite() && ns > 0.0, "{method}: {ns}");
+    for precision in [None, Some("f64"), Some("f32")] {
+        let p = || precision.map(String::from);
+        for method in ["numerical", "case3"] {
+            let ns = bench_step(method, 1.0, p()).unwrap();
+            assert!(ns.is_finite() && ns > 0.0, "{method}: {ns}");
+            let ns = bench_theta_dot(method, 1.0, p()).unwrap();
+            assert!(ns.is_finite() && ns > 0.0, "{method}: {ns}");
+        }
+        let f = json_of(bench_forward(1.0, p()).unwrap());
+        assert!(f["phi"].as_f64().is_some_and(|x| x > 0.0), "{f}");
+        assert!(f["v"].as_f64().is_some_and(|x| x > 0.0), "{f}");
     }
-    let f = json_of(bench_forward(1.0).unwrap());
-    assert!(f["phi"].as_f64().is_some_and(|x| x > 0.0), "{f}");
-    assert!(f["v"].as_f64().is_some_and(|x| x > 0.0), "{f}");
-    assert!(message(bench_step("case9", 1.0).err().unwrap()).contains("unknown method"));
+    assert!(message(bench_step("case9", 1.0, None).err().unwrap()).contains("unknown method"));
     for bad in [0.0, f64::NAN, 1e9] {
-        assert!(message(bench_theta_dot("numerical", bad).err().unwrap()).contains("batch"));
+        assert!(message(bench_theta_dot("numerical", bad, None).err().unwrap()).contains("batch"));
     }
+    let err = bench_forward(1.0, Some("f16".into())).err().unwrap();
+    assert!(
+        message(err).contains("precision"),
+        "an unknown precision is refused by name"
+    );
 }
 
 #[wasm_bindgen_test]

@@ -27,12 +27,20 @@
 
 #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
 mod portable;
+// The f32 kernels: natively and in the workers' module (the benchmark's
+// `precision: 'f32'`); the page's modules, which run f64 only, leave them
+// out (1.1-2.1 KB gzipped, measured with `make web` on 2 December).
+#[cfg(any(not(target_family = "wasm"), feature = "worker"))]
+mod single;
 #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
 mod wasm;
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128", feature = "worker"))]
+mod wasm_single;
 #[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
 mod x86;
 
 use crate::nn::mlp::{MapMinMax, Mlp};
+use crate::nn::Precision;
 #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
 use portable::forward_portable;
 
@@ -76,6 +84,9 @@ pub struct Kernel {
     /// The layers as wasm `v128` pairs, for the `simd128` build.
     #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
     simd: Vec<wasm::Layer>,
+    /// The layers rounded to `f32`, when the kernel computes in `f32`.
+    #[cfg(any(not(target_family = "wasm"), feature = "worker"))]
+    single: Option<single::Kernel32>,
 }
 
 fn pad(n: usize) -> usize {
@@ -111,6 +122,20 @@ impl Kernel {
     /// `y = (z - c') / g'`, the last layer becomes `(W / g') a + (b - c') / g'`.
     /// Outputs move by rounding only (tested against [`Mlp::forward`]).
     pub fn new(mlp: &Mlp) -> Self {
+        Self::build(mlp, Precision::F64)
+    }
+
+    /// Builds the kernel of a validated network, computing in `precision`
+    /// (the layers folded in `f64` as in [`Kernel::new`], then rounded).
+    /// Natively and in the workers' module.
+    #[cfg(any(not(target_family = "wasm"), feature = "worker"))]
+    pub fn with_precision(mlp: &Mlp, precision: Precision) -> Self {
+        Self::build(mlp, precision)
+    }
+
+    fn build(mlp: &Mlp, precision: Precision) -> Self {
+        #[cfg(not(any(not(target_family = "wasm"), feature = "worker")))]
+        let _ = precision;
         let sizes = &mlp.sizes;
         let last = mlp.layers.len() - 1;
         let mut layers = Vec::with_capacity(mlp.layers.len());
@@ -163,14 +188,27 @@ impl Kernel {
             .chain([pad(mlp.inputs())])
             .max()
             .unwrap_or(0);
+        let (n_in, n_out) = (mlp.inputs(), mlp.outputs());
         Self {
-            n_in: mlp.inputs(),
-            n_out: mlp.outputs(),
+            n_in,
+            n_out,
             #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
             simd: layers.iter().map(wasm::Layer::new).collect(),
+            #[cfg(any(not(target_family = "wasm"), feature = "worker"))]
+            single: (precision == Precision::F32)
+                .then(|| single::Kernel32::new(n_in, n_out, widest, &layers)),
             layers,
             widest,
         }
+    }
+
+    /// The arithmetic of [`Kernel::forward`].
+    pub fn precision(&self) -> Precision {
+        #[cfg(any(not(target_family = "wasm"), feature = "worker"))]
+        if self.single.is_some() {
+            return Precision::F32;
+        }
+        Precision::F64
     }
 
     /// Number of inputs.
@@ -188,6 +226,10 @@ impl Kernel {
     /// Allocation-free for layers up to [`WIDE_STACK_WIDTH`] wide.
     #[inline]
     pub fn forward(&self, x: &[f64], y: &mut [f64]) {
+        #[cfg(any(not(target_family = "wasm"), feature = "worker"))]
+        if let Some(single) = &self.single {
+            return single.forward(x, y);
+        }
         #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
         wasm::forward(self, x, y);
         #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
