@@ -27,3 +27,5 @@ else
 fi
 # The frame time while orbiting and dragging the Panda, and while dragging in the plane.
 BASE_URL="$url" node scripts/frame-time.mjs
+# What an idle page costs the machine (its CPU time, from /proc: Linux only).
+if [[ -d /proc/self ]]; then BASE_URL="$url" node scripts/idle-cpu.mjs; fi

@@ -311,6 +311,9 @@ export async function mount(root, options = {}) {
   };
   fit(stage, (w, h, d) => demo.resize(w, h, d));
   if (plots) fit(plots, (w, h, d) => demo.resizePlots(w, h, d));
+  // The drawing is kept between frames (an idle page draws nothing), so a
+  // 2D context the browser discarded and gave back blank is drawn again.
+  for (const canvas of [stage, plots]) canvas?.addEventListener('contextrestored', () => attempt(() => demo.draw()));
 
   // ---- readouts and the loop -------------------------------------------
   const syncNotes = mountNotes(root);
@@ -376,13 +379,17 @@ export async function mount(root, options = {}) {
     if (stopped) return;
     const elapsed = now - last;
     last = now;
+    // The state when anything changed (else undefined: nothing to follow,
+    // nothing repainted); after a failed step, the last good one.
     let s;
+    let failed = false;
     try {
       s = demo.frame(elapsed);
     } catch (e) {
+      failed = true;
       show(describe(e), 'error', true);
     }
-    update(s);
+    if (s !== undefined || failed) update(s);
     requestAnimationFrame(tick);
   }
 
@@ -418,9 +425,8 @@ export async function mount(root, options = {}) {
     },
   };
 
-  // First frame now, synchronously; then the animation loop.
-  demo.frame(0);
-  update();
+  // First frame now, synchronously (it draws: nothing was drawn yet); then the animation loop.
+  update(demo.frame(0) ?? demo.state());
   if (el.loading) el.loading.hidden = true;
   requestAnimationFrame((now) => {
     last = now;

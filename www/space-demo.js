@@ -253,6 +253,9 @@ export async function mountSpace(root, options) {
   };
   fit(stage, (w, h, d) => demo.resize(w, h, d));
   if (plots) fit(plots, (w, h, d) => demo.resizePlots(w, h, d));
+  // The drawing is kept between frames (an idle page draws nothing), so a
+  // 2D context the browser discarded and gave back blank is drawn again.
+  for (const canvas of [stage, plots]) canvas?.addEventListener('contextrestored', () => attempt(() => demo.draw()));
 
   // ---- readouts, the live region and the loop ----------------------------------
   const readouts = [...root.querySelectorAll('[data-readout]')];
@@ -298,13 +301,15 @@ export async function mountSpace(root, options) {
     const elapsed = now - last;
     last = now;
     try {
-      update(demo.frame(elapsed));
+      // The state when anything changed; undefined when nothing did (nothing repainted).
+      const s = demo.frame(elapsed);
+      if (s !== undefined) update(s);
     } catch (e) {
       show(describe(e), 'error', true);
     }
     requestAnimationFrame(tick);
   }
-  update(demo.frame(0));
+  update(demo.frame(0) ?? demo.state());
   const loading = $('loading');
   if (loading) loading.hidden = true;
   requestAnimationFrame((now) => {
@@ -324,7 +329,7 @@ export async function mountSpace(root, options) {
     },
     runUntil(t) {
       demo.runUntil(t);
-      return update(demo.frame(0));
+      return update(demo.frame(0) ?? demo.state());
     },
     compare: () => panels.compare(),
     runFile: () => demo.runFile(),

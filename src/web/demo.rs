@@ -7,6 +7,7 @@ use web_sys::HtmlCanvasElement;
 
 use super::layer::Layer;
 use super::surface::Surface;
+use super::tracked::Tracked;
 use super::{finite, input, js_err, now_ms, plots, stage, to_js, JsResult};
 use crate::atlas::Grid;
 use crate::planner::Method;
@@ -16,12 +17,22 @@ use crate::view::{Camera, View};
 /// One interactive simulation drawn on one canvas. Several can live on a page.
 #[wasm_bindgen]
 pub struct Demo {
+    /// What the stage and the plots draw. The bindings reach its fields
+    /// through `Deref` (`self.session`) to read them and through
+    /// `DerefMut` to change them, which marks the drawing stale
+    /// ([`Tracked::edit`]), so that [`Demo::frame`] draws, and hands the
+    /// page a state, only when something changed or the clock ran.
+    drawing: Tracked<Drawing>,
+    /// What the last frame drew ([`stage::draw`]'s mask).
+    drawn: std::cell::Cell<u32>,
+}
+
+/// The planar demo's drawn value: the session and how it is shown.
+pub struct Drawing {
     pub(super) session: Session,
     pub(super) stage: Surface,
     plots: Option<Surface>,
     layer: Option<Layer>,
-    /// What the last frame drew ([`stage::draw`]'s mask).
-    drawn: std::cell::Cell<u32>,
     /// The legend's entries switched on (`setShown`: the lab's ellipses).
     shown: u32,
     /// The stage's view: fitted to the scene, or the user's zoom.
@@ -32,6 +43,23 @@ pub struct Demo {
     /// CSS pixels to the drawing's unit: 1, or [`PROJECTOR`] in projector
     /// mode (`setProjector`).
     pub(super) magnify: f64,
+}
+
+impl std::ops::Deref for Demo {
+    type Target = Drawing;
+    fn deref(&self) -> &Drawing {
+        self.drawing.get()
+    }
+}
+
+impl std::ops::DerefMut for Demo {
+    /// Any change of what is drawn: the drawing is stale from now on. A
+    /// change through a field's `&self` method (interior mutability: the
+    /// camera's `Cell`) goes through `Deref` instead, so such a binding
+    /// takes `&mut **self` itself (`moveView`, `fitView`).
+    fn deref_mut(&mut self) -> &mut Drawing {
+        self.drawing.edit()
+    }
 }
 
 /// How much larger projector mode draws the strokes, markers and text of
@@ -61,15 +89,17 @@ impl Demo {
         let mut session = Session::new(task).map_err(js_err)?;
         session.set_clock(now_ms);
         Ok(Demo {
-            session,
-            stage: Surface::new(stage)?,
-            plots: plots.map(Surface::new).transpose()?,
-            layer: None,
+            drawing: Tracked::new(Drawing {
+                session,
+                stage: Surface::new(stage)?,
+                plots: plots.map(Surface::new).transpose()?,
+                layer: None,
+                shown: 0,
+                camera: Camera::default(),
+                keyboard: false,
+                magnify: 1.0,
+            }),
             drawn: std::cell::Cell::new(0),
-            shown: 0,
-            camera: Camera::default(),
-            keyboard: false,
-            magnify: 1.0,
         })
     }
 
@@ -243,16 +273,27 @@ impl Demo {
     }
 
     /// Advances the clock by `elapsed_ms` of real time (scaled by the speed)
-    /// and draws the frame. Throws if a step fails; the clock is then paused
-    /// and the state is the last good one.
+    /// and, if anything changed since the last frame (a binding changed
+    /// the scene or the view, or the clock ran), draws and returns the
+    /// state (as [`Demo::state`]); else draws nothing and returns
+    /// `undefined`, so that an idle page repaints nothing. Throws if a step
+    /// fails; the clock is then paused and the state is the last good one.
     ///
-    /// Returns the state after it (as [`Demo::state`]), so that a frame is
-    /// one call into the module (and a drag's pointer move the other).
+    /// A frame is one call into the module (and a drag's pointer move the
+    /// other).
     pub fn frame(&mut self, elapsed_ms: f64) -> JsResult<JsValue> {
-        let stepped = self.session.tick(elapsed_ms);
-        self.draw();
+        let (stepped, changed) = self
+            .drawing
+            .tick(|d| d.session.running(), |d| d.session.tick(elapsed_ms));
+        if changed || stepped.is_err() {
+            self.draw();
+        }
         stepped.map_err(js_err)?;
-        self.state()
+        if changed {
+            self.state()
+        } else {
+            Ok(JsValue::UNDEFINED)
+        }
     }
 
     /// Runs the current scene from `t = 0` to `tf` with every method, off
@@ -349,17 +390,22 @@ impl Demo {
     /// two fingers do both. Returns the zoom now (1: fitted). The view is
     /// then the user's until `fitView()`: kept when the scene changes.
     #[wasm_bindgen(js_name = moveView)]
-    pub fn move_view(&self, x: f64, y: f64, to_x: f64, to_y: f64, factor: f64) -> f64 {
-        let size = (self.stage.width, self.stage.height);
+    pub fn move_view(&mut self, x: f64, y: f64, to_x: f64, to_y: f64, factor: f64) -> f64 {
+        // `&mut`: the camera keeps its view in a `Cell`, and a move must
+        // mark the drawing stale as any other change does.
+        let d = &mut **self;
+        let size = (d.stage.width, d.stage.height);
         let moved = ((x, y), (to_x, to_y));
-        self.camera.move_view(&self.session, size, moved, factor)
+        d.camera.move_view(&d.session, size, moved, factor)
     }
 
     /// Fits the stage's view to the arm's reach, the obstacles, the target
     /// and the path again (the view follows the scene from then on).
     #[wasm_bindgen(js_name = fitView)]
-    pub fn fit_view(&self) {
-        self.camera.fit();
+    pub fn fit_view(&mut self) {
+        // Through `DerefMut` explicitly: `Camera::fit` takes `&self`.
+        let d = &mut **self;
+        d.camera.fit();
     }
 
     /// Canvas CSS-pixel position `[x, y]` of the world point `(x, y)` (metres).

@@ -56,7 +56,7 @@ mod style;
 mod surface;
 #[cfg(feature = "worker")]
 mod takeaway;
-#[cfg(all(feature = "canvas", feature = "space"))]
+#[cfg(any(feature = "page", all(feature = "canvas", feature = "space")))]
 mod tracked;
 #[cfg(feature = "worker")]
 mod worker;

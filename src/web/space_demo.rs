@@ -194,17 +194,20 @@ impl SpaceDemo {
         self.session_mut().run_until(time).map_err(js_err)
     }
 
-    /// Advances the clock by `elapsed_ms`, draws if anything changed (or
-    /// the clock ran), and returns the state.
+    /// Advances the clock by `elapsed_ms` and, if anything changed since
+    /// the last frame (a binding changed something, or the clock ran),
+    /// draws and returns the state; else draws nothing and returns
+    /// `undefined`, so that an idle page repaints nothing.
     pub fn frame(&mut self, elapsed_ms: f64) -> JsResult<JsValue> {
-        let was_running = self.session().running();
-        // The tick changes the drawing only while the clock runs, checked here.
-        self.drawn.edit_untracked().session.tick(elapsed_ms);
-        let stale = self.drawn.take_stale();
-        if stale || was_running || self.session().running() {
+        let ((), changed) = self
+            .drawn
+            .tick(|d| d.session.running(), |d| d.session.tick(elapsed_ms));
+        if changed {
             self.draw();
+            self.state()
+        } else {
+            Ok(JsValue::UNDEFINED)
         }
-        self.state()
     }
 
     /// The snapshot as a plain object (`docs/web.md`, "The page in space").

@@ -26,14 +26,20 @@ impl<T> Tracked<T> {
         &mut self.value
     }
 
-    /// The value, to change without marking it stale: only for a change
-    /// whose caller decides itself whether to draw (the clock's tick).
-    pub(super) fn edit_untracked(&mut self) -> &mut T {
-        &mut self.value
-    }
-
-    /// Whether the drawing is stale; clears the mark (the caller draws).
-    pub(super) fn take_stale(&mut self) -> bool {
-        std::mem::replace(&mut self.stale, false)
+    /// One frame's tick of the value's clock: `tick` changes the value
+    /// without marking it, since it changes the drawing only while the
+    /// clock runs, which `running` tells. Returns `tick`'s result and
+    /// whether the frame must draw: a change since the last frame, or a
+    /// clock that ran before or after the tick (so the frame it stops on
+    /// draws too). Clears the mark (the caller draws).
+    pub(super) fn tick<R>(
+        &mut self,
+        running: impl Fn(&T) -> bool,
+        tick: impl FnOnce(&mut T) -> R,
+    ) -> (R, bool) {
+        let was_running = running(&self.value);
+        let result = tick(&mut self.value);
+        let stale = std::mem::replace(&mut self.stale, false);
+        (result, stale || was_running || running(&self.value))
     }
 }

@@ -1,7 +1,8 @@
 // End-to-end tests of the stage's view (src/view.rs): on every screen the
 // drawing holds the arm's whole reach and a target above it, its labels lie
 // inside the canvas and the stage is tall enough; the wheel, the keys and
-// two fingers zoom, Fit restores, and a drag after a zoom stays exact.
+// two fingers zoom, Fit restores, and a drag after a zoom stays exact; an
+// idle page draws nothing until a change, and draws a restored context again.
 // Registered by e2e.mjs, which runs them (scripts/e2e.sh).
 
 import { join } from 'node:path';
@@ -23,7 +24,7 @@ const frames = (page, n = 2) =>
     f(n);
   }), n);
 
-/** The stage's rectangle on screen and every text the next frame draws on it, each with its box (CSS px, from measureText). */
+/** The stage's rectangle on screen and every text a drawing of it draws, each with its box (CSS px, from measureText); a paused page draws nothing by itself, so the drawing is asked for. */
 async function drawnTexts(page) {
   return page.evaluate(async () => {
     const canvas = document.getElementById('stage');
@@ -34,7 +35,7 @@ async function drawnTexts(page) {
       texts.push({ text, left: x - m.actualBoundingBoxLeft, right: x + m.actualBoundingBoxRight, top: y - m.actualBoundingBoxAscent, bottom: y + m.actualBoundingBoxDescent });
       return CanvasRenderingContext2D.prototype.fillText.call(this, text, x, y);
     };
-    await new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done)));
+    window.demo.controller.demo.draw();
     delete ctx.fillText;
     const r = canvas.getBoundingClientRect();
     return { texts, rect: { left: r.left, top: r.top, width: r.width, height: r.height } };
@@ -172,3 +173,39 @@ test('view: two fingers zoom on a phone, Fit restores', async () => {
   clean(page);
   await page.close();
 });
+
+// An idle page draws nothing (docs/web.md, "What an idle page costs"): a
+// pixel painted over the stage stays through frames, until something
+// changes; and a 2D context the browser gives back blank is drawn again.
+for (const [name, query] of [['plane', '?task=1&method=numerical'], ['space', '?arm=panda&autoplay=0']]) {
+  test(`idle in ${name}: frames draw nothing until a change, and a restored context is drawn again`, async () => {
+    const page = await open(query);
+    await pause(page);
+    await frames(page, 3);
+    const mark = () =>
+      page.evaluate(() => {
+        const g = document.getElementById('stage').getContext('2d');
+        g.save();
+        g.setTransform(1, 0, 0, 1, 0, 0);
+        g.fillStyle = 'rgb(255, 0, 255)';
+        g.fillRect(0, 0, 1, 1);
+        g.restore();
+      });
+    const marked = () =>
+      page.evaluate(() => {
+        const [r, g, b] = document.getElementById('stage').getContext('2d').getImageData(0, 0, 1, 1).data;
+        return r === 255 && g === 0 && b === 255;
+      });
+    await mark();
+    await frames(page, 5);
+    assert.ok(await marked(), 'five idle frames drew nothing over the mark');
+    await page.evaluate(() => document.getElementById('stage').dispatchEvent(new Event('contextrestored')));
+    assert.ok(!(await marked()), 'a restored context is drawn again');
+    await mark();
+    await page.evaluate(() => window.demo.controller.demo.setRunning(true));
+    await frames(page, 3);
+    assert.ok(!(await marked()), 'a running clock draws');
+    clean(page);
+    await page.close();
+  });
+}

@@ -18,9 +18,25 @@ export function make_canvas(w, h) {
   c.style.display = 'block';
   document.body.appendChild(c);
   return c;
+}
+export function mark_canvas(c) {
+  const g = c.getContext('2d');
+  g.save();
+  g.setTransform(1, 0, 0, 1, 0, 0);
+  g.fillStyle = 'rgb(255, 0, 255)';
+  g.fillRect(0, 0, 1, 1);
+  g.restore();
+}
+export function canvas_marked(c) {
+  const [r, g, b] = c.getContext('2d').getImageData(0, 0, 1, 1).data;
+  return r === 255 && g === 0 && b === 255;
 }")]
 extern "C" {
     fn make_canvas(w: u32, h: u32) -> HtmlCanvasElement;
+    /// Paints the canvas's top-left pixel magenta, which no drawing uses.
+    fn mark_canvas(c: &HtmlCanvasElement);
+    /// Whether the top-left pixel is still the mark: nothing drew over it.
+    fn canvas_marked(c: &HtmlCanvasElement) -> bool;
 }
 
 fn demo(task: u32) -> Demo {

@@ -157,6 +157,61 @@ fn dragging_the_obstacle_moves_it_at_once_and_refuses_the_post() {
     assert!(state(&d)["dragging"].is_null());
 }
 
+/// Whether a frame handed the page a state (else `undefined`: nothing
+/// changed, nothing drawn).
+fn frame_changed(d: &mut Demo, elapsed_ms: f64) -> bool {
+    !d.frame(elapsed_ms).unwrap().is_undefined()
+}
+
+#[wasm_bindgen_test]
+fn an_idle_page_draws_nothing_until_something_changes() {
+    let canvas = make_canvas(320, 260);
+    let mut d = Demo::new(canvas.clone(), None, 1).unwrap();
+    d.resize(320.0, 260.0, 1.0).unwrap();
+    assert!(frame_changed(&mut d, 16.0), "the first frame draws");
+    mark_canvas(&canvas);
+    assert!(
+        !frame_changed(&mut d, 16.0),
+        "paused and untouched: no state"
+    );
+    assert!(canvas_marked(&canvas), "... and no drawing");
+    // Reading changes nothing.
+    let _ = (
+        d.state().unwrap(),
+        d.run().unwrap(),
+        d.hover(10.0, 10.0, 4.0),
+    );
+    let _ = d.world_to_canvas(0.5, 0.5).unwrap();
+    assert!(!frame_changed(&mut d, 16.0));
+    assert!(canvas_marked(&canvas));
+    // A change of the scene draws, and the state says it.
+    d.set_lambda(2.0).unwrap();
+    let s = json_of(d.frame(16.0).unwrap());
+    assert_eq!(s["lambda"], 2.0);
+    assert!(!canvas_marked(&canvas), "the change was drawn");
+    // So does a change of the view alone (the camera keeps it in a Cell).
+    mark_canvas(&canvas);
+    assert!(!frame_changed(&mut d, 16.0));
+    d.move_view(100.0, 100.0, 100.0, 100.0, 1.5);
+    assert!(frame_changed(&mut d, 16.0));
+    assert!(!canvas_marked(&canvas));
+    mark_canvas(&canvas);
+    d.fit_view();
+    assert!(frame_changed(&mut d, 16.0));
+    assert!(!canvas_marked(&canvas));
+    // The clock: every frame while it runs, and the one it stops on.
+    d.set_speed(1.0).unwrap();
+    d.set_running(true);
+    for _ in 0..3 {
+        mark_canvas(&canvas);
+        assert!(frame_changed(&mut d, 100.0));
+        assert!(!canvas_marked(&canvas));
+    }
+    d.set_running(false);
+    assert!(frame_changed(&mut d, 100.0));
+    assert!(!frame_changed(&mut d, 100.0));
+}
+
 #[wasm_bindgen_test]
 fn the_clock_runs_only_while_playing() {
     let mut d = demo(1);
@@ -176,4 +231,26 @@ fn the_clock_runs_only_while_playing() {
     d.reset();
     assert_eq!(state(&d)["t"], 0.0);
     assert!(!d.running());
+}
+
+#[wasm_bindgen_test]
+fn an_idle_page_in_space_draws_nothing_until_something_changes() {
+    use redundant_ik::web::SpaceDemo;
+    let canvas = make_canvas(320, 260);
+    let mut d = SpaceDemo::new(canvas.clone(), None, "panda", None).unwrap();
+    d.resize(320.0, 260.0, 1.0).unwrap();
+    let changed = |d: &mut SpaceDemo| !d.frame(16.0).unwrap().is_undefined();
+    assert!(changed(&mut d), "the first frame draws");
+    mark_canvas(&canvas);
+    assert!(!changed(&mut d), "paused and untouched: no state");
+    assert!(canvas_marked(&canvas), "... and no drawing");
+    let _ = d.state().unwrap();
+    assert!(!changed(&mut d));
+    d.orbit(12.0, 0.0).unwrap();
+    assert!(changed(&mut d), "an orbit draws");
+    assert!(!canvas_marked(&canvas));
+    assert!(!changed(&mut d));
+    d.set_running(true);
+    assert!(changed(&mut d));
+    assert!(changed(&mut d), "every frame while the clock runs");
 }
