@@ -4,14 +4,15 @@
 // cells, the paper's five methods, in a worker; the page's Atlas panel itself
 // ticks every method) as often and prints its median; then the
 // time from navigation to data-ready (five loads in fresh contexts) and the
-// Case 3 solver time per animation frame and per step (docs/web.md). After
-// the planar benchmark it runs the Panda's (window.demo.bench({ arm: 'panda' }):
-// the RK4 step of its task per method, its networks' forward passes) as often,
-// and, where the native tool is built (NATIVE, default
-// target/release/redundant-ik), runs `redundant-ik bench --json --no-lm
-// --no-atlas` and `bench --arm panda --json` right there and prints the
-// page's step times over the native ones. Each benchmark runs in both of the
-// networks' precisions (`precision: 'f64'` and `'f32'`, alternated), the
+// Case 3 solver time per animation frame and per step (docs/web.md). Each
+// round of the benchmark runs the planar page's, the Panda's
+// (window.demo.bench({ arm: 'panda' }): the RK4 step of its task per method,
+// its networks' forward passes) and, where the native tool is built (NATIVE,
+// default target/release/redundant-ik), `redundant-ik bench --json --no-lm
+// --no-atlas` and `bench --arm panda --json` right there; it prints the
+// page's step times over the native ones, as the ratio of the medians and
+// as the median of each round's own ratio. Each benchmark runs in both of
+// the networks' precisions (`precision: 'f64'` and `'f32'`, alternated), the
 // native f64 figures the reference of every ratio. These are measurements on a
 // shared machine: printed, never judged.
 //
@@ -64,73 +65,77 @@ const medians = (runs, keys) => {
   }
   return out;
 };
-// Both precisions of the networks' kernels, alternated run by run so that
-// the machine's drift falls on both alike.
+// Both precisions of the networks' kernels, and the page and the native
+// tool, alternated round by round, so that the machine's drift falls on
+// all of them alike; each ratio is also given as the median of the rounds'
+// own ratios (each round's page figure over the same round's native one).
+// Both pages stay open: an idle page draws nothing (docs/web.md, "What an
+// idle page costs").
 const PRECISIONS = ['f64', 'f32'];
 const page = await open('?task=1&method=numerical');
 await page.evaluate(() => window.demo.controller.demo.setRunning(false));
+// On the page in space, whose workers' build holds the arms in space.
+const spacePage = await open('?arm=panda&method=numerical&autoplay=0');
+const NATIVE = process.env.NATIVE ?? 'target/release/redundant-ik';
+const hasNative = existsSync(NATIVE);
+// The native tool; its f64 kernels (AVX2 + FMA where the CPU has them) are the reference of every ratio.
+const native = (args) => JSON.parse(execFileSync(NATIVE, ['bench', '--json', ...args], { encoding: 'utf8' }));
 const runs = { f64: [], f32: [] };
+const panda = { f64: [], f32: [] };
+const nat = { f64: { planar: [], panda: [] }, f32: { planar: [], panda: [] } };
 for (let i = 0; i < RUNS; i++) {
   for (const precision of PRECISIONS) {
     const r = await page.evaluate((precision) => window.demo.bench({ precision }), precision);
     runs[precision].push(r);
     console.log(JSON.stringify(r));
   }
-}
-const out = Object.fromEntries(PRECISIONS.map((p) => [p, medians(runs[p], ['theta_dot_ns', 'step_ns', 'forward_ns'])]));
-const build = await page.evaluate(() => window.demo.build);
-for (const p of PRECISIONS) console.log(`median of ${RUNS} (${build} build, ${p}): ${JSON.stringify(out[p])}`);
-
-// ---- the Panda's step, and both against the native tool ----------------------
-// On the page in space, whose workers' build holds the arms in space.
-const spacePage = await open('?arm=panda&method=numerical&autoplay=0');
-const panda = { f64: [], f32: [] };
-for (let i = 0; i < RUNS; i++) {
   for (const precision of PRECISIONS) {
     const r = await spacePage.evaluate((precision) => window.demo.bench({ arm: 'panda', precision }), precision);
     panda[precision].push(r);
     console.log(JSON.stringify(r));
   }
-}
-const pandaOut = Object.fromEntries(PRECISIONS.map((p) => [p, medians(panda[p], ['step_ns', 'forward_ns'])]));
-for (const p of PRECISIONS) console.log(`median of ${RUNS} (${build} build, ${p}), panda: ${JSON.stringify(pandaOut[p])}`);
-await spacePage.close();
-const NATIVE = process.env.NATIVE ?? 'target/release/redundant-ik';
-if (existsSync(NATIVE)) {
-  // The native tool as often, alternated likewise; its f64 kernels (AVX2 +
-  // FMA where the CPU has them) are the reference of every ratio.
-  const native = (args) => JSON.parse(execFileSync(NATIVE, ['bench', '--json', ...args], { encoding: 'utf8' }));
-  const nat = { f64: { planar: [], panda: [] }, f32: { planar: [], panda: [] } };
-  for (let i = 0; i < RUNS; i++) {
+  if (hasNative) {
     for (const p of PRECISIONS) {
       nat[p].planar.push(native(['--no-lm', '--no-atlas', '--precision', p]));
       const space = native(['--arm', 'panda', '--precision', p]);
       nat[p].panda.push({ step_ns: Object.fromEntries(Object.entries(space.methods).map(([m, f]) => [m, f.step_ns])) });
     }
   }
+}
+await spacePage.close();
+const out = Object.fromEntries(PRECISIONS.map((p) => [p, medians(runs[p], ['theta_dot_ns', 'step_ns', 'forward_ns'])]));
+const build = await page.evaluate(() => window.demo.build);
+for (const p of PRECISIONS) console.log(`median of ${RUNS} (${build} build, ${p}): ${JSON.stringify(out[p])}`);
+const pandaOut = Object.fromEntries(PRECISIONS.map((p) => [p, medians(panda[p], ['step_ns', 'forward_ns'])]));
+for (const p of PRECISIONS) console.log(`median of ${RUNS} (${build} build, ${p}), panda: ${JSON.stringify(pandaOut[p])}`);
+if (hasNative) {
   const planar = Object.fromEntries(PRECISIONS.map((p) => [p, medians(nat[p].planar, ['step_ns', 'forward_ns'])]));
   const pandaNative = Object.fromEntries(PRECISIONS.map((p) => [p, medians(nat[p].panda, ['step_ns']).step_ns]));
   const kernels = nat.f64.planar[0].kernels;
-  const ratios = (page, nat) =>
+  // `pageRuns[i][key][m]` over `natRuns[i][key][m]`, round by round: their median.
+  const roundRatio = (pageRuns, natRuns, key, m) => median(pageRuns.map((r, i) => r[key][m] / natRuns[i][key][m]));
+  const ratios = (page, nat, pageRuns, natRuns) =>
     Object.entries(page)
       .filter(([m]) => nat[m] !== undefined)
-      .map(([m, ns]) => `${m} ${(ns / 1000).toFixed(2)} / ${(nat[m] / 1000).toFixed(2)} us = ${(ns / nat[m]).toFixed(2)}x`)
+      .map(([m, ns]) => `${m} ${(ns / 1000).toFixed(2)} / ${(nat[m] / 1000).toFixed(2)} us = ${(ns / nat[m]).toFixed(2)}x (rounds ${roundRatio(pageRuns, natRuns, 'step_ns', m).toFixed(2)}x)`)
       .join(', ');
   for (const p of PRECISIONS) {
     console.log(`native (${kernels}, ${p}), median of ${RUNS}: planar ${JSON.stringify(planar[p])}`);
     console.log(`native (${kernels}, ${p}), median of ${RUNS}: panda step_ns ${JSON.stringify(pandaNative[p])}`);
   }
+  console.log('page / native: the ratio of the medians (rounds: the median of each round\'s own ratio)');
   for (const p of PRECISIONS) {
     const f = out[p].forward_ns;
     const n = planar.f64.forward_ns;
-    console.log(`page (${build} build, ${p}) / native (f64), Task 1 RK4 step: ${ratios(out[p].step_ns, planar.f64.step_ns)}`);
-    console.log(`page (${build} build, ${p}) / native (f64), forward: phi ${(f.phi / n.phi).toFixed(2)}x, v ${(f.v / n.v).toFixed(2)}x`);
-    console.log(`page (${build} build, ${p}) / native (f64), Panda RK4 step: ${ratios(pandaOut[p].step_ns, pandaNative.f64)}`);
+    const fr = (k) => roundRatio(runs[p], nat.f64.planar, 'forward_ns', k).toFixed(2);
+    console.log(`page (${build} build, ${p}) / native (f64), Task 1 RK4 step: ${ratios(out[p].step_ns, planar.f64.step_ns, runs[p], nat.f64.planar)}`);
+    console.log(`page (${build} build, ${p}) / native (f64), forward: phi ${(f.phi / n.phi).toFixed(2)}x (rounds ${fr('phi')}x), v ${(f.v / n.v).toFixed(2)}x (rounds ${fr('v')}x)`);
+    console.log(`page (${build} build, ${p}) / native (f64), Panda RK4 step: ${ratios(pandaOut[p].step_ns, pandaNative.f64, panda[p], nat.f64.panda)}`);
   }
   const learned = ['case1', 'case2', 'case3'];
   const only = (o) => Object.fromEntries(Object.entries(o).filter(([m]) => learned.includes(m)));
-  console.log(`page (${build} build, f32) / native (f32), Task 1 RK4 step: ${ratios(only(out.f32.step_ns), planar.f32.step_ns)}`);
-  console.log(`page (${build} build, f32) / native (f32), Panda RK4 step: ${ratios(only(pandaOut.f32.step_ns), pandaNative.f32)}`);
+  console.log(`page (${build} build, f32) / native (f32), Task 1 RK4 step: ${ratios(only(out.f32.step_ns), planar.f32.step_ns, runs.f32, nat.f32.planar)}`);
+  console.log(`page (${build} build, f32) / native (f32), Panda RK4 step: ${ratios(only(pandaOut.f32.step_ns), pandaNative.f32, panda.f32, nat.f32.panda)}`);
 } else {
   console.log(`no native tool at ${NATIVE} (cargo build --release): no ratios`);
 }
