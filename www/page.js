@@ -16,7 +16,6 @@ import { mount } from './demo.js';
 import { readAddress, writeAddress, isEmbedded } from './address.js';
 import { mountBenchPanel } from './bench-panel.js';
 import { spaceArmOf, readSpaceAddress, writeSpaceAddress } from './space-address.js';
-import { mountSpace } from './space-demo.js';
 
 /** The methods, each with what it computes: the "The methods" list of the page. */
 function explainMethods(list) {
@@ -199,6 +198,9 @@ function describeSpaceArm(preset) {
 /** The page with an arm in space (arm=panda, arm=iiwa14): space-demo.js on the same stage. */
 async function startSpace() {
   const { problems, ...settings } = readSpaceAddress(location.search);
+  // Fetched only here: the planar page never loads the drawing in space
+  // and its panels (about 13 KB gzipped; docs/web.md, "Bytes on the wire").
+  const { mountSpace } = await import('./space-demo.js');
   const controller = await mountSpace(document, {
     ...settings,
     problems,

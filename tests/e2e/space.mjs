@@ -71,6 +71,9 @@ test("space: an arm in space's key loads the space build (no planar demo, no pla
   const planeFiles = await loaded(plane);
   assert.ok(planeFiles.some((f) => /^redundant_ik(_simd)?_bg\.wasm$/.test(f)), planeFiles.join(' '));
   assert.ok(!planeFiles.some((f) => f.includes('space')), planeFiles.join(' '));
+  // Nor the scripts of the page in space (page.js imports them only for an arm in space).
+  const scripts = await plane.evaluate(() => performance.getEntriesByType('resource').map((e) => new URL(e.name).pathname.split('/').pop()).filter((n) => n.endsWith('.js')));
+  assert.ok(!scripts.some((f) => /^space-(demo|input|panels|atlas)\.js$/.test(f)), `no script of the page in space: ${scripts.join(' ')}`);
   assert.equal(await plane.evaluate(() => import('./module.js').then((m) => m.moduleHasSpace())), false);
   const preset = await plane.evaluate(() => import('./module.js').then((m) => m.limits().arm_presets.find((p) => p.key === 'iiwa-planar')));
   assert.deepEqual((await state(plane)).arm.joint_limits, preset.joint_limits);
