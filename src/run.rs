@@ -11,6 +11,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::networks::{self, NetworkSet, Networks};
+use crate::nn::Precision;
 use crate::planner::{Method, Surrogate};
 use crate::scene::Scene;
 
@@ -120,12 +121,17 @@ pub struct Run {
     /// (what runs written before this field used).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub networks: Option<NetworkChoice>,
+    /// The arithmetic the networks computed in; absent: `f64` (what runs
+    /// written before this field used, and the command line's default).
+    #[serde(default, skip_serializing_if = "Precision::is_f64")]
+    pub precision: Precision,
 }
 
 impl Run {
     /// The networks the run's methods use, loaded and checked against the
-    /// arm: the chosen ones, or the paper's set where none is chosen; an
-    /// error where they were trained for another arm.
+    /// arm: the chosen ones, or the paper's set where none is chosen, in
+    /// the run's precision; an error where they were trained for another
+    /// arm.
     pub fn load_networks(&self) -> Result<Arc<Networks>> {
         let chosen = self
             .networks
@@ -141,7 +147,8 @@ impl Run {
                 )));
             }
         }
-        networks::available(&self.scene.arm, chosen.as_ref())
+        let nets = networks::available(&self.scene.arm, chosen.as_ref())?;
+        Ok(nets.in_precision(self.precision))
     }
 
     /// The networks `method` runs with: none for a method without networks,

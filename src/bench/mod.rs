@@ -228,11 +228,7 @@ fn shipped(opts: &Options) -> Result<Arc<dyn Surrogate>> {
 
 /// The options' shipped set in the options' precision.
 fn shipped_networks(opts: &Options) -> Result<Arc<Networks>> {
-    let nets = crate::networks::builtin_set(opts.networks)?;
-    Ok(match opts.precision {
-        Precision::F64 => nets,
-        p => Arc::new(Networks::clone(&nets).with_precision(p)),
-    })
+    Ok(crate::networks::builtin_set(opts.networks)?.in_precision(opts.precision))
 }
 
 /// Task 1 with the refinement the options ask for.

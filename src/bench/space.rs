@@ -34,7 +34,7 @@ pub fn step_ns_with(
             method.name()
         )));
     }
-    let nets = nets.map(|n| in_precision(n, opts));
+    let nets = nets.map(|n| n.in_precision(opts.precision));
     let scene = task(key, opts.refine)?;
     let fresh = || SpacePlanner::with_networks(scene.clone(), method, nets.clone());
     let mut p = fresh()?;
@@ -55,7 +55,7 @@ pub fn allocs_per_step(
     opts: &Options,
     count: &dyn Fn() -> u64,
 ) -> Result<f64> {
-    let nets = shipped_networks(key, method)?.map(|n| in_precision(n, opts));
+    let nets = shipped_networks(key, method)?.map(|n| n.in_precision(opts.precision));
     let mut p = SpacePlanner::with_networks(task(key, opts.refine)?, method, nets)?;
     let n = p.scene().steps();
     let before = count();
@@ -63,15 +63,6 @@ pub fn allocs_per_step(
         std::hint::black_box(p.step()?);
     }
     Ok((count() - before) as f64 / n as f64)
-}
-
-/// The networks in the options' precision.
-fn in_precision(nets: Arc<SpaceNetworks>, opts: &Options) -> Arc<SpaceNetworks> {
-    if nets.precision() == opts.precision {
-        nets
-    } else {
-        Arc::new(SpaceNetworks::clone(&nets).with_precision(opts.precision))
-    }
 }
 
 /// Forward passes of the spatial `Phi` and `v` networks at the preset
@@ -83,7 +74,7 @@ pub fn forward_ns(
     opts: &Options,
     probes: &Probes,
 ) -> Result<Forward> {
-    let nets = in_precision(nets, opts);
+    let nets = nets.in_precision(opts.precision);
     let scene = task(key, 0)?;
     nets.check_chain(&scene.chain)?;
     let pose = crate::space::SpacePose::new(&scene.chain, &scene.theta0)?;

@@ -178,6 +178,11 @@ pub struct NetworkArgs {
     /// v network.
     #[arg(long)]
     pub v_weights: Option<std::path::PathBuf>,
+    /// The networks' arithmetic: f64 (the default) or f32 (weights,
+    /// activations and sums in single precision, as the page runs them
+    /// with precision=f32; docs/networks.md).
+    #[arg(long, default_value = "f64")]
+    pub precision: redundant_ik::nn::Precision,
 }
 
 impl NetworkArgs {

@@ -178,9 +178,9 @@ impl SceneArgs {
     }
 
     /// The run these options describe with `method`: the run file's (its
-    /// networks, where it names them; the network options then cannot
-    /// change them), else the scene of the options with the networks they
-    /// choose.
+    /// networks and their precision, where it names them; the network
+    /// options then cannot change them), else the scene of the options
+    /// with the networks they choose.
     pub fn spec(&self, method: Method) -> Result<Run, String> {
         if let Some(file) = self.run_file()? {
             let mut run = file.run();
@@ -191,7 +191,12 @@ impl SceneArgs {
                         "--from names the networks its run used; {flag} cannot change them"
                     ))
                 }
-                (None, _) => run.networks = Some(self.networks.choice()?),
+                (None, _) => {
+                    run.networks = Some(self.networks.choice()?);
+                    if self.given.has("precision") {
+                        run.precision = self.networks.precision;
+                    }
+                }
                 (Some(_), None) => {}
             }
             return Ok(run);
@@ -201,6 +206,7 @@ impl SceneArgs {
             method,
             scene: self.scene()?,
             networks: Some(self.networks.choice()?),
+            precision: self.networks.precision,
         })
     }
 

@@ -9,6 +9,7 @@ use std::sync::Arc;
 use redundant_ik::export::{is_space_run, SpaceRunFile};
 use redundant_ik::ik::DampingSchedule;
 use redundant_ik::networks::space::{SpaceNetworkSet, SpaceNetworks};
+use redundant_ik::nn::Precision;
 use redundant_ik::planner::space::{SpacePlanner, SpaceTrajectory};
 use redundant_ik::scene::{SpacePath, SpaceScene};
 use redundant_ik::space::{SpacePreset, Sphere};
@@ -136,8 +137,28 @@ pub fn replay(args: &SimulateArgs, file: SpaceRunFile) -> Result<(), String> {
     let p = SpacePreset::by_key(file.arm).ok_or("the run file's arm is not a preset")?;
     let method = args.method.method.unwrap_or(file.method);
     let nets = match file.networks.filter(|_| method.uses_networks()) {
-        Some(set) => Some(set.load().map_err(|e| e.to_string())?),
-        None => super::space_networks::networks(&args.scene.networks, p, &[method])?,
+        Some(set) => {
+            // The file names its networks and their arithmetic.
+            if let Some(flag) = args.scene.networks.given(&args.scene.given) {
+                return Err(format!(
+                    "--from names the networks its run used; {flag} cannot change them"
+                ));
+            }
+            Some(
+                set.load()
+                    .map_err(|e| e.to_string())?
+                    .in_precision(file.precision),
+            )
+        }
+        // The user's own weights, given again: in the file's arithmetic
+        // unless --precision says otherwise.
+        None => super::space_networks::networks(&args.scene.networks, p, &[method])?.map(|n| {
+            if args.scene.given.has("precision") {
+                n
+            } else {
+                n.in_precision(file.precision)
+            }
+        }),
     };
     output(args, p, file.scene, method, nets)
 }
@@ -167,6 +188,7 @@ fn output(
     if args.json {
         let mut file = SpaceRunFile::new(p, scene, traj);
         file.networks = used.as_deref().and_then(super::space_networks::shipped_set);
+        file.precision = used.map_or(Precision::F64, |n| n.precision());
         let text = file.to_json();
         return emit(&format!("{text}\n"));
     }

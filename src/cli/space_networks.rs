@@ -15,9 +15,10 @@ use redundant_ik::Method;
 use super::emit;
 
 /// The networks the learned methods among `methods` run with on the preset
-/// `p`: `--phi-weights` and `--v-weights` (spatial weights files, both),
-/// else `--networks` (a set trained for `p`; left at its planar default,
-/// the set shipped for `p`). `None` when no method of `methods` learns.
+/// `p`, in `--precision`: `--phi-weights` and `--v-weights` (spatial
+/// weights files, both), else `--networks` (a set trained for `p`; left at
+/// its planar default, the set shipped for `p`). `None` when no method of
+/// `methods` learns.
 pub fn networks(
     args: &super::NetworkArgs,
     p: &SpacePreset,
@@ -33,7 +34,7 @@ pub fn networks(
         (Some(phi), Some(v)) => {
             let (phi, v) = (super::read_weights_file(phi)?, super::read_weights_file(v)?);
             return SpaceNetworks::from_json(&phi, &v)
-                .map(|n| Some(Arc::new(n)))
+                .map(|n| Some(Arc::new(n).in_precision(args.precision)))
                 .map_err(|e| e.to_string());
         }
         (None, None) => {}
@@ -68,7 +69,9 @@ pub fn networks(
             p.key
         ));
     }
-    set.load().map(Some).map_err(|e| e.to_string())
+    set.load()
+        .map(|n| Some(n.in_precision(args.precision)))
+        .map_err(|e| e.to_string())
 }
 
 /// `redundant-ik train --arm panda`: the whole-reach recipe in space

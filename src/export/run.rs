@@ -3,6 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
+use crate::nn::Precision;
 use crate::planner::{Method, Sample, Summary, Trajectory};
 use crate::run::{NetworkChoice, Run};
 use crate::scene::Scene;
@@ -11,10 +12,10 @@ use crate::scene::Scene;
 /// steps of a 6-link arm) is about 6 MB.
 pub const MAX_RUN_FILE_BYTES: usize = 16 << 20;
 
-/// One run: `{ task, method, scene, networks, steps, summary }`, the JSON of
-/// `redundant-ik simulate --json` and of the page's "Download run": the
-/// [`Run`] and what it did. Files written before `networks` read as the
-/// paper's set.
+/// One run: `{ task, method, scene, networks, precision, steps, summary
+/// }`, the JSON of `redundant-ik simulate --json` and of the page's
+/// "Download run": the [`Run`] and what it did. Files written before
+/// `networks` read as the paper's set, those without `precision` as `f64`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RunFile {
     /// The paper task the scene came from (its start pose and target may
@@ -29,6 +30,10 @@ pub struct RunFile {
     /// The networks the method ran with (absent for a method without).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub networks: Option<NetworkChoice>,
+    /// The arithmetic of the networks (absent: `f64`, and for a method
+    /// without networks).
+    #[serde(default, skip_serializing_if = "Precision::is_f64")]
+    pub precision: Precision,
     /// One sample per RK4 step, the start first.
     pub steps: Vec<Sample>,
     /// The outcome.
@@ -36,15 +41,20 @@ pub struct RunFile {
 }
 
 impl RunFile {
-    /// The file of `run` and what it did: the networks are kept for a
-    /// method that uses them only.
+    /// The file of `run` and what it did: the networks and their precision
+    /// are kept for a method that uses them only.
     pub fn new(run: Run, traj: Trajectory) -> Self {
-        let networks = run.networks.filter(|_| traj.method.uses_networks());
+        let learned = traj.method.uses_networks();
         Self {
             task: run.task,
             method: traj.method,
             scene: run.scene,
-            networks,
+            networks: run.networks.filter(|_| learned),
+            precision: if learned {
+                run.precision
+            } else {
+                Precision::F64
+            },
             steps: traj.steps,
             summary: traj.summary,
         }
@@ -57,6 +67,7 @@ impl RunFile {
             method: self.method,
             scene: self.scene.clone(),
             networks: self.networks.clone(),
+            precision: self.precision,
         }
     }
 

@@ -10,6 +10,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::networks::space::SpaceNetworkSet;
+use crate::nn::Precision;
 
 use super::MAX_RUN_FILE_BYTES;
 use crate::arm::{JointLimits, RateLimits};
@@ -47,6 +48,9 @@ pub struct SpaceRunFile {
     /// learned method, or the user's own weights files, which a replay
     /// takes again from the command line).
     pub networks: Option<SpaceNetworkSet>,
+    /// The arithmetic of a learned method's networks (`f64` for the
+    /// others; absent in the file: `f64`).
+    pub precision: Precision,
 }
 
 /// The JSON form of a [`SpaceRunFile`]: one flat object.
@@ -72,6 +76,8 @@ struct Fields {
     floor: bool,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     networks: Option<SpaceNetworkSet>,
+    #[serde(default, skip_serializing_if = "Precision::is_f64")]
+    precision: Precision,
     samples: Vec<SpaceSample>,
     summary: SpaceSummary,
 }
@@ -114,6 +120,7 @@ impl SpaceRunFile {
             samples: traj.samples,
             summary: traj.summary,
             networks: None,
+            precision: Precision::F64,
         }
     }
 
@@ -144,6 +151,7 @@ impl SpaceRunFile {
             joint_weighting: s.weighting,
             floor: s.floor,
             networks: self.networks,
+            precision: self.precision,
             samples: self.samples.clone(),
             summary: self.summary,
         };
@@ -236,6 +244,7 @@ impl SpaceRunFile {
         }
         Ok(Self {
             networks: f.networks,
+            precision: f.precision,
             arm: preset.key,
             method: f.method,
             scene,

@@ -17,6 +17,8 @@ mod reader;
 #[cfg(feature = "space")]
 pub mod space;
 
+use std::sync::Arc;
+
 use serde::{Deserialize, Serialize};
 
 use crate::arm::Arm;
@@ -35,8 +37,10 @@ pub use inputs::MAX_INPUTS;
 /// A `Phi` network family and a `v` network for the same arm.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Networks {
-    phi: WeightsFile,
-    v: WeightsFile,
+    /// The files, shared by the same networks in another precision
+    /// ([`Networks::in_precision`] builds kernels, and copies no weights).
+    phi: Arc<WeightsFile>,
+    v: Arc<WeightsFile>,
     arm: Arm,
     /// The run-time form of each `Phi` network and of the `v` network
     /// (`mapminmax` folded in, padded, vectorised), built at load.
@@ -87,35 +91,54 @@ impl Networks {
                 "the Phi and v files were trained for different arms".into(),
             ));
         }
-        let arm = phi.arm.clone();
-        let phi_kernels = phi.nets.iter().map(|e| Kernel::new(&e.mlp)).collect();
-        let v_kernel = Kernel::new(&v.nets[0].mlp);
-        Ok(Self {
-            phi,
-            v,
-            arm,
-            phi_kernels,
-            v_kernel,
-        })
+        Ok(Self::with_kernels(
+            Arc::new(phi),
+            Arc::new(v),
+            Precision::F64,
+        ))
     }
 
-    /// The same networks computing in `precision` (their kernels built
-    /// again, natively and in the workers' module; `f64` is what [`Networks::new`] builds).
-    #[cfg(any(not(target_family = "wasm"), feature = "worker"))]
-    pub fn with_precision(mut self, precision: Precision) -> Self {
-        self.phi_kernels = self
-            .phi
+    /// The networks of two checked files, their kernels built in `precision`.
+    fn with_kernels(phi: Arc<WeightsFile>, v: Arc<WeightsFile>, precision: Precision) -> Self {
+        let phi_kernels = phi
             .nets
             .iter()
             .map(|e| Kernel::with_precision(&e.mlp, precision))
             .collect();
-        self.v_kernel = Kernel::with_precision(&self.v.nets[0].mlp, precision);
-        self
+        let v_kernel = Kernel::with_precision(&v.nets[0].mlp, precision);
+        Self {
+            arm: phi.arm.clone(),
+            phi,
+            v,
+            phi_kernels,
+            v_kernel,
+        }
+    }
+
+    /// The same networks computing in `precision` (their kernels built
+    /// again; `f64` is what [`Networks::new`] builds).
+    pub fn with_precision(self, precision: Precision) -> Self {
+        Self::with_kernels(self.phi, self.v, precision)
     }
 
     /// The arithmetic of the networks' kernels.
     pub fn precision(&self) -> Precision {
         self.v_kernel.precision()
+    }
+
+    /// These networks computing in `precision`: the same ones where they
+    /// already do (a shipped set stays shared), else a copy with its
+    /// kernels built again.
+    pub fn in_precision(self: Arc<Self>, precision: Precision) -> Arc<Self> {
+        if self.precision() == precision {
+            self
+        } else {
+            Arc::new(Self::with_kernels(
+                self.phi.clone(),
+                self.v.clone(),
+                precision,
+            ))
+        }
     }
 
     /// Networks from the JSON text of a `Phi` weights file and a `v` weights

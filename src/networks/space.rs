@@ -15,8 +15,9 @@
 //! `(sin, cos)` of `theta_2..theta_n` (and `O'`); `docs/space.md` has how
 //! they were trained and how they do.
 
+use std::sync::Arc;
 #[cfg(feature = "embedded-weights")]
-use std::sync::{Arc, OnceLock};
+use std::sync::OnceLock;
 
 use serde::{Deserialize, Serialize};
 
@@ -228,8 +229,7 @@ impl SpaceNetworks {
     }
 
     /// The same networks computing in `precision` (their kernels built
-    /// again, natively and in the workers' module; `f64` is what [`SpaceNetworks::new`] builds).
-    #[cfg(any(not(target_family = "wasm"), feature = "worker"))]
+    /// again; `f64` is what [`SpaceNetworks::new`] builds).
     pub fn with_precision(mut self, precision: Precision) -> Self {
         self.phi_kernel = Kernel::with_precision(&self.phi.nets[0].mlp, precision);
         self.v_kernel = Kernel::with_precision(&self.v.nets[0].mlp, precision);
@@ -239,6 +239,17 @@ impl SpaceNetworks {
     /// The arithmetic of the networks' kernels.
     pub fn precision(&self) -> Precision {
         self.v_kernel.precision()
+    }
+
+    /// These networks computing in `precision`: the same ones where they
+    /// already do (a shipped set stays shared), else a copy with its
+    /// kernels built again.
+    pub fn in_precision(self: Arc<Self>, precision: Precision) -> Arc<Self> {
+        if self.precision() == precision {
+            self
+        } else {
+            Arc::new(SpaceNetworks::clone(&self).with_precision(precision))
+        }
     }
 
     /// Networks from the JSON text of a `Phi` file and a `v` file.

@@ -27,11 +27,24 @@ impl Precision {
     /// Every precision, by name.
     pub const ALL: [Precision; 2] = [Precision::F64, Precision::F32];
 
+    /// Whether this is the default, `f64` (a run file leaves it out then).
+    pub fn is_f64(&self) -> bool {
+        *self == Precision::F64
+    }
+
     /// `f64` or `f32`.
     pub fn name(self) -> &'static str {
         match self {
             Precision::F64 => "f64",
             Precision::F32 => "f32",
+        }
+    }
+
+    /// What a menu says of it.
+    pub fn label(self) -> &'static str {
+        match self {
+            Precision::F64 => "f64 (the reference)",
+            Precision::F32 => "f32 (faster in the page)",
         }
     }
 }

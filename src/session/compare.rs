@@ -32,7 +32,7 @@ impl Session {
     /// Runs `scene` from `t = 0` to its final time with `method`, off
     /// screen, with the networks the session would use for it.
     pub fn run_offscreen(&self, scene: Scene, method: Method) -> Result<Summary> {
-        let nets = networks::for_method(method, &scene.arm, self.installed())?;
+        let nets = networks::for_method(method, &scene.arm, self.installed(), self.precision())?;
         Planner::run_summary(scene, method, nets)
     }
 

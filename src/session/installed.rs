@@ -6,6 +6,7 @@ use std::sync::Arc;
 use super::Session;
 use crate::error::{Error, Result};
 use crate::networks::{self, NetworkSet, Networks, TrainedRange};
+use crate::nn::Precision;
 use crate::planner::{Method, Surrogate};
 use crate::run::NetworkChoice;
 
@@ -88,7 +89,35 @@ impl Session {
         self.networks.as_ref().map(|n| &n.choice)
     }
 
+    /// The arithmetic the networks compute in: `f64` (the default) or
+    /// `f32` (a run's `precision`).
+    pub fn precision(&self) -> Precision {
+        self.precision
+    }
+
+    /// Makes the networks compute in `precision` from now on (those
+    /// installed are built again in it); a change of what runs, as
+    /// installing other networks is.
+    pub fn set_precision(&mut self, precision: Precision) -> Result<()> {
+        if precision == self.precision {
+            return Ok(());
+        }
+        if let Some(n) = &mut self.networks {
+            // The same networks and choice, their kernels built again.
+            let networks = n.networks.clone().in_precision(precision);
+            let surrogate: Arc<dyn Surrogate> = networks.clone();
+            self.twin.set_networks(Some(surrogate.clone()))?;
+            n.networks = networks;
+            n.surrogate = surrogate;
+        }
+        self.precision = precision;
+        self.networks_installed += 1;
+        Ok(())
+    }
+
+    /// Installs `networks` in the session's precision.
     pub(super) fn install(&mut self, networks: Arc<Networks>, choice: NetworkChoice) -> Result<()> {
+        let networks = networks.in_precision(self.precision);
         let range = networks.trained_range();
         let surrogate: Arc<dyn Surrogate> = networks.clone();
         self.twin.set_networks(Some(surrogate.clone()))?;

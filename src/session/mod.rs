@@ -28,6 +28,7 @@ mod state;
 use crate::arm::{Arm, JointLimits, RateLimits};
 use crate::error::{within, Error, Result};
 use crate::networks::{self, NetworkSet};
+use crate::nn::Precision;
 use crate::obstacle::Obstacle;
 use crate::planner::methods::LAMBDA;
 use crate::planner::{Method, Planner};
@@ -96,8 +97,11 @@ pub struct Session {
     solver_ms_per_step: f64,
     error: Option<String>,
     clock: fn() -> f64,
-    /// Counts installs and removals of networks (for [`Revision`]).
+    /// Counts installs and removals of networks, and changes of their
+    /// precision (for [`Revision`]).
     networks_installed: u64,
+    /// The arithmetic the networks compute in (`installed.rs`).
+    precision: Precision,
     revisions: revision::Revisions,
 }
 
@@ -131,6 +135,7 @@ impl Session {
             error: None,
             clock: no_clock,
             networks_installed: 0,
+            precision: Precision::F64,
             revisions: revision::Revisions::default(),
         };
         s.restart();
@@ -257,6 +262,7 @@ impl Session {
             method: p.method(),
             scene: p.scene().clone(),
             networks: self.network_choice().cloned(),
+            precision: self.precision,
         }
     }
 

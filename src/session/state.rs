@@ -143,6 +143,8 @@ pub struct State<'a> {
     /// The shipped set installed (`paper`, `reach`), or `None` for
     /// networks trained or loaded by the user (or none installed).
     pub network_set: Option<&'static str>,
+    /// The networks' arithmetic: `f64` or `f32`.
+    pub precision: &'static str,
     /// Whether each shipped set was trained for this arm, by name.
     pub set_fits: ByName<bool>,
     /// The arm as the command line and the address write it
@@ -290,6 +292,7 @@ impl Session {
             networks: self.networks_fit(),
             trained_range: self.trained_range(),
             network_set: self.network_set().map(|n| n.name()),
+            precision: self.precision().name(),
             set_fits: ByName(
                 NetworkSet::ALL
                     .iter()

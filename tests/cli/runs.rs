@@ -1,6 +1,7 @@
 //! What a run is, through the command line: every declared parameter is a
 //! flag that reaches the run's JSON; `--from` refuses every scene flag
-//! beside it; a run names its networks and replays with them; a run file
+//! beside it; a run names its networks and replays with them, in the
+//! arithmetic it ran in; a run file
 //! written before parameters were declared by their methods still loads
 //! and replays as it ran.
 
@@ -104,6 +105,7 @@ fn from_refuses_every_scene_flag_beside_it_and_applies_the_rest() {
         "--phi-variant",
         "--phi-weights",
         "--v-weights",
+        "--precision",
     ];
     let mut checked = 0;
     for (flag, takes) in simulate_flags() {
@@ -199,6 +201,52 @@ fn a_run_names_its_networks_and_replays_with_them() {
         ok(&["simulate", "--from", file.to_str().unwrap(), "--json"]),
         own
     );
+}
+
+#[test]
+fn a_run_in_f32_says_so_and_replays_in_f32() {
+    let args = |precision: &'static str| {
+        [
+            "simulate",
+            "--method",
+            "case3",
+            "--precision",
+            precision,
+            "--tf",
+            "2",
+            "--json",
+        ]
+    };
+    let f32_text = ok(&args("f32"));
+    let (single, double): (Value, Value) =
+        (serde_json::from_str(&f32_text).unwrap(), json(&args("f64")));
+    assert_eq!(single["precision"], "f32");
+    assert!(
+        double.get("precision").is_none(),
+        "f64, the default, is left out"
+    );
+    let (e32, e64) = (
+        single["summary"]["final_error"].as_f64().unwrap(),
+        double["summary"]["final_error"].as_f64().unwrap(),
+    );
+    assert_ne!(e32, e64, "the f32 run is its own");
+    assert!((e32 - e64).abs() < 1e-5, "{e32} vs {e64}");
+    let file = scratch("f32-run.json");
+    std::fs::write(&file, &f32_text).unwrap();
+    let path = file.to_str().unwrap();
+    assert_eq!(
+        ok(&["simulate", "--from", path, "--json"]),
+        f32_text,
+        "replayed in f32"
+    );
+    refused(
+        &["simulate", "--from", path, "--precision", "f64"],
+        "--precision",
+    );
+    // A method without networks has no precision to keep.
+    let numerical: Value = json(&["simulate", "--precision", "f32", "--tf", "1", "--json"]);
+    assert!(numerical.get("precision").is_none());
+    refused(&["simulate", "--precision", "f16"], "precision");
 }
 
 #[test]

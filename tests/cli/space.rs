@@ -392,6 +392,39 @@ fn simulate_from_replays_a_spatial_run_to_the_same_json() {
 }
 
 #[test]
+fn a_learned_run_in_space_keeps_its_arithmetic_and_replays_in_it() {
+    let first = ok(&[
+        "simulate",
+        "--arm",
+        "panda",
+        "--method",
+        "case3",
+        "--precision",
+        "f32",
+        "--tf",
+        "1",
+        "--json",
+    ]);
+    let v: Value = serde_json::from_str(&first).unwrap();
+    assert_eq!(v["precision"], "f32");
+    assert_eq!(v["networks"], "panda-reach");
+    let double: Value = serde_json::from_str(&ok(&[
+        "simulate", "--arm", "panda", "--method", "case3", "--tf", "1", "--json",
+    ]))
+    .unwrap();
+    assert!(double.get("precision").is_none());
+    assert_ne!(v["summary"], double["summary"], "the f32 run is its own");
+    let file = super::scratch("space-f32-run.json");
+    std::fs::write(&file, &first).unwrap();
+    let path = file.to_str().unwrap();
+    assert_eq!(ok(&["simulate", "--from", path, "--json"]), first);
+    refused(
+        &["simulate", "--from", path, "--precision", "f64"],
+        "--precision",
+    );
+}
+
+#[test]
 fn from_refuses_flags_beside_a_spatial_run_and_a_bad_file() {
     let file = super::scratch("space-guard.json");
     std::fs::write(

@@ -27,14 +27,11 @@
 
 #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
 mod portable;
-// The f32 kernels: natively and in the workers' module (the benchmark's
-// `precision: 'f32'`); the page's modules, which run f64 only, leave them
-// out (1.1-2.1 KB gzipped, measured with `make web` on 2 December).
-#[cfg(any(not(target_family = "wasm"), feature = "worker"))]
+// The f32 kernels (a run's `precision: "f32"`): in every build.
 mod single;
 #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
 mod wasm;
-#[cfg(all(target_arch = "wasm32", target_feature = "simd128", feature = "worker"))]
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
 mod wasm_single;
 #[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
 mod x86;
@@ -85,7 +82,6 @@ pub struct Kernel {
     #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
     simd: Vec<wasm::Layer>,
     /// The layers rounded to `f32`, when the kernel computes in `f32`.
-    #[cfg(any(not(target_family = "wasm"), feature = "worker"))]
     single: Option<single::Kernel32>,
 }
 
@@ -127,15 +123,11 @@ impl Kernel {
 
     /// Builds the kernel of a validated network, computing in `precision`
     /// (the layers folded in `f64` as in [`Kernel::new`], then rounded).
-    /// Natively and in the workers' module.
-    #[cfg(any(not(target_family = "wasm"), feature = "worker"))]
     pub fn with_precision(mlp: &Mlp, precision: Precision) -> Self {
         Self::build(mlp, precision)
     }
 
     fn build(mlp: &Mlp, precision: Precision) -> Self {
-        #[cfg(not(any(not(target_family = "wasm"), feature = "worker")))]
-        let _ = precision;
         let sizes = &mlp.sizes;
         let last = mlp.layers.len() - 1;
         let mut layers = Vec::with_capacity(mlp.layers.len());
@@ -194,7 +186,6 @@ impl Kernel {
             n_out,
             #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
             simd: layers.iter().map(wasm::Layer::new).collect(),
-            #[cfg(any(not(target_family = "wasm"), feature = "worker"))]
             single: (precision == Precision::F32)
                 .then(|| single::Kernel32::new(n_in, n_out, widest, &layers)),
             layers,
@@ -204,7 +195,6 @@ impl Kernel {
 
     /// The arithmetic of [`Kernel::forward`].
     pub fn precision(&self) -> Precision {
-        #[cfg(any(not(target_family = "wasm"), feature = "worker"))]
         if self.single.is_some() {
             return Precision::F32;
         }
@@ -226,7 +216,6 @@ impl Kernel {
     /// Allocation-free for layers up to [`WIDE_STACK_WIDTH`] wide.
     #[inline]
     pub fn forward(&self, x: &[f64], y: &mut [f64]) {
-        #[cfg(any(not(target_family = "wasm"), feature = "worker"))]
         if let Some(single) = &self.single {
             return single.forward(x, y);
         }

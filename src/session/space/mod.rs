@@ -28,6 +28,7 @@ pub use state::{SpaceMethodRun, SpaceState};
 use super::history::Point;
 use crate::error::{within, Error, Result};
 use crate::networks::space::{SpaceNetworkSet, SpaceNetworks};
+use crate::nn::Precision;
 use crate::planner::methods::Method;
 use crate::planner::params::by_name;
 use crate::planner::space::{SpacePlanner, SpaceSample, SpaceSummary, SpaceTrajectory};
@@ -42,6 +43,8 @@ pub struct SpaceSession {
     method: Method,
     networks: Option<Arc<SpaceNetworks>>,
     network_set: Option<SpaceNetworkSet>,
+    /// The arithmetic the networks compute in.
+    precision: Precision,
     /// Every sample of the run from `t = 0` (up to a failed step).
     samples: Vec<SpaceSample>,
     summary: SpaceSummary,
@@ -84,6 +87,7 @@ impl SpaceSession {
             method: Method::NUMERICAL,
             networks: None,
             network_set: None,
+            precision: Precision::F64,
             samples: Vec::new(),
             summary: empty_summary(),
             failure: None,
@@ -139,12 +143,31 @@ impl SpaceSession {
     ) -> Result<()> {
         let nets = SpaceNetworks::from_json(phi_json, v_json)?;
         nets.check_chain(&self.scene.chain)?;
-        self.networks = Some(Arc::new(nets));
+        self.networks = Some(Arc::new(nets).in_precision(self.precision));
         self.network_set = set;
         if self.method.uses_networks() {
             self.recompute();
         }
         Ok(())
+    }
+
+    /// The arithmetic the networks compute in: `f64` (the default) or
+    /// `f32` (a run file's `precision`).
+    pub fn precision(&self) -> Precision {
+        self.precision
+    }
+
+    /// Makes the networks compute in `precision` (those installed are
+    /// built again in it; a learned method's run is computed again).
+    pub fn set_precision(&mut self, precision: Precision) {
+        if precision == self.precision {
+            return;
+        }
+        self.precision = precision;
+        self.networks = self.networks.take().map(|n| n.in_precision(precision));
+        if self.method.uses_networks() {
+            self.recompute();
+        }
     }
 
     /// Switches to `method`; refused, changing nothing, when it has no rule

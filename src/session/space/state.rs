@@ -28,6 +28,8 @@ pub struct SpaceState<'a> {
     pub network_set: Option<&'static str>,
     /// Whether networks are installed.
     pub has_networks: bool,
+    /// The networks' arithmetic: `f64` or `f32`.
+    pub precision: &'static str,
     /// Time shown (s), the run's final time, and whether the clock runs
     /// and the run has ended.
     pub t: f64,
@@ -118,6 +120,7 @@ impl SpaceSession {
             method: self.method.name(),
             network_set: self.network_set.map(|s| s.name()),
             has_networks: self.networks.is_some(),
+            precision: self.precision.name(),
             t: sample.map_or(0.0, |s| s.t),
             tf: self.scene.tf,
             running: self.running,
