@@ -33,15 +33,16 @@ setup:
 ## (+simd128) for the networks' kernels; the page loads the SIMD ones where
 ## the browser validates SIMD, else the baseline (some hardened browser
 ## modes switch SIMD off). Each pair shares its JS glue (checked).
-## Optimised for size (the page's at opt-level z, the workers' at s; 3 is
-## 13 KB gzipped larger), then the debug `name` section stripped (cargo's
+## Optimised for size (the page's at opt-level z with Talc for allocator,
+## feature small-alloc; the workers' at s; 3 is 13 KB gzipped larger),
+## then the debug `name` section stripped (cargo's
 ## strip also drops a section wasm-bindgen needs). The built-in networks'
 ## weights files go beside the page (www/weights/), which fetches them and
 ## hands them to its workers: no module embeds them (docs/web.md, "Bytes on
 ## the wire").
-PAGE = -- --no-default-features --features page
-PAGE_SPACE = -- --no-default-features --features canvas,space
-GLUE = -- --no-default-features --features page,space
+PAGE = -- --no-default-features --features page,small-alloc
+PAGE_SPACE = -- --no-default-features --features canvas,space,small-alloc
+GLUE = -- --no-default-features --features page,space,small-alloc
 GLUE_ENV = CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_TARGET_DIR=target/wasm-page-glue
 SPACE_ENV = CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_TARGET_DIR=target/wasm-page-space
 SPACE_SIMD_ENV = CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_TARGET_DIR=target/wasm-page-space-simd
@@ -149,8 +150,8 @@ lint: setup
 	cargo clippy --all-targets -- -D warnings
 	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --tests -- -D warnings
 	$(WASM_SIMD_ENV) cargo clippy --target wasm32-unknown-unknown --lib --tests -- -D warnings
-	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features page,space -- -D warnings
-	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features canvas,space -- -D warnings
+	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features page,space,small-alloc -- -D warnings
+	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features canvas,space,small-alloc -- -D warnings
 	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features worker -- -D warnings
 	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features worker,space -- -D warnings
 

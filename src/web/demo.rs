@@ -133,15 +133,6 @@ impl Demo {
         self.session.set_method(method).map_err(js_err)
     }
 
-    /// Loads user-trained networks for this demo from the JSON text of a `Phi`
-    /// weights file and a `v` weights file (the format `redundant-ik train`
-    /// writes). Throws with the reason if they are corrupt or were trained
-    /// for another arm; the networks in use stay then.
-    #[wasm_bindgen(js_name = loadNetworks)]
-    pub fn load_networks(&mut self, phi_json: &str, v_json: &str) -> JsResult {
-        self.session.load_networks(phi_json, v_json).map_err(js_err)
-    }
-
     /// Sets `lambda`, the gain of the obstacle vector (eq. 14); at least 0.
     #[wasm_bindgen(js_name = setLambda)]
     pub fn set_lambda(&mut self, lambda: f64) -> JsResult {
@@ -155,17 +146,6 @@ impl Demo {
     pub fn set_param(&mut self, name: &str, value: f64) -> JsResult {
         let param = crate::planner::params::by_name(name).map_err(js_err)?;
         self.session.set_param(param, value).map_err(js_err)
-    }
-
-    /// Installs a shipped network set (`paper` or `reach`; `networkSets()`
-    /// lists them) for the methods that use networks. The page's module
-    /// must have been handed the set's files (`provideBuiltinNetworks`)
-    /// first. Throws, the networks in use staying, when the set is unknown,
-    /// not loaded, or for another arm.
-    #[wasm_bindgen(js_name = useNetworkSet)]
-    pub fn use_network_set(&mut self, name: &str) -> JsResult {
-        let set: crate::networks::NetworkSet = name.parse().map_err(js_err)?;
-        self.session.use_network_set(set).map_err(js_err)
     }
 
     /// Switches the damping schedule (damped least squares near singular

@@ -84,6 +84,14 @@ pub use takeaway::*;
 #[cfg(feature = "worker")]
 pub use worker::*;
 
+/// The page's modules' allocator (feature `small-alloc`, which `make web`
+/// turns on for them): Talc instead of dlmalloc, N KB smaller gzipped
+/// (docs/web.md, "Module size"). It claims wasm memory pages as it needs
+/// them, as dlmalloc does, and never returns them.
+#[cfg(feature = "small-alloc")]
+#[global_allocator]
+static ALLOCATOR: talc::wasm::WasmDynamicTalc = talc::wasm::new_wasm_dynamic_allocator();
+
 thread_local! {
     /// Message of the last panic, for the page to show.
     static LAST_PANIC: RefCell<Option<String>> = const { RefCell::new(None) };
@@ -147,6 +155,18 @@ pub fn network_sets() -> Vec<String> {
 #[wasm_bindgen(js_name = networkSetLabels)]
 pub fn network_set_labels() -> Vec<String> {
     NetworkSet::ALL.iter().map(|s| s.label().into()).collect()
+}
+
+/// The networks' arithmetics, `[[name, label], ...]`, the default first:
+/// what `setPrecision` takes and the state's `precision` says.
+#[cfg(feature = "canvas")]
+#[wasm_bindgen]
+pub fn precisions() -> JsResult<JsValue> {
+    let all: Vec<[&str; 2]> = crate::nn::Precision::ALL
+        .iter()
+        .map(|p| [p.name(), p.label()])
+        .collect();
+    to_js(&all)
 }
 
 /// The weights files of a shipped set (`paper` when absent), `[phi, v]`. A

@@ -1,6 +1,6 @@
 //! [`Demo`]'s bindings for the scene: the arm, several obstacles, the
-//! path (typed or drawn), the networks trained in the page, and whole runs
-//! off screen. Each forwards to
+//! path (typed or drawn), the networks (loaded, trained in the page or
+//! shipped, and their arithmetic), and whole runs off screen. Each forwards to
 //! the [`Session`](crate::session::Session) and maps the core's errors to
 //! exceptions; values from JavaScript are checked by the core.
 
@@ -178,6 +178,36 @@ impl Demo {
         let text = path.to_string();
         self.session.set_path(path).map_err(js_err)?;
         Ok(text)
+    }
+
+    /// Loads user-trained networks for this demo from the JSON text of a `Phi`
+    /// weights file and a `v` weights file (the format `redundant-ik train`
+    /// writes). Throws with the reason if they are corrupt or were trained
+    /// for another arm; the networks in use stay then.
+    #[wasm_bindgen(js_name = loadNetworks)]
+    pub fn load_networks(&mut self, phi_json: &str, v_json: &str) -> JsResult {
+        self.session.load_networks(phi_json, v_json).map_err(js_err)
+    }
+
+    /// Installs a shipped network set (`paper` or `reach`; `networkSets()`
+    /// lists them) for the methods that use networks. The page's module
+    /// must have been handed the set's files (`provideBuiltinNetworks`)
+    /// first. Throws, the networks in use staying, when the set is unknown,
+    /// not loaded, or for another arm.
+    #[wasm_bindgen(js_name = useNetworkSet)]
+    pub fn use_network_set(&mut self, name: &str) -> JsResult {
+        let set: crate::networks::NetworkSet = name.parse().map_err(js_err)?;
+        self.session.use_network_set(set).map_err(js_err)
+    }
+
+    /// The networks' arithmetic from now on: `f64` (the default) or `f32`
+    /// (weights, activations and sums in single precision: four lanes of
+    /// wasm SIMD instead of two; a run file keeps it as `precision`).
+    /// Throws on another name, changing nothing.
+    #[wasm_bindgen(js_name = setPrecision)]
+    pub fn set_precision(&mut self, name: &str) -> JsResult {
+        let p: crate::nn::Precision = name.parse().map_err(js_err)?;
+        self.session.set_precision(p).map_err(js_err)
     }
 
     /// Whether networks for the arm in use are available: loaded or trained

@@ -61,7 +61,8 @@ struct Texts {
 ///
 /// `runText` is a spatial run file's JSON (`redundant-ik-space-run/1`, what
 /// `simulate --arm A --json` writes): its scene is mapped, its own sphere
-/// moved over the grid; its method is not used. `options` is an object or
+/// moved over the grid, the networks computing in its `precision`; its
+/// method is not used. `options` is an object or
 /// its JSON text; an unknown field is refused by name. The constructor
 /// throws with the core's message on bad input (a method that does not
 /// run in space, a learned one without networks, networks of another arm,
@@ -120,9 +121,11 @@ impl SpaceAtlasJob {
         let learned = methods.iter().find(|m| m.uses_networks());
         let networks = match (learned, o.networks) {
             (None, _) => None,
-            (Some(_), Some(t)) => Some(std::sync::Arc::new(
-                SpaceNetworks::from_json(&t.phi, &t.v).map_err(js_err)?,
-            )),
+            // In the run's arithmetic, as on the page.
+            (Some(_), Some(t)) => Some(
+                std::sync::Arc::new(SpaceNetworks::from_json(&t.phi, &t.v).map_err(js_err)?)
+                    .in_precision(file.precision),
+            ),
             (Some(m), None) => {
                 let files = SpaceNetworkSet::for_arm(file.arm).map_or_else(
                     || format!("no networks are shipped for {}", file.arm),

@@ -98,6 +98,16 @@ impl SpaceDemo {
             .map_err(js_err)
     }
 
+    /// The networks' arithmetic from now on: `f64` (the default) or `f32`
+    /// (a run file keeps it as `precision`). Throws on another name,
+    /// changing nothing.
+    #[wasm_bindgen(js_name = setPrecision)]
+    pub fn set_precision(&mut self, name: &str) -> JsResult {
+        let p: crate::nn::Precision = name.parse().map_err(js_err)?;
+        self.session_mut().set_precision(p);
+        Ok(())
+    }
+
     /// Switches method (by name).
     #[wasm_bindgen(js_name = setMethod)]
     pub fn set_method(&mut self, method: &str) -> JsResult {
@@ -351,6 +361,9 @@ impl SpaceDemo {
             .uses_networks()
             .then(|| s.network_set())
             .flatten();
+        if s.method().uses_networks() {
+            file.precision = s.precision();
+        }
         file.to_json()
     }
 
