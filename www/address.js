@@ -1,6 +1,6 @@
 // The page's address, and the <redundant-ik-demo> element's attributes (the
 // same keys, read by the same readAddress): what `?task=2&method=case3&lambda=4&target=…&obstacle=…
-// &obstacles=…&arm=…&limits=…&rates=…&feedback=1&damping=0&weighting=wln&floor=1&theta0=…&tf=…&path=…&influence=…&networks=reach&projector=1` asks
+// &obstacles=…&arm=…&limits=…&rates=…&feedback=1&damping=0&weighting=wln&floor=1&theta0=…&tf=…&path=…&influence=…&networks=reach&precision=f32&projector=1` asks
 // for, and the state written back into it (what "Copy link" copies). The arm, limits and obstacle syntax is the module's (parseArm, parseObstacles,
 // formatArm, parseJointLimits, formatJointLimits, parseRateLimits,
 // formatRateLimits: the command line's too). Every parameter that does not parse
@@ -8,7 +8,7 @@
 // parse but make no sense), never dropped silently; the page then starts
 // from its defaults for it.
 
-import { parseArm, parseObstacles, parseJointLimits, formatJointLimits, parseRateLimits, formatRateLimits, limits, methods, params as allParams, defaultMethod, networkSets } from './module.js';
+import { parseArm, parseObstacles, parseJointLimits, formatJointLimits, parseRateLimits, formatRateLimits, limits, methods, params as allParams, defaultMethod, networkSets, precisions } from './module.js';
 import { formatObstacles } from './arm-designer.js';
 
 /** A number from text: blank is not zero (as `Number('')` is). */
@@ -26,7 +26,7 @@ const exact = (v) => {
 const named = () => allParams().filter((p) => p.name !== 'lambda');
 
 /** The keys readAddress reads besides the methods' parameters (the order is mount()'s). */
-const KEYS = ['task', 'method', 'mode', 'lambda', 'feedback', 'target', 'obstacle', 'obstacles', 'arm', 'limits', 'rates', 'damping', 'weighting', 'floor', 'theta0', 'tf', 'path', 'networks', 'projector'];
+const KEYS = ['task', 'method', 'mode', 'lambda', 'feedback', 'target', 'obstacle', 'obstacles', 'arm', 'limits', 'rates', 'damping', 'weighting', 'floor', 'theta0', 'tf', 'path', 'networks', 'precision', 'projector'];
 
 /**
  * Every key an address (or the element's attributes) may carry (after
@@ -47,6 +47,7 @@ export function addressKeys() {
  * ({ theta0, tf }: a run's own start pose and final time), path (the
  * path's text, for the module to read), params (the
  * methods' parameters by name), networks (a shipped network set),
+ * precision (the networks' arithmetic, a name of precisions()),
  * projector (bool: projector mode, larger text and higher contrast), and
  * `problems`: what did not parse, each as `name: why`.
  */
@@ -138,6 +139,11 @@ export function readAddress(search) {
       if (!sets.includes(v)) throw new Error(`unknown network set '${clip(v)}': use ${sets.join(' or ')}`);
       return v;
     }),
+    precision: parsed('precision', (v) => {
+      const names = precisions().map((p) => p.name);
+      if (!names.includes(v)) throw new Error(`unknown arithmetic '${clip(v)}': use ${names.join(' or ')}`);
+      return v;
+    }),
     problems,
   };
 }
@@ -191,6 +197,7 @@ export function sceneQuery(s) {
   if (s.weighting !== limits().joint_weightings[0][0]) q.set('weighting', s.weighting);
   if (s.floor) q.set('floor', '1');
   if (s.network_set && s.network_set !== networkSets()[0].name) q.set('networks', s.network_set);
+  if (s.precision !== precisions()[0].name) q.set('precision', s.precision);
   for (const p of named()) {
     if (s.params[p.name] !== undefined && s.params[p.name] !== p.default) q.set(p.name, String(s.params[p.name]));
   }

@@ -1,7 +1,8 @@
 // "Are the networks faster? Measure it": the in-browser benchmark (jobs.js,
 // in a Web Worker) tabulated beside the native figures, and the verdict:
 // the step-time ratio of the two methods the workers' module names
-// (benchVerdict(): the learned route and the exact one it imitates).
+// (benchVerdict(): the learned route and the exact one it imitates), the
+// networks in the arithmetic the page's Arithmetic selector shows.
 
 import { describe, method, moduleBuild } from './module.js';
 import { bench, nativeFigures, showBusy } from './jobs.js';
@@ -44,8 +45,11 @@ export function mountBenchPanel(root) {
     try {
       // On the page in space (html[data-space]), its arm's task (the workers' build with the arms in space).
       const arm = document.documentElement.dataset.space || undefined;
+      // In the arithmetic the page's networks run in (its Arithmetic selector).
+      const precision = $('precision')?.value || undefined;
       const r = await bench({
         arm,
+        precision,
         signal: abort.signal,
         onProgress: ({ done, total, label }) => {
           if (progress) progress.value = done / total;
@@ -67,7 +71,7 @@ export function mountBenchPanel(root) {
       const [L, E] = [method(learned), method(exact)];
       const ratio = r.step_ns[learned] / r.step_ns[exact];
       const buildName = moduleBuild() === 'simd' ? 'wasm SIMD build' : 'baseline wasm build, no SIMD';
-      let text = `Per RK4 step, ${L.label} (${L.description}) is ${verdictText(ratio)} than ${E.label} (${E.description}) here (${buildName})`;
+      let text = `Per RK4 step, ${L.label} (${L.description}) is ${verdictText(ratio)} than ${E.label} (${E.description}) here (${buildName}, networks in ${r.precision})`;
       if (nat?.step_ns?.[learned] && nat.step_ns[exact]) text += ` (${verdictText(nat.step_ns[learned] / nat.step_ns[exact])} natively)`;
       result.textContent = `${text}. Forward passes: Φ ${nanoseconds(r.forward_ns.phi)}, v ${nanoseconds(r.forward_ns.v)}.`;
       Object.assign(result.dataset, {
@@ -77,6 +81,7 @@ export function mountBenchPanel(root) {
         exactNs: String(r.step_ns[exact]),
         thetaDotLearnedNs: String(r.theta_dot_ns[learned]),
         thetaDotExactNs: String(r.theta_dot_ns[exact]),
+        precision: r.precision,
       });
     } catch (e) {
       result.textContent = e.name === 'AbortError' ? 'Cancelled.' : `The benchmark failed: ${describe(e)}`;

@@ -217,6 +217,7 @@ export async function mount(root, options = {}) {
     if (settings.networks && settings.networks !== demo.state().network_set) {
       networkSet.choose(settings.networks).catch((e) => show(`networks: ${describe(e)}`, 'warn', true));
     }
+    if (settings.precision && settings.precision !== demo.state().precision) initial('precision', () => demo.setPrecision(settings.precision));
     return refused;
   }
   const problems = [...(options.problems ?? []), ...apply({ ...options, task: undefined, restore: true })];

@@ -46,6 +46,7 @@ export {
   spacePresets,
   spaceNetworkSets,
 } from './pkg/redundant_ik.js';
+import { precisions as modulePrecisions } from './pkg/redundant_ik.js';
 /** The built-in networks' weights files, `[phi, v]` (served in weights/). */
 export { builtinWeightsFiles };
 
@@ -226,6 +227,14 @@ export function networkSets() {
     cachedSets = moduleNetworkSets().map((name, i) => ({ name, label: labels[i] }));
   }
   return cachedSets;
+}
+
+let cachedPrecisions = null;
+
+/** The networks' arithmetics (after loadModule), the default first: `[{ name, label }]`. */
+export function precisions() {
+  cachedPrecisions ??= modulePrecisions().map(([name, label]) => ({ name, label }));
+  return cachedPrecisions;
 }
 
 /**

@@ -3,16 +3,18 @@
 // recipe (docs/learning.md). The module names the sets and their files;
 // a set other than the paper's is fetched from beside the page when first
 // chosen (module.js, loadNetworkSet), with a plain message if that fails.
-// Networks trained or loaded by the user show as their own entry.
+// Networks trained or loaded by the user show as their own entry. Beside
+// it, the arithmetic selector (`#precision` in `#precision-field`): the
+// networks in f64 or f32 (the module's precisions()).
 
-import { describe, loadNetworkSet, networkSets, method, usesNetworks } from './module.js';
+import { describe, loadNetworkSet, networkSets, precisions, method, usesNetworks } from './module.js';
 
 /** The select's value for networks that are no shipped set. */
 const OWN = 'own';
 
 /**
  * Wires the selector under `root`, if the page has one. `show(text, kind)`
- * reports; `changed()` after a switch (the address). Returns
+ * reports; `changed()` after a switch of either (the address). Returns
  * `{ choose(name) -> Promise, sync(state) }`.
  */
 export function mountNetworkSet(root, demo, { show, changed }) {
@@ -25,6 +27,21 @@ export function mountNetworkSet(root, demo, { show, changed }) {
     select.add(own);
   }
   let pending = null;
+  const precisionField = root.querySelector('#precision-field');
+  const precision = root.querySelector('#precision');
+  if (precision && !precision.options.length) {
+    for (const p of precisions()) precision.add(new Option(p.label, p.name));
+  }
+  precision?.addEventListener('change', () => {
+    const name = precision.value;
+    try {
+      demo.setPrecision(name);
+      changed?.();
+      show?.(`The networks now compute in ${name}.`, 'info', false, precision);
+    } catch (e) {
+      show?.(describe(e), 'error', true, precision);
+    }
+  });
 
   /** Installs the shipped set `name`, fetching it first if need be; rejects with a readable reason. */
   async function choose(name) {
@@ -58,6 +75,10 @@ export function mountNetworkSet(root, demo, { show, changed }) {
     choose,
     /** Shows the set in use, and the selector only where networks run and the shipped sets fit the arm. */
     sync(s) {
+      if (precisionField && precision) {
+        precisionField.hidden = !usesNetworks(method(s.method));
+        if (precision.value !== s.precision) precision.value = s.precision;
+      }
       if (!field || !select) return;
       // The shipped sets run where they were trained for the arm (the core says which).
       const fits = Object.values(s.set_fits).some(Boolean);

@@ -15,7 +15,8 @@
 // switches it off), weighting (a name of limits().joint_weightings), floor
 // ("1": the floor and post are obstacles), theta0 and tf (a start pose and
 // final time, together), path (line, circle:CX,CY[,LAPS] or
-// points:X,Y;X,Y;...), networks (a shipped set, networkSets()), and every
+// points:X,Y;X,Y;...), networks (a shipped set, networkSets()), precision
+// (the networks' arithmetic, f64 or f32: precisions()), and every
 // method parameter by its name in params() (influence=..., refine=...).
 // projector ("1": larger text, thicker borders, higher contrast).
 // The element's own: autoplay ("false" to start paused; unset, it plays
@@ -227,6 +228,7 @@ class RedundantIkDemo extends HTMLElement {
       floor: false,
       path: 'line',
       networks: m.networkSets()[0].name,
+      precision: m.precisions()[0].name,
       projector: false,
     };
     // A value that does not parse leaves its setting as it is (named, not
@@ -239,7 +241,7 @@ class RedundantIkDemo extends HTMLElement {
     const changed = {};
     // A new task loads the paper's scene: everything asked for is applied again over it.
     const all = now.task !== was.task;
-    for (const key of ['task', 'method', 'lambda', 'feedback', 'target', 'obstacle', 'obstacles', 'arm', 'limits', 'rates', 'damping', 'weighting', 'floor', 'start', 'path', 'networks', 'projector']) {
+    for (const key of ['task', 'method', 'lambda', 'feedback', 'target', 'obstacle', 'obstacles', 'arm', 'limits', 'rates', 'damping', 'weighting', 'floor', 'start', 'path', 'networks', 'precision', 'projector']) {
       if (all || !same(now[key], was[key])) changed[key] = now[key] ?? defaults[key];
     }
     // The limits go with the arm: a new arm is set with the limits asked for.

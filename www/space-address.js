@@ -2,12 +2,13 @@
 // for, and the state written back into it. Keys: arm, method, lambda and
 // the methods' other parameters by name, target=X,Y,Z,
 // obstacles=X,Y,Z,R;X,Y,Z,R (the spheres, m), feedback, weighting, floor,
-// networks, view=YAW,PITCH,DISTANCE (degrees, degrees, m), embed and
+// networks, precision (the networks' arithmetic: f64 or f32),
+// view=YAW,PITCH,DISTANCE (degrees, degrees, m), embed and
 // projector as the plane's address has them (address.js). Numbers are
 // checked by the module; what does not parse here is returned as a
 // problem and shown, the rest applied.
 
-import { params, spacePresets, moduleHasSpace, limits } from './module.js';
+import { params, spacePresets, moduleHasSpace, limits, precisions } from './module.js';
 
 /**
  * The spatial preset an address names (`arm=panda`; `arm=space`: the first
@@ -49,6 +50,11 @@ export function readSpaceAddress(search) {
     feedback: read('feedback', (v) => numbers(v, 1)[0]),
     weighting: q.get('weighting') ?? undefined,
     floor: q.has('floor') ? q.get('floor') === '1' : undefined,
+    precision: read('precision', (v) => {
+      const names = precisions().map((p) => p.name);
+      if (!names.includes(v)) throw new Error(`unknown arithmetic '${v.slice(0, 40)}': use ${names.join(' or ')}`);
+      return v;
+    }),
     view: read('view', (v) => numbers(v, 3)),
     projector: q.get('projector') === '1' || undefined,
     autoplay: q.has('autoplay') ? q.get('autoplay') !== '0' : undefined,
@@ -75,6 +81,7 @@ export function spaceQuery(s, preset) {
   if (s.feedback > 0) q.set('feedback', String(s.feedback));
   if (s.weighting !== limits().joint_weightings[0][0]) q.set('weighting', s.weighting);
   if (s.floor) q.set('floor', '1');
+  if (s.precision !== precisions()[0].name) q.set('precision', s.precision);
   for (const p of params()) {
     if (s.params[p.name] !== undefined && s.params[p.name] !== p.default) q.set(p.name, String(s.params[p.name]));
   }

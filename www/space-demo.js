@@ -9,7 +9,7 @@
 // Controls of the plane only (the path, self-motion, the designer's links,
 // training) are hidden by style.css under html[data-space].
 
-import { SpaceDemo, loadModule, describe, methodGroups, assetUrl, spacePresets, spaceNetworkSets, limits } from './module.js';
+import { SpaceDemo, loadModule, describe, methodGroups, assetUrl, spacePresets, spaceNetworkSets, limits, precisions } from './module.js';
 import { fixed, metres } from './format.js';
 import { mountMethodParams } from './method-params.js';
 import { wireSpaceStage } from './space-input.js';
@@ -61,7 +61,7 @@ async function installNetworks(demo, arm) {
 /**
  * Starts the spatial demo on `root` (the page's document). Options: arm
  * (a spatial preset's key), method, target [x, y, z], obstacles (flat x, y,
- * z, r, ...), params { name: value }, feedback, weighting, floor, view
+ * z, r, ...), params { name: value }, feedback, weighting, floor, precision, view
  * [yaw°, pitch°, distance], autoplay, keyboard, problems (shown), onChange
  * (after user changes). Returns a controller with state(), demo,
  * worldToClient(x, y, z), runUntil(t), compare(), runFile().
@@ -145,6 +145,7 @@ export async function mountSpace(root, options) {
   if (options.feedback !== undefined) initial('feedback', () => demo.setFeedback(options.feedback));
   if (options.weighting) initial('weighting', () => demo.setWeighting(options.weighting));
   if (options.floor !== undefined) initial('floor', () => demo.setFloor(options.floor));
+  if (options.precision) initial('precision', () => demo.setPrecision(options.precision));
   if (options.view) initial('view', () => demo.setView((options.view[0] * Math.PI) / 180, (options.view[1] * Math.PI) / 180, options.view[2]));
   if (options.projector) document.documentElement.toggleAttribute('data-projector', true);
   if (options.method) {
@@ -190,6 +191,18 @@ export async function mountSpace(root, options) {
   const floor = $('floor');
   floor?.addEventListener('change', () => {
     if (attempt(() => demo.setFloor(floor.checked), 'error', floor)) changed();
+  });
+  // The networks' arithmetic (the plane's selector, network-set.js, on this page too).
+  const precisionField = $('precision-field');
+  const precision = $('precision');
+  if (precision && !precision.options.length) {
+    for (const p of precisions()) precision.add(new Option(p.label, p.name));
+  }
+  precision?.addEventListener('change', () => {
+    if (attempt(() => demo.setPrecision(precision.value), 'error', precision)) {
+      say(`the networks now compute in ${precision.value}`);
+      changed();
+    }
   });
   // Spheres: one more beside the line (selected, so the keys move it), or the last one less.
   $('obstacle-add')?.addEventListener('click', () => {
@@ -269,6 +282,10 @@ export async function mountSpace(root, options) {
     }
     if (feedback) feedback.checked = s.feedback > 0;
     if (floor) floor.checked = s.floor;
+    if (precision) {
+      if (precision.value !== s.precision) precision.value = s.precision;
+      if (precisionField) precisionField.hidden = menu.selectedOptions[0]?.dataset.networks !== 'true';
+    }
     syncParams(s);
     for (const r of readouts) {
       const f = READOUTS[r.dataset.readout];

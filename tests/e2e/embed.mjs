@@ -28,6 +28,7 @@ const scene = (s) => ({
   damping: s.damping,
   weighting: s.weighting,
   floor: s.floor,
+  precision: s.precision,
   arm: s.arm_text,
   limits: s.arm.joint_limits,
   rates: s.arm.rate_limits,
@@ -102,7 +103,7 @@ async function scenes() {
   await first.close();
   return [
     `task=1&method=qp&arm=iiwa-planar&obstacles=0.9,0.9,0.08;1.4,0.5,0.06&target=1.1,0.6&influence=0.25&weighting=wln&floor=1&path=circle:1.1,1.0&theta0=${theta0}&tf=6`,
-    'task=2&method=case3&lambda=5&obstacle=0.95,0.75&networks=reach&feedback=1&damping=0&refine=1',
+    'task=2&method=case3&lambda=5&obstacle=0.95,0.75&networks=reach&precision=f32&feedback=1&damping=0&refine=1',
   ];
 }
 

@@ -59,6 +59,7 @@ const HOSTILE_URLS = [
   ['weighting=qp', [/weighting: unknown joint weighting 'qp': use none or wln/]],
   ['weighting=%3Cb%3Ewln&floor=yes', [/weighting: unknown joint weighting '<b>wln'/, /floor: expected 0 or 1, got 'yes'/]],
   [`weighting=${'w'.repeat(5000)}`, [/weighting: unknown joint weighting 'w{40}…'/]],
+  ['method=case3&precision=f16', [/precision: unknown arithmetic 'f16': use f64 or f32/]],
 ];
 
 test('hostile URL parameters: each is named in one readable message and the page runs from its defaults', async () => {

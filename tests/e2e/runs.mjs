@@ -1,6 +1,7 @@
 // End-to-end tests of what a run is (the module's Demo.run(): scene,
-// method and networks): the files to take away and the weights download
-// follow the network set in use, and the atlas and the comparison tell
+// method, networks and their arithmetic): the files to take away and the
+// weights download follow the network set in use, a run in f32 replays in
+// f32, and the atlas and the comparison tell
 // staleness by the state's revisions. Registered by e2e.mjs.
 
 import assert from 'node:assert/strict';
@@ -36,6 +37,39 @@ test('runs: with networks=reach the run file names the reach set and the CLI rep
   for (let k = 0; k < 50 && got.length < 2; k++) await page.waitForTimeout(100);
   assert.deepEqual(got.map((d) => d.suggestedFilename()).sort(), ['phi-reach.json', 'v-reach.json']);
   assert.match(await page.textContent('#message'), /whole/i, 'the message names the set');
+  clean(page);
+  await page.close();
+});
+
+test('runs: with precision=f32 the networks compute in f32: the selector and the address say so, the run file names it and the CLI replays it in f32', async () => {
+  const page = await open('?task=1&method=case3&precision=f32');
+  await page.waitForFunction(() => window.demo.state().precision === 'f32');
+  assert.equal(await page.isVisible('#precision'), true, 'the Arithmetic selector shows with a learned method');
+  assert.equal(await page.inputValue('#precision'), 'f32');
+  await page.selectOption('#speed', '8');
+  await page.click('#task1');
+  await page.waitForFunction(() => window.demo.state().ended && !window.demo.state().running, null, { timeout: 60000 });
+  assert.match(page.url(), /precision=f32/);
+  const json = await download(page, '#save-run-json');
+  const run = JSON.parse(json.text);
+  assert.equal(run.precision, 'f32', 'the file names the arithmetic');
+  // The f32 kernels give the same bits in the page's SIMD build and natively: the replay is the run.
+  const back = JSON.parse(cli(['simulate', '--from', json.path, '--json']));
+  assert.equal(back.precision, 'f32');
+  back.steps.forEach((st, k) => st.theta.forEach((v, i) => close(v, run.steps[k].theta[i], 1e-9, `step ${k} theta${i + 1}`)));
+  // In f64 it is another run, within 1e-5 m at the end.
+  const f64 = JSON.parse(cli(['simulate', '--method', 'case3', '--json']));
+  assert.equal(f64.precision, undefined);
+  assert.notEqual(f64.summary.final_error, run.summary.final_error);
+  close(f64.summary.final_error, run.summary.final_error, 1e-5, 'final error, f64 against f32');
+  // Back to f64 with the selector: the state, the address and the next file follow.
+  await page.selectOption('#precision', 'f64');
+  await page.waitForFunction(() => window.demo.state().precision === 'f64');
+  assert.doesNotMatch(page.url(), /precision=/);
+  assert.equal(JSON.parse((await download(page, '#save-run-json')).text).precision, undefined, 'an f64 run file leaves it out');
+  // A method without networks has no arithmetic to choose.
+  await page.selectOption('#mode', 'numerical');
+  assert.equal(await page.isVisible('#precision'), false);
   clean(page);
   await page.close();
 });

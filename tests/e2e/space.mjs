@@ -230,6 +230,26 @@ test('space: the run saved from the page reads back with simulate --from, step f
   await page.close();
 });
 
+test('space: with precision=f32 the Panda\'s networks compute in f32, and simulate --from replays the run in f32', async () => {
+  const page = await open('?arm=panda&method=case3&precision=f32&autoplay=0');
+  await page.waitForFunction(() => window.demo.state().method === 'case3' && window.demo.state().precision === 'f32', null, { timeout: 60000 });
+  assert.equal(await page.isVisible('#precision'), true);
+  assert.equal(await page.inputValue('#precision'), 'f32');
+  const json = await download(page, '#save-run-json');
+  const run = JSON.parse(json.text);
+  assert.equal(run.precision, 'f32');
+  assert.equal(run.networks, 'panda-reach');
+  const back = JSON.parse(cli(['simulate', '--from', json.path, '--json']));
+  assert.equal(back.precision, 'f32');
+  assert.equal(back.samples.length, run.samples.length);
+  back.samples.forEach((s, k) => s.theta.forEach((v, i) => close(v, run.samples[k].theta[i], 1e-9, `step ${k} theta${i + 1}`)));
+  await page.selectOption('#precision', 'f64');
+  await page.waitForFunction(() => window.demo.state().precision === 'f64');
+  assert.doesNotMatch(page.url(), /precision=/);
+  clean(page);
+  await page.close();
+});
+
 test('space: axe finds nothing serious on the Panda page', async () => {
   const page = await open('?arm=panda&method=qp&autoplay=0');
   await page.addScriptTag({ path: createRequire(import.meta.url).resolve('axe-core/axe.min.js') });
