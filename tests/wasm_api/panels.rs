@@ -1,5 +1,5 @@
-//! Weights, feedback, the benchmark, the comparison, names and colours,
-//! keys.
+//! Weights and their arithmetic, feedback, the benchmark, the comparison,
+//! names and colours, keys.
 
 use super::*;
 use wasm_bindgen_test::wasm_bindgen_test;
@@ -23,6 +23,36 @@ fn user_weights_load_or_say_what_is_wrong() {
     assert_eq!(s["collided"], false);
     assert!(!s["trained_range"].is_null());
     assert!(s["final_error"].as_f64().unwrap() < 5e-3);
+}
+
+#[wasm_bindgen_test]
+fn the_networks_arithmetic_is_part_of_the_run_and_a_bad_name_changes_nothing() {
+    let mut d = demo(1);
+    d.set_method("case3").unwrap();
+    assert_eq!(state(&d)["precision"], "f64");
+    assert!(json_of(d.run().unwrap()).get("precision").is_none());
+    d.run_until(10.0).unwrap();
+    let f64_error = state(&d)["final_error"].as_f64().unwrap();
+    let revision = state(&d)["revision"]["run"].clone();
+    d.set_precision("f32").unwrap();
+    assert_eq!(state(&d)["precision"], "f32");
+    assert_ne!(state(&d)["revision"]["run"], revision, "another run");
+    assert_eq!(json_of(d.run().unwrap())["precision"], "f32");
+    d.load_task(1).unwrap();
+    d.run_until(10.0).unwrap();
+    let f32_error = state(&d)["final_error"].as_f64().unwrap();
+    assert_ne!(f32_error, f64_error);
+    assert!(
+        (f32_error - f64_error).abs() < 1e-5,
+        "{f32_error} vs {f64_error}"
+    );
+    let err = d.set_precision("f16").err().unwrap();
+    assert!(message(err).contains("f64"), "names the choices");
+    assert_eq!(state(&d)["precision"], "f32", "unchanged");
+    // The names a menu offers, the default first.
+    let names = json_of(redundant_ik::web::precisions().unwrap());
+    assert_eq!(names[0][0], "f64");
+    assert_eq!(names[1][0], "f32");
 }
 
 #[wasm_bindgen_test]
