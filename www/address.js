@@ -8,7 +8,7 @@
 // parse but make no sense), never dropped silently; the page then starts
 // from its defaults for it.
 
-import { parseArm, parseObstacles, parseJointLimits, formatJointLimits, parseRateLimits, formatRateLimits, limits, methods, params as allParams, defaultMethod, networkSets, precisions } from './module.js';
+import { parseArm, parseObstacles, parseJointLimits, formatJointLimits, parseRateLimits, formatRateLimits, limits, methods, params as allParams, defaultMethod, networkSets, precisions, readPrecision } from './module.js';
 import { formatObstacles } from './arm-designer.js';
 
 /** A number from text: blank is not zero (as `Number('')` is). */
@@ -139,11 +139,7 @@ export function readAddress(search) {
       if (!sets.includes(v)) throw new Error(`unknown network set '${clip(v)}': use ${sets.join(' or ')}`);
       return v;
     }),
-    precision: parsed('precision', (v) => {
-      const names = precisions().map((p) => p.name);
-      if (!names.includes(v)) throw new Error(`unknown arithmetic '${clip(v)}': use ${names.join(' or ')}`);
-      return v;
-    }),
+    precision: parsed('precision', readPrecision),
     problems,
   };
 }

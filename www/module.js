@@ -237,6 +237,14 @@ export function precisions() {
   return cachedPrecisions;
 }
 
+/** The arithmetic an address names (`precision=`): one of precisions(), else throws naming them. */
+export function readPrecision(text) {
+  const names = precisions().map((p) => p.name);
+  if (names.includes(text)) return text;
+  const shown = text.length > 40 ? `${text.slice(0, 40)}…` : text;
+  throw new Error(`unknown arithmetic '${shown}': use ${names.join(' or ')}`);
+}
+
 /**
  * The URL of the built-in networks' weights file `name`, which `make web`
  * puts in weights/ beside the page (fetched at start-up, for downloads).

@@ -9,6 +9,28 @@
 
 import { describe, loadNetworkSet, networkSets, precisions, method, usesNetworks } from './module.js';
 
+/**
+ * Wires the arithmetic selector (`#precision` in `#precision-field`) under
+ * `root`, if the page has one (both pages: space-demo.js too): its options
+ * from the module's precisions(), and a choice handed to `choose(name,
+ * select)`, which applies and reports it. Returns `sync(state, learned)`:
+ * the selector shows `state.precision`, and only where `learned` (the
+ * method uses networks).
+ */
+export function mountPrecision(root, choose) {
+  const field = root.querySelector('#precision-field');
+  const select = root.querySelector('#precision');
+  if (!field || !select) return () => {};
+  if (!select.options.length) {
+    for (const p of precisions()) select.add(new Option(p.label, p.name));
+  }
+  select.addEventListener('change', () => choose(select.value, select));
+  return (s, learned) => {
+    field.hidden = !learned;
+    if (select.value !== s.precision) select.value = s.precision;
+  };
+}
+
 /** The select's value for networks that are no shipped set. */
 const OWN = 'own';
 
@@ -27,19 +49,13 @@ export function mountNetworkSet(root, demo, { show, changed }) {
     select.add(own);
   }
   let pending = null;
-  const precisionField = root.querySelector('#precision-field');
-  const precision = root.querySelector('#precision');
-  if (precision && !precision.options.length) {
-    for (const p of precisions()) precision.add(new Option(p.label, p.name));
-  }
-  precision?.addEventListener('change', () => {
-    const name = precision.value;
+  const syncPrecision = mountPrecision(root, (name, near) => {
     try {
       demo.setPrecision(name);
       changed?.();
-      show?.(`The networks now compute in ${name}.`, 'info', false, precision);
+      show?.(`The networks now compute in ${name}.`, 'info', false, near);
     } catch (e) {
-      show?.(describe(e), 'error', true, precision);
+      show?.(describe(e), 'error', true, near);
     }
   });
 
@@ -75,10 +91,7 @@ export function mountNetworkSet(root, demo, { show, changed }) {
     choose,
     /** Shows the set in use, and the selector only where networks run and the shipped sets fit the arm. */
     sync(s) {
-      if (precisionField && precision) {
-        precisionField.hidden = !usesNetworks(method(s.method));
-        if (precision.value !== s.precision) precision.value = s.precision;
-      }
+      syncPrecision(s, usesNetworks(method(s.method)));
       if (!field || !select) return;
       // The shipped sets run where they were trained for the arm (the core says which).
       const fits = Object.values(s.set_fits).some(Boolean);

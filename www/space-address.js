@@ -8,7 +8,7 @@
 // checked by the module; what does not parse here is returned as a
 // problem and shown, the rest applied.
 
-import { params, spacePresets, moduleHasSpace, limits, precisions } from './module.js';
+import { params, spacePresets, moduleHasSpace, limits, precisions, readPrecision } from './module.js';
 
 /**
  * The spatial preset an address names (`arm=panda`; `arm=space`: the first
@@ -50,11 +50,7 @@ export function readSpaceAddress(search) {
     feedback: read('feedback', (v) => numbers(v, 1)[0]),
     weighting: q.get('weighting') ?? undefined,
     floor: q.has('floor') ? q.get('floor') === '1' : undefined,
-    precision: read('precision', (v) => {
-      const names = precisions().map((p) => p.name);
-      if (!names.includes(v)) throw new Error(`unknown arithmetic '${v.slice(0, 40)}': use ${names.join(' or ')}`);
-      return v;
-    }),
+    precision: read('precision', readPrecision),
     view: read('view', (v) => numbers(v, 3)),
     projector: q.get('projector') === '1' || undefined,
     autoplay: q.has('autoplay') ? q.get('autoplay') !== '0' : undefined,

@@ -9,9 +9,10 @@
 // Controls of the plane only (the path, self-motion, the designer's links,
 // training) are hidden by style.css under html[data-space].
 
-import { SpaceDemo, loadModule, describe, methodGroups, assetUrl, spacePresets, spaceNetworkSets, limits, precisions } from './module.js';
+import { SpaceDemo, loadModule, describe, methodGroups, assetUrl, spacePresets, spaceNetworkSets, limits } from './module.js';
 import { fixed, metres } from './format.js';
 import { mountMethodParams } from './method-params.js';
+import { mountPrecision } from './network-set.js';
 import { wireSpaceStage } from './space-input.js';
 import { messenger } from './messages.js';
 import { writeSpaceAddress } from './space-address.js';
@@ -192,15 +193,10 @@ export async function mountSpace(root, options) {
   floor?.addEventListener('change', () => {
     if (attempt(() => demo.setFloor(floor.checked), 'error', floor)) changed();
   });
-  // The networks' arithmetic (the plane's selector, network-set.js, on this page too).
-  const precisionField = $('precision-field');
-  const precision = $('precision');
-  if (precision && !precision.options.length) {
-    for (const p of precisions()) precision.add(new Option(p.label, p.name));
-  }
-  precision?.addEventListener('change', () => {
-    if (attempt(() => demo.setPrecision(precision.value), 'error', precision)) {
-      say(`the networks now compute in ${precision.value}`);
+  // The networks' arithmetic: the plane's selector (network-set.js).
+  const syncPrecision = mountPrecision(root, (name, near) => {
+    if (attempt(() => demo.setPrecision(name), 'error', near)) {
+      say(`the networks now compute in ${name}`);
       changed();
     }
   });
@@ -282,10 +278,7 @@ export async function mountSpace(root, options) {
     }
     if (feedback) feedback.checked = s.feedback > 0;
     if (floor) floor.checked = s.floor;
-    if (precision) {
-      if (precision.value !== s.precision) precision.value = s.precision;
-      if (precisionField) precisionField.hidden = menu.selectedOptions[0]?.dataset.networks !== 'true';
-    }
+    syncPrecision(s, menu.selectedOptions[0]?.dataset.networks === 'true');
     syncParams(s);
     for (const r of readouts) {
       const f = READOUTS[r.dataset.readout];
