@@ -21,18 +21,14 @@ WORKER_OPT = CARGO_PROFILE_RELEASE_OPT_LEVEL=s
 setup:
 	bash scripts/setup-wasm.sh
 
-## Build the release wasm packages into www/pkg: the page's module in two
-## builds, the plane's (feature page: the demo and its drawing) and the
-## arms in space's (canvas,space: the Panda and the iiwa, without the
-## planar demo; the page loads it only for arm=panda or another spatial
-## preset's key, www/pkg/space-arms.js, so neither page downloads the
-## other's code), both loaded by one JS glue, a build of both (page,space)
-## whose own .wasm is not shipped (scripts/check-glue.py checks that the
-## glue fits each build); and the workers' module (feature worker: the atlas and the benchmark, which
-## run in Web Workers). Each twice: a baseline build and one with wasm SIMD
-## (+simd128) for the networks' kernels; the page loads the SIMD ones where
-## the browser validates SIMD, else the baseline (some hardened browser
-## modes switch SIMD off). Each pair shares its JS glue (checked).
+## Build the release wasm packages into www/pkg: the page's module (feature
+## page: the demo of every arm, planar and in space, and its drawing) and
+## the workers' module (feature worker: the atlas, the benchmark, the
+## trainer and the figures, which run in Web Workers). Each twice: a
+## baseline build and one with wasm SIMD (+simd128) for the networks'
+## kernels, four builds in all; the page loads the SIMD ones where the
+## browser validates SIMD, else the baseline (some hardened browser modes
+## switch SIMD off). Each pair shares its JS glue (checked with cmp).
 ## Optimised for size (the page's at opt-level z with Talc for allocator,
 ## feature small-alloc; the workers' at s; 3 is 13 KB gzipped larger),
 ## then the debug `name` section stripped (cargo's
@@ -41,44 +37,20 @@ setup:
 ## hands them to its workers: no module embeds them (docs/web.md, "Bytes on
 ## the wire").
 PAGE = -- --no-default-features --features page,small-alloc
-PAGE_SPACE = -- --no-default-features --features canvas,space,small-alloc
-GLUE = -- --no-default-features --features page,space,small-alloc
-GLUE_ENV = CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_TARGET_DIR=target/wasm-page-glue
-SPACE_ENV = CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_TARGET_DIR=target/wasm-page-space
-SPACE_SIMD_ENV = CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_TARGET_DIR=target/wasm-page-space-simd
 WORKER = --out-name redundant_ik_worker -- --no-default-features --features worker
-WORKER_SPACE = --out-name redundant_ik_worker -- --no-default-features --features worker,space
-WORKER_SPACE_ENV = CARGO_TARGET_DIR=target/wasm-worker-space
-WORKER_SPACE_SIMD_ENV = CARGO_TARGET_DIR=target/wasm-worker-space-simd
 web: setup
-	$(WASM_ENV) $(GLUE_ENV) $(WASM_BUILD) --out-dir target/pkg-glue $(GLUE)
-	$(WASM_ENV) $(SPACE_ENV) $(WASM_BUILD) --out-dir target/pkg-space $(PAGE_SPACE)
-	$(WASM_SIMD_ENV) $(SPACE_SIMD_ENV) $(WASM_BUILD) --out-dir target/pkg-space-simd $(PAGE_SPACE)
-	cmp target/pkg-space/redundant_ik.js target/pkg-space-simd/redundant_ik.js
 	$(WASM_ENV) $(PAGE_ENV) $(WASM_BUILD) --out-dir www/pkg $(PAGE)
 	$(WASM_SIMD_ENV) $(PAGE_SIMD_ENV) $(WASM_BUILD) --out-dir target/pkg-simd $(PAGE)
 	cmp www/pkg/redundant_ik.js target/pkg-simd/redundant_ik.js
-	for w in www/pkg/redundant_ik_bg.wasm target/pkg-simd/redundant_ik_bg.wasm; do python3 scripts/check-glue.py target/pkg-glue/redundant_ik_bg.wasm $$w plane; done
-	for w in target/pkg-space/redundant_ik_bg.wasm target/pkg-space-simd/redundant_ik_bg.wasm; do python3 scripts/check-glue.py target/pkg-glue/redundant_ik_bg.wasm $$w space; done
-	cp target/pkg-glue/redundant_ik.js www/pkg/redundant_ik.js
-	cp target/pkg-space/redundant_ik_bg.wasm www/pkg/redundant_ik_space_bg.wasm
-	cp target/pkg-space-simd/redundant_ik_bg.wasm www/pkg/redundant_ik_space_simd_bg.wasm
 	cp target/pkg-simd/redundant_ik_bg.wasm www/pkg/redundant_ik_simd_bg.wasm
-	$(WASM_ENV) $(WORKER_OPT) $(WORKER_SPACE_ENV) $(WASM_BUILD) --out-dir target/pkg-worker-space $(WORKER_SPACE)
-	$(WASM_SIMD_ENV) $(WORKER_OPT) $(WORKER_SPACE_SIMD_ENV) $(WASM_BUILD) --out-dir target/pkg-worker-space-simd $(WORKER_SPACE)
-	cmp target/pkg-worker-space/redundant_ik_worker.js target/pkg-worker-space-simd/redundant_ik_worker.js
 	$(WASM_ENV) $(WORKER_OPT) $(WASM_BUILD) --out-dir target/pkg-worker $(WORKER)
 	$(WASM_SIMD_ENV) $(WORKER_OPT) $(WASM_BUILD) --out-dir target/pkg-worker-simd $(WORKER)
 	cmp target/pkg-worker/redundant_ik_worker.js target/pkg-worker-simd/redundant_ik_worker.js
-	python3 scripts/check-glue.py target/pkg-worker-space/redundant_ik_worker_bg.wasm target/pkg-worker/redundant_ik_worker_bg.wasm plane
-	python3 scripts/check-glue.py target/pkg-worker-space-simd/redundant_ik_worker_bg.wasm target/pkg-worker-simd/redundant_ik_worker_bg.wasm plane
-	cp target/pkg-worker-space/redundant_ik_worker.js target/pkg-worker/redundant_ik_worker_bg.wasm www/pkg/
+	cp target/pkg-worker/redundant_ik_worker.js target/pkg-worker/redundant_ik_worker_bg.wasm www/pkg/
 	cp target/pkg-worker-simd/redundant_ik_worker_bg.wasm www/pkg/redundant_ik_worker_simd_bg.wasm
-	cp target/pkg-worker-space/redundant_ik_worker_bg.wasm www/pkg/redundant_ik_worker_space_bg.wasm
-	cp target/pkg-worker-space-simd/redundant_ik_worker_bg.wasm www/pkg/redundant_ik_worker_space_simd_bg.wasm
+	rm -f www/pkg/redundant_ik_space_bg.wasm www/pkg/redundant_ik_space_simd_bg.wasm www/pkg/redundant_ik_worker_space_bg.wasm www/pkg/redundant_ik_worker_space_simd_bg.wasm www/pkg/space-arms.js
 	for f in www/pkg/*.wasm; do python3 scripts/strip-wasm-names.py $$f; done
 	mkdir -p www/weights && cp weights/*.json www/weights/
-	node scripts/space-arms.mjs
 	@for f in www/pkg/*.wasm; do echo "$$f: $$(stat -c %s $$f) B, gzip -9 $$(gzip -9 -c $$f | wc -c) B"; done
 
 ## The page as one folder for any static host, dist/ (docs/hosting.md,
@@ -150,10 +122,8 @@ lint: setup
 	cargo clippy --all-targets -- -D warnings
 	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --tests -- -D warnings
 	$(WASM_SIMD_ENV) cargo clippy --target wasm32-unknown-unknown --lib --tests -- -D warnings
-	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features page,space,small-alloc -- -D warnings
-	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features canvas,space,small-alloc -- -D warnings
+	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features page,small-alloc -- -D warnings
 	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features worker -- -D warnings
-	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features worker,space -- -D warnings
 
 test-native:
 	cargo test

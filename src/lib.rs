@@ -27,7 +27,6 @@ pub mod qp;
 pub mod run;
 pub mod scene;
 pub mod session;
-#[cfg(feature = "space")]
 pub mod space;
 pub mod training;
 #[cfg(feature = "eval")]

@@ -159,7 +159,6 @@ fn theta_dot_into_allocates_nothing() {
 /// In space: every method with a spatial rule on both presets' tasks, with
 /// the floor, the damping schedule and feedback, and with the forearm
 /// squeezed between two spheres (qp's relaxed program).
-#[cfg(feature = "space")]
 #[test]
 fn a_spatial_step_allocates_nothing_in_any_method() {
     use redundant_ik::scene::SpaceScene;
@@ -227,7 +226,6 @@ fn the_counter_does_count() {
 /// preset with its sphere, the damping schedule, feedback and weighted
 /// least norm from a start near a limit (the weights' solves run), along
 /// the line, a circle and a polyline.
-#[cfg(feature = "space")]
 #[test]
 fn a_spatial_step_allocates_nothing_in_any_method_in_space() {
     use redundant_ik::scene::{JointWeighting, SpacePath, SpaceScene};
@@ -277,7 +275,6 @@ fn a_spatial_step_allocates_nothing_in_any_method_in_space() {
 /// What the slice atlas does for each cell allocates nothing: moving a
 /// spatial planner's sphere, resetting it to `t = 0` and running it to
 /// `tf` keeping only the summary, in every method on both presets.
-#[cfg(feature = "space")]
 #[test]
 fn a_spatial_planner_moved_and_reset_runs_without_allocating() {
     use redundant_ik::scene::SpaceScene;
@@ -307,7 +304,6 @@ fn a_spatial_planner_moved_and_reset_runs_without_allocating() {
 /// A spatial planner of `method` with the networks shipped for the preset
 /// `key` where it learns; `None` for a learned method on a preset with
 /// none (only the Panda has a set).
-#[cfg(feature = "space")]
 fn planner_with_shipped(
     scene: &redundant_ik::scene::SpaceScene,
     key: &str,

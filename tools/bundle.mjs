@@ -44,11 +44,13 @@ function version() {
   return cargo('version') ?? fail("Cargo.toml's [package] has no version");
 }
 
-/** The weights files of every shipped network set, as the page's module names them. */
+/** The weights files of every shipped network set, the planar arms' and the arms in space's, as the page's module names them. */
 async function weightsFiles() {
   const glue = await import(pathToFileURL(join(www, 'pkg/redundant_ik.js')).href);
   glue.initSync({ module: read(join(www, 'pkg/redundant_ik_simd_bg.wasm')) });
-  return [...new Set(glue.networkSets().flatMap((set) => glue.builtinWeightsFiles(set)))];
+  const planar = glue.networkSets().flatMap((set) => glue.builtinWeightsFiles(set));
+  const space = glue.spaceNetworkSets().flatMap((set) => set.files);
+  return [...new Set([...planar, ...space])];
 }
 
 const BANNER = `// redundant-ik ${version()} (MIT OR Apache-2.0), bundled by tools/bundle.mjs from www/.`;

@@ -19,8 +19,6 @@ import init, {
   palette,
   methodGroupLabels as moduleGroupLabels,
 } from './pkg/redundant_ik.js';
-// The keys of the arms in space, read from the module by make web (scripts/space-arms.mjs).
-import { SPACE_ARMS } from './pkg/space-arms.js';
 
 // The arm, limits and obstacle syntax (`parseArm(text)`, `formatArm(post,
 // links)`, `parseJointLimits(text)` and `formatJointLimits(flat)` for
@@ -43,9 +41,10 @@ export {
   paperMethods,
   Demo,
   SpaceDemo,
-  spacePresets,
   spaceNetworkSets,
 } from './pkg/redundant_ik.js';
+import { spacePresets } from './pkg/redundant_ik.js';
+export { spacePresets };
 import { precisions as modulePrecisions } from './pkg/redundant_ik.js';
 /** The built-in networks' weights files, `[phi, v]` (served in weights/). */
 export { builtinWeightsFiles };
@@ -66,49 +65,27 @@ export function assetUrl(path) {
   return inline[path];
 }
 
-/** The two builds of the module (make web): with wasm SIMD, and without. */
+/** The two builds of the module (make web), each with every arm: with wasm SIMD, and without. */
 const BUILDS = {
   simd: 'pkg/redundant_ik_simd_bg.wasm',
   baseline: 'pkg/redundant_ik_bg.wasm',
 };
 
-/** The same two for the arms in space (features canvas,space: no planar demo), loaded by the same glue for arm=panda and the like. */
-const SPACE_BUILDS = {
-  simd: 'pkg/redundant_ik_space_simd_bg.wasm',
-  baseline: 'pkg/redundant_ik_space_bg.wasm',
-};
-
 /**
- * Whether the page asks for the build with the arms in space: its address
- * names one by its preset's key (`arm=panda`), or `arm=space` (the first).
- * Every other address (a planar preset's key such as `arm=iiwa-planar`, an
- * arm written out, `0.5:1,1,1`) gets the plane's build: the space build
- * has no planar demo.
+ * Whether an address asks for an arm in space (after loadModule): it names
+ * one by its preset's key (`arm=panda`), or `arm=space` (the first). Every
+ * other address (a planar preset's key such as `arm=iiwa-planar`, an arm
+ * written out, `0.5:1,1,1`) is the plane's.
  */
 export function asksForSpace(search = globalThis.location?.search ?? '') {
   const arm = new URLSearchParams(search).get('arm') ?? '';
-  return arm === 'space' || SPACE_ARMS.includes(arm);
+  return arm === 'space' || spacePresets().some((p) => p.key === arm);
 }
 
-/** Whether the module loaded is the build with the arms in space (SpaceDemo, spacePresets; no planar Demo). */
-export function moduleHasSpace() {
-  return withSpace;
-}
-
-/** Whether this build carries `path` (a single-file build carries only some files). */
-function carries(path) {
-  const inline = globalThis.__REDUNDANT_IK_ASSETS__;
-  return !inline || Object.hasOwn(inline, path);
-}
-
-/** The same two builds of the workers' module (the atlas, the benchmark, the trainer), and with the arms in space. */
+/** The same two builds of the workers' module (the atlas, the benchmark, the trainer, the figures). */
 const WORKER_BUILDS = {
   simd: 'pkg/redundant_ik_worker_simd_bg.wasm',
   baseline: 'pkg/redundant_ik_worker_bg.wasm',
-};
-const SPACE_WORKER_BUILDS = {
-  simd: 'pkg/redundant_ik_worker_space_simd_bg.wasm',
-  baseline: 'pkg/redundant_ik_worker_space_bg.wasm',
 };
 
 /** Whether this browser validates wasm SIMD (v128, as wasm-feature-detect checks it). */
@@ -125,7 +102,8 @@ function simdSupported() {
 let module = null;
 let build = null;
 let memory = null;
-let withSpace = false;
+/** Whether the page shows an arm in space (its workers then need no planar networks). */
+let inSpace = false;
 
 /** Which build the page runs: 'simd' or 'baseline' (null before loading). */
 export function moduleBuild() {
@@ -134,7 +112,7 @@ export function moduleBuild() {
 
 /** The workers' .wasm of the build the page runs (null before loading). */
 export function workerModuleUrl() {
-  return build && assetUrl((withSpace ? SPACE_WORKER_BUILDS : WORKER_BUILDS)[build]);
+  return build && assetUrl(WORKER_BUILDS[build]);
 }
 
 /** Bytes of the page module's linear memory (it grows, never shrinks; the soak watches it). */
@@ -159,8 +137,8 @@ const setFailures = new Map();
  * networks then say why.
  */
 export function loadNetworkSet(set = moduleNetworkSets()[0]) {
-  // The build with the arms in space runs no planar networks (nor loads them).
-  if (withSpace) return Promise.resolve('the planar networks are not in the build with the arms in space');
+  // The page in space runs no planar networks (nor loads them).
+  if (inSpace) return Promise.resolve('the page in space runs no planar networks');
   if (!fetchedSets.has(set)) {
     fetchedSets.set(
       set,
@@ -205,7 +183,7 @@ export function loadNetworkSet(set = moduleNetworkSets()[0]) {
  */
 export async function networkSetsFor(names = []) {
   // The jobs of the page in space read the spatial networks' files themselves.
-  if (withSpace) return {};
+  if (inSpace) return {};
   const known = moduleNetworkSets();
   const out = {};
   for (const name of new Set([known[0], ...names])) {
@@ -257,16 +235,13 @@ export function builtinWeightsUrl(name) {
  * Loads and starts the WebAssembly module once per page: the SIMD build
  * where the browser supports SIMD (the networks run about twice as fast),
  * else, or if it fails to start, the baseline build; then the built-in
- * networks. The first call decides which: with the arms in space where
- * `space` (default: the address asks for it, asksForSpace) and this build
- * carries them, else the plane's.
+ * networks of the plane, unless the first call says the page shows an arm
+ * in space (`space`; default: the address asks for one, asksForSpace).
  */
-export function loadModule({ space = asksForSpace() } = {}) {
+export function loadModule({ space } = {}) {
   if (!module) {
-    const builds = space && [SPACE_BUILDS, SPACE_WORKER_BUILDS].every((b) => carries(b.simd) && carries(b.baseline)) ? SPACE_BUILDS : BUILDS;
-    withSpace = builds === SPACE_BUILDS;
     const start = async (which) => {
-      const exports = await init({ module_or_path: assetUrl(builds[which]) });
+      const exports = await init({ module_or_path: assetUrl(BUILDS[which]) });
       memory = exports.memory;
       build = which;
       // The drawing's colours, for the stylesheet (var(--arm), ...).
@@ -285,7 +260,8 @@ export function loadModule({ space = asksForSpace() } = {}) {
         }
       }
       if (!started) await start('baseline');
-      if (!withSpace) await loadNetworkSet();
+      inSpace = space ?? asksForSpace();
+      if (!inSpace) await loadNetworkSet();
     })();
   }
   return module;

@@ -9,7 +9,7 @@
 // start, the page says so and disables its controls instead of showing a
 // blank stage.
 
-import { loadModule, describe, methods, methodGroups, fillLimits, moduleBuild, moduleMemoryBytes, limits, networkMethodLabels, spacePresets, formatJointLimits, formatRateLimits, asksForSpace, moduleHasSpace } from './module.js';
+import { loadModule, describe, methods, methodGroups, fillLimits, moduleBuild, moduleMemoryBytes, limits, networkMethodLabels, spacePresets, formatJointLimits, formatRateLimits } from './module.js';
 import { mountTour } from './tour.js';
 import { bench, spaceAtlas } from './jobs.js';
 import { mount } from './demo.js';
@@ -135,10 +135,6 @@ async function start() {
       return;
     }
     const { problems, ...settings } = readAddress(location.search);
-    // An arm in space asked for where this build has none (the single-file page carries the planar arms only).
-    if (asksForSpace() && !moduleHasSpace() && !limits().arm_presets.some((p) => p.key === new URLSearchParams(location.search).get('arm'))) {
-      problems.push('arm: the arms in space are not in this build of the page (the single-file page carries the planar arms only): open the served page');
-    }
     const controller = await mount(document, {
       ...settings,
       problems,

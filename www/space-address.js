@@ -8,16 +8,15 @@
 // checked by the module; what does not parse here is returned as a
 // problem and shown, the rest applied.
 
-import { params, spacePresets, moduleHasSpace, limits, precisions, readPrecision } from './module.js';
+import { params, spacePresets, limits, precisions, readPrecision } from './module.js';
 
 /**
  * The spatial preset an address names (`arm=panda`; `arm=space`: the first
- * of them, what the planar page's designer opens), or null (also where the
- * module loaded has no arms in space).
+ * of them, what the planar page's designer opens), or null.
  */
 export function spaceArmOf(search) {
   const arm = new URLSearchParams(search).get('arm');
-  if (!arm || !moduleHasSpace()) return null;
+  if (!arm) return null;
   if (arm === 'space') return spacePresets()[0].key;
   return spacePresets().some((p) => p.key === arm) ? arm : null;
 }

@@ -14,7 +14,6 @@
 mod geometry;
 mod grid;
 mod read;
-#[cfg(feature = "space")]
 pub mod space;
 mod summary;
 

@@ -9,7 +9,6 @@
 //! has run for at least [`Options::batch_ms`], so coarse browser clocks still
 //! give exact-enough means.
 
-#[cfg(feature = "space")]
 pub mod space;
 
 use std::sync::Arc;

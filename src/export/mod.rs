@@ -9,10 +9,8 @@
 
 mod csv;
 mod run;
-#[cfg(feature = "space")]
 mod space_run;
 
 pub use csv::{atlas_csv, run_csv, RUN_CSV_FIXED};
 pub use run::{RunFile, MAX_RUN_FILE_BYTES};
-#[cfg(feature = "space")]
 pub use space_run::{is_space_run, SpaceRunFile, SPACE_RUN_FORMAT};

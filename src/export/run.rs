@@ -90,7 +90,6 @@ impl RunFile {
                 text.len()
             )));
         }
-        #[cfg(feature = "space")]
         if super::is_space_run(text) {
             return Err(refuse(
                 "a run of an arm in space: simulate --from replays it (this reads planar runs)"

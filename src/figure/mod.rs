@@ -16,7 +16,6 @@
 mod arm;
 mod atlas;
 mod series;
-#[cfg(feature = "space")]
 mod space;
 
 use plotters::prelude::*;
@@ -31,7 +30,6 @@ use crate::scene::Scene;
 pub use arm::{arm_svg, arm_svg_with, ellipse_outline, ELLIPSE_SCALE};
 pub use atlas::atlas_svg;
 pub use series::{compare_svg, series_svg};
-#[cfg(feature = "space")]
 pub use space::space_svg;
 
 /// Colours of the figures.

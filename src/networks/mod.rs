@@ -14,7 +14,6 @@ mod builtin;
 pub mod file;
 pub mod inputs;
 mod reader;
-#[cfg(feature = "space")]
 pub mod space;
 
 use std::sync::Arc;

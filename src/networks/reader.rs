@@ -22,7 +22,7 @@ use crate::error::{Error, Result};
 #[cfg(any(
     test,
     not(any(feature = "worker", feature = "cli", feature = "eval")),
-    all(feature = "space", not(feature = "cli"))
+    not(feature = "cli")
 ))]
 // In the workers' build with the arms in space only its helpers are used
 // (by `space`): the planar files go through the derived reader there.
@@ -31,7 +31,7 @@ mod by_hand;
 // The spatial files by hand in the page's and the workers' modules (the
 // workers' with the arms in space read the Panda's networks for the atlas
 // and the benchmark), with serde's derived reader in the tool.
-#[cfg(all(feature = "space", any(test, not(feature = "cli"))))]
+#[cfg(any(test, not(feature = "cli")))]
 pub(crate) mod space;
 #[cfg(test)]
 mod tests;
@@ -56,7 +56,6 @@ impl WeightsFile {
     }
 }
 
-#[cfg(feature = "space")]
 impl crate::networks::space::SpaceWeightsFile {
     /// A file from its JSON text, checked ([`SpaceWeightsFile::validate`]).
     pub fn from_json(text: &str) -> Result<Self> {

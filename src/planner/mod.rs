@@ -24,7 +24,6 @@ mod path;
 mod record;
 pub mod self_motion;
 mod settings;
-#[cfg(feature = "space")]
 pub mod space;
 mod surrogate;
 
@@ -42,7 +41,6 @@ use crate::scene::Scene;
 pub use methods::{Group, Method, MethodInfo, Needs};
 pub use path::Track;
 pub use record::{Line, Sample, Summary, Trajectory};
-#[cfg(feature = "space")]
 pub use surrogate::SpaceSurrogate;
 pub use surrogate::Surrogate;
 

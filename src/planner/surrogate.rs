@@ -31,7 +31,6 @@ pub trait Surrogate: Send + Sync {
 /// Learned replacements for an arm in space: `Phi(theta)` (`n x 3`) and
 /// the area gradient of the criterion in space. Implemented by
 /// `crate::networks::space::SpaceNetworks`.
-#[cfg(feature = "space")]
 pub trait SpaceSurrogate: Send + Sync {
     /// Refused unless the networks were trained for `chain`'s geometry.
     fn check_chain(&self, chain: &crate::space::Chain) -> Result<()>;

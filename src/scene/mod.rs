@@ -8,9 +8,7 @@ use std::f64::consts::PI;
 mod file;
 mod params;
 mod path;
-#[cfg(feature = "space")]
 mod space;
-#[cfg(feature = "space")]
 mod space_path;
 mod weighting;
 
@@ -23,11 +21,8 @@ pub use file::{ParamMap, SceneFile};
 pub(crate) use params::validate_gain;
 pub use params::{Param, Params, Scale, MAX_GAIN_STEP};
 pub use path::{Path, DRAWN_SPACING, MAX_LAPS, MAX_POINTS, MIN_RADIUS};
-#[cfg(feature = "space")]
 pub use space::SpaceScene;
-#[cfg(feature = "space")]
 pub(crate) use space_path::circle_plane;
-#[cfg(feature = "space")]
 pub use space_path::{SpacePath, MIN_NORMAL_SINE};
 pub use weighting::JointWeighting;
 

@@ -21,7 +21,6 @@ mod revision;
 mod scenes;
 mod self_motion;
 mod settings;
-#[cfg(feature = "space")]
 pub mod space;
 mod state;
 

@@ -6,7 +6,6 @@
 
 mod preset;
 pub mod sampling;
-#[cfg(feature = "space")]
 pub mod space;
 pub mod tasks;
 

@@ -6,13 +6,11 @@
 //! the core's message; numbers from JavaScript are checked by the core
 //! (NaN included), so nothing the user does can panic the module.
 //!
-//! Two modules are built from this layer (features `page` and `worker`):
-//! the page's, which draws, and the Web Workers', which computes (the atlas,
-//! the benchmark), so the page loads only what it draws with. With the arms
-//! in space (feature `space`) each has a build of its own: the page's is
-//! `canvas,space` ([`style`], [`surface`] and [`plots`], which both pages
-//! draw with, and `SpaceDemo`, without the planar `Demo`), the workers'
-//! `worker,space`.
+//! Two modules are built from this layer (features `page` and `worker`),
+//! each holding every arm, planar and in space: the page's, which draws
+//! (`Demo` for a planar arm, `SpaceDemo` for an arm in space), and the Web
+//! Workers', which computes (the atlas, the benchmark, the trainer, the
+//! figures), so the page loads only what it draws with.
 //!
 //! One file per concern: [`demo`] (the `Demo` binding), [`scene`] (its
 //! bindings for the arm, several obstacles, trained networks and runs off
@@ -34,29 +32,29 @@ mod keys;
 mod lab;
 #[cfg(feature = "page")]
 mod layer;
-#[cfg(feature = "canvas")]
+#[cfg(feature = "page")]
 mod plots;
 #[cfg(feature = "page")]
 mod scene;
-#[cfg(all(feature = "worker", feature = "space"))]
+#[cfg(feature = "worker")]
 mod space_atlas;
-#[cfg(all(feature = "worker", feature = "space"))]
+#[cfg(feature = "worker")]
 mod space_bench;
-#[cfg(all(feature = "canvas", feature = "space"))]
+#[cfg(feature = "page")]
 mod space_demo;
-#[cfg(all(feature = "canvas", feature = "space"))]
+#[cfg(feature = "page")]
 mod space_stage;
-#[cfg(all(feature = "worker", feature = "space"))]
+#[cfg(feature = "worker")]
 mod space_takeaway;
 #[cfg(feature = "page")]
 mod stage;
-#[cfg(feature = "canvas")]
+#[cfg(feature = "page")]
 mod style;
-#[cfg(feature = "canvas")]
+#[cfg(feature = "page")]
 mod surface;
 #[cfg(feature = "worker")]
 mod takeaway;
-#[cfg(any(feature = "page", all(feature = "canvas", feature = "space")))]
+#[cfg(feature = "page")]
 mod tracked;
 #[cfg(feature = "worker")]
 mod worker;
@@ -71,13 +69,13 @@ use crate::networks::{self, NetworkSet};
 
 #[cfg(feature = "page")]
 pub use demo::Demo;
-#[cfg(all(feature = "worker", feature = "space"))]
+#[cfg(feature = "worker")]
 pub use space_atlas::SpaceAtlasJob;
-#[cfg(all(feature = "worker", feature = "space"))]
+#[cfg(feature = "worker")]
 pub use space_bench::*;
-#[cfg(all(feature = "canvas", feature = "space"))]
+#[cfg(feature = "page")]
 pub use space_demo::SpaceDemo;
-#[cfg(all(feature = "worker", feature = "space"))]
+#[cfg(feature = "worker")]
 pub use space_takeaway::space_figure;
 #[cfg(feature = "worker")]
 pub use takeaway::*;
@@ -161,7 +159,7 @@ pub fn network_set_labels() -> Vec<String> {
 
 /// The networks' arithmetics, `[[name, label], ...]`, the default first:
 /// what `setPrecision` takes and the state's `precision` says.
-#[cfg(feature = "canvas")]
+#[cfg(feature = "page")]
 #[wasm_bindgen]
 pub fn precisions() -> JsResult<JsValue> {
     let all: Vec<[&str; 2]> = crate::nn::Precision::ALL
@@ -419,7 +417,7 @@ pub fn parse_obstacles(text: &str) -> Result<Vec<f64>, JsError> {
         .collect())
 }
 
-#[cfg(feature = "canvas")]
+#[cfg(feature = "page")]
 /// The colours the drawing uses, `{ name: css colour }`: the page sets them
 /// as CSS custom properties (`--arm`, ...), so the stylesheet has no copy.
 #[wasm_bindgen]
@@ -429,7 +427,7 @@ pub fn palette() -> Result<JsValue, JsError> {
 
 /// The legend of the drawing: `[{ key, label, swatch, kind }]`, each swatch
 /// the colour (with the alpha) that the renderer draws that element with.
-#[cfg(feature = "canvas")]
+#[cfg(feature = "page")]
 #[wasm_bindgen]
 pub fn legend() -> Result<JsValue, JsError> {
     to_js(&style::legend())
@@ -439,7 +437,7 @@ pub fn legend() -> Result<JsValue, JsError> {
 /// `[{ name, label, colour, swatch }]`: `colour` is `#rrggbb` (the command
 /// line's SVG draws it), `swatch` the translucent colour the layer is drawn
 /// with.
-#[cfg(feature = "canvas")]
+#[cfg(feature = "page")]
 #[wasm_bindgen(js_name = atlasClasses)]
 pub fn atlas_classes() -> Result<JsValue, JsError> {
     #[derive(Serialize)]
@@ -478,11 +476,11 @@ fn to_js<T: Serialize>(value: &T) -> Result<JsValue, JsError> {
 }
 
 /// What a binding returns: a value, or an exception with the core's message.
-#[cfg(feature = "canvas")]
+#[cfg(feature = "page")]
 type JsResult<T = ()> = Result<T, JsError>;
 
 /// A number from JavaScript, refused unless finite (NaN included).
-#[cfg(feature = "canvas")]
+#[cfg(feature = "page")]
 fn finite(what: &str, value: f64) -> JsResult<f64> {
     crate::error::finite(what, value).map_err(js_err)
 }

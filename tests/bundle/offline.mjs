@@ -2,7 +2,8 @@
 // file:// in headless Chromium, with no server: it reaches data-ready on
 // the SIMD build fetching nothing but its own data: URLs, Task 1 runs in
 // every method of the menu, the whole-reach networks run, the benchmark,
-// an atlas and a quick training complete in their workers, the built-in
+// an atlas and a quick training complete in their workers, the Panda runs
+// Case 3 with its networks inline, the built-in
 // weights download, and where the browser had no wasm SIMD it says why it
 // cannot start. Run by `make test-offline`.
 
@@ -67,6 +68,19 @@ test('the built-in weights download; a quick training completes in its workers',
   const report = await page.evaluate(() => window.demo.train({ net: 'both', preset: 'quick' }).then((r) => r, (e) => ({ error: e.message })));
   assert.equal(report.error, undefined, `the training: ${report.error}`);
   assert.match(await page.textContent('#train-report'), /Test errors/);
+  assert.deepEqual(page.problems, []);
+  await page.close();
+});
+
+test('the Panda opens from the same file; its learned method runs with the networks carried inline', async () => {
+  const page = await open(`${FILE}?arm=panda&method=case3&autoplay=0`);
+  assert.equal((await page.evaluate(() => window.demo.state())).kind, 'space');
+  await page.evaluate(() => window.demo.networks());
+  await page.waitForFunction(() => window.demo.state().method === 'case3', null, { timeout: 60000 });
+  const s = await page.evaluate(() => window.demo.runUntil(1e9));
+  assert.equal(s.failure, null, 'Case 3 runs the Panda task to its end');
+  assert.ok(s.ended);
+  assert.deepEqual(page.requests.filter((u) => u.split('?')[0] !== FILE), [], 'no request but the file itself');
   assert.deepEqual(page.problems, []);
   await page.close();
 });

@@ -51,30 +51,32 @@ test('space: the Panda and the iiwa open from the address on the 3-D stage', asy
   }
 });
 
-test("space: an arm in space's key loads the space build (no planar demo, no planar networks); a planar preset's key loads the plane's", async () => {
+test("space: one module holds every arm; the page in space fetches no planar networks, the planar page no script of the page in space", async () => {
   const loaded = (page) =>
     page.evaluate(() => performance.getEntriesByType('resource').map((e) => new URL(e.name).pathname.split('/').pop()).filter((n) => /\.(wasm|json)$/.test(n)));
   const space = await open('?arm=panda&method=numerical');
   const files = await loaded(space);
-  assert.ok(files.some((f) => /^redundant_ik_space(_simd)?_bg\.wasm$/.test(f)), files.join(' '));
-  assert.ok(!files.some((f) => /^redundant_ik(_simd)?_bg\.wasm$/.test(f)), `the planar module is not fetched: ${files.join(' ')}`);
+  assert.ok(files.some((f) => /^redundant_ik(_simd)?_bg\.wasm$/.test(f)), files.join(' '));
+  assert.ok(!files.some((f) => f.includes('space')), `no second module: ${files.join(' ')}`);
   // The planar networks' weights files are not fetched on the page in space.
   const planarWeights = await space.evaluate(() => import('./module.js').then((m) => m.builtinWeightsFiles('paper')));
   assert.ok(!files.some((f) => planarWeights.includes(f)), files.join(' '));
-  assert.equal(await space.evaluate(() => import('./module.js').then((m) => m.moduleHasSpace())), true);
-  // The space build holds no planar demo: its constructor has no export to call.
-  const demo = await space.evaluate(() => import('./module.js').then((m) => { try { new m.Demo(document.createElement('canvas')); return 'constructed'; } catch (e) { return String(e); } }));
-  assert.notEqual(demo, 'constructed');
+  // The same module holds the planar demo.
+  const demo = await space.evaluate(() => import('./module.js').then((m) => { try { new m.Demo(document.createElement('canvas'), undefined, 1).free(); return 'constructed'; } catch (e) { return String(e); } }));
+  assert.equal(demo, 'constructed');
   clean(space);
   await space.close();
   const plane = await open('?arm=iiwa-planar&method=numerical');
   const planeFiles = await loaded(plane);
-  assert.ok(planeFiles.some((f) => /^redundant_ik(_simd)?_bg\.wasm$/.test(f)), planeFiles.join(' '));
-  assert.ok(!planeFiles.some((f) => f.includes('space')), planeFiles.join(' '));
+  assert.deepEqual(
+    planeFiles.filter((f) => f.endsWith('.wasm')).sort(),
+    files.filter((f) => f.endsWith('.wasm')).sort(),
+    'both pages load the same module',
+  );
   // Nor the scripts of the page in space (page.js imports them only for an arm in space).
   const scripts = await plane.evaluate(() => performance.getEntriesByType('resource').map((e) => new URL(e.name).pathname.split('/').pop()).filter((n) => n.endsWith('.js')));
   assert.ok(!scripts.some((f) => /^space-(demo|input|panels|atlas)\.js$/.test(f)), `no script of the page in space: ${scripts.join(' ')}`);
-  assert.equal(await plane.evaluate(() => import('./module.js').then((m) => m.moduleHasSpace())), false);
+  assert.notEqual((await state(plane)).kind, 'space', 'the planar page');
   const preset = await plane.evaluate(() => import('./module.js').then((m) => m.limits().arm_presets.find((p) => p.key === 'iiwa-planar')));
   assert.deepEqual((await state(plane)).arm.joint_limits, preset.joint_limits);
   clean(plane);

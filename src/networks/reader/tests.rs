@@ -177,10 +177,7 @@ fn a_deep_tree_is_refused() {
 /// Every shipped spatial weights file reads to the same file with the
 /// page's reader as with the derived one (the optimiser's options, which
 /// the page does not read, at their defaults).
-#[cfg(all(
-    feature = "space",
-    any(feature = "worker", feature = "cli", feature = "eval")
-))]
+#[cfg(any(feature = "worker", feature = "cli", feature = "eval"))]
 #[test]
 fn the_page_reads_the_spatial_weights_files_as_the_derived_reader_does() {
     use crate::networks::space::SpaceWeightsFile;

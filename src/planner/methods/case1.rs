@@ -24,6 +24,5 @@ static ENTRY: Entry = Entry {
         params: &[&LAMBDA, &DELTA, &SIGN_SMOOTHING, &REFINE],
     },
     rule: |n| paper::rule(n, CASE1, V::Exact, Phi::Network),
-    #[cfg(feature = "space")]
     space: Some(|n| super::space::paper::rule(n, CASE1, V::Exact, Phi::Network)),
 };

@@ -24,6 +24,5 @@ static ENTRY: Entry = Entry {
         params: &[&LAMBDA, &DELTA],
     },
     rule: |n| paper::rule(n, CASE2, V::Network, Phi::Exact),
-    #[cfg(feature = "space")]
     space: Some(|n| super::space::paper::rule(n, CASE2, V::Network, Phi::Exact)),
 };

@@ -24,6 +24,5 @@ static ENTRY: Entry = Entry {
         params: &[&LAMBDA, &DELTA, &REFINE],
     },
     rule: |n| paper::rule(n, CASE3, V::Network, Phi::Network),
-    #[cfg(feature = "space")]
     space: Some(|n| super::space::paper::rule(n, CASE3, V::Network, Phi::Network)),
 };

@@ -64,7 +64,6 @@ static ENTRY: Entry = Entry {
             weights: JointWeights::new(n),
         })
     },
-    #[cfg(feature = "space")]
     space: Some(super::space::distance::rule),
 };
 

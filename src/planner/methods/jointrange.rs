@@ -57,7 +57,6 @@ static ENTRY: Entry = Entry {
         params: &[&JOINT_RANGE_GAIN, &DELTA],
     },
     rule: |n| projection::rule(n, gradient),
-    #[cfg(feature = "space")]
     space: Some(super::space::jointrange::rule),
 };
 

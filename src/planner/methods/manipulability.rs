@@ -48,7 +48,6 @@ static ENTRY: Entry = Entry {
         params: &[&MANIPULABILITY_GAIN, &DELTA],
     },
     rule: |n| projection::rule(n, gradient),
-    #[cfg(feature = "space")]
     space: Some(super::space::manipulability::rule),
 };
 

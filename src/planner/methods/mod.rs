@@ -19,7 +19,6 @@
 mod influence;
 mod paper;
 mod projection;
-#[cfg(feature = "space")]
 pub mod space;
 mod weighting;
 
@@ -71,7 +70,6 @@ register! {
 pub use qp::constraints;
 
 /// The names of the methods that run an arm in space, for messages.
-#[cfg(feature = "space")]
 pub fn space_names() -> String {
     crate::error::choices(
         &ALL.iter()
@@ -255,7 +253,6 @@ pub struct Entry {
     pub rule: fn(n: usize) -> Box<dyn Rule>,
     /// Builds the rule for an `n`-joint chain in space, where the method
     /// has one.
-    #[cfg(feature = "space")]
     pub space: Option<fn(n: usize) -> Box<dyn space::SpaceRule>>,
 }
 
@@ -348,7 +345,6 @@ impl Method {
     }
 
     /// Its rule for an `n`-joint chain in space, or why it has none.
-    #[cfg(feature = "space")]
     pub fn space_rule(self, n: usize) -> Result<Box<dyn space::SpaceRule>> {
         self.0.space.map(|b| b(n)).ok_or_else(|| Error::NotInSpace {
             method: self.name(),
@@ -357,7 +353,6 @@ impl Method {
     }
 
     /// Whether it runs an arm in space.
-    #[cfg(feature = "space")]
     pub fn in_space(self) -> bool {
         self.0.space.is_some()
     }

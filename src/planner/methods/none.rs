@@ -21,6 +21,5 @@ static ENTRY: Entry = Entry {
         params: &[&DELTA],
     },
     rule: |n| paper::rule(n, NO_AVOIDANCE, V::Zero, Phi::Exact),
-    #[cfg(feature = "space")]
     space: Some(|n| super::space::paper::rule(n, NO_AVOIDANCE, V::Zero, Phi::Exact)),
 };

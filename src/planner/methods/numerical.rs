@@ -21,6 +21,5 @@ static ENTRY: Entry = Entry {
         params: &[&LAMBDA, &DELTA, &SIGN_SMOOTHING],
     },
     rule: |n| paper::rule(n, NUMERICAL, V::Exact, Phi::Exact),
-    #[cfg(feature = "space")]
     space: Some(|n| super::space::paper::rule(n, NUMERICAL, V::Exact, Phi::Exact)),
 };

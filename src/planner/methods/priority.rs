@@ -73,7 +73,6 @@ static ENTRY: Entry = Entry {
             jo: vec![0.0; n],
         })
     },
-    #[cfg(feature = "space")]
     space: Some(super::space::priority::rule),
 };
 

@@ -97,7 +97,6 @@ static ENTRY: Entry = Entry {
         ],
     },
     rule: |n| Box::new(Qp::new(n)),
-    #[cfg(feature = "space")]
     space: Some(super::space::qp::rule),
 };
 

@@ -35,7 +35,6 @@ pub static DAMPER: Entry = Entry {
         params: PARAMS,
     },
     build: |n| Box::new(Damper::new(n)),
-    #[cfg(feature = "space")]
     space: |n| Box::new(space::SpaceDamper::new(n)),
 };
 
@@ -129,7 +128,6 @@ impl Constraint for Damper {
 }
 
 /// The dampers for a chain in space.
-#[cfg(feature = "space")]
 mod space {
     use super::super::{ConstraintInfo, Rows, SpaceConstraint};
     use super::{Gains, DAMPER};

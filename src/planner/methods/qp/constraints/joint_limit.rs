@@ -34,7 +34,6 @@ pub static JOINT_LIMIT: Entry = Entry {
         params: PARAMS,
     },
     build: |_| Box::new(JointLimit),
-    #[cfg(feature = "space")]
     space: |_| Box::new(JointLimit),
 };
 
@@ -139,7 +138,6 @@ impl Constraint for JointLimit {
     }
 }
 
-#[cfg(feature = "space")]
 impl super::SpaceConstraint for JointLimit {
     fn rows(
         &mut self,

@@ -19,9 +19,7 @@ use crate::error::Result;
 use crate::kinematics::Pose;
 use crate::planner::methods::Context;
 use crate::scene::Param;
-#[cfg(feature = "space")]
 use crate::planner::methods::space::SpaceContext;
-#[cfg(feature = "space")]
 use crate::space::SpacePose;
 
 /// One line per constraint, in the order of the program's rows: declares
@@ -65,7 +63,6 @@ pub struct Entry {
     /// Builds the constraint for an `n`-joint arm.
     pub build: fn(n: usize) -> Box<dyn Constraint>,
     /// Builds the constraint for an `n`-joint chain in space.
-    #[cfg(feature = "space")]
     pub space: fn(n: usize) -> Box<dyn SpaceConstraint>,
 }
 
@@ -95,7 +92,6 @@ impl Clone for Box<dyn Constraint> {
 /// A constraint for a chain in space: its rows `G theta_dot <= h` at a
 /// [`SpacePose`], appended to `rows` with no allocation, as
 /// [`Constraint::rows`] does for a planar pose.
-#[cfg(feature = "space")]
 pub trait SpaceConstraint: Send + Sync {
     /// Appends this constraint's rows at `pose` (the scene's spheres,
     /// floor and parameters from `cx`) to `rows`.
@@ -108,7 +104,6 @@ pub trait SpaceConstraint: Send + Sync {
     fn info(&self) -> &'static ConstraintInfo;
 }
 
-#[cfg(feature = "space")]
 impl Clone for Box<dyn SpaceConstraint> {
     fn clone(&self) -> Self {
         self.boxed_clone()

@@ -28,7 +28,6 @@ pub static RATE_BOUNDS: Entry = Entry {
         params: PARAMS,
     },
     build: |_| Box::new(RateLimit),
-    #[cfg(feature = "space")]
     space: |_| Box::new(RateLimit),
 };
 
@@ -95,7 +94,6 @@ impl Constraint for RateLimit {
     }
 }
 
-#[cfg(feature = "space")]
 impl super::SpaceConstraint for RateLimit {
     fn rows(
         &mut self,
