@@ -182,9 +182,13 @@ fn output(
     nets: Option<Arc<SpaceNetworks>>,
 ) -> Result<(), String> {
     let used = nets.clone();
-    let traj = SpacePlanner::with_networks(scene.clone(), method, nets)
-        .and_then(SpacePlanner::run)
-        .map_err(|e| e.to_string())?;
+    let planner =
+        SpacePlanner::with_networks(scene.clone(), method, nets).map_err(|e| e.to_string())?;
+    let reach = Reach {
+        reachable: planner.reachable(),
+        auto_damping: planner.auto_damping(),
+    };
+    let traj = planner.run().map_err(|e| e.to_string())?;
     if args.json {
         let mut file = SpaceRunFile::new(p, scene, traj);
         file.networks = used.as_deref().and_then(super::space_networks::shipped_set);
@@ -195,7 +199,14 @@ fn output(
     if args.csv {
         return emit(&csv(&traj));
     }
-    emit(&summary(p, &scene, &traj))
+    emit(&summary(p, &scene, &traj, reach))
+}
+
+/// What the planner found of the path's reach.
+#[derive(Clone, Copy)]
+struct Reach {
+    reachable: bool,
+    auto_damping: bool,
 }
 
 /// One line per sample: t, the angles, the hand, the reference, the
@@ -224,7 +235,7 @@ fn csv(traj: &SpaceTrajectory) -> String {
     out
 }
 
-fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &SpaceTrajectory) -> String {
+fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &SpaceTrajectory, reach: Reach) -> String {
     let s = &traj.summary;
     let mut out = String::new();
     let list = |v: &[f64]| {
@@ -293,6 +304,18 @@ fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &SpaceTrajectory) -> Strin
         "largest tracking error                {:.3e} m",
         s.max_error
     );
+    if !reach.reachable {
+        let _ = writeln!(
+            out,
+            "target is out of the arm's reach (farther than {:.3} m from the shoulder): not reached{}",
+            scene.chain.reach(),
+            if reach.auto_damping {
+                " (damping schedule switched on automatically)"
+            } else {
+                ""
+            }
+        );
+    }
     if s.limit_steps > 0 {
         let _ = writeln!(out, "a joint past its limit in {} steps", s.limit_steps);
     }

@@ -112,6 +112,8 @@ pub struct SpacePlanner {
     theta_stage: Vec<f64>,
     next: Vec<f64>,
     sample: SpaceSample,
+    reachable: bool,
+    auto_damping: bool,
 }
 
 impl SpacePlanner {
@@ -125,7 +127,7 @@ impl SpacePlanner {
     /// A planner of `method` on `scene` with `networks` for the learned
     /// routes (Cases 1-3), refused when they were trained for another arm.
     pub fn with_networks(
-        scene: SpaceScene,
+        mut scene: SpaceScene,
         method: Method,
         networks: Option<Arc<impl SpaceSurrogate + 'static>>,
     ) -> Result<Self> {
@@ -139,6 +141,13 @@ impl SpacePlanner {
         let pose = SpacePose::new(&scene.chain, &scene.theta0)?;
         let start = pose.hand();
         let track = SpaceTrack::new(&scene.path, start, scene.target, scene.tf)?;
+        // A path out of reach: damping switched on unless the scene has its
+        // own, as for a planar arm, so the stretched arm's rates stay bounded.
+        let reachable = track.reachable(pose.joint_origin(0), scene.chain.reach());
+        let auto_damping = scene.damping.is_none() && !reachable;
+        if auto_damping {
+            scene.damping = Some(crate::ik::DampingSchedule::default());
+        }
         let theta = scene.theta0.clone();
         let mut planner = Self {
             networks,
@@ -164,6 +173,8 @@ impl SpacePlanner {
                 phi_handover: false,
             },
             scene,
+            reachable,
+            auto_damping,
         };
         planner.refresh_sample(Note::default());
         Ok(planner)
@@ -177,6 +188,18 @@ impl SpacePlanner {
     /// The method.
     pub fn method(&self) -> Method {
         self.method
+    }
+
+    /// Whether no point of the path is certainly out of the arm's reach
+    /// ([`SpaceTrack::reachable`]).
+    pub fn reachable(&self) -> bool {
+        self.reachable
+    }
+
+    /// Whether the planner switched the damping schedule on because the
+    /// path leaves the arm's reach and the scene had none.
+    pub fn auto_damping(&self) -> bool {
+        self.auto_damping
     }
 
     /// The sample of the current state.

@@ -19,6 +19,21 @@ fn simulate_runs_each_arm_in_space_and_says_what_happened() {
 }
 
 #[test]
+fn simulate_says_a_target_in_space_is_out_of_reach_and_damps_the_run() {
+    for arm in ["panda", "iiwa14"] {
+        let text = ok(&["simulate", "--arm", arm, "--target", "2,0,0.5"]);
+        assert!(
+            text.contains("target is out of the arm's reach")
+                && text.contains("damping schedule switched on automatically"),
+            "{text}"
+        );
+        assert!(!text.contains("past its limit"), "{text}");
+        let text = ok(&["simulate", "--arm", arm]);
+        assert!(!text.contains("out of the arm's reach"), "{text}");
+    }
+}
+
+#[test]
 fn simulate_json_and_csv_carry_the_run_in_three_dimensions() {
     let json: Value = serde_json::from_str(&ok(&[
         "simulate",

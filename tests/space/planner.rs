@@ -159,3 +159,52 @@ fn what_cannot_run_in_space_is_refused_with_a_reason() {
     assert!(SpaceScene::by_key("ur5").is_err());
     assert!(SpacePreset::by_key("panda").is_some());
 }
+
+/// A target past the chain's reach switches the damping schedule on, as a
+/// planar arm's does: every method then ends with its joints inside their
+/// limits and no angle wound round (before, the Panda's joint 6 reached
+/// 23.7 rad for the target (2, 0, 0.5) with the numerical route). A scene
+/// with its own schedule keeps it, and a reachable target leaves it off.
+#[test]
+fn a_target_out_of_reach_is_detected_and_damped() {
+    for p in PRESETS {
+        let mut scene = SpaceScene::preset(&p);
+        scene.target = [2.0, 0.0, 0.5];
+        for m in space_methods() {
+            let planner = SpacePlanner::new(scene.clone(), m).unwrap();
+            assert!(!planner.reachable(), "{} {m}", p.key);
+            assert!(planner.auto_damping(), "{} {m}", p.key);
+            assert!(planner.scene().damping.is_some());
+            let run = planner.run().unwrap();
+            assert_eq!(
+                run.summary.limit_steps, 0,
+                "{} {m}: {:?}",
+                p.key, run.summary
+            );
+            let last = &run.samples.last().unwrap().theta;
+            assert!(
+                last.iter().all(|t| t.abs() < std::f64::consts::TAU),
+                "{} {m}: {last:?}",
+                p.key
+            );
+            assert!(
+                run.summary.final_error > 0.5,
+                "{} {m}: the target is not reached",
+                p.key
+            );
+        }
+        let own = SpaceScene {
+            damping: Some(redundant_ik::ik::DampingSchedule {
+                threshold: 0.2,
+                delta_max: 0.02,
+            }),
+            ..scene.clone()
+        };
+        let planner = SpacePlanner::new(own.clone(), Method::NUMERICAL).unwrap();
+        assert!(!planner.reachable() && !planner.auto_damping());
+        assert_eq!(planner.scene().damping, own.damping);
+        let home = SpacePlanner::new(SpaceScene::preset(&p), Method::NUMERICAL).unwrap();
+        assert!(home.reachable() && !home.auto_damping());
+        assert!(home.scene().damping.is_none());
+    }
+}

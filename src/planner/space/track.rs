@@ -70,6 +70,23 @@ impl SpaceTrack {
         self.end
     }
 
+    /// Whether no point of the path is certainly out of reach of a hand
+    /// at most `reach` from `shoulder` ([`Chain::reach`](crate::space::Chain::reach),
+    /// an upper bound: a point inside it may still be out of reach): the
+    /// line's end, a circle at 256 points, every corner of a polyline.
+    /// Allocation-free.
+    pub fn reachable(&self, shoulder: Vec3, reach: f64) -> bool {
+        let can = |p: Vec3| {
+            let d = [0, 1, 2].map(|k| p[k] - shoulder[k]);
+            (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt() <= reach
+        };
+        match &self.shape {
+            Shape::Line => can(self.end),
+            Shape::Circle(c) => (0..256).all(|k| can(c.at(f64::from(k) / 256.0).0)),
+            Shape::Points(p) => p.iter().all(|&v| can(v)),
+        }
+    }
+
     /// Reference point `X_ref(t)`: the start before `t = 0`, the end
     /// exactly from the path's end on (whole laps end where they began).
     pub fn reference(&self, t: f64) -> Vec3 {
