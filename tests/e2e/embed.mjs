@@ -16,7 +16,7 @@ import { join } from 'node:path';
 import { mkdtempSync, writeFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import assert from 'node:assert/strict';
-import { browser, test, open, clean, state, shots, BASE, here } from './harness.mjs';
+import { browser, test, open, clean, state, shots, BASE, here, textMatching } from './harness.mjs';
 import { serve } from './serve.mjs';
 
 /** What a scene is (the settings an address or attributes give), not where the run is. */
@@ -206,7 +206,7 @@ test('embed: the Embed button shows an iframe and an element of the scene, each 
   assert.match(element, /If this text stays/);
   await page.screenshot({ path: join(shots, 'embed-dialog.png') });
   await page.click('#embed-iframe-copy');
-  assert.match(await page.textContent('#embed-status'), /iframe/);
+  await textMatching(page, '#embed-status', /iframe/);
   await page.keyboard.press('Escape');
   assert.equal(await dialog.isVisible(), false, 'Escape closes');
   assert.equal(await page.evaluate(() => document.activeElement.id), 'embed-open', 'the focus goes back to the button');

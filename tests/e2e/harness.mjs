@@ -91,3 +91,19 @@ export async function selectMethod(page, method) {
 /** The page's methods (the module's methods()). */
 export const methodsOf = (page) => page.evaluate(() => window.demo.methods());
 export const usesNetworks = (m) => m.networks.phi || m.networks.v;
+
+/**
+ * Waits until the text of `selector` matches `pattern` (up to 15 s: a
+ * status said after a promise or on the next frame comes late on a loaded
+ * machine), then returns it; fails with the last text seen.
+ */
+export async function textMatching(page, selector, pattern, timeout = 15000) {
+  try {
+    await page.waitForFunction(([s, source, flags]) => new RegExp(source, flags).test(document.querySelector(s)?.textContent ?? ''), [selector, pattern.source, pattern.flags], { timeout });
+  } catch (_) {
+    // The assertion below says what was there instead.
+  }
+  const text = await page.textContent(selector);
+  if (!pattern.test(text)) throw new Error(`${selector}: ${JSON.stringify(text)} does not match ${pattern}`);
+  return text;
+}

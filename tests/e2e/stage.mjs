@@ -3,7 +3,7 @@
 
 import { join } from 'node:path';
 import assert from 'node:assert/strict';
-import { shots, test, open, clean, state, near, pause, mouseDrag, touchDrag, selectMethod } from './harness.mjs';
+import { shots, test, open, clean, state, near, pause, mouseDrag, touchDrag, selectMethod, textMatching } from './harness.mjs';
 
 test('page loads, draws and exposes window.demo', async () => {
   const page = await open();
@@ -84,7 +84,7 @@ test('a target out of reach: damping switches on, the arm stretches, nothing bre
   assert.equal(s.auto_damping, true, 'the planner switched damping on');
   assert.equal(s.damping, true);
   assert.equal(await page.isChecked('#damping'), true, 'the switch shows it');
-  assert.match(await page.textContent('#message'), /out of reach/);
+  await textMatching(page, '#message', /out of reach/);
   assert.ok(s.theta.every(Number.isFinite), `finite joint angles ${s.theta}`);
   const reach = Math.hypot(s.ee[0], s.ee[1] - 0.5);
   assert.ok(reach > 2.0, `the arm stretches towards the target (${reach.toFixed(3)} m from the post top)`);
@@ -98,7 +98,7 @@ test('a target out of reach: damping switches on, the arm stretches, nothing bre
   const t = await state(on);
   assert.equal(t.out_of_reach, true);
   assert.equal(t.auto_damping, false, 'nothing to switch on');
-  assert.match(await on.textContent('#message'), /out of reach: the hand stops as close as it can/);
+  await textMatching(on, '#message', /out of reach: the hand stops as close as it can/);
   clean(on);
   await on.close();
 });
