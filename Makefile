@@ -37,7 +37,7 @@ setup:
 ## hands them to its workers: no module embeds them (docs/web.md, "Bytes on
 ## the wire").
 PAGE = -- --no-default-features --features page,small-alloc
-WORKER = --out-name redundant_ik_worker -- --no-default-features --features worker
+WORKER = --out-name redundant_ik_worker -- --no-default-features --features worker,small-alloc
 web: setup
 	$(WASM_ENV) $(PAGE_ENV) $(WASM_BUILD) --out-dir www/pkg $(PAGE)
 	$(WASM_SIMD_ENV) $(PAGE_SIMD_ENV) $(WASM_BUILD) --out-dir target/pkg-simd $(PAGE)
@@ -79,9 +79,11 @@ dist: web
 test-dist: dist
 	bash scripts/test-dist.sh
 
-## Build, then serve www/ on http://127.0.0.1:$(PORT)/.
+## Build, then serve www/ on http://127.0.0.1:$(PORT)/, with CORS, so the
+## Embed button's element snippet also runs on a course page served from
+## another port or host (docs/embedding.md, "What a host must send").
 demo: web
-	python3 scripts/serve.py --dir www --port $(PORT)
+	python3 scripts/serve.py --dir www --port $(PORT) --cors
 
 ## The page in one HTML file that opens from file:// with no server
 ## (dist/redundant-ik.html, under 3 MB): index.html with its styles and its
@@ -123,7 +125,7 @@ lint: setup
 	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --tests -- -D warnings
 	$(WASM_SIMD_ENV) cargo clippy --target wasm32-unknown-unknown --lib --tests -- -D warnings
 	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features page,small-alloc -- -D warnings
-	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features worker -- -D warnings
+	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features worker,small-alloc -- -D warnings
 
 test-native:
 	cargo test

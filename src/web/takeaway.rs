@@ -9,7 +9,7 @@ use serde::Serialize;
 use wasm_bindgen::prelude::*;
 
 use super::js_err;
-use super::worker::{read_run, to_js};
+use super::worker::{from_js, read_run, to_js};
 use crate::atlas::Atlas;
 use crate::export::{self, RunFile};
 use crate::figure;
@@ -74,10 +74,10 @@ pub fn atlas_files(
     scene: JsValue,
     methods: Vec<String>,
 ) -> Result<JsValue, JsError> {
-    let atlas: Atlas = serde_wasm_bindgen::from_value(atlas)
-        .map_err(|e| JsError::new(&format!("not an atlas: {e}")))?;
-    let scene: Scene = serde_wasm_bindgen::from_value(scene)
-        .map_err(|e| JsError::new(&format!("not a scene: {e}")))?;
+    // An atlas's cells may hold NaN (a distance where nothing ran): read
+    // as absent, as the atlas's JSON file writes it.
+    let atlas: Atlas = from_js(&atlas, "not an atlas", false)?;
+    let scene: Scene = from_js(&scene, "not a scene", true)?;
     let json = serde_json::to_string(&atlas).map_err(|e| JsError::new(&e.to_string()))?;
     let csv = export::atlas_csv(&atlas);
     let shown = if methods.is_empty() {

@@ -15,8 +15,8 @@ use crate::networks;
 use crate::planner::{methods, Method};
 use crate::run::{NetworkChoice, Run};
 
-/// Refuses a field of `value` not in `names`: serde-wasm-bindgen reads only
-/// the fields it knows, so a misspelt one would quietly become a default.
+/// Refuses a field of `value` not in `names`: the derived readers read only
+/// the fields they know, so a misspelt one would quietly become a default.
 fn known_fields(value: &JsValue, names: &[&str], what: &str) -> Result<(), JsError> {
     for key in js_sys::Object::keys(&js_sys::Object::from(value.clone())).iter() {
         let key = key.as_string().unwrap_or_default();
@@ -30,10 +30,51 @@ fn known_fields(value: &JsValue, names: &[&str], what: &str) -> Result<(), JsErr
     Ok(())
 }
 
+/// Whether `value` holds a number that is not finite (NaN, an infinity),
+/// at any depth up to 32 (JSON would make it `null`, which an optional
+/// field reads as absent).
+fn holds_non_finite(value: &JsValue, depth: u32) -> bool {
+    if let Some(x) = value.as_f64() {
+        return !x.is_finite();
+    }
+    if depth == 0 || !value.is_object() {
+        return false;
+    }
+    if js_sys::Array::is_array(value) {
+        return js_sys::Array::from(value)
+            .iter()
+            .any(|v| holds_non_finite(&v, depth - 1));
+    }
+    js_sys::Object::values(&js_sys::Object::from(value.clone()))
+        .iter()
+        .any(|v| holds_non_finite(&v, depth - 1))
+}
+
+/// A value the page passes, read through its JSON text by serde_json (the
+/// reader the module has anyway: serde-wasm-bindgen's own deserializer
+/// cost the workers' module 37 KB of code), `what` naming it in errors.
+/// With `finite`, a number that is not finite is refused, as
+/// serde-wasm-bindgen's reader refused it where a field was checked.
+pub(super) fn from_js<T: serde::de::DeserializeOwned>(
+    value: &JsValue,
+    what: &str,
+    finite: bool,
+) -> Result<T, JsError> {
+    if finite && holds_non_finite(value, 32) {
+        return Err(JsError::new(&format!(
+            "{what}: a number is not finite (NaN or an infinity)"
+        )));
+    }
+    let text: String = js_sys::JSON::stringify(value)
+        .ok()
+        .and_then(|t| t.as_string())
+        .ok_or_else(|| JsError::new(&format!("{what}: not a JSON value")))?;
+    serde_json::from_str(&text).map_err(|e| JsError::new(&format!("{what}: {e}")))
+}
+
 /// A run as the page passes it (`Demo.run()`), checked.
 pub(super) fn read_run(run: JsValue) -> Result<Run, JsError> {
-    let run: Run = serde_wasm_bindgen::from_value(run)
-        .map_err(|e| JsError::new(&format!("not a run: {e}")))?;
+    let run: Run = from_js(&run, "not a run", true)?;
     run.validate().map_err(js_err)?;
     Ok(run)
 }
@@ -98,8 +139,7 @@ impl AtlasJob {
             }
         } else {
             known_fields(&options, &OPTION_NAMES, "atlas options")?;
-            serde_wasm_bindgen::from_value(options)
-                .map_err(|e| JsError::new(&format!("atlas options: {e}")))?
+            from_js(&options, "atlas options", true)?
         };
         let n = match options.n {
             None => DEFAULT_GRID,
@@ -217,8 +257,7 @@ fn training_request(request: JsValue) -> Result<crate::training_job::Request, Js
         return Err(JsError::new("training request: expected an object"));
     }
     known_fields(&request, &TRAIN_FIELDS, "training request")?;
-    serde_wasm_bindgen::from_value(request)
-        .map_err(|e| JsError::new(&format!("training request: {e}")))
+    from_js(&request, "training request", true)
 }
 
 /// Forwards each epoch's progress to `on_epoch`; the job never stops early.
