@@ -10,17 +10,15 @@
 
 import { parseArm, parseObstacles, parseJointLimits, formatJointLimits, parseRateLimits, formatRateLimits, limits, methods, params as allParams, defaultMethod, networkSets, precisions, readPrecision } from './module.js';
 import { formatObstacles } from './arm-designer.js';
+import { coordinate } from './format.js';
 
 /** A number from text: blank is not zero (as `Number('')` is). */
 const number = (x) => (x.trim() === '' ? NaN : Number(x));
 /** Text a message quotes, cut to 40 characters (an address can be megabytes long). */
 const clip = (text) => (String(text).length > 40 ? `${String(text).slice(0, 40)}…` : String(text));
 
-/** A coordinate in millimetres where that is exact, else in full (a dragged one). */
-const exact = (v) => {
-  const mm = v.toFixed(3);
-  return Number(mm) === v ? mm : String(v);
-};
+/** A coordinate in millimetres where that is exact up to noise, else in full (a dragged one). */
+const exact = coordinate;
 
 /** The parameters the address carries by name (λ has its own). */
 const named = () => allParams().filter((p) => p.name !== 'lambda');

@@ -5,6 +5,7 @@
 // addObstacle, setObstacles) and this file shows its refusals.
 
 import { applied, follow } from './place-fields.js';
+import { coordinate } from './format.js';
 import { limits, formatArm, parseJointLimits, formatJointLimits, parseRateLimits, formatRateLimits } from './module.js';
 
 /**
@@ -27,7 +28,7 @@ export function flatObstacles(list) {
 
 /** `x,y,r;x,y,r` of the obstacles in the state (what parseObstacles reads). */
 export function formatObstacles(obstacles) {
-  const exact = (v) => (+v.toFixed(3) === v ? +v.toFixed(3) : v);
+  const exact = (v) => String(Number(coordinate(v)));
   return obstacles.map((o) => [...o.centre, o.radius].map(exact).join(',')).join(';');
 }
 

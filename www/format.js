@@ -7,6 +7,21 @@ export function fixed(v, digits = 3) {
   return v.toFixed(digits);
 }
 
+/**
+ * A coordinate as an address, a snippet or a file name writes it: with the
+ * fewest decimals, three to nine, that give the number up to floating-point
+ * noise (1e-12 m: an atlas cell's 1.5299999999999998 is 1.530, its
+ * 0.30750000000000005 is 0.3075), else in full (a dragged one), so the
+ * scene it reproduces is the one on screen.
+ */
+export function coordinate(v) {
+  for (let d = 3; d <= 9; d++) {
+    const t = v.toFixed(d);
+    if (Math.abs(Number(t) - v) <= 1e-12) return t;
+  }
+  return String(v);
+}
+
 /** A length that may be tiny (a tracking error), with its unit. */
 export function metres(v) {
   if (v === null || v === undefined || !Number.isFinite(v)) return '–';

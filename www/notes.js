@@ -4,7 +4,7 @@
 // a singular pose, the paper's criterion with several obstacles; and the
 // play button's word (Play, Pause, Replay). Each element is optional
 // (`#run-note`, `#floor-warning`, `#range-warning`, `#handover-note`,
-// `#criterion-note`, `#play`), so the custom element shows what it has.
+// `#criterion-note`, `#limits-note`, `#play`), so the custom element shows what it has.
 
 import { metres } from './format.js';
 import { method, paperMethods } from './module.js';
@@ -49,7 +49,7 @@ function runText(s) {
 /** Wires the notes under `root`; returns `sync(state)` for the animation loop. */
 export function mountNotes(root) {
   const $ = (id) => root.querySelector('#' + id);
-  const el = { run: $('run-note'), floor: $('floor-warning'), range: $('range-warning'), handover: $('handover-note'), criterion: $('criterion-note'), play: $('play') };
+  const el = { run: $('run-note'), floor: $('floor-warning'), range: $('range-warning'), handover: $('handover-note'), criterion: $('criterion-note'), limits: $('limits-note'), play: $('play') };
   // The methods' text, where the page has it (the custom element has none).
   const explained = $('modes-explained');
   const set = (node, text) => {
@@ -89,6 +89,8 @@ export function mountNotes(root) {
       }
       el.criterion.hidden = !on;
     }
+    // A method that keeps to the joints' ranges, on an arm that has none (the core says why).
+    set(el.limits, s.without_limits ? `${s.without_limits}.` : '');
     set(
       el.handover,
       s.handover_steps > 0 && s.uses.phi

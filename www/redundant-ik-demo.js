@@ -98,6 +98,7 @@ const TEMPLATE = `
 </div>
 <p id="range-warning" class="notice warn" hidden>Outside the networks' trained range.</p>
 <p id="criterion-note" class="notice warn" role="status" hidden></p>
+<p id="limits-note" class="notice warn" role="status" hidden></p>
 <p id="handover-note" class="notice warn" role="status" hidden></p>
 <p id="message" class="notice" role="status" aria-live="polite" hidden></p>
 <p id="announcer" class="visually-hidden" role="status" aria-live="polite" aria-atomic="true"></p>

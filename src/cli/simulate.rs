@@ -409,6 +409,12 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     if let Some(l) = scene.arm.joint_limits() {
         w!(out, "joint limits {l} rad");
     }
+    if let Some(why) = traj
+        .method
+        .without_limits(scene.arm.joint_limits().is_some())
+    {
+        w!(out, "{why}");
+    }
     if let Some(r) = scene.arm.rate_limits() {
         w!(out, "rate limits  {r} rad/s");
     }

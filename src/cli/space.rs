@@ -304,6 +304,12 @@ fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &SpaceTrajectory, reach: R
         "largest tracking error                {:.3e} m",
         s.max_error
     );
+    if let Some(why) = traj
+        .method
+        .without_limits(scene.chain.joint_limits().is_some())
+    {
+        let _ = writeln!(out, "{why}");
+    }
     if !reach.reachable {
         let _ = writeln!(
             out,

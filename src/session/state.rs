@@ -67,6 +67,9 @@ pub struct State<'a> {
     /// outside the arm's reach, with the damping on or off (the page's note
     /// said so only when the damping was switched on for it).
     pub out_of_reach: bool,
+    /// Why the method adds nothing to `none` on this arm (it reads joint
+    /// limits the arm does not have), if so: `Method::without_limits`.
+    pub without_limits: Option<String>,
     /// Closed-loop gain `K`.
     pub feedback: f64,
     /// Joint angles.
@@ -258,6 +261,9 @@ impl Session {
                 super::Handle::Obstacle(i) | super::Handle::Joint(i) => i,
             },
             out_of_reach: !p.reachable(),
+            without_limits: p
+                .method()
+                .without_limits(scene.arm.joint_limits().is_some()),
             feedback: scene.feedback_gain,
             theta: &s.theta,
             joints: &s.joints,

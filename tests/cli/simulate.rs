@@ -210,3 +210,13 @@ fn simulate_follows_a_circle_and_refuses_a_bad_path() {
         refused(&["simulate", "--path", bad], "path");
     }
 }
+
+#[test]
+fn joint_range_on_an_arm_without_limits_says_it_runs_as_none() {
+    let text = ok(&["simulate", "--method", "jointrange"]);
+    assert!(text.contains("this arm has no joint limits"), "{text}");
+    let text = ok(&["simulate", "--method", "jointrange", "--arm", "iiwa-planar"]);
+    assert!(!text.contains("no joint limits"), "{text}");
+    let text = ok(&["simulate", "--method", "numerical"]);
+    assert!(!text.contains("no joint limits"), "{text}");
+}

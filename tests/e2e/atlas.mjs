@@ -109,6 +109,9 @@ test('atlas panel: the map under the arm, its legend, hover numbers, click to re
   assert.ok(near(s.obstacle, [pick.x, pick.y], 1e-9), `obstacle at ${s.obstacle}`);
   assert.equal(s.running, true, 'the task replays');
   assert.ok(s.t < 2, `from the start (t = ${s.t})`);
+  // The address carries the cell's centre as the fields write it: no floating-point noise.
+  const written = new URL(page.url()).searchParams.get('obstacle') ?? '';
+  assert.match(written, /^-?\d+\.\d{3,9},-?\d+\.\d{3,9}$/, `obstacle=${written}`);
   // The same outcome as the map says, once run to the end.
   const end = await page.evaluate(() => window.demo.runUntil(10));
   assert.equal(end.collided, false);

@@ -55,3 +55,22 @@ fn the_state_has_the_singular_values_and_the_joints_past_their_limits() {
         "1-based joints"
     );
 }
+
+/// Joint range on an arm without joint limits has nothing to keep to: the
+/// state says so (the page shows it beside the drawing), and says nothing
+/// once the arm has limits or for a method that does not read them.
+#[test]
+fn the_state_says_when_joint_range_has_no_limits_to_keep_to() {
+    let mut s = Session::new(1).unwrap();
+    s.set_method(Method::NUMERICAL).unwrap();
+    assert_eq!(s.state().without_limits, None);
+    s.set_method(methods::JOINT_RANGE).unwrap();
+    let why = s.state().without_limits.expect("a reason");
+    assert!(
+        why.contains("no joint limits") && why.contains("No avoidance"),
+        "{why}"
+    );
+    let limits = JointLimits::new(vec![[-2.0, 2.0], [-0.5, 2.5], [-2.0, 2.0]]).unwrap();
+    s.set_arm_limits(Some(limits), None).unwrap();
+    assert_eq!(s.state().without_limits, None);
+}

@@ -20,6 +20,7 @@ static ENTRY: Entry = Entry {
         },
         avoids: true,
         weighting: true,
+        limits: false,
         colour: "#1f77b4",
         params: &[&LAMBDA, &DELTA, &SIGN_SMOOTHING, &REFINE],
     },

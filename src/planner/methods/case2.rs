@@ -20,6 +20,7 @@ static ENTRY: Entry = Entry {
         },
         avoids: true,
         weighting: true,
+        limits: false,
         colour: "#2ca02c",
         params: &[&LAMBDA, &DELTA],
     },

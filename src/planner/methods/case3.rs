@@ -20,6 +20,7 @@ static ENTRY: Entry = Entry {
         },
         avoids: true,
         weighting: true,
+        limits: false,
         colour: "#ff7f0e",
         params: &[&LAMBDA, &DELTA, &REFINE],
     },

@@ -53,6 +53,7 @@ static ENTRY: Entry = Entry {
         networks: Needs::NOTHING,
         avoids: true,
         weighting: true,
+        limits: false,
         colour: "#9467bd",
         params: &[&DISTANCE_GAIN, &INFLUENCE, &STOP_DISTANCE, &DELTA],
     },

@@ -53,6 +53,7 @@ static ENTRY: Entry = Entry {
         networks: Needs::NOTHING,
         avoids: false,
         weighting: true,
+        limits: true,
         colour: "#bcbd22",
         params: &[&JOINT_RANGE_GAIN, &DELTA],
     },

@@ -44,6 +44,7 @@ static ENTRY: Entry = Entry {
         networks: Needs::NOTHING,
         avoids: false,
         weighting: true,
+        limits: false,
         colour: "#e377c2",
         params: &[&MANIPULABILITY_GAIN, &DELTA],
     },

@@ -157,6 +157,9 @@ pub struct MethodInfo {
     /// eq. 7, [`crate::scene::JointWeighting`]): the methods built on
     /// eq. (5), whose rates `weighting.rs` weights.
     pub weighting: bool,
+    /// Whether its secondary task reads the arm's joint limits: on an arm
+    /// without them it has none (`v = 0`) and its rates are `none`'s.
+    pub limits: bool,
     /// Its colour in comparison figures and tables, `#rrggbb`.
     pub colour: &'static str,
     /// The scene's parameters it reads, each declared (`static`) in the
@@ -282,6 +285,18 @@ impl Method {
     /// Its description.
     pub fn info(self) -> &'static MethodInfo {
         &self.0.info
+    }
+
+    /// Why this method adds nothing to `none` on an arm without joint
+    /// limits (`limited`: whether the arm has them), if that is the case:
+    /// the command line prints it, the page shows it beside the drawing.
+    pub fn without_limits(self, limited: bool) -> Option<String> {
+        (self.0.info.limits && !limited).then(|| {
+            format!(
+                "{} keeps each joint toward the middle of its range, and this arm has no joint limits: its v is zero and it runs as No avoidance; give the arm joint limits, or pick a preset that has them",
+                self.0.info.label
+            )
+        })
     }
 
     /// The name used on the command line, in JSON and in the page.

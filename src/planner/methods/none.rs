@@ -17,6 +17,7 @@ static ENTRY: Entry = Entry {
         networks: Needs::NOTHING,
         avoids: false,
         weighting: true,
+        limits: false,
         colour: "#d62728",
         params: &[&DELTA],
     },

@@ -17,6 +17,7 @@ static ENTRY: Entry = Entry {
         networks: Needs::NOTHING,
         avoids: true,
         weighting: true,
+        limits: false,
         colour: "#000000",
         params: &[&LAMBDA, &DELTA, &SIGN_SMOOTHING],
     },

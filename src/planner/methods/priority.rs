@@ -63,6 +63,7 @@ static ENTRY: Entry = Entry {
         networks: Needs::NOTHING,
         avoids: true,
         weighting: false,
+        limits: false,
         colour: "#8c564b",
         params: &[&INFLUENCE, &STOP_DISTANCE, &ESCAPE_SPEED, &DELTA],
     },

@@ -80,6 +80,7 @@ static ENTRY: Entry = Entry {
         networks: Needs::NOTHING,
         avoids: true,
         weighting: false,
+        limits: false,
         colour: "#17becf",
         // The program's own and its constraints' (tests/constraints.rs
         // checks that every constraint's are here).
