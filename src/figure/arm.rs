@@ -87,9 +87,17 @@ pub fn arm_svg_with(
     let size = (plot_w as u32 + ml + mr, plot_h as u32 + mt + mb + foot);
 
     let s = &run.summary;
+    // The paper's figure only for the paper's scene (the damping schedule
+    // aside, which the page switches on): a moved obstacle or target is
+    // another run.
+    let paper_scene = crate::scene::Scene::task(task).is_ok_and(|mut paper| {
+        paper.damping = scene.damping;
+        &paper == scene
+    });
     let fig = run
         .method
         .paper_figure(task)
+        .filter(|_| paper_scene)
         .map(|n| format!(" (paper Fig. {n})"))
         .unwrap_or_default();
     // The clearance to the obstacles' edges, as the page and the tables give it.

@@ -270,3 +270,23 @@ fn bench_reports_every_figure_and_no_allocation_per_step() {
     refused(&["bench", "--batches", "2"], "batches");
     refused(&["bench", "--batch-ms", "nan"], "batch-ms");
 }
+
+/// The heading names the paper's figure only for the paper's own scene: a
+/// moved obstacle is another run (the page saved one as "Task 1, Case 3
+/// (paper Fig. 6)").
+#[test]
+fn a_figure_claims_the_papers_figure_only_for_the_papers_scene() {
+    let draw = |extra: &[&str]| {
+        let out = scratch(&format!("fig-{}.svg", extra.len()));
+        let mut args = vec!["figure", "--task", "1", "--method", "case3", "--out"];
+        let path = out.to_string_lossy().into_owned();
+        args.push(&path);
+        args.extend_from_slice(extra);
+        ok(&args);
+        std::fs::read_to_string(&out).unwrap()
+    };
+    assert!(draw(&[]).contains("Task 1, Case 3 (paper Fig. 6)"));
+    assert!(draw(&["--damping"]).contains("(paper Fig. 6)"), "the schedule aside");
+    let moved = draw(&["--obstacle", "0.6,0.6"]);
+    assert!(moved.contains("Task 1, Case 3") && !moved.contains("paper Fig."));
+}
