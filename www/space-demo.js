@@ -175,12 +175,22 @@ export async function mountSpace(root, options) {
   if (task) {
     task.textContent = 'Task';
     task.title = `The ${preset.label}'s own task: its start pose, line and sphere`;
+    // As the plane's task buttons: the task loaded and played from its start.
     task.addEventListener('click', () => {
       if (attempt(() => demo.loadTask(), 'error', task)) {
-        say(`the ${preset.label}'s task loaded`);
+        demo.setRunning(true);
+        say(`the ${preset.label}'s task loaded and playing`);
         changed();
       }
     });
+  }
+  // The keys of the drawing in space (space-input.js): no elbows, orbit and zoom.
+  const hint = $('keys-hint');
+  if (hint) {
+    hint.innerHTML =
+      '<kbd>Space</kbd> play / pause · <kbd>R</kbd> reset · on the drawing: <kbd>n</kbd> selects the target or a sphere, ' +
+      '<kbd>←</kbd><kbd>↑</kbd><kbd>→</kbd><kbd>↓</kbd> move it in the plane facing you (<kbd>Shift</kbd>: 5 mm), ' +
+      '<kbd>o</kbd> / <kbd>u</kbd> orbit (<kbd>Shift</kbd>: back), <kbd>+</kbd> / <kbd>-</kbd> zoom, <kbd>0</kbd> resets the view';
   }
   const speed = $('speed');
   speed?.addEventListener('change', () => attempt(() => demo.setSpeed(Number(speed.value)), 'error', speed));
@@ -249,7 +259,7 @@ export async function mountSpace(root, options) {
     );
   }
 
-  const panels = mountSpacePanels(root, demo, { attempt, show, say, preset });
+  const panels = mountSpacePanels(root, demo, { attempt, show, say, preset, ensureNetworks });
 
   // ---- size ------------------------------------------------------------------
   const fit = (canvas, resize) => {
@@ -267,6 +277,9 @@ export async function mountSpace(root, options) {
   for (const canvas of [stage, plots]) canvas?.addEventListener('contextrestored', () => attempt(() => demo.draw()));
 
   // ---- readouts, the live region and the loop ----------------------------------
+  // The networks' trained range, as on the plane (no numerical ghost is drawn in space).
+  const range = $('range-warning');
+  if (range) range.textContent = "Outside the networks' trained range: their output is an extrapolation here (the pose on screen, or a sphere for v, lies outside the boxes training saw).";
   const readouts = [...root.querySelectorAll('[data-readout]')];
   const summary = $('stage-summary');
   let seen = { revision: -1, collided: false, ended: true, running: false };
@@ -280,6 +293,7 @@ export async function mountSpace(root, options) {
     if (floor) floor.checked = s.floor;
     syncPrecision(s, menu.selectedOptions[0]?.dataset.networks === 'true');
     syncParams(s);
+    if (range) range.hidden = s.in_range;
     for (const r of readouts) {
       const f = READOUTS[r.dataset.readout];
       if (!f) continue;

@@ -22,7 +22,7 @@ export function spaceRunCsv(run) {
 }
 
 /** Wires the panels; returns { sync(state), compare(), atlas(options) }. */
-export function mountSpacePanels(root, demo, { attempt, show, say, preset }) {
+export function mountSpacePanels(root, demo, { attempt, show, say, preset, ensureNetworks }) {
   const $ = (id) => root.querySelector('#' + id);
   const stem = () => {
     const s = demo.state();
@@ -34,7 +34,15 @@ export function mountSpacePanels(root, demo, { attempt, show, say, preset }) {
   const status = $('compare-status');
   const csvButton = $('compare-csv');
   let rows = null;
-  function compare() {
+  // The learned methods need the arm's networks, fetched first where they
+  // are shipped; where they cannot be had the table says why they are left out.
+  async function compare() {
+    let left = '';
+    if (!demo.state().has_networks) {
+      if (status) status.textContent = `Fetching the ${preset.label}'s networks for Cases 1-3 first…`;
+      const why = ensureNetworks ? await ensureNetworks() : 'no networks';
+      if (why) left = ` Cases 1-3 are left out: ${why}.`;
+    }
     let result = null;
     if (!attempt(() => (result = demo.compareMethods()), 'error', $('compare'))) return null;
     rows = result;
@@ -59,7 +67,7 @@ export function mountSpacePanels(root, demo, { attempt, show, say, preset }) {
       }),
     );
     const hits = rows.filter((r) => r.summary.collision_steps > 0).length;
-    const text = `${rows.length} methods on the ${preset.label}'s scene: ${hits} collide.`;
+    const text = `${rows.length} methods on the ${preset.label}'s scene: ${hits} collide.${left}`;
     if (status) status.textContent = text;
     if (csvButton) csvButton.disabled = false;
     say(text);

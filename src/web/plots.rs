@@ -17,6 +17,18 @@ use crate::session::Session;
 
 /// Width of one key of a panel's legend (its swatch and `θ₁`), px.
 const KEY_SPACING: f64 = 34.0;
+/// The joints' keys as labels alone in their colours, where swatches do
+/// not fit beside the title.
+const LABEL_SPACING: f64 = 19.0;
+/// What the short title "θ (rad)" needs beside the keys (px).
+const SHORT_TITLE: f64 = 60.0;
+
+/// How the joints' keys are drawn in the title row.
+#[derive(Clone, Copy)]
+enum Keys {
+    Swatches,
+    Labels,
+}
 
 /// Tick spacing giving about `target` ticks over `span`.
 pub fn nice_step(span: f64, target: f64) -> f64 {
@@ -47,17 +59,23 @@ pub fn fmt_tick(v: f64, step: f64) -> String {
 #[cfg(feature = "page")]
 pub fn draw(s: &Session, surface: &Surface) {
     let limits = s.arm().joint_limits().map_or(&[][..], |l| l.ranges());
-    draw_points(s.history(), limits, surface);
+    draw_points(s.history(), limits, s.planner().scene().tf, surface);
 }
 
 /// Draws a run's time series (`history`, the joints' `limits`) on
-/// `surface`: clearance, tracking error, joint angles.
-pub fn draw_points(history: &VecDeque<Point>, limits: &[[f64; 2]], surface: &Surface) {
+/// `surface`: clearance, tracking error, joint angles, over a time axis at
+/// least `span` long (the run's `tf`).
+pub fn draw_points(history: &VecDeque<Point>, limits: &[[f64; 2]], span: f64, surface: &Surface) {
     surface.begin();
     let ctx = &surface.ctx;
+    let span = if span.is_finite() && span > 0.0 {
+        span
+    } else {
+        10.0
+    };
     let (t0, t1) = match (history.front(), history.back()) {
-        (Some(a), Some(b)) => (a.t, b.t.max(a.t + 10.0)),
-        _ => (0.0, 10.0),
+        (Some(a), Some(b)) => (a.t, b.t.max(a.t + span)),
+        _ => (0.0, span),
     };
     // Three panels: side by side on a wide, short canvas, else stacked.
     let wide = surface.width >= 3.0 * surface.height;
@@ -123,16 +141,18 @@ pub fn draw_points(history: &VecDeque<Point>, limits: &[[f64; 2]], surface: &Sur
     let joints = history.front().map_or(0, |p| p.theta.len());
     // The keys share the title row with the title: where the full title
     // leaves them too little room (a narrow panel, many joints), the short
-    // one; they never go inside the plot, over the curves (issue 27).
+    // one; where even that does not leave room (seven joints), the keys
+    // close up as labels in their colours. They never go inside the plot,
+    // over the curves, nor over the title.
     let room = frame.right - frame.left - KEY_SPACING * joints as f64 - 10.0;
-    frame.axes(
-        ctx,
-        if room >= 125.0 {
-            "joint angles (rad)"
-        } else {
-            "θ (rad)"
-        },
-    );
+    let (title, keys) = if room >= 125.0 {
+        ("joint angles (rad)", Keys::Swatches)
+    } else if room >= SHORT_TITLE {
+        ("θ (rad)", Keys::Swatches)
+    } else {
+        ("θ (rad)", Keys::Labels)
+    };
+    frame.axes(ctx, title);
     for (i, r) in limits.iter().enumerate() {
         ctx.set_fill_style_str(&rgba(joint_series(i), 0.12));
         let (_, y_hi) = frame.px(t0, r[1]);
@@ -143,7 +163,14 @@ pub fn draw_points(history: &VecDeque<Point>, limits: &[[f64; 2]], surface: &Sur
     }
     for i in 0..joints {
         let colour = joint_series(i);
-        frame.key(ctx, i, joints, &format!("θ{}", subscript(i + 1)), colour);
+        frame.key(
+            ctx,
+            keys,
+            i,
+            joints,
+            &format!("θ{}", subscript(i + 1)),
+            colour,
+        );
         let series: Vec<[f64; 2]> = history
             .iter()
             .filter_map(|p| p.theta.get(i).map(|v| [p.t, *v]))
@@ -268,27 +295,32 @@ impl Frame {
     }
 
     /// Entry `index` of `count` of the panel's legend, right-aligned in the
-    /// title row, [`KEY_SPACING`] apart.
+    /// title row: a swatch and its label [`KEY_SPACING`] apart, or the
+    /// label alone in its colour [`LABEL_SPACING`] apart.
     fn key(
         &self,
         ctx: &CanvasRenderingContext2d,
+        keys: Keys,
         index: usize,
         count: usize,
         label: &str,
         colour: &str,
     ) {
-        let x = self.right - KEY_SPACING * (count - 1 - index.min(count - 1)) as f64 - 18.0;
+        let after = (count - 1 - index.min(count - 1)) as f64;
         let y = self.top - 12.0;
-        ctx.set_stroke_style_str(colour);
-        ctx.set_line_width(2.0);
-        polyline(ctx, None, &[[x - 16.0, y], [x - 4.0, y]]);
-        text(
-            ctx,
-            &format!("11px {FONT}"),
-            INK,
-            ("left", "middle"),
-            (x, y),
-            label,
-        );
+        let font = format!("11px {FONT}");
+        match keys {
+            Keys::Swatches => {
+                let x = self.right - KEY_SPACING * after - 18.0;
+                ctx.set_stroke_style_str(colour);
+                ctx.set_line_width(2.0);
+                polyline(ctx, None, &[[x - 16.0, y], [x - 4.0, y]]);
+                text(ctx, &font, INK, ("left", "middle"), (x, y), label);
+            }
+            Keys::Labels => {
+                let x = self.right - LABEL_SPACING * after - 18.0;
+                text(ctx, &font, colour, ("left", "middle"), (x, y), label);
+            }
+        }
     }
 }

@@ -236,7 +236,7 @@ impl SpaceDemo {
                 .chain
                 .joint_limits()
                 .map_or(&[][..], |l| l.ranges());
-            plots::draw_points(&d.session.points(), limits, p);
+            plots::draw_points(&d.session.points(), limits, d.session.scene().tf, p);
         }
     }
 

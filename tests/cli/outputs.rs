@@ -286,7 +286,10 @@ fn a_figure_claims_the_papers_figure_only_for_the_papers_scene() {
         std::fs::read_to_string(&out).unwrap()
     };
     assert!(draw(&[]).contains("Task 1, Case 3 (paper Fig. 6)"));
-    assert!(draw(&["--damping"]).contains("(paper Fig. 6)"), "the schedule aside");
+    assert!(
+        draw(&["--damping"]).contains("(paper Fig. 6)"),
+        "the schedule aside"
+    );
     let moved = draw(&["--obstacle", "0.6,0.6"]);
     assert!(moved.contains("Task 1, Case 3") && !moved.contains("paper Fig."));
 }

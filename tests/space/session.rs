@@ -181,6 +181,24 @@ fn a_learned_method_waits_for_its_networks_and_then_runs() {
     assert!(iiwa.install_networks(phi, v, None).is_err());
 }
 
+/// The state says when the networks in use see the pose or a sphere
+/// outside the boxes they were trained on, as the plane's does: the
+/// Panda's `v` was trained with the sphere near the forearm, not 2 m away.
+#[test]
+fn the_state_says_when_the_networks_leave_their_trained_range() {
+    let mut s = panda(Method::NUMERICAL);
+    assert!(s.state().in_range, "a method without networks is in range");
+    let (phi, v) = SpaceNetworkSet::PandaReach.files();
+    s.install_networks(phi, v, Some(SpaceNetworkSet::PandaReach))
+        .unwrap();
+    s.set_method(Method::CASE3).unwrap();
+    assert!(s.state().in_range, "the preset's task lies inside");
+    s.move_sphere(0, [2.0, 2.0, 2.0]).unwrap();
+    assert!(!s.state().in_range, "a sphere far outside v's box");
+    s.set_method(Method::CASE1).unwrap();
+    assert!(s.state().in_range, "Case 1 computes v exactly");
+}
+
 #[test]
 fn the_clock_plays_the_run_to_its_end_and_replays_it() {
     let mut s = panda(Method::NUMERICAL);

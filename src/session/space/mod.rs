@@ -131,6 +131,26 @@ impl SpaceSession {
         self.networks.is_some()
     }
 
+    /// Whether the networks the method uses see the pose on screen (and,
+    /// for `v`, every sphere) inside the boxes they were trained on; true
+    /// for a method without networks. Outside, their output is an
+    /// extrapolation (the page says so).
+    pub fn in_range(&self) -> bool {
+        let needs = self.method.info().networks;
+        match self.networks.as_ref() {
+            Some(n) if self.method.uses_networks() => {
+                (!needs.phi || n.in_range(&self.pose, None))
+                    && (!needs.v
+                        || self
+                            .scene
+                            .spheres
+                            .iter()
+                            .all(|s| n.in_range(&self.pose, Some(s.centre))))
+            }
+            _ => true,
+        }
+    }
+
     /// Installs the networks of `phi_json` and `v_json` (the weights files'
     /// text; `set` names the shipped set they are, if they are one);
     /// refused, changing nothing, when they do not read or were trained for

@@ -28,6 +28,9 @@ pub struct SpaceState<'a> {
     pub network_set: Option<&'static str>,
     /// Whether networks are installed.
     pub has_networks: bool,
+    /// Whether the networks in use see the pose on screen inside their
+    /// trained range ([`SpaceSession::in_range`]).
+    pub in_range: bool,
     /// The networks' arithmetic: `f64` or `f32`.
     pub precision: &'static str,
     /// Time shown (s), the run's final time, and whether the clock runs
@@ -120,6 +123,7 @@ impl SpaceSession {
             method: self.method.name(),
             network_set: self.network_set.map(|s| s.name()),
             has_networks: self.networks.is_some(),
+            in_range: self.in_range(),
             precision: self.precision.name(),
             t: sample.map_or(0.0, |s| s.t),
             tf: self.scene.tf,
