@@ -33,6 +33,7 @@ import './embed.mjs';
 import './a11y.mjs';
 import './view.mjs';
 import './space.mjs';
+import './space-controls.mjs';
 import { classTests } from './class.mjs';
 import { limitsTests } from './limits.mjs';
 import { labTests } from './lab.mjs';

@@ -1,0 +1,56 @@
+// The page in space as a newcomer tries its controls: every control shown
+// works, and what is not built for an arm in space yet is not shown (the
+// tour, the weights upload); the keys hint names the drawing's own keys;
+// Task plays; the comparison fetches the networks of Cases 1-3 or says why
+// they are left out; the trained-range note; the plots' time axis is the
+// run's. Registered by e2e.mjs.
+
+import assert from 'node:assert/strict';
+import { test, open, clean, state, textMatching } from './harness.mjs';
+
+test('space controls: the tour and the upload are not shown, the keys hint is the drawing in space\'s, Task plays', async () => {
+  const page = await open('?arm=panda&method=numerical&autoplay=0');
+  assert.equal(await page.isVisible('#tour-open'), false, 'no tour in space yet');
+  assert.equal(await page.isVisible('#weights-upload'), false, 'no upload in space yet');
+  const hint = await page.textContent('#keys-hint');
+  assert.match(hint, /orbit/);
+  assert.doesNotMatch(hint, /elbow|"Keys"/);
+  await page.evaluate(() => window.demo.runUntil(2));
+  await page.click('#task1');
+  const s = await state(page);
+  assert.equal(s.running, true, 'Task loads the task and plays it');
+  assert.ok(s.t < 1, `from its start (t = ${s.t})`);
+  clean(page);
+  await page.close();
+});
+
+test('space controls: the comparison fetches the networks first, or says why Cases 1-3 are left out', async () => {
+  const panda = await open('?arm=panda&method=numerical&autoplay=0');
+  assert.equal((await state(panda)).has_networks, false);
+  await panda.click('#compare-panel summary');
+  const rows = await panda.evaluate(() => window.demo.compare());
+  assert.equal(rows.length, 10, 'every method, the learned ones with the networks fetched');
+  assert.equal((await state(panda)).has_networks, true);
+  clean(panda);
+  await panda.close();
+  const iiwa = await open('?arm=iiwa14&method=numerical&autoplay=0');
+  await iiwa.click('#compare-panel summary');
+  const some = await iiwa.evaluate(() => window.demo.compare());
+  assert.equal(some.length, 7, 'the iiwa has no shipped networks');
+  await textMatching(iiwa, '#compare-status', /Cases 1-3 are left out: no networks are shipped/);
+  clean(iiwa);
+  await iiwa.close();
+});
+
+test('space controls: the trained-range note shows when a sphere leaves the networks\' box', async () => {
+  const page = await open('?arm=panda&method=case3&autoplay=0');
+  await page.waitForFunction(() => window.demo.state().method === 'case3', null, { timeout: 60000 });
+  assert.equal((await state(page)).in_range, true);
+  assert.equal(await page.isVisible('#range-warning'), false);
+  await page.evaluate(() => window.demo.controller.demo.setSpheres(Float64Array.from([1.6, 1.6, 1.6, 0.06])));
+  await page.waitForFunction(() => !document.getElementById('range-warning').hidden, null, { timeout: 10000 });
+  assert.equal((await state(page)).in_range, false);
+  assert.match(await page.textContent('#range-warning'), /trained range/);
+  clean(page);
+  await page.close();
+});
