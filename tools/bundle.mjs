@@ -121,7 +121,7 @@ async function offline() {
 function readme(v) {
   return `# redundant-ik ${v}
 
-The browser demo of the redundant-ik crate (motion planning for redundant planar arms, after *An
+The browser demo of the redundant-ik crate (motion planning for redundant arms, planar and in space, after *An
 ANN Approach for the Motion Planning of Redundant Manipulators*) as a custom element, its WebAssembly module, a build with every file inline, and
 an anywidget module for notebooks. No runtime dependencies.
 

@@ -19,8 +19,9 @@ pub mod space;
 pub mod space_networks;
 pub mod train;
 
-/// Motion planning for redundant planar arms (2 to 32 links; the paper's is
-/// 3): damped-least-squares inverse kinematics with a null-space
+/// Motion planning for redundant arms: planar ones (2 to 32 links; the
+/// paper's has 3) and, in space, the Franka Panda and the KUKA iiwa 14.
+/// Damped-least-squares inverse kinematics with a null-space
 /// obstacle-avoidance vector, the neural networks that replace them (Cases
 /// 1-3 of the paper, trained by Levenberg-Marquardt or Adam), and methods
 /// beyond the paper.
