@@ -25,5 +25,5 @@ static ENTRY: Entry = Entry {
         params: &[&LAMBDA, &DELTA, &SIGN_SMOOTHING, &REFINE],
     },
     rule: |n| paper::rule(n, CASE1, V::Exact, Phi::Network),
-    space: Some(|n| super::space::paper::rule(n, CASE1, V::Exact, Phi::Network)),
+    space: Some(|n| super::paper::space_rule(n, CASE1, V::Exact, Phi::Network)),
 };

@@ -25,5 +25,5 @@ static ENTRY: Entry = Entry {
         params: &[&LAMBDA, &DELTA],
     },
     rule: |n| paper::rule(n, CASE2, V::Network, Phi::Exact),
-    space: Some(|n| super::space::paper::rule(n, CASE2, V::Network, Phi::Exact)),
+    space: Some(|n| super::paper::space_rule(n, CASE2, V::Network, Phi::Exact)),
 };

@@ -25,5 +25,5 @@ static ENTRY: Entry = Entry {
         params: &[&LAMBDA, &DELTA, &REFINE],
     },
     rule: |n| paper::rule(n, CASE3, V::Network, Phi::Network),
-    space: Some(|n| super::space::paper::rule(n, CASE3, V::Network, Phi::Network)),
+    space: Some(|n| super::paper::space_rule(n, CASE3, V::Network, Phi::Network)),
 };

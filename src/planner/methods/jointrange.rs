@@ -14,13 +14,15 @@
 //! An arm without limits has no range to keep to: `v = 0`, and the method
 //! is eq. (5) with no secondary task (`none`'s rates). In space the same
 //! `v` over the chain's limits ([`range_gradient_into`],
-//! `space::jointrange`).
+//! "In space" below).
 
 use super::paper::DELTA;
+use super::space::{SpaceContext, SpaceRule};
 use super::{projection, Context, Entry, Group, Method, MethodInfo, Needs};
 use crate::arm::JointLimits;
 use crate::kinematics::Pose;
 use crate::scene::{Param, Scale};
+use crate::space::SpacePose;
 
 /// Gain `k_r` of the joint-range gradient.
 pub static JOINT_RANGE_GAIN: Param = Param {
@@ -58,7 +60,7 @@ static ENTRY: Entry = Entry {
         params: &[&JOINT_RANGE_GAIN, &DELTA],
     },
     rule: |n| projection::rule(n, gradient),
-    space: Some(super::space::jointrange::rule),
+    space: Some(space_rule),
 };
 
 /// `v = k_r grad w` (zero for an arm without limits).
@@ -90,4 +92,28 @@ pub(super) fn range_gradient_into(
         let range = hi - lo;
         *vi = -gain * (t - 0.5 * (lo + hi)) / (n * range * range);
     }
+}
+
+// ---- In space ----------------------------------------------------------
+//
+// `jointrange` in space: gradient projection (eq. 5) with the planar
+// method's quadratic criterion `w = -(1 / 2n) sum_i ((theta_i - mid_i) /
+// (hi_i - lo_i))^2` over the chain's limits (dimension-free: the planar
+// [`range_gradient_into`]), gain [`JOINT_RANGE_GAIN`]; `v = 0` for a
+// chain without limits.
+
+/// The spatial rule for an `n`-joint chain.
+pub(in crate::planner::methods) fn space_rule(n: usize) -> Box<dyn SpaceRule> {
+    projection::space_rule(n, space_gradient)
+}
+
+/// `v = k_r grad w` (zero for a chain without limits).
+fn space_gradient(cx: &SpaceContext<'_>, pose: &SpacePose, v: &mut [f64]) {
+    let scene = cx.scene;
+    range_gradient_into(
+        scene.chain.joint_limits(),
+        scene.param(&JOINT_RANGE_GAIN),
+        pose.theta(),
+        v,
+    );
 }

@@ -5,13 +5,16 @@
 //! checked against finite differences on random arms of 2-6 links); `w` is
 //! floored at 1e-6 m^2, where a singular pose leaves it undefined. It
 //! avoids no obstacle: it is the field's second classic criterion, beside
-//! the paper's. In space: `space::manipulability`, the same gain, with
+//! the paper's. In space (below): the same gain, with
 //! `w` of the hand's `3 x n` Jacobian ([`crate::space::manipulability`]).
 
 use super::paper::DELTA;
+use super::space::{SpaceContext, SpaceRule};
 use super::{projection, Context, Entry, Group, Method, MethodInfo, Needs};
 use crate::kinematics::Pose;
 use crate::scene::{Param, Scale};
+use crate::space::manipulability::manipulability_gradient_into;
+use crate::space::SpacePose;
 
 /// Gain `k_m` of the manipulability gradient.
 pub static MANIPULABILITY_GAIN: Param = Param {
@@ -49,12 +52,33 @@ static ENTRY: Entry = Entry {
         params: &[&MANIPULABILITY_GAIN, &DELTA],
     },
     rule: |n| projection::rule(n, gradient),
-    space: Some(super::space::manipulability::rule),
+    space: Some(space_rule),
 };
 
 /// `v = k_m grad w`.
 fn gradient(cx: &Context<'_>, pose: &Pose, v: &mut [f64]) {
     pose.manipulability_gradient_into(1e-6, v);
+    let gain = cx.scene.param(&MANIPULABILITY_GAIN);
+    v.iter_mut().for_each(|x| *x *= gain);
+}
+
+// ---- In space ----------------------------------------------------------
+//
+// `manipulability` in space: gradient projection (eq. 5) with
+// `v = k_m grad w`, `w = sqrt(det(J J^T))` of the hand's `3 x n`
+// Jacobian (Yoshikawa 1985), its gradient analytic
+// ([`crate::space::manipulability::manipulability_gradient_into`]), `w`
+// floored at 1e-6 m^3 as in the plane. The gain is the planar method's
+// [`MANIPULABILITY_GAIN`].
+
+/// The spatial rule for an `n`-joint chain.
+pub(in crate::planner::methods) fn space_rule(n: usize) -> Box<dyn SpaceRule> {
+    projection::space_rule(n, space_gradient)
+}
+
+/// `v = k_m grad w`.
+fn space_gradient(cx: &SpaceContext<'_>, pose: &SpacePose, v: &mut [f64]) {
+    manipulability_gradient_into(pose, 1e-6, v);
     let gain = cx.scene.param(&MANIPULABILITY_GAIN);
     v.iter_mut().for_each(|x| *x *= gain);
 }

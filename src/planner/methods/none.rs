@@ -22,5 +22,5 @@ static ENTRY: Entry = Entry {
         params: &[&DELTA],
     },
     rule: |n| paper::rule(n, NO_AVOIDANCE, V::Zero, Phi::Exact),
-    space: Some(|n| super::space::paper::rule(n, NO_AVOIDANCE, V::Zero, Phi::Exact)),
+    space: Some(|n| super::paper::space_rule(n, NO_AVOIDANCE, V::Zero, Phi::Exact)),
 };

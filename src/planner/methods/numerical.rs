@@ -22,5 +22,5 @@ static ENTRY: Entry = Entry {
         params: &[&LAMBDA, &DELTA, &SIGN_SMOOTHING],
     },
     rule: |n| paper::rule(n, NUMERICAL, V::Exact, Phi::Exact),
-    space: Some(|n| super::space::paper::rule(n, NUMERICAL, V::Exact, Phi::Exact)),
+    space: Some(|n| super::paper::space_rule(n, NUMERICAL, V::Exact, Phi::Exact)),
 };

@@ -12,14 +12,14 @@
 //! In space (feature `space`) each constraint has a second type beside
 //! the planar one in its file, a [`SpaceConstraint`] with the same rows
 //! for a chain's [`SpacePose`] and the same parameters, built by
-//! [`Entry::space`]; the spatial program (`methods/space/qp.rs`) stacks
+//! [`Entry::space`]; the spatial program (`methods/qp/mod.rs`, "In space") stacks
 //! them in the same order.
 
 use crate::error::Result;
 use crate::kinematics::Pose;
+use crate::planner::methods::space::SpaceContext;
 use crate::planner::methods::Context;
 use crate::scene::Param;
-use crate::planner::methods::space::SpaceContext;
 use crate::space::SpacePose;
 
 /// One line per constraint, in the order of the program's rows: declares

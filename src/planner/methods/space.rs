@@ -1,18 +1,12 @@
-//! The methods for an arm in space: the same registry, parameters and
-//! rooms as the planar ones, with rules that read a [`SpacePose`] (the
-//! hand's `3 x n` Jacobian, the joints' axes, the capsules) instead of a
-//! planar pose. A method that has one names its builder in its
+//! What the methods' rules for an arm in space share: the context a rule
+//! reads ([`SpaceContext`]), the rule's interface ([`SpaceRule`]) and eq.
+//! (18) with `m = 3`. Each method writes its spatial rule in its own file,
+//! under "In space", beside its planar rule: the same registry, parameters
+//! and rooms, with rules that read a [`SpacePose`] (the hand's `3 x n`
+//! Jacobian, the joints' axes, the capsules) instead of a planar pose. A
+//! method that has one names its builder in its
 //! [`Entry::space`](super::Entry); [`Method::space_rule`](super::Method)
 //! refuses the others with a clear error.
-
-pub(super) mod distance;
-pub(super) mod jointrange;
-pub(super) mod manipulability;
-pub(super) mod paper;
-pub(super) mod priority;
-mod projection;
-pub(super) mod qp;
-pub(super) mod weighting;
 
 use super::{Method, Note};
 use crate::error::{Error, Result};
