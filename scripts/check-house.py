@@ -11,6 +11,13 @@ and doc comments are skipped), and for files under `src/<module>/`, a
 `super::<sibling>` path. Exits 1 and lists each arrow that runs against
 the layers; `make test` runs it (docs/architecture.md draws the layers).
 
+Circles: no two files of `src/` (the command-line tool's `cli/` included)
+import each other through a circle of any length. A file's imports are
+its `crate::`, `super::` and `self::` paths, each resolved to the deepest
+module file it names; a module and the modules inside it (a folder's
+`mod.rs` and its files) are one family and may use each other, as Rust's
+own tree does. Exits 1 naming the files of each circle.
+
 Rooms: no file of `src/` or `www/` (Rust, JavaScript, HTML, CSS) or of
 `tests/` (Rust, JavaScript modules) is longer than 500 lines; a longer one
 holds more than one concern and is split (a Rust test into a folder,
@@ -91,6 +98,100 @@ def oversized(repo):
     return out
 
 
+PATH = re.compile(r"\b(crate|super|self)((?:::(?:\w+|\{[^;]*?\}))+)")
+
+
+def module_of(rel):
+    """src/<rel> -> (crate, module path): the binary's files (main.rs, cli/)
+    are a crate of their own."""
+    parts = list(rel.parts)
+    crate = "bin" if parts[0] in ("cli", "main.rs") else "lib"
+    if parts[-1] in ("mod.rs", "lib.rs", "main.rs"):
+        parts = parts[:-1]
+    else:
+        parts[-1] = parts[-1][:-3]
+    return crate, tuple(parts)
+
+
+def expand(path):
+    """`a::b::{c, d::{e, f}}` -> [[a, b, c], [a, b, d, e], [a, b, d, f]]."""
+    m = re.match(r"^([\w:]*?)(?:::)?\{(.*)\}$", path, re.S)
+    if not m:
+        return [path.split("::")]
+    pre = [x for x in m.group(1).split("::") if x]
+    items, depth, cur = [], 0, ""
+    for ch in m.group(2):
+        depth += ch == "{"
+        depth -= ch == "}"
+        if ch == "," and depth == 0:
+            items.append(cur)
+            cur = ""
+        else:
+            cur += ch
+    items.append(cur)
+    return [pre + [x for x in e if x] for it in items if it.strip() for e in expand(it.strip())]
+
+
+def circles(root):
+    """The circles of imports between the files of src/ (strongly connected
+    components of more than one file), each as its sorted file names."""
+    files = {module_of(p.relative_to(root)): p.relative_to(root) for p in root.rglob("*.rs")}
+    edges = defaultdict(set)
+    for (crate, mp), rel in files.items():
+        text = "\n".join(code_lines((root / rel).read_text()))
+        for m in PATH.finditer(text):
+            head, tail = m.group(1), m.group(2)[2:]
+            for segs in expand(tail):
+                segs = [x.strip() for x in segs if x.strip()]
+                base = [] if head == "crate" else list(mp) if head == "self" else list(mp)[:-1]
+                while head == "super" and segs and segs[0] == "super":
+                    base, segs = base[:-1], segs[1:]
+                full = tuple(base + segs)
+                target = next(
+                    (full[:k] for k in range(len(full), -1, -1) if (crate, full[:k]) in files), None
+                )
+                if target is None or target[: len(mp)] == mp or mp[: len(target)] == target:
+                    continue  # unresolved, or the same family
+                edges[(crate, mp)].add((crate, target))
+    # Tarjan's strongly connected components, iteratively.
+    index, low, stack, on, out, counter = {}, {}, [], set(), [], [0]
+    for start in files:
+        if start in index:
+            continue
+        work = [(start, iter(sorted(edges[start])))]
+        index[start] = low[start] = counter[0]
+        counter[0] += 1
+        stack.append(start)
+        on.add(start)
+        while work:
+            v, it = work[-1]
+            w = next(it, None)
+            if w is not None:
+                if w not in index:
+                    index[w] = low[w] = counter[0]
+                    counter[0] += 1
+                    stack.append(w)
+                    on.add(w)
+                    work.append((w, iter(sorted(edges[w]))))
+                elif w in on:
+                    low[v] = min(low[v], index[w])
+                continue
+            work.pop()
+            if work:
+                low[work[-1][0]] = min(low[work[-1][0]], low[v])
+            if low[v] == index[v]:
+                comp = []
+                while True:
+                    w = stack.pop()
+                    on.discard(w)
+                    comp.append(w)
+                    if w == v:
+                        break
+                if len(comp) > 1:
+                    out.append(sorted(str(files[c]) for c in comp))
+    return out
+
+
 def main():
     repo = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parent.parent
     root = repo / "src"
@@ -129,6 +230,8 @@ def main():
                 for target in targets:
                     if target != unit:
                         siblings[(module, unit)].add(target)
+    for circle in circles(root):
+        problems.append("src: an import circle: " + " -> ".join(circle))
     for (module, a), targets in siblings.items():
         for b in targets:
             if a in siblings.get((module, b), ()):
@@ -140,7 +243,7 @@ def main():
             print("  " + p)
         return 1
     print(
-        f"check-house: {len(LAYER)} modules, every import runs down the layers; "
+        f"check-house: {len(LAYER)} modules, every import runs down the layers, no import circle; "
         f"no file of src/, www/ or tests/ above {MAX_LINES} lines"
     )
     return 0

@@ -62,9 +62,6 @@ pub fn parse_methods(s: &str) -> Result<Vec<Method>, String> {
 
 /// Runs `redundant-ik atlas`.
 pub fn run(args: &AtlasArgs) -> Result<(), String> {
-    if let Some(super::ArmChoice::Space(p)) = &args.scene.arm {
-        return super::space::atlas(args, p);
-    }
     if args.slice.is_some() {
         return Err(
             "--slice chooses the plane of an atlas of an arm in space (--arm panda or iiwa14)"

@@ -85,16 +85,16 @@ fn read(path: &str) -> Result<String, String> {
     super::read_weights_file(std::path::Path::new(path))
 }
 
-/// Runs `redundant-ik eval`.
-pub fn run(args: &EvalArgs) -> Result<(), String> {
+/// Refuses a sample count outside 1 to 1,000,000 (for every arm).
+pub fn check_samples(args: &EvalArgs) -> Result<(), String> {
     if args.samples == 0 || args.samples > 1_000_000 {
         return Err("--samples must be between 1 and 1000000".into());
     }
-    if let Some(key) = &args.arm {
-        let p = redundant_ik::space::SpacePreset::by_key(key)
-            .ok_or_else(|| format!("--arm {key}: eval --arm takes an arm in space (panda)"))?;
-        return super::space_networks::eval(args, p);
-    }
+    Ok(())
+}
+
+/// Runs `redundant-ik eval`.
+pub fn run(args: &EvalArgs) -> Result<(), String> {
     if args.networks == "panda-reach" {
         return Err("--networks panda-reach is the Panda's: add --arm panda".into());
     }

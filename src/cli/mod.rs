@@ -48,15 +48,61 @@ enum Command {
     Bench(bench::BenchArgs),
 }
 
+// Each command for every arm: an arm in space (or a spatial run file) goes
+// to `space` or `space_networks`, a planar one to the command's own file.
+// The routing lives here, above both, so neither imports the other both
+// ways.
+
+/// `simulate`: a spatial run file or arm, else a planar run.
+fn simulate_any(a: &simulate::SimulateArgs) -> Result<(), String> {
+    if let Some(file) = space::run_file(&a.scene)? {
+        return space::replay(a, file);
+    }
+    match &a.scene.arm {
+        Some(ArmChoice::Space(p)) => space::simulate(a, p),
+        _ => simulate::run(a),
+    }
+}
+
+/// `atlas`: the slice atlas of an arm in space, else the planar atlas.
+fn atlas_any(a: &atlas::AtlasArgs) -> Result<(), String> {
+    match &a.scene.arm {
+        Some(ArmChoice::Space(p)) => space::atlas(a, p),
+        _ => atlas::run(a),
+    }
+}
+
+/// `train`: the networks of an arm in space, else a planar arm's.
+fn train_any(a: &train::TrainArgs) -> Result<(), String> {
+    let net = train::net_kind(&a.net)?;
+    match &a.arm {
+        Some(ArmChoice::Space(p)) => space_networks::train(a, net, p),
+        _ => train::run(a, net),
+    }
+}
+
+/// `eval`: an arm in space's networks (`--arm`), else the planar sets.
+fn eval_any(a: &eval::EvalArgs) -> Result<(), String> {
+    eval::check_samples(a)?;
+    match &a.arm {
+        Some(key) => {
+            let p = SpacePreset::by_key(key)
+                .ok_or_else(|| format!("--arm {key}: eval --arm takes an arm in space (panda)"))?;
+            space_networks::eval(a, p)
+        }
+        None => eval::run(a),
+    }
+}
+
 /// Parses the command line, runs it, and returns the exit status.
 pub fn main() -> i32 {
     let cli = Cli::parse();
     let result = match &cli.command {
-        Command::Simulate(a) => simulate::run(a),
+        Command::Simulate(a) => simulate_any(a),
         Command::Figure(a) => figure::run(a),
-        Command::Train(a) => train::run(a),
-        Command::Eval(a) => eval::run(a),
-        Command::Atlas(a) => atlas::run(a),
+        Command::Train(a) => train_any(a),
+        Command::Eval(a) => eval_any(a),
+        Command::Atlas(a) => atlas_any(a),
         Command::Bench(a) => bench::run(a),
     };
     match result {

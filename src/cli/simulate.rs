@@ -337,12 +337,6 @@ pub struct SimulateArgs {
 
 /// Runs `redundant-ik simulate`.
 pub fn run(args: &SimulateArgs) -> Result<(), String> {
-    if let Some(file) = super::space::run_file(&args.scene)? {
-        return super::space::replay(args, file);
-    }
-    if let Some(ArmChoice::Space(p)) = &args.scene.arm {
-        return super::space::simulate(args, p);
-    }
     let method = args.scene.method(&args.method)?;
     let task = args.scene.task()?;
     let (run, traj) = args.scene.run(method)?;

@@ -97,16 +97,26 @@ pub(super) fn parse_hidden(s: &str) -> Result<Vec<usize>, String> {
     Ok(v)
 }
 
+/// The network `--net` names: `phi` or `v`.
+pub fn net_kind(net: &str) -> Result<NetKind, String> {
+    match net {
+        "phi" => Ok(NetKind::Phi),
+        "v" => Ok(NetKind::V),
+        other => Err(format!("unknown network '{other}': use phi or v")),
+    }
+}
+
 /// Runs `redundant-ik train`.
-pub fn run(args: &TrainArgs) -> Result<(), String> {
-    let net = match args.net.as_str() {
-        "phi" => NetKind::Phi,
-        "v" => NetKind::V,
-        other => return Err(format!("unknown network '{other}': use phi or v")),
-    };
+pub fn run(args: &TrainArgs, net: NetKind) -> Result<(), String> {
     let arm = match args.arm.clone() {
-        Some(super::ArmChoice::Space(p)) => return super::space_networks::train(args, net, p),
         Some(super::ArmChoice::Planar(a)) => a,
+        // An arm in space is `space_networks::train`'s (cli/mod.rs routes it).
+        Some(super::ArmChoice::Space(p)) => {
+            return Err(format!(
+                "{}: an arm in space trains through its own route",
+                p.key
+            ))
+        }
         None => redundant_ik::Arm::paper(),
     };
     let recipe: Recipe = args

@@ -31,8 +31,6 @@ mod portable;
 mod single;
 #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
 mod wasm;
-#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-mod wasm_single;
 #[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
 mod x86;
 

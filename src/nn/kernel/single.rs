@@ -5,12 +5,17 @@
 //! and one rounded add per input (never fused), from its bias; `tansig` is
 //! [`tansig32`]. That fixes every rounding, so the portable pass here (the
 //! command line, the page's baseline build) and the wasm `f32x4` pass
-//! (`wasm_single.rs`, the page's SIMD build) give the same bits: a run the
+//! (`single/wasm.rs`, the page's SIMD build) give the same bits: a run the
 //! page makes in `f32` replays exactly with `--precision f32` (tested on
 //! both in `tests/networks/`). One accumulator per neuron costs the
 //! portable pass the overlap of the `f64` kernel's two, but LLVM still
 //! vectorises it over the neurons of a block (16 per block, 4 per SSE
 //! register).
+
+// Its wasm `f32x4` pass, a child of this module (it reads the kernel's
+// layers).
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+mod wasm;
 
 use super::Layer;
 #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
@@ -50,7 +55,7 @@ pub(super) struct Kernel32 {
     pub(super) layers: Vec<Layer32>,
     /// The layers as `f32x4` quads of neurons, for the `simd128` build.
     #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-    pub(super) simd: Vec<super::wasm_single::Layer>,
+    pub(super) simd: Vec<wasm::Layer>,
 }
 
 /// Equal when the `f32` layers are (the quads are made from them).
@@ -68,7 +73,7 @@ impl Kernel32 {
             n_out,
             widest,
             #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-            simd: layers.iter().map(super::wasm_single::Layer::new).collect(),
+            simd: layers.iter().map(wasm::Layer::new).collect(),
             layers,
         }
     }
@@ -77,7 +82,7 @@ impl Kernel32 {
     #[inline]
     pub(super) fn forward(&self, x: &[f64], y: &mut [f64]) {
         #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-        super::wasm_single::forward(self, x, y);
+        wasm::forward(self, x, y);
         #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
         if self.widest <= STACK_WIDTH {
             forward_in(self, x, y, &mut [0.0; STACK_WIDTH], &mut [0.0; STACK_WIDTH]);

@@ -4,8 +4,8 @@
 //! its inputs in order, multiply then add), so both give the same bits.
 use core::arch::wasm32::*;
 
-use super::single::{Kernel32, Layer32};
-use super::{STACK_WIDTH, WIDE_STACK_WIDTH};
+use super::super::{STACK_WIDTH, WIDE_STACK_WIDTH};
+use super::{Kernel32, Layer32};
 use crate::nn::activation::{TANSIG32_CLAMP, TANSIG32_P, TANSIG32_Q};
 
 const QUADS: usize = STACK_WIDTH / 4;
@@ -13,7 +13,7 @@ const WIDE_QUADS: usize = WIDE_STACK_WIDTH / 4;
 
 /// A layer's weights and biases as quads of neurons, in block order.
 #[derive(Debug, Clone)]
-pub(super) struct Layer {
+pub(in crate::nn::kernel) struct Layer {
     inputs: usize,
     width: usize,
     w: Vec<v128>,
@@ -67,7 +67,7 @@ fn forward_in(k: &Kernel32, x: &[f64], y: &mut [f64], a: &mut [v128], b: &mut [v
     for layer in &k.simd {
         let z = &mut next[..layer.width / 4];
         let (mut o0, mut w0) = (0, 0);
-        for bs in super::blocks(layer.width) {
+        for bs in super::super::blocks(layer.width) {
             let (q0, nq) = (o0 / 4, bs / 4);
             let w = &layer.w[w0..w0 + nq * layer.inputs];
             let bias = &layer.b[q0..q0 + nq];
