@@ -4,7 +4,8 @@
 use nalgebra::{DVector, Matrix2xX, Vector2};
 
 use super::methods::Context;
-use super::Planner;
+use super::rk4::Stage;
+use super::{Planner, Workspace};
 use crate::error::{Error, Result};
 use crate::kinematics::Pose;
 
@@ -117,43 +118,23 @@ impl Planner {
                 [v[0], v[1]]
             }
         };
-        let [k1, k2, k3, k4] = &mut ws.k;
+        let Workspace {
+            pose,
+            stage,
+            rk4,
+            rule,
+        } = ws;
         // Stage 1 reads the kinematics of the current state, computed when
         // the previous step ended.
-        let mut note = ws
-            .rule
-            .theta_dot(&cx, &ws.pose, xdot(t, false, &ws.pose), k1)?;
-        for (stage, (c, tt)) in [(0.5 * h, t + 0.5 * h), (0.5 * h, t + 0.5 * h), (h, t + h)]
-            .into_iter()
-            .enumerate()
-        {
-            let (prev, out): (&[f64], &mut [f64]) = match stage {
-                0 => (&k1[..], &mut k2[..]),
-                1 => (&k2[..], &mut k3[..]),
-                _ => (&k3[..], &mut k4[..]),
-            };
-            for ((s, th), k) in ws.theta_stage.iter_mut().zip(theta).zip(prev) {
-                *s = th + c * k;
+        let (next, note) = rk4.step(theta, t, h, |at, out| match at {
+            Stage::Start { t } => rule.theta_dot(&cx, pose, xdot(t, false, pose), out),
+            Stage::At { theta, t, last } => {
+                stage.update(&scene.arm, theta)?;
+                rule.theta_dot(&cx, stage, xdot(t, last, stage), out)
             }
-            ws.stage.update(&scene.arm, &ws.theta_stage)?;
-            let stage_note =
-                ws.rule
-                    .theta_dot(&cx, &ws.stage, xdot(tt, stage == 2, &ws.stage), out)?;
-            note.handover |= stage_note.handover;
-            note.relaxed |= stage_note.relaxed;
-        }
-        let w = h / 6.0;
-        let mut finite = true;
-        for (i, next) in ws.next.iter_mut().enumerate() {
-            *next = theta[i] + w * (((k1[i] + 2.0 * k2[i]) + 2.0 * k3[i]) + k4[i]);
-            // Also false for NaN: a runaway angle is refused like a non-finite one.
-            finite &= next.abs() <= crate::arm::MAX_ANGLE;
-        }
-        if !finite {
-            return Err(Error::Diverged { t });
-        }
-        self.theta.copy_from_slice(&self.ws.next);
-        self.ws.pose.update(&self.scene.arm, &self.ws.next)?;
+        })?;
+        self.theta.copy_from_slice(next);
+        pose.update(&scene.arm, next)?;
         self.step_index += 1;
         self.t = self.step_index as f64 * h;
         self.refresh_sample(note);

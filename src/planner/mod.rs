@@ -22,6 +22,7 @@ mod observe;
 pub mod params;
 mod path;
 mod record;
+mod rk4;
 pub mod self_motion;
 mod settings;
 pub mod space;
@@ -46,6 +47,7 @@ pub use surrogate::Surrogate;
 
 use methods::Rule;
 use record::Stats;
+use rk4::Rk4;
 
 /// Final end-effector error below which a run counts as having reached its
 /// target (5 mm, the acceptance bound for the network cases).
@@ -81,12 +83,9 @@ struct Workspace {
     pose: Pose,
     /// The kinematics at an RK4 stage (and for [`Planner::theta_dot_into`]).
     stage: Pose,
-    /// `theta` at a stage.
-    theta_stage: Vec<f64>,
-    /// The state after the step, before it is accepted.
-    next: Vec<f64>,
-    /// The stage rates `k1..k4`.
-    k: [Vec<f64>; 4],
+    /// The RK4 step's scratch space (the stage rates, a stage's angles,
+    /// the state after the step).
+    rk4: Rk4,
     /// The method's computation, with its own scratch space.
     rule: Box<dyn Rule>,
 }
@@ -96,9 +95,7 @@ impl Workspace {
         Self {
             pose: Pose::zeros(n),
             stage: Pose::zeros(n),
-            theta_stage: vec![0.0; n],
-            next: vec![0.0; n],
-            k: [vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]],
+            rk4: Rk4::new(n),
             rule: method.rule(n),
         }
     }

@@ -15,6 +15,7 @@ pub use track::SpaceTrack;
 
 use super::methods::space::{SpaceContext, SpaceRule};
 use super::methods::{Method, Note};
+use super::rk4::{Rk4, Stage};
 use super::SpaceSurrogate;
 use crate::error::{Error, Result};
 use crate::scene::SpaceScene;
@@ -108,9 +109,7 @@ pub struct SpacePlanner {
     track: SpaceTrack,
     pose: SpacePose,
     stage: SpacePose,
-    k: [Vec<f64>; 4],
-    theta_stage: Vec<f64>,
-    next: Vec<f64>,
+    rk4: Rk4,
     sample: SpaceSample,
     reachable: bool,
     auto_damping: bool,
@@ -158,9 +157,7 @@ impl SpacePlanner {
             track,
             stage: pose.clone(),
             pose,
-            k: [vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]],
-            theta_stage: vec![0.0; n],
-            next: vec![0.0; n],
+            rk4: Rk4::new(n),
             sample: SpaceSample {
                 t: 0.0,
                 theta: vec![0.0; n],
@@ -273,43 +270,20 @@ impl SpacePlanner {
             theta,
             pose,
             stage,
-            k,
-            theta_stage,
-            next,
+            rk4,
             ..
         } = self;
         let cx = SpaceContext {
             scene,
             networks: networks.as_deref(),
         };
-        let [k1, k2, k3, k4] = k;
-        let mut note = rule.theta_dot(&cx, pose, xdot(track, t, false, pose), k1)?;
-        for (s, (c, tt)) in [(0.5 * h, t + 0.5 * h), (0.5 * h, t + 0.5 * h), (h, t + h)]
-            .into_iter()
-            .enumerate()
-        {
-            let (prev, out): (&[f64], &mut [f64]) = match s {
-                0 => (&k1[..], &mut k2[..]),
-                1 => (&k2[..], &mut k3[..]),
-                _ => (&k3[..], &mut k4[..]),
-            };
-            for ((st, th), kk) in theta_stage.iter_mut().zip(theta.iter()).zip(prev) {
-                *st = th + c * kk;
+        let (next, note) = rk4.step(theta, t, h, |at, out| match at {
+            Stage::Start { t } => rule.theta_dot(&cx, pose, xdot(track, t, false, pose), out),
+            Stage::At { theta, t, last } => {
+                stage.update(&scene.chain, theta)?;
+                rule.theta_dot(&cx, stage, xdot(track, t, last, stage), out)
             }
-            stage.update(&scene.chain, theta_stage)?;
-            let n2 = rule.theta_dot(&cx, stage, xdot(track, tt, s == 2, stage), out)?;
-            note.relaxed |= n2.relaxed;
-            note.handover |= n2.handover;
-        }
-        let w = h / 6.0;
-        let mut finite = true;
-        for (i, nx) in next.iter_mut().enumerate() {
-            *nx = theta[i] + w * (((k1[i] + 2.0 * k2[i]) + 2.0 * k3[i]) + k4[i]);
-            finite &= nx.abs() <= crate::arm::MAX_ANGLE;
-        }
-        if !finite {
-            return Err(Error::Diverged { t });
-        }
+        })?;
         theta.copy_from_slice(next);
         pose.update(&scene.chain, next)?;
         self.step_index += 1;
