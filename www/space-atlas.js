@@ -8,6 +8,7 @@
 
 import { atlasClasses, methods, describe, spaceNetworkSets, assetUrl } from './module.js';
 import { spaceAtlas } from './jobs.js';
+import { metres } from './format.js';
 
 const pct = (x) => `${(100 * x).toFixed(1)}%`;
 
@@ -18,7 +19,7 @@ const planeOf = (a) => {
 };
 
 /** Wires the spatial Atlas panel; returns { sync(state), run(options), result() }. */
-export function mountSpaceAtlas(root, demo, { show, say, preset }) {
+export function mountSpaceAtlas(root, demo, { show, say, preset, changed }) {
   const panel = root.querySelector('#atlas-panel');
   if (!panel) return { sync() {}, run: async () => null, result: () => null };
   const summary = panel.querySelector('summary');
@@ -77,6 +78,65 @@ export function mountSpaceAtlas(root, demo, { show, say, preset }) {
   let last = null;
   let controller = null;
 
+  // ---- the map on the drawing: numbers under the pointer, a click places the sphere
+  const stage = root.querySelector('#stage');
+  const tip = root.querySelector('#atlas-tip');
+  const labelOf = (m) => methods().find((x) => x.name === m)?.label ?? m;
+  const local = (e) => {
+    const r = stage.getBoundingClientRect();
+    return [e.clientX - r.left, e.clientY - r.top];
+  };
+  const cellAt = ([x, y]) => (last && !showRow.hidden ? demo.atlasCellAt(x, y) : undefined);
+  function hover(p) {
+    const k = cellAt(p);
+    if (!tip) return;
+    if (k === undefined) {
+      tip.hidden = true;
+      return;
+    }
+    const c = last.cells[k];
+    const lines = [`sphere at (${c.centre.map((v) => v.toFixed(3)).join(', ')})`];
+    last.methods.forEach((m, i) => {
+      const o = c.outcomes[i];
+      const cls = classes.find((x) => x.name === o.class)?.label ?? o.class;
+      const nums = o.min_clearance === null ? '' : `, smallest clearance ${metres(Math.max(0, o.min_clearance))}${o.min_clearance < 0 ? ' (inside)' : ''}, ${metres(o.final_error)} from the target`;
+      lines.push(`${labelOf(m)}: ${cls}${nums}`);
+    });
+    tip.textContent = lines.join('\n');
+    tip.dataset.cell = String(k);
+    tip.hidden = false;
+    const box = tip.offsetParent?.getBoundingClientRect();
+    const [w, h] = [tip.offsetWidth, tip.offsetHeight];
+    tip.style.left = `${box && p[0] + 14 + w > box.width ? Math.max(0, p[0] - 14 - w) : p[0] + 14}px`;
+    tip.style.top = `${box && p[1] + 14 + h > box.height ? Math.max(0, p[1] - 14 - h) : p[1] + 14}px`;
+  }
+  let down = null;
+  stage?.addEventListener('pointermove', (e) => {
+    if (e.buttons === 0 && e.pointerType === 'mouse') hover(local(e));
+  });
+  stage?.addEventListener('pointerleave', () => tip && (tip.hidden = true));
+  // Not on the target or a sphere: those are dragged (space-input.js).
+  stage?.addEventListener('pointerdown', (e) => {
+    const p = local(e);
+    down = demo.hover(p[0], p[1], e.pointerType === 'mouse' ? 4 : 18) ? null : p;
+  });
+  // A click (or a tap) that did not move places the first sphere on the cell and the run follows.
+  stage?.addEventListener('pointerup', (e) => {
+    const p = local(e);
+    const still = down && Math.hypot(p[0] - down[0], p[1] - down[1]) < (e.pointerType === 'mouse' ? 4 : 12);
+    down = null;
+    const k = still ? cellAt(p) : undefined;
+    if (k === undefined) return;
+    try {
+      demo.placeSphereAtCell(k);
+      changed?.();
+      const c = last.cells[k].centre;
+      say(`sphere 1 placed on the atlas's cell at (${c.map((v) => v.toFixed(3)).join(', ')}): the run follows`);
+    } catch (err) {
+      show(describe(err), 'error', true);
+    }
+  });
+
   function draw(k) {
     if (!last) return;
     const cls = last.cells.map((c) => classes.findIndex((x) => x.name === c.outcomes[k].class));
@@ -87,6 +147,7 @@ export function mountSpaceAtlas(root, demo, { show, say, preset }) {
   hide.addEventListener('click', () => {
     demo.clearAtlasLayer();
     showRow.hidden = true;
+    if (tip) tip.hidden = true;
   });
 
   function tabulate(a) {

@@ -259,7 +259,7 @@ export async function mountSpace(root, options) {
     );
   }
 
-  const panels = mountSpacePanels(root, demo, { attempt, show, say, preset, ensureNetworks });
+  const panels = mountSpacePanels(root, demo, { attempt, show, say, preset, ensureNetworks, changed });
 
   // ---- size ------------------------------------------------------------------
   const fit = (canvas, resize) => {

@@ -22,7 +22,7 @@ export function spaceRunCsv(run) {
 }
 
 /** Wires the panels; returns { sync(state), compare(), atlas(options) }. */
-export function mountSpacePanels(root, demo, { attempt, show, say, preset, ensureNetworks }) {
+export function mountSpacePanels(root, demo, { attempt, show, say, preset, ensureNetworks, changed }) {
   const $ = (id) => root.querySelector('#' + id);
   const stem = () => {
     const s = demo.state();
@@ -131,7 +131,7 @@ export function mountSpacePanels(root, demo, { attempt, show, say, preset, ensur
     };
   });
 
-  const atlas = mountSpaceAtlas(root, demo, { attempt, show, say, preset });
+  const atlas = mountSpaceAtlas(root, demo, { attempt, show, say, preset, changed });
   return {
     sync(s) {
       atlas.sync(s);

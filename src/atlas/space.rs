@@ -62,6 +62,23 @@ impl Plane {
         }
     }
 
+    /// Where the ray from `origin` along `direction` meets the plane, ahead
+    /// of `origin`; `None` for a ray parallel to it or pointing away (a
+    /// pointer on the page's drawing, through [`crate::session::space`]'s
+    /// camera, finds the slice atlas's cell under it this way).
+    pub fn hit(self, origin: Vec3, direction: Vec3) -> Option<Vec3> {
+        let (axis, value) = match self {
+            Plane::Xy(z) => (2, z),
+            Plane::Xz(y) => (1, y),
+            Plane::Yz(x) => (0, x),
+        };
+        if direction[axis].abs() < 1e-12 {
+            return None;
+        }
+        let s = (value - origin[axis]) / direction[axis];
+        (s > 0.0 && s.is_finite()).then(|| [0, 1, 2].map(|k| origin[k] + s * direction[k]))
+    }
+
     /// A point's grid coordinates `(u, v)`.
     pub fn coordinates(self, p: Vec3) -> (f64, f64) {
         match self {

@@ -402,6 +402,31 @@ impl SpaceDemo {
         Ok(())
     }
 
+    /// The shown slice atlas's cell under canvas pixel `(x, y)`, if any.
+    #[wasm_bindgen(js_name = atlasCellAt)]
+    pub fn atlas_cell_at(&self, x: f64, y: f64) -> Option<usize> {
+        let proj = self.projection();
+        let d = self.drawn.get();
+        let layer = d.layer.as_ref()?;
+        (x.is_finite() && y.is_finite())
+            .then(|| layer.cell_at(&proj, x, y))
+            .flatten()
+    }
+
+    /// Moves the first sphere to the centre of the shown atlas's cell `k`
+    /// (the run follows, as for a drag); refused without such a cell.
+    #[wasm_bindgen(js_name = placeSphereAtCell)]
+    pub fn place_sphere_at_cell(&mut self, k: usize) -> JsResult {
+        let point = self
+            .drawn
+            .get()
+            .layer
+            .as_ref()
+            .and_then(|l| l.cell_point(k))
+            .ok_or_else(|| JsError::new("no shown slice atlas has that cell"))?;
+        self.session_mut().move_sphere(0, point).map_err(js_err)
+    }
+
     /// Hides the atlas.
     #[wasm_bindgen(js_name = clearAtlasLayer)]
     pub fn clear_atlas_layer(&mut self) {

@@ -63,6 +63,23 @@ impl SliceLayer {
         })
     }
 
+    /// The cell under canvas pixel `(x, y)`: the pointer's ray met with
+    /// the plane, then the grid's nearest point, if any lies within half a
+    /// cell.
+    pub fn cell_at(&self, proj: &Projection, x: f64, y: f64) -> Option<usize> {
+        let (eye, dir) = proj.ray(x, y);
+        let (u, v) = self.plane.coordinates(self.plane.hit(eye, dir)?);
+        self.grid.nearest([u, v])
+    }
+
+    /// The centre of cell `k` in the world, if there is such a cell.
+    pub fn cell_point(&self, k: usize) -> Option<Vec3> {
+        (k < self.grid.cells()).then(|| {
+            let [u, v] = self.grid.point(k);
+            self.plane.point(u, v)
+        })
+    }
+
     fn draw(&self, ctx: &CanvasRenderingContext2d, proj: &Projection) {
         let g = &self.grid;
         let [u0, u1, v0, v1] = g.region;

@@ -54,3 +54,37 @@ test('space controls: the trained-range note shows when a sphere leaves the netw
   clean(page);
   await page.close();
 });
+
+test('space controls: the slice atlas shows a cell\'s numbers under the pointer, and a click places the sphere there', async () => {
+  const page = await open('?arm=panda&method=numerical&autoplay=0');
+  const a = await page.evaluate(() => window.demo.atlas({ methods: ['none', 'numerical'], n: 11 }));
+  assert.equal(a.cells.length, 121);
+  // A corner cell, clear of the target and the sphere.
+  const pick = async (k) => ({ k, at: await page.evaluate((c) => window.demo.worldToClient(...c), a.cells[k].centre) });
+  let cell = null;
+  for (const k of [0, 10, 110, 120]) {
+    const c = await pick(k);
+    const free = await page.evaluate(([x, y]) => {
+      const r = document.getElementById('stage').getBoundingClientRect();
+      return !window.demo.controller.demo.hover(x - r.left, y - r.top, 4) && x > r.left && x < r.right && y > r.top && y < r.bottom;
+    }, [c.at.x, c.at.y]);
+    if (free) {
+      cell = c;
+      break;
+    }
+  }
+  assert.ok(cell, 'a corner cell on screen, clear of the items');
+  await page.mouse.move(cell.at.x, cell.at.y);
+  const tip = await textMatching(page, '#atlas-tip', /sphere at \(/);
+  assert.match(tip, /No avoidance: /);
+  assert.match(tip, /Numerical: /);
+  assert.equal(await page.getAttribute('#atlas-tip', 'data-cell'), String(cell.k));
+  await page.mouse.down();
+  await page.mouse.up();
+  const s = await state(page);
+  a.cells[cell.k].centre.forEach((v, i) => assert.ok(Math.abs(s.spheres[0][i] - v) < 1e-9, `sphere ${s.spheres[0]} at the cell ${a.cells[cell.k].centre}`));
+  assert.match(page.url(), /obstacles=/, 'the address has the placed sphere');
+  await textMatching(page, '#announcer', /placed on the atlas's cell/);
+  clean(page);
+  await page.close();
+});

@@ -51,6 +51,39 @@ fn a_point_projected_and_unprojected_at_its_depth_comes_back() {
     }
 }
 
+/// The pointer's ray meets a slice atlas's plane where the point it shows
+/// lies (the page finds the cell under the pointer so), and misses a plane
+/// it runs parallel to or away from.
+#[test]
+fn the_ray_through_a_projected_point_meets_its_plane_there() {
+    use redundant_ik::atlas::space::Plane;
+    let mut cam = Camera::looking_at([0.3, 0.1, 0.4], 2.0);
+    for (yaw, pitch) in [(0.4, 0.3), (-2.0, 0.9), (2.8, 0.1)] {
+        cam.yaw = yaw;
+        cam.pitch = pitch;
+        let proj = cam.projection(W, H);
+        for plane in [Plane::Xz(0.2), Plane::Xy(0.5), Plane::Yz(-0.1)] {
+            let p = plane.point(0.35, 0.45);
+            let [x, y, _] = proj.project(p);
+            let (eye, dir) = proj.ray(x, y);
+            let hit = plane.hit(eye, dir).expect("the plane is ahead");
+            for k in 0..3 {
+                assert!((hit[k] - p[k]).abs() < 1e-9, "{plane:?}: {p:?} -> {hit:?}");
+            }
+            assert_eq!(
+                plane.hit(eye, [-dir[0], -dir[1], -dir[2]]),
+                None,
+                "behind the eye"
+            );
+        }
+    }
+    assert_eq!(
+        Plane::Xy(0.5).hit([0.0; 3], [1.0, 0.0, 0.0]),
+        None,
+        "parallel"
+    );
+}
+
 #[test]
 fn the_orbit_keeps_the_pitch_and_the_zoom_the_distance_in_their_ranges() {
     let mut cam = Camera::looking_at([0.0; 3], 2.0);

@@ -161,6 +161,12 @@ impl Projection {
         [0, 1, 2].map(|i| self.eye[i] + z * self.forward[i] + a * self.right[i] + b * self.up[i])
     }
 
+    /// The ray through canvas pixel `(x, y)`: the eye and the direction
+    /// (not of unit length) to the pixel's point one metre deep.
+    pub fn ray(&self, x: f64, y: f64) -> (Vec3, Vec3) {
+        (self.eye, sub(self.unproject(x, y, 1.0), self.eye))
+    }
+
     /// The camera's right and up directions (unit vectors): the plane the
     /// arrow keys move the selected item in.
     pub fn screen_axes(&self) -> (Vec3, Vec3) {
