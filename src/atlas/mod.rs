@@ -54,6 +54,33 @@ pub enum Class {
 }
 
 impl Class {
+    /// Checks a map of classes on `grid`, as the page's layers take one
+    /// (the plane's and a slice's in space): the grid valid, one class per
+    /// cell (rows from `y0`, each from `x0`), each an index into
+    /// [`Class::ALL`]; `what` names the map in the error.
+    pub fn check_map(grid: &Grid, classes: &[u8], what: &str) -> Result<()> {
+        grid.validate()?;
+        if classes.len() != grid.cells() {
+            return Err(Error::DimensionMismatch {
+                what: what.into(),
+                expected: grid.cells(),
+                found: classes.len(),
+            });
+        }
+        match classes
+            .iter()
+            .find(|&&c| usize::from(c) >= Class::ALL.len())
+        {
+            Some(&bad) => Err(Error::OutOfRange {
+                what: "atlas class index".into(),
+                value: f64::from(bad),
+                min: 0.0,
+                max: (Class::ALL.len() - 1) as f64,
+            }),
+            None => Ok(()),
+        }
+    }
+
     /// How many classes there are.
     pub const COUNT: usize = 7;
 

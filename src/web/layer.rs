@@ -7,7 +7,7 @@ use web_sys::CanvasRenderingContext2d;
 use super::style::{INK, LAYER_ALPHA};
 use super::surface::View;
 use crate::atlas::{Class, Grid};
-use crate::error::{Error, Result};
+use crate::error::Result;
 
 /// The classes of one method's atlas, cell by cell.
 pub struct Layer {
@@ -22,25 +22,7 @@ impl Layer {
     /// A layer over `grid`; `classes` holds one index into [`Class::ALL`]
     /// per cell.
     pub fn new(grid: Grid, classes: Vec<u8>) -> Result<Self> {
-        grid.validate()?;
-        if classes.len() != grid.cells() {
-            return Err(Error::DimensionMismatch {
-                what: "atlas layer classes".into(),
-                expected: grid.cells(),
-                found: classes.len(),
-            });
-        }
-        if let Some(&bad) = classes
-            .iter()
-            .find(|&&c| usize::from(c) >= Class::ALL.len())
-        {
-            return Err(Error::OutOfRange {
-                what: "atlas class index".into(),
-                value: f64::from(bad),
-                min: 0.0,
-                max: (Class::ALL.len() - 1) as f64,
-            });
-        }
+        Class::check_map(&grid, &classes, "atlas layer classes")?;
         Ok(Self {
             grid,
             classes,

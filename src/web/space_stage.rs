@@ -16,7 +16,7 @@ use super::style::{
 use super::surface::{dash, disc, text, Surface};
 use crate::atlas::space::Plane;
 use crate::atlas::{Class, Grid};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::kinematics::sin_cos;
 use crate::session::space::{Projection, SpaceHandle, SpaceSession, NEAR};
 use crate::space::Vec3;
@@ -37,25 +37,7 @@ pub struct SliceLayer {
 impl SliceLayer {
     /// A checked layer: the grid valid, one known class per cell.
     pub fn new(plane: Plane, grid: Grid, classes: Vec<u8>) -> Result<Self> {
-        grid.validate()?;
-        if classes.len() != grid.cells() {
-            return Err(Error::DimensionMismatch {
-                what: "slice atlas classes".into(),
-                expected: grid.cells(),
-                found: classes.len(),
-            });
-        }
-        if let Some(&bad) = classes
-            .iter()
-            .find(|&&c| usize::from(c) >= Class::ALL.len())
-        {
-            return Err(Error::OutOfRange {
-                what: "atlas class index".into(),
-                value: f64::from(bad),
-                min: 0.0,
-                max: (Class::ALL.len() - 1) as f64,
-            });
-        }
+        Class::check_map(&grid, &classes, "slice atlas classes")?;
         Ok(Self {
             plane,
             grid,
