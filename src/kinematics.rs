@@ -333,11 +333,9 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     const PIO2_3: f64 = 2.022_266_248_711_166_455_80e-21;
     const SHIFT: f64 = 6_755_399_441_055_744.0;
     const LIMIT: f64 = 823_549.661_225_781_2; // 2^19 pi/2
-    let x = if x.abs() > LIMIT {
-        x % std::f64::consts::TAU
-    } else {
-        x
-    };
+    if x.abs() > LIMIT || x.is_nan() {
+        return sin_cos_large(x);
+    }
     let qd = x * FRAC_2_PI + SHIFT;
     let q = qd.to_bits();
     let qf = qd - SHIFT;
@@ -349,6 +347,19 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     let sin_neg = q & 2 == 2;
     let cos_neg = (q.wrapping_add(1)) & 2 == 2;
     (if sin_neg { -s } else { s }, if cos_neg { -c } else { c })
+}
+
+/// [`sin_cos`] of an argument beyond its range, taken modulo `2 pi` first
+/// (NaN and infinity give NaN), out of line and cold.
+#[cold]
+#[inline(never)]
+fn sin_cos_large(x: f64) -> (f64, f64) {
+    let r = x % std::f64::consts::TAU;
+    if r.is_nan() {
+        (f64::NAN, f64::NAN)
+    } else {
+        sin_cos(r)
+    }
 }
 
 /// fdlibm's `__kernel_sin` and `__kernel_cos` on `|r| <= pi/4` (the low part
