@@ -122,7 +122,8 @@ let modules = null;
 const importModules = () =>
   (modules ??= (async () => {
     const [demo, module, address] = await Promise.all([import('./demo.js'), import('./module.js'), import('./address.js')]);
-    await module.loadModule();
+    // The element shows a planar arm: the host page's own address says nothing here.
+    await module.loadModule({ space: false });
     return { ...demo, ...module, ...address };
   })());
 

@@ -26,7 +26,7 @@ function attribute(name, value) {
 
 export default {
   async render({ model, el, signal }) {
-    await loadModule();
+    await loadModule({ space: false });
     const demo = document.createElement('redundant-ik-demo');
     const names = [...addressKeys(), 'autoplay', 'plots'];
     const apply = (name) => {
