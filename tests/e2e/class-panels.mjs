@@ -5,6 +5,7 @@
 import { join } from 'node:path';
 import assert from 'node:assert/strict';
 import { download, pngSize, parseSvg, close } from './class-helpers.mjs';
+import { textMatching } from './harness.mjs';
 
 export function classPanelTests(h) {
   const { test, open, clean, state, shots, mouseDrag, selectMethod, methodsOf, usesNetworks, browser, BASE } = h;
@@ -187,10 +188,11 @@ export function classPanelTests(h) {
     await page.click('#arm-panel summary');
     await page.selectOption('#arm-preset', 'four');
     await page.waitForFunction(() => window.demo.state().arm.links.length === 4);
-    assert.equal(await page.textContent('[data-arm="links"]'), 'four');
-    assert.equal(await page.textContent('[data-arm="spare"]'), 'its two spare degrees of freedom bend');
-    assert.match(await page.textContent('#what-you-see'), /links of 0\.6, 0\.85, 0\.6 and 0\.4 m.*Four joints .* two degrees of freedom spare/);
-    assert.match(await page.textContent('#network-note'), /trained for the paper's arm, not this one/);
+    // The prose follows the arm on the next frame (describeArm): awaited, not read at once.
+    await textMatching(page, '[data-arm="links"]', /^four$/);
+    await textMatching(page, '[data-arm="spare"]', /^its two spare degrees of freedom bend$/);
+    await textMatching(page, '#what-you-see', /links of 0\.6, 0\.85, 0\.6 and 0\.4 m.*Four joints .* two degrees of freedom spare/);
+    await textMatching(page, '#network-note', /trained for the paper's arm, not this one/);
     assert.equal((await state(page)).method, 'numerical');
     const said = await page.evaluate(() => {
       const m = document.getElementById('message');
@@ -216,7 +218,7 @@ export function classPanelTests(h) {
     // Back to the paper's arm: the paper's prose again.
     await page.selectOption('#arm-preset', 'paper');
     await page.waitForFunction(() => window.demo.state().arm.links.length === 3);
-    assert.match(await page.textContent('#network-note'), /a few parts in ten thousand/);
+    await textMatching(page, '#network-note', /a few parts in ten thousand/);
     await page.screenshot({ path: join(shots, 'class-four-links.png') });
     clean(page);
     await page.close();
