@@ -17,6 +17,10 @@
 //! ```
 //!
 //! A failure lists every command whose output changed and which digest.
+//! The digests are this project's machine kind's (x86-64 with AVX2 and
+//! FMA): the networks' kernels pick their instructions at run time
+//! (`nn::kernel`), so a processor without FMA computes Cases 1-3 to other
+//! last bits, and their rows would differ there.
 #![cfg(not(target_family = "wasm"))]
 
 use std::collections::BTreeMap;
