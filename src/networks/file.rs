@@ -148,10 +148,16 @@ pub struct InputRange {
 impl InputRange {
     /// Whether every input lies in its `[min, max]`.
     pub fn contains(&self, x: &[f64]) -> bool {
+        self.contains_within(x, 0.0)
+    }
+
+    /// Whether every input lies in its `[min, max]` widened by `slack` on
+    /// each side (`0`: [`InputRange::contains`]).
+    pub fn contains_within(&self, x: &[f64], slack: f64) -> bool {
         x.len() == self.min.len()
             && x.iter()
                 .zip(self.min.iter().zip(&self.max))
-                .all(|(v, (lo, hi))| *v >= *lo && *v <= *hi)
+                .all(|(v, (lo, hi))| *v >= lo - slack && *v <= hi + slack)
     }
 }
 

@@ -314,10 +314,10 @@ impl SpaceNetworks {
     pub fn in_range(&self, pose: &SpacePose, o: Option<Vec3>) -> bool {
         let mut buf = [0.0; MAX_SPACE_INPUTS];
         let k = encode(pose.theta(), &mut buf);
-        let mut ok = inside(&self.phi.range, &buf[..k]);
+        let mut ok = self.phi.range.contains_within(&buf[..k], RANGE_SLACK);
         if let Some(o) = o {
             buf[k..k + 3].copy_from_slice(&rotated_obstacle(pose, o));
-            ok &= inside(&self.v.range, &buf[..k + 3]);
+            ok &= self.v.range.contains_within(&buf[..k + 3], RANGE_SLACK);
         }
         ok
     }
@@ -345,19 +345,11 @@ fn encode(theta: &[f64], buf: &mut [f64]) -> usize {
     2 * rest.len()
 }
 
-/// Whether the inputs `x` lie in the box training saw, each side widened
-/// by [`RANGE_SLACK`]: the inputs are sines and cosines and positions in
-/// metres, and a box drawn from samples stops just short of their exact
-/// extremes (the Panda's `cos theta3` reaches 0.9999999974 in training,
-/// and its start pose has `theta3 = 0`, a cosine of exactly 1).
-fn inside(range: &crate::networks::InputRange, x: &[f64]) -> bool {
-    x.len() == range.min.len()
-        && x.iter()
-            .zip(range.min.iter().zip(&range.max))
-            .all(|(v, (lo, hi))| *v >= lo - RANGE_SLACK && *v <= hi + RANGE_SLACK)
-}
-
-/// How far outside the trained box an input still counts as inside it.
+/// How far outside the box training saw an input still counts as inside
+/// it: the inputs are sines and cosines and positions in metres, and a box
+/// drawn from samples stops just short of their exact extremes (the
+/// Panda's `cos theta3` reaches 0.9999999974 in training, and its start
+/// pose has `theta3 = 0`, a cosine of exactly 1).
 const RANGE_SLACK: f64 = 1e-6;
 
 /// `x` turned by the angle of `(s, c)` about the unit `axis` (Rodrigues).
