@@ -9,7 +9,7 @@
 use crate::error::{Error, Result};
 use crate::planner::along::{self, polyline_at, Circle};
 use crate::scene::{circle_plane, SpacePath};
-use crate::space::Vec3;
+use crate::space::{norm, sub, Vec3};
 
 /// The shape a [`SpaceTrack`] runs along, its geometry computed once.
 #[derive(Debug, Clone, PartialEq)]
@@ -76,10 +76,7 @@ impl SpaceTrack {
     /// line's end, a circle at 256 points, every corner of a polyline.
     /// Allocation-free.
     pub fn reachable(&self, shoulder: Vec3, reach: f64) -> bool {
-        let can = |p: Vec3| {
-            let d = [0, 1, 2].map(|k| p[k] - shoulder[k]);
-            (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt() <= reach
-        };
+        let can = |p: Vec3| norm(sub(p, shoulder)) <= reach;
         match &self.shape {
             Shape::Line => can(self.end),
             Shape::Circle(c) => (0..256).all(|k| can(c.at(f64::from(k) / 256.0).0)),
