@@ -466,6 +466,18 @@ impl DampingSchedule {
         Ok(())
     }
 
+    /// Switches the default schedule on in `damping` where the path leaves
+    /// the arm's reach (`reachable` false) and none is set, so the
+    /// stretched arm's rates stay bounded: both planners, at the start and
+    /// for a new target. Returns whether it did.
+    pub fn switch_on_out_of_reach(damping: &mut Option<Self>, reachable: bool) -> bool {
+        let on = damping.is_none() && !reachable;
+        if on {
+            *damping = Some(Self::default());
+        }
+        on
+    }
+
     /// The extra damping this schedule adds at Jacobian `j`.
     pub fn delta(&self, j: &Matrix2xX<f64>) -> f64 {
         self.delta_at_sigma(smallest_singular_value(j))

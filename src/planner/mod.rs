@@ -133,10 +133,7 @@ impl Planner {
         let start = ws.pose.end_effector();
         let track = Track::new(scene.path.clone(), start, scene.target, 0.0, scene.tf);
         let reachable = track.reachable(&scene.arm);
-        let auto_damping = scene.damping.is_none() && !reachable;
-        if auto_damping {
-            scene.damping = Some(DampingSchedule::default());
-        }
+        let auto_damping = DampingSchedule::switch_on_out_of_reach(&mut scene.damping, reachable);
         let mut p = Self {
             sample: Sample::zeros(n, start),
             scene,

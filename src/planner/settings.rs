@@ -57,8 +57,7 @@ impl Planner {
         self.reachable = self.track.reachable(&self.scene.arm);
         // The damping schedule is switched on where a point of the path
         // (the target, for the line) lies outside the workspace.
-        if self.scene.damping.is_none() && !self.reachable {
-            self.scene.damping = Some(DampingSchedule::default());
+        if DampingSchedule::switch_on_out_of_reach(&mut self.scene.damping, self.reachable) {
             self.auto_damping = true;
         }
         self.resample();

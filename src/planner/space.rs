@@ -141,12 +141,10 @@ impl SpacePlanner {
         let start = pose.hand();
         let track = SpaceTrack::new(&scene.path, start, scene.target, scene.tf)?;
         // A path out of reach: damping switched on unless the scene has its
-        // own, as for a planar arm, so the stretched arm's rates stay bounded.
+        // own, as for a planar arm.
         let reachable = track.reachable(pose.joint_origin(0), scene.chain.reach());
-        let auto_damping = scene.damping.is_none() && !reachable;
-        if auto_damping {
-            scene.damping = Some(crate::ik::DampingSchedule::default());
-        }
+        let auto_damping =
+            crate::ik::DampingSchedule::switch_on_out_of_reach(&mut scene.damping, reachable);
         let theta = scene.theta0.clone();
         let mut planner = Self {
             networks,
