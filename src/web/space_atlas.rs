@@ -180,14 +180,10 @@ impl SpaceAtlasJob {
 
 /// The options as an object or as JSON text (absent: every default).
 fn read_options(options: JsValue) -> Result<Options, JsError> {
-    let text = if options.is_undefined() || options.is_null() {
-        "{}".to_string()
-    } else if let Some(text) = options.as_string() {
-        text
-    } else {
-        js_sys::JSON::stringify(&options)
-            .map_err(|_| JsError::new("slice atlas options: not an object"))?
-            .into()
-    };
-    serde_json::from_str(&text).map_err(|e| JsError::new(&format!("slice atlas options: {e}")))
+    const WHAT: &str = "slice atlas options";
+    if !(options.is_undefined() || options.is_null() || options.is_string()) {
+        return super::worker::from_js(&options, WHAT, false);
+    }
+    let text = options.as_string().unwrap_or_else(|| "{}".into());
+    serde_json::from_str(&text).map_err(|e| JsError::new(&format!("{WHAT}: {e}")))
 }

@@ -68,7 +68,7 @@ pub(super) fn from_js<T: serde::de::DeserializeOwned>(
     let text: String = js_sys::JSON::stringify(value)
         .ok()
         .and_then(|t| t.as_string())
-        .ok_or_else(|| JsError::new(&format!("{what}: not a JSON value")))?;
+        .ok_or_else(|| JsError::new(&format!("{what}: not an object")))?;
     serde_json::from_str(&text).map_err(|e| JsError::new(&format!("{what}: {e}")))
 }
 
