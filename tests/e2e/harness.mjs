@@ -86,6 +86,17 @@ export async function countFrames(page) {
 
 export async function selectMethod(page, method) {
   await page.selectOption('#mode', method);
+  await nextFrames(page);
+}
+
+/**
+ * Waits for two animation frames: the page updates its controls and notes
+ * from the state in its frame loop, so what a change shows is there after
+ * the next frame, not at once (on a loaded machine, late enough to fail a
+ * read made at once).
+ */
+export async function nextFrames(page) {
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
 }
 
 /** The page's methods (the module's methods()). */

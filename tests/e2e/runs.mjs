@@ -5,7 +5,7 @@
 // staleness by the state's revisions. Registered by e2e.mjs.
 
 import assert from 'node:assert/strict';
-import { test, open, clean, state, pause, mouseDrag } from './harness.mjs';
+import { test, open, clean, state, pause, mouseDrag, nextFrames } from './harness.mjs';
 import { cli, download, close } from './class-helpers.mjs';
 import { dragCost } from './frame-cost.mjs';
 
@@ -69,6 +69,7 @@ test('runs: with precision=f32 the networks compute in f32: the selector and the
   assert.equal(JSON.parse((await download(page, '#save-run-json')).text).precision, undefined, 'an f64 run file leaves it out');
   // A method without networks has no arithmetic to choose.
   await page.selectOption('#mode', 'numerical');
+  await nextFrames(page);
   assert.equal(await page.isVisible('#precision'), false);
   clean(page);
   await page.close();
