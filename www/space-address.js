@@ -2,6 +2,9 @@
 // for, and the state written back into it. Keys: arm, method, lambda and
 // the methods' other parameters by name, target=X,Y,Z,
 // obstacles=X,Y,Z,R;X,Y,Z,R (the spheres, m), feedback, weighting, floor,
+// damping (1: the schedule near singular poses on; off by default in
+// space), path (the core's syntax: line, circle:CX,CY,CZ,NX,NY,NZ[,LAPS],
+// points:X,Y,Z;...),
 // networks, precision (the networks' arithmetic: f64 or f32),
 // view=YAW,PITCH,DISTANCE (degrees, degrees, m), embed and
 // projector as the plane's address has them (address.js). Numbers are
@@ -49,6 +52,8 @@ export function readSpaceAddress(search) {
     feedback: read('feedback', (v) => numbers(v, 1)[0]),
     weighting: q.get('weighting') ?? undefined,
     floor: q.has('floor') ? q.get('floor') === '1' : undefined,
+    damping: q.has('damping') ? q.get('damping') === '1' : undefined,
+    path: q.get('path') ?? undefined,
     precision: read('precision', readPrecision),
     view: read('view', (v) => numbers(v, 3)),
     projector: q.get('projector') === '1' || undefined,
@@ -76,6 +81,8 @@ export function spaceQuery(s, preset) {
   if (s.feedback > 0) q.set('feedback', String(s.feedback));
   if (s.weighting !== limits().joint_weightings[0][0]) q.set('weighting', s.weighting);
   if (s.floor) q.set('floor', '1');
+  if (s.damping) q.set('damping', '1');
+  if (s.path) q.set('path', s.path);
   if (s.precision !== precisions()[0].name) q.set('precision', s.precision);
   for (const p of params()) {
     if (s.params[p.name] !== undefined && s.params[p.name] !== p.default) q.set(p.name, String(s.params[p.name]));

@@ -6,8 +6,10 @@
 // parameters (method-params.js), Correct drift, the readouts, the legend,
 // the comparison, the run's file, the view's reset, the address and the
 // live region; the stage's pointer, touch and keys are space-input.js's.
-// Controls of the plane only (the path, self-motion, the designer's links,
-// training) are hidden by style.css under html[data-space].
+// the path typed or drawn (path-input.js: drawn on the plane through the
+// hand's start that faces the camera), the damping switch and the joint
+// weighting (lab.js). Controls of the plane only (self-motion, the
+// designer's links, training) are hidden by stage.css under html[data-space].
 
 import { SpaceDemo, loadModule, describe, methodGroups, assetUrl, spacePresets, spaceNetworkSets, limits } from './module.js';
 import { fixed, metres } from './format.js';
@@ -17,6 +19,8 @@ import { wireSpaceStage } from './space-input.js';
 import { messenger } from './messages.js';
 import { writeSpaceAddress } from './space-address.js';
 import { mountSpacePanels } from './space-panels.js';
+import { mountPath } from './path-input.js';
+import { mountLab } from './lab.js';
 
 const READOUTS = {
   t: (s) => fixed(s.t, 1),
@@ -62,7 +66,8 @@ async function installNetworks(demo, arm) {
 /**
  * Starts the spatial demo on `root` (the page's document). Options: arm
  * (a spatial preset's key), method, target [x, y, z], obstacles (flat x, y,
- * z, r, ...), params { name: value }, feedback, weighting, floor, precision, view
+ * z, r, ...), params { name: value }, feedback, weighting, damping, path,
+ * floor, precision, view
  * [yaw°, pitch°, distance], autoplay, keyboard, problems (shown), onChange
  * (after user changes). Returns a controller with state(), demo,
  * worldToClient(x, y, z), runUntil(t), compare(), runFile().
@@ -145,6 +150,8 @@ export async function mountSpace(root, options) {
   for (const [name, value] of Object.entries(options.params ?? {})) initial(name, () => demo.setParam(name, value));
   if (options.feedback !== undefined) initial('feedback', () => demo.setFeedback(options.feedback));
   if (options.weighting) initial('weighting', () => demo.setWeighting(options.weighting));
+  if (options.damping !== undefined) initial('damping', () => demo.setDamping(options.damping));
+  if (options.path) initial('path', () => demo.setPath(options.path));
   if (options.floor !== undefined) initial('floor', () => demo.setFloor(options.floor));
   if (options.precision) initial('precision', () => demo.setPrecision(options.precision));
   if (options.view) initial('view', () => demo.setView((options.view[0] * Math.PI) / 180, (options.view[1] * Math.PI) / 180, options.view[2]));
@@ -199,10 +206,18 @@ export async function mountSpace(root, options) {
   feedback?.addEventListener('change', () => {
     if (attempt(() => demo.setFeedback(feedback.checked ? limits().drift_gain : 0), 'error', feedback)) changed();
   });
-  const floor = $('floor');
-  floor?.addEventListener('change', () => {
-    if (attempt(() => demo.setFloor(floor.checked), 'error', floor)) changed();
+  const damping = $('damping');
+  damping?.addEventListener('change', () => {
+    if (attempt(() => demo.setDamping(damping.checked), 'error', damping)) changed();
   });
+  // The path (typed, or drawn on the stage: its stroke is taken before
+  // space-input.js's handlers), the joint weighting and the floor.
+  const path = $('path');
+  if (path) path.placeholder = 'line · circle:CX,CY,CZ,NX,NY,NZ[,LAPS] · points:X,Y,Z;…';
+  const drawPath = $('draw-path');
+  if (drawPath) drawPath.title = "Press, then draw on the stage: the stroke, on the plane through the hand's start that faces you, becomes a points: path (Escape cancels)";
+  const syncPath = mountPath(root, demo, { attempt, changed, stage });
+  const syncLab = mountLab(root, demo, { attempt, changed });
   // The networks' arithmetic: the plane's selector (network-set.js).
   const syncPrecision = mountPrecision(root, (name, near) => {
     if (attempt(() => demo.setPrecision(name), 'error', near)) {
@@ -290,7 +305,9 @@ export async function mountSpace(root, options) {
       play.setAttribute('aria-pressed', String(s.running));
     }
     if (feedback) feedback.checked = s.feedback > 0;
-    if (floor) floor.checked = s.floor;
+    if (damping) damping.checked = s.damping;
+    syncPath(s);
+    syncLab(s);
     syncPrecision(s, menu.selectedOptions[0]?.dataset.networks === 'true');
     syncParams(s);
     if (range) range.hidden = s.in_range;

@@ -76,27 +76,7 @@ impl Path {
     /// kept. An empty stroke gives no points, which [`Path::validate`]
     /// refuses.
     pub fn drawn(stroke: &[[f64; 2]]) -> Self {
-        let mut gap = DRAWN_SPACING;
-        loop {
-            let mut kept: Vec<[f64; 2]> = Vec::new();
-            for &[x, y] in stroke {
-                // To the millimetre: a path's text people can read.
-                let p = [(x * 1e3).round() / 1e3, (y * 1e3).round() / 1e3];
-                if kept.last().is_none_or(|&q| distance(p, q) >= gap) {
-                    kept.push(p);
-                }
-            }
-            // (A gap grown past every finite distance ends it too: the
-            // scene refuses the points then, which are not finite.)
-            if kept.len() <= MAX_POINTS || !gap.is_finite() {
-                kept.truncate(MAX_POINTS);
-                if let (Some(&[x, y]), [_, .., last]) = (stroke.last(), &mut kept[..]) {
-                    *last = [(x * 1e3).round() / 1e3, (y * 1e3).round() / 1e3];
-                }
-                return Path::Points(kept);
-            }
-            gap *= 2.0;
-        }
+        Path::Points(thinned(stroke, distance))
     }
 
     /// Checks the numbers (finite, within [`crate::error::MAX_COORDINATE`]),
@@ -182,6 +162,41 @@ impl Path {
                 best
             }
         }
+    }
+}
+
+/// The points of a stroke drawn by a pointer (`stroke`, world points in
+/// the order drawn; the plane's or space's), to the millimetre and thinned
+/// to points at least [`DRAWN_SPACING`] apart by `distance` (twice that,
+/// and so on, until at most [`MAX_POINTS`] remain): the first point and
+/// each one that far from the last kept, the stroke's end in place of the
+/// last kept. An empty stroke gives no points.
+pub(super) fn thinned<const D: usize>(
+    stroke: &[[f64; D]],
+    distance: fn([f64; D], [f64; D]) -> f64,
+) -> Vec<[f64; D]> {
+    // To the millimetre: a path's text people can read (`+ 0.0` turns
+    // the `-0` of a rounded small negative into `0`).
+    let mm = |p: [f64; D]| p.map(|v| (v * 1e3).round() / 1e3 + 0.0);
+    let mut gap = DRAWN_SPACING;
+    loop {
+        let mut kept: Vec<[f64; D]> = Vec::new();
+        for &p in stroke {
+            let p = mm(p);
+            if kept.last().is_none_or(|&q| distance(p, q) >= gap) {
+                kept.push(p);
+            }
+        }
+        // (A gap grown past every finite distance ends it too: the
+        // scene refuses the points then, which are not finite.)
+        if kept.len() <= MAX_POINTS || !gap.is_finite() {
+            kept.truncate(MAX_POINTS);
+            if let (Some(&end), [_, .., last]) = (stroke.last(), &mut kept[..]) {
+                *last = mm(end);
+            }
+            return kept;
+        }
+        gap *= 2.0;
     }
 }
 

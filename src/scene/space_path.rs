@@ -22,7 +22,7 @@ use std::str::FromStr;
 
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use super::path::{whole_laps, LAPS};
+use super::path::{thinned, whole_laps, LAPS};
 use super::{MAX_POINTS, MIN_RADIUS};
 use crate::arm::number_list;
 use crate::error::{coordinate, Error, Result};
@@ -95,6 +95,15 @@ impl SpacePath {
     /// Whether this is the straight line.
     pub fn is_line(&self) -> bool {
         *self == SpacePath::Line
+    }
+
+    /// The `points:` path through a stroke drawn by a pointer (`stroke`,
+    /// world points in the order drawn: the page puts them on the plane
+    /// through the hand's start facing the camera), thinned as the planar
+    /// [`super::Path::drawn`] thins its own. An empty stroke gives no
+    /// points, which [`SpacePath::validate`] refuses.
+    pub fn drawn(stroke: &[Vec3]) -> Self {
+        SpacePath::Points(thinned(stroke, |a, b| norm(sub(a, b))))
     }
 
     /// Checks the numbers (finite, within [`crate::error::MAX_COORDINATE`]),

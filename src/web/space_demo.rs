@@ -128,6 +128,34 @@ impl SpaceDemo {
         self.session_mut().set_weighting(w).map_err(js_err)
     }
 
+    /// Whether the damping schedule near singular poses is on.
+    #[wasm_bindgen(js_name = setDamping)]
+    pub fn set_damping(&mut self, on: bool) -> JsResult {
+        self.session_mut().set_damping(on).map_err(js_err)
+    }
+
+    /// Makes the path the hand follows the one written `text` (`line`,
+    /// `circle:CX,CY,CZ,NX,NY,NZ[,LAPS]`, `points:X,Y,Z;...`: the core's
+    /// syntax, the address's `path=`) or, given `stroke` (canvas CSS
+    /// pixels flat, `[x0, y0, x1, y1, ...]`), the polyline drawn on the
+    /// plane through the hand's start that faces the camera, thinned by
+    /// the core to points at least 5 cm apart; runs it and returns the
+    /// path's text. Throws, changing nothing, on bad text or a path the
+    /// scene refuses. (The plane's `Demo.setPath`, in space.)
+    #[wasm_bindgen(js_name = setPath)]
+    pub fn set_path(&mut self, text: &str, stroke: Option<Vec<f64>>) -> JsResult<String> {
+        let path = match stroke {
+            Some(flat) => {
+                let proj = self.projection();
+                self.session().drawn_path(&proj, &flat).map_err(js_err)?
+            }
+            None => text.parse().map_err(js_err)?,
+        };
+        let text = path.to_string();
+        self.session_mut().set_path(path).map_err(js_err)?;
+        Ok(text)
+    }
+
     /// Whether the floor is an obstacle.
     #[wasm_bindgen(js_name = setFloor)]
     pub fn set_floor(&mut self, on: bool) -> JsResult {

@@ -6,7 +6,7 @@
 // run's. Registered by e2e.mjs.
 
 import assert from 'node:assert/strict';
-import { test, open, clean, state, textMatching } from './harness.mjs';
+import { test, open, clean, state, textMatching, shots } from './harness.mjs';
 
 test('space controls: the tour and the upload are not shown, the keys hint is the drawing in space\'s, Task plays', async () => {
   const page = await open('?arm=panda&method=numerical&autoplay=0');
@@ -85,6 +85,66 @@ test('space controls: the slice atlas shows a cell\'s numbers under the pointer,
   a.cells[cell.k].centre.forEach((v, i) => assert.ok(Math.abs(s.spheres[0][i] - v) < 1e-9, `sphere ${s.spheres[0]} at the cell ${a.cells[cell.k].centre}`));
   assert.match(page.url(), /obstacles=/, 'the address has the placed sphere');
   await textMatching(page, '#announcer', /placed on the atlas's cell/);
+  clean(page);
+  await page.close();
+});
+
+test('space controls: a path typed or drawn on the stage, the damping switch and the joint weighting, each kept in the address', async () => {
+  const page = await open('?arm=panda&method=numerical&autoplay=0');
+  for (const id of ['#path', '#draw-path', '#damping']) assert.equal(await page.isVisible(id), true, `${id} is shown in space`);
+  assert.match(await page.getAttribute('#path', 'placeholder'), /CX,CY,CZ,NX,NY,NZ/);
+  // Typed: a circle about a point beside the hand's start, in the plane with normal y.
+  const start = (await state(page)).hand;
+  const circle = `circle:${(start[0] - 0.1).toFixed(3)},${start[1].toFixed(3)},${start[2].toFixed(3)},0,1,0`;
+  await page.fill('#path', circle);
+  await page.press('#path', 'Enter');
+  await page.locator('#path').blur();
+  await page.waitForFunction(() => /^circle:/.test(window.demo.state().path ?? ''), null, { timeout: 10000 });
+  const typed = (await state(page)).path;
+  assert.deepEqual(typed.slice(7).split(',').map(Number), circle.slice(7).split(',').map(Number));
+  await page.waitForFunction(() => /path=circle/.test(location.search), null, { timeout: 10000 });
+  // Refused with the core's reason, the path kept.
+  await page.fill('#path', 'circle:1,2');
+  await page.press('#path', 'Enter');
+  await textMatching(page, '#message', /path/);
+  assert.equal((await state(page)).path, typed);
+  // Drawn: a stroke from the hand's start, 160 px right and 80 px up.
+  const from = await page.evaluate((p) => window.demo.worldToClient(...p), start);
+  await page.click('#draw-path');
+  assert.equal(await page.getAttribute('#draw-path', 'aria-pressed'), 'true');
+  await page.mouse.move(from.x, from.y);
+  await page.mouse.down();
+  for (let k = 1; k <= 16; k++) await page.mouse.move(from.x + 10 * k, from.y - 5 * k);
+  await page.mouse.up();
+  await page.waitForFunction(() => /^points:/.test(window.demo.state().path ?? ''), null, { timeout: 10000 });
+  const s = await state(page);
+  const points = s.path.slice('points:'.length).split(';').map((p) => p.split(',').map(Number));
+  assert.ok(points.length >= 3 && points.every((p) => p.length === 3), s.path);
+  const end = await page.evaluate((p) => window.demo.worldToClient(...p), points.at(-1));
+  assert.ok(Math.hypot(end.x - (from.x + 160), end.y - (from.y - 80)) < 3, `the path ends under the stroke's end (${end.x}, ${end.y})`);
+  assert.equal((await state(page)).spheres.length, 1, 'the stroke moved nothing');
+  await page.screenshot({ path: `${shots}/space-drawn-path.png` });
+  // The damping switch.
+  assert.equal(s.damping, false);
+  await page.click('label[for=damping]');
+  await page.waitForFunction(() => window.demo.state().damping === true, null, { timeout: 10000 });
+  await page.waitForFunction(() => /damping=1/.test(location.search), null, { timeout: 10000 });
+  // The joint weighting, shown for the methods it reaches.
+  await page.selectOption('#mode', 'qp');
+  await page.waitForFunction(() => document.getElementById('joint-weighting-field').hidden, null, { timeout: 10000 });
+  await page.selectOption('#mode', 'numerical');
+  await page.waitForFunction(() => !document.getElementById('joint-weighting-field').hidden, null, { timeout: 10000 });
+  await page.selectOption('#joint-weighting', 'wln');
+  await page.waitForFunction(() => window.demo.state().weighting === 'wln', null, { timeout: 10000 });
+  // A reload gives the same scene back.
+  const url = page.url();
+  const again = await open(url.slice(url.indexOf('?')));
+  const t = await state(again);
+  assert.equal(t.path, s.path);
+  assert.equal(t.damping, true);
+  assert.equal(t.weighting, 'wln');
+  clean(again);
+  await again.close();
   clean(page);
   await page.close();
 });

@@ -9,7 +9,7 @@ use redundant_ik::networks::space::SpaceNetworkSet;
 use redundant_ik::planner::methods::QP;
 use redundant_ik::planner::space::SpacePlanner;
 use redundant_ik::planner::Method;
-use redundant_ik::scene::SpaceScene;
+use redundant_ik::scene::{SpacePath, SpaceScene};
 use redundant_ik::session::space::{Camera, SpaceHandle, SpaceSession, DISTANCE, PITCH};
 use redundant_ik::session::NUDGE;
 
@@ -250,6 +250,68 @@ fn the_clock_plays_the_run_to_its_end_and_replays_it() {
     assert!((s.sample().unwrap().t - 2.0).abs() < 1e-9);
 }
 
+/// A path drawn on the stage lies on the plane through the hand's start
+/// that faces the camera, under the pointer's stroke, thinned to points
+/// 5 cm apart ending where the stroke ended; the run follows it.
+#[test]
+fn a_path_drawn_on_the_stage_lies_under_the_stroke_in_the_plane_facing_the_camera() {
+    let mut s = panda(Method::NUMERICAL);
+    let proj = s.projection(W, H);
+    let start = s.scene().start();
+    let [x0, y0, _] = proj.project(start);
+    // A stroke of 200 px to the right and 100 px up, one point a pixel.
+    let stroke: Vec<f64> = (0..=200)
+        .flat_map(|k| [x0 + k as f64, y0 - k as f64 / 2.0])
+        .collect();
+    let path = s.drawn_path(&proj, &stroke).unwrap();
+    let SpacePath::Points(points) = &path else {
+        panic!("a drawn path is a polyline: {path}")
+    };
+    assert!(points.len() >= 3, "{path}");
+    for (k, p) in points.iter().enumerate() {
+        // On the plane facing the camera through the start (to the mm the
+        // points are rounded to), and 5 cm or more from the point before.
+        assert!((proj.depth(*p) - proj.depth(start)).abs() < 2e-3, "{p:?}");
+        if k > 0 && k + 1 < points.len() {
+            let q = points[k - 1];
+            let d = ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt();
+            assert!(d >= 0.05 - 1e-3, "{d}");
+        }
+    }
+    let [ex, ey, _] = proj.project(*points.last().unwrap());
+    assert!((ex - (x0 + 200.0)).hypot(ey - (y0 - 100.0)) < 1.0);
+    assert!(!path.to_string().contains("-0,"), "no -0 in {path}");
+    s.set_path(path.clone()).unwrap();
+    assert_eq!(s.state().path.as_deref(), Some(path.to_string().as_str()));
+    // The run is the planner's own run of that path.
+    let own = SpacePlanner::new(s.scene().clone(), Method::NUMERICAL)
+        .unwrap()
+        .run()
+        .unwrap();
+    assert_eq!(s.samples(), &own.samples[..]);
+    // A typed circle too, and back to the line.
+    let circle: SpacePath = "circle:0.45,0,0.5,0,1,0".parse().unwrap();
+    s.set_path(circle).unwrap();
+    assert!(s.state().path.unwrap().starts_with("circle:"));
+    s.set_path(SpacePath::Line).unwrap();
+    assert_eq!(s.state().path, None);
+}
+
+#[test]
+fn the_damping_switch_puts_the_schedule_into_the_scene_and_the_run() {
+    let mut s = panda(Method::NUMERICAL);
+    assert!(!s.state().damping);
+    s.set_damping(true).unwrap();
+    assert!(s.state().damping && s.scene().damping.is_some());
+    let own = SpacePlanner::new(s.scene().clone(), Method::NUMERICAL)
+        .unwrap()
+        .run()
+        .unwrap();
+    assert_eq!(s.samples(), &own.samples[..]);
+    s.set_damping(false).unwrap();
+    assert!(s.scene().damping.is_none());
+}
+
 #[test]
 fn bad_input_is_refused_and_loses_nothing() {
     let mut s = panda(Method::NUMERICAL);
@@ -267,5 +329,22 @@ fn bad_input_is_refused_and_loses_nothing() {
     assert!(s.set_feedback(-1.0).is_err());
     assert!(s.set_view(0.0, f64::NAN, 2.0).is_err());
     assert!(SpaceSession::new("ur5", Method::NUMERICAL).is_err());
+    let proj = s.projection(W, H);
+    assert!(s.drawn_path(&proj, &[1.0, f64::NAN]).is_err());
+    // Nothing drawn gives no points, which the scene refuses.
+    let empty = s.drawn_path(&proj, &[]).unwrap();
+    assert!(s.set_path(empty).is_err());
+    // A circle whose normal lies along the start minus the centre has no plane.
+    let start = s.scene().start();
+    let flat: SpacePath = format!(
+        "circle:0.4,0,{},{},{},{}",
+        start[2],
+        start[0] - 0.4,
+        start[1],
+        0.0
+    )
+    .parse()
+    .unwrap();
+    assert!(s.set_path(flat).is_err());
     assert_eq!(*s.scene(), scene);
 }

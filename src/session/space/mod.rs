@@ -27,12 +27,13 @@ pub use state::{SpaceMethodRun, SpaceState};
 
 use super::history::Point;
 use crate::error::{within, Error, Result};
+use crate::ik::DampingSchedule;
 use crate::networks::space::{SpaceNetworkSet, SpaceNetworks};
 use crate::nn::Precision;
 use crate::planner::methods::Method;
 use crate::planner::params::by_name;
 use crate::planner::space::{SpacePlanner, SpaceSample, SpaceSummary, SpaceTrajectory};
-use crate::scene::{JointWeighting, SpaceScene};
+use crate::scene::{JointWeighting, SpacePath, SpaceScene};
 use crate::space::{SpacePose, SpacePreset, Sphere, Vec3, MAX_SPHERES, PRESETS};
 
 /// A spatial run played on the page: see the module documentation.
@@ -219,6 +220,24 @@ impl SpaceSession {
     pub fn set_weighting(&mut self, weighting: JointWeighting) -> Result<()> {
         let mut scene = self.scene.clone();
         scene.weighting = weighting;
+        self.apply(scene)
+    }
+
+    /// Whether the damping schedule near singular poses is on (the
+    /// planar page's switch: the schedule's defaults, or none).
+    pub fn set_damping(&mut self, on: bool) -> Result<()> {
+        let mut scene = self.scene.clone();
+        scene.damping = on.then(DampingSchedule::default);
+        self.apply(scene)
+    }
+
+    /// Makes `path` the one the hand follows (the line to the target, a
+    /// circle, a polyline typed or drawn: [`SpacePath`]); refused,
+    /// changing nothing, when the scene refuses it (a circle with no
+    /// plane through the hand's start, say).
+    pub fn set_path(&mut self, path: SpacePath) -> Result<()> {
+        let mut scene = self.scene.clone();
+        scene.path = path;
         self.apply(scene)
     }
 

@@ -7,6 +7,7 @@
 
 use super::{Camera, Projection, SpaceSession, DISTANCE, PITCH};
 use crate::error::{finite, Result};
+use crate::scene::SpacePath;
 use crate::session::{FINE_NUDGE, NUDGE};
 use crate::space::{add, scale, sub, Vec3};
 
@@ -151,6 +152,22 @@ impl SpaceSession {
         let to = add(proj.unproject(x, y, d.depth), d.offset);
         let _ = self.place(d.handle, to);
         Ok(())
+    }
+
+    /// The polyline drawn by a pointer over canvas pixels `stroke` (flat
+    /// `[x0, y0, x1, y1, ...]`), on the plane through the hand's start
+    /// that faces the camera, thinned as a drawn planar path is
+    /// ([`SpacePath::drawn`]); refused on a non-finite pixel. (Not made
+    /// the scene's path: [`SpaceSession::set_path`] does that.)
+    pub fn drawn_path(&self, proj: &Projection, stroke: &[f64]) -> Result<SpacePath> {
+        let depth = proj.depth(self.scene.start());
+        let mut world = Vec::with_capacity(stroke.len() / 2);
+        for p in stroke.chunks_exact(2) {
+            finite("stroke x", p[0])?;
+            finite("stroke y", p[1])?;
+            world.push(proj.unproject(p[0], p[1], depth));
+        }
+        Ok(SpacePath::drawn(&world))
     }
 
     /// Lets go of the item held.

@@ -89,6 +89,11 @@ pub struct SpaceState<'a> {
     pub weighting: JointWeighting,
     /// Whether the floor is an obstacle.
     pub floor: bool,
+    /// Whether the damping schedule near singular poses is on.
+    pub damping: bool,
+    /// The path the hand follows as its text (`points:0.5,0,0.6;...`, the
+    /// address's `path=`); none (`null`) for the line.
+    pub path: Option<String>,
     /// Closed-loop gain `K`.
     pub feedback: f64,
     /// The camera: yaw and pitch (rad), distance (m).
@@ -170,6 +175,8 @@ impl SpaceSession {
                 .collect(),
             weighting: self.scene.weighting,
             floor: self.scene.floor,
+            damping: self.scene.damping.is_some(),
+            path: (!self.scene.path.is_line()).then(|| self.scene.path.to_string()),
             feedback: self.scene.feedback_gain,
             view: [c.yaw, c.pitch, c.distance],
             run_revision: self.runs,
