@@ -42,6 +42,7 @@ const LEGEND = [
   ['path', 'The path (dashed) and where the hand has been', 'var(--accent)'],
   ['reference', 'Where the hand should be now', 'var(--muted)'],
   ['shadow', 'Shadows on the floor (grid: 0.1 m)', 'rgba(31, 41, 51, 0.3)'],
+  ['ghost', 'The numerical route (dashed): the same scene solved exactly, beside a learned method', 'var(--ghost)'],
 ];
 
 /** The shipped networks of `arm`, fetched and installed; resolves to null or the reason they are not. */
@@ -266,8 +267,9 @@ export async function mountSpace(root, options) {
         const li = document.createElement('li');
         li.dataset.key = key;
         const sw = document.createElement('span');
-        sw.className = 'key key-line';
+        sw.className = key === 'ghost' ? 'key key-dashed' : 'key key-line';
         sw.style.setProperty('--swatch', colour);
+        if (key === 'ghost') li.hidden = true;
         li.append(sw, label);
         return li;
       }),
@@ -292,9 +294,9 @@ export async function mountSpace(root, options) {
   for (const canvas of [stage, plots]) canvas?.addEventListener('contextrestored', () => attempt(() => demo.draw()));
 
   // ---- readouts, the live region and the loop ----------------------------------
-  // The networks' trained range, as on the plane (no numerical ghost is drawn in space).
+  // The networks' trained range, as on the plane.
   const range = $('range-warning');
-  if (range) range.textContent = "Outside the networks' trained range: their output is an extrapolation here (the pose on screen, or a sphere for v, lies outside the boxes training saw).";
+  if (range) range.textContent = "Outside the networks' trained range: their output is an extrapolation here (the pose on screen, or a sphere for v, lies outside the boxes training saw). Compare with the dashed numerical ghost.";
   const readouts = [...root.querySelectorAll('[data-readout]')];
   const summary = $('stage-summary');
   let seen = { revision: -1, collided: false, ended: true, running: false };
@@ -311,6 +313,8 @@ export async function mountSpace(root, options) {
     syncPrecision(s, menu.selectedOptions[0]?.dataset.networks === 'true');
     syncParams(s);
     if (range) range.hidden = s.in_range;
+    const ghostKey = legend?.querySelector('[data-key=ghost]');
+    if (ghostKey) ghostKey.hidden = !s.ghost;
     for (const r of readouts) {
       const f = READOUTS[r.dataset.readout];
       if (!f) continue;

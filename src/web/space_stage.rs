@@ -11,7 +11,8 @@ use std::cmp::Ordering;
 use web_sys::CanvasRenderingContext2d;
 
 use super::style::{
-    rgba, ACCENT, ARM, AXIS, DANGER, FONT, GRID, INK, LAYER_ALPHA, MUTED, PAPER, POST, TEAL,
+    rgba, ACCENT, ARM, AXIS, DANGER, FONT, GHOST, GHOST_ALPHA, GRID, INK, LAYER_ALPHA, MUTED,
+    PAPER, POST, TEAL,
 };
 use super::surface::{dash, disc, text, Surface};
 use crate::atlas::space::Plane;
@@ -224,6 +225,27 @@ pub fn draw(s: &SpaceSession, surface: &Surface, layer: Option<&SliceLayer>, foc
                 }
             }
         }
+    }
+
+    // The numerical ghost, on top and thinner, with a white edge (the
+    // plane's): where the exact route has the arm at this time.
+    if let Some(g) = s.ghost() {
+        dash(ctx, &[7.0, 5.0]);
+        for (colour, width, alpha) in [(PAPER, 4.5, 0.9), (GHOST, 2.0, GHOST_ALPHA)] {
+            ctx.set_global_alpha(alpha);
+            ctx.set_stroke_style_str(colour);
+            ctx.set_line_width(width);
+            path(ctx, &proj, g.points().iter().copied());
+        }
+        dash(ctx, &[]);
+        for &p in g.points().iter().skip(1) {
+            let [x, y, z] = proj.project(p);
+            if z > NEAR {
+                disc(ctx, x, y, 3.0);
+                ctx.stroke();
+            }
+        }
+        ctx.set_global_alpha(1.0);
     }
 
     // The target and where the hand should be now.

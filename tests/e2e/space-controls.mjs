@@ -148,3 +148,20 @@ test('space controls: a path typed or drawn on the stage, the damping switch and
   clean(page);
   await page.close();
 });
+
+test('space controls: a learned method draws the numerical ghost, and its legend says so', async () => {
+  const page = await open('?arm=panda&method=case3&autoplay=0');
+  await page.waitForFunction(() => window.demo.state().method === 'case3', null, { timeout: 60000 });
+  await page.evaluate(() => window.demo.runUntil(2.5));
+  const s = await state(page);
+  assert.ok(s.ghost, 'Case 3 has a ghost');
+  assert.equal(s.ghost.theta.length, 7);
+  assert.notDeepEqual(s.ghost.theta, s.theta, 'the exact route differs from the learned one');
+  await page.waitForFunction(() => !document.querySelector('#legend [data-key=ghost]').hidden, null, { timeout: 10000 });
+  await page.screenshot({ path: `${shots}/space-ghost.png` });
+  await page.selectOption('#mode', 'numerical');
+  await page.waitForFunction(() => window.demo.state().ghost === null, null, { timeout: 10000 });
+  await page.waitForFunction(() => document.querySelector('#legend [data-key=ghost]').hidden, null, { timeout: 10000 });
+  clean(page);
+  await page.close();
+});

@@ -232,6 +232,36 @@ fn the_state_says_when_the_networks_leave_their_trained_range() {
     assert!(s.state().in_range, "Case 1 computes v exactly");
 }
 
+/// In the network cases the session carries the numerical ghost (the
+/// plane's): the exact route's own run of the scene on screen, at the time
+/// shown; a method without networks has none.
+#[test]
+fn a_learned_method_has_the_numerical_ghost_at_the_time_shown() {
+    let mut s = panda(Method::NUMERICAL);
+    assert!(s.ghost().is_none() && s.state().ghost.is_none());
+    let (phi, v) = SpaceNetworkSet::PandaReach.files();
+    s.install_networks(phi, v, Some(SpaceNetworkSet::PandaReach))
+        .unwrap();
+    s.set_method(Method::CASE3).unwrap();
+    s.move_sphere(0, [0.45, 0.1, 0.62]).unwrap();
+    let exact = SpacePlanner::new(s.scene().clone(), Method::NUMERICAL)
+        .unwrap()
+        .run()
+        .unwrap();
+    assert_eq!(s.ghost_samples(), &exact.samples[..]);
+    s.run_until(2.0).unwrap();
+    let at = &exact.samples[40];
+    assert!((at.t - 2.0).abs() < 1e-9);
+    let state = s.state();
+    let ghost = state.ghost.as_ref().expect("a ghost in Case 3");
+    assert_eq!(ghost.theta, &at.theta[..]);
+    assert_eq!(ghost.hand, at.hand);
+    // Not the learned arm's pose: the two routes differ.
+    assert_ne!(state.theta, ghost.theta);
+    s.set_method(QP).unwrap();
+    assert!(s.ghost().is_none() && s.ghost_samples().is_empty());
+}
+
 #[test]
 fn the_clock_plays_the_run_to_its_end_and_replays_it() {
     let mut s = panda(Method::NUMERICAL);

@@ -16,6 +16,7 @@
 mod camera;
 mod clock;
 mod pointer;
+mod settings;
 mod state;
 
 use std::collections::VecDeque;
@@ -26,15 +27,13 @@ pub use pointer::{SpaceHandle, KEY_ORBIT};
 pub use state::{SpaceMethodRun, SpaceState};
 
 use super::history::Point;
-use crate::error::{within, Error, Result};
-use crate::ik::DampingSchedule;
+use crate::error::{Error, Result};
 use crate::networks::space::{SpaceNetworkSet, SpaceNetworks};
 use crate::nn::Precision;
 use crate::planner::methods::Method;
-use crate::planner::params::by_name;
 use crate::planner::space::{SpacePlanner, SpaceSample, SpaceSummary, SpaceTrajectory};
-use crate::scene::{JointWeighting, SpacePath, SpaceScene};
-use crate::space::{SpacePose, SpacePreset, Sphere, Vec3, MAX_SPHERES, PRESETS};
+use crate::scene::SpaceScene;
+use crate::space::{SpacePose, SpacePreset, Vec3, PRESETS};
 
 /// A spatial run played on the page: see the module documentation.
 #[derive(Clone)]
@@ -48,6 +47,12 @@ pub struct SpaceSession {
     precision: Precision,
     /// Every sample of the run from `t = 0` (up to a failed step).
     samples: Vec<SpaceSample>,
+    /// In the network cases, the numerical route's run of the same scene
+    /// (the dashed ghost the page draws beside the learned arm, as in the
+    /// plane); empty otherwise.
+    ghost: Vec<SpaceSample>,
+    /// The ghost's pose at the time shown (when there is a ghost).
+    ghost_pose: Option<SpacePose>,
     summary: SpaceSummary,
     /// Why the run stopped before `tf`, if it did.
     failure: Option<String>,
@@ -90,6 +95,8 @@ impl SpaceSession {
             network_set: None,
             precision: Precision::F64,
             samples: Vec::new(),
+            ghost: Vec::new(),
+            ghost_pose: None,
             summary: empty_summary(),
             failure: None,
             index: 0,
@@ -207,128 +214,6 @@ impl SpaceSession {
         Ok(())
     }
 
-    /// Sets parameter `name` (as the address and the command line name
-    /// it); refused, changing nothing, when unknown or out of its range.
-    pub fn set_param(&mut self, name: &str, value: f64) -> Result<()> {
-        let p = by_name(name)?;
-        let mut scene = self.scene.clone();
-        scene.params.set(p, value)?;
-        self.apply(scene)
-    }
-
-    /// How the methods of eq. (5) use the joint limits.
-    pub fn set_weighting(&mut self, weighting: JointWeighting) -> Result<()> {
-        let mut scene = self.scene.clone();
-        scene.weighting = weighting;
-        self.apply(scene)
-    }
-
-    /// Whether the damping schedule near singular poses is on (the
-    /// planar page's switch: the schedule's defaults, or none).
-    pub fn set_damping(&mut self, on: bool) -> Result<()> {
-        let mut scene = self.scene.clone();
-        scene.damping = on.then(DampingSchedule::default);
-        self.apply(scene)
-    }
-
-    /// Makes `path` the one the hand follows (the line to the target, a
-    /// circle, a polyline typed or drawn: [`SpacePath`]); refused,
-    /// changing nothing, when the scene refuses it (a circle with no
-    /// plane through the hand's start, say).
-    pub fn set_path(&mut self, path: SpacePath) -> Result<()> {
-        let mut scene = self.scene.clone();
-        scene.path = path;
-        self.apply(scene)
-    }
-
-    /// Whether the floor `z = 0` is an obstacle.
-    pub fn set_floor(&mut self, floor: bool) -> Result<()> {
-        let mut scene = self.scene.clone();
-        scene.floor = floor;
-        self.apply(scene)
-    }
-
-    /// The closed-loop gain `K` (1/s; 0: the paper's open loop).
-    pub fn set_feedback(&mut self, gain: f64) -> Result<()> {
-        within("feedback gain", gain, 0.0, 100.0)?;
-        let mut scene = self.scene.clone();
-        scene.feedback_gain = gain;
-        self.apply(scene)
-    }
-
-    /// The end of the hand's line (m); refused, changing nothing, where
-    /// the scene does not validate.
-    pub fn set_target(&mut self, target: Vec3) -> Result<()> {
-        let mut scene = self.scene.clone();
-        scene.target = target;
-        self.apply(scene)
-    }
-
-    /// Moves sphere `i` to `centre`, its radius kept.
-    pub fn move_sphere(&mut self, i: usize, centre: Vec3) -> Result<()> {
-        let mut scene = self.scene.clone();
-        let n = scene.spheres.len();
-        let s = scene.spheres.get_mut(i).ok_or_else(|| no_sphere(i, n))?;
-        s.centre = centre;
-        self.apply(scene)
-    }
-
-    /// Replaces the spheres by `flat` (`[x, y, z, r, ...]`, m).
-    pub fn set_spheres(&mut self, flat: &[f64]) -> Result<()> {
-        if !flat.len().is_multiple_of(4) {
-            return Err(Error::Syntax {
-                what: "spheres",
-                text: format!("{} numbers", flat.len()),
-                expected: "four numbers per sphere: x, y, z, r".into(),
-            });
-        }
-        if flat.len() / 4 > MAX_SPHERES {
-            return Err(Error::OutOfRange {
-                what: "number of spheres".into(),
-                value: (flat.len() / 4) as f64,
-                min: 0.0,
-                max: MAX_SPHERES as f64,
-            });
-        }
-        let mut scene = self.scene.clone();
-        scene.spheres = flat
-            .chunks(4)
-            .map(|c| Sphere::new([c[0], c[1], c[2]], c[3]))
-            .collect();
-        self.apply(scene)
-    }
-
-    /// Adds a sphere of radius `r` at `centre`; returns its index.
-    pub fn add_sphere(&mut self, centre: Vec3, r: f64) -> Result<usize> {
-        let mut flat: Vec<f64> = self.flat_spheres();
-        flat.extend_from_slice(&[centre[0], centre[1], centre[2], r]);
-        self.set_spheres(&flat)?;
-        let i = self.scene.spheres.len() - 1;
-        self.selected = SpaceHandle::Sphere(i);
-        Ok(i)
-    }
-
-    /// Removes sphere `i`.
-    pub fn remove_sphere(&mut self, i: usize) -> Result<()> {
-        if i >= self.scene.spheres.len() {
-            return Err(no_sphere(i, self.scene.spheres.len()));
-        }
-        let mut scene = self.scene.clone();
-        scene.spheres.remove(i);
-        self.apply(scene)?;
-        self.selected = SpaceHandle::Target;
-        Ok(())
-    }
-
-    /// The spheres as `[x, y, z, r, ...]`.
-    pub fn flat_spheres(&self) -> Vec<f64> {
-        self.scene
-            .spheres
-            .iter()
-            .flat_map(|s| [s.centre[0], s.centre[1], s.centre[2], s.radius])
-            .collect()
-    }
-
     /// Back to the preset's own task (its target, sphere and settings), the
     /// method and networks kept.
     pub fn load_task(&mut self) -> Result<()> {
@@ -352,6 +237,13 @@ impl SpaceSession {
     /// and shows the sample at the time shown before.
     fn recompute(&mut self) {
         let (samples, failure) = run(&self.scene, self.method, self.networks.clone());
+        // The ghost: the exact route on the same scene, about 0.15 ms of
+        // the Panda's task natively (a learned run is 1 ms).
+        self.ghost = if self.method.uses_networks() {
+            run(&self.scene, Method::NUMERICAL, None).0
+        } else {
+            Vec::new()
+        };
         let end = self.scene.path_end();
         self.summary = summary(&samples, end);
         self.samples = samples;
@@ -367,6 +259,28 @@ impl SpaceSession {
             // The chain and the angles were checked when the run made them.
             let _ = self.pose.update(&self.scene.chain, &s.theta);
         }
+        // The ghost at the same time (at its last sample where it stopped
+        // sooner).
+        let chain = &self.scene.chain;
+        self.ghost_pose = match self.ghost.get(index).or(self.ghost.last()) {
+            Some(g) => match self.ghost_pose.take() {
+                Some(mut pose) => pose.update(chain, &g.theta).is_ok().then_some(pose),
+                None => SpacePose::new(chain, &g.theta).ok(),
+            },
+            None => None,
+        };
+    }
+
+    /// The numerical ghost's pose at the time shown, in the network cases
+    /// (the exact route on the same scene, drawn dashed beside the
+    /// learned arm).
+    pub fn ghost(&self) -> Option<&SpacePose> {
+        self.ghost_pose.as_ref()
+    }
+
+    /// Every sample of the ghost's run (empty without a ghost).
+    pub fn ghost_samples(&self) -> &[SpaceSample] {
+        &self.ghost
     }
 
     /// The whole run.
@@ -459,14 +373,4 @@ pub(super) fn summary(samples: &[SpaceSample], end: Vec3) -> SpaceSummary {
 
 fn empty_summary() -> SpaceSummary {
     SpaceSummary::of(&[], [0.0; 3])
-}
-
-/// Sphere `i` (from 0) asked of a scene of `n`.
-fn no_sphere(i: usize, n: usize) -> Error {
-    Error::OutOfRange {
-        what: "sphere number".into(),
-        value: (i + 1) as f64,
-        min: 1.0,
-        max: n as f64,
-    }
 }

@@ -100,6 +100,18 @@ pub struct SpaceState<'a> {
     pub view: [f64; 3],
     /// Counts the runs computed (changes whenever the run does).
     pub run_revision: u64,
+    /// The numerical ghost at the time shown, in the network cases.
+    pub ghost: Option<SpaceGhost<'a>>,
+}
+
+/// Where the numerical ghost is (the plane's `ghost`, with the hand in
+/// space).
+#[derive(Debug, Serialize)]
+pub struct SpaceGhost<'a> {
+    /// Its joint angles (rad).
+    pub theta: &'a [f64],
+    /// Its hand (m).
+    pub hand: Vec3,
 }
 
 /// A method's row of the comparison.
@@ -180,6 +192,10 @@ impl SpaceSession {
             feedback: self.scene.feedback_gain,
             view: [c.yaw, c.pitch, c.distance],
             run_revision: self.runs,
+            ghost: self.ghost().map(|g| SpaceGhost {
+                theta: g.theta(),
+                hand: g.hand(),
+            }),
         }
     }
 }
