@@ -93,20 +93,18 @@ export function mountSpacePanels(root, demo, { attempt, show, say, preset, ensur
   $('save-run-csv')?.addEventListener('click', () => saveText(`${stem()}.csv`, spaceRunCsv(JSON.parse(demo.runFile())), 'text/csv'));
   $('save-figure-png')?.addEventListener('click', () => canvasPng('stage', 'view'));
   $('save-plots-png')?.addEventListener('click', () => canvasPng('plots', 'plots'));
-  // The figure: the run's two orthographic views, as redundant-ik figure --arm A draws them (in a worker).
-  $('save-figure-svg')?.addEventListener('click', async () => {
+  // The figure (the run's two orthographic views, as redundant-ik figure
+  // --from FILE draws them) and the plots (figure --from FILE --plots), in a worker.
+  const drawn = (kind, suffix, what) => async () => {
     try {
-      const { result } = await runWorker({ kind: 'space-figure', run: demo.runFile() });
-      saveText(`${stem()}.svg`, result, 'image/svg+xml');
+      const { result } = await runWorker({ kind, run: demo.runFile() });
+      saveText(`${stem()}${suffix}.svg`, result, 'image/svg+xml');
     } catch (e) {
-      show(`The figure could not be made: ${describe(e)}`, 'error', true);
+      show(`The ${what} could not be made: ${describe(e)}`, 'error', true);
     }
-  });
-  const plotsSvg = $('save-plots-svg');
-  if (plotsSvg) {
-    plotsSvg.disabled = true;
-    plotsSvg.title = 'Not for an arm in space yet: save the plots as PNG, or the run as CSV';
-  }
+  };
+  $('save-figure-svg')?.addEventListener('click', drawn('space-figure', '', 'figure'));
+  $('save-plots-svg')?.addEventListener('click', drawn('space-plots', '-plots', 'plots'));
   const link = () => `${location.origin}${location.pathname}?${spaceQuery(demo.state(), preset)}`;
   $('copy-link')?.addEventListener('click', async () => {
     const text = link();

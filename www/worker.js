@@ -58,6 +58,7 @@ import init, {
   runFiles,
   atlasFiles,
   spaceFigure,
+  spacePlots,
   provideBuiltinNetworks,
   builtinNetworksFailed,
   lastPanic,
@@ -177,6 +178,7 @@ self.onmessage = async ({ data }) => {
     else if (data.kind === 'atlas') result = atlas(data);
     else if (data.kind === 'space-atlas') result = spaceAtlas(data);
     else if (data.kind === 'space-figure') result = spaceFigure(data.run);
+    else if (data.kind === 'space-plots') result = spacePlots(data.run);
     else if (data.kind === 'train') result = train(data);
     else if (data.kind === 'train-net') result = trainNet(data);
     else if (data.kind === 'conclude') result = concludeTraining(data.request, data.phi, data.v);

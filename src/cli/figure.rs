@@ -1,6 +1,7 @@
 //! `redundant-ik figure`: the paper's stroboscopic figures (Figs. 2-11) as
 //! SVG, a run's time series (`--plots`, the page's plots) or every method
-//! over time (`--compare`). The drawing is the library's
+//! over time (`--compare`), for a planar arm; for an arm in space the run's
+//! two orthographic views, its plots and the comparison. The drawing is the library's
 //! ([`redundant_ik::figure`]), the same the page saves.
 
 use std::path::{Path, PathBuf};
@@ -8,9 +9,11 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 use redundant_ik::figure;
 use redundant_ik::planner::methods;
-use redundant_ik::{Method, Planner, Scene, Trajectory};
+use redundant_ik::planner::space::{SpacePlanner, SpaceTrajectory};
+use redundant_ik::{Planner, Scene, Trajectory};
 
 use super::simulate::{MethodArg, SceneArgs};
+use super::space::Job;
 
 /// Options of `redundant-ik figure`.
 #[derive(Args, Debug)]
@@ -55,20 +58,6 @@ pub fn run(args: &FigureArgs) -> Result<(), String> {
         return Err("--every must be at least 1".into());
     }
     let e = |x: redundant_ik::Error| x.to_string();
-    if let Some(super::ArmChoice::Space(p)) = &args.scene.arm {
-        if args.compare || args.all || args.plots || args.ellipse {
-            return Err("for an arm in space, figure draws the run's poses (two views); --compare, --all, --plots and --ellipse are not built for it yet".into());
-        }
-        let scene = super::space::scene(&args.scene, p)?;
-        let method = args.method.method.unwrap_or(Method::NUMERICAL);
-        let traj = redundant_ik::planner::space::SpacePlanner::new(scene.clone(), method)
-            .and_then(redundant_ik::planner::space::SpacePlanner::run)
-            .map_err(e)?;
-        return write(
-            &args.out,
-            &figure::space_svg(p.label, &scene, &traj, args.every).map_err(e)?,
-        );
-    }
     let task = args.scene.task()?;
     if args.compare {
         let scene = args.scene.scene()?;
@@ -106,6 +95,74 @@ pub fn run(args: &FigureArgs) -> Result<(), String> {
         write(&path, &figure::compare_svg(task, &scene, &runs).map_err(e)?)?;
     }
     Ok(())
+}
+
+/// Runs `figure` for a spatial job (`--arm A`, or `--from` a spatial run
+/// file): the run's two views (the default), its plots (`--plots`), every
+/// method over time (`--compare`), or with `--all` each method's two views
+/// and the comparison into a directory.
+pub fn space(args: &FigureArgs, job: Job) -> Result<(), String> {
+    if args.every == 0 {
+        return Err("--every must be at least 1".into());
+    }
+    if args.ellipse {
+        return Err(
+            "--ellipse: the manipulability ellipsoid of an arm in space is not drawn yet".into(),
+        );
+    }
+    let e = |x: redundant_ik::Error| x.to_string();
+    let label = job.preset.label;
+    if args.compare || args.all {
+        let runs = space_runs(&args.scene, &job)?;
+        let compare = figure::space_compare_svg(label, &job.scene, &runs).map_err(e)?;
+        if args.compare {
+            return write(&args.out, &compare);
+        }
+        std::fs::create_dir_all(&args.out)
+            .map_err(|e| format!("cannot create directory {}: {e}", args.out.display()))?;
+        let arm = job.preset.key;
+        for traj in &runs {
+            let path = args.out.join(format!("{arm}_{}.svg", traj.method));
+            write(
+                &path,
+                &figure::space_svg(label, &job.scene, traj, args.every).map_err(e)?,
+            )?;
+        }
+        return write(&args.out.join(format!("{arm}_compare.svg")), &compare);
+    }
+    let traj = SpacePlanner::with_networks(job.scene.clone(), job.method, job.nets)
+        .and_then(SpacePlanner::run)
+        .map_err(e)?;
+    let svg = if args.plots {
+        figure::space_series_svg(label, &job.scene, &traj)
+    } else {
+        figure::space_svg(label, &job.scene, &traj, args.every)
+    };
+    write(&args.out, &svg.map_err(e)?)
+}
+
+/// Runs a spatial job's scene with every method that runs in space and
+/// whose networks are available (the job's, else those the flags give;
+/// the others are skipped with a note on stderr).
+fn space_runs(sa: &SceneArgs, job: &Job) -> Result<Vec<SpaceTrajectory>, String> {
+    let mut runs = Vec::new();
+    for &method in methods::ALL.iter().filter(|m| m.in_space()) {
+        let nets = match &job.nets {
+            Some(n) if method.uses_networks() => Some(n.clone()),
+            _ => match super::space_networks::networks(&sa.networks, job.preset, &[method]) {
+                Ok(n) => n,
+                Err(e) => {
+                    eprintln!("skipping {method}: {e}");
+                    continue;
+                }
+            },
+        };
+        let run = SpacePlanner::with_networks(job.scene.clone(), method, nets)
+            .and_then(SpacePlanner::run)
+            .map_err(|e| format!("{method}: {e}"))?;
+        runs.push(run);
+    }
+    Ok(runs)
 }
 
 /// Runs `scene` with every method whose networks are available (the others

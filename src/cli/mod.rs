@@ -53,22 +53,36 @@ enum Command {
 // The routing lives here, above both, so neither imports the other both
 // ways.
 
-/// `simulate`: a spatial run file or arm, else a planar run.
-fn simulate_any(a: &simulate::SimulateArgs) -> Result<(), String> {
-    if let Some(file) = space::run_file(&a.scene)? {
-        return space::replay(a, file);
-    }
-    match &a.scene.arm {
-        Some(ArmChoice::Space(p)) => space::simulate(a, p),
-        _ => simulate::run(a),
+/// The arm in space `--arm` names, if it names one.
+fn space_arm(arm: &Option<ArmChoice>) -> Option<&'static SpacePreset> {
+    match arm {
+        Some(ArmChoice::Space(p)) => Some(p),
+        _ => None,
     }
 }
 
-/// `atlas`: the slice atlas of an arm in space, else the planar atlas.
+/// `simulate`: a spatial run file or arm, else a planar run.
+fn simulate_any(a: &simulate::SimulateArgs) -> Result<(), String> {
+    match space::job(&a.scene, a.method.method, space_arm(&a.scene.arm))? {
+        Some(job) => space::simulate(a, job),
+        None => simulate::run(a),
+    }
+}
+
+/// `figure`: a spatial run file's or arm's figures, else a planar run's.
+fn figure_any(a: &figure::FigureArgs) -> Result<(), String> {
+    match space::job(&a.scene, a.method.method, space_arm(&a.scene.arm))? {
+        Some(job) => figure::space(a, job),
+        None => figure::run(a),
+    }
+}
+
+/// `atlas`: the slice atlas of an arm in space (or of a spatial run
+/// file's scene), else the planar atlas.
 fn atlas_any(a: &atlas::AtlasArgs) -> Result<(), String> {
-    match &a.scene.arm {
-        Some(ArmChoice::Space(p)) => space::atlas(a, p),
-        _ => atlas::run(a),
+    match space::job(&a.scene, None, space_arm(&a.scene.arm))? {
+        Some(job) => space::atlas(a, job),
+        None => atlas::run(a),
     }
 }
 
@@ -99,7 +113,7 @@ pub fn main() -> i32 {
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Simulate(a) => simulate_any(a),
-        Command::Figure(a) => figure::run(a),
+        Command::Figure(a) => figure_any(a),
         Command::Train(a) => train_any(a),
         Command::Eval(a) => eval_any(a),
         Command::Atlas(a) => atlas_any(a),

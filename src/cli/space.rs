@@ -131,15 +131,55 @@ pub fn run_file(args: &SceneArgs) -> Result<Option<SpaceRunFile>, String> {
     Ok(Some(file))
 }
 
-/// `simulate --from` of a spatial run: its scene again, with its method
-/// unless `--method` is given.
-pub fn replay(args: &SimulateArgs, file: SpaceRunFile) -> Result<(), String> {
+/// What a command runs on an arm in space: the preset, the scene, the
+/// method and the networks of a learned method, from `--arm A` and the
+/// scene options, or from a spatial run file (`--from`: its scene, its
+/// method unless `--method` is given, the networks it names in its
+/// arithmetic).
+pub struct Job {
+    /// The arm.
+    pub preset: &'static SpacePreset,
+    /// The scene.
+    pub scene: SpaceScene,
+    /// The method.
+    pub method: Method,
+    /// The networks, for a learned method.
+    pub nets: Option<Arc<SpaceNetworks>>,
+}
+
+/// The spatial job of `args` (`p`: the arm in space `--arm` names, if it
+/// names one), or `None` for a planar one.
+pub fn job(
+    args: &SceneArgs,
+    method: Option<Method>,
+    p: Option<&'static SpacePreset>,
+) -> Result<Option<Job>, String> {
+    if let Some(file) = run_file(args)? {
+        return from_file(args, method, file).map(Some);
+    }
+    let Some(p) = p else {
+        return Ok(None);
+    };
+    let scene = scene(args, p)?;
+    let method = method.unwrap_or(Method::NUMERICAL);
+    let nets = super::space_networks::networks(&args.networks, p, &[method])?;
+    Ok(Some(Job {
+        preset: p,
+        scene,
+        method,
+        nets,
+    }))
+}
+
+/// A spatial run file's job: its scene again, with its method unless
+/// `method` is given.
+fn from_file(args: &SceneArgs, method: Option<Method>, file: SpaceRunFile) -> Result<Job, String> {
     let p = SpacePreset::by_key(file.arm).ok_or("the run file's arm is not a preset")?;
-    let method = args.method.method.unwrap_or(file.method);
+    let method = method.unwrap_or(file.method);
     let nets = match file.networks.filter(|_| method.uses_networks()) {
         Some(set) => {
             // The file names its networks and their arithmetic.
-            if let Some(flag) = args.scene.networks.given(&args.scene.given) {
+            if let Some(flag) = args.networks.given(&args.given) {
                 return Err(format!(
                     "--from names the networks its run used; {flag} cannot change them"
                 ));
@@ -152,23 +192,26 @@ pub fn replay(args: &SimulateArgs, file: SpaceRunFile) -> Result<(), String> {
         }
         // The user's own weights, given again: in the file's arithmetic
         // unless --precision says otherwise.
-        None => super::space_networks::networks(&args.scene.networks, p, &[method])?.map(|n| {
-            if args.scene.given.has("precision") {
+        None => super::space_networks::networks(&args.networks, p, &[method])?.map(|n| {
+            if args.given.has("precision") {
                 n
             } else {
                 n.in_precision(file.precision)
             }
         }),
     };
-    output(args, p, file.scene, method, nets)
+    Ok(Job {
+        preset: p,
+        scene: file.scene,
+        method,
+        nets,
+    })
 }
 
-/// Runs `simulate` for the arm in space `p`.
-pub fn simulate(args: &SimulateArgs, p: &'static SpacePreset) -> Result<(), String> {
-    let scene = scene(&args.scene, p)?;
-    let method = args.method.method.unwrap_or(Method::NUMERICAL);
-    let nets = super::space_networks::networks(&args.scene.networks, p, &[method])?;
-    output(args, p, scene, method, nets)
+/// Runs `simulate` for a spatial job: `--arm A`, or `--from` a spatial
+/// run file.
+pub fn simulate(args: &SimulateArgs, job: Job) -> Result<(), String> {
+    output(args, job.preset, job.scene, job.method, job.nets)
 }
 
 /// Runs `scene` with `method` (and the networks of the learned methods)
@@ -335,16 +378,16 @@ fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &SpaceTrajectory, reach: R
     out
 }
 
-/// `atlas` for the arm in space `p`: the sphere over a grid on a slice, in
-/// every method that runs in space (or those asked for); a table, JSON or
-/// CSV.
-pub fn atlas(args: &super::atlas::AtlasArgs, p: &'static SpacePreset) -> Result<(), String> {
+/// `atlas` for a spatial job (`--arm A`, or `--from` a spatial run file:
+/// its scene): the sphere over a grid on a slice, in every method that
+/// runs in space (or those asked for); a table, JSON or CSV.
+pub fn atlas(args: &super::atlas::AtlasArgs, job: Job) -> Result<(), String> {
     use redundant_ik::atlas::space::{default_region, slice, Plane};
     use redundant_ik::atlas::{Class, Grid};
     if args.out.is_some() {
         return Err("--out: the maps of an atlas in space are not drawn yet; --json and --csv give the cells".into());
     }
-    let scene = scene(&args.scene, p)?;
+    let (p, scene) = (job.preset, job.scene);
     let plane = match &args.slice {
         Some(t) => t.parse::<Plane>().map_err(|e| format!("--slice: {e}"))?,
         None => Plane::through_line(&scene),
@@ -358,7 +401,11 @@ pub fn atlas(args: &super::atlas::AtlasArgs, p: &'static SpacePreset) -> Result<
             .filter(|m| !m.uses_networks() || SpaceNetworkSet::for_arm(p.key).is_some())
             .collect(),
     };
-    let nets = super::space_networks::networks(&args.scene.networks, p, &methods)?;
+    // A run file's networks where it names them, else those the flags give.
+    let nets = match job.nets {
+        Some(n) if methods.iter().any(|m| m.uses_networks()) => Some(n),
+        _ => super::space_networks::networks(&args.scene.networks, p, &methods)?,
+    };
     let region = match &args.region {
         Some(r) => match parse_list(r).map_err(|e| format!("--region: {e}"))?[..] {
             [a, b, c, d] => [a, b, c, d],

@@ -25,12 +25,12 @@ use plotters_backend::{
 
 use crate::error::{Error, Result, Short};
 use crate::planner::Method;
-use crate::scene::Scene;
+use crate::scene::{Params, Scene};
 
 pub use arm::{arm_svg, arm_svg_with, ellipse_outline, ELLIPSE_SCALE};
 pub use atlas::atlas_svg;
-pub use series::{compare_svg, series_svg};
-pub use space::space_svg;
+pub use series::{compare_svg, series_svg, space_compare_svg, space_series_svg};
+pub use space::{space_caption, space_svg};
 
 /// Colours of the figures.
 pub(crate) mod colour {
@@ -209,17 +209,7 @@ pub fn caption(task: u32, scene: &Scene, method: Method) -> String {
     if scene.floor {
         parts.push("floor and post are obstacles".into());
     }
-    use crate::planner::methods::{DELTA, LAMBDA, REFINE, SIGN_SMOOTHING};
-    parts.push(format!("λ = {}", scene.param(&LAMBDA)));
-    parts.push(format!(
-        "δ = {}{}",
-        scene.param(&DELTA),
-        if scene.damping.is_some() {
-            " + damping near singular poses"
-        } else {
-            ""
-        }
-    ));
+    parts.extend(gains(&scene.params, scene.damping.is_some()));
     match scene.obstacles.len() {
         0 => parts.push("no obstacle".into()),
         1 => parts.push(format!("radius {} m", scene.obstacles[0].radius)),
@@ -238,23 +228,48 @@ pub fn caption(task: u32, scene: &Scene, method: Method) -> String {
             }
         }
     }
-    parts.push(if scene.feedback_gain > 0.0 {
-        format!("closed loop K = {} 1/s", scene.feedback_gain)
+    parts.extend(settings(&scene.params, method, scene.feedback_gain));
+    parts.push(format!("dt = {} s, tf = {} s", scene.dt, scene.tf));
+    parts.join(" · ")
+}
+
+/// The caption's gains, for every arm: `λ` and `δ` (with the damping
+/// schedule, when it is on).
+pub(crate) fn gains(params: &Params, damping: bool) -> [String; 2] {
+    use crate::planner::methods::{DELTA, LAMBDA};
+    [
+        format!("λ = {}", params.get(&LAMBDA)),
+        format!(
+            "δ = {}{}",
+            params.get(&DELTA),
+            if damping {
+                " + damping near singular poses"
+            } else {
+                ""
+            }
+        ),
+    ]
+}
+
+/// The caption's loop and the networks' settings, for every arm: open or
+/// closed loop, and where they change the run, the refinement of `Phi`
+/// and the sign smoothing (docs/learning.md).
+pub(crate) fn settings(params: &Params, method: Method, feedback_gain: f64) -> Vec<String> {
+    use crate::planner::methods::{REFINE, SIGN_SMOOTHING};
+    let mut parts = vec![if feedback_gain > 0.0 {
+        format!("closed loop K = {feedback_gain} 1/s")
     } else {
         "open loop".into()
-    });
-    // The settings of the whole-reach networks (docs/learning.md), where
-    // they change the run.
-    let refine = scene.params.count(&REFINE);
+    }];
+    let refine = params.count(&REFINE);
     if refine > 0 && method.networks().phi {
         parts.push(format!("Φ refined by {refine} Newton-Schulz steps"));
     }
-    let eps = scene.param(&SIGN_SMOOTHING);
+    let eps = params.get(&SIGN_SMOOTHING);
     if eps > 0.0 {
         parts.push(format!("sign smoothing ε = {eps}"));
     }
-    parts.push(format!("dt = {} s, tf = {} s", scene.dt, scene.tf));
-    parts.join(" · ")
+    parts
 }
 
 /// Font size and line height of the caption under a figure.
@@ -436,7 +451,12 @@ pub(crate) fn path_label(path: &crate::scene::Path) -> String {
     if path.is_line() {
         return "straight-line task".to_string();
     }
-    let text = path.to_string();
+    shortened_path(path.to_string())
+}
+
+/// `path TEXT`, cut after 45 characters where it is longer than 48 (a
+/// drawn path has up to 64 points).
+pub(crate) fn shortened_path(text: String) -> String {
     match text.char_indices().nth(45) {
         Some((at, _)) if text.len() > 48 => format!("path {}...", &text[..at]),
         _ => format!("path {text}"),

@@ -1,20 +1,24 @@
 //! Time series: a run's plots (the page's three panels: the clearance
 //! between the links and the nearest obstacle's edge, tracking error,
 //! joint angles), and every method of a scene over time (clearance and
-//! tracking error, `redundant-ik figure --compare`).
+//! tracking error, `redundant-ik figure --compare`). One drawing for every
+//! arm: a planar run and a run in space are read into the same samples
+//! (`Step`), their titles and captions each arm's own.
 
 use std::ops::Range;
 
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
+use super::space::space_caption;
 use super::{
     caption, caption_lines, colour, draw_caption, draw_legend, draw_title, hex, legend_width, svg,
     why, Area, Swatch, TITLE_HEIGHT,
 };
 use crate::error::Result;
+use crate::planner::space::SpaceTrajectory;
 use crate::planner::{Method, Trajectory};
-use crate::scene::Scene;
+use crate::scene::{Scene, SpaceScene};
 
 type Chart<'a, 'b> =
     ChartContext<'a, super::Measured<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
@@ -68,15 +72,112 @@ fn legend_column(legends: &[&[(Swatch, String)]]) -> u32 {
         + 20
 }
 
+/// One sample as the plots read it, for any arm: the time, the clearance
+/// between the links and the nearest obstacle's edge, the tracking error
+/// and the joint angles.
+struct Step<'a> {
+    t: f64,
+    clearance: Option<f64>,
+    error: f64,
+    theta: &'a [f64],
+}
+
+/// One run as the comparison reads it, for any arm: the method, its
+/// smallest clearance and final error, and its samples.
+struct Run<'a> {
+    method: Method,
+    min_clearance: Option<f64>,
+    final_error: f64,
+    steps: Vec<Step<'a>>,
+}
+
+impl<'a> Run<'a> {
+    fn planar(run: &'a Trajectory) -> Self {
+        Self {
+            method: run.method,
+            min_clearance: run.summary.min_clearance,
+            final_error: run.summary.final_error,
+            steps: planar_steps(run),
+        }
+    }
+
+    fn space(run: &'a SpaceTrajectory) -> Self {
+        Self {
+            method: run.method,
+            min_clearance: run.summary.min_clearance,
+            final_error: run.summary.final_error,
+            steps: space_steps(run),
+        }
+    }
+}
+
+fn planar_steps(run: &Trajectory) -> Vec<Step<'_>> {
+    run.steps
+        .iter()
+        .map(|s| Step {
+            t: s.t,
+            clearance: s.clearance,
+            error: s.tracking_error,
+            theta: &s.theta,
+        })
+        .collect()
+}
+
+fn space_steps(run: &SpaceTrajectory) -> Vec<Step<'_>> {
+    run.samples
+        .iter()
+        .map(|s| Step {
+            t: s.t,
+            clearance: s.clearance,
+            error: s.tracking_error,
+            theta: &s.theta,
+        })
+        .collect()
+}
+
 /// A run's time series as SVG: the clearance between the links and the
 /// nearest obstacle's edge (0, contact, dashed), tracking error and joint
 /// angles, one panel each with its legend beside it, and the caption line.
 pub fn series_svg(task: u32, scene: &Scene, run: &Trajectory) -> Result<String> {
-    let t1 = run.steps.last().map_or(0.0, |s| s.t).max(1e-9);
+    let head = format!("Task {task}, {} over time", run.method.label());
+    let line = caption(task, scene, run.method);
+    plots_svg(
+        &head,
+        &line,
+        run.method,
+        &planar_steps(run),
+        scene.arm.dof(),
+    )
+}
+
+/// The time series of a run of an arm in space (the arm called `arm`), as
+/// [`series_svg`] draws a planar run's: the page in space's plots and
+/// `redundant-ik figure --arm A --plots`.
+pub fn space_series_svg(arm: &str, scene: &SpaceScene, run: &SpaceTrajectory) -> Result<String> {
+    let head = format!("{arm}, {} over time", run.method.label());
+    let line = space_caption(arm, scene, run.method);
+    plots_svg(
+        &head,
+        &line,
+        run.method,
+        &space_steps(run),
+        scene.chain.dof(),
+    )
+}
+
+/// The three panels of [`series_svg`] for any arm: `head` the title,
+/// `line` the caption, `joints` the number of joint curves.
+fn plots_svg(
+    head: &str,
+    line: &str,
+    method: Method,
+    steps: &[Step<'_>],
+    joints: usize,
+) -> Result<String> {
+    let t1 = steps.last().map_or(0.0, |s| s.t).max(1e-9);
     // Clearance to the nearest obstacle's edge (0: contact), as the
     // page's plots and readouts give it.
-    let clearance: Vec<(f64, f64)> = run
-        .steps
+    let clearance: Vec<(f64, f64)> = steps
         .iter()
         .filter_map(|s| s.clearance.map(|c| (s.t, c)))
         .collect();
@@ -88,18 +189,16 @@ pub fn series_svg(task: u32, scene: &Scene, run: &Trajectory) -> Result<String> 
             (Swatch::Dashed(colour::DANGER, 1), "contact".to_string()),
         ]
     };
-    let joints = scene.arm.dof();
     let joint_legend: Vec<(Swatch, String)> = (0..joints)
         .map(|i| (Swatch::Line(colour::joint(i), 2), format!("θ{}", i + 1)))
         .collect();
     let column = legend_column(&[&clearance_legend, &joint_legend]);
     let size = (CHARTS_WIDTH + column, 760u32);
-    let head = format!("Task {task}, {} over time", run.method.label());
-    let (lines, foot_height) = caption_lines(&caption(task, scene, run.method), size.0);
+    let (lines, foot_height) = caption_lines(line, size.0);
     let size = (size.0, size.1 - 30 + foot_height);
     svg(size, |root| {
         let (head_area, root) = root.split_vertically(TITLE_HEIGHT);
-        draw_title(&head_area, &head, run.method.description())?;
+        draw_title(&head_area, head, method.description())?;
         let h = root.dim_in_pixel().1;
         let (panels, foot) = root.split_vertically(h - foot_height);
         draw_caption(&foot, &lines)?;
@@ -124,7 +223,7 @@ pub fn series_svg(task: u32, scene: &Scene, run: &Trajectory) -> Result<String> 
             draw_legend(&keys[0], &clearance_legend, LEGEND_AT, false)?;
         }
 
-        let error: Vec<(f64, f64)> = run.steps.iter().map(|s| (s.t, s.tracking_error)).collect();
+        let error: Vec<(f64, f64)> = steps.iter().map(|s| (s.t, s.error)).collect();
         let emax = error.iter().map(|p| p.1).fold(1e-3, f64::max) * 1.1;
         let mut chart = panel(&areas[1], 0.0..t1, 0.0..emax, "tracking error (m)")?;
         chart
@@ -132,7 +231,7 @@ pub fn series_svg(task: u32, scene: &Scene, run: &Trajectory) -> Result<String> 
             .map_err(why)?;
 
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for v in run.steps.iter().flat_map(|s| &s.theta) {
+        for v in steps.iter().flat_map(|s| s.theta) {
             lo = lo.min(*v);
             hi = hi.max(*v);
         }
@@ -144,7 +243,7 @@ pub fn series_svg(task: u32, scene: &Scene, run: &Trajectory) -> Result<String> 
         for i in 0..joints {
             chart
                 .draw_series(LineSeries::new(
-                    run.steps
+                    steps
                         .iter()
                         .filter_map(|s| s.theta.get(i).map(|v| (s.t, *v))),
                     colour::joint(i).stroke_width(2),
@@ -163,19 +262,48 @@ const LEGEND_AT: (i32, i32) = (4, 12);
 /// links and the nearest obstacle's edge (0, contact, dashed), and the
 /// tracking error on a log scale, each with its legend beside it.
 pub fn compare_svg(task: u32, scene: &Scene, runs: &[Trajectory]) -> Result<String> {
+    let title = format!("Task {task}: the methods over time");
+    let line = caption(
+        task,
+        scene,
+        runs.first().map_or(Method::NUMERICAL, |r| r.method),
+    );
+    let runs: Vec<Run<'_>> = runs.iter().map(Run::planar).collect();
+    compare_of(&title, &line, !scene.obstacles.is_empty(), &runs)
+}
+
+/// Every run of one scene of an arm in space (the arm called `arm`) over
+/// time, as [`compare_svg`] draws a planar scene's: `redundant-ik figure
+/// --arm A --compare`.
+pub fn space_compare_svg(
+    arm: &str,
+    scene: &SpaceScene,
+    runs: &[SpaceTrajectory],
+) -> Result<String> {
+    let title = format!("{arm}: the methods over time");
+    let line = space_caption(
+        arm,
+        scene,
+        runs.first().map_or(Method::NUMERICAL, |r| r.method),
+    );
+    let runs: Vec<Run<'_>> = runs.iter().map(Run::space).collect();
+    compare_of(&title, &line, !scene.spheres.is_empty(), &runs)
+}
+
+/// The two panels of [`compare_svg`] for any arm: `line` the caption of
+/// the first run (its method's part left out).
+fn compare_of(title: &str, line: &str, has_obstacle: bool, runs: &[Run<'_>]) -> Result<String> {
     let tf = runs
         .iter()
         .filter_map(|r| r.steps.last().map(|s| s.t))
         .fold(0.0, f64::max)
         .max(1e-9);
-    let has_obstacle = !scene.obstacles.is_empty();
     let mut clearance_legend = Vec::new();
     if has_obstacle {
         clearance_legend.push((Swatch::Dashed(colour::DANGER, 1), "contact".to_string()));
     }
     for r in runs {
         let min = r
-            .summary
             .min_clearance
             .map_or(String::new(), |d| format!(", min {d:.4} m"));
         clearance_legend.push((
@@ -188,27 +316,17 @@ pub fn compare_svg(task: u32, scene: &Scene, runs: &[Trajectory]) -> Result<Stri
         .map(|r| {
             (
                 Swatch::Line(method_colour(r.method), 2),
-                format!(
-                    "{}, final {:.1e} m",
-                    r.method.label(),
-                    r.summary.final_error
-                ),
+                format!("{}, final {:.1e} m", r.method.label(), r.final_error),
             )
         })
         .collect();
     let width = CHARTS_WIDTH + legend_column(&[&clearance_legend, &error_legend]);
-    let title = format!("Task {task}: the methods over time");
-    let line = caption(
-        task,
-        scene,
-        runs.first().map_or(Method::NUMERICAL, |r| r.method),
-    );
     let line = line
         .split_once(" · ")
-        .map_or(line.clone(), |(_, rest)| rest.to_string());
+        .map_or(line.to_string(), |(_, rest)| rest.to_string());
     let (lines, foot_height) = caption_lines(&line, width);
     svg((width, 720 + foot_height), |root| {
-        let root = root.titled(&title, ("sans-serif", 18)).map_err(why)?;
+        let root = root.titled(title, ("sans-serif", 18)).map_err(why)?;
         let h = root.dim_in_pixel().1;
         let (charts, foot) = root.split_vertically(h - foot_height);
         draw_caption(&foot, &lines)?;
@@ -246,7 +364,7 @@ pub fn compare_svg(task: u32, scene: &Scene, runs: &[Trajectory]) -> Result<Stri
         const FLOOR: f64 = 1e-12;
         let emax = runs
             .iter()
-            .flat_map(|r| r.steps.iter().map(|s| s.tracking_error))
+            .flat_map(|r| r.steps.iter().map(|s| s.error))
             .fold(1e-6, f64::max)
             * 3.0;
         let mut chart = ChartBuilder::on(&bottom)
@@ -267,7 +385,7 @@ pub fn compare_svg(task: u32, scene: &Scene, runs: &[Trajectory]) -> Result<Stri
         for r in runs {
             chart
                 .draw_series(LineSeries::new(
-                    r.steps.iter().map(|s| (s.t, s.tracking_error.max(FLOOR))),
+                    r.steps.iter().map(|s| (s.t, s.error.max(FLOOR))),
                     method_colour(r.method).stroke_width(2),
                 ))
                 .map_err(why)?;

@@ -11,6 +11,7 @@ use plotters::prelude::*;
 use super::{colour, draw_legend, draw_title, svg, why, Area, Swatch, TITLE_HEIGHT};
 use crate::error::Result;
 use crate::planner::space::SpaceTrajectory;
+use crate::planner::Method;
 use crate::scene::SpaceScene;
 use crate::space::{SpacePose, Vec3};
 
@@ -59,6 +60,39 @@ fn points(scene: &SpaceScene, theta: &[f64]) -> Result<Vec<Vec3>> {
         out.push(pose.points()[s.to]);
     }
     Ok(out)
+}
+
+/// The caption line under a figure of a run of an arm in space (the arm
+/// called `arm`), as [`super::caption`] writes a planar run's: the method,
+/// the arm, the path, the joint weighting, the floor, the gains, the
+/// spheres, the loop, the networks' settings, `dt` and `tf`.
+pub fn space_caption(arm: &str, scene: &SpaceScene, method: Method) -> String {
+    let mut parts = vec![method.label().to_string(), arm.to_string()];
+    if !scene.path.is_line() {
+        parts.push(super::shortened_path(scene.path.to_string()));
+    }
+    if !scene.weighting.is_none() {
+        parts.push(format!("joint weighting {}", scene.weighting));
+    }
+    if scene.floor {
+        parts.push("the floor is an obstacle".into());
+    }
+    parts.extend(super::gains(&scene.params, scene.damping.is_some()));
+    match &scene.spheres[..] {
+        [] => parts.push("no sphere".into()),
+        [one] => parts.push(format!("a sphere of radius {} m", one.radius)),
+        all => {
+            let radii: Vec<String> = all.iter().map(|o| o.radius.to_string()).collect();
+            parts.push(format!(
+                "{} spheres, radii {} m",
+                all.len(),
+                radii.join(", ")
+            ));
+        }
+    }
+    parts.extend(super::settings(&scene.params, method, scene.feedback_gain));
+    parts.push(format!("dt = {} s, tf = {} s", scene.dt, scene.tf));
+    parts.join(" · ")
 }
 
 /// The figure of `run` (of `scene`, the arm called `arm`) as SVG, the chain

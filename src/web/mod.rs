@@ -76,7 +76,7 @@ pub use space_bench::*;
 #[cfg(feature = "page")]
 pub use space_demo::SpaceDemo;
 #[cfg(feature = "worker")]
-pub use space_takeaway::space_figure;
+pub use space_takeaway::{space_figure, space_plots};
 #[cfg(feature = "worker")]
 pub use takeaway::*;
 #[cfg(feature = "worker")]

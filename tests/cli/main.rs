@@ -67,5 +67,6 @@ mod refusals;
 mod runs;
 mod simulate;
 mod space;
+mod space_figures;
 mod space_networks;
 mod training;

@@ -155,11 +155,11 @@ fn the_other_kinds_obstacles_and_targets_are_refused_with_a_reason() {
             "figure",
             "--arm",
             "panda",
-            "--compare",
+            "--ellipse",
             "--out",
             "/dev/null",
         ],
-        "not built",
+        "ellipsoid",
     );
 }
 
@@ -459,11 +459,20 @@ fn from_refuses_flags_beside_a_spatial_run_and_a_bad_file() {
         refused(&["simulate", "--from", path, flag, value], flag);
     }
     refused(&["simulate", "--from", path, "--floor"], "--floor");
-    // The planar commands send it to simulate.
+    // As figure and atlas do.
     refused(
-        &["figure", "--from", path, "--out", "/dev/null"],
-        "arm in space",
+        &[
+            "figure",
+            "--from",
+            path,
+            "--lambda",
+            "3",
+            "--out",
+            "/dev/null",
+        ],
+        "--lambda",
     );
+    refused(&["atlas", "--from", path, "--tf", "1"], "--tf");
     let text = std::fs::read_to_string(&file).unwrap();
     for (bad, what) in [
         (text[..text.len() / 3].to_string(), "not json"),

@@ -9,6 +9,7 @@
 
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
+import { readFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { test, open, clean, state, shots } from './harness.mjs';
 import { cli, download, close } from './class-helpers.mjs';
@@ -228,6 +229,15 @@ test('space: the run saved from the page reads back with simulate --from, step f
   const svg = await download(page, '#save-figure-svg');
   assert.match(svg.text, /^<svg|<\?xml/);
   assert.match(svg.text, /Franka Panda/);
+  // The plots as SVG, as figure --from FILE --plots draws them from the same file.
+  const plots = await download(page, '#save-plots-svg');
+  assert.equal(plots.name, 'redundant-ik-panda-qp-plots.svg');
+  assert.match(plots.text, /Franka Panda \(7 joints, in space\), QP with dampers over time/);
+  assert.match(plots.text, /θ7/);
+  const drawn = `${json.path}.plots.svg`;
+  cli(['figure', '--from', json.path, '--plots', '--out', drawn]);
+  const own = readFileSync(drawn, 'utf8');
+  assert.equal(own.match(/<text/g).length, plots.text.match(/<text/g).length, 'the same labels as the command line draws');
   clean(page);
   await page.close();
 });
