@@ -19,6 +19,11 @@
 // (the networks' arithmetic, f64 or f32: precisions()), and every
 // method parameter by its name in params() (influence=..., refine=...).
 // projector ("1": larger text, thicker borders, higher contrast).
+// An arm in space (arm="panda" or arm="iiwa14") takes the page in space's
+// keys instead (www/space-address.js: method, target="x,y,z",
+// obstacles="x,y,z,r;...", path, lambda and the parameters, feedback,
+// weighting, floor, damping, precision, view="yaw,pitch,distance") and its
+// drawing in perspective (orbit, drag, keys).
 // The element's own: autoplay ("false" to start paused; unset, it plays
 // unless the user prefers reduced motion) and plots (present:
 // show the time series). A value that does not parse, or that the core
@@ -127,6 +132,11 @@ const importModules = () =>
     return { ...demo, ...module, ...address };
   })());
 
+/** The page in space's scripts, imported once when the first element with an arm in space starts. */
+let spaceModules = null;
+const importSpace = () =>
+  (spaceModules ??= Promise.all([import('./space-demo.js'), import('./space-address.js')]).then(([demo, address]) => ({ ...demo, ...address })));
+
 /** The words for a module that could not be fetched or started: what the host must send. */
 function loadFailure(e) {
   const why = e && e.message ? e.message : String(e);
@@ -140,10 +150,16 @@ function loadFailure(e) {
   );
 }
 
-/** The settings an element's attributes ask for: readAddress over its attributes, as pairs. */
-const readAttributes = (el, m) => m.readAddress(new URLSearchParams([...el.attributes].map((a) => [a.name, a.value])));
+/** An element's attributes as an address's keys. */
+const attributes = (el) => new URLSearchParams([...el.attributes].map((a) => [a.name, a.value]));
+
+/** The settings an element's attributes ask for: readAddress over its attributes (readSpaceAddress for an arm in space). */
+const readAttributes = (el, m) => (m.readSpaceAddress ?? m.readAddress)(attributes(el));
 
 const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
+
+/** The keys of an arm in space an element watches (space-address.js's, the methods' parameters besides). */
+const SPACE_KEYS = ['arm', 'method', 'target', 'obstacles', 'feedback', 'weighting', 'floor', 'damping', 'path', 'precision', 'view'];
 
 class RedundantIkDemo extends HTMLElement {
   connectedCallback() {
@@ -175,6 +191,14 @@ class RedundantIkDemo extends HTMLElement {
       return;
     }
     try {
+      // An arm in space (arm="panda"): the page in space's mount, its own
+      // address reader; the attributes are its address keys.
+      const arm = this.getAttribute('arm');
+      if (arm === 'space' || m.spacePresets().some((p) => p.key === arm)) {
+        const space = await importSpace();
+        m = { ...m, ...space, mount: space.mountSpace };
+      }
+      this.space = Boolean(m.readSpaceAddress);
       const { problems, ...settings } = readAttributes(this, m);
       this.controller = await m.mount(root, {
         ...settings,
@@ -201,7 +225,7 @@ class RedundantIkDemo extends HTMLElement {
    * changes of one task are applied together (the observer's batch).
    */
   watch(m) {
-    const keys = new Set(m.addressKeys());
+    const keys = new Set(this.space ? [...SPACE_KEYS, ...m.params().map((p) => p.name)] : m.addressKeys());
     const observer = new MutationObserver((records) => {
       if (!records.some((r) => keys.has(r.attributeName))) return;
       try {
@@ -217,6 +241,7 @@ class RedundantIkDemo extends HTMLElement {
 
   /** What the attributes ask for now against what was applied: the changes to the controller (apply), the problems shown. */
   update(m) {
+    if (this.space) return this.updateSpace(m);
     const { problems, ...now } = readAttributes(this, m);
     const was = this.settings;
     const lambdaDefault = m.params().find((p) => p.name === 'lambda')?.default;
@@ -256,6 +281,35 @@ class RedundantIkDemo extends HTMLElement {
     }
     this.settings = now;
     const refused = this.controller.apply(changed);
+    const listed = [...problems, ...refused];
+    if (listed.length) this.controller.show(`Not applied: ${listed.join('; ')}`, 'warn', true);
+    else this.controller.clear();
+  }
+
+  /**
+   * `update` for an arm in space: each key that changed (an attribute
+   * removed: its default, the controller's apply says which); the arm is
+   * read at the start only.
+   */
+  updateSpace(m) {
+    const { problems, ...now } = readAttributes(this, m);
+    const was = this.settings;
+    // A value that does not parse leaves its setting as it is (named).
+    for (const key of problems.map((p) => p.split(':')[0])) {
+      if (key in was.params) now.params[key] = was.params[key];
+      else now[key] = was[key];
+    }
+    const changed = {};
+    for (const key of SPACE_KEYS) {
+      if (key !== 'arm' && !same(now[key], was[key])) changed[key] = now[key];
+    }
+    changed.params = {};
+    for (const p of m.params()) {
+      if (now.params[p.name] !== was.params[p.name]) changed.params[p.name] = now.params[p.name] ?? p.default;
+    }
+    this.settings = now;
+    const refused = this.controller.apply(changed);
+    if (now.arm !== was.arm) refused.push("arm: an element's arm in space is read when it starts");
     const listed = [...problems, ...refused];
     if (listed.length) this.controller.show(`Not applied: ${listed.join('; ')}`, 'warn', true);
     else this.controller.clear();

@@ -11,7 +11,7 @@
 // weighting (lab.js). Controls of the plane only (self-motion, the
 // designer's links, training) are hidden by stage.css under html[data-space].
 
-import { SpaceDemo, loadModule, describe, methodGroups, assetUrl, spacePresets, spaceNetworkSets, limits } from './module.js';
+import { SpaceDemo, loadModule, describe, methodGroups, assetUrl, spacePresets, spaceNetworkSets, limits, precisions } from './module.js';
 import { fixed, metres } from './format.js';
 import { mountMethodParams } from './method-params.js';
 import { mountPrecision } from './network-set.js';
@@ -80,7 +80,9 @@ export async function mountSpace(root, options) {
   const stage = $('stage');
   const plots = $('plots');
   const demo = new SpaceDemo(stage, plots ?? undefined, preset.key, undefined);
-  document.documentElement.dataset.space = preset.key;
+  // The page's own <html> (its stylesheet hides the plane's controls); an
+  // element (a shadow root) marks only itself.
+  (root.host ?? root.documentElement).dataset.space = preset.key;
   const messages = messenger(root);
   const show = messages.show;
   const attempt = (fn, kind = 'error', near = undefined) => messages.attempt(fn, kind, near, describe);
@@ -156,7 +158,7 @@ export async function mountSpace(root, options) {
   if (options.floor !== undefined) initial('floor', () => demo.setFloor(options.floor));
   if (options.precision) initial('precision', () => demo.setPrecision(options.precision));
   if (options.view) initial('view', () => demo.setView((options.view[0] * Math.PI) / 180, (options.view[1] * Math.PI) / 180, options.view[2]));
-  if (options.projector) document.documentElement.toggleAttribute('data-projector', true);
+  if (options.projector) (root.host ?? root.documentElement).toggleAttribute('data-projector', true);
   if (options.method) {
     try {
       await choose(options.method);
@@ -380,6 +382,37 @@ export async function mountSpace(root, options) {
     runFile: () => demo.runFile(),
     atlas: (o) => panels.atlas(o),
     show,
+    clear: () => messages.clear(),
+    /**
+     * Applies changed settings (an element's attributes changed: the keys
+     * of readSpaceAddress, each absent one back to its default); returns
+     * what was refused, `key: why`. A learned method fetches its networks
+     * first, and says there if they cannot be had.
+     */
+    apply(changed) {
+      const refused = [];
+      const one = (key, fn) => {
+        try {
+          fn();
+        } catch (e) {
+          refused.push(`${key}: ${describe(e)}`);
+        }
+      };
+      const own = preset.task;
+      if ('obstacles' in changed) one('obstacles', () => demo.setSpheres(Float64Array.from(changed.obstacles ?? own.sphere)));
+      if ('target' in changed) one('target', () => demo.setTarget(...(changed.target ?? own.target)));
+      for (const [name, value] of Object.entries(changed.params ?? {})) one(name, () => demo.setParam(name, value));
+      if ('feedback' in changed) one('feedback', () => demo.setFeedback(changed.feedback ?? 0));
+      if ('weighting' in changed) one('weighting', () => demo.setWeighting(changed.weighting ?? limits().joint_weightings[0][0]));
+      if ('floor' in changed) one('floor', () => demo.setFloor(changed.floor ?? false));
+      if ('damping' in changed) one('damping', () => demo.setDamping(changed.damping ?? false));
+      if ('path' in changed) one('path', () => demo.setPath(changed.path ?? 'line'));
+      if ('precision' in changed) one('precision', () => demo.setPrecision(changed.precision ?? precisions()[0].name));
+      if (changed.view) one('view', () => demo.setView((changed.view[0] * Math.PI) / 180, (changed.view[1] * Math.PI) / 180, changed.view[2]));
+      // (A method removed keeps the method in use.)
+      if (changed.method) choose(changed.method).catch((e) => show(`Not applied: method: ${describe(e)}`, 'warn', true));
+      return refused;
+    },
     stop() {
       stopped = true;
     },

@@ -9,7 +9,7 @@ import { fixed, metres } from './format.js';
 import { method, describe } from './module.js';
 import { runWorker } from './jobs.js';
 import { saveText, saveBlob, csv } from './download.js';
-import { wireEmbedDialog } from './takeaway.js';
+import { wireEmbedDialog, snippetsOf } from './takeaway.js';
 import { spaceQuery } from './space-address.js';
 import { mountSpaceAtlas } from './space-atlas.js';
 
@@ -120,14 +120,8 @@ export function mountSpacePanels(root, demo, { attempt, show, say, preset, ensur
       }
     }
   });
-  wireEmbedDialog(root, () => {
-    const q = spaceQuery(demo.state(), preset);
-    q.set('embed', '1');
-    return {
-      iframe: `<iframe src="${location.origin}${location.pathname}?${q}" title="The ${preset.label} and redundancy resolution" width="720" height="540" style="border: 0" loading="lazy"></iframe>`,
-      element: '<!-- The <redundant-ik-demo> element shows the planar arms; for an arm in space, use the iframe above. -->',
-    };
-  });
+  // The iframe and the element, with the address's keys (the view too).
+  wireEmbedDialog(root, () => snippetsOf(spaceQuery(demo.state(), preset), location.href, `The ${preset.label} and redundancy resolution`));
 
   const atlas = mountSpaceAtlas(root, demo, { attempt, show, say, preset, changed });
   return {

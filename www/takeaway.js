@@ -27,7 +27,16 @@ const content = (v) => String(v).replace(/&/g, '&amp;').replace(/</g, '&lt;').re
  * a fallback text that shows while (or if) the script cannot run.
  */
 export function embedSnippets(s, page = location.href) {
-  const q = sceneQuery(s);
+  return snippetsOf(sceneQuery(s), page, 'Redundant-arm simulation');
+}
+
+/**
+ * The Embed dialog's snippets of the scene whose address keys are `q`
+ * (URLSearchParams) on `page`: the iframe titled `title`, and the element
+ * with the same keys as its attributes (any arm: the element reads an arm
+ * in space from `arm=panda`).
+ */
+export function snippetsOf(q, page, title) {
   const full = new URL(page);
   full.hash = '';
   full.search = `?${q}`;
@@ -36,7 +45,7 @@ export function embedSnippets(s, page = location.href) {
   const script = new URL('redundant-ik-demo.js', full).href;
   const iframe =
     `<iframe src="${attribute(framed.href)}" width="900" height="600" loading="lazy" ` +
-    `title="Redundant-arm simulation" style="border: 0; max-width: 100%;"></iframe>`;
+    `title="${attribute(title)}" style="border: 0; max-width: 100%;"></iframe>`;
   const attrs = [...q].map(([k, v]) => `${k}="${attribute(v)}"`).join(' ');
   const element = [
     `<script type="module" src="${attribute(script)}"></script>`,

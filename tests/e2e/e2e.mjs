@@ -34,6 +34,7 @@ import './a11y.mjs';
 import './view.mjs';
 import './space.mjs';
 import './space-controls.mjs';
+import './embed-space.mjs';
 import { classTests } from './class.mjs';
 import { limitsTests } from './limits.mjs';
 import { labTests } from './lab.mjs';

@@ -1,0 +1,56 @@
+// The element with an arm in space: the Panda page's Embed button gives an
+// element whose attributes are the page's address keys; pasted into a
+// course page it shows the same scene in perspective, marks nothing on the
+// host page, follows attributes changed later and names a bad one.
+// Registered by e2e.mjs.
+
+import assert from 'node:assert/strict';
+import { join } from 'node:path';
+import { test, open, clean, state, shots, browser, BASE } from './harness.mjs';
+
+/** The scene of a spatial state: what an element must reproduce. */
+const scene = (s) => ({ kind: s.kind, arm: s.arm, method: s.method, target: s.target, spheres: s.spheres, path: s.path, damping: s.damping, params: s.params, weighting: s.weighting, floor: s.floor });
+
+test('embed in space: the Embed button\'s element shows the Panda\'s scene on a course page, follows its attributes and names a bad one', async () => {
+  const q = 'arm=panda&method=qp&target=0.45,0.25,0.55&obstacles=0.4,0.1,0.62,0.05&path=points:0.5,0.1,0.5;0.45,0.2,0.6&damping=1&influence=0.2&autoplay=0';
+  const page = await open(`?${q}`);
+  const want = await state(page);
+  await page.click('#embed-open');
+  const element = await page.inputValue('#embed-element');
+  const iframe = await page.inputValue('#embed-iframe');
+  for (const key of ['arm="panda"', 'method="qp"', 'target="0.45,0.25,0.55"', 'damping="1"', 'influence="0.2"', 'path="points:']) assert.ok(element.includes(key), `the element has ${key}: ${element}`);
+  assert.match(iframe, /arm=panda/);
+  assert.match(iframe, /embed=1/);
+  await page.keyboard.press('Escape');
+  clean(page);
+  await page.close();
+
+  const context = await browser.newContext({ viewport: { width: 900, height: 900 } });
+  const course = await context.newPage();
+  const problems = [];
+  course.on('pageerror', (e) => problems.push(e.message));
+  const html = element.replace('<redundant-ik-demo ', '<redundant-ik-demo id="panda" autoplay="false" plots ');
+  await course.route(BASE + 'course-space.html', (r) => r.fulfill({ status: 200, contentType: 'text/html; charset=utf-8', body: `<!doctype html><html lang="en"><head><meta charset="utf-8"><title>A course page</title></head><body><h1>Redundancy in space</h1>${html}</body></html>` }));
+  await course.goto(BASE + 'course-space.html');
+  await course.waitForSelector('#panda[data-ready="true"]', { timeout: 30000 });
+  const got = await course.evaluate(() => document.getElementById('panda').controller.state());
+  assert.deepEqual(scene(got), scene(want), 'the element shows the page\'s scene');
+  assert.equal(await course.evaluate(() => document.documentElement.hasAttribute('data-space')), false, 'the host page is not marked');
+  assert.equal(await course.evaluate(() => document.getElementById('panda').dataset.space), 'panda');
+  await course.screenshot({ path: join(shots, 'embed-space.png') });
+
+  // An attribute changed later is applied; a bad one is named, the rest runs.
+  await course.evaluate(() => document.getElementById('panda').setAttribute('target', '0.5,0.2,0.5'));
+  await course.waitForFunction(() => document.getElementById('panda').controller.state().target.join() === '0.5,0.2,0.5', null, { timeout: 10000 });
+  await course.evaluate(() => document.getElementById('panda').setAttribute('obstacles', '0.4,oops'));
+  await course.waitForFunction(() => /Not applied: obstacles/.test(document.getElementById('panda').shadowRoot.getElementById('message').textContent), null, { timeout: 10000 });
+  assert.deepEqual((await course.evaluate(() => document.getElementById('panda').controller.state())).spheres, want.spheres, 'the spheres stay');
+  // Removed: back to the default (the damping off, as the preset's task has it).
+  await course.evaluate(() => document.getElementById('panda').removeAttribute('damping'));
+  await course.waitForFunction(() => document.getElementById('panda').controller.state().damping === false, null, { timeout: 10000 });
+  // A learned method by attribute fetches the Panda's networks.
+  await course.evaluate(() => document.getElementById('panda').setAttribute('method', 'case3'));
+  await course.waitForFunction(() => document.getElementById('panda').controller.state().method === 'case3', null, { timeout: 60000 });
+  assert.deepEqual(problems, []);
+  await context.close();
+});
