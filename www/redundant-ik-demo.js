@@ -159,7 +159,7 @@ const readAttributes = (el, m) => (m.readSpaceAddress ?? m.readAddress)(attribut
 const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
 
 /** The keys of an arm in space an element watches (space-address.js's, the methods' parameters besides). */
-const SPACE_KEYS = ['arm', 'method', 'target', 'obstacles', 'feedback', 'weighting', 'floor', 'damping', 'path', 'precision', 'view'];
+const SPACE_KEYS = ['arm', 'method', 'theta0', 'target', 'obstacles', 'feedback', 'weighting', 'floor', 'damping', 'path', 'precision', 'view'];
 
 class RedundantIkDemo extends HTMLElement {
   connectedCallback() {

@@ -3,7 +3,7 @@
 // the methods' other parameters by name, target=X,Y,Z,
 // obstacles=X,Y,Z,R;X,Y,Z,R (the spheres, m), feedback, weighting, floor,
 // damping (1: the schedule near singular poses on; off by default in
-// space), path (the core's syntax: line, circle:CX,CY,CZ,NX,NY,NZ[,LAPS],
+// space), theta0 (the start pose, rad: self-motion moves it), path (the core's syntax: line, circle:CX,CY,CZ,NX,NY,NZ[,LAPS],
 // points:X,Y,Z;...),
 // networks, precision (the networks' arithmetic: f64 or f32),
 // view=YAW,PITCH,DISTANCE (degrees, degrees, m), embed and
@@ -54,6 +54,11 @@ export function readSpaceAddress(search) {
     floor: q.has('floor') ? q.get('floor') === '1' : undefined,
     damping: q.has('damping') ? q.get('damping') === '1' : undefined,
     path: q.get('path') ?? undefined,
+    theta0: read('theta0', (v) => v.split(',').map((x) => {
+      const n = Number(x.trim());
+      if (x.trim() === '' || !Number.isFinite(n)) throw new Error('expected the joint angles (rad) separated by commas');
+      return n;
+    })),
     precision: read('precision', readPrecision),
     view: read('view', (v) => numbers(v, 3)),
     projector: q.get('projector') === '1' || undefined,
@@ -83,6 +88,8 @@ export function spaceQuery(s, preset) {
   if (s.floor) q.set('floor', '1');
   if (s.damping) q.set('damping', '1');
   if (s.path) q.set('path', s.path);
+  // A start of the user's own (self-motion moves it), its angles exact.
+  if (s.theta0.some((v, i) => Math.abs(v - preset.task.theta0[i]) > 1e-12)) q.set('theta0', s.theta0.map(String).join(','));
   if (s.precision !== precisions()[0].name) q.set('precision', s.precision);
   for (const p of params()) {
     if (s.params[p.name] !== undefined && s.params[p.name] !== p.default) q.set(p.name, String(s.params[p.name]));

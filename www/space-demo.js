@@ -8,8 +8,9 @@
 // live region; the stage's pointer, touch and keys are space-input.js's.
 // the path typed or drawn (path-input.js: drawn on the plane through the
 // hand's start that faces the camera), the damping switch and the joint
-// weighting (lab.js). Controls of the plane only (self-motion, the
-// designer's links, training) are hidden by stage.css under html[data-space].
+// weighting (lab.js), self-motion (self-motion.js's slider; an elbow
+// dragged on the stage). Controls of the plane only (the designer's links,
+// training) are hidden by stage.css under html[data-space].
 
 import { SpaceDemo, loadModule, describe, methodGroups, assetUrl, spacePresets, spaceNetworkSets, limits, precisions } from './module.js';
 import { fixed, metres } from './format.js';
@@ -21,6 +22,7 @@ import { writeSpaceAddress } from './space-address.js';
 import { mountSpacePanels } from './space-panels.js';
 import { mountPath } from './path-input.js';
 import { mountLab } from './lab.js';
+import { mountSelfMotion } from './self-motion.js';
 
 const READOUTS = {
   t: (s) => fixed(s.t, 1),
@@ -148,6 +150,7 @@ export async function mountSpace(root, options) {
       refused.push(`${name}: ${describe(e)}`);
     }
   };
+  if (options.theta0) initial('theta0', () => demo.setStart(Float64Array.from(options.theta0)));
   if (options.obstacles) initial('obstacles', () => demo.setSpheres(Float64Array.from(options.obstacles)));
   if (options.target) initial('target', () => demo.setTarget(...options.target));
   for (const [name, value] of Object.entries(options.params ?? {})) initial(name, () => demo.setParam(name, value));
@@ -221,6 +224,8 @@ export async function mountSpace(root, options) {
   if (drawPath) drawPath.title = "Press, then draw on the stage: the stroke, on the plane through the hand's start that faces you, becomes a points: path (Escape cancels)";
   const syncPath = mountPath(root, demo, { attempt, changed, stage });
   const syncLab = mountLab(root, demo, { attempt, changed });
+  // Self-motion: the slider (an elbow dragged on the stage does the same: space-input.js).
+  mountSelfMotion(root, demo, { attempt, changed });
   // The networks' arithmetic: the plane's selector (network-set.js).
   const syncPrecision = mountPrecision(root, (name, near) => {
     if (attempt(() => demo.setPrecision(name), 'error', near)) {
@@ -258,7 +263,7 @@ export async function mountSpace(root, options) {
   stage.after(view);
   stage.setAttribute(
     'aria-label',
-    `The ${preset.label} in 3-D, the spheres and the path. Drag the target or a sphere; drag the empty drawing to orbit. With the keyboard: n selects the next item, the arrows move it in the view's plane, o and u orbit, + and - zoom, 0 resets the view.`,
+    `The ${preset.label} in 3-D, the spheres and the path. Drag the target or a sphere, or an elbow to move the arm with its hand held still; drag the empty drawing to orbit. With the keyboard: n selects the next item, the arrows move it in the view's plane, o and u orbit, + and - zoom, 0 resets the view.`,
   );
 
   // ---- legend --------------------------------------------------------------
@@ -407,6 +412,7 @@ export async function mountSpace(root, options) {
       if ('floor' in changed) one('floor', () => demo.setFloor(changed.floor ?? false));
       if ('damping' in changed) one('damping', () => demo.setDamping(changed.damping ?? false));
       if ('path' in changed) one('path', () => demo.setPath(changed.path ?? 'line'));
+      if ('theta0' in changed) one('theta0', () => demo.setStart(Float64Array.from(changed.theta0 ?? own.theta0)));
       if ('precision' in changed) one('precision', () => demo.setPrecision(changed.precision ?? precisions()[0].name));
       if (changed.view) one('view', () => demo.setView((changed.view[0] * Math.PI) / 180, (changed.view[1] * Math.PI) / 180, changed.view[2]));
       // (A method removed keeps the method in use.)

@@ -155,7 +155,8 @@ export function wireSpaceStage(stage, demo, { attempt, changed, say, togglePlay,
     if (drag.kind === 'item') {
       demo.pointerUp();
       changed();
-      say(`moved: ${where()}`);
+      // An elbow moves the arm in the null space: the hand held, the pose the run's new start.
+      say(drag.what.startsWith('elbow') ? `${drag.what} moved, the hand held still: the run starts from this pose` : `moved: ${where()}`);
     } else {
       say(view());
     }

@@ -19,7 +19,7 @@ mod keys;
 mod pointer;
 mod revision;
 mod scenes;
-mod self_motion;
+pub mod self_motion;
 mod settings;
 pub mod space;
 mod state;

@@ -7,15 +7,20 @@ use wasm_bindgen::prelude::*;
 use web_sys::HtmlCanvasElement;
 
 use super::space_stage::{self, SliceLayer};
+
+mod layer;
 use super::surface::Surface;
 use super::tracked::Tracked;
 use super::{finite, js_err, plots, to_js, JsResult};
-use crate::atlas::space::Plane;
-use crate::atlas::Grid;
 use crate::export::SpaceRunFile;
 use crate::networks::space::SpaceNetworkSet;
 use crate::planner::Method;
 use crate::session::space::{SpaceSession, KEY_ORBIT};
+
+/// How the page names elbow `k` (a joint, from 0): `elbow 4`.
+fn elbow(k: usize) -> String {
+    format!("elbow {}", k + 1)
+}
 
 /// How far a pixel of pointer travel turns the view (rad).
 const ORBIT_PER_PX: f64 = 0.008;
@@ -156,6 +161,14 @@ impl SpaceDemo {
         Ok(text)
     }
 
+    /// The run's start pose (rad, one angle a joint; the address's
+    /// `theta0`). Throws, changing nothing, on the wrong count, a
+    /// non-finite angle or one past its limit.
+    #[wasm_bindgen(js_name = setStart)]
+    pub fn set_start(&mut self, theta0: Vec<f64>) -> JsResult {
+        self.session_mut().set_start(&theta0).map_err(js_err)
+    }
+
     /// Whether the floor is an obstacle.
     #[wasm_bindgen(js_name = setFloor)]
     pub fn set_floor(&mut self, on: bool) -> JsResult {
@@ -288,22 +301,37 @@ impl SpaceDemo {
         self.drawn.edit().keyboard = on;
     }
 
-    /// The item under canvas pixel `(x, y)` (`target`, `sphere 1`, ...).
+    /// The item under canvas pixel `(x, y)` (`target`, `sphere 1`, ...,
+    /// or an elbow, `elbow 4`).
     pub fn hover(&self, x: f64, y: f64, slop: f64) -> Option<String> {
         let proj = self.projection();
-        self.session()
-            .handle_at(&proj, x, y, slop)
+        let s = self.session();
+        s.handle_at(&proj, x, y, slop)
             .map(|h| h.describe())
+            .or_else(|| s.elbow_at(&proj, x, y, slop).map(elbow))
     }
 
-    /// Grabs the item under `(x, y)`; `undefined` on the empty drawing
-    /// (where a drag orbits).
+    /// Grabs the item under `(x, y)` (the target or a sphere, else an
+    /// elbow, whose drag moves the arm in the null space); `undefined` on
+    /// the empty drawing (where a drag orbits).
     #[wasm_bindgen(js_name = pointerDown)]
     pub fn pointer_down(&mut self, x: f64, y: f64, slop: f64) -> Option<String> {
         let proj = self.projection();
-        self.session_mut()
-            .pointer_down(&proj, x, y, slop)
+        let s = self.session_mut();
+        s.pointer_down(&proj, x, y, slop)
             .map(|h| h.describe())
+            .or_else(|| s.grab_elbow(&proj, x, y, slop).map(elbow))
+    }
+
+    /// Moves the arm along joint `joint`'s self-motion (from 0) by `amount`
+    /// rad of joint-space arc, the hand held still (the page's slider);
+    /// the pose becomes the run's start. Throws, changing nothing, at a
+    /// singular pose or past a joint's limit.
+    #[wasm_bindgen(js_name = selfMotion)]
+    pub fn self_motion(&mut self, joint: usize, amount: f64) -> JsResult {
+        self.session_mut()
+            .self_motion(joint, amount)
+            .map_err(js_err)
     }
 
     /// Moves the item held under `(x, y)`.
@@ -400,65 +428,6 @@ impl SpaceDemo {
     #[wasm_bindgen(js_name = compareMethods)]
     pub fn compare_methods(&self) -> JsResult<JsValue> {
         to_js(&self.session().compare())
-    }
-
-    /// Shows a slice atlas on its plane, `axes` (`xy`, `xz` or `yz`) at
-    /// `at` (m) along the third: `region` `[u0, u1, v0, v1]`, `n` points per
-    /// side, one class per cell. (Not the plane's text `xz:0.2`: its number
-    /// parser would add 4 KB to the page's module.)
-    #[wasm_bindgen(js_name = setAtlasLayer)]
-    pub fn set_atlas_layer(
-        &mut self,
-        axes: &str,
-        at: f64,
-        region: Vec<f64>,
-        n: usize,
-        classes: Vec<u8>,
-    ) -> JsResult {
-        let at = finite("plane offset", at)?;
-        let plane = match axes {
-            "xy" => Plane::Xy(at),
-            "xz" => Plane::Xz(at),
-            "yz" => Plane::Yz(at),
-            _ => return Err(JsError::new("a slice's plane is xy, xz or yz")),
-        };
-        let region: [f64; 4] = region
-            .try_into()
-            .map_err(|_| JsError::new("an atlas region is [u0, u1, v0, v1]"))?;
-        let grid = Grid::new(region, n).map_err(js_err)?;
-        self.drawn.edit().layer = Some(SliceLayer::new(plane, grid, classes).map_err(js_err)?);
-        Ok(())
-    }
-
-    /// The shown slice atlas's cell under canvas pixel `(x, y)`, if any.
-    #[wasm_bindgen(js_name = atlasCellAt)]
-    pub fn atlas_cell_at(&self, x: f64, y: f64) -> Option<usize> {
-        let proj = self.projection();
-        let d = self.drawn.get();
-        let layer = d.layer.as_ref()?;
-        (x.is_finite() && y.is_finite())
-            .then(|| layer.cell_at(&proj, x, y))
-            .flatten()
-    }
-
-    /// Moves the first sphere to the centre of the shown atlas's cell `k`
-    /// (the run follows, as for a drag); refused without such a cell.
-    #[wasm_bindgen(js_name = placeSphereAtCell)]
-    pub fn place_sphere_at_cell(&mut self, k: usize) -> JsResult {
-        let point = self
-            .drawn
-            .get()
-            .layer
-            .as_ref()
-            .and_then(|l| l.cell_point(k))
-            .ok_or_else(|| JsError::new("no shown slice atlas has that cell"))?;
-        self.session_mut().move_sphere(0, point).map_err(js_err)
-    }
-
-    /// Hides the atlas.
-    #[wasm_bindgen(js_name = clearAtlasLayer)]
-    pub fn clear_atlas_layer(&mut self) {
-        self.drawn.edit().layer = None;
     }
 }
 

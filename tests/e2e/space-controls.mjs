@@ -165,3 +165,44 @@ test('space controls: a learned method draws the numerical ghost, and its legend
   clean(page);
   await page.close();
 });
+
+test('space controls: self-motion: the slider and an elbow dragged with the mouse move the arm, the hand held, from a new start', async () => {
+  const page = await open('?arm=panda&method=numerical&autoplay=0');
+  assert.equal(await page.isVisible('#self-motion'), true);
+  const before = await state(page);
+  // The slider, by keyboard: each arrow a step along joint 2's self-motion.
+  await page.focus('#self-motion');
+  for (let i = 0; i < 4; i++) await page.keyboard.press('ArrowRight');
+  await page.waitForFunction((t) => window.demo.state().theta.some((v, i) => Math.abs(v - t[i]) > 0.05), before.theta, { timeout: 10000 });
+  const slid = await state(page);
+  assert.ok(Math.hypot(...slid.hand.map((v, i) => v - before.hand[i])) < 1e-3, `the hand held: ${slid.hand} vs ${before.hand}`);
+  assert.equal(slid.t, 0);
+  // An elbow (joint 4's origin) dragged 40 px.
+  const elbow = await page.evaluate(() => {
+    const d = window.demo.controller.demo;
+    const r = document.getElementById('stage').getBoundingClientRect();
+    for (let x = 0; x < r.width; x += 3) for (let y = 0; y < r.height; y += 3) if (d.hover(x, y, 0) === 'elbow 4') return { x: r.left + x, y: r.top + y };
+    return null;
+  });
+  assert.ok(elbow, 'elbow 4 is on the drawing');
+  await page.mouse.move(elbow.x, elbow.y);
+  await page.mouse.down();
+  for (let k = 1; k <= 10; k++) await page.mouse.move(elbow.x + 4 * k, elbow.y + 2 * k);
+  await page.mouse.up();
+  const dragged = await state(page);
+  assert.ok(dragged.theta.some((v, i) => Math.abs(v - slid.theta[i]) > 0.02), 'the arm moved');
+  assert.ok(Math.hypot(...dragged.hand.map((v, i) => v - before.hand[i])) < 2e-3, `the hand held: ${dragged.hand}`);
+  assert.equal(dragged.spheres.length, 1);
+  assert.deepEqual(dragged.target, before.target, 'the target stayed');
+  await textMatching(page, '#announcer', /elbow 4 moved, the hand held still/);
+  await page.screenshot({ path: `${shots}/space-self-motion.png` });
+  // The new start is in the address: a reload starts from it.
+  await page.waitForFunction(() => /theta0=/.test(location.search), null, { timeout: 10000 });
+  const url = page.url();
+  const again = await open(url.slice(url.indexOf('?')));
+  assert.deepEqual((await state(again)).theta0, dragged.theta0);
+  clean(again);
+  await again.close();
+  clean(page);
+  await page.close();
+});

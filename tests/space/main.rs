@@ -9,6 +9,7 @@ mod modern;
 mod networks;
 mod paths;
 mod planner;
+mod self_motion;
 mod session;
 
 use redundant_ik::space::{Chain, Row};

@@ -16,6 +16,7 @@
 mod camera;
 mod clock;
 mod pointer;
+mod self_motion;
 mod settings;
 mod state;
 

@@ -35,13 +35,21 @@ impl SpaceHandle {
     }
 }
 
-/// A drag in progress: the handle, the depth of the plane it moves in and
-/// the offset from the pointer's point on that plane to its centre.
+/// A drag in progress: what is held, the depth of the plane it moves in
+/// and the offset from the pointer's point on that plane to its centre.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Drag {
-    handle: SpaceHandle,
+    grab: Grab,
     depth: f64,
     offset: Vec3,
+}
+
+/// What a drag holds: the target or a sphere, or an elbow (joint `k`'s
+/// origin, pulled in the null space: `self_motion.rs`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Grab {
+    Item(SpaceHandle),
+    Elbow(usize),
 }
 
 impl SpaceSession {
@@ -128,15 +136,31 @@ impl SpaceSession {
         }
         let handle = self.handle_at(proj, x, y, slop)?;
         let centre = self.handle_centre(handle)?;
+        self.hold(proj, x, y, Grab::Item(handle), centre);
+        self.selected = handle;
+        Some(handle)
+    }
+
+    /// Grabs the elbow under `(x, y)`, if any ([`SpaceSession::elbow_at`];
+    /// after the target and the spheres, which [`SpaceSession::pointer_down`]
+    /// grabs first): a drag then moves the arm in the null space, the
+    /// elbow toward the pointer in the plane through it facing the camera.
+    /// Returns the joint (from 0).
+    pub fn grab_elbow(&mut self, proj: &Projection, x: f64, y: f64, slop: f64) -> Option<usize> {
+        let k = self.elbow_at(proj, x, y, slop)?;
+        let centre = self.pose().joint_origin(k);
+        self.hold(proj, x, y, Grab::Elbow(k), centre);
+        Some(k)
+    }
+
+    fn hold(&mut self, proj: &Projection, x: f64, y: f64, grab: Grab, centre: Vec3) {
         let depth = proj.depth(centre);
         let offset = sub(centre, proj.unproject(x, y, depth));
         self.drag = Some(Drag {
-            handle,
+            grab,
             depth,
             offset,
         });
-        self.selected = handle;
-        Some(handle)
     }
 
     /// Moves the item held to under `(x, y)`, in its plane facing the
@@ -150,7 +174,11 @@ impl SpaceSession {
             return Ok(());
         };
         let to = add(proj.unproject(x, y, d.depth), d.offset);
-        let _ = self.place(d.handle, to);
+        // A place or a pose refused leaves things as they were; the drag goes on.
+        let _ = match d.grab {
+            Grab::Item(h) => self.place(h, to),
+            Grab::Elbow(k) => self.drag_joint(k, to),
+        };
         Ok(())
     }
 
@@ -175,9 +203,20 @@ impl SpaceSession {
         self.drag = None;
     }
 
-    /// The item held, if any.
+    /// The item held, if any (not an elbow: [`SpaceSession::dragging_elbow`]).
     pub fn dragging(&self) -> Option<SpaceHandle> {
-        self.drag.map(|d| d.handle)
+        match self.drag?.grab {
+            Grab::Item(h) => Some(h),
+            Grab::Elbow(_) => None,
+        }
+    }
+
+    /// The elbow held (its joint, from 0), if one is.
+    pub fn dragging_elbow(&self) -> Option<usize> {
+        match self.drag?.grab {
+            Grab::Elbow(k) => Some(k),
+            Grab::Item(_) => None,
+        }
     }
 
     fn place(&mut self, handle: SpaceHandle, to: Vec3) -> Result<()> {

@@ -46,6 +46,18 @@ impl SpaceSession {
         self.apply(scene)
     }
 
+    /// The run's start pose (rad; the address's `theta0`, what self-motion
+    /// leaves); refused, changing nothing, when it does not fit the chain
+    /// or lies past a joint's limit.
+    pub fn set_start(&mut self, theta0: &[f64]) -> Result<()> {
+        let mut scene = self.scene.clone();
+        scene.theta0 = theta0.to_vec();
+        self.apply(scene)?;
+        self.index = 0;
+        self.show(0);
+        Ok(())
+    }
+
     /// Whether the floor `z = 0` is an obstacle.
     pub fn set_floor(&mut self, floor: bool) -> Result<()> {
         let mut scene = self.scene.clone();

@@ -46,6 +46,8 @@ pub struct SpaceState<'a> {
     pub speed: f64,
     /// Joint angles shown (rad).
     pub theta: &'a [f64],
+    /// The run's start pose (rad).
+    pub theta0: &'a [f64],
     /// The joints' ranges `[lo, hi]` (rad).
     pub joint_limits: Option<&'a [[f64; 2]]>,
     /// The hand, where the path has it now, and the line's end (m).
@@ -148,6 +150,7 @@ impl SpaceSession {
             ended: self.ended(),
             speed: self.speed,
             theta: self.pose.theta(),
+            theta0: &self.scene.theta0,
             joint_limits: self.scene.chain.joint_limits().map(|l| l.ranges()),
             hand: self.pose.hand(),
             reference: sample.map_or(self.pose.hand(), |s| s.reference),
@@ -172,7 +175,10 @@ impl SpaceSession {
             summary: &self.summary,
             failure: self.failure.as_deref(),
             selected: self.selected().describe(),
-            dragging: self.dragging().map(|h| h.describe()),
+            dragging: self
+                .dragging()
+                .map(|h| h.describe())
+                .or_else(|| self.dragging_elbow().map(|k| format!("elbow {}", k + 1))),
             lambda: self.scene.param(&crate::planner::methods::LAMBDA),
             params: ByName(
                 params::all()
