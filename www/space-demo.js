@@ -30,8 +30,8 @@ const READOUTS = {
   clearance: (s) => (s.clearance === null ? '—' : fixed(s.clearance, 3)),
   min_clearance: (s) => (s.min_clearance === null ? '—' : fixed(s.min_clearance, 3)),
   collision: (s) => (s.collision ? 'now' : s.collided ? 'earlier' : 'none'),
-  manipulability: () => '—',
-  sigma: () => '—',
+  manipulability: (s) => fixed(s.manipulability, 4),
+  sigma: (s) => s.singular_values.map((v) => fixed(v, 3)).join(', '),
   delta: () => '—',
   solver: () => '—',
 };
@@ -45,6 +45,7 @@ const LEGEND = [
   ['reference', 'Where the hand should be now', 'var(--muted)'],
   ['shadow', 'Shadows on the floor (grid: 0.1 m)', 'rgba(31, 41, 51, 0.3)'],
   ['ghost', 'The numerical route (dashed): the same scene solved exactly, beside a learned method', 'var(--ghost)'],
+  ['ellipse', 'The manipulability ellipsoid {Jθ̇ : |θ̇| ≤ 1} at 1/4 scale: its three principal ellipses (half-axes σ₁, σ₂, σ₃)', 'var(--velocity)'],
 ];
 
 /** The shipped networks of `arm`, fetched and installed; resolves to null or the reason they are not. */
@@ -266,6 +267,13 @@ export async function mountSpace(root, options) {
     `The ${preset.label} in 3-D, the spheres and the path. Drag the target or a sphere, or an elbow to move the arm with its hand held still; drag the empty drawing to orbit. With the keyboard: n selects the next item, the arrows move it in the view's plane, o and u orbit, + and - zoom, 0 resets the view.`,
   );
 
+  // The readouts of the velocity ellipsoid: three singular values, m³.
+  const readout = (f) => [...root.querySelectorAll('[data-readout]')].find((r) => READOUTS[r.dataset.readout] === f);
+  const sigma = readout(READOUTS.sigma)?.closest('div');
+  if (sigma?.firstElementChild) sigma.firstElementChild.textContent = 'singular values σ₁, σ₂, σ₃ of J';
+  const volume = readout(READOUTS.manipulability);
+  if (volume?.nextSibling) volume.nextSibling.textContent = ' m³';
+
   // ---- legend --------------------------------------------------------------
   const legend = $('legend');
   if (legend) {
@@ -278,6 +286,16 @@ export async function mountSpace(root, options) {
         sw.style.setProperty('--swatch', colour);
         if (key === 'ghost') li.hidden = true;
         li.append(sw, label);
+        // A switch, as the plane's ellipse has (lab.js calls demo.setShown).
+        if (key === 'ellipse') {
+          const box = document.createElement('input');
+          box.type = 'checkbox';
+          box.dataset.toggle = key;
+          const switchLabel = document.createElement('label');
+          switchLabel.append(box, ...li.childNodes);
+          li.append(switchLabel);
+          li.dataset.toggle = 'true';
+        }
         return li;
       }),
     );

@@ -37,7 +37,7 @@ pub struct FigureArgs {
     /// error and joint angles over time (the page's plots).
     #[arg(long, conflicts_with = "all")]
     pub plots: bool,
-    /// Draw the manipulability ellipse {J theta_dot : |theta_dot| <= 1} at
+    /// Draw the manipulability ellipse {J theta_dot : |theta_dot| <= 1} (for an arm in space, the ellipsoid's three principal ellipses) at
     /// the final pose (at 1/4 scale, as the page's legend switch does).
     #[arg(long, conflicts_with_all = ["compare", "plots"])]
     pub ellipse: bool,
@@ -98,17 +98,13 @@ pub fn run(args: &FigureArgs) -> Result<(), String> {
 }
 
 /// Runs `figure` for a spatial job (`--arm A`, or `--from` a spatial run
-/// file): the run's two views (the default), its plots (`--plots`), every
+/// file): the run's two views (the default; `--ellipse` adds the velocity
+/// ellipsoid at the final pose), its plots (`--plots`), every
 /// method over time (`--compare`), or with `--all` each method's two views
 /// and the comparison into a directory.
 pub fn space(args: &FigureArgs, job: Job) -> Result<(), String> {
     if args.every == 0 {
         return Err("--every must be at least 1".into());
-    }
-    if args.ellipse {
-        return Err(
-            "--ellipse: the manipulability ellipsoid of an arm in space is not drawn yet".into(),
-        );
     }
     let e = |x: redundant_ik::Error| x.to_string();
     let label = job.preset.label;
@@ -125,7 +121,8 @@ pub fn space(args: &FigureArgs, job: Job) -> Result<(), String> {
             let path = args.out.join(format!("{arm}_{}.svg", traj.method));
             write(
                 &path,
-                &figure::space_svg(label, &job.scene, traj, args.every).map_err(e)?,
+                &figure::space_svg_with(label, &job.scene, traj, args.every, args.ellipse)
+                    .map_err(e)?,
             )?;
         }
         return write(&args.out.join(format!("{arm}_compare.svg")), &compare);
@@ -136,7 +133,7 @@ pub fn space(args: &FigureArgs, job: Job) -> Result<(), String> {
     let svg = if args.plots {
         figure::space_series_svg(label, &job.scene, &traj)
     } else {
-        figure::space_svg(label, &job.scene, &traj, args.every)
+        figure::space_svg_with(label, &job.scene, &traj, args.every, args.ellipse)
     };
     write(&args.out, &svg.map_err(e)?)
 }

@@ -13,6 +13,7 @@ use crate::error::Result;
 use crate::planner::space::SpaceTrajectory;
 use crate::planner::Method;
 use crate::scene::SpaceScene;
+use crate::space::manipulability::velocity_ellipsoid;
 use crate::space::{SpacePose, Vec3};
 
 /// An orthographic view: `(right, up)` screen axes in the world.
@@ -103,7 +104,45 @@ pub fn space_svg(
     run: &SpaceTrajectory,
     every: usize,
 ) -> Result<String> {
+    space_svg_with(arm, scene, run, every, false)
+}
+
+/// The three principal ellipses of the velocity ellipsoid `{J theta_dot :
+/// |theta_dot| <= 1}` of `scene`'s chain at `theta`, at the hand, drawn at
+/// [`super::ELLIPSE_SCALE`] (the plane's [`super::ellipse_outline`] in
+/// space; [`crate::space::manipulability::velocity_ellipsoid`]).
+pub fn ellipsoid_rings(scene: &SpaceScene, theta: &[f64]) -> Result<[Vec<Vec3>; 3]> {
+    let pose = SpacePose::new(&scene.chain, theta)?;
+    let (axes, half) = velocity_ellipsoid(pose.jjt());
+    let hand = pose.hand();
+    Ok([(0, 1), (0, 2), (1, 2)].map(|(a, b)| {
+        (0..=96)
+            .map(|k| {
+                let t = k as f64 / 96.0 * std::f64::consts::TAU;
+                let (u, w) = (
+                    super::ELLIPSE_SCALE * half[a] * t.cos(),
+                    super::ELLIPSE_SCALE * half[b] * t.sin(),
+                );
+                std::array::from_fn(|i| hand[i] + u * axes[a][i] + w * axes[b][i])
+            })
+            .collect()
+    }))
+}
+
+/// [`space_svg`], with the velocity ellipsoid's principal ellipses at the
+/// final pose when `ellipsoid` is set (`figure --ellipse`).
+pub fn space_svg_with(
+    arm: &str,
+    scene: &SpaceScene,
+    run: &SpaceTrajectory,
+    every: usize,
+    ellipsoid: bool,
+) -> Result<String> {
     let every = every.max(1);
+    let rings = match (ellipsoid, run.samples.last()) {
+        (true, Some(last)) => Some(ellipsoid_rings(scene, &last.theta)?),
+        _ => None,
+    };
     let poses: Vec<Vec<Vec3>> = run
         .samples
         .iter()
@@ -130,9 +169,16 @@ pub fn space_svg(
         let (head_area, body) = root.split_vertically(TITLE_HEIGHT);
         draw_title(&head_area, &head, run.method.description())?;
         let (left, right) = body.split_horizontally(size.0 / 2);
-        panel(&left, View::oblique(-55.0, 20.0), scene, run, &poses, every)?;
-        panel(&right, View::top(), scene, run, &poses, every)?;
-        let legend = [
+        let drawn = Drawn {
+            scene,
+            run,
+            poses: &poses,
+            every,
+            rings: rings.as_ref(),
+        };
+        panel(&left, View::oblique(-55.0, 20.0), &drawn)?;
+        panel(&right, View::top(), &drawn)?;
+        let mut legend = vec![
             (
                 Swatch::Dashed(colour::MUTED, 1),
                 "the hand's line".to_string(),
@@ -145,6 +191,12 @@ pub fn space_svg(
                 format!("every {every}th pose"),
             ),
         ];
+        if rings.is_some() {
+            legend.push((
+                Swatch::Line(VELOCITY, 2),
+                "manipulability ellipsoid at 1/4 scale".into(),
+            ));
+        }
         let (w, h) = body.dim_in_pixel();
         draw_legend(
             &body,
@@ -155,16 +207,29 @@ pub fn space_svg(
     })
 }
 
+/// What both views draw: the scene, the run, its poses' points, every
+/// how many steps a pose is drawn, the ellipsoid's rings if asked for.
+struct Drawn<'a> {
+    scene: &'a SpaceScene,
+    run: &'a SpaceTrajectory,
+    poses: &'a [Vec<Vec3>],
+    every: usize,
+    rings: Option<&'a [Vec<Vec3>; 3]>,
+}
+
+/// The colour of the manipulability ellipsoid (the plane's ellipse's).
+const VELOCITY: RGBColor = RGBColor(46, 125, 50);
+
 /// One view: its bounds from everything drawn, equal scales, then the
 /// floor grid, the spheres, the poses and the line.
-fn panel(
-    area: &Area<'_>,
-    view: View,
-    scene: &SpaceScene,
-    run: &SpaceTrajectory,
-    poses: &[Vec<Vec3>],
-    every: usize,
-) -> std::result::Result<(), String> {
+fn panel(area: &Area<'_>, view: View, d: &Drawn<'_>) -> std::result::Result<(), String> {
+    let Drawn {
+        scene,
+        run,
+        poses,
+        every,
+        rings,
+    } = *d;
     let mut pts: Vec<(f64, f64)> = poses.iter().flatten().map(|p| view.project(*p)).collect();
     for sp in &scene.spheres {
         let (u, v) = view.project(sp.centre);
@@ -172,6 +237,9 @@ fn panel(
             (u - sp.radius, v - sp.radius),
             (u + sp.radius, v + sp.radius),
         ]);
+    }
+    for ring in rings.into_iter().flatten() {
+        pts.extend(ring.iter().map(|p| view.project(*p)));
     }
     let g = 0.6;
     for corner in [[-g, -g, 0.0], [g, -g, 0.0], [-g, g, 0.0], [g, g, 0.0]] {
@@ -275,6 +343,14 @@ fn panel(
             .map_err(why)?;
         chart
             .draw_series(q.iter().map(|x| Circle::new(*x, 3, c.filled())))
+            .map_err(why)?;
+    }
+    for ring in rings.into_iter().flatten() {
+        chart
+            .draw_series(LineSeries::new(
+                ring.iter().map(|x| view.project(*x)),
+                VELOCITY.stroke_width(2),
+            ))
             .map_err(why)?;
     }
     Ok(())

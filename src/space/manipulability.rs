@@ -29,6 +29,7 @@
 //! `w` is floored in the gradient's denominator, where a singular pose
 //! leaves it undefined.
 
+use super::linalg::eigenvalues_sym3;
 use super::pose::{add, cross, dot, norm, SpacePose, Vec3};
 
 /// Whether every joint axis of `pose` is parallel to the first (the chain
@@ -62,6 +63,51 @@ fn measure(pose: &SpacePose) -> (f64, [[f64; 3]; 3]) {
         let det = a[0][0] * b[0][0] + a[0][1] * b[1][0] + a[0][2] * b[2][0];
         (det, b)
     }
+}
+
+/// The velocity ellipsoid `{J theta_dot : |theta_dot| <= 1}` of `J J^T =
+/// jjt` (by rows): its principal axes (orthonormal, the eigenvectors of
+/// `J J^T`, the longest first, a right-handed frame) and half-lengths (the
+/// singular values `sigma_i = sqrt(lambda_i)` of `J`). The planar
+/// [`crate::kinematics::velocity_ellipse`] in three dimensions. Each
+/// eigenvector is the longest cross product of two rows of `J J^T -
+/// lambda I` (whose rows span the plane normal to it); where two
+/// eigenvalues coincide any axes of their plane do, and the third axis is
+/// taken as the cross product of the first two.
+pub fn velocity_ellipsoid(jjt: [[f64; 3]; 3]) -> ([Vec3; 3], [f64; 3]) {
+    let lambda = eigenvalues_sym3(jjt);
+    let half = lambda.map(|l| l.max(0.0).sqrt());
+    let axis = |l: f64, fallback: Vec3| -> Vec3 {
+        let m: [Vec3; 3] = std::array::from_fn(|r| {
+            std::array::from_fn(|c| jjt[r][c] - if r == c { l } else { 0.0 })
+        });
+        let best = [cross(m[0], m[1]), cross(m[0], m[2]), cross(m[1], m[2])]
+            .into_iter()
+            .max_by(|a, b| norm(*a).total_cmp(&norm(*b)))
+            .unwrap_or(fallback);
+        let size = norm(best);
+        if size > 1e-12 * (1.0 + l.abs()).powi(2) {
+            best.map(|x| x / size)
+        } else {
+            fallback
+        }
+    };
+    let first = axis(lambda[0], [1.0, 0.0, 0.0]);
+    // The second, made normal to the first (a repeated eigenvalue leaves
+    // it free in their plane).
+    let mut second = axis(lambda[1], [0.0, 1.0, 0.0]);
+    let along = dot(second, first);
+    second = add(second, first.map(|x| -along * x));
+    if norm(second) < 1e-9 {
+        second = if first[0].abs() < 0.9 {
+            cross(first, [1.0, 0.0, 0.0])
+        } else {
+            cross(first, [0.0, 1.0, 0.0])
+        };
+    }
+    let size = norm(second);
+    let second = second.map(|x| x / size);
+    ([first, second, cross(first, second)], half)
 }
 
 /// The manipulability `w = sqrt(det(J J^T))` of `pose` (for a chain whose

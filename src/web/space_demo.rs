@@ -44,6 +44,9 @@ struct Drawn {
     plots: Option<Surface>,
     layer: Option<SliceLayer>,
     keyboard: bool,
+    /// Whether the velocity ellipsoid is drawn at the hand (`setShown`,
+    /// the legend's switch, as the plane's ellipse).
+    ellipsoid: bool,
 }
 
 impl SpaceDemo {
@@ -86,6 +89,7 @@ impl SpaceDemo {
                 plots: plots.map(Surface::new).transpose()?,
                 layer: None,
                 keyboard: false,
+                ellipsoid: false,
             }),
         })
     }
@@ -269,7 +273,13 @@ impl SpaceDemo {
     /// Draws the stage and the plots.
     pub fn draw(&self) {
         let d = self.drawn.get();
-        space_stage::draw(&d.session, &d.stage, d.layer.as_ref(), d.keyboard);
+        space_stage::draw(
+            &d.session,
+            &d.stage,
+            d.layer.as_ref(),
+            d.keyboard,
+            d.ellipsoid,
+        );
         if let Some(p) = &d.plots {
             let limits = d
                 .session
@@ -293,6 +303,20 @@ impl SpaceDemo {
             Some(p) => p.resize(width, height, dpr),
             None => Ok(()),
         }
+    }
+
+    /// Switches a legend entry's drawing: `ellipse`, the velocity ellipsoid
+    /// `{J theta_dot : |theta_dot| <= 1}` at the hand (its three principal
+    /// ellipses at 1/4 scale; the plane's `setShown('ellipse')`). Returns
+    /// whether the key names one (the plane's force ellipse has no
+    /// ellipsoid here yet).
+    #[wasm_bindgen(js_name = setShown)]
+    pub fn set_shown(&mut self, key: &str, on: bool) -> bool {
+        if key != "ellipse" {
+            return false;
+        }
+        self.drawn.edit().ellipsoid = on;
+        true
     }
 
     /// Whether the drawing has the keyboard (the selected item is ringed).

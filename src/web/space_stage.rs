@@ -12,7 +12,7 @@ use web_sys::CanvasRenderingContext2d;
 
 use super::style::{
     rgba, ACCENT, ARM, AXIS, DANGER, FONT, GHOST, GHOST_ALPHA, GRID, INK, LAYER_ALPHA, MUTED,
-    PAPER, POST, TEAL,
+    PAPER, POST, TEAL, VELOCITY, VELOCITY_SCALE,
 };
 use super::surface::{dash, disc, text, Surface};
 use crate::atlas::space::Plane;
@@ -20,6 +20,7 @@ use crate::atlas::{Class, Grid};
 use crate::error::Result;
 use crate::kinematics::sin_cos;
 use crate::session::space::{Projection, SpaceHandle, SpaceSession, NEAR};
+use crate::space::manipulability::velocity_ellipsoid;
 use crate::space::Vec3;
 
 /// Half the floor grid's side (m) and its spacing.
@@ -92,8 +93,15 @@ enum Item {
 }
 
 /// Draws `s` on `surface`; `layer` is a slice atlas to show, `focus` rings
-/// the selected item (the drawing has the keyboard).
-pub fn draw(s: &SpaceSession, surface: &Surface, layer: Option<&SliceLayer>, focus: bool) {
+/// the selected item (the drawing has the keyboard), `ellipsoid` draws the
+/// velocity ellipsoid at the hand.
+pub fn draw(
+    s: &SpaceSession,
+    surface: &Surface,
+    layer: Option<&SliceLayer>,
+    focus: bool,
+    ellipsoid: bool,
+) {
     let ctx = &surface.ctx;
     surface.begin();
     let proj = s.projection(surface.width, surface.height);
@@ -246,6 +254,26 @@ pub fn draw(s: &SpaceSession, surface: &Surface, layer: Option<&SliceLayer>, foc
             }
         }
         ctx.set_global_alpha(1.0);
+    }
+
+    // The velocity ellipsoid at the hand: its three principal ellipses at
+    // the plane's scale (half-lengths sigma_i, m per rad/s).
+    if ellipsoid {
+        let (axes, half) = velocity_ellipsoid(pose.jjt());
+        let hand = pose.hand();
+        ctx.set_stroke_style_str(VELOCITY);
+        ctx.set_line_width(1.75);
+        for (a, b) in [(0, 1), (0, 2), (1, 2)] {
+            let ring = (0..=64).map(|k| {
+                let (sin, cos) = sin_cos(k as f64 * std::f64::consts::TAU / 64.0);
+                let (u, w) = (
+                    VELOCITY_SCALE * half[a] * cos,
+                    VELOCITY_SCALE * half[b] * sin,
+                );
+                std::array::from_fn(|i| hand[i] + u * axes[a][i] + w * axes[b][i])
+            });
+            path(ctx, &proj, ring);
+        }
     }
 
     // The target and where the hand should be now.

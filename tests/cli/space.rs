@@ -156,10 +156,11 @@ fn the_other_kinds_obstacles_and_targets_are_refused_with_a_reason() {
             "--arm",
             "panda",
             "--ellipse",
+            "--plots",
             "--out",
             "/dev/null",
         ],
-        "ellipsoid",
+        "--plots",
     );
 }
 

@@ -34,6 +34,26 @@ fn figure_plots_and_compares_the_runs_of_an_arm_in_space() {
         "the caption says the scene"
     );
 
+    // The velocity ellipsoid at the final pose: three rings more in each view.
+    let (plain, with) = (scratch("panda-plain.svg"), scratch("panda-ellipsoid.svg"));
+    ok(&["figure", "--arm", "panda", "--out", plain.to_str().unwrap()]);
+    ok(&[
+        "figure",
+        "--arm",
+        "panda",
+        "--ellipse",
+        "--out",
+        with.to_str().unwrap(),
+    ]);
+    let (plain, with) = (read(&plain), read(&with));
+    assert!(with.contains("manipulability ellipsoid at 1/4 scale"));
+    assert!(!plain.contains("ellipsoid"));
+    assert_eq!(
+        with.matches("<polyline").count(),
+        plain.matches("<polyline").count() + 7,
+        "three rings in each of the two views, and the legend's swatch"
+    );
+
     // Every method that runs on the iiwa (it has no networks: Cases 1-3
     // are skipped, and the figure says which ran).
     let compare = scratch("iiwa-compare.svg");

@@ -6,7 +6,7 @@
 // run's. Registered by e2e.mjs.
 
 import assert from 'node:assert/strict';
-import { test, open, clean, state, textMatching, shots } from './harness.mjs';
+import { test, open, clean, state, textMatching, shots, nextFrames } from './harness.mjs';
 
 test('space controls: the tour and the upload are not shown, the keys hint is the drawing in space\'s, Task plays', async () => {
   const page = await open('?arm=panda&method=numerical&autoplay=0');
@@ -203,6 +203,42 @@ test('space controls: self-motion: the slider and an elbow dragged with the mous
   assert.deepEqual((await state(again)).theta0, dragged.theta0);
   clean(again);
   await again.close();
+  clean(page);
+  await page.close();
+});
+
+test('space controls: the manipulability readouts and the legend\'s ellipsoid switch', async () => {
+  const page = await open('?arm=panda&method=numerical&autoplay=0');
+  const s = await state(page);
+  assert.equal(s.singular_values.length, 3);
+  assert.ok(Math.abs(s.singular_values.reduce((a, b) => a * b, 1) - s.manipulability) < 1e-9, 'w = σ₁σ₂σ₃');
+  assert.equal(await page.isVisible('[data-readout="manipulability"]'), true);
+  await textMatching(page, '[data-readout="sigma"]', /^\d\.\d{3}, \d\.\d{3}, \d\.\d{3}$/);
+  assert.match(await page.textContent('.readouts div:has([data-readout="sigma"]) dt'), /σ₁, σ₂, σ₃/);
+  const green = () =>
+    page.evaluate(() => {
+      const c = document.getElementById('stage');
+      const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+      let n = 0;
+      for (let i = 0; i < d.length; i += 4) if (Math.abs(d[i] - 46) < 20 && Math.abs(d[i + 1] - 125) < 20 && Math.abs(d[i + 2] - 50) < 20) n++;
+      return n;
+    });
+  const before = await green();
+  const box = page.locator('#legend input[data-toggle="ellipse"]');
+  assert.equal(await box.isVisible(), true);
+  await box.check();
+  await page.waitForFunction((b) => {
+    const c = document.getElementById('stage');
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    let n = 0;
+    for (let i = 0; i < d.length; i += 4) if (Math.abs(d[i] - 46) < 20 && Math.abs(d[i + 1] - 125) < 20 && Math.abs(d[i + 2] - 50) < 20) n++;
+    return n > b + 200;
+  }, before, { timeout: 10000 });
+  await page.screenshot({ path: `${shots}/space-ellipsoid.png` });
+  await box.uncheck();
+  await page.waitForFunction((b) => true, before);
+  await nextFrames(page);
+  assert.ok((await green()) <= before + 20, 'switched off, the ellipsoid is gone');
   clean(page);
   await page.close();
 });

@@ -348,3 +348,52 @@ fn the_presets_agree_with_robotics_toolbox() {
         assert!(worst < 1e-9, "{key}: {worst:e} from Robotics Toolbox");
     }
 }
+
+/// The velocity ellipsoid's axes and half-lengths rebuild `J J^T`
+/// (`sum sigma_i^2 a_i a_i^T`), in a right-handed orthonormal frame, the
+/// longest first; its volume is the manipulability's; a chain whose axes
+/// are parallel has a flat one.
+#[test]
+fn the_velocity_ellipsoid_rebuilds_j_j_transpose() {
+    use redundant_ik::space::manipulability::{manipulability, velocity_ellipsoid};
+    for key in ["panda", "iiwa14"] {
+        let scene = redundant_ik::scene::SpaceScene::by_key(key).unwrap();
+        for shift in [0.0, 0.3, -0.7] {
+            let theta: Vec<f64> = scene.theta0.iter().map(|t| t + shift).collect();
+            let pose = SpacePose::new(&scene.chain, &theta).unwrap();
+            let a = pose.jjt();
+            let (axes, half) = velocity_ellipsoid(a);
+            assert!(half[0] >= half[1] && half[1] >= half[2]);
+            for r in 0..3 {
+                for c in 0..3 {
+                    let back: f64 = (0..3)
+                        .map(|k| half[k] * half[k] * axes[k][r] * axes[k][c])
+                        .sum();
+                    assert!(
+                        (back - a[r][c]).abs() < 1e-12,
+                        "{key}: {back} vs {}",
+                        a[r][c]
+                    );
+                    let d: f64 = (0..3).map(|k| axes[r][k] * axes[c][k]).sum();
+                    assert!((d - f64::from(u8::from(r == c))).abs() < 1e-12);
+                }
+            }
+            let w = manipulability(&pose);
+            assert!((half[0] * half[1] * half[2] - w).abs() < 1e-12 * (1.0 + w));
+        }
+    }
+    // Flat: rank 2, the third half-length 0, the axes still a frame.
+    let (axes, half) = velocity_ellipsoid([[2.0, 0.5, 0.0], [0.5, 1.0, 0.0], [0.0, 0.0, 0.0]]);
+    assert_eq!(half[2], 0.0);
+    assert!(
+        (axes[2][2].abs() - 1.0).abs() < 1e-12,
+        "the flat axis is z: {axes:?}"
+    );
+    // Round: every axis of the sphere will do.
+    let (axes, half) = velocity_ellipsoid([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+    assert_eq!(half, [1.0; 3]);
+    let det = axes[0][0] * (axes[1][1] * axes[2][2] - axes[1][2] * axes[2][1])
+        - axes[0][1] * (axes[1][0] * axes[2][2] - axes[1][2] * axes[2][0])
+        + axes[0][2] * (axes[1][0] * axes[2][1] - axes[1][1] * axes[2][0]);
+    assert!((det - 1.0).abs() < 1e-12);
+}

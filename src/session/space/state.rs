@@ -9,6 +9,7 @@ use crate::planner::params;
 use crate::planner::space::SpaceSummary;
 use crate::scene::JointWeighting;
 use crate::session::ByName;
+use crate::space::manipulability::{manipulability, velocity_ellipsoid};
 use crate::space::Vec3;
 
 /// The snapshot the page reads every frame.
@@ -58,6 +59,12 @@ pub struct SpaceState<'a> {
     pub target: Vec3,
     /// `|hand - reference|` (m).
     pub tracking_error: f64,
+    /// Yoshikawa's manipulability `sqrt(det(J J^T))` at the pose shown
+    /// (m^3), and the singular values `sigma_1 >= sigma_2 >= sigma_3` of
+    /// `J` (m), the velocity ellipsoid's half-lengths.
+    pub manipulability: f64,
+    /// See `manipulability`.
+    pub singular_values: [f64; 3],
     /// The spheres, `[x, y, z, r]` each (m).
     pub spheres: Vec<[f64; 4]>,
     /// The smallest clearance between the links and the spheres now and so
@@ -156,6 +163,8 @@ impl SpaceSession {
             reference: sample.map_or(self.pose.hand(), |s| s.reference),
             target: self.scene.target,
             tracking_error: sample.map_or(0.0, |s| s.tracking_error),
+            manipulability: manipulability(&self.pose),
+            singular_values: velocity_ellipsoid(self.pose.jjt()).1,
             spheres: self
                 .scene
                 .spheres
