@@ -42,6 +42,7 @@ export {
   Demo,
   SpaceDemo,
   spaceNetworkSets,
+  spaceTrainingRecipes,
 } from './pkg/redundant_ik.js';
 import { spacePresets } from './pkg/redundant_ik.js';
 export { spacePresets };

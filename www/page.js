@@ -236,6 +236,8 @@ async function startSpace() {
     runUntil: (t) => controller.runUntil(t),
     bench: (options) => bench(options),
     compare: () => controller.compare(),
+    simulate: (options) => controller.simulate(options),
+    train: (options) => controller.train(options),
     runFile: () => controller.runFile(),
     atlas: (options) => controller.atlas(options),
     spaceAtlas: (options) => spaceAtlas(options),

@@ -23,6 +23,8 @@ import { mountSpacePanels } from './space-panels.js';
 import { mountPath } from './path-input.js';
 import { mountLab } from './lab.js';
 import { mountSelfMotion } from './self-motion.js';
+import { mountWeightsUpload } from './weights-upload.js';
+import { mountSpaceTraining } from './space-training.js';
 
 const READOUTS = {
   t: (s) => fixed(s.t, 1),
@@ -120,6 +122,26 @@ export async function mountSpace(root, options) {
   }
   let networks = null;
   const ensureNetworks = () => (networks ??= installNetworks(demo, preset.key));
+  // Your own networks (weights-upload.js): two files of redundant-ik train --arm A,
+  // checked by the core against this chain; the learned methods use them from then on.
+  const upload = $('weights-upload');
+  const uploadHint = upload?.querySelector('p');
+  if (uploadHint) uploadHint.textContent = `Two weights files written by redundant-ik train --arm ${preset.key} --net phi and --net v: the Φ network and the v network of the ${preset.label}.`;
+  const ownNetworks = () => {
+    networks = Promise.resolve(null);
+    for (const o of learned) {
+      o.disabled = false;
+      o.title = 'Uses the networks you loaded or trained';
+    }
+  };
+  mountWeightsUpload(root, {
+    attempt,
+    show,
+    install: (phi, v) => {
+      demo.installNetworks(phi, v, undefined);
+      ownNetworks();
+    },
+  });
   const choose = async (wanted) => {
     if (learned.some((o) => o.value === wanted) && !demo.state().has_networks) {
       show(`Fetching the ${preset.label}'s networks…`, 'info', false, menu);
@@ -302,6 +324,7 @@ export async function mountSpace(root, options) {
   }
 
   const panels = mountSpacePanels(root, demo, { attempt, show, say, preset, ensureNetworks, changed });
+  const training = mountSpaceTraining(root, demo, { preset, show, say, installed: ownNetworks });
 
   // ---- size ------------------------------------------------------------------
   const fit = (canvas, resize) => {
@@ -402,6 +425,26 @@ export async function mountSpace(root, options) {
       return update(demo.frame(0) ?? demo.state());
     },
     compare: () => panels.compare(),
+    train: (options) => training.train(options),
+    /**
+     * A whole run off screen (the plane's window.demo.simulate): options
+     * { method, target: [x, y, z], obstacles: [[x, y, z, r], ...], tf,
+     * theta0, feedback, refine }, each absent one the scene's; its summary.
+     */
+    simulate(options) {
+      const allowed = ['method', 'target', 'obstacles', 'tf', 'theta0', 'feedback', 'refine'];
+      if (!options || typeof options !== 'object') throw new Error(`simulate expects { ${allowed.join(', ')} }`);
+      for (const k of Object.keys(options)) {
+        if (!allowed.includes(k)) throw new Error(`simulate: unknown option '${k}', expected one of ${allowed.join(', ')}`);
+      }
+      const nums = (v, what) => {
+        if (v === undefined) return undefined;
+        if (!Array.isArray(v)) throw new Error(`simulate: ${what} must be a list of numbers`);
+        return Float64Array.from(v.flat(), Number);
+      };
+      const number = (v) => (v === undefined ? undefined : Number(v));
+      return demo.simulate(String(options.method ?? demo.state().method), nums(options.target, 'target'), nums(options.obstacles, 'obstacles'), number(options.tf), nums(options.theta0, 'theta0'), number(options.feedback), number(options.refine));
+    },
     runFile: () => demo.runFile(),
     atlas: (o) => panels.atlas(o),
     show,

@@ -59,6 +59,7 @@ import init, {
   atlasFiles,
   spaceFigure,
   spacePlots,
+  trainSpaceNetwork,
   provideBuiltinNetworks,
   builtinNetworksFailed,
   lastPanic,
@@ -159,6 +160,13 @@ function trainNet({ request, net }) {
   return trainNetwork(request, net, post);
 }
 
+/** One network of an arm in space (src/web/space_training.rs), its epochs reported. */
+function trainSpace({ request }) {
+  const post = (e) => self.postMessage({ type: 'progress', done: e.epoch, total: e.max_epochs, label: e.net, epoch: e });
+  self.postMessage({ type: 'progress', done: 0, total: 1, label: 'sampling' });
+  return trainSpaceNetwork(request, post);
+}
+
 self.onmessage = async ({ data }) => {
   try {
     await init({ module_or_path: data.wasm });
@@ -181,6 +189,7 @@ self.onmessage = async ({ data }) => {
     else if (data.kind === 'space-plots') result = spacePlots(data.run);
     else if (data.kind === 'train') result = train(data);
     else if (data.kind === 'train-net') result = trainNet(data);
+    else if (data.kind === 'space-train') result = trainSpace(data);
     else if (data.kind === 'conclude') result = concludeTraining(data.request, data.phi, data.v);
     else if (data.kind === 'run-files') result = runFiles(data.run);
     else if (data.kind === 'atlas-files') result = atlasFiles(data.atlas, data.scene, data.methods ?? []);

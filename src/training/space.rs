@@ -34,6 +34,39 @@ fn paper_reach() -> f64 {
     crate::arm::Arm::paper().max_reach()
 }
 
+/// A recipe of an arm in space's training: its name, the networks' hidden
+/// widths and, for `Phi` and `v`, the samples drawn and the most epochs.
+/// The sampling is the whole-reach recipe's for both.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct SpaceRecipe {
+    /// `quick` or `reach`.
+    pub name: &'static str,
+    /// Hidden layer widths.
+    pub hidden: [usize; 2],
+    /// `Phi`'s samples and most epochs.
+    pub phi: [usize; 2],
+    /// `v`'s samples and most epochs.
+    pub v: [usize; 2],
+}
+
+/// The recipes of an arm in space's training, the page's default first:
+/// `quick` ([`SpaceTrainSpec::quick`]) and `reach`, the command line's
+/// ([`SpaceTrainSpec::reach`]).
+pub const SPACE_RECIPES: [SpaceRecipe; 2] = [
+    SpaceRecipe {
+        name: "quick",
+        hidden: [64, 64],
+        phi: [8_000, 300],
+        v: [30_000, 120],
+    },
+    SpaceRecipe {
+        name: "reach",
+        hidden: [96, 96],
+        phi: [20_000, 600],
+        v: [100_000, 300],
+    },
+];
+
 /// What to train for an arm in space.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SpaceTrainSpec {
@@ -71,16 +104,17 @@ impl SpaceTrainSpec {
         // v's states spread over seven joints and a sphere anywhere: 100 000
         // samples for 300 epochs (a median relative error of 0.63 on fresh
         // states, against 0.71 with 20 000 for 600).
-        let (samples, epochs) = match net {
-            NetKind::Phi => (20_000, AdamOptions::default().max_epochs),
-            NetKind::V => (100_000, 300),
+        let recipe = &SPACE_RECIPES[1];
+        let [samples, epochs] = match net {
+            NetKind::Phi => recipe.phi,
+            NetKind::V => recipe.v,
         };
         Self {
             arm: p.key.to_string(),
             net,
             seed,
             samples,
-            hidden: vec![96, 96],
+            hidden: recipe.hidden.to_vec(),
             adam: AdamOptions {
                 max_epochs: epochs,
                 ..AdamOptions::default()
@@ -96,6 +130,38 @@ impl SpaceTrainSpec {
                 obstacle_noise: 0.03,
                 sign_smoothing: super::REACH_SIGN_SMOOTHING * scale * scale,
             },
+        }
+    }
+
+    /// The page's quick recipe for the preset `p`: the whole-reach
+    /// recipe's sampling with 64-64 networks on fewer samples for fewer
+    /// epochs (`Phi` 8 000 for 300, `v` 30 000 for 120), so that a browser
+    /// trains both in seconds. Less accurate than [`SpaceTrainSpec::reach`]
+    /// (on the Panda, median relative errors 0.23 and 0.63 against 0.15
+    /// and 0.60): `docs/space.md` gives both.
+    pub fn quick(p: &SpacePreset, net: NetKind, seed: u64) -> Self {
+        let mut spec = Self::reach(p, net, seed);
+        let recipe = &SPACE_RECIPES[0];
+        let [samples, epochs] = match net {
+            NetKind::Phi => recipe.phi,
+            NetKind::V => recipe.v,
+        };
+        spec.samples = samples;
+        spec.hidden = recipe.hidden.to_vec();
+        spec.adam.max_epochs = epochs;
+        spec
+    }
+
+    /// The recipe called `name` ([`SPACE_RECIPES`]) for the preset `p`.
+    pub fn recipe(name: &str, p: &SpacePreset, net: NetKind, seed: u64) -> Result<Self> {
+        match name {
+            "quick" => Ok(Self::quick(p, net, seed)),
+            "reach" => Ok(Self::reach(p, net, seed)),
+            other => Err(Error::UnknownName {
+                kind: "training recipe in space",
+                name: other.into(),
+                choices: crate::error::choices(&SPACE_RECIPES.map(|r| r.name)),
+            }),
         }
     }
 

@@ -46,6 +46,8 @@ mod space_demo;
 mod space_stage;
 #[cfg(feature = "worker")]
 mod space_takeaway;
+#[cfg(feature = "worker")]
+mod space_training;
 #[cfg(feature = "page")]
 mod stage;
 #[cfg(feature = "page")]
@@ -77,6 +79,8 @@ pub use space_bench::*;
 pub use space_demo::SpaceDemo;
 #[cfg(feature = "worker")]
 pub use space_takeaway::{space_figure, space_plots};
+#[cfg(feature = "worker")]
+pub use space_training::{train_space_network, MAX_SPACE_EPOCHS, MAX_SPACE_SAMPLES};
 #[cfg(feature = "worker")]
 pub use takeaway::*;
 #[cfg(feature = "worker")]

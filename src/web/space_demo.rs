@@ -9,6 +9,7 @@ use web_sys::HtmlCanvasElement;
 use super::space_stage::{self, SliceLayer};
 
 mod layer;
+mod script;
 use super::surface::Surface;
 use super::tracked::Tracked;
 use super::{finite, js_err, plots, to_js, JsResult};
@@ -460,6 +461,15 @@ impl SpaceDemo {
 #[wasm_bindgen(js_name = spacePresets)]
 pub fn space_presets() -> JsResult<JsValue> {
     to_js(&crate::space::PRESETS)
+}
+
+/// The training recipes in space, the default first: `[{ name, hidden,
+/// phi: [samples, epochs], v: [samples, epochs] }]` (the worker's
+/// `trainSpaceNetwork` takes the name;
+/// [`crate::training::space::SPACE_RECIPES`]).
+#[wasm_bindgen(js_name = spaceTrainingRecipes)]
+pub fn space_training_recipes() -> JsResult<JsValue> {
+    to_js(&crate::training::space::SPACE_RECIPES)
 }
 
 /// The shipped network sets in space: `[{ name, arm, files: [phi, v] }]`,

@@ -6,12 +6,12 @@
 // run's. Registered by e2e.mjs.
 
 import assert from 'node:assert/strict';
-import { test, open, clean, state, textMatching, shots, nextFrames } from './harness.mjs';
+import { join } from 'node:path';
+import { test, open, clean, state, textMatching, shots, nextFrames, here } from './harness.mjs';
 
-test('space controls: the tour and the upload are not shown, the keys hint is the drawing in space\'s, Task plays', async () => {
+test('space controls: the tour is not shown, the keys hint is the drawing in space\'s, Task plays', async () => {
   const page = await open('?arm=panda&method=numerical&autoplay=0');
   assert.equal(await page.isVisible('#tour-open'), false, 'no tour in space yet');
-  assert.equal(await page.isVisible('#weights-upload'), false, 'no upload in space yet');
   const hint = await page.textContent('#keys-hint');
   assert.match(hint, /orbit/);
   assert.doesNotMatch(hint, /elbow|"Keys"/);
@@ -239,6 +239,89 @@ test('space controls: the manipulability readouts and the legend\'s ellipsoid sw
   await page.waitForFunction((b) => true, before);
   await nextFrames(page);
   assert.ok((await green()) <= before + 20, 'switched off, the ellipsoid is gone');
+  clean(page);
+  await page.close();
+});
+
+test('space controls: window.demo.simulate runs a scene off screen with overrides, as the plane\'s, and refuses a bad one', async () => {
+  const page = await open('?arm=panda&method=numerical&autoplay=0');
+  const before = await state(page);
+  const plain = await page.evaluate(() => window.demo.simulate({ method: 'qp' }));
+  const compared = (await page.evaluate(() => window.demo.compare())).find((r) => r.method === 'qp');
+  assert.deepEqual(plain, compared.summary, 'the scene in use, as the comparison runs it');
+  const moved = await page.evaluate(() => window.demo.simulate({ method: 'qp', target: [0.45, 0.2, 0.5], obstacles: [[0.45, 0.1, 0.7, 0.05]], tf: 3 }));
+  assert.equal(moved.steps, 60);
+  for (const bad of [{ method: 'qp', target: [1, 2] }, { method: 'nope' }, { method: 'qp', tf: -1 }, { colour: 'red' }]) {
+    const why = await page.evaluate((o) => {
+      try {
+        window.demo.simulate(o);
+        return null;
+      } catch (e) {
+        return String(e.message ?? e);
+      }
+    }, bad);
+    assert.ok(why, `refused: ${JSON.stringify(bad)}`);
+  }
+  const after = await state(page);
+  assert.deepEqual([after.method, after.target, after.spheres, after.tf], [before.method, before.target, before.spheres, before.tf], 'the stage did not change');
+  clean(page);
+  await page.close();
+});
+
+test('space controls: your own weights files: the Panda\'s installed, refused for the iiwa with the core\'s reason', async () => {
+  const files = ['phi', 'v'].map((k) => join(here, '..', '..', 'weights', `${k}-panda-reach.json`));
+  const iiwa = await open('?arm=iiwa14&method=numerical&autoplay=0');
+  assert.equal(await iiwa.isVisible('#weights-upload'), true);
+  await iiwa.click('#weights-upload summary');
+  assert.match(await iiwa.textContent('#weights-upload p'), /train --arm iiwa14/);
+  await iiwa.setInputFiles('#phi-file', files[0]);
+  await iiwa.setInputFiles('#v-file', files[1]);
+  await iiwa.click('#load-weights');
+  await textMatching(iiwa, '#message', /chain|joint|trained/i);
+  assert.equal((await state(iiwa)).has_networks, false, 'refused: the networks in use stay (none)');
+  assert.equal(await iiwa.locator('#mode option[value=case3]').isDisabled(), true);
+  clean(iiwa);
+  await iiwa.close();
+
+  const panda = await open('?arm=panda&method=numerical&autoplay=0');
+  await panda.click('#weights-upload summary');
+  await panda.setInputFiles('#phi-file', files[0]);
+  await panda.setInputFiles('#v-file', files[1]);
+  await panda.click('#load-weights');
+  await textMatching(panda, '#message', /Loaded phi-panda-reach\.json/);
+  const s = await state(panda);
+  assert.equal(s.has_networks, true);
+  assert.equal(s.network_set, null, 'the user\'s files, not the shipped set by name');
+  await panda.selectOption('#mode', 'case3');
+  await panda.waitForFunction(() => window.demo.state().method === 'case3', null, { timeout: 10000 });
+  clean(panda);
+  await panda.close();
+});
+
+test('space controls: training in the page gives the iiwa networks for Cases 1-3; Cancel stops it and keeps what was in use', async () => {
+  const page = await open('?arm=iiwa14&method=numerical&autoplay=0');
+  assert.equal(await page.isVisible('#train-panel'), true);
+  await page.click('#train-panel summary');
+  assert.match(await page.textContent('#train-panel summary'), /iiwa/);
+  assert.equal(await page.isVisible('#train-net'), false, 'both networks, always');
+  assert.equal(await page.isVisible('#train-curves'), false);
+  // Started from the button and cancelled.
+  await page.click('#train-run');
+  await page.waitForFunction(() => !document.getElementById('train-cancel').hidden, null, { timeout: 10000 });
+  await page.click('#train-cancel');
+  await textMatching(page, '#train-status', /cancelled/);
+  assert.equal((await state(page)).has_networks, false);
+  assert.equal(await page.locator('#mode option[value=case3]').isDisabled(), true);
+  // A small training (window.demo.train, the recipe's sampling on few samples): installed, Case 3 runs.
+  const trained = await page.evaluate(() => window.demo.train({ samples: 300, epochs: 3 }).then((r) => ({ phi: JSON.parse(r.phi).arm, v: JSON.parse(r.v).arm })));
+  assert.deepEqual(trained, { phi: 'iiwa14', v: 'iiwa14' });
+  await textMatching(page, '#train-status', /Trained in .* Cases 1-3 now use them/);
+  await page.locator('#train-panel').screenshot({ path: `${shots}/space-training.png` });
+  assert.equal((await state(page)).has_networks, true);
+  assert.equal(await page.locator('#mode option[value=case3]').isDisabled(), false);
+  await page.selectOption('#mode', 'case3');
+  await page.waitForFunction(() => window.demo.state().method === 'case3', null, { timeout: 10000 });
+  assert.equal(await page.locator('#train-download').isDisabled(), false);
   clean(page);
   await page.close();
 });

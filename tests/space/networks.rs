@@ -167,3 +167,33 @@ fn bad_files_and_the_wrong_arm_are_refused() {
     assert!(SpaceNetworkSet::for_arm("iiwa14").is_none());
     assert_eq!(PRESETS.len(), 2);
 }
+
+/// The training recipes in space by name (the page's menu and its
+/// workers read them): the quick one smaller than the command line's, both
+/// with the same sampling; an unknown name refused with the choices.
+#[test]
+fn the_training_recipes_in_space_are_named_and_the_quick_one_is_smaller() {
+    use redundant_ik::networks::NetKind;
+    use redundant_ik::space::SpacePreset;
+    use redundant_ik::training::space::{SpaceTrainSpec, SPACE_RECIPES};
+    let p = SpacePreset::by_key("iiwa14").unwrap();
+    assert_eq!(SPACE_RECIPES.map(|r| r.name), ["quick", "reach"]);
+    for net in [NetKind::Phi, NetKind::V] {
+        let quick = SpaceTrainSpec::recipe("quick", p, net, 7).unwrap();
+        let reach = SpaceTrainSpec::recipe("reach", p, net, 7).unwrap();
+        assert_eq!(quick, SpaceTrainSpec::quick(p, net, 7));
+        assert_eq!(reach, SpaceTrainSpec::reach(p, net, 7));
+        assert!(quick.samples < reach.samples && quick.adam.max_epochs <= reach.adam.max_epochs);
+        assert_eq!(quick.sampling, reach.sampling);
+    }
+    let quick = SpaceTrainSpec::quick(p, NetKind::V, 0);
+    assert_eq!(quick.hidden, SPACE_RECIPES[0].hidden);
+    assert_eq!([quick.samples, quick.adam.max_epochs], SPACE_RECIPES[0].v);
+    let e = SpaceTrainSpec::recipe("slow", p, NetKind::Phi, 0)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("slow") && e.contains("quick") && e.contains("reach"),
+        "{e}"
+    );
+}

@@ -378,3 +378,22 @@ fn bad_input_is_refused_and_loses_nothing() {
     assert!(s.set_path(flat).is_err());
     assert_eq!(*s.scene(), scene);
 }
+
+/// A run off screen (the page's scripted `simulate()`) is the planner's own
+/// run of the scene given, and leaves the scene on the stage as it was.
+#[test]
+fn a_run_off_screen_is_the_planners_and_changes_nothing_on_the_stage() {
+    let s = panda(Method::NUMERICAL);
+    let mut scene = s.scene().clone();
+    scene.target = [0.45, 0.2, 0.5];
+    scene.tf = 3.0;
+    let own = SpacePlanner::new(scene.clone(), QP).unwrap().run().unwrap();
+    assert_eq!(s.run_offscreen(scene.clone(), QP).unwrap(), own.summary);
+    assert_eq!(s.scene().tf, 5.0, "the stage's scene is its own");
+    assert!(
+        s.run_offscreen(scene.clone(), Method::CASE3).is_err(),
+        "no networks installed"
+    );
+    scene.tf = -1.0;
+    assert!(s.run_offscreen(scene, QP).is_err());
+}

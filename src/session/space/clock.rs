@@ -3,8 +3,10 @@
 //! method on the scene on screen.
 
 use super::{run, summary, SpaceMethodRun, SpaceSession};
-use crate::error::{finite, within, Result};
-use crate::planner::methods::ALL;
+use crate::error::{finite, within, Error, Result};
+use crate::planner::methods::{Method, ALL};
+use crate::planner::space::{SpacePlanner, SpaceSummary};
+use crate::scene::SpaceScene;
 use crate::session::MAX_STEPS_PER_FRAME;
 
 impl SpaceSession {
@@ -77,6 +79,25 @@ impl SpaceSession {
         if self.ended() {
             self.running = false;
         }
+    }
+
+    // ---- off screen -----------------------------------------------------
+
+    /// Runs `scene` whole in `method` with the session's networks, off
+    /// screen (the page's scripted `simulate()`): its outcome; refused when
+    /// the scene does not validate, the method needs networks the session
+    /// has not, or a step fails. The scene on the stage does not change.
+    pub fn run_offscreen(&self, scene: SpaceScene, method: Method) -> Result<SpaceSummary> {
+        scene.validate()?;
+        if method.uses_networks() && self.networks.is_none() {
+            return Err(Error::NetworksUnavailable(format!(
+                "{} needs networks for the {}: they have not loaded",
+                method.label(),
+                self.preset.label
+            )));
+        }
+        let planner = SpacePlanner::with_networks(scene, method, self.networks.clone())?;
+        Ok(planner.run()?.summary)
     }
 
     // ---- the comparison -------------------------------------------------

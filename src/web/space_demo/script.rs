@@ -1,0 +1,74 @@
+//! What a script asks of `SpaceDemo` beyond the stage: a whole run off
+//! screen with overrides (`window.demo.simulate()` in the page in space,
+//! as the plane's `Demo.simulate`).
+
+use wasm_bindgen::prelude::*;
+
+use super::super::{js_err, to_js, JsResult};
+use super::SpaceDemo;
+use crate::planner::Method;
+use crate::space::Sphere;
+
+#[wasm_bindgen]
+impl SpaceDemo {
+    /// Runs a whole task off screen with the scene in use and the
+    /// networks installed, and returns its summary (the `summary` of
+    /// `redundant-ik simulate --arm A --json`). `target` (`[x, y, z]`),
+    /// `spheres` (flat `[x, y, z, r, ...]`, as `setSpheres`), `tf`,
+    /// `theta0`, the closed-loop gain `feedback` and the `refine` steps on
+    /// a learned `Phi` default to the scene in use. The scene on the stage
+    /// does not change. Throws with the core's reason on a bad override, a
+    /// learned method without networks or a failed step.
+    #[allow(clippy::too_many_arguments)] // one optional argument per override, as JavaScript passes them
+    pub fn simulate(
+        &self,
+        method: &str,
+        target: Option<Vec<f64>>,
+        spheres: Option<Vec<f64>>,
+        tf: Option<f64>,
+        theta0: Option<Vec<f64>>,
+        feedback: Option<f64>,
+        refine: Option<f64>,
+    ) -> JsResult<JsValue> {
+        let method: Method = method.parse().map_err(js_err)?;
+        let session = self.session();
+        let mut scene = session.scene().clone();
+        if let Some(t) = target {
+            let [x, y, z] = t[..] else {
+                return Err(JsError::new(&format!(
+                    "target: expected [x, y, z], got {} numbers",
+                    t.len()
+                )));
+            };
+            scene.target = [x, y, z];
+        }
+        if let Some(flat) = spheres {
+            if !flat.len().is_multiple_of(4) {
+                return Err(JsError::new(&format!(
+                    "spheres: expected x, y, z, r for each, got {} numbers",
+                    flat.len()
+                )));
+            }
+            scene.spheres = flat
+                .chunks(4)
+                .map(|c| Sphere::new([c[0], c[1], c[2]], c[3]))
+                .collect();
+        }
+        if let Some(tf) = tf {
+            scene.tf = tf;
+        }
+        if let Some(t) = theta0 {
+            scene.theta0 = t;
+        }
+        if let Some(k) = feedback {
+            scene.feedback_gain = k;
+        }
+        if let Some(k) = refine {
+            scene
+                .params
+                .set(&crate::planner::methods::REFINE, k)
+                .map_err(js_err)?;
+        }
+        to_js(&session.run_offscreen(scene, method).map_err(js_err)?)
+    }
+}
