@@ -12,5 +12,5 @@ mod run;
 mod space_run;
 
 pub use csv::{atlas_csv, run_csv, RUN_CSV_FIXED};
-pub use run::{RunFile, MAX_RUN_FILE_BYTES};
+pub use run::{RunFile, MAX_RUN_FILE_BYTES, RUN_FORMAT};
 pub use space_run::{is_space_run, SpaceRunFile, SPACE_RUN_FORMAT};

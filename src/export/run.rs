@@ -12,12 +12,28 @@ use crate::scene::Scene;
 /// steps of a 6-link arm) is about 6 MB.
 pub const MAX_RUN_FILE_BYTES: usize = 16 << 20;
 
-/// One run: `{ task, method, scene, networks, precision, steps, summary
-/// }`, the JSON of `redundant-ik simulate --json` and of the page's
+/// The format and version every planar run file names first (its
+/// `format`, as a run in space names [`super::SPACE_RUN_FORMAT`]). Files
+/// written before it (0.1's and the unversioned ones of 0.2) have none and
+/// read as this version; another version is refused by name.
+pub const RUN_FORMAT: &str = "redundant-ik-run/1";
+/// Every version of the planar run file starts so.
+const RUN_FAMILY: &str = "redundant-ik-run/";
+
+fn run_format() -> String {
+    RUN_FORMAT.into()
+}
+
+/// One run: `{ format, task, method, scene, networks, precision, steps,
+/// summary }`, the JSON of `redundant-ik simulate --json` and of the page's
 /// "Download run": the [`Run`] and what it did. Files written before
-/// `networks` read as the paper's set, those without `precision` as `f64`.
+/// `format` read as [`RUN_FORMAT`], before `networks` as the paper's set,
+/// those without `precision` as `f64`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RunFile {
+    /// [`RUN_FORMAT`].
+    #[serde(default = "run_format")]
+    pub format: String,
     /// The paper task the scene came from (its start pose and target may
     /// have been changed since: the scene says what was run).
     pub task: u32,
@@ -46,6 +62,7 @@ impl RunFile {
     pub fn new(run: Run, traj: Trajectory) -> Self {
         let learned = traj.method.uses_networks();
         Self {
+            format: RUN_FORMAT.into(),
             task: run.task,
             method: traj.method,
             scene: run.scene,
@@ -98,6 +115,16 @@ impl RunFile {
         }
         let run: Self = serde_json::from_str(text)
             .map_err(|e| refuse(format!("not the JSON of simulate --json: {e}")))?;
+        if run.format != RUN_FORMAT {
+            return Err(refuse(if run.format.starts_with(RUN_FAMILY) {
+                format!(
+                    "a run file of format {} is not supported: this version reads {RUN_FORMAT} (and the unversioned files before it)",
+                    run.format
+                )
+            } else {
+                format!("format {RUN_FORMAT}, not {}", run.format)
+            }));
+        }
         run.scene.validate()?;
         let mut run = run;
         run.summary.success =

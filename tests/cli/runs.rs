@@ -308,3 +308,33 @@ fn assert_close(a: &Value, b: &Value, tol: f64, at: &str) {
         _ => assert_eq!(a, b, "{at}"),
     }
 }
+
+/// Every planar run file names its format and version first; a file of
+/// 0.2 without them (the unversioned files) replays to the same bytes, the
+/// format written; another version, or another format, is refused by name.
+#[test]
+fn every_run_file_names_its_format_and_an_unversioned_one_replays_to_the_same_bytes() {
+    let text = ok(&[
+        "simulate", "--task", "1", "--method", "qp", "--tf", "1", "--json",
+    ]);
+    assert!(
+        text.starts_with(r#"{"format":"redundant-ik-run/1","task":1,"#),
+        "{}",
+        &text[..60]
+    );
+    let file = super::scratch("unversioned.json");
+    let path = file.to_str().unwrap();
+    std::fs::write(
+        &file,
+        text.replacen(r#""format":"redundant-ik-run/1","#, "", 1),
+    )
+    .unwrap();
+    assert_eq!(ok(&["simulate", "--from", path, "--json"]), text);
+    for (format, what) in [
+        ("redundant-ik-run/2", "redundant-ik-run/2 is not supported"),
+        ("hello", "not hello"),
+    ] {
+        std::fs::write(&file, text.replacen("redundant-ik-run/1", format, 1)).unwrap();
+        refused(&["simulate", "--from", path], what);
+    }
+}
