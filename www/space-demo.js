@@ -48,6 +48,7 @@ const LEGEND = [
   ['shadow', 'Shadows on the floor (grid: 0.1 m)', 'rgba(31, 41, 51, 0.3)'],
   ['ghost', 'The numerical route (dashed): the same scene solved exactly, beside a learned method', 'var(--ghost)'],
   ['ellipse', 'The manipulability ellipsoid {Jθ̇ : |θ̇| ≤ 1} at 1/4 scale: its three principal ellipses (half-axes σ₁, σ₂, σ₃)', 'var(--velocity)'],
+  ['force', 'The force ellipsoid (half-axes 1/σᵢ) at 1/10 scale, at most 0.6 m', 'var(--force)'],
 ];
 
 /** The shipped networks of `arm`, fetched and installed; resolves to null or the reason they are not. */
@@ -308,8 +309,8 @@ export async function mountSpace(root, options) {
         sw.style.setProperty('--swatch', colour);
         if (key === 'ghost') li.hidden = true;
         li.append(sw, label);
-        // A switch, as the plane's ellipse has (lab.js calls demo.setShown).
-        if (key === 'ellipse') {
+        // A switch, as the plane's ellipses have (lab.js calls demo.setShown).
+        if (key === 'ellipse' || key === 'force') {
           const box = document.createElement('input');
           box.type = 'checkbox';
           box.dataset.toggle = key;

@@ -45,9 +45,9 @@ struct Drawn {
     plots: Option<Surface>,
     layer: Option<SliceLayer>,
     keyboard: bool,
-    /// Whether the velocity ellipsoid is drawn at the hand (`setShown`,
-    /// the legend's switch, as the plane's ellipse).
-    ellipsoid: bool,
+    /// The ellipsoids drawn at the hand (`setShown`, the legend's switches,
+    /// as the plane's ellipses).
+    shown: space_stage::Shown,
 }
 
 impl SpaceDemo {
@@ -90,7 +90,7 @@ impl SpaceDemo {
                 plots: plots.map(Surface::new).transpose()?,
                 layer: None,
                 keyboard: false,
-                ellipsoid: false,
+                shown: space_stage::Shown::default(),
             }),
         })
     }
@@ -274,13 +274,7 @@ impl SpaceDemo {
     /// Draws the stage and the plots.
     pub fn draw(&self) {
         let d = self.drawn.get();
-        space_stage::draw(
-            &d.session,
-            &d.stage,
-            d.layer.as_ref(),
-            d.keyboard,
-            d.ellipsoid,
-        );
+        space_stage::draw(&d.session, &d.stage, d.layer.as_ref(), d.keyboard, d.shown);
         if let Some(p) = &d.plots {
             let limits = d
                 .session
@@ -308,15 +302,17 @@ impl SpaceDemo {
 
     /// Switches a legend entry's drawing: `ellipse`, the velocity ellipsoid
     /// `{J theta_dot : |theta_dot| <= 1}` at the hand (its three principal
-    /// ellipses at 1/4 scale; the plane's `setShown('ellipse')`). Returns
-    /// whether the key names one (the plane's force ellipse has no
-    /// ellipsoid here yet).
+    /// ellipses at 1/4 scale), or `force`, the force ellipsoid (half-axes
+    /// `1 / sigma_i` at 1/10 scale, at most 0.6 m): the plane's
+    /// `setShown`. Returns whether the key names one.
     #[wasm_bindgen(js_name = setShown)]
     pub fn set_shown(&mut self, key: &str, on: bool) -> bool {
-        if key != "ellipse" {
-            return false;
+        let shown = &mut self.drawn.edit().shown;
+        match key {
+            "ellipse" => shown.velocity = on,
+            "force" => shown.force = on,
+            _ => return false,
         }
-        self.drawn.edit().ellipsoid = on;
         true
     }
 

@@ -11,8 +11,8 @@ use std::cmp::Ordering;
 use web_sys::CanvasRenderingContext2d;
 
 use super::style::{
-    rgba, ACCENT, ARM, AXIS, DANGER, FONT, GHOST, GHOST_ALPHA, GRID, INK, LAYER_ALPHA, MUTED,
-    PAPER, POST, TEAL, VELOCITY, VELOCITY_SCALE,
+    rgba, ACCENT, ARM, AXIS, DANGER, FONT, FORCE, FORCE_SCALE, GHOST, GHOST_ALPHA, GRID, INK,
+    LAYER_ALPHA, MAX_FORCE, MUTED, PAPER, POST, TEAL, VELOCITY, VELOCITY_SCALE,
 };
 use super::surface::{dash, disc, text, Surface};
 use crate::atlas::space::Plane;
@@ -92,15 +92,25 @@ enum Item {
     Sphere(usize),
 }
 
+/// The legend's switches of the drawing in space: the velocity and the
+/// force ellipsoid at the hand (the plane's `ellipse` and `force`).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Shown {
+    /// The velocity ellipsoid `{J theta_dot : |theta_dot| <= 1}`.
+    pub velocity: bool,
+    /// The force ellipsoid `{f : |J^T f| <= 1}`.
+    pub force: bool,
+}
+
 /// Draws `s` on `surface`; `layer` is a slice atlas to show, `focus` rings
-/// the selected item (the drawing has the keyboard), `ellipsoid` draws the
-/// velocity ellipsoid at the hand.
+/// the selected item (the drawing has the keyboard), `shown` the
+/// ellipsoids switched on.
 pub fn draw(
     s: &SpaceSession,
     surface: &Surface,
     layer: Option<&SliceLayer>,
     focus: bool,
-    ellipsoid: bool,
+    shown: Shown,
 ) {
     let ctx = &surface.ctx;
     surface.begin();
@@ -256,23 +266,32 @@ pub fn draw(
         ctx.set_global_alpha(1.0);
     }
 
-    // The velocity ellipsoid at the hand: its three principal ellipses at
-    // the plane's scale (half-lengths sigma_i, m per rad/s).
-    if ellipsoid {
-        let (axes, half) = velocity_ellipsoid(pose.jjt());
+    // The ellipsoids at the hand, each as its three principal ellipses at
+    // the plane's scales: the velocity ellipsoid (half-lengths sigma_i, m
+    // per rad/s) and the force ellipsoid (1 / sigma_i, the same axes, each
+    // at most MAX_FORCE: it is unbounded at a singular pose).
+    if shown.velocity || shown.force {
+        let (axes, sigma) = velocity_ellipsoid(pose.jjt());
         let hand = pose.hand();
-        ctx.set_stroke_style_str(VELOCITY);
         ctx.set_line_width(1.75);
-        for (a, b) in [(0, 1), (0, 2), (1, 2)] {
-            let ring = (0..=64).map(|k| {
-                let (sin, cos) = sin_cos(k as f64 * std::f64::consts::TAU / 64.0);
-                let (u, w) = (
-                    VELOCITY_SCALE * half[a] * cos,
-                    VELOCITY_SCALE * half[b] * sin,
-                );
-                std::array::from_fn(|i| hand[i] + u * axes[a][i] + w * axes[b][i])
-            });
-            path(ctx, &proj, ring);
+        let velocity = sigma.map(|s| VELOCITY_SCALE * s);
+        let force = sigma.map(|s| (FORCE_SCALE / s).min(MAX_FORCE));
+        for (on, colour, half) in [
+            (shown.velocity, VELOCITY, velocity),
+            (shown.force, FORCE, force),
+        ] {
+            if !on {
+                continue;
+            }
+            ctx.set_stroke_style_str(colour);
+            for (a, b) in [(0, 1), (0, 2), (1, 2)] {
+                let ring = (0..=64).map(|k| {
+                    let (sin, cos) = sin_cos(k as f64 * std::f64::consts::TAU / 64.0);
+                    let (u, w) = (half[a] * cos, half[b] * sin);
+                    std::array::from_fn(|i| hand[i] + u * axes[a][i] + w * axes[b][i])
+                });
+                path(ctx, &proj, ring);
+            }
         }
     }
 

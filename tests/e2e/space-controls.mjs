@@ -207,7 +207,7 @@ test('space controls: self-motion: the slider and an elbow dragged with the mous
   await page.close();
 });
 
-test('space controls: the manipulability readouts and the legend\'s ellipsoid switch', async () => {
+test('space controls: the manipulability readouts and the legend\'s switches of the velocity and the force ellipsoid', async () => {
   const page = await open('?arm=panda&method=numerical&autoplay=0');
   const s = await state(page);
   assert.equal(s.singular_values.length, 3);
@@ -236,9 +236,21 @@ test('space controls: the manipulability readouts and the legend\'s ellipsoid sw
   }, before, { timeout: 10000 });
   await page.screenshot({ path: `${shots}/space-ellipsoid.png` });
   await box.uncheck();
-  await page.waitForFunction((b) => true, before);
   await nextFrames(page);
   assert.ok((await green()) <= before + 20, 'switched off, the ellipsoid is gone');
+  // The force ellipsoid, its own switch and colour (#6d4c41).
+  const brown = () =>
+    page.evaluate(() => {
+      const c = document.getElementById('stage');
+      const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+      let n = 0;
+      for (let i = 0; i < d.length; i += 4) if (Math.abs(d[i] - 109) < 16 && Math.abs(d[i + 1] - 76) < 16 && Math.abs(d[i + 2] - 65) < 16) n++;
+      return n;
+    });
+  const plain = await brown();
+  await page.locator('#legend input[data-toggle="force"]').check();
+  await nextFrames(page);
+  assert.ok((await brown()) > plain + 200, `the force ellipsoid is drawn (${plain} -> ${await brown()} px)`);
   clean(page);
   await page.close();
 });
