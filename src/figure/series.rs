@@ -97,7 +97,7 @@ impl<'a> Run<'a> {
             method: run.method,
             min_clearance: run.summary.min_clearance,
             final_error: run.summary.final_error,
-            steps: planar_steps(run),
+            steps: steps(&run.steps),
         }
     }
 
@@ -106,33 +106,40 @@ impl<'a> Run<'a> {
             method: run.method,
             min_clearance: run.summary.min_clearance,
             final_error: run.summary.final_error,
-            steps: space_steps(run),
+            steps: steps(&run.samples),
         }
     }
 }
 
-fn planar_steps(run: &Trajectory) -> Vec<Step<'_>> {
-    run.steps
-        .iter()
-        .map(|s| Step {
-            t: s.t,
-            clearance: s.clearance,
-            error: s.tracking_error,
-            theta: &s.theta,
-        })
-        .collect()
+/// A sample of any arm's run, as the plots read it.
+trait Plotted {
+    fn step(&self) -> Step<'_>;
 }
 
-fn space_steps(run: &SpaceTrajectory) -> Vec<Step<'_>> {
-    run.samples
-        .iter()
-        .map(|s| Step {
-            t: s.t,
-            clearance: s.clearance,
-            error: s.tracking_error,
-            theta: &s.theta,
-        })
-        .collect()
+impl Plotted for crate::planner::Sample {
+    fn step(&self) -> Step<'_> {
+        Step {
+            t: self.t,
+            clearance: self.clearance,
+            error: self.tracking_error,
+            theta: &self.theta,
+        }
+    }
+}
+
+impl Plotted for crate::planner::space::SpaceSample {
+    fn step(&self) -> Step<'_> {
+        Step {
+            t: self.t,
+            clearance: self.clearance,
+            error: self.tracking_error,
+            theta: &self.theta,
+        }
+    }
+}
+
+fn steps<S: Plotted>(samples: &[S]) -> Vec<Step<'_>> {
+    samples.iter().map(Plotted::step).collect()
 }
 
 /// A run's time series as SVG: the clearance between the links and the
@@ -145,7 +152,7 @@ pub fn series_svg(task: u32, scene: &Scene, run: &Trajectory) -> Result<String> 
         &head,
         &line,
         run.method,
-        &planar_steps(run),
+        &steps(&run.steps),
         scene.arm.dof(),
     )
 }
@@ -160,7 +167,7 @@ pub fn space_series_svg(arm: &str, scene: &SpaceScene, run: &SpaceTrajectory) ->
         &head,
         &line,
         run.method,
-        &space_steps(run),
+        &steps(&run.samples),
         scene.chain.dof(),
     )
 }

@@ -17,6 +17,19 @@ use crate::scene::PAPER_RADIUS;
 /// Obstacles from a flat list `[x0, y0, r0, x1, y1, r1, ...]` (plain
 /// numbers cross into the module without a deserialiser, which keeps the
 /// page's module small).
+/// A point of `D` coordinates a script passed as `what` (`[x, y]` in the
+/// plane, `[x, y, z]` in space), or why it is not one.
+pub(super) fn point<const D: usize>(what: &str, v: &[f64]) -> JsResult<[f64; D]> {
+    v.try_into().map_err(|_| {
+        let names = ["x", "y", "z"];
+        JsError::new(&format!(
+            "{what}: expected [{}], got {} numbers",
+            names[..D.min(3)].join(", "),
+            v.len()
+        ))
+    })
+}
+
 fn obstacles_from(flat: &[f64]) -> JsResult<Vec<Obstacle>> {
     if !flat.len().is_multiple_of(3) {
         return Err(JsError::new(&format!(
@@ -244,13 +257,7 @@ impl Demo {
         let method: Method = method.parse().map_err(js_err)?;
         let mut scene = self.session.planner().scene().clone();
         if let Some(t) = target {
-            let [x, y] = t[..] else {
-                return Err(JsError::new(&format!(
-                    "target: expected [x, y], got {} numbers",
-                    t.len()
-                )));
-            };
-            scene.target = [x, y];
+            scene.target = point("target", &t)?;
         }
         if let Some(flat) = obstacles {
             scene.obstacles = obstacles_from(&flat)?;

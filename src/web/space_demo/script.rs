@@ -34,13 +34,7 @@ impl SpaceDemo {
         let session = self.session();
         let mut scene = session.scene().clone();
         if let Some(t) = target {
-            let [x, y, z] = t[..] else {
-                return Err(JsError::new(&format!(
-                    "target: expected [x, y, z], got {} numbers",
-                    t.len()
-                )));
-            };
-            scene.target = [x, y, z];
+            scene.target = super::super::scene::point("target", &t)?;
         }
         if let Some(flat) = spheres {
             if !flat.len().is_multiple_of(4) {
