@@ -19,8 +19,6 @@ use std::f64::consts::TAU;
 use std::fmt;
 use std::str::FromStr;
 
-use serde::{Deserialize, Deserializer, Serialize, Serializer};
-
 use crate::arm::number_list;
 use crate::error::{coordinate, Error, Result};
 use crate::geometry::segment_distance_squared;
@@ -107,11 +105,7 @@ impl Path {
             Path::Points(p) if p.is_empty() || p.len() > MAX_POINTS => return refuse(COUNT),
             Path::Points(p) => p,
         };
-        for p in points {
-            coordinate("path x", p[0])?;
-            coordinate("path y", p[1])?;
-        }
-        Ok(())
+        check_points(points)
     }
 
     /// Where the path ends for a hand starting at `start`: the `target`
@@ -152,18 +146,105 @@ impl Path {
         match self {
             Path::Line => segment(start, target),
             Path::Circle { centre, .. } => (distance(p, *centre) - distance(start, *centre)).abs(),
-            Path::Points(points) => {
-                let mut prev = start;
-                let mut best = f64::INFINITY;
-                for &q in points {
-                    best = best.min(segment(prev, q));
-                    prev = q;
-                }
-                best
-            }
+            Path::Points(points) => polyline_distance(start, points, segment),
         }
     }
 }
+
+/// The points' coordinates checked as a path's (finite, within
+/// [`crate::error::MAX_COORDINATE`]; `path x`, `path y`, `path z`): both
+/// kinds of path.
+pub(super) fn check_points<const D: usize>(points: &[[f64; D]]) -> Result<()> {
+    for p in points {
+        for (c, axis) in p.iter().zip(["x", "y", "z"]) {
+            coordinate(&format!("path {axis}"), *c)?;
+        }
+    }
+    Ok(())
+}
+
+/// The distance to the polyline from `start` through `points`, by
+/// `segment(a, b)`, the distance to one segment: both kinds of path.
+pub(super) fn polyline_distance<const D: usize>(
+    start: [f64; D],
+    points: &[[f64; D]],
+    segment: impl Fn([f64; D], [f64; D]) -> f64,
+) -> f64 {
+    let mut prev = start;
+    let mut best = f64::INFINITY;
+    for &q in points {
+        best = best.min(segment(prev, q));
+        prev = q;
+    }
+    best
+}
+
+/// The points of `points:X,Y;X,Y;...` (`D` numbers each, 1 to
+/// [`MAX_POINTS`]), `count` what a refusal of their number says: both kinds
+/// of path.
+pub(super) fn parse_points<const D: usize>(
+    rest: &str,
+    refuse: impl Fn(&str) -> Error,
+    count: &str,
+) -> Result<Vec<[f64; D]>> {
+    let mut points = Vec::new();
+    for part in rest.split(';').filter(|p| !p.trim().is_empty()) {
+        let numbers = number_list(part).map_err(|e| refuse(&e))?;
+        let point: [f64; D] = numbers.try_into().map_err(|_| {
+            refuse(&format!(
+                "expected {} for each point",
+                ["X", "Y", "Z"][..D.min(3)].join(",")
+            ))
+        })?;
+        if points.len() == MAX_POINTS {
+            return Err(refuse(count));
+        }
+        points.push(point);
+    }
+    if points.is_empty() {
+        return Err(refuse(count));
+    }
+    Ok(points)
+}
+
+/// `points:X,Y;X,Y;...`: both kinds of path.
+pub(super) fn write_points<const D: usize>(
+    f: &mut fmt::Formatter<'_>,
+    points: &[[f64; D]],
+) -> fmt::Result {
+    f.write_str("points:")?;
+    for (k, p) in points.iter().enumerate() {
+        f.write_str(if k == 0 { "" } else { ";" })?;
+        for (i, c) in p.iter().enumerate() {
+            write!(f, "{}{c}", if i == 0 { "" } else { "," })?;
+        }
+    }
+    Ok(())
+}
+
+/// A path's JSON is its text (the address's `path=`): both kinds of path.
+macro_rules! path_as_text {
+    ($path:ty) => {
+        impl serde::Serialize for $path {
+            fn serialize<S: serde::Serializer>(
+                &self,
+                s: S,
+            ) -> std::result::Result<S::Ok, S::Error> {
+                s.collect_str(self)
+            }
+        }
+
+        impl<'de> serde::Deserialize<'de> for $path {
+            fn deserialize<D: serde::Deserializer<'de>>(
+                d: D,
+            ) -> std::result::Result<Self, D::Error> {
+                let text = String::deserialize(d)?;
+                text.parse().map_err(serde::de::Error::custom)
+            }
+        }
+    };
+}
+pub(super) use path_as_text;
 
 /// The points of a stroke drawn by a pointer (`stroke`, world points in
 /// the order drawn; the plane's or space's), to the millimetre and thinned
@@ -238,20 +319,7 @@ impl FromStr for Path {
                     laps: whole_laps(laps).ok_or_else(|| refuse(LAPS))?,
                 })
             }
-            "points" => {
-                let mut points = Vec::new();
-                for part in rest.split(';').filter(|p| !p.trim().is_empty()) {
-                    match number_list(part).map_err(|e| refuse(&e))?[..] {
-                        [x, y] if points.len() < MAX_POINTS => points.push([x, y]),
-                        [_, _] => return Err(refuse(COUNT)),
-                        _ => return Err(refuse("expected X,Y for each point")),
-                    }
-                }
-                if points.is_empty() {
-                    return Err(refuse(COUNT));
-                }
-                Ok(Path::Points(points))
-            }
+            "points" => Ok(Path::Points(parse_points(rest, refuse, COUNT)?)),
             _ => Err(refuse(
                 "expected line, circle:CX,CY[,LAPS] or points:X,Y;X,Y;...",
             )),
@@ -270,27 +338,9 @@ impl fmt::Display for Path {
                 }
                 Ok(())
             }
-            Path::Points(points) => {
-                f.write_str("points:")?;
-                for (k, p) in points.iter().enumerate() {
-                    let sep = if k == 0 { "" } else { ";" };
-                    write!(f, "{sep}{},{}", p[0], p[1])?;
-                }
-                Ok(())
-            }
+            Path::Points(points) => write_points(f, points),
         }
     }
 }
 
-impl Serialize for Path {
-    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        s.collect_str(self)
-    }
-}
-
-impl<'de> Deserialize<'de> for Path {
-    fn deserialize<D: Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
-        let text = String::deserialize(d)?;
-        text.parse().map_err(serde::de::Error::custom)
-    }
-}
+path_as_text!(Path);

@@ -20,9 +20,10 @@
 use std::fmt;
 use std::str::FromStr;
 
-use serde::{Deserialize, Deserializer, Serialize, Serializer};
-
-use super::path::{thinned, whole_laps, LAPS};
+use super::path::{
+    check_points, parse_points, path_as_text, polyline_distance, thinned, whole_laps, write_points,
+    LAPS,
+};
 use super::{MAX_POINTS, MIN_RADIUS};
 use crate::arm::number_list;
 use crate::error::{coordinate, Error, Result};
@@ -142,12 +143,7 @@ impl SpacePath {
             SpacePath::Points(p) if p.is_empty() || p.len() > MAX_POINTS => return refuse(COUNT),
             SpacePath::Points(p) => p,
         };
-        for p in points {
-            for (c, axis) in p.iter().zip(["x", "y", "z"]) {
-                coordinate(&format!("path {axis}"), *c)?;
-            }
-        }
-        Ok(())
+        check_points(points)
     }
 
     /// Where the path ends for a hand starting at `start`: the `target`
@@ -203,13 +199,7 @@ impl SpacePath {
                 height.hypot(a.hypot(b) - r)
             }
             SpacePath::Points(points) => {
-                let mut prev = start;
-                let mut best = f64::INFINITY;
-                for &q in points {
-                    best = best.min(closest(p, prev, q).1);
-                    prev = q;
-                }
-                best
+                polyline_distance(start, points, |a, b| closest(p, a, b).1)
             }
         }
     }
@@ -246,20 +236,7 @@ impl FromStr for SpacePath {
                     laps: whole_laps(laps).ok_or_else(|| refuse(LAPS))?,
                 })
             }
-            "points" => {
-                let mut points = Vec::new();
-                for part in rest.split(';').filter(|p| !p.trim().is_empty()) {
-                    match number_list(part).map_err(|e| refuse(&e))?[..] {
-                        [x, y, z] if points.len() < MAX_POINTS => points.push([x, y, z]),
-                        [_, _, _] => return Err(refuse(COUNT)),
-                        _ => return Err(refuse("expected X,Y,Z for each point")),
-                    }
-                }
-                if points.is_empty() {
-                    return Err(refuse(COUNT));
-                }
-                Ok(SpacePath::Points(points))
-            }
+            "points" => Ok(SpacePath::Points(parse_points(rest, refuse, COUNT)?)),
             _ => Err(refuse(
                 "expected line, circle:CX,CY,CZ,NX,NY,NZ[,LAPS] or points:X,Y,Z;X,Y,Z;...",
             )),
@@ -282,27 +259,9 @@ impl fmt::Display for SpacePath {
                 }
                 Ok(())
             }
-            SpacePath::Points(points) => {
-                f.write_str("points:")?;
-                for (k, [x, y, z]) in points.iter().enumerate() {
-                    let sep = if k == 0 { "" } else { ";" };
-                    write!(f, "{sep}{x},{y},{z}")?;
-                }
-                Ok(())
-            }
+            SpacePath::Points(points) => write_points(f, points),
         }
     }
 }
 
-impl Serialize for SpacePath {
-    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        s.collect_str(self)
-    }
-}
-
-impl<'de> Deserialize<'de> for SpacePath {
-    fn deserialize<D: Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
-        let text = String::deserialize(d)?;
-        text.parse().map_err(serde::de::Error::custom)
-    }
-}
+path_as_text!(SpacePath);
