@@ -156,8 +156,8 @@ impl Path {
 /// kinds of path.
 pub(super) fn check_points<const D: usize>(points: &[[f64; D]]) -> Result<()> {
     for p in points {
-        for (c, axis) in p.iter().zip(["x", "y", "z"]) {
-            coordinate(&format!("path {axis}"), *c)?;
+        for (c, what) in p.iter().zip(["path x", "path y", "path z"]) {
+            coordinate(what, *c)?;
         }
     }
     Ok(())
@@ -191,10 +191,11 @@ pub(super) fn parse_points<const D: usize>(
     for part in rest.split(';').filter(|p| !p.trim().is_empty()) {
         let numbers = number_list(part).map_err(|e| refuse(&e))?;
         let point: [f64; D] = numbers.try_into().map_err(|_| {
-            refuse(&format!(
-                "expected {} for each point",
-                ["X", "Y", "Z"][..D.min(3)].join(",")
-            ))
+            refuse(if D == 2 {
+                "expected X,Y for each point"
+            } else {
+                "expected X,Y,Z for each point"
+            })
         })?;
         if points.len() == MAX_POINTS {
             return Err(refuse(count));
