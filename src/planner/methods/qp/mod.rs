@@ -29,9 +29,13 @@
 //! may approach an obstacle, none is required to move away; the rate
 //! limit's bounds `h = L > 0` are unchanged. `theta_dot = 0` satisfies that,
 //! so the relaxed program is feasible; the step's note (and the run's
-//! summary) say when it was needed. (The solver can still fail on nearly
-//! opposite damper rows, an arm between two obstacles that face each other
-//! across a link: `tests/constraints.rs` keeps that case, ignored.)
+//! summary) say when it was needed. The solver's rates are checked against
+//! every row before they are taken (`solve_relaxing`, for every arm): on
+//! nearly opposite damper rows (an arm between two obstacles that face
+//! each other across a link, `tests/constraints.rs`) the dual active-set
+//! method can lose its digits and return rates that break one; the program
+//! is relaxed then as where it is infeasible, and where the relaxed one's
+//! rates break a row too the arm holds still.
 
 pub mod constraints;
 
@@ -143,19 +147,6 @@ impl Qp {
         }
     }
 
-    /// The rows into the solver's form `A x >= b` (`A = -G`, `b = -h`).
-    fn solver_rows(&mut self) {
-        self.a.clear();
-        self.a.extend(self.rows.g().iter().map(|g| -g));
-        self.b.clear();
-        self.b.extend(self.rows.h().iter().map(|h| -h));
-    }
-
-    /// Solves the program over the current rows into `out`.
-    fn solve(&mut self, out: &mut [f64]) -> Result<solver::Solution> {
-        self.solver_rows();
-        solver::solve(&mut self.ws, &self.h, &self.lin, &self.a, &self.b, out)
-    }
 }
 
 impl Rule for Qp {
@@ -192,20 +183,13 @@ impl Rule for Qp {
             }
             self.lin[r] = self.v[r] + w * (jr0 * xdot[0] + jr1 * xdot[1]);
         }
-        match self.solve(out) {
-            Ok(_) => Ok(Note::default()),
-            Err(Error::Infeasible { .. }) => {
-                // No link may approach; none must move away (see the module
-                // documentation): theta_dot = 0 is feasible.
-                self.rows.h_mut().iter_mut().for_each(|h| *h = h.max(0.0));
-                self.solve(out)?;
-                Ok(Note {
-                    relaxed: true,
-                    ..Note::default()
-                })
-            }
-            Err(e) => Err(e),
-        }
+        solve_relaxing(
+            &mut self.rows,
+            (&self.h, &self.lin),
+            (&mut self.a, &mut self.b),
+            &mut self.ws,
+            out,
+        )
     }
 
     fn null_space(&mut self, cx: &Context<'_>, pose: &Pose, v: &mut [f64]) -> Result<bool> {
@@ -234,14 +218,8 @@ impl Rule for Qp {
 // solved by [`crate::qp::solve`] over `A = -G`, `b = -h`; where no rate
 // satisfies every row, every bound relaxed to `max(h, 0)`.
 //
-// One check the planar program does not make: the rates must keep every
-// row (to [`ROW_TOLERANCE`]). The dual active-set method loses its digits
-// on nearly opposite active rows (a forearm squeezed between two spheres;
-// the planar program's known case, `tests/constraints.rs`) and can return
-// rates that break one. Such a solution is not taken: the program is
-// relaxed as where it is infeasible, and where the relaxed one's solution
-// breaks a row too the arm holds still, `theta_dot = 0`, which keeps every
-// relaxed row. Both are relaxed steps.
+// The solve, its check of every row and the relaxation are the planar
+// program's (`solve_relaxing`).
 
 /// The spatial program's scratch space, sized for an `n`-joint chain and
 /// grown (once) when more rows appear than ever before.
@@ -289,22 +267,35 @@ enum Refused {
     Error(Error),
 }
 
-impl SpaceQp {
-    /// Solves the program over the current rows into `out` and checks the
-    /// rates keep them.
-    fn solve(&mut self, out: &mut [f64]) -> std::result::Result<(), Refused> {
-        self.a.clear();
-        self.a.extend(self.rows.g().iter().map(|g| -g));
-        self.b.clear();
-        self.b.extend(self.rows.h().iter().map(|h| -h));
-        match solver::solve(&mut self.ws, &self.h, &self.lin, &self.a, &self.b, out) {
+/// The program `min (1/2) x^T H x - lin^T x` over the rows `G x <= h` of
+/// `rows` (`H`, `lin` given; `A`, `b` the solver's scratch, `A x >= b`),
+/// for every arm: solved, and its rates checked against every row (to
+/// [`ROW_TOLERANCE`]: the dual active-set method loses its digits on nearly
+/// opposite active rows and can return rates that break one). Where no rate
+/// keeps the rows, or the solver's rates break one, every bound is relaxed
+/// to `max(h, 0)` (no link may approach an obstacle, none must move away)
+/// and the program solved again; where that fails too, the arm holds still,
+/// `theta_dot = 0`, which keeps every relaxed row. Both are relaxed steps.
+fn solve_relaxing(
+    rows: &mut Rows,
+    (h, lin): (&[f64], &[f64]),
+    (a, b): (&mut Vec<f64>, &mut Vec<f64>),
+    ws: &mut solver::Workspace,
+    out: &mut [f64],
+) -> Result<Note> {
+    let mut solve = |rows: &Rows, out: &mut [f64]| -> std::result::Result<(), Refused> {
+        a.clear();
+        a.extend(rows.g().iter().map(|g| -g));
+        b.clear();
+        b.extend(rows.h().iter().map(|h| -h));
+        match solver::solve(ws, h, lin, a, b, out) {
             Ok(_) => {}
             Err(Error::Infeasible { .. } | Error::QpFailed { .. }) => {
                 return Err(Refused::Unsolved)
             }
             Err(e) => return Err(Refused::Error(e)),
         }
-        let kept = self.rows.iter().all(|(row, h)| {
+        let kept = rows.iter().all(|(row, h)| {
             let rate: f64 = row.iter().zip(out.iter()).map(|(g, t)| g * t).sum();
             rate <= h + ROW_TOLERANCE * (1.0 + h.abs())
         });
@@ -312,6 +303,24 @@ impl SpaceQp {
             Ok(())
         } else {
             Err(Refused::Unsolved)
+        }
+    };
+    match solve(rows, out) {
+        Ok(()) => return Ok(Note::default()),
+        Err(Refused::Error(e)) => return Err(e),
+        Err(Refused::Unsolved) => {}
+    }
+    rows.h_mut().iter_mut().for_each(|h| *h = h.max(0.0));
+    let relaxed = Note {
+        relaxed: true,
+        ..Note::default()
+    };
+    match solve(rows, out) {
+        Ok(()) => Ok(relaxed),
+        Err(Refused::Error(e)) => Err(e),
+        Err(Refused::Unsolved) => {
+            out.iter_mut().for_each(|t| *t = 0.0);
+            Ok(relaxed)
         }
     }
 }
@@ -355,26 +364,13 @@ impl SpaceRule for SpaceQp {
             let jtx = jr[0] * xdot[0] + jr[1] * xdot[1] + jr[2] * xdot[2];
             self.lin[r] = self.v[r] + w * jtx;
         }
-        let relaxed = Note {
-            relaxed: true,
-            ..Note::default()
-        };
-        match self.solve(out) {
-            Ok(()) => return Ok(Note::default()),
-            Err(Refused::Error(e)) => return Err(e),
-            Err(Refused::Unsolved) => {}
-        }
-        // No capsule may approach; none must move away (theta_dot = 0 is
-        // feasible).
-        self.rows.h_mut().iter_mut().for_each(|h| *h = h.max(0.0));
-        match self.solve(out) {
-            Ok(()) => Ok(relaxed),
-            Err(Refused::Error(e)) => Err(e),
-            Err(Refused::Unsolved) => {
-                out.iter_mut().for_each(|t| *t = 0.0);
-                Ok(relaxed)
-            }
-        }
+        solve_relaxing(
+            &mut self.rows,
+            (&self.h, &self.lin),
+            (&mut self.a, &mut self.b),
+            &mut self.ws,
+            out,
+        )
     }
 
     fn boxed_clone(&self) -> Box<dyn SpaceRule> {
