@@ -15,7 +15,9 @@ use serde::{Deserialize, Serialize};
 use crate::error::{non_negative, positive, Error, Result};
 use crate::kinematics::jjt;
 
+mod refine;
 mod weighted;
+pub use refine::refine_phi;
 pub use weighted::{
     phi_weighted_into, theta_dot_network_weighted_into, theta_dot_weighted_into, weight_phi,
 };
@@ -305,85 +307,6 @@ pub fn damp_phi(phi: &mut [f64], delta: f64) -> Result<()> {
         row[1] = x * c1[0] + y * c1[1];
     }
     Ok(())
-}
-
-/// Refines an approximate right inverse `Phi` of `J` in place toward the
-/// pseudoinverse `J+ = J^T (J J^T)^-1` (eq. 20 with `delta = 0`, what the
-/// network of eq. 19 learns): `steps` Newton-Schulz steps
-/// `Phi <- Phi (2 I - J Phi)`, and right after the first of them the
-/// projection `Phi <- J^T (Phi^T Phi)`, which is not counted as a step.
-///
-/// With `J Phi = I + E`, a step gives `J Phi' = (I + E)(I - E) = I - E^2`:
-/// the error is squared. Steps alone converge to `Phi_0 (J Phi_0)^-1`, a
-/// right inverse with the network's range, whose null-space projector
-/// `I - Phi J` stays oblique by the network's error. The projection fixes
-/// the range: with `A = J J^T`, `J+^T J+ = A^-1`, so `J+` is its fixed
-/// point, and its output `J^T M` keeps that form under the steps
-/// (`J^T M (2 I - A M) = J^T M'`), whose only right inverse is `J+`. The
-/// later steps therefore converge to `J+` itself, and `I - Phi J` to the
-/// orthogonal projector.
-///
-/// It is applied once, after the first step rather than before it: a
-/// second projection would only add error, and the projection's own error
-/// is first order in the error of its input. Writing the input as
-/// `J+ + D` with `J D = E`, the projection leaves
-/// `J Phi - I = E + A E^T A^-1 + A D^T D`; after one step `E` is `-E_0^2`
-/// and `D` is the network's null-space error `(I - J+ J) D_0` to first
-/// order, so all three terms are of second order. (Projecting first
-/// roughly doubles `E_0` and shrinks the region where the steps converge;
-/// `docs/learning.md`, "Refinement", has the numbers.) So `steps = 1` is a
-/// step and the projection, with `J Phi - I` of the order of `E_0^2`, and
-/// every further step squares it. The projection costs one product more
-/// (`Phi^T Phi` and `J^T` times it), as much as a step; each step is two
-/// small products with the `J` that eq. (21) evaluates anyway. An exact
-/// pseudoinverse is left as it is. `phi` row-major (`2n`), `jac`
-/// column-major; allocation-free. A non-finite result (the steps diverge
-/// where the network is far from any inverse) is refused.
-pub fn refine_phi(phi: &mut [f64], jac: &[f64], steps: u32) -> Result<()> {
-    // Phi (n x 2) and J (2 x n) have as many entries.
-    if phi.len() != jac.len() {
-        return Err(size_error("Phi (n x 2)", jac.len(), phi.len()));
-    }
-    for step in 0..steps {
-        newton_schulz_step(phi, jac);
-        if step == 0 {
-            project_onto_range_of_jt(phi, jac);
-        }
-    }
-    if phi.iter().any(|x| !x.is_finite()) {
-        return Err(Error::NonFinite {
-            what: "refined Phi".into(),
-        });
-    }
-    Ok(())
-}
-
-/// `Phi <- Phi (2 I - J Phi)` in place (one step of [`refine_phi`]).
-fn newton_schulz_step(phi: &mut [f64], jac: &[f64]) {
-    // M = 2 I - J Phi, row-major 2 x 2.
-    let mut m = [2.0, 0.0, 0.0, 2.0];
-    for (j, p) in jac.chunks_exact(2).zip(phi.chunks_exact(2)) {
-        m[0] -= j[0] * p[0];
-        m[1] -= j[0] * p[1];
-        m[2] -= j[1] * p[0];
-        m[3] -= j[1] * p[1];
-    }
-    for row in phi.chunks_exact_mut(2) {
-        let (x, y) = (row[0], row[1]);
-        row[0] = x * m[0] + y * m[2];
-        row[1] = x * m[1] + y * m[3];
-    }
-}
-
-/// `Phi <- J^T (Phi^T Phi)` in place, the projection of [`refine_phi`]: row
-/// `i` of the result is column `i` of `J` times the symmetric 2x2
-/// `Phi^T Phi`.
-fn project_onto_range_of_jt(phi: &mut [f64], jac: &[f64]) {
-    let [p, q, r] = jjt(phi);
-    for (row, col) in phi.chunks_exact_mut(2).zip(jac.chunks_exact(2)) {
-        row[0] = col[0] * p + col[1] * q;
-        row[1] = col[0] * q + col[1] * r;
-    }
 }
 
 /// Network route, eq. (21): `theta_dot = Phi (Xdot - J v) + v`, with `Phi` from

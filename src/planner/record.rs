@@ -87,10 +87,11 @@ pub struct Sample {
     /// Whether the state is inside the trained range of the networks the
     /// method uses (always true for methods without networks).
     pub in_range: bool,
-    /// Whether, in the step that led here, the damping schedule switched on
-    /// near a singular pose and the exact damped `Phi` (eq. 20) stood in for
-    /// the `Phi` network (Cases 1 and 3 only: no network can fit `Phi` where
-    /// it is unbounded).
+    /// Whether, in the step that led here, the exact damped `Phi` (eq. 20)
+    /// stood in for the `Phi` network (Cases 1 and 3 only): the damping
+    /// schedule switched on near a singular pose (no network can fit `Phi`
+    /// where it is unbounded), or the refinement could not converge from
+    /// the network's `Phi` ([`crate::ik::refine_phi`]).
     pub phi_handover: bool,
     /// Whether, in the step that led here, a quadratic program's constraints
     /// had to be relaxed because no rate satisfied them all (`qp` only).
@@ -180,7 +181,7 @@ pub struct Summary {
     /// unbounded joint rates).
     pub auto_damping: bool,
     /// Steps in which the exact damped `Phi` stood in for the `Phi` network
-    /// near a singular pose (see [`Sample::phi_handover`]).
+    /// (see [`Sample::phi_handover`]).
     pub handover_steps: usize,
     /// Steps in which the quadratic program's constraints were relaxed (see
     /// [`Sample::relaxed`]); absent from the JSON when none was.

@@ -238,13 +238,18 @@ impl Rule for Paper {
                 Ok(Note::default())
             }
             Phi::Network => {
-                let handover = scheduled > 0.0;
+                // The exact route stands in for the network where the
+                // damping schedule is on, and where the refinement cannot
+                // converge (|I - J Phi| >= 1: ik::refine_phi), as in space.
+                let mut handover = scheduled > 0.0;
                 let weighted = JointWeights::active(cx.scene);
+                if !handover {
+                    cx.networks_for(self.method)?.phi(pose, &mut self.phi)?;
+                    handover = !ik::refine_phi(&mut self.phi, jac, cx.scene.params.count(&REFINE))?;
+                }
                 if handover {
                     ik::phi_into(jac, delta + scheduled, &mut self.phi)?;
                 } else {
-                    cx.networks_for(self.method)?.phi(pose, &mut self.phi)?;
-                    ik::refine_phi(&mut self.phi, jac, cx.scene.params.count(&REFINE))?;
                     if weighted {
                         self.phi0.copy_from_slice(&self.phi);
                     }
