@@ -293,7 +293,11 @@ export async function mountSpace(root, options) {
   // The readouts of the velocity ellipsoid: three singular values, m³.
   const readout = (f) => [...root.querySelectorAll('[data-readout]')].find((r) => READOUTS[r.dataset.readout] === f);
   const sigma = readout(READOUTS.sigma)?.closest('div');
-  if (sigma?.firstElementChild) sigma.firstElementChild.textContent = 'singular values σ₁, σ₂, σ₃ of J';
+  if (sigma?.firstElementChild) {
+    const j = document.createElement('i');
+    j.textContent = 'J';
+    sigma.firstElementChild.replaceChildren('singular values σ₁, σ₂, σ₃ of ', j);
+  }
   const volume = readout(READOUTS.manipulability);
   if (volume?.nextSibling) volume.nextSibling.textContent = ' m³';
 

@@ -214,7 +214,9 @@ test('space controls: the manipulability readouts and the legend\'s switches of 
   assert.ok(Math.abs(s.singular_values.reduce((a, b) => a * b, 1) - s.manipulability) < 1e-9, 'w = σ₁σ₂σ₃');
   assert.equal(await page.isVisible('[data-readout="manipulability"]'), true);
   await textMatching(page, '[data-readout="sigma"]', /^\d\.\d{3}, \d\.\d{3}, \d\.\d{3}$/);
-  assert.match(await page.textContent('.readouts div:has([data-readout="sigma"]) dt'), /σ₁, σ₂, σ₃/);
+  assert.match(await page.textContent('.readouts div:has([data-readout="sigma"]) dt'), /σ₁, σ₂, σ₃ of J$/);
+  // The matrix's name keeps its case where the readouts' labels are lowercased.
+  assert.equal(await page.evaluate(() => getComputedStyle(document.querySelector('.readouts div:has([data-readout="sigma"]) dt i')).textTransform), 'none');
   const green = () =>
     page.evaluate(() => {
       const c = document.getElementById('stage');
