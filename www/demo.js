@@ -49,12 +49,14 @@ function fillMethods(select) {
 }
 
 /**
- * Fills a legend list from the module's legend (the renderer's colours);
- * each entry is shown only while the drawing draws it (`syncLegend`).
+ * Fills a legend list from the module's legend (the renderer's colours;
+ * `entries`, the plane's by default, `legend(true)` the drawing in
+ * perspective's); on the plane each entry is shown only while the drawing
+ * draws it (`syncLegend`).
  */
-function fillLegend(list) {
+export function fillLegend(list, entries = legend()) {
   if (!list || list.children.length) return;
-  for (const e of legend()) {
+  for (const e of entries) {
     const li = document.createElement('li');
     li.dataset.key = e.key;
     const key = document.createElement('span');

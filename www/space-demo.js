@@ -12,7 +12,8 @@
 // dragged on the stage). Controls of the plane only (the designer's links,
 // training) are hidden by stage.css under html[data-space].
 
-import { SpaceDemo, loadModule, describe, methodGroups, assetUrl, spacePresets, spaceNetworkSets, limits, precisions } from './module.js';
+import { SpaceDemo, loadModule, describe, methodGroups, assetUrl, spacePresets, spaceNetworkSets, limits, precisions, legend } from './module.js';
+import { fillLegend } from './demo.js';
 import { fixed, metres } from './format.js';
 import { mountMethodParams } from './method-params.js';
 import { mountPrecision } from './network-set.js';
@@ -38,18 +39,6 @@ const READOUTS = {
   solver: () => '—',
 };
 
-/** What the stage draws, for its legend (the renderer's colours, by CSS custom property). */
-const LEGEND = [
-  ['arm', 'The arm: its links as capsules of the collision radius', 'var(--arm)'],
-  ['sphere', 'A sphere (red when a link is inside it)', 'var(--danger)'],
-  ['target', "The target: the end of the hand's line", 'var(--teal)'],
-  ['path', 'The path (dashed) and where the hand has been', 'var(--accent)'],
-  ['reference', 'Where the hand should be now', 'var(--muted)'],
-  ['shadow', 'Shadows on the floor (grid: 0.1 m)', 'rgba(31, 41, 51, 0.3)'],
-  ['ghost', 'The numerical route (dashed): the same scene solved exactly, beside a learned method', 'var(--ghost)'],
-  ['ellipse', 'The manipulability ellipsoid {Jθ̇ : |θ̇| ≤ 1} at 1/4 scale: its three principal ellipses (half-axes σ₁, σ₂, σ₃)', 'var(--velocity)'],
-  ['force', 'The force ellipsoid (half-axes 1/σᵢ) at 1/10 scale, at most 0.6 m', 'var(--force)'],
-];
 
 /** The shipped networks of `arm`, fetched and installed; resolves to null or the reason they are not. */
 async function installNetworks(demo, arm) {
@@ -302,30 +291,12 @@ export async function mountSpace(root, options) {
   if (volume?.nextSibling) volume.nextSibling.textContent = ' m³';
 
   // ---- legend --------------------------------------------------------------
-  const legend = $('legend');
-  if (legend) {
-    legend.replaceChildren(
-      ...LEGEND.map(([key, label, colour]) => {
-        const li = document.createElement('li');
-        li.dataset.key = key;
-        const sw = document.createElement('span');
-        sw.className = key === 'ghost' ? 'key key-dashed' : 'key key-line';
-        sw.style.setProperty('--swatch', colour);
-        if (key === 'ghost') li.hidden = true;
-        li.append(sw, label);
-        // A switch, as the plane's ellipses have (lab.js calls demo.setShown).
-        if (key === 'ellipse' || key === 'force') {
-          const box = document.createElement('input');
-          box.type = 'checkbox';
-          box.dataset.toggle = key;
-          const switchLabel = document.createElement('label');
-          switchLabel.append(box, ...li.childNodes);
-          li.append(switchLabel);
-          li.dataset.toggle = 'true';
-        }
-        return li;
-      }),
-    );
+  // The module's (the renderer's colours and words), as the plane's; its
+  // ellipsoids' switches call demo.setShown (lab.js).
+  const legendList = $('legend');
+  if (legendList) {
+    legendList.replaceChildren();
+    fillLegend(legendList, legend(true));
   }
 
   const panels = mountSpacePanels(root, demo, { attempt, show, say, preset, ensureNetworks, changed });
@@ -366,7 +337,7 @@ export async function mountSpace(root, options) {
     syncPrecision(s, menu.selectedOptions[0]?.dataset.networks === 'true');
     syncParams(s);
     if (range) range.hidden = s.in_range;
-    const ghostKey = legend?.querySelector('[data-key=ghost]');
+    const ghostKey = legendList?.querySelector('[data-key=ghost]');
     if (ghostKey) ghostKey.hidden = !s.ghost;
     for (const r of readouts) {
       const f = READOUTS[r.dataset.readout];

@@ -81,6 +81,8 @@ pub use space_demo::SpaceDemo;
 pub use space_takeaway::{space_figure, space_plots};
 #[cfg(feature = "worker")]
 pub use space_training::{train_space_network, MAX_SPACE_EPOCHS, MAX_SPACE_SAMPLES};
+#[cfg(feature = "page")]
+pub use style::{legend_js as legend, palette};
 #[cfg(feature = "worker")]
 pub use takeaway::*;
 #[cfg(feature = "worker")]
@@ -419,22 +421,6 @@ pub fn parse_obstacles(text: &str) -> Result<Vec<f64>, JsError> {
             [o.centre[0], o.centre[1], o.radius]
         })
         .collect())
-}
-
-#[cfg(feature = "page")]
-/// The colours the drawing uses, `{ name: css colour }`: the page sets them
-/// as CSS custom properties (`--arm`, ...), so the stylesheet has no copy.
-#[wasm_bindgen]
-pub fn palette() -> Result<JsValue, JsError> {
-    to_js(&crate::session::ByName(style::PALETTE.to_vec()))
-}
-
-/// The legend of the drawing: `[{ key, label, swatch, kind }]`, each swatch
-/// the colour (with the alpha) that the renderer draws that element with.
-#[cfg(feature = "page")]
-#[wasm_bindgen]
-pub fn legend() -> Result<JsValue, JsError> {
-    to_js(&style::legend())
 }
 
 /// The classes of an atlas, in the order of `setAtlasLayer`'s indices:

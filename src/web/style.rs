@@ -226,3 +226,71 @@ pub fn legend() -> Vec<Entry> {
         })
         .collect()
 }
+
+/// The legend of the drawing in perspective (an arm in space,
+/// [`super::space_stage::draw`]): the same entries' form as [`legend`]'s,
+/// in the order the page lists them; `ghost` is drawn beside a learned
+/// method only, `ellipse` and `force` are the page's switches
+/// ([`super::SpaceDemo::set_shown`]).
+pub fn space_legend() -> Vec<Entry> {
+    const ENTRIES: [(&str, &str, &str, f64, &str); 10] = [
+        ("arm", "the arm: its links as capsules of the collision radius", ARM, 1.0, "thick"),
+        ("sphere", "a sphere (red when a link is inside it)", DANGER, 0.28, "disc"),
+        ("target", "the target: the end of the hand's line", TEAL, 1.0, "target"),
+        ("path", "the path to follow", MUTED, 1.0, "dashed"),
+        ("trail", "where the hand has been", ACCENT, 1.0, "line"),
+        ("reference", "where the hand should be now", MUTED, 1.0, "dot"),
+        ("shadow", "shadows on the floor (grid: 0.1 m)", INK, 0.13, "thick"),
+        (
+            "ghost",
+            "numerical route (the same scene solved exactly), beside a learned method",
+            GHOST,
+            GHOST_ALPHA,
+            "dashed",
+        ),
+        (
+            "ellipse",
+            "manipulability ellipsoid {Jθ̇ : |θ̇| ≤ 1} at 1/4 scale: its three principal ellipses (half-axes σ₁, σ₂, σ₃)",
+            VELOCITY,
+            1.0,
+            "line",
+        ),
+        (
+            "force",
+            "force ellipsoid (half-axes 1/σᵢ) at 1/10 scale, at most 0.6 m",
+            FORCE,
+            1.0,
+            "line",
+        ),
+    ];
+    ENTRIES
+        .iter()
+        .map(|&(key, label, colour, alpha, kind)| Entry {
+            key,
+            label: label.into(),
+            swatch: rgba(colour, alpha),
+            kind,
+            toggle: matches!(key, "ellipse" | "force"),
+        })
+        .collect()
+}
+
+/// The colours the drawing uses, `{ name: css colour }`: the page sets them
+/// as CSS custom properties (`--arm`, ...), so the stylesheet has no copy.
+#[wasm_bindgen::prelude::wasm_bindgen]
+pub fn palette() -> Result<wasm_bindgen::JsValue, wasm_bindgen::JsError> {
+    super::to_js(&crate::session::ByName(PALETTE.to_vec()))
+}
+
+/// The legend of a drawing: `[{ key, label, swatch, kind, toggle }]`, each
+/// swatch the colour (with the alpha) that the renderer draws that element
+/// with; `space`: the drawing in perspective's ([`space_legend`]), else the
+/// plane's ([`legend`]).
+#[wasm_bindgen::prelude::wasm_bindgen(js_name = legend)]
+pub fn legend_js(space: Option<bool>) -> Result<wasm_bindgen::JsValue, wasm_bindgen::JsError> {
+    super::to_js(&if space == Some(true) {
+        space_legend()
+    } else {
+        legend()
+    })
+}

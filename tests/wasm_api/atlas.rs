@@ -162,7 +162,7 @@ fn an_atlas_layer_is_checked_then_drawn_and_finds_the_cell_under_the_pointer() {
 #[wasm_bindgen_test]
 fn the_legend_lists_what_the_stage_drew() {
     use redundant_ik::web::legend;
-    let keys: Vec<String> = json_of(legend().unwrap())
+    let keys: Vec<String> = json_of(legend(None).unwrap())
         .as_array()
         .unwrap()
         .iter()

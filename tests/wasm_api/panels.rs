@@ -190,7 +190,48 @@ fn names_colours_and_the_legend_come_from_the_module() {
     }
     let p = json_of(palette().unwrap());
     assert_eq!(p["arm"], "#1d4e89");
-    let l = json_of(legend().unwrap());
+    // The drawing in perspective's legend: its own entries in the same
+    // form, the two ellipsoids switched by the page, the plane's colours.
+    let space = json_of(legend(Some(true)).unwrap());
+    let keys: Vec<&str> = space
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e["key"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        keys,
+        [
+            "arm",
+            "sphere",
+            "target",
+            "path",
+            "trail",
+            "reference",
+            "shadow",
+            "ghost",
+            "ellipse",
+            "force"
+        ]
+    );
+    let toggles: Vec<&str> = space
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|e| e["toggle"] == true)
+        .map(|e| e["key"].as_str().unwrap())
+        .collect();
+    assert_eq!(toggles, ["ellipse", "force"]);
+    let l = json_of(legend(None).unwrap());
+    let by_key = |list: &serde_json::Value, key: &str| {
+        list.as_array()
+            .unwrap()
+            .iter()
+            .find(|e| e["key"] == key)
+            .unwrap()["swatch"]
+            .clone()
+    };
+    assert_eq!(by_key(&space, "ghost"), by_key(&l, "ghost"));
     let arm = &l[0];
     assert_eq!(arm["key"], "arm");
     assert_eq!(
