@@ -21,9 +21,10 @@
 // projector ("1": larger text, thicker borders, higher contrast).
 // An arm in space (arm="panda" or arm="iiwa14") takes the page in space's
 // keys instead (www/space-address.js: method, target="x,y,z",
-// obstacles="x,y,z,r;...", path, lambda and the parameters, feedback,
-// weighting, floor, damping, precision, view="yaw,pitch,distance") and its
-// drawing in perspective (orbit, drag, keys).
+// obstacles="x,y,z,r;...", path, theta0, lambda and the parameters,
+// feedback, weighting, floor, damping="1", precision,
+// view="yaw,pitch,distance") and its drawing in perspective (orbit, drag,
+// keys).
 // The element's own: autoplay ("false" to start paused; unset, it plays
 // unless the user prefers reduced motion) and plots (present:
 // show the time series). A value that does not parse, or that the core

@@ -3,8 +3,8 @@
 // the methods' other parameters by name, target=X,Y,Z,
 // obstacles=X,Y,Z,R;X,Y,Z,R (the spheres, m), feedback, weighting, floor,
 // damping (1: the schedule near singular poses on; off by default in
-// space), theta0 (the start pose, rad: self-motion moves it), path (the core's syntax: line, circle:CX,CY,CZ,NX,NY,NZ[,LAPS],
-// points:X,Y,Z;...),
+// space), theta0 (the start pose, rad: self-motion moves it), path (the
+// core's syntax: line, circle:CX,CY,CZ,NX,NY,NZ[,LAPS], points:X,Y,Z;...),
 // networks, precision (the networks' arithmetic: f64 or f32),
 // view=YAW,PITCH,DISTANCE (degrees, degrees, m), embed and
 // projector as the plane's address has them (address.js). Numbers are
