@@ -154,18 +154,16 @@ function train({ request, run }) {
   return trainNetworks(request, run, post);
 }
 
-function trainNet({ request, net }) {
-  const post = (e) => self.postMessage({ type: 'progress', done: e.epoch, total: e.max_epochs, label: e.net, epoch: e });
+/** The progress of one network's training: "sampling" first, then each epoch (both kinds of arm). */
+function oneNetwork(train) {
   self.postMessage({ type: 'progress', done: 0, total: 1, label: 'sampling' });
-  return trainNetwork(request, net, post);
+  return train((e) => self.postMessage({ type: 'progress', done: e.epoch, total: e.max_epochs, label: e.net, epoch: e }));
 }
 
+const trainNet = ({ request, net }) => oneNetwork((post) => trainNetwork(request, net, post));
+
 /** One network of an arm in space (src/web/space_training.rs), its epochs reported. */
-function trainSpace({ request }) {
-  const post = (e) => self.postMessage({ type: 'progress', done: e.epoch, total: e.max_epochs, label: e.net, epoch: e });
-  self.postMessage({ type: 'progress', done: 0, total: 1, label: 'sampling' });
-  return trainSpaceNetwork(request, post);
-}
+const trainSpace = ({ request }) => oneNetwork((post) => trainSpaceNetwork(request, post));
 
 self.onmessage = async ({ data }) => {
   try {

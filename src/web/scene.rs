@@ -14,9 +14,6 @@ use crate::obstacle::Obstacle;
 use crate::planner::Method;
 use crate::scene::PAPER_RADIUS;
 
-/// Obstacles from a flat list `[x0, y0, r0, x1, y1, r1, ...]` (plain
-/// numbers cross into the module without a deserialiser, which keeps the
-/// page's module small).
 /// A point of `D` coordinates a script passed as `what` (`[x, y]` in the
 /// plane, `[x, y, z]` in space), or why it is not one.
 pub(super) fn point<const D: usize>(what: &str, v: &[f64]) -> JsResult<[f64; D]> {
@@ -30,6 +27,9 @@ pub(super) fn point<const D: usize>(what: &str, v: &[f64]) -> JsResult<[f64; D]>
     })
 }
 
+/// Obstacles from a flat list `[x0, y0, r0, x1, y1, r1, ...]` (plain
+/// numbers cross into the module without a deserialiser, which keeps the
+/// page's module small).
 fn obstacles_from(flat: &[f64]) -> JsResult<Vec<Obstacle>> {
     if !flat.len().is_multiple_of(3) {
         return Err(JsError::new(&format!(

@@ -9,7 +9,7 @@ use crate::error::{within, Error, Result};
 use crate::ik::DampingSchedule;
 use crate::planner::params::by_name;
 use crate::scene::{JointWeighting, SpacePath};
-use crate::space::{Sphere, Vec3, MAX_SPHERES};
+use crate::space::{Sphere, Vec3};
 
 impl SpaceSession {
     /// Sets parameter `name` (as the address and the command line name
@@ -92,26 +92,8 @@ impl SpaceSession {
 
     /// Replaces the spheres by `flat` (`[x, y, z, r, ...]`, m).
     pub fn set_spheres(&mut self, flat: &[f64]) -> Result<()> {
-        if !flat.len().is_multiple_of(4) {
-            return Err(Error::Syntax {
-                what: "spheres",
-                text: format!("{} numbers", flat.len()),
-                expected: "four numbers per sphere: x, y, z, r".into(),
-            });
-        }
-        if flat.len() / 4 > MAX_SPHERES {
-            return Err(Error::OutOfRange {
-                what: "number of spheres".into(),
-                value: (flat.len() / 4) as f64,
-                min: 0.0,
-                max: MAX_SPHERES as f64,
-            });
-        }
         let mut scene = self.scene.clone();
-        scene.spheres = flat
-            .chunks(4)
-            .map(|c| Sphere::new([c[0], c[1], c[2]], c[3]))
-            .collect();
+        scene.spheres = Sphere::from_flat(flat)?;
         self.apply(scene)
     }
 

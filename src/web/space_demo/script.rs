@@ -37,16 +37,7 @@ impl SpaceDemo {
             scene.target = super::super::scene::point("target", &t)?;
         }
         if let Some(flat) = spheres {
-            if !flat.len().is_multiple_of(4) {
-                return Err(JsError::new(&format!(
-                    "spheres: expected x, y, z, r for each, got {} numbers",
-                    flat.len()
-                )));
-            }
-            scene.spheres = flat
-                .chunks(4)
-                .map(|c| Sphere::new([c[0], c[1], c[2]], c[3]))
-                .collect();
+            scene.spheres = Sphere::from_flat(&flat).map_err(js_err)?;
         }
         if let Some(tf) = tf {
             scene.tf = tf;
