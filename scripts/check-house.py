@@ -42,6 +42,7 @@ LAYERS = [
     ["ik", "obstacle", "space"],
     ["nn", "clearance"],
     ["scene"],
+    ["model"],
     ["planner"],
     ["networks", "twin"],
     ["run"],

@@ -18,6 +18,7 @@ pub mod geometry;
 pub mod ik;
 mod json;
 pub mod kinematics;
+pub mod model;
 pub mod networks;
 pub mod nn;
 pub mod obstacle;

@@ -342,8 +342,15 @@ fn inner(e: &Error) -> String {
 }
 
 impl Surrogate for Networks {
-    fn arm(&self) -> &Arm {
-        &self.arm
+    fn check(&self, arm: &Arm) -> Result<()> {
+        if self.arm.same_geometry(arm) {
+            return Ok(());
+        }
+        let spec = |a: &Arm| (a.post(), a.links().to_vec());
+        Err(Error::NetworksForAnotherArm {
+            trained: spec(&self.arm),
+            arm: spec(arm),
+        })
     }
 
     fn phi(&self, pose: &Pose, out: &mut [f64]) -> Result<()> {

@@ -461,8 +461,8 @@ impl std::str::FromStr for SpaceNetworkSet {
     }
 }
 
-impl crate::planner::SpaceSurrogate for SpaceNetworks {
-    fn check_chain(&self, chain: &Chain) -> Result<()> {
+impl crate::planner::Surrogate<Chain, 3> for SpaceNetworks {
+    fn check(&self, chain: &Chain) -> Result<()> {
         SpaceNetworks::check_chain(self, chain)
     }
 
@@ -472,5 +472,16 @@ impl crate::planner::SpaceSurrogate for SpaceNetworks {
 
     fn area_gradient(&self, pose: &SpacePose, o: Vec3, out: &mut [f64]) -> Result<()> {
         SpaceNetworks::area_gradient(self, pose, o, out)
+    }
+
+    fn phi_in_range(&self, pose: &SpacePose) -> bool {
+        self.in_range(pose, None)
+    }
+
+    fn v_in_range(&self, pose: &SpacePose, o: Vec3) -> bool {
+        let mut buf = [0.0; MAX_SPACE_INPUTS];
+        let k = encode(pose.theta(), &mut buf);
+        buf[k..k + 3].copy_from_slice(&rotated_obstacle(pose, o));
+        self.v.range.contains_within(&buf[..k + 3], RANGE_SLACK)
     }
 }

@@ -42,7 +42,6 @@ use crate::scene::Scene;
 pub use methods::{Group, Method, MethodInfo, Needs};
 pub use path::Track;
 pub use record::{Line, Sample, Summary, Trajectory};
-pub use surrogate::SpaceSurrogate;
 pub use surrogate::Surrogate;
 
 use methods::Rule;
@@ -261,13 +260,7 @@ fn check_networks(method: Method, networks: &Option<Arc<dyn Surrogate>>, arm: &A
         None if method.uses_networks() => Err(Error::NetworksUnavailable(format!(
             "method {method} needs trained networks and none are loaded"
         ))),
-        Some(n) if !n.arm().same_geometry(arm) => {
-            let spec = |a: &Arm| (a.post(), a.links().to_vec());
-            Err(Error::NetworksForAnotherArm {
-                trained: spec(n.arm()),
-                arm: spec(arm),
-            })
-        }
-        _ => Ok(()),
+        Some(n) => n.check(arm),
+        None => Ok(()),
     }
 }

@@ -5,6 +5,7 @@
 //! run records after each step. A planner owns its poses and scratch
 //! space: a step allocates nothing.
 
+use crate::space::Chain;
 use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
@@ -13,10 +14,10 @@ mod track;
 
 pub use track::SpaceTrack;
 
-use super::methods::space::{SpaceContext, SpaceRule};
+use super::methods::{Context, Rule};
 use super::methods::{Method, Note};
 use super::rk4::{Rk4, Stage};
-use super::SpaceSurrogate;
+use super::Surrogate;
 use crate::error::{Error, Result};
 use crate::scene::SpaceScene;
 use crate::space::{clearance, SpacePose, Sphere, Vec3};
@@ -101,9 +102,9 @@ pub struct SpaceTrajectory {
 #[derive(Clone)]
 pub struct SpacePlanner {
     scene: SpaceScene,
-    networks: Option<Arc<dyn SpaceSurrogate>>,
+    networks: Option<Arc<dyn Surrogate<Chain, 3>>>,
     method: Method,
-    rule: Box<dyn SpaceRule>,
+    rule: Box<dyn Rule<Chain, 3>>,
     theta: Vec<f64>,
     step_index: usize,
     track: SpaceTrack,
@@ -128,12 +129,12 @@ impl SpacePlanner {
     pub fn with_networks(
         mut scene: SpaceScene,
         method: Method,
-        networks: Option<Arc<impl SpaceSurrogate + 'static>>,
+        networks: Option<Arc<impl Surrogate<Chain, 3> + 'static>>,
     ) -> Result<Self> {
-        let networks = networks.map(|n| n as Arc<dyn SpaceSurrogate>);
+        let networks = networks.map(|n| n as Arc<dyn Surrogate<Chain, 3>>);
         scene.validate()?;
         if let Some(nets) = &networks {
-            nets.check_chain(&scene.chain)?;
+            nets.check(&scene.chain)?;
         }
         let n = scene.chain.dof();
         let rule = method.space_rule(n)?;
@@ -232,7 +233,7 @@ impl SpacePlanner {
     pub fn theta_dot(&mut self, theta: &[f64], xdot: Vec3) -> Result<Vec<f64>> {
         let pose = SpacePose::new(&self.scene.chain, theta)?;
         let mut out = vec![0.0; theta.len()];
-        let cx = SpaceContext {
+        let cx = Context::<Chain, 3> {
             scene: &self.scene,
             networks: self.networks.as_deref(),
         };
@@ -271,7 +272,7 @@ impl SpacePlanner {
             rk4,
             ..
         } = self;
-        let cx = SpaceContext {
+        let cx = Context::<Chain, 3> {
             scene,
             networks: networks.as_deref(),
         };
@@ -434,8 +435,8 @@ fn dist(a: Vec3, b: Vec3) -> f64 {
 /// The type of "no networks" for [`SpacePlanner::new`].
 struct NoNetworks;
 
-impl SpaceSurrogate for NoNetworks {
-    fn check_chain(&self, _: &crate::space::Chain) -> Result<()> {
+impl Surrogate<Chain, 3> for NoNetworks {
+    fn check(&self, _: &Chain) -> Result<()> {
         Ok(())
     }
     fn phi(&self, _: &SpacePose, _: &mut [f64]) -> Result<()> {
@@ -443,5 +444,11 @@ impl SpaceSurrogate for NoNetworks {
     }
     fn area_gradient(&self, _: &SpacePose, _: Vec3, _: &mut [f64]) -> Result<()> {
         Err(Error::NetworksUnavailable("no networks".into()))
+    }
+    fn phi_in_range(&self, _: &SpacePose) -> bool {
+        true
+    }
+    fn v_in_range(&self, _: &SpacePose, _: Vec3) -> bool {
+        true
     }
 }

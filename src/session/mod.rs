@@ -440,7 +440,7 @@ impl Session {
         let nets = self
             .networks
             .as_ref()
-            .filter(|n| n.surrogate.arm().same_geometry(&arm))
+            .filter(|n| n.surrogate.check(&arm).is_ok())
             .cloned();
         let method = match self.planner().method() {
             m if m.uses_networks() && nets.is_none() => Method::NUMERICAL,

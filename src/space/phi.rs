@@ -252,19 +252,36 @@ pub fn theta_dot(
 /// The pseudoinverse `J+ = J^T (J J^T)^-1` row-major into `out` (`3n`),
 /// the target the `Phi` network learns. Refused at a singular pose.
 pub fn pseudoinverse(jac: &[f64], out: &mut [f64]) -> Result<()> {
+    damped_pseudoinverse(jac, None, 0.0, out)
+}
+
+/// Eq. (20) with `m = 3`, weighted by a diagonal `W` given as its inverse
+/// `winv` (`None`: `W = I`): `Phi = W^-1 J^T (J W^-1 J^T + delta I)^-1`
+/// row-major into `out` (`3n`); what stands in for a learned `Phi` where
+/// no network fits. Refused at a singular pose with `delta = 0`.
+pub fn damped_pseudoinverse(
+    jac: &[f64],
+    winv: Option<&[f64]>,
+    delta: f64,
+    out: &mut [f64],
+) -> Result<()> {
     check(out, jac)?;
+    let w = |i: usize| winv.map_or(1.0, |w| w[i]);
     let mut a = [[0.0; 3]; 3];
-    for col in jac.chunks_exact(3) {
+    for (i, col) in jac.chunks_exact(3).enumerate() {
         for r in 0..3 {
             for c in 0..3 {
-                a[r][c] += col[r] * col[c];
+                a[r][c] += col[r] * (w(i) * col[c]);
             }
         }
     }
+    for (i, row) in a.iter_mut().enumerate() {
+        row[i] += delta;
+    }
     let inv = inverse(&a)?;
-    for (row, col) in out.chunks_exact_mut(3).zip(jac.chunks_exact(3)) {
+    for (i, (row, col)) in out.chunks_exact_mut(3).zip(jac.chunks_exact(3)).enumerate() {
         for (c, x) in row.iter_mut().enumerate() {
-            *x = col[0] * inv[0][c] + col[1] * inv[1][c] + col[2] * inv[2][c];
+            *x = w(i) * (col[0] * inv[0][c] + col[1] * inv[1][c] + col[2] * inv[2][c]);
         }
     }
     Ok(())

@@ -4,8 +4,8 @@
 //! (Chan and Dubey) on the spatial chains.
 
 use redundant_ik::arm::JointLimits;
+use redundant_ik::model::Model;
 use redundant_ik::nn::Rng;
-use redundant_ik::planner::methods::space::{eq18, eq18_weighted};
 use redundant_ik::planner::methods::{
     self, DELTA, JOINT_RANGE_GAIN, LAMBDA, MANIPULABILITY_GAIN, SIGN_SMOOTHING,
 };
@@ -303,7 +303,7 @@ fn without_weighting_the_rates_are_eq18_with_each_methods_v() {
                 let theta = random_theta(&scene.chain, &mut rng);
                 let pose = SpacePose::new(&scene.chain, &theta).unwrap();
                 let mut want = vec![0.0; theta.len()];
-                eq18(&pose, xdot, &v_of(m, &scene, &pose), delta, &mut want).unwrap();
+                Chain::eq18(&pose, xdot, &v_of(m, &scene, &pose), delta, &mut want).unwrap();
                 let got = planner.theta_dot(&theta, xdot).unwrap();
                 for (g, w) in got.iter().zip(&want) {
                     assert!(
@@ -327,8 +327,8 @@ fn the_weighted_eq18_is_eq18_at_unit_weights_and_keeps_the_hand_velocity() {
         let pose = SpacePose::new(&chain, &theta).unwrap();
         let v: Vec<f64> = (0..7).map(|_| rng.uniform() - 0.5).collect();
         let (mut plain, mut unit) = (vec![0.0; 7], vec![0.0; 7]);
-        eq18(&pose, xdot, &v, 0.01, &mut plain).unwrap();
-        eq18_weighted(&pose, &[1.0; 7], xdot, &v, 0.01, &mut unit).unwrap();
+        Chain::eq18(&pose, xdot, &v, 0.01, &mut plain).unwrap();
+        Chain::eq18_weighted(&pose, &[1.0; 7], xdot, &v, 0.01, &mut unit).unwrap();
         for (a, b) in plain.iter().zip(&unit) {
             assert!((a - b).abs() < 1e-15, "{plain:?} against {unit:?}");
         }
@@ -336,7 +336,7 @@ fn the_weighted_eq18_is_eq18_at_unit_weights_and_keeps_the_hand_velocity() {
         // and a joint of weight 1/w_i moves less than at weight 1 for v = 0.
         let winv = [1.0, 0.5, 1.0, 0.1, 1.0, 1.0, 0.3];
         let mut rates = vec![0.0; 7];
-        eq18_weighted(&pose, &winv, xdot, &v, 0.0, &mut rates).unwrap();
+        Chain::eq18_weighted(&pose, &winv, xdot, &v, 0.0, &mut rates).unwrap();
         let jac = pose.jacobian();
         for r in 0..3 {
             let hand: f64 = (0..7).map(|i| jac[3 * i + r] * rates[i]).sum();

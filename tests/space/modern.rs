@@ -5,12 +5,12 @@
 //! and says so.
 
 use redundant_ik::planner::methods::constraints::{self, Rows};
-use redundant_ik::planner::methods::space::SpaceContext;
+use redundant_ik::planner::methods::Context;
 use redundant_ik::planner::methods::{DAMPER_GAIN, INFLUENCE, STOP_DISTANCE};
 use redundant_ik::planner::methods::{DISTANCE, PRIORITY, QP};
 use redundant_ik::planner::space::{SpacePlanner, SpaceSummary};
 use redundant_ik::scene::SpaceScene;
-use redundant_ik::space::{SpacePairs, SpacePose, Sphere, PRESETS};
+use redundant_ik::space::{Chain, SpacePairs, SpacePose, Sphere, PRESETS};
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
@@ -19,7 +19,7 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// Every constraint's rows at `pose`, in the program's order, each with
 /// the constraint's name.
 fn rows_at(scene: &SpaceScene, pose: &SpacePose) -> Vec<(&'static str, Vec<f64>, f64)> {
-    let cx = SpaceContext {
+    let cx = Context::<Chain, 3> {
         scene,
         networks: None,
     };

@@ -144,7 +144,7 @@ fn what_cannot_run_in_space_is_refused_with_a_reason() {
         let mut planner = SpacePlanner::new(scene.clone(), *m).unwrap();
         let e = planner.step().err().unwrap();
         assert!(matches!(e, Error::NetworksUnavailable(_)), "{m}: {e}");
-        assert!(e.to_string().contains("--networks panda-reach"), "{e}");
+        assert!(e.to_string().contains("--networks"), "{e}");
     }
     let mut outside = scene.clone();
     outside.theta0[3] = 0.5; // the Panda's joint 4 stays below -0.0698

@@ -3,6 +3,8 @@
 
 use super::paper::{self, Phi, V, DELTA, LAMBDA, REFINE, SIGN_SMOOTHING};
 use super::{Entry, Group, Method, MethodInfo, Needs};
+use crate::arm::Arm;
+use crate::space::Chain;
 
 /// Case 1 (`case1`).
 pub const CASE1: Method = Method::new(&ENTRY);
@@ -24,6 +26,6 @@ static ENTRY: Entry = Entry {
         colour: "#1f77b4",
         params: &[&LAMBDA, &DELTA, &SIGN_SMOOTHING, &REFINE],
     },
-    rule: |n| paper::rule(n, CASE1, V::Exact, Phi::Network),
-    space: Some(|n| super::paper::space_rule(n, CASE1, V::Exact, Phi::Network)),
+    rule: |n| paper::rule::<Arm, 2>(n, CASE1, V::Exact, Phi::Network),
+    space: Some(|n| paper::rule::<Chain, 3>(n, CASE1, V::Exact, Phi::Network)),
 };

@@ -3,6 +3,8 @@
 
 use super::paper::{self, Phi, V, DELTA, LAMBDA};
 use super::{Entry, Group, Method, MethodInfo, Needs};
+use crate::arm::Arm;
+use crate::space::Chain;
 
 /// Case 2 (`case2`).
 pub const CASE2: Method = Method::new(&ENTRY);
@@ -24,6 +26,6 @@ static ENTRY: Entry = Entry {
         colour: "#2ca02c",
         params: &[&LAMBDA, &DELTA],
     },
-    rule: |n| paper::rule(n, CASE2, V::Network, Phi::Exact),
-    space: Some(|n| super::paper::space_rule(n, CASE2, V::Network, Phi::Exact)),
+    rule: |n| paper::rule::<Arm, 2>(n, CASE2, V::Network, Phi::Exact),
+    space: Some(|n| paper::rule::<Chain, 3>(n, CASE2, V::Network, Phi::Exact)),
 };

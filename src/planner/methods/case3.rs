@@ -3,6 +3,8 @@
 
 use super::paper::{self, Phi, V, DELTA, LAMBDA, REFINE};
 use super::{Entry, Group, Method, MethodInfo, Needs};
+use crate::arm::Arm;
+use crate::space::Chain;
 
 /// Case 3 (`case3`).
 pub const CASE3: Method = Method::new(&ENTRY);
@@ -24,6 +26,6 @@ static ENTRY: Entry = Entry {
         colour: "#ff7f0e",
         params: &[&LAMBDA, &DELTA, &REFINE],
     },
-    rule: |n| paper::rule(n, CASE3, V::Network, Phi::Network),
-    space: Some(|n| super::paper::space_rule(n, CASE3, V::Network, Phi::Network)),
+    rule: |n| paper::rule::<Arm, 2>(n, CASE3, V::Network, Phi::Network),
+    space: Some(|n| paper::rule::<Chain, 3>(n, CASE3, V::Network, Phi::Network)),
 };

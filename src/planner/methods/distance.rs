@@ -12,11 +12,10 @@
 //! distance `d_s` (and at 1 mm), so a link that touches or enters a disc
 //! gets a large but finite push out.
 
+use crate::space::Chain;
 use super::influence::{INFLUENCE, STOP_DISTANCE};
 use super::paper::DELTA;
-use super::space::{SpaceContext, SpaceRule};
 use super::weighting::JointWeights;
-use super::weighting::SpaceJointWeights;
 use super::{Context, Entry, Group, Method, MethodInfo, Needs, Note, Rule};
 use crate::clearance::Pairs;
 use crate::error::Result;
@@ -152,23 +151,23 @@ struct DistanceInSpace {
     pairs: SpacePairs,
     row: Vec<f64>,
     v: Vec<f64>,
-    weights: SpaceJointWeights,
+    weights: JointWeights,
 }
 
 /// The rule of `distance` for an `n`-joint chain.
-pub(in crate::planner::methods) fn space_rule(n: usize) -> Box<dyn SpaceRule> {
+pub(in crate::planner::methods) fn space_rule(n: usize) -> Box<dyn Rule<Chain, 3>> {
     Box::new(DistanceInSpace {
         pairs: SpacePairs::with_capacity(SpacePairs::most(n)),
         row: vec![0.0; n],
         v: vec![0.0; n],
-        weights: SpaceJointWeights::new(n),
+        weights: JointWeights::new(n),
     })
 }
 
-impl SpaceRule for DistanceInSpace {
+impl Rule<Chain, 3> for DistanceInSpace {
     fn theta_dot(
         &mut self,
-        cx: &SpaceContext<'_>,
+        cx: &Context<'_, Chain, 3>,
         pose: &SpacePose,
         xdot: [f64; 3],
         out: &mut [f64],
@@ -194,7 +193,7 @@ impl SpaceRule for DistanceInSpace {
         Ok(Note::default())
     }
 
-    fn boxed_clone(&self) -> Box<dyn SpaceRule> {
+    fn boxed_clone(&self) -> Box<dyn Rule<Chain, 3>> {
         Box::new(self.clone())
     }
 }

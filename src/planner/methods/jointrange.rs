@@ -12,17 +12,15 @@
 //! limit. The quadratic is bounded and smooth everywhere; the weighting is
 //! where the barrier belongs (it divides rates, never multiplies them).
 //! An arm without limits has no range to keep to: `v = 0`, and the method
-//! is eq. (5) with no secondary task (`none`'s rates). In space the same
-//! `v` over the chain's limits ([`range_gradient_into`],
-//! "In space" below).
+//! is eq. (5) with no secondary task (`none`'s rates). Dimension-free: one
+//! rule for every arm.
 
 use super::paper::DELTA;
-use super::space::{SpaceContext, SpaceRule};
 use super::{projection, Context, Entry, Group, Method, MethodInfo, Needs};
-use crate::arm::JointLimits;
-use crate::kinematics::Pose;
+use crate::arm::{Arm, JointLimits};
+use crate::model::{Model, Scene as _};
 use crate::scene::{Param, Scale};
-use crate::space::SpacePose;
+use crate::space::Chain;
 
 /// Gain `k_r` of the joint-range gradient.
 pub static JOINT_RANGE_GAIN: Param = Param {
@@ -59,24 +57,23 @@ static ENTRY: Entry = Entry {
         colour: "#bcbd22",
         params: &[&JOINT_RANGE_GAIN, &DELTA],
     },
-    rule: |n| projection::rule(n, gradient),
-    space: Some(space_rule),
+    rule: |n| projection::rule(n, gradient::<Arm, 2>),
+    space: Some(|n| projection::rule(n, gradient::<Chain, 3>)),
 };
 
 /// `v = k_r grad w` (zero for an arm without limits).
-fn gradient(cx: &Context<'_>, pose: &Pose, v: &mut [f64]) {
+fn gradient<A: Model<M>, const M: usize>(cx: &Context<'_, A, M>, pose: &A::Pose, v: &mut [f64]) {
     let scene = cx.scene;
     range_gradient_into(
-        scene.arm.joint_limits(),
-        scene.param(&JOINT_RANGE_GAIN),
-        pose.theta(),
+        scene.arm().joint_limits(),
+        scene.value(&JOINT_RANGE_GAIN),
+        A::theta(pose),
         v,
     );
 }
 
 /// `v_i = -k_r (theta_i - mid_i) / (n (hi_i - lo_i)^2)` for the angles
-/// `theta` into `v`, zero without `limits`: dimension-free, the planar and
-/// the spatial rule's.
+/// `theta` into `v`, zero without `limits`.
 pub(super) fn range_gradient_into(
     limits: Option<&JointLimits>,
     gain: f64,
@@ -92,28 +89,4 @@ pub(super) fn range_gradient_into(
         let range = hi - lo;
         *vi = -gain * (t - 0.5 * (lo + hi)) / (n * range * range);
     }
-}
-
-// ---- In space ----------------------------------------------------------
-//
-// `jointrange` in space: gradient projection (eq. 5) with the planar
-// method's quadratic criterion `w = -(1 / 2n) sum_i ((theta_i - mid_i) /
-// (hi_i - lo_i))^2` over the chain's limits (dimension-free: the planar
-// [`range_gradient_into`]), gain [`JOINT_RANGE_GAIN`]; `v = 0` for a
-// chain without limits.
-
-/// The spatial rule for an `n`-joint chain.
-pub(in crate::planner::methods) fn space_rule(n: usize) -> Box<dyn SpaceRule> {
-    projection::space_rule(n, space_gradient)
-}
-
-/// `v = k_r grad w` (zero for a chain without limits).
-fn space_gradient(cx: &SpaceContext<'_>, pose: &SpacePose, v: &mut [f64]) {
-    let scene = cx.scene;
-    range_gradient_into(
-        scene.chain.joint_limits(),
-        scene.param(&JOINT_RANGE_GAIN),
-        pose.theta(),
-        v,
-    );
 }

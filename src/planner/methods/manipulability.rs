@@ -5,16 +5,15 @@
 //! checked against finite differences on random arms of 2-6 links); `w` is
 //! floored at 1e-6 m^2, where a singular pose leaves it undefined. It
 //! avoids no obstacle: it is the field's second classic criterion, beside
-//! the paper's. In space (below): the same gain, with
-//! `w` of the hand's `3 x n` Jacobian ([`crate::space::manipulability`]).
+//! the paper's. In space: the same gain, with `w` of the hand's `3 x n`
+//! Jacobian ([`crate::space::manipulability`]), floored at 1e-6 m^3.
 
 use super::paper::DELTA;
-use super::space::{SpaceContext, SpaceRule};
 use super::{projection, Context, Entry, Group, Method, MethodInfo, Needs};
-use crate::kinematics::Pose;
+use crate::arm::Arm;
+use crate::model::{Model, Scene as _};
 use crate::scene::{Param, Scale};
-use crate::space::manipulability::manipulability_gradient_into;
-use crate::space::SpacePose;
+use crate::space::Chain;
 
 /// Gain `k_m` of the manipulability gradient.
 pub static MANIPULABILITY_GAIN: Param = Param {
@@ -51,34 +50,13 @@ static ENTRY: Entry = Entry {
         colour: "#e377c2",
         params: &[&MANIPULABILITY_GAIN, &DELTA],
     },
-    rule: |n| projection::rule(n, gradient),
-    space: Some(space_rule),
+    rule: |n| projection::rule(n, gradient::<Arm, 2>),
+    space: Some(|n| projection::rule(n, gradient::<Chain, 3>)),
 };
 
 /// `v = k_m grad w`.
-fn gradient(cx: &Context<'_>, pose: &Pose, v: &mut [f64]) {
-    pose.manipulability_gradient_into(1e-6, v);
-    let gain = cx.scene.param(&MANIPULABILITY_GAIN);
-    v.iter_mut().for_each(|x| *x *= gain);
-}
-
-// ---- In space ----------------------------------------------------------
-//
-// `manipulability` in space: gradient projection (eq. 5) with
-// `v = k_m grad w`, `w = sqrt(det(J J^T))` of the hand's `3 x n`
-// Jacobian (Yoshikawa 1985), its gradient analytic
-// ([`crate::space::manipulability::manipulability_gradient_into`]), `w`
-// floored at 1e-6 m^3 as in the plane. The gain is the planar method's
-// [`MANIPULABILITY_GAIN`].
-
-/// The spatial rule for an `n`-joint chain.
-pub(in crate::planner::methods) fn space_rule(n: usize) -> Box<dyn SpaceRule> {
-    projection::space_rule(n, space_gradient)
-}
-
-/// `v = k_m grad w`.
-fn space_gradient(cx: &SpaceContext<'_>, pose: &SpacePose, v: &mut [f64]) {
-    manipulability_gradient_into(pose, 1e-6, v);
-    let gain = cx.scene.param(&MANIPULABILITY_GAIN);
+fn gradient<A: Model<M>, const M: usize>(cx: &Context<'_, A, M>, pose: &A::Pose, v: &mut [f64]) {
+    A::manipulability_gradient_into(pose, 1e-6, v);
+    let gain = cx.scene.value(&MANIPULABILITY_GAIN);
     v.iter_mut().for_each(|x| *x *= gain);
 }

@@ -19,7 +19,6 @@
 mod influence;
 mod paper;
 mod projection;
-pub mod space;
 mod weighting;
 
 pub use distance::DISTANCE_GAIN;
@@ -38,9 +37,11 @@ use std::str::FromStr;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::Surrogate;
+use crate::arm::Arm;
 use crate::error::{Error, Result};
-use crate::kinematics::Pose;
-use crate::scene::{Param, Scene};
+use crate::model::{Model, Scene as _};
+use crate::scene::Param;
+use crate::space::Chain;
 
 /// One line per method, in the order of the menus: declares the method's
 /// module and puts its constant into [`ALL`].
@@ -177,30 +178,40 @@ fn param_names<S: Serializer>(
 }
 
 /// What a method's rule reads besides the pose: the scene (arm,
-/// obstacles, gains) and the learned replacements, if any.
-#[derive(Clone, Copy)]
-pub struct Context<'a> {
+/// obstacles, gains) and the learned replacements, if any; for an arm `A`
+/// whose hand has `M` coordinates (the planar arm's by default).
+pub struct Context<'a, A: Model<M> = Arm, const M: usize = 2> {
     /// The scene, with its current target, obstacles and gains.
-    pub scene: &'a Scene,
+    pub scene: &'a A::Scene,
     /// The trained networks, if loaded.
-    pub networks: Option<&'a dyn Surrogate>,
+    pub networks: Option<&'a dyn Surrogate<A, M>>,
 }
 
-impl Context<'_> {
+impl<A: Model<M>, const M: usize> Clone for Context<'_, A, M> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<A: Model<M>, const M: usize> Copy for Context<'_, A, M> {}
+
+impl<'a, A: Model<M>, const M: usize> Context<'a, A, M> {
     /// The networks, or why `method` cannot run without them.
-    pub fn networks_for(&self, method: Method) -> Result<&dyn Surrogate> {
+    pub fn networks_for(&self, method: Method) -> Result<&'a dyn Surrogate<A, M>> {
         self.networks.ok_or_else(|| {
-            Error::NetworksUnavailable(format!("method {method} needs trained networks"))
+            Error::NetworksUnavailable(format!(
+                "method {method} needs networks trained for this arm (--networks)"
+            ))
         })
     }
 
     /// The damping `delta` of the schedule at `pose` (zero when it is off):
     /// what is added to the scene's constant `delta` near singular poses.
     #[inline]
-    pub fn scheduled_delta(&self, pose: &Pose) -> f64 {
+    pub fn scheduled_delta(&self, pose: &A::Pose) -> f64 {
         self.scene
-            .damping
-            .map_or(0.0, |d| d.delta_at_sigma(pose.sigma_min()))
+            .damping()
+            .map_or(0.0, |d| d.delta_at_sigma(A::sigma_min(pose)))
     }
 }
 
@@ -216,36 +227,45 @@ pub struct Note {
     pub relaxed: bool,
 }
 
-/// A method's computation for one planner: the joint rates of a pose,
-/// written into a slice the planner owns, with no allocation (the rule owns
-/// its scratch space, sized for the arm when it is built).
-pub trait Rule: Send + Sync {
+/// A method's computation for one planner of an arm `A` whose hand has
+/// `M` coordinates (the planar arm's by default): the joint rates of a
+/// pose, written into a slice the planner owns, with no allocation (the
+/// rule owns its scratch space, sized for the arm when it is built).
+pub trait Rule<A: Model<M> = Arm, const M: usize = 2>: Send + Sync {
     /// Joint rates `theta_dot` at `pose` for the commanded task velocity
-    /// `xdot` (the line's, plus the feedback term) into `out` (`n` entries).
+    /// `xdot` (the path's, plus the feedback term) into `out` (`n` entries).
     fn theta_dot(
         &mut self,
-        cx: &Context<'_>,
-        pose: &Pose,
-        xdot: [f64; 2],
+        cx: &Context<'_, A, M>,
+        pose: &A::Pose,
+        xdot: [f64; M],
         out: &mut [f64],
     ) -> Result<Note>;
 
     /// The null-space vector `v` of eq. (5) at `pose` into `v` (`n`
     /// entries); `false` (and `v` untouched) for a method without one.
-    fn null_space(&mut self, cx: &Context<'_>, pose: &Pose, v: &mut [f64]) -> Result<bool> {
+    fn null_space(
+        &mut self,
+        cx: &Context<'_, A, M>,
+        pose: &A::Pose,
+        v: &mut [f64],
+    ) -> Result<bool> {
         let _ = (cx, pose, v);
         Ok(false)
     }
 
     /// A copy with its own scratch space (a cloned planner steps on its own).
-    fn boxed_clone(&self) -> Box<dyn Rule>;
+    fn boxed_clone(&self) -> Box<dyn Rule<A, M>>;
 }
 
-impl Clone for Box<dyn Rule> {
+impl<A: Model<M>, const M: usize> Clone for Box<dyn Rule<A, M>> {
     fn clone(&self) -> Self {
         self.boxed_clone()
     }
 }
+
+/// How a method's rule is built for an `n`-joint arm `A`.
+pub type Builder<A, const M: usize> = fn(n: usize) -> Box<dyn Rule<A, M>>;
 
 /// A method's registration: its description and how to build its rule for
 /// an arm of `n` joints.
@@ -256,7 +276,7 @@ pub struct Entry {
     pub rule: fn(n: usize) -> Box<dyn Rule>,
     /// Builds the rule for an `n`-joint chain in space, where the method
     /// has one.
-    pub space: Option<fn(n: usize) -> Box<dyn space::SpaceRule>>,
+    pub space: Option<Builder<Chain, 3>>,
 }
 
 /// A redundancy-resolution method: a handle on its registration.
@@ -360,7 +380,7 @@ impl Method {
     }
 
     /// Its rule for an `n`-joint chain in space, or why it has none.
-    pub fn space_rule(self, n: usize) -> Result<Box<dyn space::SpaceRule>> {
+    pub fn space_rule(self, n: usize) -> Result<Box<dyn Rule<Chain, 3>>> {
         self.0.space.map(|b| b(n)).ok_or_else(|| Error::NotInSpace {
             method: self.name(),
             choices: space_names(),

@@ -3,6 +3,8 @@
 
 use super::paper::{self, Phi, V, DELTA};
 use super::{Entry, Group, Method, MethodInfo, Needs};
+use crate::arm::Arm;
+use crate::space::Chain;
 
 /// No avoidance (`none`).
 pub const NO_AVOIDANCE: Method = Method::new(&ENTRY);
@@ -21,6 +23,6 @@ static ENTRY: Entry = Entry {
         colour: "#d62728",
         params: &[&DELTA],
     },
-    rule: |n| paper::rule(n, NO_AVOIDANCE, V::Zero, Phi::Exact),
-    space: Some(|n| super::paper::space_rule(n, NO_AVOIDANCE, V::Zero, Phi::Exact)),
+    rule: |n| paper::rule::<Arm, 2>(n, NO_AVOIDANCE, V::Zero, Phi::Exact),
+    space: Some(|n| paper::rule::<Chain, 3>(n, NO_AVOIDANCE, V::Zero, Phi::Exact)),
 };

@@ -3,6 +3,8 @@
 
 use super::paper::{self, Phi, V, DELTA, LAMBDA, SIGN_SMOOTHING};
 use super::{Entry, Group, Method, MethodInfo, Needs};
+use crate::arm::Arm;
+use crate::space::Chain;
 
 /// Numerical (`numerical`).
 pub const NUMERICAL: Method = Method::new(&ENTRY);
@@ -21,6 +23,6 @@ static ENTRY: Entry = Entry {
         colour: "#000000",
         params: &[&LAMBDA, &DELTA, &SIGN_SMOOTHING],
     },
-    rule: |n| paper::rule(n, NUMERICAL, V::Exact, Phi::Exact),
-    space: Some(|n| super::paper::space_rule(n, NUMERICAL, V::Exact, Phi::Exact)),
+    rule: |n| paper::rule::<Arm, 2>(n, NUMERICAL, V::Exact, Phi::Exact),
+    space: Some(|n| paper::rule::<Chain, 3>(n, NUMERICAL, V::Exact, Phi::Exact)),
 };

@@ -18,9 +18,10 @@
 //! escape direction needs the task's own joints). With no pair within
 //! `d_i` the rates are `J^+ Xdot`, the route without avoidance.
 
+use crate::space::Chain;
+use crate::model::Model;
 use super::influence::{INFLUENCE, STOP_DISTANCE};
 use super::paper::DELTA;
-use super::space::{eq18, SpaceContext, SpaceRule};
 use super::{Context, Entry, Group, Method, MethodInfo, Needs, Note, Rule};
 use crate::clearance::Pairs;
 use crate::error::Result;
@@ -166,7 +167,7 @@ struct PriorityInSpace {
 }
 
 /// The rule of `priority` for an `n`-joint chain.
-pub(in crate::planner::methods) fn space_rule(n: usize) -> Box<dyn SpaceRule> {
+pub(in crate::planner::methods) fn space_rule(n: usize) -> Box<dyn Rule<Chain, 3>> {
     Box::new(PriorityInSpace {
         pairs: SpacePairs::with_capacity(SpacePairs::most(n)),
         zero: vec![0.0; n],
@@ -174,10 +175,10 @@ pub(in crate::planner::methods) fn space_rule(n: usize) -> Box<dyn SpaceRule> {
     })
 }
 
-impl SpaceRule for PriorityInSpace {
+impl Rule<Chain, 3> for PriorityInSpace {
     fn theta_dot(
         &mut self,
-        cx: &SpaceContext<'_>,
+        cx: &Context<'_, Chain, 3>,
         pose: &SpacePose,
         xdot: [f64; 3],
         out: &mut [f64],
@@ -185,7 +186,7 @@ impl SpaceRule for PriorityInSpace {
         let s = cx.scene;
         let delta = s.param(&DELTA) + cx.scheduled_delta(pose);
         // The task: J^+ Xdot.
-        eq18(pose, xdot, &self.zero, delta, out)?;
+        Chain::eq18(pose, xdot, &self.zero, delta, out)?;
         let influence = s.param(&INFLUENCE);
         self.pairs.update(&s.chain, pose, &s.spheres, influence);
         if s.floor {
@@ -224,7 +225,7 @@ impl SpaceRule for PriorityInSpace {
         Ok(Note::default())
     }
 
-    fn boxed_clone(&self) -> Box<dyn SpaceRule> {
+    fn boxed_clone(&self) -> Box<dyn Rule<Chain, 3>> {
         Box::new(self.clone())
     }
 }

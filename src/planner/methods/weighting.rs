@@ -28,19 +28,14 @@
 //! moves less toward its limit (`w_i` grows without bound at it); the
 //! weights jump where a joint turns back (a property of the method).
 //!
-//! Nothing here but [`JointWeights::update`] and [`JointWeights::eq18`]
-//! knows the planar arm: the spatial weights (`SpaceJointWeights`, below) are these
-//! weights over a chain's limits ([`JointWeights::update_at`]).
+//! Written once for every arm ([`Model`]): what differs is eq. (18)'s
+//! solve, which the arm's model gives in both forms.
 
-use super::space::{eq18, eq18_weighted, SpaceContext};
 use super::Context;
 use crate::arm::JointLimits;
 use crate::error::Result;
-use crate::ik;
-use crate::kinematics::Pose;
-use crate::scene::SpaceScene;
-use crate::scene::{JointWeighting, Scene};
-use crate::space::SpacePose;
+use crate::model::{Model, Scene as _};
+use crate::scene::JointWeighting;
 
 /// The weights' scratch space: `dH/dtheta` and `W^-1` (`n` entries each).
 #[derive(Debug, Clone)]
@@ -58,28 +53,34 @@ impl JointWeights {
         }
     }
 
-    /// Whether `scene` weights the joints at all: weighted least norm on an
-    /// arm with limits. When not, [`JointWeights::update`] is never needed.
+    /// Whether the scene weights the joints at all: weighted least norm on
+    /// an arm with limits. When not, [`JointWeights::update`] is never
+    /// needed.
     #[inline]
-    pub(super) fn active(scene: &Scene) -> bool {
-        !scene.weighting.is_none() && scene.arm.joint_limits().is_some()
+    pub(super) fn active<A: Model<M>, const M: usize>(cx: &Context<'_, A, M>) -> bool {
+        !cx.scene.weighting().is_none() && cx.scene.arm().joint_limits().is_some()
     }
 
     /// `W^-1` at `pose` for the unweighted rates `rates` (see the module
     /// documentation); `false` when every weight is 1 (the rates stand).
-    pub(super) fn update(&mut self, scene: &Scene, pose: &Pose, rates: &[f64]) -> bool {
+    pub(super) fn update<A: Model<M>, const M: usize>(
+        &mut self,
+        cx: &Context<'_, A, M>,
+        pose: &A::Pose,
+        rates: &[f64],
+    ) -> bool {
         self.update_at(
-            scene.weighting,
-            scene.arm.joint_limits(),
-            pose.theta(),
+            cx.scene.weighting(),
+            cx.scene.arm().joint_limits(),
+            A::theta(pose),
             rates,
         )
     }
 
     /// [`JointWeights::update`] from what it reads, which knows no arm: the
     /// scene's weighting, the joints' limits, the angles `theta` and the
-    /// unweighted rates (the spatial weights call it too).
-    pub(super) fn update_at(
+    /// unweighted rates.
+    fn update_at(
         &mut self,
         weighting: JointWeighting,
         limits: Option<&JointLimits>,
@@ -119,26 +120,26 @@ impl JointWeights {
 
     /// Eq. (18), `theta_dot = J+ (Xdot - J v) + v` with damping `delta`,
     /// into `out`, through the weighted `J+` where the scene's weighting
-    /// asks for it ([`ik::theta_dot_weighted_into`]), else the paper's
-    /// ([`ik::theta_dot_symmetric_into`]).
-    pub(super) fn eq18(
+    /// asks for it ([`Model::eq18_weighted`]), else the paper's
+    /// ([`Model::eq18`]): with the weighting `none`, or while no joint
+    /// moves toward a limit, the unweighted rates to the last bit.
+    pub(super) fn eq18<A: Model<M>, const M: usize>(
         &mut self,
-        cx: &Context<'_>,
-        pose: &Pose,
-        xdot: [f64; 2],
+        cx: &Context<'_, A, M>,
+        pose: &A::Pose,
+        xdot: [f64; M],
         v: &[f64],
         delta: f64,
         out: &mut [f64],
     ) -> Result<()> {
-        let jac = pose.jacobian();
-        ik::theta_dot_symmetric_into(jac, xdot, v, delta, out)?;
-        let mut again = self.update(cx.scene, pose, out);
+        A::eq18(pose, xdot, v, delta, out)?;
+        let mut again = self.update(cx, pose, out);
         // At most n + 1 solves (see widen); the bound only restates that.
         for _ in 0..=out.len() {
             if !again {
                 break;
             }
-            ik::theta_dot_weighted_into(jac, &self.winv, xdot, v, delta, out)?;
+            A::eq18_weighted(pose, &self.winv, xdot, v, delta, out)?;
             again = self.widen(out);
         }
         Ok(())
@@ -147,98 +148,5 @@ impl JointWeights {
     /// `W^-1`, one entry per joint, as [`JointWeights::update`] left it.
     pub(super) fn inverse(&self) -> &[f64] {
         &self.winv
-    }
-}
-
-// ---- In space ----------------------------------------------------------
-//
-// Weighted least norm (Chan and Dubey 1995) for an arm in space: the
-// planar weights of `super::super::weighting` (`W = diag(w_i)`,
-// `w_i = 1 + |dH/dtheta_i|` while joint `i` moves away from the middle of
-// its range, 1 otherwise, the test repeated on the weighted rates until no
-// further joint is weighted) over the chain's limits, and eq. (18) in its
-// weighted form with `m = 3` ([`eq18_weighted`]). Everything but the
-// `3 x 3` solve is dimension-free and is the planar code itself.
-//
-// A spatial rule of a method whose [`MethodInfo::weighting`](super::super::MethodInfo)
-// is true owns one [`SpaceJointWeights`] and calls
-// [`SpaceJointWeights::eq18`] where it would call [`super::eq18`]; a rule
-// with a route of its own (a QP, a task priority) calls
-// [`SpaceJointWeights::update`] with its unweighted rates, then, while it
-// returns `true`, solves again with [`SpaceJointWeights::inverse`] and asks
-// [`SpaceJointWeights::widen`] of the new rates.
-
-/// The spatial weights' scratch space (`n` entries of `dH/dtheta` and of
-/// `W^-1`).
-#[derive(Debug, Clone)]
-pub(in crate::planner::methods) struct SpaceJointWeights(JointWeights);
-
-impl SpaceJointWeights {
-    /// Room for an `n`-joint chain.
-    pub(in crate::planner::methods) fn new(n: usize) -> Self {
-        Self(JointWeights::new(n))
-    }
-
-    /// Whether `scene` weights the joints at all: weighted least norm on a
-    /// chain with limits.
-    #[inline]
-    pub(in crate::planner::methods) fn active(scene: &SpaceScene) -> bool {
-        !scene.weighting.is_none() && scene.chain.joint_limits().is_some()
-    }
-
-    /// `W^-1` at `pose` for the unweighted rates `rates`; `false` when
-    /// every weight is 1 (the rates stand).
-    pub(in crate::planner::methods) fn update(
-        &mut self,
-        scene: &SpaceScene,
-        pose: &SpacePose,
-        rates: &[f64],
-    ) -> bool {
-        Self::active(scene)
-            && self.0.update_at(
-                scene.weighting,
-                scene.chain.joint_limits(),
-                pose.theta(),
-                rates,
-            )
-    }
-
-    /// Weights every joint not weighted yet that `rates` move away from the
-    /// middle of its range; whether there was one (solve again).
-    #[inline]
-    pub(in crate::planner::methods) fn widen(&mut self, rates: &[f64]) -> bool {
-        self.0.widen(rates)
-    }
-
-    /// `W^-1`, one entry per joint, as the last update or widening left it.
-    #[inline]
-    pub(in crate::planner::methods) fn inverse(&self) -> &[f64] {
-        self.0.inverse()
-    }
-
-    /// Eq. (18) with `m = 3` into `out`, weighted where the scene's
-    /// weighting asks for it ([`eq18_weighted`]), else [`eq18`]: with the
-    /// weighting `none`, or while no joint moves toward a limit, the
-    /// unweighted rates to the last bit.
-    pub(in crate::planner::methods) fn eq18(
-        &mut self,
-        cx: &SpaceContext<'_>,
-        pose: &SpacePose,
-        xdot: [f64; 3],
-        v: &[f64],
-        delta: f64,
-        out: &mut [f64],
-    ) -> Result<()> {
-        eq18(pose, xdot, v, delta, out)?;
-        let mut again = self.update(cx.scene, pose, out);
-        // At most n + 1 solves (JointWeights::widen).
-        for _ in 0..=out.len() {
-            if !again {
-                break;
-            }
-            eq18_weighted(pose, self.inverse(), xdot, v, delta, out)?;
-            again = self.widen(out);
-        }
-        Ok(())
     }
 }

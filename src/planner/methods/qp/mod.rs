@@ -39,12 +39,13 @@
 
 pub mod constraints;
 
+use crate::space::Chain;
+use crate::model::Model;
 use self::constraints::SpaceConstraint;
 use super::influence::{INFLUENCE, STOP_DISTANCE};
 use super::paper::SIGN_SMOOTHING;
 use super::paper::{obstacle_vector, V};
 use super::paper::{DELTA, LAMBDA};
-use super::space::{eq18, SpaceContext, SpaceRule};
 use super::{Context, Entry, Group, Method, MethodInfo, Needs, Note, Rule};
 use crate::error::{Error, Result};
 use crate::ik;
@@ -239,7 +240,7 @@ struct SpaceQp {
 }
 
 /// The rule of `qp` for an `n`-joint chain.
-pub(in crate::planner::methods) fn space_rule(n: usize) -> Box<dyn SpaceRule> {
+pub(in crate::planner::methods) fn space_rule(n: usize) -> Box<dyn Rule<Chain, 3>> {
     // Every damper a chain can have, the joint-limit dampers and the
     // rate limits: the rows never grow.
     let m = SpacePairs::most(n) + 2 * n + 2 * n;
@@ -325,10 +326,10 @@ fn solve_relaxing(
     }
 }
 
-impl SpaceRule for SpaceQp {
+impl Rule<Chain, 3> for SpaceQp {
     fn theta_dot(
         &mut self,
-        cx: &SpaceContext<'_>,
+        cx: &Context<'_, Chain, 3>,
         pose: &SpacePose,
         xdot: [f64; 3],
         out: &mut [f64],
@@ -345,7 +346,7 @@ impl SpaceRule for SpaceQp {
         );
         let damping = 1.0 / s.param(&SLACK_WEIGHT) + s.param(&DELTA) + cx.scheduled_delta(pose);
         // The unconstrained minimum: eq. (18) with m = 3.
-        eq18(pose, xdot, &self.v, damping, out)?;
+        Chain::eq18(pose, xdot, &self.v, damping, out)?;
         self.rows.clear(n);
         for constraint in &mut self.constraints {
             constraint.rows(cx, pose, &mut self.rows)?;
@@ -373,7 +374,7 @@ impl SpaceRule for SpaceQp {
         )
     }
 
-    fn boxed_clone(&self) -> Box<dyn SpaceRule> {
+    fn boxed_clone(&self) -> Box<dyn Rule<Chain, 3>> {
         Box::new(self.clone())
     }
 }

@@ -132,8 +132,8 @@ mod space {
     use super::super::{ConstraintInfo, Rows, SpaceConstraint};
     use super::{Gains, DAMPER};
     use crate::error::Result;
-    use crate::planner::methods::space::SpaceContext;
-    use crate::space::{SpacePairs, SpacePose};
+    use crate::planner::methods::Context;
+    use crate::space::{Chain, SpacePairs, SpacePose};
 
     /// The capsule pairs of a pose within the influence distance, kept
     /// between poses.
@@ -152,7 +152,7 @@ mod space {
     }
 
     impl SpaceConstraint for SpaceDamper {
-        fn rows(&mut self, cx: &SpaceContext<'_>, pose: &SpacePose, rows: &mut Rows) -> Result<()> {
+        fn rows(&mut self, cx: &Context<'_, Chain, 3>, pose: &SpacePose, rows: &mut Rows) -> Result<()> {
             let scene = cx.scene;
             let gains = Gains::of(&scene.params);
             self.pairs

@@ -141,7 +141,7 @@ impl Constraint for JointLimit {
 impl super::SpaceConstraint for JointLimit {
     fn rows(
         &mut self,
-        cx: &crate::planner::methods::space::SpaceContext<'_>,
+        cx: &crate::planner::methods::Context<'_, crate::space::Chain, 3>,
         pose: &crate::space::SpacePose,
         rows: &mut Rows,
     ) -> Result<()> {

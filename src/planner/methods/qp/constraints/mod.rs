@@ -15,9 +15,9 @@
 //! [`Entry::space`]; the spatial program (`methods/qp/mod.rs`, "In space") stacks
 //! them in the same order.
 
+use crate::space::Chain;
 use crate::error::Result;
 use crate::kinematics::Pose;
-use crate::planner::methods::space::SpaceContext;
 use crate::planner::methods::Context;
 use crate::scene::Param;
 use crate::space::SpacePose;
@@ -95,7 +95,7 @@ impl Clone for Box<dyn Constraint> {
 pub trait SpaceConstraint: Send + Sync {
     /// Appends this constraint's rows at `pose` (the scene's spheres,
     /// floor and parameters from `cx`) to `rows`.
-    fn rows(&mut self, cx: &SpaceContext<'_>, pose: &SpacePose, rows: &mut Rows) -> Result<()>;
+    fn rows(&mut self, cx: &Context<'_, Chain, 3>, pose: &SpacePose, rows: &mut Rows) -> Result<()>;
 
     /// A copy with its own scratch space.
     fn boxed_clone(&self) -> Box<dyn SpaceConstraint>;

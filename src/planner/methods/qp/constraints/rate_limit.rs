@@ -97,7 +97,7 @@ impl Constraint for RateLimit {
 impl super::SpaceConstraint for RateLimit {
     fn rows(
         &mut self,
-        cx: &crate::planner::methods::space::SpaceContext<'_>,
+        cx: &crate::planner::methods::Context<'_, crate::space::Chain, 3>,
         pose: &crate::space::SpacePose,
         rows: &mut Rows,
     ) -> Result<()> {

@@ -1,0 +1,143 @@
+//! The arm model: what the planner, the methods and self-motion need of an
+//! arm, for a task of `M` coordinates (the hand in the plane, `M = 2`; the
+//! hand in space, `M = 3`).
+//!
+//! Every arm is a serial chain. The kinematics pass stays two
+//! implementations behind this one interface, with static dispatch: the
+//! planar arm's eqs. (1)-(3) with the closed-form `2 x 2` solve of eq. (18)
+//! (about 25 ns a pose, `docs/speed.md`), and the chain in space's
+//! modified-DH pass with a `3 x 3` Cholesky solve. Nothing above this
+//! trait knows which one ran: a method's rule, the RK4 step and
+//! self-motion are written once, generic over `A: Model<M>`.
+//!
+//! The task dimension is a const parameter so that the hand's full pose
+//! (`M = 6`) is one more implementation, not another fork.
+
+mod plane;
+mod space;
+
+use std::fmt::Debug;
+
+use crate::arm::JointLimits;
+use crate::error::Result;
+use crate::ik::DampingSchedule;
+use crate::scene::{JointWeighting, Param, Params};
+
+/// An arm whose hand has `M` coordinates: its pose (one kinematics pass,
+/// with its own scratch space), its scene, and the small dense solves
+/// that specialise by dimension.
+pub trait Model<const M: usize>: PhiAlgebra<M> + Clone + Debug + Send + Sync + 'static {
+    /// The kinematics of one configuration, updated in place.
+    type Pose: Clone + Debug + Send + Sync;
+    /// A planning problem for this arm: the arm, its start, its path, its
+    /// obstacles and the methods' parameters.
+    type Scene: Scene<Self> + Clone + Debug + Send + Sync;
+
+    /// The number of joints `n`.
+    fn dof(&self) -> usize;
+    /// A pose of the arm's size, to be updated.
+    fn pose(&self) -> Self::Pose;
+    /// `pose` at `theta` (one kinematics pass); refused for a wrong length
+    /// or a non-finite angle.
+    fn update(&self, pose: &mut Self::Pose, theta: &[f64]) -> Result<()>;
+    /// The joint limits, if the arm has them.
+    fn joint_limits(&self) -> Option<&JointLimits>;
+
+    /// The obstacles' centres: the points `O` of eqs. (14)-(16).
+    fn obstacle_centres(scene: &Self::Scene) -> impl Iterator<Item = [f64; M]> + '_;
+    /// The exact obstacle vector of eqs. (14)-(16) summed over the
+    /// scene's obstacles, `v = (lambda / 4) sum_O g(theta, O)`, each
+    /// area gradient's sign smoothed by `eps`; `scratch` has `n` entries.
+    fn obstacle_vector_into(
+        scene: &Self::Scene,
+        pose: &Self::Pose,
+        lambda: f64,
+        eps: f64,
+        scratch: &mut [f64],
+        v: &mut [f64],
+    );
+
+    /// The angles the pose was computed at.
+    fn theta(pose: &Self::Pose) -> &[f64];
+    /// The hand `X(theta)`.
+    fn hand(pose: &Self::Pose) -> [f64; M];
+    /// The hand's Jacobian, column-major `M x n` (`M` entries per joint).
+    fn jacobian(pose: &Self::Pose) -> &[f64];
+    /// The smallest singular value of `J` (what the damping schedule reads).
+    fn sigma_min(pose: &Self::Pose) -> f64;
+    /// Yoshikawa's manipulability `w = sqrt(det(J J^T))`.
+    fn manipulability(pose: &Self::Pose) -> f64;
+    /// `grad w` (`n` entries) into `out`, `w` floored at `floor` where a
+    /// singular pose leaves its gradient undefined.
+    fn manipulability_gradient_into(pose: &Self::Pose, floor: f64, out: &mut [f64]);
+    /// The position `P(k)` of joint `k` (`1 <= k < n`: an elbow).
+    fn joint_point(pose: &Self::Pose, k: usize) -> [f64; M];
+    /// `v = J_k^T f` into `v`, or a damped inverse of `J_k` where the
+    /// transpose is too weak: the joint rates that move `P(k)` along a
+    /// force `f` (the joints before `k` move it, the others not).
+    fn pull(pose: &Self::Pose, k: usize, f: [f64; M], v: &mut [f64]);
+
+    /// Eq. (18): `(J J^T + delta I) varphi = Xdot - J v`,
+    /// `theta_dot = J^T varphi + v`, into `out` (`v` has `n` entries).
+    fn eq18(
+        pose: &Self::Pose,
+        xdot: [f64; M],
+        v: &[f64],
+        delta: f64,
+        out: &mut [f64],
+    ) -> Result<()>;
+    /// Eq. (18) weighted by a diagonal `W` given as its inverse `winv`:
+    /// `(J W^-1 J^T + delta I) varphi = Xdot - J W^-1 v`,
+    /// `theta_dot = W^-1 (J^T varphi + v)`.
+    fn eq18_weighted(
+        pose: &Self::Pose,
+        winv: &[f64],
+        xdot: [f64; M],
+        v: &[f64],
+        delta: f64,
+        out: &mut [f64],
+    ) -> Result<()>;
+}
+
+/// The learned route's small dense algebra (eqs. 19-21), which
+/// specialises by the task's dimension `M`: `Phi` is row-major `n x M`,
+/// `J` column-major `M x n`, `W^-1` a diagonal (`None`: `W = I`).
+pub trait PhiAlgebra<const M: usize> {
+    /// Newton-Schulz steps refining a learned `Phi` toward `J+`; `false`
+    /// where they are not sure to converge (the exact route stands in).
+    fn refine_phi(phi: &mut [f64], jac: &[f64], steps: u32) -> Result<bool>;
+    /// Damps an undamped `Phi_0` by a constant `delta` in place.
+    fn damp_phi(phi: &mut [f64], delta: f64) -> Result<()>;
+    /// Weights an undamped `Phi_0` by `W` and damps it by `delta`, in place.
+    fn weight_phi(phi: &mut [f64], jac: &[f64], winv: &[f64], delta: f64) -> Result<()>;
+    /// Eq. (20), weighted where `winv` is given: the exact
+    /// `W^-1 J^T (J W^-1 J^T + delta I)^-1` into `out`.
+    fn phi_into(jac: &[f64], winv: Option<&[f64]>, delta: f64, out: &mut [f64]) -> Result<()>;
+    /// Eq. (21): `theta_dot = Phi (Xdot - J W^-1 v) + W^-1 v` into `out`.
+    fn eq21(
+        phi: &[f64],
+        jac: &[f64],
+        winv: Option<&[f64]>,
+        xdot: [f64; M],
+        v: &[f64],
+        out: &mut [f64],
+    ) -> Result<()>;
+}
+
+/// What every method's rule reads of a scene, whatever the arm.
+pub trait Scene<A> {
+    /// The arm.
+    fn arm(&self) -> &A;
+    /// The methods' parameters that differ from their defaults.
+    fn params(&self) -> &Params;
+    /// The damping schedule, if any.
+    fn damping(&self) -> Option<DampingSchedule>;
+    /// How the methods of eq. (5) use the joint limits.
+    fn weighting(&self) -> JointWeighting;
+
+    /// The value of parameter `p` (its default unless set).
+    #[inline]
+    fn value(&self, p: &'static Param) -> f64 {
+        self.params().get(p)
+    }
+}
