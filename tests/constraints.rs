@@ -24,7 +24,7 @@ use redundant_ik::{Arm, Obstacle, Planner, Pose, Scene};
 
 /// The rows `entry`'s constraint writes for `pose` in `scene`.
 fn rows_of(entry: &Entry, scene: &Scene, pose: &Pose) -> Rows {
-    let cx = Context {
+    let cx: Context = Context {
         scene,
         networks: None,
     };

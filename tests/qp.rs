@@ -365,7 +365,7 @@ fn the_qp_methods_own_programs_near_joint_limits_agree_with_clarabel() {
             continue;
         };
         let xdot = [rng.range(-0.2, 0.2), rng.range(-0.2, 0.2)];
-        let cx = Context {
+        let cx: Context = Context {
             scene: &scene,
             networks: None,
         };

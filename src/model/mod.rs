@@ -18,7 +18,7 @@ mod space;
 
 use std::fmt::Debug;
 
-use crate::arm::JointLimits;
+use crate::arm::{JointLimits, RateLimits};
 use crate::error::Result;
 use crate::ik::DampingSchedule;
 use crate::scene::{JointWeighting, Param, Params};
@@ -32,6 +32,11 @@ pub trait Model<const M: usize>: PhiAlgebra<M> + Clone + Debug + Send + Sync + '
     /// A planning problem for this arm: the arm, its start, its path, its
     /// obstacles and the methods' parameters.
     type Scene: Scene<Self> + Clone + Debug + Send + Sync;
+    /// One link (a capsule) and one obstacle at a pose: what the methods
+    /// beyond the paper read.
+    type Pair: Clearance<Self::Pose> + Copy + Debug + Send + Sync;
+    /// The pairs of a pose within a distance, in a buffer that is reused.
+    type Pairs: Clone + Debug + Send + Sync;
 
     /// The number of joints `n`.
     fn dof(&self) -> usize;
@@ -42,6 +47,8 @@ pub trait Model<const M: usize>: PhiAlgebra<M> + Clone + Debug + Send + Sync + '
     fn update(&self, pose: &mut Self::Pose, theta: &[f64]) -> Result<()>;
     /// The joint limits, if the arm has them.
     fn joint_limits(&self) -> Option<&JointLimits>;
+    /// The joints' own rate limits, if the arm has them.
+    fn rate_limits(&self) -> Option<&RateLimits>;
 
     /// The obstacles' centres: the points `O` of eqs. (14)-(16).
     fn obstacle_centres(scene: &Self::Scene) -> impl Iterator<Item = [f64; M]> + '_;
@@ -56,6 +63,18 @@ pub trait Model<const M: usize>: PhiAlgebra<M> + Clone + Debug + Send + Sync + '
         scratch: &mut [f64],
         v: &mut [f64],
     );
+
+    /// A pairs buffer with room for the pairs an `n`-joint arm has with a
+    /// few obstacles, so that refreshing it allocates nothing.
+    fn pairs(n: usize) -> Self::Pairs;
+    /// How many pairs [`Model::pairs`] has room for.
+    fn most_pairs(n: usize) -> usize;
+    /// Every pair of `pose` closer than `within`: the scene's obstacles'
+    /// (obstacle by obstacle, each from the first link), then the ground's
+    /// where the scene has one.
+    fn update_pairs(scene: &Self::Scene, pose: &Self::Pose, within: f64, pairs: &mut Self::Pairs);
+    /// The pairs [`Model::update_pairs`] found.
+    fn pair_list(pairs: &Self::Pairs) -> &[Self::Pair];
 
     /// The angles the pose was computed at.
     fn theta(pose: &Self::Pose) -> &[f64];
@@ -86,6 +105,9 @@ pub trait Model<const M: usize>: PhiAlgebra<M> + Clone + Debug + Send + Sync + '
         delta: f64,
         out: &mut [f64],
     ) -> Result<()>;
+    /// `(J J^T + delta I)^-1 b`: the small symmetric solve of eq. (18)
+    /// (closed form for `M = 2`, Cholesky for 3).
+    fn solve_jjt(pose: &Self::Pose, delta: f64, b: [f64; M]) -> Result<[f64; M]>;
     /// Eq. (18) weighted by a diagonal `W` given as its inverse `winv`:
     /// `(J W^-1 J^T + delta I) varphi = Xdot - J W^-1 v`,
     /// `theta_dot = W^-1 (J^T varphi + v)`.
@@ -122,6 +144,23 @@ pub trait PhiAlgebra<const M: usize> {
         v: &[f64],
         out: &mut [f64],
     ) -> Result<()>;
+}
+
+/// A link and what it keeps clear of, at a pose.
+pub trait Clearance<P> {
+    /// The signed distance between the link's surface and the obstacle's
+    /// (m; negative inside).
+    fn clearance(&self) -> f64;
+    /// `n^T J_p` into `row` (`n` entries): how fast the clearance grows per
+    /// unit rate of each joint.
+    fn row_into(&self, pose: &P, row: &mut [f64]);
+}
+
+/// The pair of `pairs` with the smallest clearance, if any.
+pub fn closest<P, C: Clearance<P>>(pairs: &[C]) -> Option<&C> {
+    pairs
+        .iter()
+        .min_by(|a, b| a.clearance().total_cmp(&b.clearance()))
 }
 
 /// What every method's rule reads of a scene, whatever the arm.

@@ -2,8 +2,9 @@
 //! ([`crate::kinematics::Pose`]) and eq. (18)'s closed-form `2 x 2` solve
 //! ([`crate::ik`]).
 
-use super::{Model, PhiAlgebra, Scene};
-use crate::arm::{Arm, JointLimits};
+use super::{Clearance, Model, PhiAlgebra, Scene};
+use crate::arm::{Arm, JointLimits, RateLimits};
+use crate::clearance::{Pair, Pairs};
 use crate::error::Result;
 use crate::ik::{self, DampingSchedule};
 use crate::kinematics::Pose;
@@ -13,6 +14,8 @@ use crate::scene::{self, JointWeighting, Params};
 impl Model<2> for Arm {
     type Pose = Pose;
     type Scene = scene::Scene;
+    type Pair = Pair;
+    type Pairs = Pairs;
 
     fn dof(&self) -> usize {
         Arm::dof(self)
@@ -25,6 +28,25 @@ impl Model<2> for Arm {
     }
     fn joint_limits(&self) -> Option<&JointLimits> {
         Arm::joint_limits(self)
+    }
+    fn rate_limits(&self) -> Option<&RateLimits> {
+        Arm::rate_limits(self)
+    }
+    fn pairs(n: usize) -> Pairs {
+        Pairs::with_capacity(Self::most_pairs(n))
+    }
+    /// 8 obstacles per link before the buffer grows.
+    fn most_pairs(n: usize) -> usize {
+        8 * n
+    }
+    fn update_pairs(scene: &scene::Scene, pose: &Pose, within: f64, pairs: &mut Pairs) {
+        pairs.update(pose, &scene.obstacles, within);
+        if let Some(post) = scene.ground() {
+            pairs.add_ground(pose, post, within);
+        }
+    }
+    fn pair_list(pairs: &Pairs) -> &[Pair] {
+        pairs.as_slice()
     }
     fn obstacle_centres(scene: &scene::Scene) -> impl Iterator<Item = [f64; 2]> + '_ {
         scene.obstacles.iter().map(|o| o.centre)
@@ -91,6 +113,11 @@ impl Model<2> for Arm {
         ik::theta_dot_symmetric_into(pose.jacobian(), xdot, v, delta, out)
     }
     #[inline]
+    fn solve_jjt(pose: &Pose, delta: f64, b: [f64; 2]) -> Result<[f64; 2]> {
+        let [a11, a12, a22] = pose.jjt();
+        ik::solve_spd2([a11 + delta, a12, a22 + delta], b)
+    }
+    #[inline]
     fn eq18_weighted(
         pose: &Pose,
         winv: &[f64],
@@ -100,6 +127,17 @@ impl Model<2> for Arm {
         out: &mut [f64],
     ) -> Result<()> {
         ik::theta_dot_weighted_into(pose.jacobian(), winv, xdot, v, delta, out)
+    }
+}
+
+impl Clearance<Pose> for Pair {
+    #[inline]
+    fn clearance(&self) -> f64 {
+        self.clearance
+    }
+    #[inline]
+    fn row_into(&self, pose: &Pose, row: &mut [f64]) {
+        self.rate_row(pose, row);
     }
 }
 

@@ -2,13 +2,15 @@
 //! ([`crate::space::SpacePose`]) and eq. (18) with a `3 x 3` Cholesky
 //! solve.
 
-use super::{Model, PhiAlgebra, Scene};
-use crate::arm::JointLimits;
+use super::{Clearance, Model, PhiAlgebra, Scene};
+use crate::arm::{JointLimits, RateLimits};
 use crate::error::Result;
 use crate::ik::DampingSchedule;
 use crate::scene::{JointWeighting, Params, SpaceScene};
 use crate::space::linalg::{smallest_singular_value3, solve_spd3};
-use crate::space::{criterion, cross, dot, manipulability, phi, sub, Chain, SpacePose};
+use crate::space::{
+    criterion, cross, dot, manipulability, phi, sub, Chain, SpacePair, SpacePairs, SpacePose,
+};
 
 /// The damping (m^2) of the pull's inverse in space: the elbow's
 /// Jacobian `J_k` loses rank where its levers line up.
@@ -17,6 +19,8 @@ pub const PULL_DAMPING: f64 = 1e-3;
 impl Model<3> for Chain {
     type Pose = SpacePose;
     type Scene = SpaceScene;
+    type Pair = SpacePair;
+    type Pairs = SpacePairs;
 
     fn dof(&self) -> usize {
         Chain::dof(self)
@@ -29,6 +33,25 @@ impl Model<3> for Chain {
     }
     fn joint_limits(&self) -> Option<&JointLimits> {
         Chain::joint_limits(self)
+    }
+    fn rate_limits(&self) -> Option<&RateLimits> {
+        Chain::rate_limits(self)
+    }
+    fn pairs(n: usize) -> SpacePairs {
+        SpacePairs::with_capacity(Self::most_pairs(n))
+    }
+    /// Every pair a chain can have ([`SpacePairs::most`]).
+    fn most_pairs(n: usize) -> usize {
+        SpacePairs::most(n)
+    }
+    fn update_pairs(scene: &SpaceScene, pose: &SpacePose, within: f64, pairs: &mut SpacePairs) {
+        pairs.update(&scene.chain, pose, &scene.spheres, within);
+        if scene.floor {
+            pairs.add_floor(&scene.chain, pose, within);
+        }
+    }
+    fn pair_list(pairs: &SpacePairs) -> &[SpacePair] {
+        pairs.as_slice()
     }
     fn obstacle_centres(scene: &SpaceScene) -> impl Iterator<Item = [f64; 3]> + '_ {
         scene.spheres.iter().map(|s| s.centre)
@@ -129,6 +152,13 @@ impl Model<3> for Chain {
         }
         Ok(())
     }
+    fn solve_jjt(pose: &SpacePose, delta: f64, b: [f64; 3]) -> Result<[f64; 3]> {
+        let mut a = pose.jjt();
+        for (i, row) in a.iter_mut().enumerate() {
+            row[i] += delta;
+        }
+        solve_spd3(a, b)
+    }
     fn eq18_weighted(
         pose: &SpacePose,
         winv: &[f64],
@@ -156,6 +186,17 @@ impl Model<3> for Chain {
             *o = w * ((col[0] * phi[0] + col[1] * phi[1] + col[2] * phi[2]) + vi);
         }
         Ok(())
+    }
+}
+
+impl Clearance<SpacePose> for SpacePair {
+    #[inline]
+    fn clearance(&self) -> f64 {
+        self.distance
+    }
+    #[inline]
+    fn row_into(&self, pose: &SpacePose, row: &mut [f64]) {
+        self.gradient_into(pose, row);
     }
 }
 

@@ -68,7 +68,7 @@ impl Planner {
             ..
         } = self;
         ws.stage.update(&scene.arm, theta)?;
-        let cx = Context {
+        let cx: Context = Context {
             scene,
             networks: networks.as_deref(),
         };
@@ -98,7 +98,7 @@ impl Planner {
             ws,
             ..
         } = self;
-        let cx = Context {
+        let cx: Context = Context {
             scene,
             networks: networks.as_deref(),
         };

@@ -1,7 +1,8 @@
 //! A quadratic program with velocity dampers, the modern reactive
 //! controller (NEO, Haviland and Corke 2021; the collision-avoidance limits
 //! of mink and dm_robotics). Decision variables `theta_dot` (n) and a task
-//! slack `s` (2):
+//! slack `s` (`m`: 2 for a hand in the plane, 3 in space; one program for
+//! every arm model):
 //!
 //! minimise `(1/2) |theta_dot - v|^2 + (w/2) |s|^2`
 //! subject to `J theta_dot + s = Xdot` (the commanded task velocity, the
@@ -39,20 +40,15 @@
 
 pub mod constraints;
 
-use crate::space::Chain;
-use crate::model::Model;
-use self::constraints::SpaceConstraint;
 use super::influence::{INFLUENCE, STOP_DISTANCE};
-use super::paper::SIGN_SMOOTHING;
-use super::paper::{obstacle_vector, V};
-use super::paper::{DELTA, LAMBDA};
-use super::{Context, Entry, Group, Method, MethodInfo, Needs, Note, Rule};
+use super::paper::{DELTA, LAMBDA, SIGN_SMOOTHING};
+use super::{Context, Entry, Group, Method, MethodInfo, Needs, Note, Registered, Rule};
+use crate::arm::Arm;
 use crate::error::{Error, Result};
-use crate::ik;
-use crate::kinematics::Pose;
+use crate::model::{Model, Scene as _};
 use crate::qp as solver;
 use crate::scene::{Param, Scale};
-use crate::space::{criterion, SpacePairs, SpacePose};
+use crate::space::Chain;
 use constraints::{Constraint, Rows};
 use constraints::{DAMPER_GAIN, LIMIT_GAIN, LIMIT_INFLUENCE, LIMIT_STOP, RATE_LIMIT};
 
@@ -106,16 +102,15 @@ static ENTRY: Entry = Entry {
             &DELTA,
         ],
     },
-    rule: |n| Box::new(Qp::new(n)),
-    space: Some(space_rule),
+    rule: rule::<Arm, 2>,
+    space: Some(rule::<Chain, 3>),
 };
 
 /// The program's scratch space, sized for an `n`-joint arm and grown
 /// (once) when more rows appear than ever before.
-#[derive(Clone)]
-struct Qp {
+struct Qp<A: Model<M>, const M: usize> {
     /// The constraints of [`constraints::ALL`], each with its scratch space.
-    constraints: Vec<Box<dyn Constraint>>,
+    constraints: Vec<Box<dyn Constraint<A, M>>>,
     /// Their rows at the current pose, in the order of the constraints.
     rows: Rows,
     /// The area vector `v`, and one obstacle's gradient.
@@ -130,41 +125,75 @@ struct Qp {
     ws: solver::Workspace,
 }
 
-impl Qp {
-    fn new(n: usize) -> Self {
-        // Dampers for 8 obstacles per link, the joint-limit dampers and
-        // the rate limits.
-        let m = 8 * n + 2 * n + 2 * n;
+impl<A: Model<M>, const M: usize> Clone for Qp<A, M> {
+    fn clone(&self) -> Self {
         Self {
-            constraints: constraints::ALL.iter().map(|c| (c.build)(n)).collect(),
-            rows: Rows::with_capacity(n, m),
-            v: vec![0.0; n],
-            g: vec![0.0; n],
-            h: vec![0.0; n * n],
-            lin: vec![0.0; n],
-            a: Vec::with_capacity(m * n),
-            b: Vec::with_capacity(m),
-            ws: solver::Workspace::with_capacity(n, m),
+            constraints: self.constraints.clone(),
+            rows: self.rows.clone(),
+            v: self.v.clone(),
+            g: self.g.clone(),
+            h: self.h.clone(),
+            lin: self.lin.clone(),
+            a: self.a.clone(),
+            b: self.b.clone(),
+            ws: self.ws.clone(),
         }
     }
-
 }
 
-impl Rule for Qp {
+/// The rule of `qp` for an `n`-joint arm.
+fn rule<A: Registered<M>, const M: usize>(n: usize) -> Box<dyn Rule<A, M>> {
+    // Dampers for the model's pairs, the joint-limit dampers and the rate
+    // limits.
+    let m = A::most_pairs(n) + 2 * n + 2 * n;
+    Box::new(Qp::<A, M> {
+        constraints: constraints::ALL
+            .iter()
+            .map(|c| A::constraint(c)(n))
+            .collect(),
+        rows: Rows::with_capacity(n, m),
+        v: vec![0.0; n],
+        g: vec![0.0; n],
+        h: vec![0.0; n * n],
+        lin: vec![0.0; n],
+        a: Vec::with_capacity(m * n),
+        b: Vec::with_capacity(m),
+        ws: solver::Workspace::with_capacity(n, m),
+    })
+}
+
+/// `a . b` summed left to right from the first product (the order of the
+/// written-out `a0 b0 + a1 b1 (+ a2 b2)`).
+#[inline]
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut sum = a[0] * b[0];
+    for (x, y) in a.iter().zip(b).skip(1) {
+        sum += x * y;
+    }
+    sum
+}
+
+impl<A: Model<M>, const M: usize> Rule<A, M> for Qp<A, M> {
     fn theta_dot(
         &mut self,
-        cx: &Context<'_>,
-        pose: &Pose,
-        xdot: [f64; 2],
+        cx: &Context<'_, A, M>,
+        pose: &A::Pose,
+        xdot: [f64; M],
         out: &mut [f64],
     ) -> Result<Note> {
-        let n = pose.dof();
-        obstacle_vector(QP, V::Exact, cx, pose, &mut self.g, &mut self.v)?;
+        let n = out.len();
         let s = cx.scene;
-        let damping = 1.0 / s.param(&SLACK_WEIGHT) + s.param(&DELTA) + cx.scheduled_delta(pose);
-        let jac = pose.jacobian();
+        A::obstacle_vector_into(
+            s,
+            pose,
+            s.value(&LAMBDA),
+            s.value(&SIGN_SMOOTHING),
+            &mut self.g,
+            &mut self.v,
+        );
+        let damping = 1.0 / s.value(&SLACK_WEIGHT) + s.value(&DELTA) + cx.scheduled_delta(pose);
         // The unconstrained minimum: eq. (5) with damped least squares.
-        ik::theta_dot_symmetric_into(jac, xdot, &self.v, damping, out)?;
+        A::eq18(pose, xdot, &self.v, damping, out)?;
         // Every constraint's rows at this pose.
         self.rows.clear(n);
         for constraint in &mut self.constraints {
@@ -176,13 +205,12 @@ impl Rule for Qp {
         // Some row binds: the program over theta_dot,
         // H = I + w' J^T J, g = v + w' J^T Xdot.
         let w = 1.0 / damping;
-        for r in 0..n {
-            let (jr0, jr1) = (jac[2 * r], jac[2 * r + 1]);
-            for c in 0..n {
-                let jtj = jr0 * jac[2 * c] + jr1 * jac[2 * c + 1];
-                self.h[r * n + c] = f64::from(u8::from(r == c)) + w * jtj;
+        let jac = A::jacobian(pose);
+        for (r, jr) in jac.chunks_exact(M).enumerate() {
+            for (c, jc) in jac.chunks_exact(M).enumerate() {
+                self.h[r * n + c] = f64::from(u8::from(r == c)) + w * dot(jr, jc);
             }
-            self.lin[r] = self.v[r] + w * (jr0 * xdot[0] + jr1 * xdot[1]);
+            self.lin[r] = self.v[r] + w * dot(jr, &xdot);
         }
         solve_relaxing(
             &mut self.rows,
@@ -193,67 +221,22 @@ impl Rule for Qp {
         )
     }
 
-    fn null_space(&mut self, cx: &Context<'_>, pose: &Pose, v: &mut [f64]) -> Result<bool> {
-        obstacle_vector(QP, V::Exact, cx, pose, &mut self.g, v)?;
+    fn null_space(&mut self, cx: &Context<'_, A, M>, pose: &A::Pose, v: &mut [f64]) -> Result<bool> {
+        let s = cx.scene;
+        A::obstacle_vector_into(
+            s,
+            pose,
+            s.value(&LAMBDA),
+            s.value(&SIGN_SMOOTHING),
+            &mut self.g,
+            v,
+        );
         Ok(true)
     }
 
-    fn boxed_clone(&self) -> Box<dyn Rule> {
+    fn boxed_clone(&self) -> Box<dyn Rule<A, M>> {
         Box::new(self.clone())
     }
-}
-
-// ---- In space ----------------------------------------------------------
-//
-// The QP with velocity dampers in space: the program of `methods/qp`
-// (its module documentation has the formulas) with the hand's `3 x n`
-// Jacobian, the area vector of the criterion in space
-// ([`crate::space::criterion`]) and the spatial rows of every constraint
-// of [`constraints::ALL`] (each constraint's file: the dampers of the
-// capsule pairs and the floor, the joint-limit dampers, the rate limit).
-//
-// With no row binding, `theta_dot = v + J^T (J J^T + I / w')^-1 (Xdot -
-// J v)`, eq. (18) with `m = 3`; where one binds, the task slack
-// `s = Xdot - J theta_dot` (3 entries) eliminated,
-// `H = I + w' J^T J`, `g = v + w' J^T Xdot`, `w' = 1 / (1 / w + delta)`,
-// solved by [`crate::qp::solve`] over `A = -G`, `b = -h`; where no rate
-// satisfies every row, every bound relaxed to `max(h, 0)`.
-//
-// The solve, its check of every row and the relaxation are the planar
-// program's (`solve_relaxing`).
-
-/// The spatial program's scratch space, sized for an `n`-joint chain and
-/// grown (once) when more rows appear than ever before.
-#[derive(Clone)]
-struct SpaceQp {
-    constraints: Vec<Box<dyn SpaceConstraint>>,
-    rows: Rows,
-    /// The area vector `v`.
-    v: Vec<f64>,
-    /// `H` (row-major `n x n`) and the linear term.
-    h: Vec<f64>,
-    lin: Vec<f64>,
-    /// The rows as the solver takes them, `A x >= b`.
-    a: Vec<f64>,
-    b: Vec<f64>,
-    ws: solver::Workspace,
-}
-
-/// The rule of `qp` for an `n`-joint chain.
-pub(in crate::planner::methods) fn space_rule(n: usize) -> Box<dyn Rule<Chain, 3>> {
-    // Every damper a chain can have, the joint-limit dampers and the
-    // rate limits: the rows never grow.
-    let m = SpacePairs::most(n) + 2 * n + 2 * n;
-    Box::new(SpaceQp {
-        constraints: constraints::ALL.iter().map(|c| (c.space)(n)).collect(),
-        rows: Rows::with_capacity(n, m),
-        v: vec![0.0; n],
-        h: vec![0.0; n * n],
-        lin: vec![0.0; n],
-        a: Vec::with_capacity(m * n),
-        b: Vec::with_capacity(m),
-        ws: solver::Workspace::with_capacity(n, m),
-    })
 }
 
 /// How far rates may break a row, relative to `1 + |h|`, before the
@@ -323,58 +306,5 @@ fn solve_relaxing(
             out.iter_mut().for_each(|t| *t = 0.0);
             Ok(relaxed)
         }
-    }
-}
-
-impl Rule<Chain, 3> for SpaceQp {
-    fn theta_dot(
-        &mut self,
-        cx: &Context<'_, Chain, 3>,
-        pose: &SpacePose,
-        xdot: [f64; 3],
-        out: &mut [f64],
-    ) -> Result<Note> {
-        let n = pose.dof();
-        let s = cx.scene;
-        criterion::null_space_vector_into(
-            &s.chain,
-            pose,
-            s.spheres.iter().map(|sp| sp.centre),
-            s.param(&LAMBDA),
-            s.param(&SIGN_SMOOTHING),
-            &mut self.v,
-        );
-        let damping = 1.0 / s.param(&SLACK_WEIGHT) + s.param(&DELTA) + cx.scheduled_delta(pose);
-        // The unconstrained minimum: eq. (18) with m = 3.
-        Chain::eq18(pose, xdot, &self.v, damping, out)?;
-        self.rows.clear(n);
-        for constraint in &mut self.constraints {
-            constraint.rows(cx, pose, &mut self.rows)?;
-        }
-        if !self.rows.broken_by(out) {
-            return Ok(Note::default());
-        }
-        // H = I + w' J^T J, g = v + w' J^T Xdot over J's three rows.
-        let w = 1.0 / damping;
-        let jac = pose.jacobian();
-        for (r, jr) in jac.chunks_exact(3).enumerate() {
-            for (c, jc) in jac.chunks_exact(3).enumerate() {
-                let jtj = jr[0] * jc[0] + jr[1] * jc[1] + jr[2] * jc[2];
-                self.h[r * n + c] = f64::from(u8::from(r == c)) + w * jtj;
-            }
-            let jtx = jr[0] * xdot[0] + jr[1] * xdot[1] + jr[2] * xdot[2];
-            self.lin[r] = self.v[r] + w * jtx;
-        }
-        solve_relaxing(
-            &mut self.rows,
-            (&self.h, &self.lin),
-            (&mut self.a, &mut self.b),
-            &mut self.ws,
-            out,
-        )
-    }
-
-    fn boxed_clone(&self) -> Box<dyn Rule<Chain, 3>> {
-        Box::new(self.clone())
     }
 }

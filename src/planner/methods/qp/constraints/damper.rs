@@ -12,17 +12,17 @@
 //! `G = -n^T J_p`, `h = xi (c - d_s) / (d_i - d_s)`, one per pair, obstacle
 //! by obstacle, each from the first link.
 //!
-//! In space ([`SpaceDamper`]) the pairs are a moving capsule and a sphere,
-//! or the floor `z = 0` where the scene has one
-//! ([`crate::space::SpacePairs`]: signed surface distance `d`, normal `n`,
-//! point Jacobian `J_Q`), with the same bound:
-//! `n . J_Q theta_dot >= -xi (d - d_s) / (d_i - d_s)`.
+//! In space the pairs are a moving capsule and a sphere, or the floor
+//! `z = 0` where the scene has one ([`crate::space::SpacePairs`]: signed
+//! surface distance `d`, normal `n`, point Jacobian `J_Q`), with the same
+//! bound: one constraint for every arm, over its model's pairs.
 
 use super::{Constraint, ConstraintInfo, Entry, Rows};
-use crate::clearance::Pairs;
+use crate::arm::Arm;
 use crate::error::Result;
-use crate::kinematics::Pose;
+use crate::model::{Clearance, Model, Scene as _};
 use crate::planner::methods::Context;
+use crate::space::Chain;
 use crate::planner::methods::{INFLUENCE, STOP_DISTANCE};
 use crate::scene::{Param, Params, Scale};
 
@@ -34,8 +34,8 @@ pub static DAMPER: Entry = Entry {
         description: "n^T J_p θ̇ ≥ −ξ (c − d_s) / (d_i − d_s) for every link-obstacle pair with c < d_i",
         params: PARAMS,
     },
-    build: |n| Box::new(Damper::new(n)),
-    space: |n| Box::new(space::SpaceDamper::new(n)),
+    build: build::<Arm, 2>,
+    space: build::<Chain, 3>,
 };
 
 /// Damper gain `xi` (m/s): how fast a link may approach an obstacle at the
@@ -89,36 +89,36 @@ impl Gains {
 
 /// The pairs of a pose within the influence distance, kept between poses
 /// (grown once when more pairs appear than ever before).
-#[derive(Clone)]
-struct Damper {
-    pairs: Pairs,
+struct Damper<A: Model<M>, const M: usize> {
+    pairs: A::Pairs,
 }
 
-impl Damper {
-    fn new(n: usize) -> Self {
-        // 8 obstacles per link before the buffer grows.
+impl<A: Model<M>, const M: usize> Clone for Damper<A, M> {
+    fn clone(&self) -> Self {
         Self {
-            pairs: Pairs::with_capacity(8 * n),
+            pairs: self.pairs.clone(),
         }
     }
 }
 
-impl Constraint for Damper {
-    fn rows(&mut self, cx: &Context<'_>, pose: &Pose, rows: &mut Rows) -> Result<()> {
-        let gains = Gains::of(&cx.scene.params);
-        self.pairs.update(pose, &cx.scene.obstacles, gains.influence);
-        if let Some(post) = cx.scene.ground() {
-            self.pairs.add_ground(pose, post, gains.influence);
-        }
-        for pair in self.pairs.as_slice() {
-            let row = rows.push(gains.bound(pair.clearance));
-            pair.rate_row(pose, row);
+/// The dampers of an `n`-joint arm.
+fn build<A: Model<M>, const M: usize>(n: usize) -> Box<dyn Constraint<A, M>> {
+    Box::new(Damper::<A, M> { pairs: A::pairs(n) })
+}
+
+impl<A: Model<M>, const M: usize> Constraint<A, M> for Damper<A, M> {
+    fn rows(&mut self, cx: &Context<'_, A, M>, pose: &A::Pose, rows: &mut Rows) -> Result<()> {
+        let gains = Gains::of(cx.scene.params());
+        A::update_pairs(cx.scene, pose, gains.influence, &mut self.pairs);
+        for pair in A::pair_list(&self.pairs) {
+            let row = rows.push(gains.bound(pair.clearance()));
+            pair.row_into(pose, row);
             row.iter_mut().for_each(|g| *g = -*g);
         }
         Ok(())
     }
 
-    fn boxed_clone(&self) -> Box<dyn Constraint> {
+    fn boxed_clone(&self) -> Box<dyn Constraint<A, M>> {
         Box::new(self.clone())
     }
 
@@ -127,60 +127,10 @@ impl Constraint for Damper {
     }
 }
 
-/// The dampers for a chain in space.
-mod space {
-    use super::super::{ConstraintInfo, Rows, SpaceConstraint};
-    use super::{Gains, DAMPER};
-    use crate::error::Result;
-    use crate::planner::methods::Context;
-    use crate::space::{Chain, SpacePairs, SpacePose};
-
-    /// The capsule pairs of a pose within the influence distance, kept
-    /// between poses.
-    #[derive(Clone)]
-    pub struct SpaceDamper {
-        pairs: SpacePairs,
-    }
-
-    impl SpaceDamper {
-        pub fn new(n: usize) -> Self {
-            // Every pair a chain can have: the buffer never grows.
-            Self {
-                pairs: SpacePairs::with_capacity(SpacePairs::most(n)),
-            }
-        }
-    }
-
-    impl SpaceConstraint for SpaceDamper {
-        fn rows(&mut self, cx: &Context<'_, Chain, 3>, pose: &SpacePose, rows: &mut Rows) -> Result<()> {
-            let scene = cx.scene;
-            let gains = Gains::of(&scene.params);
-            self.pairs
-                .update(&scene.chain, pose, &scene.spheres, gains.influence);
-            if scene.floor {
-                self.pairs.add_floor(&scene.chain, pose, gains.influence);
-            }
-            for pair in self.pairs.as_slice() {
-                let row = rows.push(gains.bound(pair.distance));
-                pair.gradient_into(pose, row);
-                row.iter_mut().for_each(|g| *g = -*g);
-            }
-            Ok(())
-        }
-
-        fn boxed_clone(&self) -> Box<dyn SpaceConstraint> {
-            Box::new(self.clone())
-        }
-
-        fn info(&self) -> &'static ConstraintInfo {
-            &DAMPER.info
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::kinematics::Pose;
     use crate::obstacle::Obstacle;
     use crate::scene::Scene;
 
@@ -193,13 +143,13 @@ mod tests {
         let mut scene = Scene::task1();
         scene.obstacles = vec![Obstacle::new(0.15, 1.5, 0.05)];
         let pose = Pose::new(&scene.arm, &[0.0, 0.0, 0.0]).unwrap();
-        let cx = Context {
+        let cx: Context = Context {
             scene: &scene,
             networks: None,
         };
         let mut rows = Rows::with_capacity(3, 0);
         rows.clear(3);
-        Damper::new(3).rows(&cx, &pose, &mut rows).unwrap();
+        build::<Arm, 2>(3).rows(&cx, &pose, &mut rows).unwrap();
         assert_eq!(rows.len(), 1, "only the second link is within d_i = 0.3");
         // n^T J_p: column i <= link is (p_y - P(i-1)_y, -(p_x - P(i-1)_x))
         // = (1.5 - 0.5, 0) and (1.5 - 1.1, 0); n^T of those is -1.0, -0.4,
@@ -218,13 +168,13 @@ mod tests {
         let mut scene = Scene::task1();
         scene.obstacles = vec![Obstacle::new(1.5, 1.5, 0.05)];
         let pose = Pose::new(&scene.arm, &[0.0, 0.0, 0.0]).unwrap();
-        let cx = Context {
+        let cx: Context = Context {
             scene: &scene,
             networks: None,
         };
         let mut rows = Rows::with_capacity(3, 4);
         rows.clear(3);
-        Damper::new(3).rows(&cx, &pose, &mut rows).unwrap();
+        build::<Arm, 2>(3).rows(&cx, &pose, &mut rows).unwrap();
         assert!(rows.is_empty());
     }
 }

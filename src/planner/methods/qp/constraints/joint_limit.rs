@@ -20,9 +20,9 @@
 
 use super::{Constraint, ConstraintInfo, Entry, Rows};
 use crate::error::Result;
-use crate::kinematics::Pose;
-use crate::planner::methods::Context;
 use crate::arm::JointLimits;
+use crate::model::{Model, Scene as _};
+use crate::planner::methods::Context;
 use crate::scene::{Param, Params, Scale};
 
 /// The joint-limit dampers (`joint_limit`).
@@ -122,35 +122,14 @@ fn limit_rows(params: &Params, limits: Option<&JointLimits>, theta: &[f64], rows
     }
 }
 
-impl Constraint for JointLimit {
-    fn rows(&mut self, cx: &Context<'_>, pose: &Pose, rows: &mut Rows) -> Result<()> {
+impl<A: Model<M>, const M: usize> Constraint<A, M> for JointLimit {
+    fn rows(&mut self, cx: &Context<'_, A, M>, pose: &A::Pose, rows: &mut Rows) -> Result<()> {
         let scene = cx.scene;
-        limit_rows(&scene.params, scene.arm.joint_limits(), pose.theta(), rows);
+        limit_rows(scene.params(), scene.arm().joint_limits(), A::theta(pose), rows);
         Ok(())
     }
 
-    fn boxed_clone(&self) -> Box<dyn Constraint> {
-        Box::new(*self)
-    }
-
-    fn info(&self) -> &'static ConstraintInfo {
-        &JOINT_LIMIT.info
-    }
-}
-
-impl super::SpaceConstraint for JointLimit {
-    fn rows(
-        &mut self,
-        cx: &crate::planner::methods::Context<'_, crate::space::Chain, 3>,
-        pose: &crate::space::SpacePose,
-        rows: &mut Rows,
-    ) -> Result<()> {
-        let scene = cx.scene;
-        limit_rows(&scene.params, scene.chain.joint_limits(), pose.theta(), rows);
-        Ok(())
-    }
-
-    fn boxed_clone(&self) -> Box<dyn super::SpaceConstraint> {
+    fn boxed_clone(&self) -> Box<dyn Constraint<A, M>> {
         Box::new(*self)
     }
 
@@ -162,6 +141,7 @@ impl super::SpaceConstraint for JointLimit {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::kinematics::Pose;
     use crate::scene::Scene;
 
     #[test]
@@ -171,7 +151,7 @@ mod tests {
         scene.arm = scene.arm.clone().with_limits(Some(limits), None).unwrap();
         // theta_2 = 1.8: 0.3 rad below its upper limit, 3.8 above its lower.
         let pose = Pose::new(&scene.arm, &[0.5, 1.8, 0.0]).unwrap();
-        let cx = Context {
+        let cx: Context = Context {
             scene: &scene,
             networks: None,
         };
@@ -201,7 +181,7 @@ mod tests {
     fn an_arm_without_limits_gets_no_rows() {
         let scene = Scene::task1();
         let pose = Pose::new(&scene.arm, &scene.theta0).unwrap();
-        let cx = Context {
+        let cx: Context = Context {
             scene: &scene,
             networks: None,
         };

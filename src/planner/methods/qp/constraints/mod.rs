@@ -9,18 +9,17 @@
 //! constraint of [`ALL`] once per planner and asks each for its rows at
 //! every rate evaluation, in the order of [`ALL`].
 //!
-//! In space (feature `space`) each constraint has a second type beside
-//! the planar one in its file, a [`SpaceConstraint`] with the same rows
-//! for a chain's [`SpacePose`] and the same parameters, built by
-//! [`Entry::space`]; the spatial program (`methods/qp/mod.rs`, "In space") stacks
-//! them in the same order.
+//! A constraint is written once for every arm model ([`Constraint<A, M>`]
+//! over [`crate::model::Model`]); [`Entry::build`] builds it for the planar
+//! arm and [`Entry::space`] for a chain in space, and the program stacks
+//! them in the same order for both.
 
-use crate::space::Chain;
+use crate::arm::Arm;
 use crate::error::Result;
-use crate::kinematics::Pose;
+use crate::model::Model;
 use crate::planner::methods::Context;
 use crate::scene::Param;
-use crate::space::SpacePose;
+use crate::space::Chain;
 
 /// One line per constraint, in the order of the program's rows: declares
 /// the constraint's module and puts its entry into [`ALL`].
@@ -60,51 +59,34 @@ pub struct ConstraintInfo {
 pub struct Entry {
     /// What the constraint is.
     pub info: ConstraintInfo,
-    /// Builds the constraint for an `n`-joint arm.
-    pub build: fn(n: usize) -> Box<dyn Constraint>,
+    /// Builds the constraint for an `n`-joint planar arm.
+    pub build: Build<Arm, 2>,
     /// Builds the constraint for an `n`-joint chain in space.
-    pub space: fn(n: usize) -> Box<dyn SpaceConstraint>,
+    pub space: Build<Chain, 3>,
 }
 
-/// One kind of linear inequality on the joint rates: its rows
-/// `G theta_dot <= h` at a pose, appended to the program's [`Rows`] with no
-/// allocation (the constraint owns its scratch space, the program the
-/// rows).
-pub trait Constraint: Send + Sync {
+/// How a constraint is built, with its scratch space, for an `n`-joint
+/// arm `A`.
+pub type Build<A, const M: usize> = fn(n: usize) -> Box<dyn Constraint<A, M>>;
+
+/// One kind of linear inequality on the joint rates of an arm `A` (the
+/// planar arm by default): its rows `G theta_dot <= h` at a pose, appended
+/// to the program's [`Rows`] with no allocation (the constraint owns its
+/// scratch space, the program the rows).
+pub trait Constraint<A: Model<M> = Arm, const M: usize = 2>: Send + Sync {
     /// Appends this constraint's rows at `pose` (the scene's obstacles and
     /// parameters from `cx`) to `rows`; the rows already there are left as
     /// they are.
-    fn rows(&mut self, cx: &Context<'_>, pose: &Pose, rows: &mut Rows) -> Result<()>;
+    fn rows(&mut self, cx: &Context<'_, A, M>, pose: &A::Pose, rows: &mut Rows) -> Result<()>;
 
     /// A copy with its own scratch space (a cloned planner steps on its own).
-    fn boxed_clone(&self) -> Box<dyn Constraint>;
+    fn boxed_clone(&self) -> Box<dyn Constraint<A, M>>;
 
     /// What it is.
     fn info(&self) -> &'static ConstraintInfo;
 }
 
-impl Clone for Box<dyn Constraint> {
-    fn clone(&self) -> Self {
-        self.boxed_clone()
-    }
-}
-
-/// A constraint for a chain in space: its rows `G theta_dot <= h` at a
-/// [`SpacePose`], appended to `rows` with no allocation, as
-/// [`Constraint::rows`] does for a planar pose.
-pub trait SpaceConstraint: Send + Sync {
-    /// Appends this constraint's rows at `pose` (the scene's spheres,
-    /// floor and parameters from `cx`) to `rows`.
-    fn rows(&mut self, cx: &Context<'_, Chain, 3>, pose: &SpacePose, rows: &mut Rows) -> Result<()>;
-
-    /// A copy with its own scratch space.
-    fn boxed_clone(&self) -> Box<dyn SpaceConstraint>;
-
-    /// What it is.
-    fn info(&self) -> &'static ConstraintInfo;
-}
-
-impl Clone for Box<dyn SpaceConstraint> {
+impl<A: Model<M>, const M: usize> Clone for Box<dyn Constraint<A, M>> {
     fn clone(&self) -> Self {
         self.boxed_clone()
     }

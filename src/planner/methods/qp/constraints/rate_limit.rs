@@ -13,10 +13,10 @@
 //! limits ([`crate::space::Chain::rate_limits`]).
 
 use super::{Constraint, ConstraintInfo, Entry, Rows};
-use crate::error::Result;
-use crate::kinematics::Pose;
-use crate::planner::methods::Context;
 use crate::arm::RateLimits;
+use crate::error::Result;
+use crate::model::{Model, Scene as _};
+use crate::planner::methods::Context;
 use crate::scene::{Param, Params, Scale};
 
 /// The joint-rate limit (`rate_limit`).
@@ -78,35 +78,15 @@ fn rate_rows(params: &Params, own: Option<&RateLimits>, n: usize, rows: &mut Row
 #[derive(Clone, Copy)]
 struct RateLimit;
 
-impl Constraint for RateLimit {
-    fn rows(&mut self, cx: &Context<'_>, pose: &Pose, rows: &mut Rows) -> Result<()> {
+impl<A: Model<M>, const M: usize> Constraint<A, M> for RateLimit {
+    fn rows(&mut self, cx: &Context<'_, A, M>, pose: &A::Pose, rows: &mut Rows) -> Result<()> {
         let scene = cx.scene;
-        rate_rows(&scene.params, scene.arm.rate_limits(), pose.dof(), rows);
+        let n = A::theta(pose).len();
+        rate_rows(scene.params(), scene.arm().rate_limits(), n, rows);
         Ok(())
     }
 
-    fn boxed_clone(&self) -> Box<dyn Constraint> {
-        Box::new(*self)
-    }
-
-    fn info(&self) -> &'static ConstraintInfo {
-        &RATE_BOUNDS.info
-    }
-}
-
-impl super::SpaceConstraint for RateLimit {
-    fn rows(
-        &mut self,
-        cx: &crate::planner::methods::Context<'_, crate::space::Chain, 3>,
-        pose: &crate::space::SpacePose,
-        rows: &mut Rows,
-    ) -> Result<()> {
-        let scene = cx.scene;
-        rate_rows(&scene.params, scene.chain.rate_limits(), pose.dof(), rows);
-        Ok(())
-    }
-
-    fn boxed_clone(&self) -> Box<dyn super::SpaceConstraint> {
+    fn boxed_clone(&self) -> Box<dyn Constraint<A, M>> {
         Box::new(*self)
     }
 
@@ -118,6 +98,7 @@ impl super::SpaceConstraint for RateLimit {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::kinematics::Pose;
     use crate::scene::Scene;
 
     #[test]
@@ -125,7 +106,7 @@ mod tests {
         let mut scene = Scene::task1();
         scene.set_param(&RATE_LIMIT, 0.7).unwrap();
         let pose = Pose::new(&scene.arm, &scene.theta0).unwrap();
-        let cx = Context {
+        let cx: Context = Context {
             scene: &scene,
             networks: None,
         };
@@ -156,7 +137,7 @@ mod tests {
         let rates = "0.5,2,0.7".parse().unwrap();
         scene.arm = scene.arm.clone().with_limits(None, Some(rates)).unwrap();
         let pose = Pose::new(&scene.arm, &scene.theta0).unwrap();
-        let cx = Context {
+        let cx: Context = Context {
             scene: &scene,
             networks: None,
         };
