@@ -94,7 +94,7 @@ pub fn bounds(s: &Session) -> [f64; 4] {
     for ob in &scene.obstacles {
         hold(ob.centre, ob.radius);
     }
-    for p in s.planner().track().outline() {
+    for p in s.planner().outline() {
         hold(p, 0.0);
     }
     b

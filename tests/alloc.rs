@@ -287,13 +287,13 @@ fn a_spatial_planner_moved_and_reset_runs_without_allocating() {
             let Some(mut planner) = planner_with_shipped(&scene, p.key, *m) else {
                 continue;
             };
-            planner.run_summary().unwrap();
+            planner.summary_to_end().unwrap();
             let n = allocations_in(|| {
                 for dz in [0.05, -0.05] {
                     let c = [s.centre[0], s.centre[1], s.centre[2] + dz];
                     planner.set_sphere(0, Sphere::new(c, s.radius)).unwrap();
                     planner.reset();
-                    planner.run_summary().unwrap();
+                    planner.summary_to_end().unwrap();
                 }
             });
             assert_eq!(n, 0, "{} {m}: {n} allocations", p.key);
@@ -308,15 +308,12 @@ fn planner_with_shipped(
     scene: &redundant_ik::scene::SpaceScene,
     key: &str,
     method: redundant_ik::Method,
-) -> Option<redundant_ik::planner::space::SpacePlanner> {
+) -> Option<redundant_ik::Planner<redundant_ik::space::Chain, 3>> {
     use redundant_ik::networks::space::SpaceNetworkSet;
     let nets = if method.uses_networks() {
-        Some(SpaceNetworkSet::for_arm(key)?.load().unwrap())
+        Some(SpaceNetworkSet::for_arm(key)?.load().unwrap() as redundant_ik::planner::Networks<_, 3>)
     } else {
         None
     };
-    Some(
-        redundant_ik::planner::space::SpacePlanner::with_networks(scene.clone(), method, nets)
-            .unwrap(),
-    )
+    Some(redundant_ik::Planner::new(scene.clone(), method, nets).unwrap())
 }

@@ -197,7 +197,7 @@ fn rows_hold_at_every_step(name: &str, scene: &Scene) -> ([usize; 3], usize) {
         } else {
             Vector2::zeros()
         };
-        let rates = p.theta_dot(&theta, &xdot).unwrap();
+        let rates = p.theta_dot(theta.as_slice(), [xdot[0], xdot[1]]).unwrap();
         let pose = Pose::new(&scene.arm, theta.as_slice()).unwrap();
         let t = p.time();
         let relaxed = p.step().unwrap().relaxed;

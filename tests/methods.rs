@@ -153,8 +153,14 @@ fn with_no_obstacle_within_the_influence_distance_each_method_is_the_route_witho
         if !pairs.is_empty() {
             continue;
         }
-        let a = p.theta_dot(&theta, &xdot).unwrap();
-        let b = numerical.theta_dot(&theta, &xdot).unwrap();
+        let a = p
+            .theta_dot(theta.as_slice(), [xdot[0], xdot[1]])
+            .map(DVector::from_vec)
+            .unwrap();
+        let b = numerical
+            .theta_dot(theta.as_slice(), [xdot[0], xdot[1]])
+            .map(DVector::from_vec)
+            .unwrap();
         // Within the rate limit the box constraints are inactive too.
         if b.amax() < scene.param(&RATE_LIMIT) {
             assert!((&a - &b).amax() < 1e-12, "{a} vs {b}");
@@ -202,7 +208,10 @@ fn every_velocity_damper_holds_at_the_qp_solution() {
         let Ok(p) = Planner::new(scene.clone(), QP, None) else {
             continue;
         };
-        let rates = p.theta_dot(&theta, &xdot).unwrap();
+        let rates = p
+            .theta_dot(theta.as_slice(), [xdot[0], xdot[1]])
+            .map(DVector::from_vec)
+            .unwrap();
         let (influence, stop) = (scene.param(&INFLUENCE), scene.param(&STOP_DISTANCE));
         let gain = scene.param(&DAMPER_GAIN);
         let mut pairs = Pairs::default();

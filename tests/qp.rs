@@ -375,7 +375,10 @@ fn the_qp_methods_own_programs_near_joint_limits_agree_with_clarabel() {
             (entry.build)(3).rows(&cx, &pose, &mut rows).unwrap();
         }
         let th = DVector::from_vec(theta.clone());
-        let v = planner.null_space(&th).unwrap();
+        let v = planner
+            .null_space(th.as_slice())
+            .map(DVector::from_vec)
+            .unwrap();
         let problem = Problem {
             n: 3,
             j: pose.jacobian().to_vec(),
@@ -393,7 +396,13 @@ fn the_qp_methods_own_programs_near_joint_limits_agree_with_clarabel() {
         let Some(reference) = problem.clarabel() else {
             continue;
         };
-        let rates = planner.theta_dot(&th, &Vector2::from(xdot)).unwrap();
+        let rates = planner
+            .theta_dot(
+                th.as_slice(),
+                [(Vector2::from(xdot))[0], (Vector2::from(xdot))[1]],
+            )
+            .map(DVector::from_vec)
+            .unwrap();
         let err = rates
             .iter()
             .zip(&reference)

@@ -79,7 +79,7 @@ export function mountSpacePanels(root, demo, { attempt, show, say, preset, ensur
     const header = ['method', 'min_clearance', 'collision_steps', 'limit_steps', 'relaxed_steps', 'handover_steps', 'max_error', 'final_error', 'failure'];
     const lines = rows.map((r) => {
       const m = r.summary;
-      return [r.method, m.min_clearance ?? '', m.collision_steps, m.limit_steps, m.relaxed_steps, m.handover_steps, m.max_error, m.final_error, r.failure ?? ''];
+      return [r.method, m.min_clearance ?? '', m.collision_steps ?? 0, m.limit_steps ?? 0, m.relaxed_steps ?? 0, m.handover_steps, m.max_tracking_error, m.final_error, r.failure ?? ''];
     });
     saveText(`${stem()}-compare.csv`, csv(header, lines), 'text/csv');
   });

@@ -7,8 +7,8 @@ use std::sync::Arc;
 use super::{time_ns, Forward, Options, Probes};
 use crate::error::{Error, Result};
 use crate::networks::space::{SpaceNetworkSet, SpaceNetworks};
-use crate::planner::space::SpacePlanner;
 use crate::planner::Method;
+use crate::planner::{Networks, Planner};
 use crate::scene::SpaceScene;
 
 /// One RK4 step of the preset `key`'s task in `method`, sample included
@@ -36,7 +36,13 @@ pub fn step_ns_with(
     }
     let nets = nets.map(|n| n.in_precision(opts.precision));
     let scene = task(key, opts.refine)?;
-    let fresh = || SpacePlanner::with_networks(scene.clone(), method, nets.clone());
+    let fresh = || {
+        Planner::new(
+            scene.clone(),
+            method,
+            nets.clone().map(|n| n as Networks<_, 3>),
+        )
+    };
     let mut p = fresh()?;
     time_ns(opts, probes, || {
         if p.done() {
@@ -56,7 +62,11 @@ pub fn allocs_per_step(
     count: &dyn Fn() -> u64,
 ) -> Result<f64> {
     let nets = shipped_networks(key, method)?.map(|n| n.in_precision(opts.precision));
-    let mut p = SpacePlanner::with_networks(task(key, opts.refine)?, method, nets)?;
+    let mut p = Planner::new(
+        task(key, opts.refine)?,
+        method,
+        nets.map(|n| n as Networks<_, 3>),
+    )?;
     let n = p.scene().steps();
     let before = count();
     for _ in 0..n {

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 use redundant_ik::figure;
 use redundant_ik::planner::methods;
-use redundant_ik::planner::space::{SpacePlanner, SpaceTrajectory};
+use redundant_ik::planner::Networks;
 use redundant_ik::{Planner, Scene, Trajectory};
 
 use super::simulate::{MethodArg, SceneArgs};
@@ -127,9 +127,8 @@ pub fn space(args: &FigureArgs, job: Job) -> Result<(), String> {
         }
         return write(&args.out.join(format!("{arm}_compare.svg")), &compare);
     }
-    let traj = SpacePlanner::with_networks(job.scene.clone(), job.method, job.nets)
-        .and_then(SpacePlanner::run)
-        .map_err(e)?;
+    let nets = job.nets.clone().map(|n| n as Networks<_, 3>);
+    let traj = Planner::run(job.scene.clone(), job.method, nets).map_err(e)?;
     let svg = if args.plots {
         figure::space_series_svg(label, &job.scene, &traj)
     } else {
@@ -141,7 +140,7 @@ pub fn space(args: &FigureArgs, job: Job) -> Result<(), String> {
 /// Runs a spatial job's scene with every method that runs in space and
 /// whose networks are available (the job's, else those the flags give;
 /// the others are skipped with a note on stderr).
-fn space_runs(sa: &SceneArgs, job: &Job) -> Result<Vec<SpaceTrajectory>, String> {
+fn space_runs(sa: &SceneArgs, job: &Job) -> Result<Vec<Trajectory<3>>, String> {
     let mut runs = Vec::new();
     for &method in methods::ALL.iter().filter(|m| m.in_space()) {
         let nets = match &job.nets {
@@ -154,8 +153,7 @@ fn space_runs(sa: &SceneArgs, job: &Job) -> Result<Vec<SpaceTrajectory>, String>
                 }
             },
         };
-        let run = SpacePlanner::with_networks(job.scene.clone(), method, nets)
-            .and_then(SpacePlanner::run)
+        let run = Planner::run(job.scene.clone(), method, nets.map(|n| n as Networks<_, 3>))
             .map_err(|e| format!("{method}: {e}"))?;
         runs.push(run);
     }

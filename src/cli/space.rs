@@ -10,7 +10,7 @@ use redundant_ik::export::{is_space_run, SpaceRunFile};
 use redundant_ik::ik::DampingSchedule;
 use redundant_ik::networks::space::{SpaceNetworkSet, SpaceNetworks};
 use redundant_ik::nn::Precision;
-use redundant_ik::planner::space::{SpacePlanner, SpaceTrajectory};
+use redundant_ik::planner::{Networks, Planner, Trajectory};
 use redundant_ik::scene::{SpacePath, SpaceScene};
 use redundant_ik::space::{SpacePreset, Sphere};
 use redundant_ik::Method;
@@ -225,13 +225,13 @@ fn output(
     nets: Option<Arc<SpaceNetworks>>,
 ) -> Result<(), String> {
     let used = nets.clone();
-    let planner =
-        SpacePlanner::with_networks(scene.clone(), method, nets).map_err(|e| e.to_string())?;
+    let planner = Planner::new(scene.clone(), method, nets.map(|n| n as Networks<_, 3>))
+        .map_err(|e| e.to_string())?;
     let reach = Reach {
         reachable: planner.reachable(),
         auto_damping: planner.auto_damping(),
     };
-    let traj = planner.run().map_err(|e| e.to_string())?;
+    let traj = planner.run_to_end().map_err(|e| e.to_string())?;
     if args.json {
         let mut file = SpaceRunFile::new(p, scene, traj);
         file.networks = used.as_deref().and_then(super::space_networks::shipped_set);
@@ -254,31 +254,32 @@ struct Reach {
 
 /// One line per sample: t, the angles, the hand, the reference, the
 /// error, the clearance, the joints past a limit.
-fn csv(traj: &SpaceTrajectory) -> String {
-    let n = traj.samples.first().map_or(0, |s| s.theta.len());
+fn csv(traj: &Trajectory<3>) -> String {
+    let n = traj.steps.first().map_or(0, |s| s.theta.len());
     let mut out = String::from("t");
     for i in 1..=n {
         let _ = write!(out, ",theta{i}");
     }
     out.push_str(",x,y,z,x_ref,y_ref,z_ref,tracking_error,clearance,past_limits\n");
-    for s in &traj.samples {
+    for s in &traj.steps {
         let _ = write!(out, "{}", s.t);
         for th in &s.theta {
             let _ = write!(out, ",{th}");
         }
-        let [x, y, z] = s.hand;
+        let [x, y, z] = s.ee;
         let [rx, ry, rz] = s.reference;
         let c = s.clearance.map_or(String::new(), |c| c.to_string());
         let _ = writeln!(
             out,
             ",{x},{y},{z},{rx},{ry},{rz},{},{c},{}",
-            s.tracking_error, s.past_limits
+            s.tracking_error,
+            s.past_limits.len()
         );
     }
     out
 }
 
-fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &SpaceTrajectory, reach: Reach) -> String {
+fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &Trajectory<3>, reach: Reach) -> String {
     let s = &traj.summary;
     let mut out = String::new();
     let list = |v: &[f64]| {
@@ -288,8 +289,8 @@ fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &SpaceTrajectory, reach: R
             .join(", ")
     };
     let point = |v: [f64; 3]| format!("({:.4}, {:.4}, {:.4})", v[0], v[1], v[2]);
-    let first = &traj.samples[0];
-    let last = traj.samples.last().unwrap_or(first);
+    let first = &traj.steps[0];
+    let last = traj.steps.last().unwrap_or(first);
     let _ = writeln!(
         out,
         "{} | method {} | dt {} s | tf {} s",
@@ -299,7 +300,7 @@ fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &SpaceTrajectory, reach: R
         out,
         "start  theta = [{}]  hand {}",
         list(&first.theta),
-        point(first.hand)
+        point(first.ee)
     );
     let goal = if scene.path.is_line() {
         format!("target {}", point(scene.target))
@@ -310,7 +311,7 @@ fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &SpaceTrajectory, reach: R
         out,
         "end    theta = [{}]  hand {}  {goal}",
         list(&last.theta),
-        point(last.hand)
+        point(last.ee)
     );
     for sp in &scene.spheres {
         let _ = writeln!(
@@ -345,7 +346,7 @@ fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &SpaceTrajectory, reach: R
     let _ = writeln!(
         out,
         "largest tracking error                {:.3e} m",
-        s.max_error
+        s.max_tracking_error
     );
     if let Some(why) = traj
         .method

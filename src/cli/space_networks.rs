@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use redundant_ik::networks::space::{SpaceNetworkSet, SpaceNetworks};
 use redundant_ik::networks::{NetKind, NetworkSet};
-use redundant_ik::planner::space::SpacePlanner;
+use redundant_ik::planner::{Networks, Planner};
 use redundant_ik::scene::SpaceScene;
 use redundant_ik::space::SpacePreset;
 use redundant_ik::Method;
@@ -204,8 +204,7 @@ pub fn eval(args: &super::eval::EvalArgs, p: &'static SpacePreset) -> Result<(),
         args.feedback
     );
     for m in methods::PAPER {
-        let run = SpacePlanner::with_networks(scene.clone(), m, Some(nets.clone()))
-            .and_then(SpacePlanner::run)
+        let run = Planner::run(scene.clone(), m, Some(nets.clone() as Networks<_, 3>))
             .map_err(|e| e.to_string())?;
         let s = run.summary;
         let _ = writeln!(

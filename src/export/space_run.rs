@@ -16,11 +16,12 @@ use super::MAX_RUN_FILE_BYTES;
 use crate::arm::{JointLimits, RateLimits};
 use crate::error::{Error, Result};
 use crate::ik::DampingSchedule;
+use crate::model::Model;
 use crate::planner::params::{all, by_name};
-use crate::planner::space::{SpaceSample, SpaceSummary, SpaceTrajectory};
-use crate::planner::Method;
+use crate::planner::REACH_TOLERANCE;
+use crate::planner::{observe_pose, Method, Planned, Planner, Sample, Summary, Trajectory};
 use crate::scene::{JointWeighting, ParamMap, Params, SpacePath, SpaceScene};
-use crate::space::{SpacePreset, Sphere, Vec3};
+use crate::space::{Chain, SpacePreset, Sphere, Vec3};
 
 /// The `format` of a spatial run file this version writes and reads.
 pub const SPACE_RUN_FORMAT: &str = "redundant-ik-space-run/1";
@@ -40,10 +41,13 @@ pub struct SpaceRunFile {
     /// Everything that defines the motion (the chain is the preset's with
     /// the scene's limits).
     pub scene: SpaceScene,
-    /// One sample per RK4 step, the start first.
-    pub samples: Vec<SpaceSample>,
+    /// One sample per RK4 step, the start first (read back from a file,
+    /// what the file does not hold is computed again from each sample's
+    /// angles: the joints, the distance to the spheres, the damping, the
+    /// manipulability).
+    pub samples: Vec<Sample<3>>,
     /// The outcome.
-    pub summary: SpaceSummary,
+    pub summary: Summary,
     /// The shipped network set a learned method ran with (`None`: no
     /// learned method, or the user's own weights files, which a replay
     /// takes again from the command line).
@@ -78,8 +82,128 @@ struct Fields {
     networks: Option<SpaceNetworkSet>,
     #[serde(default, skip_serializing_if = "Precision::is_f64")]
     precision: Precision,
-    samples: Vec<SpaceSample>,
-    summary: SpaceSummary,
+    samples: Vec<WireSample>,
+    summary: WireSummary,
+}
+
+/// A sample as this version of the file writes it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct WireSample {
+    t: f64,
+    theta: Vec<f64>,
+    hand: Vec3,
+    reference: Vec3,
+    tracking_error: f64,
+    clearance: Option<f64>,
+    /// How many joints are past a limit.
+    past_limits: usize,
+    relaxed: bool,
+    phi_handover: bool,
+}
+
+impl From<&Sample<3>> for WireSample {
+    fn from(s: &Sample<3>) -> Self {
+        Self {
+            t: s.t,
+            theta: s.theta.clone(),
+            hand: s.ee,
+            reference: s.reference,
+            tracking_error: s.tracking_error,
+            clearance: s.clearance,
+            past_limits: s.past_limits.len(),
+            relaxed: s.relaxed,
+            phi_handover: s.phi_handover,
+        }
+    }
+}
+
+/// The summary as this version of the file writes it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct WireSummary {
+    steps: usize,
+    min_clearance: Option<f64>,
+    collision_steps: usize,
+    limit_steps: usize,
+    relaxed_steps: usize,
+    handover_steps: usize,
+    max_error: f64,
+    final_error: f64,
+}
+
+impl From<&Summary> for WireSummary {
+    fn from(s: &Summary) -> Self {
+        Self {
+            steps: s.steps,
+            min_clearance: s.min_clearance,
+            collision_steps: s.collision_steps,
+            limit_steps: s.limit_steps,
+            relaxed_steps: s.relaxed_steps,
+            handover_steps: s.handover_steps,
+            max_error: s.max_tracking_error,
+            final_error: s.final_error,
+        }
+    }
+}
+
+/// The samples of a file read back: the file's numbers, and what it does
+/// not hold computed from each sample's angles in `scene`; refused where
+/// an angle is not finite.
+fn samples_of(scene: &SpaceScene, wire: Vec<WireSample>) -> Result<Vec<Sample<3>>> {
+    let chain = &scene.chain;
+    let mut pose = chain.pose();
+    wire.into_iter()
+        .map(|w| {
+            chain.update(&mut pose, &w.theta)?;
+            let mut s = Planner::<Chain, 3>::blank_sample(chain);
+            observe_pose::<Chain, 3>(scene, &pose, &mut s);
+            s.t = w.t;
+            s.ee = w.hand;
+            s.reference = w.reference;
+            s.tracking_error = w.tracking_error;
+            s.clearance = w.clearance;
+            s.relaxed = w.relaxed;
+            s.phi_handover = w.phi_handover;
+            Ok(s)
+        })
+        .collect()
+}
+
+/// The summary of a file read back: the file's numbers, the rest from the
+/// samples read back (`samples` has one at least).
+fn summary_of(
+    method: Method,
+    scene: &SpaceScene,
+    w: WireSummary,
+    samples: &[Sample<3>],
+) -> Summary {
+    let last = &samples[samples.len() - 1];
+    let min = |f: fn(&Sample<3>) -> Option<f64>| samples.iter().filter_map(f).reduce(f64::min);
+    let reachable = <Chain as Planned<3>>::track(scene, samples[0].ee, 0.0, scene.tf)
+        .ok()
+        .zip(crate::space::SpacePose::new(&scene.chain, &scene.theta0).ok())
+        .is_none_or(|(track, pose)| track.all_points(|p| scene.chain.reaches(&pose, p)));
+    Summary {
+        method,
+        steps: w.steps,
+        t: last.t,
+        min_distance: min(|s| s.distance),
+        min_clearance: w.min_clearance,
+        collided: w.collision_steps > 0,
+        collision_steps: w.collision_steps,
+        final_error: w.final_error,
+        max_tracking_error: w.max_error,
+        reached: w.final_error <= REACH_TOLERANCE,
+        success: w.collision_steps == 0 && w.limit_steps == 0 && w.final_error <= REACH_TOLERANCE,
+        target_reachable: reachable,
+        out_of_range_steps: 0,
+        max_delta: samples.iter().map(|s| s.delta).fold(0.0, f64::max),
+        auto_damping: false,
+        handover_steps: w.handover_steps,
+        relaxed_steps: w.relaxed_steps,
+        limit_steps: w.limit_steps,
+    }
 }
 
 /// Just the version, to tell a spatial run file from a planar one.
@@ -112,12 +236,12 @@ pub fn is_space_run(text: &str) -> bool {
 
 impl SpaceRunFile {
     /// The file of `traj`, the run of `scene` on the preset `arm`.
-    pub fn new(arm: &'static SpacePreset, scene: SpaceScene, traj: SpaceTrajectory) -> Self {
+    pub fn new(arm: &'static SpacePreset, scene: SpaceScene, traj: Trajectory<3>) -> Self {
         Self {
             arm: arm.key,
             method: traj.method,
             scene,
-            samples: traj.samples,
+            samples: traj.steps,
             summary: traj.summary,
             networks: None,
             precision: Precision::F64,
@@ -152,8 +276,8 @@ impl SpaceRunFile {
             floor: s.floor,
             networks: self.networks,
             precision: self.precision,
-            samples: self.samples.clone(),
-            summary: self.summary,
+            samples: self.samples.iter().map(WireSample::from).collect(),
+            summary: WireSummary::from(&self.summary),
         };
         serde_json::to_string(&fields).unwrap_or_default()
     }
@@ -242,14 +366,16 @@ impl SpaceRunFile {
                 found: s.theta.len(),
             });
         }
+        let samples = samples_of(&scene, f.samples)?;
+        let summary = summary_of(f.method, &scene, f.summary, &samples);
         Ok(Self {
             networks: f.networks,
             precision: f.precision,
             arm: preset.key,
             method: f.method,
             scene,
-            samples: f.samples,
-            summary: f.summary,
+            samples,
+            summary,
         })
     }
 }

@@ -16,8 +16,7 @@ use super::{
     why, Area, Swatch, TITLE_HEIGHT,
 };
 use crate::error::Result;
-use crate::planner::space::SpaceTrajectory;
-use crate::planner::{Method, Trajectory};
+use crate::planner::{Method, Sample, Trajectory};
 use crate::scene::{Scene, SpaceScene};
 
 type Chart<'a, 'b> =
@@ -92,7 +91,7 @@ struct Run<'a> {
 }
 
 impl<'a> Run<'a> {
-    fn planar(run: &'a Trajectory) -> Self {
+    fn of<const M: usize>(run: &'a Trajectory<M>) -> Self {
         Self {
             method: run.method,
             min_clearance: run.summary.min_clearance,
@@ -100,46 +99,19 @@ impl<'a> Run<'a> {
             steps: steps(&run.steps),
         }
     }
-
-    fn space(run: &'a SpaceTrajectory) -> Self {
-        Self {
-            method: run.method,
-            min_clearance: run.summary.min_clearance,
-            final_error: run.summary.final_error,
-            steps: steps(&run.samples),
-        }
-    }
 }
 
-/// A sample of any arm's run, as the plots read it.
-trait Plotted {
-    fn step(&self) -> Step<'_>;
-}
-
-impl Plotted for crate::planner::Sample {
-    fn step(&self) -> Step<'_> {
-        Step {
-            t: self.t,
-            clearance: self.clearance,
-            error: self.tracking_error,
-            theta: &self.theta,
-        }
-    }
-}
-
-impl Plotted for crate::planner::space::SpaceSample {
-    fn step(&self) -> Step<'_> {
-        Step {
-            t: self.t,
-            clearance: self.clearance,
-            error: self.tracking_error,
-            theta: &self.theta,
-        }
-    }
-}
-
-fn steps<S: Plotted>(samples: &[S]) -> Vec<Step<'_>> {
-    samples.iter().map(Plotted::step).collect()
+/// The samples of any arm's run, as the plots read them.
+fn steps<const M: usize>(samples: &[Sample<M>]) -> Vec<Step<'_>> {
+    samples
+        .iter()
+        .map(|s| Step {
+            t: s.t,
+            clearance: s.clearance,
+            error: s.tracking_error,
+            theta: &s.theta,
+        })
+        .collect()
 }
 
 /// A run's time series as SVG: the clearance between the links and the
@@ -160,14 +132,14 @@ pub fn series_svg(task: u32, scene: &Scene, run: &Trajectory) -> Result<String> 
 /// The time series of a run of an arm in space (the arm called `arm`), as
 /// [`series_svg`] draws a planar run's: the page in space's plots and
 /// `redundant-ik figure --arm A --plots`.
-pub fn space_series_svg(arm: &str, scene: &SpaceScene, run: &SpaceTrajectory) -> Result<String> {
+pub fn space_series_svg(arm: &str, scene: &SpaceScene, run: &Trajectory<3>) -> Result<String> {
     let head = format!("{arm}, {} over time", run.method.label());
     let line = space_caption(arm, scene, run.method);
     plots_svg(
         &head,
         &line,
         run.method,
-        &steps(&run.samples),
+        &steps(&run.steps),
         scene.chain.dof(),
     )
 }
@@ -275,25 +247,21 @@ pub fn compare_svg(task: u32, scene: &Scene, runs: &[Trajectory]) -> Result<Stri
         scene,
         runs.first().map_or(Method::NUMERICAL, |r| r.method),
     );
-    let runs: Vec<Run<'_>> = runs.iter().map(Run::planar).collect();
+    let runs: Vec<Run<'_>> = runs.iter().map(Run::of).collect();
     compare_of(&title, &line, !scene.obstacles.is_empty(), &runs)
 }
 
 /// Every run of one scene of an arm in space (the arm called `arm`) over
 /// time, as [`compare_svg`] draws a planar scene's: `redundant-ik figure
 /// --arm A --compare`.
-pub fn space_compare_svg(
-    arm: &str,
-    scene: &SpaceScene,
-    runs: &[SpaceTrajectory],
-) -> Result<String> {
+pub fn space_compare_svg(arm: &str, scene: &SpaceScene, runs: &[Trajectory<3>]) -> Result<String> {
     let title = format!("{arm}: the methods over time");
     let line = space_caption(
         arm,
         scene,
         runs.first().map_or(Method::NUMERICAL, |r| r.method),
     );
-    let runs: Vec<Run<'_>> = runs.iter().map(Run::space).collect();
+    let runs: Vec<Run<'_>> = runs.iter().map(Run::of).collect();
     compare_of(&title, &line, !scene.spheres.is_empty(), &runs)
 }
 

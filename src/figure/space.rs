@@ -10,8 +10,8 @@ use plotters::prelude::*;
 
 use super::{colour, draw_legend, draw_title, svg, why, Area, Swatch, TITLE_HEIGHT};
 use crate::error::Result;
-use crate::planner::space::SpaceTrajectory;
 use crate::planner::Method;
+use crate::planner::Trajectory;
 use crate::scene::SpaceScene;
 use crate::space::manipulability::velocity_ellipsoid;
 use crate::space::{SpacePose, Vec3};
@@ -101,7 +101,7 @@ pub fn space_caption(arm: &str, scene: &SpaceScene, method: Method) -> String {
 pub fn space_svg(
     arm: &str,
     scene: &SpaceScene,
-    run: &SpaceTrajectory,
+    run: &Trajectory<3>,
     every: usize,
 ) -> Result<String> {
     space_svg_with(arm, scene, run, every, false)
@@ -134,17 +134,17 @@ pub fn ellipsoid_rings(scene: &SpaceScene, theta: &[f64]) -> Result<[Vec<Vec3>; 
 pub fn space_svg_with(
     arm: &str,
     scene: &SpaceScene,
-    run: &SpaceTrajectory,
+    run: &Trajectory<3>,
     every: usize,
     ellipsoid: bool,
 ) -> Result<String> {
     let every = every.max(1);
-    let rings = match (ellipsoid, run.samples.last()) {
+    let rings = match (ellipsoid, run.steps.last()) {
         (true, Some(last)) => Some(ellipsoid_rings(scene, &last.theta)?),
         _ => None,
     };
     let poses: Vec<Vec<Vec3>> = run
-        .samples
+        .steps
         .iter()
         .map(|s| points(scene, &s.theta))
         .collect::<Result<_>>()?;
@@ -211,7 +211,7 @@ pub fn space_svg_with(
 /// how many steps a pose is drawn, the ellipsoid's rings if asked for.
 struct Drawn<'a> {
     scene: &'a SpaceScene,
-    run: &'a SpaceTrajectory,
+    run: &'a Trajectory<3>,
     poses: &'a [Vec<Vec3>],
     every: usize,
     rings: Option<&'a [Vec<Vec3>; 3]>,
@@ -332,7 +332,7 @@ fn panel(area: &Area<'_>, view: View, d: &Drawn<'_>) -> std::result::Result<(), 
         .map_err(why)?;
     chart
         .draw_series(LineSeries::new(
-            run.samples.iter().map(|s| view.project(s.hand)),
+            run.steps.iter().map(|s| view.project(s.ee)),
             RGBColor(255, 127, 14).stroke_width(2),
         ))
         .map_err(why)?;

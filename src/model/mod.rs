@@ -89,7 +89,8 @@ pub trait Model<const M: usize>: PhiAlgebra<M> + Clone + Debug + Send + Sync + '
     /// `grad w` (`n` entries) into `out`, `w` floored at `floor` where a
     /// singular pose leaves its gradient undefined.
     fn manipulability_gradient_into(pose: &Self::Pose, floor: f64, out: &mut [f64]);
-    /// The position `P(k)` of joint `k` (`1 <= k < n`: an elbow).
+    /// The position `P(k)` of joint `k` (`0 <= k <= n`: `P(n)` is the
+    /// hand; `1 <= k < n` an elbow).
     fn joint_point(pose: &Self::Pose, k: usize) -> [f64; M];
     /// `v = J_k^T f` into `v`, or a damped inverse of `J_k` where the
     /// transpose is too weak: the joint rates that move `P(k)` along a
@@ -163,16 +164,33 @@ pub fn closest<P, C: Clearance<P>>(pairs: &[C]) -> Option<&C> {
         .min_by(|a, b| a.clearance().total_cmp(&b.clearance()))
 }
 
-/// What every method's rule reads of a scene, whatever the arm.
+/// What every method's rule and the planner read of a scene, whatever the
+/// arm.
 pub trait Scene<A> {
     /// The arm.
     fn arm(&self) -> &A;
     /// The methods' parameters that differ from their defaults.
     fn params(&self) -> &Params;
+    /// The parameters, to set one.
+    fn params_mut(&mut self) -> &mut Params;
     /// The damping schedule, if any.
     fn damping(&self) -> Option<DampingSchedule>;
+    /// The damping schedule, to switch it.
+    fn damping_mut(&mut self) -> &mut Option<DampingSchedule>;
     /// How the methods of eq. (5) use the joint limits.
     fn weighting(&self) -> JointWeighting;
+    /// The joint angles at `t = 0` (rad).
+    fn theta0(&self) -> &[f64];
+    /// The Runge-Kutta step (s).
+    fn dt(&self) -> f64;
+    /// The final time (s).
+    fn tf(&self) -> f64;
+    /// The closed-loop gain `K` (0: the paper's open loop).
+    fn feedback_gain(&self) -> f64;
+    /// The number of RK4 steps, `tf / dt`.
+    fn steps(&self) -> usize;
+    /// Checks every field; the first problem found is returned.
+    fn validate(&self) -> Result<()>;
 
     /// The value of parameter `p` (its default unless set).
     #[inline]

@@ -184,10 +184,34 @@ impl Scene<Arm> for scene::Scene {
     fn params(&self) -> &Params {
         &self.params
     }
+    fn params_mut(&mut self) -> &mut Params {
+        &mut self.params
+    }
     fn damping(&self) -> Option<DampingSchedule> {
         self.damping
     }
+    fn damping_mut(&mut self) -> &mut Option<DampingSchedule> {
+        &mut self.damping
+    }
     fn weighting(&self) -> JointWeighting {
         self.weighting
+    }
+    fn theta0(&self) -> &[f64] {
+        &self.theta0
+    }
+    fn dt(&self) -> f64 {
+        self.dt
+    }
+    fn tf(&self) -> f64 {
+        self.tf
+    }
+    fn feedback_gain(&self) -> f64 {
+        self.feedback_gain
+    }
+    fn steps(&self) -> usize {
+        scene::Scene::steps(self)
+    }
+    fn validate(&self) -> Result<()> {
+        scene::Scene::validate(self)
     }
 }

@@ -95,8 +95,13 @@ impl Model<3> for Chain {
     fn manipulability_gradient_into(pose: &SpacePose, floor: f64, out: &mut [f64]) {
         manipulability::manipulability_gradient_into(pose, floor, out);
     }
+    /// Joint `k`'s origin; the hand for `k = n`.
     fn joint_point(pose: &SpacePose, k: usize) -> [f64; 3] {
-        pose.joint_origin(k)
+        if k < pose.dof() {
+            pose.joint_origin(k)
+        } else {
+            pose.hand()
+        }
     }
     /// In space the pull is `J_k^T (J_k J_k^T + delta I)^-1 f` rather than
     /// the plane's `J_k^T f`: the chain's elbow is moved by joints with
@@ -237,10 +242,34 @@ impl Scene<Chain> for SpaceScene {
     fn params(&self) -> &Params {
         &self.params
     }
+    fn params_mut(&mut self) -> &mut Params {
+        &mut self.params
+    }
     fn damping(&self) -> Option<DampingSchedule> {
         self.damping
     }
+    fn damping_mut(&mut self) -> &mut Option<DampingSchedule> {
+        &mut self.damping
+    }
     fn weighting(&self) -> JointWeighting {
         self.weighting
+    }
+    fn theta0(&self) -> &[f64] {
+        &self.theta0
+    }
+    fn dt(&self) -> f64 {
+        self.dt
+    }
+    fn tf(&self) -> f64 {
+        self.tf
+    }
+    fn feedback_gain(&self) -> f64 {
+        self.feedback_gain
+    }
+    fn steps(&self) -> usize {
+        SpaceScene::steps(self)
+    }
+    fn validate(&self) -> Result<()> {
+        SpaceScene::validate(self)
     }
 }

@@ -1,6 +1,6 @@
 //! Constant-speed timing along a path, one piece of maths for the plane
 //! and for space (`D = 2` or `3`): the planar [`super::Track`] and the
-//! spatial `SpaceTrack` both read their references and velocities here.
+//! spatial tracks (one [`super::Track`]) read their references and velocities here.
 //! With `s = (t - t0) / duration` in `[0, 1]`:
 //!
 //! - a circle ([`Circle`]): the angle about the centre grows linearly,

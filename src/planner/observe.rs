@@ -3,15 +3,13 @@
 //! in their trained range, and the summary of the run so far.
 
 use super::methods::Note;
-use super::{Method, Planner, Sample, Summary, Surrogate, REACH_TOLERANCE};
-use crate::clearance::Pair;
-use crate::kinematics::Pose;
-use crate::obstacle::Obstacle;
+use super::{Method, Planned, Planner, Sample, Summary, Surrogate, REACH_TOLERANCE};
+use crate::model::Scene as _;
 
-impl Planner {
+impl<A: Planned<M>, const M: usize> Planner<A, M> {
     /// The current state: the start, or the result of the last step. Kept up
     /// to date by the planner (no copy, no allocation).
-    pub fn sample(&self) -> &Sample {
+    pub fn sample(&self) -> &Sample<M> {
         &self.sample
     }
 
@@ -43,54 +41,14 @@ impl Planner {
     pub(super) fn refresh_sample(&mut self, note: Note) {
         let pose = &self.ws.pose;
         let s = &mut self.sample;
-        let ee = pose.end_effector();
+        observe_pose::<A, M>(&self.scene, pose, s);
         let reference = self.track.reference(self.t);
         s.t = self.t;
-        s.theta.copy_from_slice(pose.theta());
-        s.joints.copy_from_slice(pose.joints());
-        s.ee = ee;
-        s.reference = [reference[0], reference[1]];
-        s.tracking_error = distance(ee, [reference[0], reference[1]]);
-        s.distance = None;
-        s.clearance = None;
-        s.collision = false;
-        for ob in &self.scene.obstacles {
-            let d = pose.clearance(ob.centre);
-            s.collision |= d < ob.radius;
-            s.distance = Some(s.distance.map_or(d, |m| m.min(d)));
-            let c = d - ob.radius;
-            s.clearance = Some(s.clearance.map_or(c, |m| m.min(c)));
-        }
-        if let Some(post) = self.scene.ground() {
-            // The ground as an obstacle: a link below the floor or across
-            // the post collides.
-            let n = pose.dof();
-            s.collision |= (0..n).any(|k| Pair::floor(pose, k).clearance < 0.0)
-                || (1..n).any(|k| Pair::post(pose, k, post).clearance < 0.0);
-        }
-        s.delta = self.scene.param(&super::methods::DELTA)
-            + self
-                .scene
-                .damping
-                .map_or(0.0, |d| d.delta_at_sigma(pose.sigma_min()));
-        s.manipulability = pose.manipulability();
-        s.in_range = in_range(
-            self.method,
-            self.networks.as_deref(),
-            pose,
-            &self.scene.obstacles,
-        );
+        s.reference = reference;
+        s.tracking_error = distance(s.ee, reference);
+        s.in_range = in_range::<A, M>(self.method, self.networks.as_deref(), pose, &self.scene);
         s.phi_handover = note.handover;
         s.relaxed = note.relaxed;
-        s.past_limits.clear();
-        if let Some(limits) = self.scene.arm.joint_limits() {
-            let past = limits.ranges().iter().zip(pose.theta());
-            for (k, (&[lo, hi], &t)) in past.enumerate() {
-                if !(lo..=hi).contains(&t) {
-                    s.past_limits.push(k + 1);
-                }
-            }
-        }
     }
 
     /// Whether the networks the current method uses see inputs inside
@@ -101,7 +59,7 @@ impl Planner {
 
     /// Outcome since the last reset.
     pub fn summary(&self) -> Summary {
-        let x = self.ws.pose.end_effector();
+        let x = A::hand(&self.ws.pose);
         // The path's end: the target for the line, the start for a circle,
         // the last point of a polyline.
         let final_error = distance(x, self.track.end());
@@ -112,13 +70,14 @@ impl Planner {
             min_distance: self.stats.min_distance,
             min_clearance: self.stats.min_clearance,
             collided: self.stats.collided,
+            collision_steps: self.stats.collision_steps,
             final_error,
             max_tracking_error: self.stats.max_tracking_error,
             reached: final_error <= REACH_TOLERANCE,
             success: !self.stats.collided
                 && self.stats.limit_steps == 0
                 && final_error <= REACH_TOLERANCE,
-            target_reachable: self.track.reachable(&self.scene.arm),
+            target_reachable: self.reachable,
             out_of_range_steps: self.stats.out_of_range_steps,
             max_delta: self.stats.max_delta,
             auto_damping: self.auto_damping,
@@ -129,26 +88,68 @@ impl Planner {
     }
 }
 
-/// Euclidean distance between two points.
+/// Writes into `s` what a sample records of `pose` in `scene` alone: the
+/// angles, the joints and the hand, the obstacles' distance, clearance and
+/// collision, the damping in force, the manipulability and the joints past
+/// their limits (`s` has room for the arm; nothing is allocated). What
+/// depends on the run (the time, the reference, the networks' range, the
+/// step's notes) is the planner's to fill; a run file read back fills it
+/// from the file.
+pub fn observe_pose<A: Planned<M>, const M: usize>(
+    scene: &A::Scene,
+    pose: &A::Pose,
+    s: &mut Sample<M>,
+) {
+    s.theta.copy_from_slice(A::theta(pose));
+    for (k, p) in s.joints.iter_mut().enumerate() {
+        *p = A::joint_point(pose, k);
+    }
+    s.ee = A::hand(pose);
+    let contact = A::contact(scene, pose);
+    s.distance = contact.distance;
+    s.clearance = contact.clearance;
+    s.collision = contact.collision;
+    s.delta = scene.value(&super::methods::DELTA)
+        + scene
+            .damping()
+            .map_or(0.0, |d| d.delta_at_sigma(A::sigma_min(pose)));
+    s.manipulability = A::manipulability(pose);
+    s.past_limits.clear();
+    if let Some(limits) = scene.arm().joint_limits() {
+        let past = limits.ranges().iter().zip(A::theta(pose));
+        for (k, (&[lo, hi], &t)) in past.enumerate() {
+            if !(lo..=hi).contains(&t) {
+                s.past_limits.push(k + 1);
+            }
+        }
+    }
+}
+
+/// Euclidean distance between two points (in the plane exactly
+/// `sqrt(dx^2 + dy^2)`, the published numbers).
 #[inline]
-fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
-    let (dx, dy) = (a[0] - b[0], a[1] - b[1]);
-    (dx * dx + dy * dy).sqrt()
+pub(crate) fn distance<const M: usize>(a: [f64; M], b: [f64; M]) -> f64 {
+    let mut sum = 0.0;
+    for k in 0..M {
+        let d = a[k] - b[k];
+        sum += d * d;
+    }
+    sum.sqrt()
 }
 
 /// Whether the networks `method` uses see `pose` (and every obstacle)
 /// inside their trained range.
-fn in_range(
+fn in_range<A: Planned<M>, const M: usize>(
     method: Method,
-    networks: Option<&dyn Surrogate>,
-    pose: &Pose,
-    obstacles: &[Obstacle],
+    networks: Option<&dyn Surrogate<A, M>>,
+    pose: &A::Pose,
+    scene: &A::Scene,
 ) -> bool {
     let Some(nets) = networks else {
         return true;
     };
     let needs = method.networks();
     let phi_ok = !needs.phi || nets.phi_in_range(pose);
-    let v_ok = !needs.v || obstacles.iter().all(|ob| nets.v_in_range(pose, ob.centre));
+    let v_ok = !needs.v || A::obstacle_centres(scene).all(|o| nets.v_in_range(pose, o));
     phi_ok && v_ok
 }

@@ -1,28 +1,32 @@
 //! What the planner tracks and reports: the straight line, the sample after
 //! each step, the summary of a run and the whole trajectory.
 
-use nalgebra::Vector2;
 use serde::{Deserialize, Serialize};
 
 use super::Method;
 
 /// The straight line being tracked: from `start` at time `t0` to `end` at
-/// `t0 + duration`, at constant speed, then holding still at `end`.
+/// `t0 + duration`, at constant speed, then holding still at `end`; for a
+/// hand of `M` coordinates.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct Line {
-    /// End-effector position where the line starts.
-    pub start: [f64; 2],
+#[serde(bound(
+    serialize = "[f64; M]: Serialize",
+    deserialize = "[f64; M]: Deserialize<'de>"
+))]
+pub struct Line<const M: usize = 2> {
+    /// The hand where the line starts.
+    pub start: [f64; M],
     /// End of the line (the target).
-    pub end: [f64; 2],
+    pub end: [f64; M],
     /// Time at which the line starts (s).
     pub t0: f64,
     /// Time the line takes (s); a whole number of RK4 steps.
     pub duration: f64,
 }
 
-impl Line {
+impl<const M: usize> Line<M> {
     /// The line from `start` at `t0` to `end`, taking `duration` seconds.
-    pub fn new(start: [f64; 2], end: [f64; 2], t0: f64, duration: f64) -> Self {
+    pub fn new(start: [f64; M], end: [f64; M], t0: f64, duration: f64) -> Self {
         Self {
             start,
             end,
@@ -31,54 +35,57 @@ impl Line {
         }
     }
 
-    fn start_v(&self) -> Vector2<f64> {
-        Vector2::new(self.start[0], self.start[1])
-    }
-    fn end_v(&self) -> Vector2<f64> {
-        Vector2::new(self.end[0], self.end[1])
-    }
-
     /// Reference point `X_ref(t)` on the line.
-    pub fn reference(&self, t: f64) -> Vector2<f64> {
+    pub fn reference(&self, t: f64) -> [f64; M] {
         let s = ((t - self.t0) / self.duration).clamp(0.0, 1.0);
-        self.start_v() + s * (self.end_v() - self.start_v())
+        let (a, b) = (self.start, self.end);
+        std::array::from_fn(|k| a[k] + s * (b[k] - a[k]))
     }
 
     /// Constant task velocity `Xdot` while the line runs, zero before and after.
     /// Evaluated at a step's midpoint so that every RK4 stage of a step sees the
     /// same `Xdot`.
-    pub(super) fn velocity_at(&self, t_mid: f64) -> Vector2<f64> {
+    pub(super) fn velocity_at(&self, t_mid: f64) -> [f64; M] {
         if t_mid > self.t0 && t_mid < self.t0 + self.duration {
-            (self.end_v() - self.start_v()) / self.duration
+            let (a, b) = (self.start, self.end);
+            std::array::from_fn(|k| (b[k] - a[k]) / self.duration)
         } else {
-            Vector2::zeros()
+            [0.0; M]
         }
     }
 }
 
-/// The state after one integration step (or at the start).
+/// The state after one integration step (or at the start), of an arm
+/// whose hand has `M` coordinates (the planar arm's by default).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Sample {
+#[serde(bound(
+    serialize = "[f64; M]: Serialize",
+    deserialize = "[f64; M]: Deserialize<'de>"
+))]
+pub struct Sample<const M: usize = 2> {
     /// Time (s).
     pub t: f64,
     /// Joint angles (rad).
     pub theta: Vec<f64>,
-    /// Joint positions `P(0)..P(n)`, `P(0)` first.
-    pub joints: Vec<[f64; 2]>,
-    /// End effector `X = P(n)`.
-    pub ee: [f64; 2],
+    /// Joint positions `P(0)..P(n)`, `P(0)` first (in space the joints'
+    /// origins, then the hand).
+    pub joints: Vec<[f64; M]>,
+    /// The hand (end effector) `X = P(n)`.
+    pub ee: [f64; M],
     /// The path's reference point at `t`.
-    pub reference: [f64; 2],
+    pub reference: [f64; M],
     /// Distance from the end effector to the reference.
     pub tracking_error: f64,
-    /// Smallest distance from an obstacle centre to a moving link (none without obstacles).
+    /// Smallest distance from an obstacle centre to a moving link (in
+    /// space, to a capsule's axis; none without obstacles).
     pub distance: Option<f64>,
-    /// Smallest clearance between a moving link and an obstacle disc: the
-    /// distance from the link to the disc's edge, negative inside it (none
-    /// without obstacles; absent from files written before it was kept).
+    /// Smallest clearance between a moving link and an obstacle: the
+    /// distance between their surfaces, negative inside (none without
+    /// obstacles; absent from files written before it was kept).
     #[serde(default)]
     pub clearance: Option<f64>,
-    /// Whether a link is inside an obstacle disc now.
+    /// Whether a link is inside an obstacle now (in the plane, or below
+    /// the floor or across the post where the scene has them).
     pub collision: bool,
     /// Damping `delta` in force at this pose.
     pub delta: f64,
@@ -112,14 +119,14 @@ fn is_zero(n: &usize) -> bool {
     *n == 0
 }
 
-impl Sample {
+impl<const M: usize> Sample<M> {
     /// A sample of an `n`-joint arm with everything zero but the end
     /// effector and the reference, at `ee` (the planner fills it at once).
-    pub(super) fn zeros(n: usize, ee: [f64; 2]) -> Self {
+    pub(super) fn zeros(n: usize, ee: [f64; M]) -> Self {
         Self {
             t: 0.0,
             theta: vec![0.0; n],
-            joints: vec![[0.0; 2]; n + 1],
+            joints: vec![[0.0; M]; n + 1],
             ee,
             reference: ee,
             tracking_error: 0.0,
@@ -153,8 +160,12 @@ pub struct Summary {
     /// [`Sample::clearance`]).
     #[serde(default)]
     pub min_clearance: Option<f64>,
-    /// Whether a link entered an obstacle disc at any step.
+    /// Whether a link entered an obstacle at any step.
     pub collided: bool,
+    /// Samples with a link inside an obstacle (see [`Sample::collision`]);
+    /// absent from the JSON when none was.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub collision_steps: usize,
     /// Distance from the end effector to the path's end now (the target
     /// for the line, the start for a circle, the last point of a polyline).
     pub final_error: f64,
@@ -194,14 +205,45 @@ pub struct Summary {
     pub limit_steps: usize,
 }
 
+impl Summary {
+    /// The summary of a run that could not start: no step, no clearance,
+    /// the final error unknown (NaN; `null` in JSON).
+    pub fn nothing(method: Method) -> Self {
+        Self {
+            method,
+            steps: 0,
+            t: 0.0,
+            min_distance: None,
+            min_clearance: None,
+            collided: false,
+            collision_steps: 0,
+            final_error: f64::NAN,
+            max_tracking_error: 0.0,
+            reached: false,
+            success: false,
+            target_reachable: false,
+            out_of_range_steps: 0,
+            max_delta: 0.0,
+            auto_damping: false,
+            handover_steps: 0,
+            relaxed_steps: 0,
+            limit_steps: 0,
+        }
+    }
+}
+
 /// A whole run: every sample from `t = 0` to `tf`, and the summary.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Trajectory {
+#[serde(bound(
+    serialize = "[f64; M]: Serialize",
+    deserialize = "[f64; M]: Deserialize<'de>"
+))]
+pub struct Trajectory<const M: usize = 2> {
     /// Method used (`method` in JSON; `mode`, the older name, is read too).
     #[serde(alias = "mode")]
     pub method: Method,
     /// One sample per RK4 step, the initial state first.
-    pub steps: Vec<Sample>,
+    pub steps: Vec<Sample<M>>,
     /// Outcome.
     pub summary: Summary,
 }
@@ -212,6 +254,7 @@ pub(super) struct Stats {
     pub(super) min_distance: Option<f64>,
     pub(super) min_clearance: Option<f64>,
     pub(super) collided: bool,
+    pub(super) collision_steps: usize,
     pub(super) max_tracking_error: f64,
     pub(super) out_of_range_steps: usize,
     pub(super) max_delta: f64,
@@ -227,6 +270,7 @@ impl Stats {
             min_distance: None,
             min_clearance: None,
             collided: false,
+            collision_steps: 0,
             max_tracking_error: 0.0,
             out_of_range_steps: 0,
             max_delta: 0.0,
@@ -236,8 +280,9 @@ impl Stats {
         }
     }
 
-    pub(super) fn record(&mut self, s: &Sample) {
+    pub(super) fn record<const M: usize>(&mut self, s: &Sample<M>) {
         self.observe(s);
+        self.collision_steps += usize::from(s.collision);
         self.max_tracking_error = self.max_tracking_error.max(s.tracking_error);
         if !s.in_range {
             self.out_of_range_steps += 1;
@@ -256,7 +301,7 @@ impl Stats {
 
     /// Folds a sample's distance and collision into the run's (a change of
     /// setting between steps: no step is counted).
-    pub(super) fn observe(&mut self, s: &Sample) {
+    pub(super) fn observe<const M: usize>(&mut self, s: &Sample<M>) {
         let min = |m: Option<f64>, d: f64| Some(m.map_or(d, |m: f64| m.min(d)));
         if let Some(d) = s.distance {
             self.min_distance = min(self.min_distance, d);

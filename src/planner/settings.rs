@@ -2,23 +2,23 @@
 //! target (a new line), the obstacles and the gains. Each setting is
 //! checked first; a refused one changes nothing.
 
-use std::sync::Arc;
-
 use super::methods::{DELTA, LAMBDA};
-use super::{check_networks, Line, Method, Planner, Surrogate, Track};
-use crate::arm::{JointLimits, RateLimits};
+use super::{check_networks, rule_of, Method, Networks, Planned, Planner, Track};
+use crate::arm::{Arm, JointLimits, RateLimits};
 use crate::error::{coordinate, positive, Error, Result};
 use crate::ik::DampingSchedule;
+use crate::model::Scene as _;
 use crate::obstacle::Obstacle;
 use crate::scene::{self, Param};
+use crate::space::{Chain, Sphere, MAX_SPHERES};
 
-impl Planner {
+impl<A: Planned<M>, const M: usize> Planner<A, M> {
     /// Switches method; methods that use networks need them. The new
     /// method's rule is built here (its scratch space allocated once).
     pub fn set_method(&mut self, method: Method) -> Result<()> {
-        check_networks(method, &self.networks, &self.scene.arm)?;
+        check_networks(method, &self.networks, self.scene.arm())?;
         if method != self.method {
-            self.ws.rule = method.rule(self.scene.arm.dof());
+            self.ws.rule = rule_of(method, self.scene.arm().dof())?;
         }
         self.method = method;
         self.resample();
@@ -27,13 +27,44 @@ impl Planner {
 
     /// Installs (or removes) the trained networks. Networks trained for
     /// another arm are refused ([`Error::NetworksForAnotherArm`]).
-    pub fn set_networks(&mut self, networks: Option<Arc<dyn Surrogate>>) -> Result<()> {
-        check_networks(self.method, &networks, &self.scene.arm)?;
+    pub fn set_networks(&mut self, networks: Option<Networks<A, M>>) -> Result<()> {
+        check_networks(self.method, &networks, self.scene.arm())?;
         self.networks = networks;
         self.resample();
         Ok(())
     }
 
+    /// Sets a parameter of the methods ([`Param`]); refused, changing
+    /// nothing, when out of its bounds.
+    pub fn set_param(&mut self, param: &'static Param, value: f64) -> Result<()> {
+        self.scene.params_mut().set(param, value)?;
+        self.resample();
+        Ok(())
+    }
+
+    /// Sets `lambda`, the gain of the obstacle vector.
+    pub fn set_lambda(&mut self, lambda: f64) -> Result<()> {
+        self.set_param(&LAMBDA, lambda)
+    }
+
+    /// Sets the constant damping `delta` (eqs. 6, 17, 20). In Cases 1 and 3
+    /// it damps the network's `Phi` through [`crate::ik::damp_phi`].
+    pub fn set_delta(&mut self, delta: f64) -> Result<()> {
+        self.set_param(&DELTA, delta)
+    }
+
+    /// Switches the damping schedule on (`Some`) or off (`None`).
+    pub fn set_damping(&mut self, damping: Option<DampingSchedule>) -> Result<()> {
+        if let Some(d) = &damping {
+            d.validate()?;
+        }
+        *self.scene.damping_mut() = damping;
+        self.resample();
+        Ok(())
+    }
+}
+
+impl Planner<Arm, 2> {
     /// Re-plans: a new straight line from the current end effector to `target`,
     /// starting now and lasting `duration` seconds (rounded up to whole steps).
     /// The scene's path becomes the line (a circle or a polyline gives way
@@ -45,16 +76,14 @@ impl Planner {
         let steps = (duration / self.scene.dt - 1e-9).ceil().max(1.0);
         self.scene.target = target;
         self.scene.path = crate::scene::Path::Line;
-        self.track = Track {
-            line: Line::new(
-                self.ws.pose.end_effector(),
-                target,
-                self.t,
-                steps * self.scene.dt,
-            ),
-            path: crate::scene::Path::Line,
-        };
-        self.reachable = self.track.reachable(&self.scene.arm);
+        self.track = Track::straight(
+            self.ws.pose.end_effector(),
+            target,
+            self.t,
+            steps * self.scene.dt,
+        );
+        let (arm, pose) = (&self.scene.arm, &self.ws.pose);
+        self.reachable = self.track.all_points(|p| arm.reaches(pose, p));
         // The damping schedule is switched on where a point of the path
         // (the target, for the line) lies outside the workspace.
         if DampingSchedule::switch_on_out_of_reach(&mut self.scene.damping, self.reachable) {
@@ -98,35 +127,6 @@ impl Planner {
         Ok(())
     }
 
-    /// Sets a parameter of the methods ([`Param`]); refused, changing
-    /// nothing, when out of its bounds.
-    pub fn set_param(&mut self, param: &'static Param, value: f64) -> Result<()> {
-        self.scene.set_param(param, value)?;
-        self.resample();
-        Ok(())
-    }
-
-    /// Sets `lambda`, the gain of the obstacle vector.
-    pub fn set_lambda(&mut self, lambda: f64) -> Result<()> {
-        self.set_param(&LAMBDA, lambda)
-    }
-
-    /// Sets the constant damping `delta` (eqs. 6, 17, 20). In Cases 1 and 3
-    /// it damps the network's `Phi` through [`crate::ik::damp_phi`].
-    pub fn set_delta(&mut self, delta: f64) -> Result<()> {
-        self.set_param(&DELTA, delta)
-    }
-
-    /// Switches the damping schedule on (`Some`) or off (`None`).
-    pub fn set_damping(&mut self, damping: Option<DampingSchedule>) -> Result<()> {
-        if let Some(d) = &damping {
-            d.validate()?;
-        }
-        self.scene.damping = damping;
-        self.resample();
-        Ok(())
-    }
-
     /// Gives the arm other joint limits (position and rate; `None`:
     /// unlimited), keeping the rest of the scene. Refused, changing nothing,
     /// when their count does not match the links or the start pose lies
@@ -160,6 +160,41 @@ impl Planner {
     pub fn set_feedback_gain(&mut self, gain: f64) -> Result<()> {
         scene::validate_gain(gain, self.scene.dt)?;
         self.scene.feedback_gain = gain;
+        Ok(())
+    }
+}
+
+impl Planner<Chain, 3> {
+    /// Puts sphere `index` at `sphere` (or adds it, for `index` equal to
+    /// the number of spheres); it takes effect at the next step, and the
+    /// current sample is measured again. Allocation-free but for an added
+    /// sphere (the scene's list grows). Refused, changing nothing, where the
+    /// sphere does not validate (on the base, not finite), `index` is past
+    /// the end or the scene has [`MAX_SPHERES`] already.
+    pub fn set_sphere(&mut self, index: usize, sphere: Sphere) -> Result<()> {
+        let count = self.scene.spheres.len();
+        if index > count {
+            return Err(Error::OutOfRange {
+                what: "sphere index".into(),
+                value: index as f64,
+                min: 0.0,
+                max: count as f64,
+            });
+        }
+        sphere.validate_at(&self.scene.chain, &self.ws.pose)?;
+        if index == count {
+            if count >= MAX_SPHERES {
+                return Err(Error::DimensionMismatch {
+                    what: "spheres (at most)".into(),
+                    expected: MAX_SPHERES,
+                    found: count + 1,
+                });
+            }
+            self.scene.spheres.push(sphere);
+        } else {
+            self.scene.spheres[index] = sphere;
+        }
+        self.resample();
         Ok(())
     }
 }

@@ -23,8 +23,8 @@ use crate::networks::space::{
 use crate::nn::adam::{self, AdamOptions};
 use crate::nn::lm::{Dataset, EpochReport};
 use crate::nn::rng::Rng;
-use crate::planner::space::SpacePlanner;
 use crate::planner::Method;
+use crate::planner::Planner;
 use crate::scene::SpaceScene;
 use crate::space::{criterion, linalg, phi, Chain, SpacePose, SpacePreset, Sphere, Vec3};
 
@@ -256,11 +256,10 @@ pub fn v_states(
             scene.target = [0, 1, 2].map(|k| start[k] + d[k]);
             scene.spheres = vec![Sphere::new(centre, p.task.sphere[3])];
             // A run that fails (a singular pose, a divergence) gives no poses.
-            let Ok(run) = SpacePlanner::new(scene, Method::NUMERICAL).and_then(SpacePlanner::run)
-            else {
+            let Ok(run) = Planner::run(scene, Method::NUMERICAL, None) else {
                 continue;
             };
-            pool.extend(run.samples.into_iter().map(|x| SpaceVisited {
+            pool.extend(run.steps.into_iter().map(|x| SpaceVisited {
                 theta: x.theta,
                 obstacle: centre,
             }));

@@ -166,7 +166,7 @@ pub fn draw(
     // The path and the trail, under the arm.
     let played = s.played();
     if let Some(first) = s.samples().first() {
-        let outline = scene.path.outline(first.hand, scene.target, 96);
+        let outline = scene.path.outline(first.ee, scene.target, 96);
         ctx.set_stroke_style_str(MUTED);
         ctx.set_line_width(1.2);
         dash(ctx, &[5.0, 4.0]);
@@ -175,7 +175,7 @@ pub fn draw(
     }
     ctx.set_stroke_style_str(ACCENT);
     ctx.set_line_width(2.0);
-    path(ctx, &proj, played.iter().map(|p| p.hand));
+    path(ctx, &proj, played.iter().map(|p| p.ee));
 
     // The arm and the spheres, far to near.
     let mut items: Vec<(f64, Item)> = links

@@ -11,7 +11,7 @@ use wasm_bindgen::prelude::*;
 use super::js_err;
 use crate::export::SpaceRunFile;
 use crate::figure;
-use crate::planner::space::SpaceTrajectory;
+use crate::planner::Trajectory;
 use crate::session::STROBE_EVERY;
 use crate::space::PRESETS;
 
@@ -35,16 +35,16 @@ pub fn space_plots(run_json: &str) -> Result<String, JsError> {
 }
 
 /// A run file's arm (what a figure calls it), the file and its run.
-fn read(run_json: &str) -> Result<(&'static str, SpaceRunFile, SpaceTrajectory), JsError> {
+fn read(run_json: &str) -> Result<(&'static str, SpaceRunFile, Trajectory<3>), JsError> {
     let mut file = SpaceRunFile::from_json(run_json).map_err(js_err)?;
     let label = PRESETS
         .iter()
         .find(|p| p.key == file.arm)
         .map_or(file.arm, |p| p.label);
-    let traj = SpaceTrajectory {
+    let traj = Trajectory {
         method: file.method,
-        samples: std::mem::take(&mut file.samples),
-        summary: file.summary,
+        steps: std::mem::take(&mut file.samples),
+        summary: file.summary.clone(),
     };
     Ok((label, file, traj))
 }

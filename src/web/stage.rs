@@ -84,7 +84,7 @@ pub fn draw(s: &Session, surface: &Surface, view: View, layer: Option<&Layer>, s
     ctx.set_stroke_style_str(MUTED);
     ctx.set_line_width(1.25);
     dash(ctx, &[6.0, 5.0]);
-    polyline(ctx, Some(view), &planner.track().outline());
+    polyline(ctx, Some(view), &planner.outline());
     dash(ctx, &[]);
 
     // End-effector trail.

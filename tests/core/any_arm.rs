@@ -2,6 +2,7 @@
 //! learned Phi, the allocation-free routines and reset.
 
 use super::*;
+use redundant_ik::nalgebra::DVector;
 #[cfg(target_family = "wasm")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
@@ -194,7 +195,16 @@ fn the_planner_rates_through_its_workspace_equal_the_convenience_form() {
     for method in methods::ALL.iter().copied().filter(|m| !m.uses_networks()) {
         let mut p = Planner::new(Scene::task2(), method, None).unwrap();
         let th = DVector::from_vec(vec![0.4, 1.2, 0.3]);
-        let a = p.theta_dot(&th, &Vector2::new(-0.05, 0.02)).unwrap();
+        let a = p
+            .theta_dot(
+                th.as_slice(),
+                [
+                    (Vector2::new(-0.05, 0.02))[0],
+                    (Vector2::new(-0.05, 0.02))[1],
+                ],
+            )
+            .map(DVector::from_vec)
+            .unwrap();
         let mut b = [0.0; 3];
         p.theta_dot_into(th.as_slice(), [-0.05, 0.02], &mut b)
             .unwrap();

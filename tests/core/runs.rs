@@ -2,6 +2,7 @@
 //! the obstacle and bad input.
 
 use super::*;
+use redundant_ik::nalgebra::DVector;
 #[cfg(target_family = "wasm")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
@@ -174,10 +175,16 @@ fn retargeting_plans_a_new_line_from_the_current_end_effector() {
 #[test]
 fn moving_the_obstacle_takes_effect_at_the_next_step() {
     let mut p = Planner::new(Scene::task1(), Method::NUMERICAL, None).unwrap();
-    let v_before = p.null_space(p.theta()).unwrap();
+    let v_before = p
+        .null_space(p.theta().as_slice())
+        .map(DVector::from_vec)
+        .unwrap();
     p.set_obstacles(vec![Obstacle::new(1.2, 1.3, 0.05)])
         .unwrap();
-    let v_after = p.null_space(p.theta()).unwrap();
+    let v_after = p
+        .null_space(p.theta().as_slice())
+        .map(DVector::from_vec)
+        .unwrap();
     assert!((v_before - v_after).amax() > 1e-3);
     let d = p.sample().distance.unwrap();
     let expected = obstacle::clearance(&Arm::paper().joints(p.theta()), &Vector2::new(1.2, 1.3));

@@ -98,7 +98,13 @@ fn manipulability_climbs_w_in_the_null_space_while_the_hand_holds_still() {
     let scene = Scene::task1();
     let p = Planner::new(scene.clone(), MANIPULABILITY, None).unwrap();
     let theta = DVector::from_vec(scene.theta0.clone());
-    let rates = p.theta_dot(&theta, &Vector2::zeros()).unwrap();
+    let rates = p
+        .theta_dot(
+            theta.as_slice(),
+            [(Vector2::zeros())[0], (Vector2::zeros())[1]],
+        )
+        .map(DVector::from_vec)
+        .unwrap();
     let pose = Pose::new(&scene.arm, theta.as_slice()).unwrap();
     let mut g = [0.0; 3];
     pose.manipulability_gradient_into(1e-6, &mut g);
@@ -119,11 +125,19 @@ fn jointrange_pulls_each_joint_toward_the_middle_of_its_range_and_nothing_withou
     let free = Planner::new(scene.clone(), JOINT_RANGE, None).unwrap();
     let theta = DVector::from_vec(vec![0.4, 1.9, -1.2]);
     let xdot = Vector2::new(-0.1, 0.05);
-    let scene_free = free.theta_dot(&theta, &xdot).unwrap();
+    let scene_free = free
+        .theta_dot(theta.as_slice(), [xdot[0], xdot[1]])
+        .map(DVector::from_vec)
+        .unwrap();
     let mut bare = scene.clone();
     bare.obstacles.clear();
     let bare = Planner::new(bare, Method::NO_AVOIDANCE, None).unwrap();
-    assert_eq!(scene_free, bare.theta_dot(&theta, &xdot).unwrap());
+    assert_eq!(
+        scene_free,
+        bare.theta_dot(theta.as_slice(), [xdot[0], xdot[1]])
+            .map(DVector::from_vec)
+            .unwrap()
+    );
     // With limits: v_i = -k (theta_i - mid_i) / (n range_i^2).
     scene.arm = scene
         .arm
@@ -132,7 +146,10 @@ fn jointrange_pulls_each_joint_toward_the_middle_of_its_range_and_nothing_withou
         .unwrap();
     scene.set_param(&JOINT_RANGE_GAIN, 6.0).unwrap();
     let p = Planner::new(scene.clone(), JOINT_RANGE, None).unwrap();
-    let v = p.null_space(&theta).unwrap();
+    let v = p
+        .null_space(theta.as_slice())
+        .map(DVector::from_vec)
+        .unwrap();
     let mids = [0.0, 1.0, 0.0];
     let ranges = [2.0, 3.0, 4.0];
     for i in 0..3 {

@@ -2,6 +2,7 @@
 //! Cases 1-3.
 
 use super::*;
+use redundant_ik::nalgebra::DVector;
 #[cfg(target_family = "wasm")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
@@ -104,12 +105,18 @@ fn planner_runs_every_method_with_the_networks_as_surrogate() {
     let nets: Arc<dyn Surrogate> = Arc::new(Networks::embedded().unwrap());
     let p = Planner::new(Scene::task2(), Method::CASE3, Some(nets.clone())).unwrap();
     let xdot = Vector2::new(-0.1, -0.03);
-    let td = p.theta_dot(p.theta(), &xdot).unwrap();
+    let td = p
+        .theta_dot(p.theta().as_slice(), [xdot[0], xdot[1]])
+        .map(DVector::from_vec)
+        .unwrap();
     let arm = Arm::paper();
     // The commanded end-effector velocity is met to the Phi network's accuracy:
     // J theta_dot - Xdot = J (Phi_net - Phi) (Xdot - J v).
     let j = arm.jacobian(p.theta());
-    let v = p.null_space(p.theta()).unwrap();
+    let v = p
+        .null_space(p.theta().as_slice())
+        .map(DVector::from_vec)
+        .unwrap();
     let err = (&j * &td - xdot).norm();
     assert!(err < 2e-3 * (xdot - &j * v).norm(), "{err}");
     assert!(p.in_range());

@@ -3,7 +3,7 @@
 
 use redundant_ik::atlas::space::{default_region, slice, Plane};
 use redundant_ik::atlas::{Class, Grid};
-use redundant_ik::planner::space::SpacePlanner;
+use redundant_ik::planner::{Networks, Planner};
 use redundant_ik::scene::SpaceScene;
 use redundant_ik::space::Sphere;
 use redundant_ik::{Error, Method};
@@ -33,8 +33,8 @@ fn every_cell_is_the_run_of_its_sphere() {
             }
             let mut s = scene.clone();
             s.spheres = vec![Sphere::new(c.centre, a.radius)];
-            let direct = SpacePlanner::with_networks(s, *m, Some(nets.clone()))
-                .and_then(SpacePlanner::run)
+            let direct = Planner::new(s, *m, Some(nets.clone() as Networks<_, 3>))
+                .and_then(Planner::run_to_end)
                 .unwrap();
             assert_eq!(o.min_clearance, direct.summary.min_clearance);
             assert_eq!(o.final_error, Some(direct.summary.final_error));

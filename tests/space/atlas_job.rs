@@ -10,8 +10,8 @@ use redundant_ik::atlas::space::{
 };
 use redundant_ik::atlas::{Class, Grid};
 use redundant_ik::networks::space::{SpaceNetworkSet, SpaceNetworks};
-use redundant_ik::planner::space::SpacePlanner;
 use redundant_ik::planner::{methods, REACH_TOLERANCE};
+use redundant_ik::planner::{Networks, Planner};
 use redundant_ik::scene::SpaceScene;
 use redundant_ik::space::{clearance, SpacePose, Sphere};
 use redundant_ik::Method;
@@ -79,7 +79,9 @@ fn run(
         return blank;
     }
     let nets = nets.filter(|_| m.uses_networks()).cloned();
-    match SpacePlanner::with_networks(s.clone(), m, nets).and_then(SpacePlanner::run) {
+    match Planner::new(s.clone(), m, nets.map(|n| n as Networks<_, 3>))
+        .and_then(Planner::run_to_end)
+    {
         Ok(run) => {
             let r = run.summary;
             let class = pre.unwrap_or(if r.collision_steps > 0 {
@@ -163,22 +165,25 @@ fn the_iiwas_job_is_the_atlas_of_new_planners_in_every_method() {
 #[test]
 fn a_planner_reset_with_its_sphere_moved_runs_as_a_new_one() {
     let scene = SpaceScene::by_key("panda").unwrap();
-    let mut p = SpacePlanner::new(scene.clone(), methods::QP).unwrap();
-    let first = p.run_summary().unwrap();
+    let mut p = Planner::new(scene.clone(), methods::QP, None).unwrap();
+    let first = p.summary_to_end().unwrap();
     let moved = Sphere::new([0.45, 0.1, 0.5], 0.06);
     p.set_sphere(0, moved).unwrap();
     assert!(p.sample().clearance.is_some());
     p.reset();
-    assert_eq!(p.t(), 0.0);
+    assert_eq!(p.time(), 0.0);
     let mut s = scene.clone();
     s.spheres[0] = moved;
-    let direct = SpacePlanner::new(s.clone(), methods::QP).unwrap();
+    let direct = Planner::new(s.clone(), methods::QP, None).unwrap();
     assert_eq!(p.sample(), direct.sample());
-    assert_eq!(p.run_summary().unwrap(), direct.run().unwrap().summary);
+    assert_eq!(
+        p.summary_to_end().unwrap(),
+        direct.run_to_end().unwrap().summary
+    );
     // Back to the first sphere: the first run again.
     p.set_sphere(0, scene.spheres[0]).unwrap();
     p.reset();
-    assert_eq!(p.run_summary().unwrap(), first);
+    assert_eq!(p.summary_to_end().unwrap(), first);
     // A sphere on the base or past the end is refused, changing nothing.
     let on_base = Sphere::new(scene.chain.base().1, 0.05);
     assert!(p.set_sphere(0, on_base).is_err());

@@ -9,7 +9,7 @@ use redundant_ik::nn::Rng;
 use redundant_ik::planner::methods::{
     self, DELTA, JOINT_RANGE_GAIN, LAMBDA, MANIPULABILITY_GAIN, SIGN_SMOOTHING,
 };
-use redundant_ik::planner::space::{SpacePlanner, SpaceTrajectory};
+use redundant_ik::planner::Trajectory;
 use redundant_ik::scene::{JointWeighting, SpaceScene};
 use redundant_ik::space::manipulability::{manipulability, manipulability_gradient_into};
 use redundant_ik::space::{criterion, Chain, SpacePose, Sphere, PRESETS};
@@ -24,9 +24,9 @@ fn random_theta(chain: &Chain, rng: &mut Rng) -> Vec<f64> {
         .collect()
 }
 
-fn run(scene: &SpaceScene, m: Method) -> SpaceTrajectory {
-    SpacePlanner::new(scene.clone(), m)
-        .and_then(|p| p.run())
+fn run(scene: &SpaceScene, m: Method) -> Trajectory<3> {
+    Planner::new(scene.clone(), m, None)
+        .and_then(Planner::run_to_end)
         .unwrap()
 }
 
@@ -38,20 +38,20 @@ fn free(key: &str) -> SpaceScene {
 }
 
 /// The mean of `f` over a run's poses.
-fn mean_over(scene: &SpaceScene, run: &SpaceTrajectory, f: impl Fn(&SpacePose) -> f64) -> f64 {
+fn mean_over(scene: &SpaceScene, run: &Trajectory<3>, f: impl Fn(&SpacePose) -> f64) -> f64 {
     let sum: f64 = run
-        .samples
+        .steps
         .iter()
         .map(|s| f(&SpacePose::new(&scene.chain, &s.theta).unwrap()))
         .sum();
-    sum / run.samples.len() as f64
+    sum / run.steps.len() as f64
 }
 
 /// The smallest distance of any joint from a limit over a run, as a
 /// fraction of its range.
-fn closest_to_a_limit(scene: &SpaceScene, run: &SpaceTrajectory) -> f64 {
+fn closest_to_a_limit(scene: &SpaceScene, run: &Trajectory<3>) -> f64 {
     let limits = scene.chain.joint_limits().unwrap().ranges();
-    run.samples
+    run.steps
         .iter()
         .flat_map(|s| {
             s.theta
@@ -106,8 +106,8 @@ fn the_manipulability_method_keeps_w_higher_than_none() {
         let scene = free(p.key);
         let none = run(&scene, Method::NO_AVOIDANCE);
         let w0 = mean_over(&scene, &none, manipulability);
-        let last = |r: &SpaceTrajectory| {
-            manipulability(&SpacePose::new(&scene.chain, &r.samples.last().unwrap().theta).unwrap())
+        let last = |r: &Trajectory<3>| {
+            manipulability(&SpacePose::new(&scene.chain, &r.steps.last().unwrap().theta).unwrap())
         };
         // At the default gain 0.5 and at 20: higher w, more with more gain.
         let mut before = w0;
@@ -128,14 +128,14 @@ fn the_manipulability_method_keeps_w_higher_than_none() {
                 p.key
             );
             assert!(last(&climb) > last(&none), "{}", p.key);
-            assert!(climb.summary.max_error < 1e-6, "{}", p.key);
+            assert!(climb.summary.max_tracking_error < 1e-6, "{}", p.key);
             before = w1;
         }
         // Without a gain it is none.
         let mut off = scene.clone();
         off.params.set(&MANIPULABILITY_GAIN, 0.0).unwrap();
         let flat = run(&off, methods::MANIPULABILITY);
-        assert_eq!(flat.samples.last(), none.samples.last(), "{}", p.key);
+        assert_eq!(flat.steps.last(), none.steps.last(), "{}", p.key);
     }
 }
 
@@ -164,8 +164,8 @@ fn the_joint_range_method_keeps_the_joints_nearer_the_middles_of_their_ranges() 
         let scene = free(p.key);
         let none = run(&scene, Method::NO_AVOIDANCE);
         let q0 = mean_over(&scene, &none, spread(&scene));
-        let end = |r: &SpaceTrajectory| {
-            spread(&scene)(&SpacePose::new(&scene.chain, &r.samples.last().unwrap().theta).unwrap())
+        let end = |r: &Trajectory<3>| {
+            spread(&scene)(&SpacePose::new(&scene.chain, &r.steps.last().unwrap().theta).unwrap())
         };
         let mut before = q0;
         for gain in [10.0, 50.0] {
@@ -184,7 +184,7 @@ fn the_joint_range_method_keeps_the_joints_nearer_the_middles_of_their_ranges() 
             );
             assert!(q1 < q0 && q1 < before, "{}: {q1} against {q0}", p.key);
             assert!(end(&range) < end(&none), "{}", p.key);
-            assert!(range.summary.max_error < 1e-6, "{}", p.key);
+            assert!(range.summary.max_tracking_error < 1e-6, "{}", p.key);
             before = q1;
         }
     }
@@ -233,7 +233,7 @@ fn weighted_least_norm_keeps_a_joint_started_near_its_limit_within_it() {
                 p.key,
                 plain.summary.limit_steps,
                 weighted.summary.limit_steps,
-                weighted.summary.max_error
+                weighted.summary.max_tracking_error
             );
             assert!(plain.summary.limit_steps > 0, "{m}: {:?}", plain.summary);
             assert!(
@@ -244,7 +244,7 @@ fn weighted_least_norm_keeps_a_joint_started_near_its_limit_within_it() {
                 plain.summary.limit_steps
             );
             assert!(
-                weighted.summary.max_error < 1e-6,
+                weighted.summary.max_tracking_error < 1e-6,
                 "{} {m}: {:?}",
                 p.key,
                 weighted.summary
@@ -298,7 +298,7 @@ fn without_weighting_the_rates_are_eq18_with_each_methods_v() {
             methods::MANIPULABILITY,
             methods::JOINT_RANGE,
         ] {
-            let mut planner = SpacePlanner::new(scene.clone(), m).unwrap();
+            let planner = Planner::new(scene.clone(), m, None).unwrap();
             for _ in 0..10 {
                 let theta = random_theta(&scene.chain, &mut rng);
                 let pose = SpacePose::new(&scene.chain, &theta).unwrap();
@@ -361,7 +361,7 @@ fn on_a_chain_without_limits_the_weighting_changes_nothing() {
         .filter(|m| m.in_space() && !m.uses_networks())
     {
         let (a, b) = (run(&scene, m), run(&wln, m));
-        assert_eq!(a.samples, b.samples, "{m}");
+        assert_eq!(a.steps, b.steps, "{m}");
     }
 }
 
@@ -426,16 +426,12 @@ fn a_chain_whose_axes_are_parallel_has_the_planar_manipulability_and_weights() {
             Planner::new(planar.clone(), m, None).unwrap(),
             Planner::new(unweighted.clone(), m, None).unwrap(),
         );
-        let mut spatial = SpacePlanner::new(space.clone(), m).unwrap();
+        let spatial = Planner::new(space.clone(), m, None).unwrap();
         let mut weighted_somewhere = false;
         for theta in &poses {
             for xdot in [[0.1, -0.2], [-0.3, 0.1]] {
                 let rates = |p: &Planner| {
-                    p.theta_dot(
-                        &nalgebra::DVector::from_vec(theta.clone()),
-                        &nalgebra::Vector2::new(xdot[0], xdot[1]),
-                    )
-                    .unwrap()
+                    nalgebra::DVector::from_vec(p.theta_dot(theta, [xdot[0], xdot[1]]).unwrap())
                 };
                 let (want, plain) = (rates(&plane), rates(&flat));
                 weighted_somewhere |= (&want - &plain).amax() > 1e-6;

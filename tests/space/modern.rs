@@ -8,7 +8,7 @@ use redundant_ik::planner::methods::constraints::{self, Rows};
 use redundant_ik::planner::methods::Context;
 use redundant_ik::planner::methods::{DAMPER_GAIN, INFLUENCE, STOP_DISTANCE};
 use redundant_ik::planner::methods::{DISTANCE, PRIORITY, QP};
-use redundant_ik::planner::space::{SpacePlanner, SpaceSummary};
+use redundant_ik::planner::{Planner, Summary};
 use redundant_ik::scene::SpaceScene;
 use redundant_ik::space::{Chain, SpacePairs, SpacePose, Sphere, PRESETS};
 
@@ -40,9 +40,9 @@ fn rows_at(scene: &SpaceScene, pose: &SpacePose) -> Vec<(&'static str, Vec<f64>,
 /// first RK4 stage keep every row, `G theta_dot <= h` (`<= max(h, 0)` in
 /// a step whose program was relaxed). Returns the run's summary and how
 /// many rows bound (held with equality).
-fn rows_hold_at_every_step(name: &str, scene: &SpaceScene) -> (SpaceSummary, usize) {
+fn rows_hold_at_every_step(name: &str, scene: &SpaceScene) -> (Summary, usize) {
     assert_eq!(scene.feedback_gain, 0.0, "the line's Xdot is the command");
-    let mut p = SpacePlanner::new(scene.clone(), QP).unwrap();
+    let mut p = Planner::new(scene.clone(), QP, None).unwrap();
     let start = p.pose().hand();
     let xdot = [0, 1, 2].map(|k| (scene.target[k] - start[k]) / scene.tf);
     let (mut binding, mut relaxed_steps) = (0, 0);
@@ -51,7 +51,7 @@ fn rows_hold_at_every_step(name: &str, scene: &SpaceScene) -> (SpaceSummary, usi
         let theta = p.sample().theta.clone();
         let rates = p.theta_dot(&theta, xdot).unwrap();
         let pose = SpacePose::new(&scene.chain, &theta).unwrap();
-        let t = p.t();
+        let t = p.time();
         let sample = p.step().unwrap().clone();
         relaxed_steps += usize::from(sample.relaxed);
         for (what, g, h) in rows_at(scene, &pose) {
@@ -66,10 +66,10 @@ fn rows_hold_at_every_step(name: &str, scene: &SpaceScene) -> (SpaceSummary, usi
         }
         samples.push(sample);
     }
-    let run = SpacePlanner::new(scene.clone(), QP)
-        .and_then(|pl| pl.run())
+    let run = Planner::new(scene.clone(), QP, None)
+        .and_then(Planner::run_to_end)
         .unwrap();
-    assert_eq!(run.samples, samples, "{name}: the same run twice");
+    assert_eq!(run.steps, samples, "{name}: the same run twice");
     assert_eq!(run.summary.relaxed_steps, relaxed_steps, "{name}");
     (run.summary, binding)
 }
@@ -153,8 +153,8 @@ fn distance_and_priority_keep_every_capsule_out_of_the_sphere_on_both_presets_ta
     for p in PRESETS {
         let scene = SpaceScene::preset(&p);
         for m in [DISTANCE, PRIORITY] {
-            let run = SpacePlanner::new(scene.clone(), m)
-                .and_then(|pl| pl.run())
+            let run = Planner::new(scene.clone(), m, None)
+                .and_then(Planner::run_to_end)
                 .unwrap();
             assert_eq!(
                 run.summary.collision_steps, 0,

@@ -12,7 +12,7 @@ use redundant_ik::networks::space::{
 };
 use redundant_ik::networks::NetKind;
 use redundant_ik::planner::methods::{self, REFINE};
-use redundant_ik::planner::space::SpacePlanner;
+use redundant_ik::planner::{Networks, Planner};
 use redundant_ik::scene::SpaceScene;
 use redundant_ik::space::{criterion, phi, SpacePose, SpacePreset, PRESETS};
 use redundant_ik::training::space::{phi_poses, space_accuracy, SpaceTrainSpec};
@@ -88,8 +88,8 @@ fn case_1_refined_is_the_numerical_route_and_case_2_with_the_exact_v_too() {
     let nets = panda_nets();
     let mut scene = SpaceScene::by_key("panda").unwrap();
     scene.params.set(&REFINE, 6.0).unwrap();
-    let mut a = SpacePlanner::with_networks(scene.clone(), methods::CASE1, Some(nets)).unwrap();
-    let mut b = SpacePlanner::new(scene, Method::NUMERICAL).unwrap();
+    let mut a = Planner::new(scene.clone(), methods::CASE1, Some(nets as Networks<_, 3>)).unwrap();
+    let mut b = Planner::new(scene, Method::NUMERICAL, None).unwrap();
     for _ in 0..100 {
         let (x, y) = (
             a.step().unwrap().theta.clone(),
@@ -129,8 +129,8 @@ fn every_learned_route_follows_the_line_without_spheres() {
     scene.feedback_gain = 1.0;
     scene.params.set(&REFINE, 2.0).unwrap();
     for m in [methods::CASE1, methods::CASE2, methods::CASE3] {
-        let run = SpacePlanner::with_networks(scene.clone(), m, Some(nets.clone()))
-            .and_then(SpacePlanner::run)
+        let run = Planner::new(scene.clone(), m, Some(nets.clone() as Networks<_, 3>))
+            .and_then(Planner::run_to_end)
             .unwrap();
         assert!(
             run.summary.final_error < 1e-3,
@@ -160,7 +160,7 @@ fn bad_files_and_the_wrong_arm_are_refused() {
     assert!(file.validate().unwrap_err().to_string().contains("inputs"));
     // The Panda's networks on the iiwa: refused by the planner.
     let iiwa = SpaceScene::by_key("iiwa14").unwrap();
-    let e = SpacePlanner::with_networks(iiwa, methods::CASE3, Some(panda_nets()))
+    let e = Planner::new(iiwa, methods::CASE3, Some(panda_nets() as Networks<_, 3>))
         .err()
         .unwrap();
     assert!(e.to_string().contains("panda"), "{e}");

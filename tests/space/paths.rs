@@ -5,7 +5,7 @@
 //! as it was written (a hostile one is an error, never a panic).
 
 use redundant_ik::export::{is_space_run, SpaceRunFile, SPACE_RUN_FORMAT};
-use redundant_ik::planner::space::{SpacePlanner, SpaceTrajectory};
+use redundant_ik::planner::{Planner, Trajectory};
 use redundant_ik::scene::{SpacePath, SpaceScene, MAX_POINTS};
 use redundant_ik::space::{SpacePreset, Vec3, PRESETS};
 use redundant_ik::{Error, Method};
@@ -28,12 +28,12 @@ fn cross(a: Vec3, b: Vec3) -> Vec3 {
 }
 
 /// The preset's task along `path`, closed-loop gain `k`, numerical.
-fn run(key: &str, path: &str, k: f64) -> (SpaceScene, SpaceTrajectory) {
+fn run(key: &str, path: &str, k: f64) -> (SpaceScene, Trajectory<3>) {
     let mut scene = SpaceScene::by_key(key).unwrap();
     scene.path = path.parse().unwrap();
     scene.feedback_gain = k;
-    let traj = SpacePlanner::new(scene.clone(), Method::NUMERICAL)
-        .and_then(SpacePlanner::run)
+    let traj = Planner::new(scene.clone(), Method::NUMERICAL, None)
+        .and_then(Planner::run_to_end)
         .unwrap();
     (scene, traj)
 }
@@ -63,7 +63,7 @@ fn the_hand_tracks_a_circle_whose_reference_stays_on_it() {
             let s = &traj.summary;
             // Measured: 1.6e-9 (Panda) and 1.9e-9 m (iiwa) open loop,
             // 7.0e-9 and 8.0e-9 m with K = 1.
-            assert!(s.max_error < 1e-7, "{} K={k}: {s:?}", p.key);
+            assert!(s.max_tracking_error < 1e-7, "{} K={k}: {s:?}", p.key);
             assert!(s.final_error < 1e-7, "{} K={k}: back at the start", p.key);
             assert_eq!(s.collision_steps + s.limit_steps, 0, "{} {s:?}", p.key);
             let SpacePath::Circle { centre, normal, .. } = scene.path else {
@@ -77,7 +77,7 @@ fn the_hand_tracks_a_circle_whose_reference_stays_on_it() {
             let n = sub(normal, u.map(|x| x * along));
             let n = n.map(|x| x / norm(n));
             let mut farthest: f64 = 0.0;
-            for (i, sample) in traj.samples.iter().enumerate() {
+            for (i, sample) in traj.steps.iter().enumerate() {
                 let d = sub(sample.reference, centre);
                 assert!((norm(d) - r).abs() < 1e-12, "{} off the circle", p.key);
                 assert!(dot(d, n).abs() < 1e-12, "{} off the plane", p.key);
@@ -99,7 +99,7 @@ fn the_hand_tracks_a_circle_whose_reference_stays_on_it() {
 #[test]
 fn each_rk4_stage_sees_the_circles_velocity_at_its_own_time() {
     let (_, traj) = run("panda", "circle:0.47,0,0.42,0,1,0,2", 0.0);
-    assert!(traj.summary.max_error < 1e-7, "{:?}", traj.summary);
+    assert!(traj.summary.max_tracking_error < 1e-7, "{:?}", traj.summary);
 }
 
 #[test]
@@ -116,12 +116,12 @@ fn the_hand_tracks_a_polyline_and_ends_at_its_last_point() {
             // Measured: largest 1.1 mm (Panda) and 1.0 mm (iiwa) open loop,
             // at the corners; with K = 1 1.1 and 0.8 mm, ending 4e-5 and
             // 1.1e-4 m from the last point.
-            assert!(s.max_error < max, "{} K={k}: {s:?}", p.key);
+            assert!(s.max_tracking_error < max, "{} K={k}: {s:?}", p.key);
             assert!(s.final_error < end, "{} K={k}: {s:?}", p.key);
-            let hand = traj.samples.last().unwrap().hand;
+            let hand = traj.steps.last().unwrap().ee;
             assert!(norm(sub(hand, last)) < end, "{} K={k}", p.key);
             assert_eq!(scene.path_end(), last);
-            for sample in &traj.samples {
+            for sample in &traj.steps {
                 let d = scene
                     .path
                     .distance_to(sample.reference, scene.start(), scene.target);
@@ -156,7 +156,7 @@ fn malformed_paths_in_space_are_refused_with_a_reason() {
         s.path = path;
         let e = s.validate().unwrap_err().to_string();
         assert!(e.contains(says), "{}: {e}", s.path);
-        assert!(SpacePlanner::new(s, Method::NUMERICAL).is_err());
+        assert!(Planner::new(s, Method::NUMERICAL, None).is_err());
     };
     let circle = |centre, normal| SpacePath::Circle {
         centre,
@@ -195,10 +195,10 @@ fn a_run_file_in_space_reads_back_as_written_and_replays_to_the_same_samples() {
     assert!(is_space_run(&text));
     let back = SpaceRunFile::from_json(&text).unwrap();
     assert_eq!(back, f);
-    let again = SpacePlanner::new(back.scene.clone(), back.method)
-        .and_then(SpacePlanner::run)
+    let again = Planner::new(back.scene.clone(), back.method, None)
+        .and_then(Planner::run_to_end)
         .unwrap();
-    assert_eq!(again.samples, f.samples);
+    assert_eq!(again.steps, f.samples);
     assert_eq!(
         SpaceRunFile::new(SpacePreset::by_key("iiwa14").unwrap(), back.scene, again).to_json(),
         text

@@ -3,7 +3,6 @@
 //! chain with parallel axes, and what cannot run is refused.
 
 use redundant_ik::planner::methods::{self, DELTA};
-use redundant_ik::planner::space::SpacePlanner;
 use redundant_ik::scene::SpaceScene;
 use redundant_ik::space::{SpacePreset, Sphere, PRESETS};
 use redundant_ik::{Arm, Error, Method, Planner, Scene};
@@ -24,8 +23,8 @@ fn without_spheres_every_method_keeps_the_hand_on_its_line() {
         let mut scene = SpaceScene::preset(&p);
         scene.spheres.clear();
         for m in space_methods() {
-            let run = SpacePlanner::new(scene.clone(), m)
-                .and_then(|pl| pl.run())
+            let run = Planner::new(scene.clone(), m, None)
+                .and_then(Planner::run_to_end)
                 .unwrap();
             // qp's task slack is eq. (5) damped by 1 / w (1e-6 at the
             // default slack weight): the hand drifts by its order.
@@ -35,10 +34,10 @@ fn without_spheres_every_method_keeps_the_hand_on_its_line() {
                 1e-6
             };
             assert!(
-                run.summary.max_error < tol,
+                run.summary.max_tracking_error < tol,
                 "{} {m}: off the line by {:e}",
                 p.key,
-                run.summary.max_error
+                run.summary.max_tracking_error
             );
             assert!(
                 run.summary.final_error < tol,
@@ -59,14 +58,14 @@ fn without_spheres_every_method_keeps_the_hand_on_its_line() {
 #[test]
 fn the_presets_tasks_hit_without_avoidance_and_the_hand_stays_on_the_line() {
     let run = |scene: &SpaceScene, m: Method| {
-        SpacePlanner::new(scene.clone(), m)
-            .and_then(|pl| pl.run())
+        Planner::new(scene.clone(), m, None)
+            .and_then(Planner::run_to_end)
             .unwrap()
     };
     for p in PRESETS {
         let scene = SpaceScene::preset(&p);
         assert!(
-            run(&scene, Method::NO_AVOIDANCE).samples[0]
+            run(&scene, Method::NO_AVOIDANCE).steps[0]
                 .clearance
                 .unwrap()
                 > 0.1,
@@ -75,7 +74,7 @@ fn the_presets_tasks_hit_without_avoidance_and_the_hand_stays_on_the_line() {
         );
         for m in [Method::NO_AVOIDANCE, Method::NUMERICAL] {
             let r = run(&scene, m);
-            assert!(r.summary.max_error < 1e-6, "{} {m}", p.key);
+            assert!(r.summary.max_tracking_error < 1e-6, "{} {m}", p.key);
             let hits = r.summary.collision_steps > 0;
             assert_eq!(
                 hits,
@@ -115,18 +114,13 @@ fn a_chain_whose_axes_are_parallel_gives_the_planar_rates() {
     space.params = planar.params.clone();
     for m in space_methods() {
         let plane = Planner::new(planar.clone(), m, None).unwrap();
-        let mut spatial = SpacePlanner::new(space.clone(), m).unwrap();
+        let spatial = Planner::new(space.clone(), m, None).unwrap();
         for theta in [
             vec![0.3, 1.2, -0.4],
             vec![-0.2, 0.9, 0.7],
             planar.theta0.clone(),
         ] {
-            let want = plane
-                .theta_dot(
-                    &nalgebra::DVector::from_vec(theta.clone()),
-                    &nalgebra::Vector2::new(0.1, -0.2),
-                )
-                .unwrap();
+            let want = plane.theta_dot(&theta, [0.1, -0.2]).unwrap();
             let got = spatial.theta_dot(&theta, [0.1, 0.0, -0.2]).unwrap();
             for (g, w) in got.iter().zip(want.iter()) {
                 assert!((g - w).abs() < 1e-12, "{m}: {got:?} against {want:?}");
@@ -141,21 +135,22 @@ fn what_cannot_run_in_space_is_refused_with_a_reason() {
     // Every method runs in space; a learned one needs the networks.
     assert!(methods::ALL.iter().all(|m| m.in_space()));
     for m in methods::ALL.iter().filter(|m| m.uses_networks()) {
-        let mut planner = SpacePlanner::new(scene.clone(), *m).unwrap();
-        let e = planner.step().err().unwrap();
+        let e = Planner::new(scene.clone(), *m, None).err().unwrap();
         assert!(matches!(e, Error::NetworksUnavailable(_)), "{m}: {e}");
         assert!(e.to_string().contains("--networks"), "{e}");
     }
     let mut outside = scene.clone();
     outside.theta0[3] = 0.5; // the Panda's joint 4 stays below -0.0698
-    assert!(SpacePlanner::new(outside, Method::NUMERICAL).is_err());
+    assert!(Planner::new(outside, Method::NUMERICAL, None).is_err());
     let mut on_base = scene.clone();
     on_base.spheres = vec![Sphere::new([0.02, 0.0, 0.1], 0.05)];
-    let e = SpacePlanner::new(on_base, Method::NUMERICAL).err().unwrap();
+    let e = Planner::new(on_base, Method::NUMERICAL, None)
+        .err()
+        .unwrap();
     assert!(matches!(e, Error::SphereOnBase { .. }), "{e}");
     let mut nan = scene;
     nan.target[1] = f64::NAN;
-    assert!(SpacePlanner::new(nan, Method::NUMERICAL).is_err());
+    assert!(Planner::new(nan, Method::NUMERICAL, None).is_err());
     assert!(SpaceScene::by_key("ur5").is_err());
     assert!(SpacePreset::by_key("panda").is_some());
 }
@@ -171,17 +166,17 @@ fn a_target_out_of_reach_is_detected_and_damped() {
         let mut scene = SpaceScene::preset(&p);
         scene.target = [2.0, 0.0, 0.5];
         for m in space_methods() {
-            let planner = SpacePlanner::new(scene.clone(), m).unwrap();
+            let planner = Planner::new(scene.clone(), m, None).unwrap();
             assert!(!planner.reachable(), "{} {m}", p.key);
             assert!(planner.auto_damping(), "{} {m}", p.key);
             assert!(planner.scene().damping.is_some());
-            let run = planner.run().unwrap();
+            let run = planner.run_to_end().unwrap();
             assert_eq!(
                 run.summary.limit_steps, 0,
                 "{} {m}: {:?}",
                 p.key, run.summary
             );
-            let last = &run.samples.last().unwrap().theta;
+            let last = &run.steps.last().unwrap().theta;
             assert!(
                 last.iter().all(|t| t.abs() < std::f64::consts::TAU),
                 "{} {m}: {last:?}",
@@ -200,10 +195,10 @@ fn a_target_out_of_reach_is_detected_and_damped() {
             }),
             ..scene.clone()
         };
-        let planner = SpacePlanner::new(own.clone(), Method::NUMERICAL).unwrap();
+        let planner = Planner::new(own.clone(), Method::NUMERICAL, None).unwrap();
         assert!(!planner.reachable() && !planner.auto_damping());
         assert_eq!(planner.scene().damping, own.damping);
-        let home = SpacePlanner::new(SpaceScene::preset(&p), Method::NUMERICAL).unwrap();
+        let home = Planner::new(SpaceScene::preset(&p), Method::NUMERICAL, None).unwrap();
         assert!(home.reachable() && !home.auto_damping());
         assert!(home.scene().damping.is_none());
     }

@@ -6,8 +6,8 @@
 //! `planner::self_motion`, generic over the hand's dimension.)
 
 use redundant_ik::planner::self_motion::SelfMotion;
-use redundant_ik::planner::space::SpacePlanner;
 use redundant_ik::planner::Method;
+use redundant_ik::planner::Planner;
 use redundant_ik::scene::SpaceScene;
 use redundant_ik::session::space::SpaceSession;
 use redundant_ik::space::SpacePose;
@@ -66,11 +66,11 @@ fn the_slider_makes_the_moved_pose_the_runs_start_with_the_hand_where_it_was() {
     assert!(drift(s.pose().hand(), hand) < 1e-4);
     assert_ne!(s.scene().theta0, before);
     // The run is the planner's own run from that start.
-    let own = SpacePlanner::new(s.scene().clone(), Method::NUMERICAL)
+    let own = Planner::new(s.scene().clone(), Method::NUMERICAL, None)
         .unwrap()
-        .run()
+        .run_to_end()
         .unwrap();
-    assert_eq!(s.samples(), &own.samples[..]);
+    assert_eq!(s.samples(), &own.steps[..]);
 }
 
 #[test]

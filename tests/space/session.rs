@@ -7,8 +7,8 @@
 use redundant_ik::export::SpaceRunFile;
 use redundant_ik::networks::space::SpaceNetworkSet;
 use redundant_ik::planner::methods::QP;
-use redundant_ik::planner::space::SpacePlanner;
 use redundant_ik::planner::Method;
+use redundant_ik::planner::Planner;
 use redundant_ik::scene::{SpacePath, SpaceScene};
 use redundant_ik::session::space::{Camera, SpaceHandle, SpaceSession, DISTANCE, PITCH};
 use redundant_ik::session::NUDGE;
@@ -126,11 +126,11 @@ fn a_dragged_sphere_stays_under_the_pointer_and_the_run_follows_it() {
     assert!(s.runs() > runs, "the run was computed again");
     assert_eq!(s.dragging(), None);
     // The run on screen is the planner's own run of the moved scene.
-    let own = SpacePlanner::new(s.scene().clone(), Method::NUMERICAL)
+    let own = Planner::new(s.scene().clone(), Method::NUMERICAL, None)
         .unwrap()
-        .run()
+        .run_to_end()
         .unwrap();
-    assert_eq!(s.samples(), &own.samples[..]);
+    assert_eq!(s.samples(), &own.steps[..]);
     assert_eq!(*s.summary(), own.summary);
 }
 
@@ -244,18 +244,18 @@ fn a_learned_method_has_the_numerical_ghost_at_the_time_shown() {
         .unwrap();
     s.set_method(Method::CASE3).unwrap();
     s.move_sphere(0, [0.45, 0.1, 0.62]).unwrap();
-    let exact = SpacePlanner::new(s.scene().clone(), Method::NUMERICAL)
+    let exact = Planner::new(s.scene().clone(), Method::NUMERICAL, None)
         .unwrap()
-        .run()
+        .run_to_end()
         .unwrap();
-    assert_eq!(s.ghost_samples(), &exact.samples[..]);
+    assert_eq!(s.ghost_samples(), &exact.steps[..]);
     s.run_until(2.0).unwrap();
-    let at = &exact.samples[40];
+    let at = &exact.steps[40];
     assert!((at.t - 2.0).abs() < 1e-9);
     let state = s.state();
     let ghost = state.ghost.as_ref().expect("a ghost in Case 3");
     assert_eq!(ghost.theta, &at.theta[..]);
-    assert_eq!(ghost.hand, at.hand);
+    assert_eq!(ghost.hand, at.ee);
     // Not the learned arm's pose: the two routes differ.
     assert_ne!(state.theta, ghost.theta);
     s.set_method(QP).unwrap();
@@ -314,11 +314,11 @@ fn a_path_drawn_on_the_stage_lies_under_the_stroke_in_the_plane_facing_the_camer
     s.set_path(path.clone()).unwrap();
     assert_eq!(s.state().path.as_deref(), Some(path.to_string().as_str()));
     // The run is the planner's own run of that path.
-    let own = SpacePlanner::new(s.scene().clone(), Method::NUMERICAL)
+    let own = Planner::new(s.scene().clone(), Method::NUMERICAL, None)
         .unwrap()
-        .run()
+        .run_to_end()
         .unwrap();
-    assert_eq!(s.samples(), &own.samples[..]);
+    assert_eq!(s.samples(), &own.steps[..]);
     // A typed circle too, and back to the line.
     let circle: SpacePath = "circle:0.45,0,0.5,0,1,0".parse().unwrap();
     s.set_path(circle).unwrap();
@@ -333,11 +333,11 @@ fn the_damping_switch_puts_the_schedule_into_the_scene_and_the_run() {
     assert!(!s.state().damping);
     s.set_damping(true).unwrap();
     assert!(s.state().damping && s.scene().damping.is_some());
-    let own = SpacePlanner::new(s.scene().clone(), Method::NUMERICAL)
+    let own = Planner::new(s.scene().clone(), Method::NUMERICAL, None)
         .unwrap()
-        .run()
+        .run_to_end()
         .unwrap();
-    assert_eq!(s.samples(), &own.samples[..]);
+    assert_eq!(s.samples(), &own.steps[..]);
     s.set_damping(false).unwrap();
     assert!(s.scene().damping.is_none());
 }
@@ -387,7 +387,10 @@ fn a_run_off_screen_is_the_planners_and_changes_nothing_on_the_stage() {
     let mut scene = s.scene().clone();
     scene.target = [0.45, 0.2, 0.5];
     scene.tf = 3.0;
-    let own = SpacePlanner::new(scene.clone(), QP).unwrap().run().unwrap();
+    let own = Planner::new(scene.clone(), QP, None)
+        .unwrap()
+        .run_to_end()
+        .unwrap();
     assert_eq!(s.run_offscreen(scene.clone(), QP).unwrap(), own.summary);
     assert_eq!(s.scene().tf, 5.0, "the stage's scene is its own");
     assert!(

@@ -7,7 +7,7 @@ use super::*;
 use redundant_ik::atlas::space::{default_region, slice, Plane};
 use redundant_ik::atlas::Grid;
 use redundant_ik::export::SpaceRunFile;
-use redundant_ik::planner::space::SpacePlanner;
+use redundant_ik::planner::Planner;
 use redundant_ik::scene::SpaceScene;
 use redundant_ik::space::SpacePreset;
 use redundant_ik::web::SpaceAtlasJob;
@@ -18,8 +18,8 @@ use wasm_bindgen_test::wasm_bindgen_test;
 fn panda_run() -> (SpaceScene, String) {
     let p = SpacePreset::by_key("panda").unwrap();
     let scene = SpaceScene::preset(p);
-    let traj = SpacePlanner::new(scene.clone(), Method::NUMERICAL)
-        .and_then(SpacePlanner::run)
+    let traj = Planner::new(scene.clone(), Method::NUMERICAL, None)
+        .and_then(Planner::run_to_end)
         .unwrap();
     (scene.clone(), SpaceRunFile::new(p, scene, traj).to_json())
 }

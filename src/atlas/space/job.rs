@@ -13,9 +13,10 @@ use super::{Plane, SliceAtlas, SliceCell, SliceOutcome};
 use crate::atlas::{Class, Grid};
 use crate::error::{Error, Result};
 use crate::networks::space::SpaceNetworks;
-use crate::planner::space::SpacePlanner;
 use crate::planner::{Method, REACH_TOLERANCE};
+use crate::planner::{Networks, Planner};
 use crate::scene::SpaceScene;
+use crate::space::Chain;
 use crate::space::{clearance, SpacePose, Sphere, Vec3};
 
 /// A slice atlas being computed, a chunk of cells at a time: what
@@ -32,7 +33,7 @@ pub struct SliceJob {
     pose: SpacePose,
     /// One planner per method (in the order of `methods`), reused for
     /// every cell.
-    planners: Vec<SpacePlanner>,
+    planners: Vec<Planner<Chain, 3>>,
     cells: Vec<SliceCell>,
 }
 
@@ -82,7 +83,7 @@ impl SliceJob {
             .iter()
             .map(|&m| {
                 let nets = networks.filter(|_| m.uses_networks()).cloned();
-                SpacePlanner::with_networks(scene.clone(), m, nets)
+                Planner::new(scene.clone(), m, nets.map(|n| n as Networks<Chain, 3>))
             })
             .collect::<Result<Vec<_>>>()?;
         Ok(Self {
@@ -200,7 +201,7 @@ fn run_cell(
     scene: &SpaceScene,
     pose: &SpacePose,
     radius: f64,
-    planners: &mut [SpacePlanner],
+    planners: &mut [Planner<Chain, 3>],
     c: Vec3,
 ) -> SliceCell {
     let sphere = Sphere::new(c, radius);
@@ -215,7 +216,7 @@ fn run_cell(
 }
 
 /// One run of `p` from `t = 0` with its first sphere at `sphere`.
-fn outcome(p: &mut SpacePlanner, sphere: Sphere, pre: Option<Class>) -> SliceOutcome {
+fn outcome(p: &mut Planner<Chain, 3>, sphere: Sphere, pre: Option<Class>) -> SliceOutcome {
     let not_run = |class, error| SliceOutcome {
         class,
         min_clearance: None,
@@ -229,7 +230,7 @@ fn outcome(p: &mut SpacePlanner, sphere: Sphere, pre: Option<Class>) -> SliceOut
     }
     let run = p.set_sphere(0, sphere).and_then(|()| {
         p.reset();
-        p.run_summary()
+        p.summary_to_end()
     });
     match run {
         Ok(s) => {

@@ -264,33 +264,6 @@ impl<A: Model<M>, const M: usize> Clone for Box<dyn Rule<A, M>> {
     }
 }
 
-/// An arm model whose rules and constraints the registry builds: the
-/// planar arm from each entry's `rule`, a chain in space from its `space`.
-pub trait Registered<const M: usize>: Model<M> {
-    /// How `entry`'s rule is built for this model, if the method has one.
-    fn rule(entry: &Entry) -> Option<Builder<Self, M>>;
-    /// How `entry`'s constraint is built for this model.
-    fn constraint(entry: &constraints::Entry) -> constraints::Build<Self, M>;
-}
-
-impl Registered<2> for Arm {
-    fn rule(entry: &Entry) -> Option<Builder<Self, 2>> {
-        Some(entry.rule)
-    }
-    fn constraint(entry: &constraints::Entry) -> constraints::Build<Self, 2> {
-        entry.build
-    }
-}
-
-impl Registered<3> for Chain {
-    fn rule(entry: &Entry) -> Option<Builder<Self, 3>> {
-        entry.space
-    }
-    fn constraint(entry: &constraints::Entry) -> constraints::Build<Self, 3> {
-        entry.space
-    }
-}
-
 /// How a method's rule is built for an `n`-joint arm `A`.
 pub type Builder<A, const M: usize> = fn(n: usize) -> Box<dyn Rule<A, M>>;
 
@@ -399,6 +372,11 @@ impl Method {
     /// Whether it reads parameter `p`.
     pub fn reads(self, p: &'static Param) -> bool {
         self.0.info.params.iter().any(|q| std::ptr::eq(*q, p))
+    }
+
+    /// Its registration.
+    pub fn entry(self) -> &'static Entry {
+        self.0
     }
 
     /// Its rule for an `n`-joint arm, with its scratch space.

@@ -2,10 +2,10 @@
 //! speed; step, reset, a time asked for) and the comparison of every
 //! method on the scene on screen.
 
-use super::{run, summary, SpaceMethodRun, SpaceSession};
+use super::{run, SpaceMethodRun, SpaceSession};
 use crate::error::{finite, within, Error, Result};
 use crate::planner::methods::{Method, ALL};
-use crate::planner::space::{SpacePlanner, SpaceSummary};
+use crate::planner::{Networks, Planner, Summary};
 use crate::scene::SpaceScene;
 use crate::session::MAX_STEPS_PER_FRAME;
 
@@ -87,7 +87,7 @@ impl SpaceSession {
     /// screen (the page's scripted `simulate()`): its outcome; refused when
     /// the scene does not validate, the method needs networks the session
     /// has not, or a step fails. The scene on the stage does not change.
-    pub fn run_offscreen(&self, scene: SpaceScene, method: Method) -> Result<SpaceSummary> {
+    pub fn run_offscreen(&self, scene: SpaceScene, method: Method) -> Result<Summary> {
         scene.validate()?;
         if method.uses_networks() && self.networks.is_none() {
             return Err(Error::NetworksUnavailable(format!(
@@ -96,8 +96,8 @@ impl SpaceSession {
                 self.preset.label
             )));
         }
-        let planner = SpacePlanner::with_networks(scene, method, self.networks.clone())?;
-        Ok(planner.run()?.summary)
+        let nets = self.networks.clone().map(|n| n as Networks<_, 3>);
+        Planner::run_summary(scene, method, nets)
     }
 
     // ---- the comparison -------------------------------------------------
@@ -109,10 +109,10 @@ impl SpaceSession {
         ALL.iter()
             .filter(|m| m.in_space() && (!m.uses_networks() || self.networks.is_some()))
             .map(|&m| {
-                let (samples, failure) = run(&self.scene, m, self.networks.clone());
+                let (_, summary, failure) = run(&self.scene, m, self.networks.clone());
                 SpaceMethodRun {
                     method: m,
-                    summary: summary(&samples, self.scene.path_end()),
+                    summary,
                     failure,
                 }
             })

@@ -32,9 +32,9 @@ use crate::error::{Error, Result};
 use crate::networks::space::{SpaceNetworkSet, SpaceNetworks};
 use crate::nn::Precision;
 use crate::planner::methods::Method;
-use crate::planner::space::{SpacePlanner, SpaceSample, SpaceSummary, SpaceTrajectory};
+use crate::planner::{Networks, Planner, Sample, Summary, Trajectory};
 use crate::scene::SpaceScene;
-use crate::space::{SpacePose, SpacePreset, Vec3, PRESETS};
+use crate::space::{Chain, SpacePose, SpacePreset, Vec3, PRESETS};
 
 /// A spatial run played on the page: see the module documentation.
 #[derive(Clone)]
@@ -47,14 +47,14 @@ pub struct SpaceSession {
     /// The arithmetic the networks compute in.
     precision: Precision,
     /// Every sample of the run from `t = 0` (up to a failed step).
-    samples: Vec<SpaceSample>,
+    samples: Vec<Sample<3>>,
     /// In the network cases, the numerical route's run of the same scene
     /// (the dashed ghost the page draws beside the learned arm, as in the
     /// plane); empty otherwise.
-    ghost: Vec<SpaceSample>,
+    ghost: Vec<Sample<3>>,
     /// The ghost's pose at the time shown (when there is a ghost).
     ghost_pose: Option<SpacePose>,
-    summary: SpaceSummary,
+    summary: Summary,
     /// Why the run stopped before `tf`, if it did.
     failure: Option<String>,
     /// The sample shown.
@@ -98,7 +98,7 @@ impl SpaceSession {
             samples: Vec::new(),
             ghost: Vec::new(),
             ghost_pose: None,
-            summary: empty_summary(),
+            summary: Summary::nothing(method),
             failure: None,
             index: 0,
             running: false,
@@ -237,7 +237,7 @@ impl SpaceSession {
     /// Runs the scene from `t = 0` to `tf` (or to the first failed step)
     /// and shows the sample at the time shown before.
     fn recompute(&mut self) {
-        let (samples, failure) = run(&self.scene, self.method, self.networks.clone());
+        let (samples, summary, failure) = run(&self.scene, self.method, self.networks.clone());
         // The ghost: the exact route on the same scene, about 0.15 ms of
         // the Panda's task natively (a learned run is 1 ms).
         self.ghost = if self.method.uses_networks() {
@@ -245,8 +245,7 @@ impl SpaceSession {
         } else {
             Vec::new()
         };
-        let end = self.scene.path_end();
-        self.summary = summary(&samples, end);
+        self.summary = summary;
         self.samples = samples;
         self.failure = failure;
         self.runs += 1;
@@ -280,31 +279,31 @@ impl SpaceSession {
     }
 
     /// Every sample of the ghost's run (empty without a ghost).
-    pub fn ghost_samples(&self) -> &[SpaceSample] {
+    pub fn ghost_samples(&self) -> &[Sample<3>] {
         &self.ghost
     }
 
     /// The whole run.
-    pub fn trajectory(&self) -> SpaceTrajectory {
-        SpaceTrajectory {
+    pub fn trajectory(&self) -> Trajectory<3> {
+        Trajectory {
             method: self.method,
-            samples: self.samples.clone(),
-            summary: self.summary,
+            steps: self.samples.clone(),
+            summary: self.summary.clone(),
         }
     }
 
     /// The sample shown.
-    pub fn sample(&self) -> Option<&SpaceSample> {
+    pub fn sample(&self) -> Option<&Sample<3>> {
         self.samples.get(self.index)
     }
 
     /// Every sample of the run.
-    pub fn samples(&self) -> &[SpaceSample] {
+    pub fn samples(&self) -> &[Sample<3>] {
         &self.samples
     }
 
     /// The samples up to the one shown (what the trail and plots draw).
-    pub fn played(&self) -> &[SpaceSample] {
+    pub fn played(&self) -> &[Sample<3>] {
         &self.samples[..(self.index + 1).min(self.samples.len())]
     }
 
@@ -327,7 +326,7 @@ impl SpaceSession {
     }
 
     /// The whole run's outcome (what it does by `tf`).
-    pub fn summary(&self) -> &SpaceSummary {
+    pub fn summary(&self) -> &Summary {
         &self.summary
     }
 
@@ -346,32 +345,24 @@ fn home_focus(scene: &SpaceScene) -> Vec3 {
 }
 
 /// `scene` run in `method` from `t = 0` to `tf`: the samples up to the
-/// first step that failed, and why it did.
+/// first step that failed, the run's outcome so far, and why it failed.
 pub(super) fn run(
     scene: &SpaceScene,
     method: Method,
     networks: Option<Arc<SpaceNetworks>>,
-) -> (Vec<SpaceSample>, Option<String>) {
-    let mut p = match SpacePlanner::with_networks(scene.clone(), method, networks) {
+) -> (Vec<Sample<3>>, Summary, Option<String>) {
+    let nets = networks.map(|n| n as Networks<Chain, 3>);
+    let mut p = match Planner::new(scene.clone(), method, nets) {
         Ok(p) => p,
-        Err(e) => return (Vec::new(), Some(e.to_string())),
+        Err(e) => return (Vec::new(), Summary::nothing(method), Some(e.to_string())),
     };
     let mut samples = Vec::with_capacity(scene.steps() + 1);
     samples.push(p.sample().clone());
     while !p.done() {
         match p.step() {
             Ok(s) => samples.push(s.clone()),
-            Err(e) => return (samples, Some(e.to_string())),
+            Err(e) => return (samples, p.summary(), Some(e.to_string())),
         }
     }
-    (samples, None)
-}
-
-/// The outcome of `samples`, as [`SpacePlanner::run`] gives it.
-pub(super) fn summary(samples: &[SpaceSample], end: Vec3) -> SpaceSummary {
-    SpaceSummary::of(samples, end)
-}
-
-fn empty_summary() -> SpaceSummary {
-    SpaceSummary::of(&[], [0.0; 3])
+    (samples, p.summary(), None)
 }

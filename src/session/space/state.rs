@@ -6,7 +6,7 @@ use serde::Serialize;
 use super::SpaceSession;
 use crate::planner::methods::Method;
 use crate::planner::params;
-use crate::planner::space::SpaceSummary;
+use crate::planner::Summary;
 use crate::scene::JointWeighting;
 use crate::session::ByName;
 use crate::space::manipulability::{manipulability, velocity_ellipsoid};
@@ -81,7 +81,7 @@ pub struct SpaceState<'a> {
     /// Joints past a limit now.
     pub past_limits: usize,
     /// The whole run's outcome (what it does by `tf`).
-    pub summary: &'a SpaceSummary,
+    pub summary: &'a Summary,
     /// Why the run stopped before `tf`, if it did.
     pub failure: Option<&'a str>,
     /// What the keys move: `target` or `sphere 2`.
@@ -129,7 +129,7 @@ pub struct SpaceMethodRun {
     /// The method.
     pub method: Method,
     /// Its run's outcome.
-    pub summary: SpaceSummary,
+    pub summary: Summary,
     /// Why its run stopped before `tf`, if it did.
     pub failure: Option<String>,
 }
@@ -180,7 +180,7 @@ impl SpaceSession {
                 .iter()
                 .find(|s| s.clearance.is_some_and(|c| c < 0.0))
                 .map(|s| s.t),
-            past_limits: sample.map_or(0, |s| s.past_limits),
+            past_limits: sample.map_or(0, |s| s.past_limits.len()),
             summary: &self.summary,
             failure: self.failure.as_deref(),
             selected: self.selected().describe(),

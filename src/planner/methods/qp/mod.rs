@@ -42,7 +42,8 @@ pub mod constraints;
 
 use super::influence::{INFLUENCE, STOP_DISTANCE};
 use super::paper::{DELTA, LAMBDA, SIGN_SMOOTHING};
-use super::{Context, Entry, Group, Method, MethodInfo, Needs, Note, Registered, Rule};
+use super::{Context, Entry, Group, Method, MethodInfo, Needs, Note, Rule};
+use crate::planner::Planned;
 use crate::arm::Arm;
 use crate::error::{Error, Result};
 use crate::model::{Model, Scene as _};
@@ -142,7 +143,7 @@ impl<A: Model<M>, const M: usize> Clone for Qp<A, M> {
 }
 
 /// The rule of `qp` for an `n`-joint arm.
-fn rule<A: Registered<M>, const M: usize>(n: usize) -> Box<dyn Rule<A, M>> {
+fn rule<A: Planned<M>, const M: usize>(n: usize) -> Box<dyn Rule<A, M>> {
     // Dampers for the model's pairs, the joint-limit dampers and the rate
     // limits.
     let m = A::most_pairs(n) + 2 * n + 2 * n;

@@ -1,0 +1,216 @@
+//! What the planner needs of an arm model beyond its kinematics
+//! ([`crate::model::Model`]): the methods' rules and constraints from the
+//! registry, the scene's path as a track, whether a point is in reach, and
+//! what a sample records of obstacles. Implemented by the planar arm
+//! (`M = 2`) and the chain in space (`M = 3`); everything else of the
+//! planner is written once.
+
+use super::along::Circle;
+use super::methods::{constraints, Builder, Entry};
+use super::path::{Shape, Track};
+use crate::arm::Arm;
+use crate::clearance::Pair;
+use crate::error::{Error, Result};
+use crate::kinematics::Pose;
+use crate::model::Model;
+use crate::scene::{circle_plane, Path, Scene, SpacePath, SpaceScene};
+use crate::space::{norm, sub, CapsulePair, Chain, SpacePose};
+
+/// What a sample records of the obstacles at a pose.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Contact {
+    /// The smallest distance from an obstacle's centre to a moving link.
+    pub distance: Option<f64>,
+    /// The smallest clearance between a moving link and an obstacle.
+    pub clearance: Option<f64>,
+    /// Whether a link is inside an obstacle (or the ground, where the
+    /// scene has one and the arm counts it).
+    pub collision: bool,
+}
+
+/// The scene type of one arm model: lets `Planner::new(scene, ...)` find
+/// the arm and the task's dimension from the scene it is given.
+pub trait SceneOf<A, const M: usize> {}
+
+impl SceneOf<Arm, 2> for Scene {}
+impl SceneOf<Chain, 3> for SpaceScene {}
+
+/// An arm model the planner plans for.
+pub trait Planned<const M: usize>: Model<M> {
+    /// How `entry`'s rule is built for this model, if the method has one.
+    fn rule(entry: &Entry) -> Option<Builder<Self, M>>;
+    /// How `entry`'s constraint is built for this model.
+    fn constraint(entry: &constraints::Entry) -> constraints::Build<Self, M>;
+    /// The track of the scene's path for a hand at `start` at time `t0`,
+    /// taking `duration`; refused where the path does not validate.
+    fn track(scene: &Self::Scene, start: [f64; M], t0: f64, duration: f64) -> Result<Track<M>>;
+    /// [`Planned::track`] into `track`, reusing its buffer (the scene and
+    /// its path were validated when `track` was made).
+    fn renew_track(
+        scene: &Self::Scene,
+        start: [f64; M],
+        t0: f64,
+        duration: f64,
+        track: &mut Track<M>,
+    );
+    /// Whether the hand can be at `p` at all (the planar arm's annulus; a
+    /// chain's reach about its first joint, an upper bound), at a pose of
+    /// the arm's.
+    fn reaches(&self, pose: &Self::Pose, p: [f64; M]) -> bool;
+    /// What a sample records of the scene's obstacles at `pose`.
+    fn contact(scene: &Self::Scene, pose: &Self::Pose) -> Contact;
+    /// The path as a polyline from `start` to `end`, for drawing.
+    fn outline(scene: &Self::Scene, start: [f64; M], end: [f64; M]) -> Vec<[f64; M]>;
+}
+
+impl Planned<2> for Arm {
+    fn rule(entry: &Entry) -> Option<Builder<Self, 2>> {
+        Some(entry.rule)
+    }
+    fn constraint(entry: &constraints::Entry) -> constraints::Build<Self, 2> {
+        entry.build
+    }
+    fn track(scene: &Scene, start: [f64; 2], t0: f64, duration: f64) -> Result<Track<2>> {
+        scene.path.validate(start)?;
+        let end = scene.path.end(start, scene.target);
+        Ok(Track::from_shape(
+            plane_shape(&scene.path, start),
+            start,
+            end,
+            t0,
+            duration,
+        ))
+    }
+    fn renew_track(scene: &Scene, start: [f64; 2], t0: f64, duration: f64, track: &mut Track<2>) {
+        let end = scene.path.end(start, scene.target);
+        track.renew(plane_shape(&scene.path, start), start, end, t0, duration);
+    }
+    fn reaches(&self, _: &Pose, p: [f64; 2]) -> bool {
+        self.can_reach(&nalgebra::Vector2::new(p[0], p[1]))
+    }
+    fn contact(scene: &Scene, pose: &Pose) -> Contact {
+        let mut c = Contact::default();
+        for ob in &scene.obstacles {
+            let d = pose.clearance(ob.centre);
+            c.collision |= d < ob.radius;
+            c.distance = Some(c.distance.map_or(d, |m| m.min(d)));
+            let k = d - ob.radius;
+            c.clearance = Some(c.clearance.map_or(k, |m| m.min(k)));
+        }
+        if let Some(post) = scene.ground() {
+            // The ground as an obstacle: a link below the floor or across
+            // the post collides.
+            let n = pose.dof();
+            c.collision |= (0..n).any(|k| Pair::floor(pose, k).clearance < 0.0)
+                || (1..n).any(|k| Pair::post(pose, k, post).clearance < 0.0);
+        }
+        c
+    }
+    fn outline(scene: &Scene, start: [f64; 2], end: [f64; 2]) -> Vec<[f64; 2]> {
+        scene.path.outline(start, end, 96)
+    }
+}
+
+impl Track<2> {
+    /// The track of a planar `path` for a hand at `start` at time `t0`,
+    /// taking `duration` seconds (`target` is the line's end). The path
+    /// must have been validated ([`Path::validate`]).
+    pub fn new(path: &Path, start: [f64; 2], target: [f64; 2], t0: f64, duration: f64) -> Self {
+        let end = path.end(start, target);
+        Track::from_shape(plane_shape(path, start), start, end, t0, duration)
+    }
+}
+
+/// The shape of a planar path for a hand at `start`.
+fn plane_shape(path: &Path, start: [f64; 2]) -> Shape<'_, 2> {
+    match path {
+        Path::Line => Shape::Line,
+        Path::Circle { centre, laps } => Shape::Circle(Circle::planar(*centre, start, *laps)),
+        Path::Points(p) => Shape::Points(p),
+    }
+}
+
+impl Planned<3> for Chain {
+    fn rule(entry: &Entry) -> Option<Builder<Self, 3>> {
+        entry.space
+    }
+    fn constraint(entry: &constraints::Entry) -> constraints::Build<Self, 3> {
+        entry.space
+    }
+    fn track(scene: &SpaceScene, start: [f64; 3], t0: f64, duration: f64) -> Result<Track<3>> {
+        scene.path.validate(start)?;
+        let end = scene.path.end(start, scene.target);
+        Ok(Track::from_shape(
+            space_shape(&scene.path, start)?,
+            start,
+            end,
+            t0,
+            duration,
+        ))
+    }
+    fn renew_track(
+        scene: &SpaceScene,
+        start: [f64; 3],
+        t0: f64,
+        duration: f64,
+        track: &mut Track<3>,
+    ) {
+        let end = scene.path.end(start, scene.target);
+        // The path validated with this start when the track was made.
+        if let Ok(shape) = space_shape(&scene.path, start) {
+            track.renew(shape, start, end, t0, duration);
+        }
+    }
+    fn reaches(&self, pose: &SpacePose, p: [f64; 3]) -> bool {
+        norm(sub(p, pose.joint_origin(0))) <= self.reach()
+    }
+    /// The capsules' clearance from the spheres; the floor is a constraint
+    /// of the methods that keep a clearance, not counted as a collision.
+    fn contact(scene: &SpaceScene, pose: &SpacePose) -> Contact {
+        let mut c = Contact::default();
+        let chain = &scene.chain;
+        for (k, s) in chain.segments().iter().enumerate() {
+            if s.moved_by == 0 {
+                continue;
+            }
+            for (j, sp) in scene.spheres.iter().enumerate() {
+                let pair = CapsulePair::at(chain, pose, k, j, sp);
+                let axis = pair.distance + chain.radius() + sp.radius;
+                c.distance = Some(c.distance.map_or(axis, |m| m.min(axis)));
+                c.clearance = Some(c.clearance.map_or(pair.distance, |m| m.min(pair.distance)));
+            }
+        }
+        c.collision = c.clearance.is_some_and(|k| k < 0.0);
+        c
+    }
+    fn outline(scene: &SpaceScene, start: [f64; 3], end: [f64; 3]) -> Vec<[f64; 3]> {
+        scene.path.outline(start, end, 96)
+    }
+}
+
+/// The shape of a spatial path for a hand at `start`.
+fn space_shape(path: &SpacePath, start: [f64; 3]) -> Result<Shape<'_, 3>> {
+    Ok(match path {
+        SpacePath::Line => Shape::Line,
+        SpacePath::Points(p) => Shape::Points(p),
+        SpacePath::Circle {
+            centre,
+            normal,
+            laps,
+        } => {
+            let (axes, radius) =
+                circle_plane(*centre, *normal, start).map_err(|why| Error::Syntax {
+                    what: "path",
+                    text: path.to_string(),
+                    expected: why.into(),
+                })?;
+            Shape::Circle(Circle {
+                centre: *centre,
+                axes,
+                radius,
+                phase: 0.0,
+                sweep: std::f64::consts::TAU * f64::from(*laps),
+            })
+        }
+    })
+}
