@@ -25,6 +25,10 @@ pub struct SpacePose {
     points: Vec<Vec3>,
     /// `J`, column-major `3 x n`: entries `3i..3i + 3` are column `i`.
     jac: Vec<f64>,
+    /// `J J^T`, by rows: computed once per pose (eq. 18's solve, the
+    /// damping schedule's smallest singular value and the manipulability
+    /// all read it).
+    jjt: [[f64; 3]; 3],
 }
 
 impl SpacePose {
@@ -44,6 +48,7 @@ impl SpacePose {
             frames: vec![[[0.0; 3]; 3]; n],
             points: vec![[0.0; 3]; n + 2],
             jac: vec![0.0; 3 * n],
+            jjt: [[0.0; 3]; 3],
         }
     }
 
@@ -110,6 +115,15 @@ impl SpacePose {
             let col = cross(self.frames[i][2], sub(hand, self.points[i + 1]));
             self.jac[3 * i..3 * i + 3].copy_from_slice(&col);
         }
+        let mut a = [[0.0; 3]; 3];
+        for col in self.jac.chunks_exact(3) {
+            for r in 0..3 {
+                for c in 0..3 {
+                    a[r][c] += col[r] * col[c];
+                }
+            }
+        }
+        self.jjt = a;
     }
 
     /// Number of joints `n`.
@@ -196,17 +210,10 @@ impl SpacePose {
         v
     }
 
-    /// `J J^T`, symmetric `3 x 3`, by rows.
+    /// `J J^T`, symmetric `3 x 3`, by rows (computed with the pose).
+    #[inline]
     pub fn jjt(&self) -> [[f64; 3]; 3] {
-        let mut a = [[0.0; 3]; 3];
-        for col in self.jac.chunks_exact(3) {
-            for r in 0..3 {
-                for c in 0..3 {
-                    a[r][c] += col[r] * col[c];
-                }
-            }
-        }
-        a
+        self.jjt
     }
 }
 
