@@ -5,24 +5,17 @@
 use std::str::FromStr;
 
 use nalgebra::{DMatrix, DVector, Vector2};
-use serde::{Deserialize, Serialize};
 
 use crate::arm::{number_list, Arm};
 use crate::error::{coordinate, positive, Error, Result};
-use crate::geometry::point_segment_distance;
+use crate::geometry::{self, point_segment_distance, Ball};
 use crate::kinematics::Pose;
 
-/// A disc obstacle. Its centre is the point `O` of eq. (16); the radius only
-/// decides what counts as a collision.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct Obstacle {
-    /// Centre `O = (O1, O2)` in metres.
-    pub centre: [f64; 2],
-    /// Radius in metres.
-    pub radius: f64,
-}
+/// A disc obstacle: a ball in the plane. Its centre is the point `O` of
+/// eq. (16); the radius only decides what counts as a collision.
+pub type Obstacle = Ball<2>;
 
-impl Obstacle {
+impl Ball<2> {
     /// A disc at `(x, y)` with radius `radius`.
     pub fn new(x: f64, y: f64, radius: f64) -> Self {
         Self {
@@ -60,23 +53,7 @@ impl Obstacle {
 /// (`--obstacle X,Y` or `X,Y,R`) and in the page's address
 /// (`obstacles=x,y,r;x,y`). The radius may be left out; whoever places the
 /// obstacle gives the default.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Placement {
-    /// Centre `(x, y)` in metres.
-    pub centre: [f64; 2],
-    /// Radius in metres, if written.
-    pub radius: Option<f64>,
-}
-
-impl Placement {
-    /// The obstacle, with `default_radius` where none was written.
-    pub fn obstacle(self, default_radius: f64) -> Obstacle {
-        Obstacle {
-            centre: self.centre,
-            radius: self.radius.unwrap_or(default_radius),
-        }
-    }
-}
+pub type Placement = geometry::Placement<2>;
 
 /// `X,Y` or `X,Y,R`, finite numbers.
 impl FromStr for Placement {

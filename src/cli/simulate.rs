@@ -243,7 +243,7 @@ impl SceneArgs {
             s.obstacles = self
                 .obstacle
                 .iter()
-                .map(|o| disc(o).map(|p| p.obstacle(radius)))
+                .map(|o| disc(o).map(|p| p.ball(radius)))
                 .collect::<Result<_, _>>()?;
         } else {
             for o in &mut s.obstacles {

@@ -13,6 +13,51 @@
 //! The task dimension is a const parameter so that the hand's full pose
 //! (`M = 6`) is one more implementation, not another fork.
 
+/// `impl Scene<$arm> for $scene`: the getters of the fields every
+/// scene has (`$field` the arm's), and its own `steps` and `validate`.
+macro_rules! scene_of {
+    ($scene:ty, $arm:ty, $field:ident) => {
+        impl $crate::model::Scene<$arm> for $scene {
+            fn arm(&self) -> &$arm {
+                &self.$field
+            }
+            fn params(&self) -> &$crate::scene::Params {
+                &self.params
+            }
+            fn params_mut(&mut self) -> &mut $crate::scene::Params {
+                &mut self.params
+            }
+            fn damping(&self) -> Option<$crate::ik::DampingSchedule> {
+                self.damping
+            }
+            fn damping_mut(&mut self) -> &mut Option<$crate::ik::DampingSchedule> {
+                &mut self.damping
+            }
+            fn weighting(&self) -> $crate::scene::JointWeighting {
+                self.weighting
+            }
+            fn theta0(&self) -> &[f64] {
+                &self.theta0
+            }
+            fn dt(&self) -> f64 {
+                self.dt
+            }
+            fn tf(&self) -> f64 {
+                self.tf
+            }
+            fn feedback_gain(&self) -> f64 {
+                self.feedback_gain
+            }
+            fn steps(&self) -> usize {
+                <$scene>::steps(self)
+            }
+            fn validate(&self) -> $crate::error::Result<()> {
+                <$scene>::validate(self)
+            }
+        }
+    };
+}
+
 mod plane;
 mod space;
 

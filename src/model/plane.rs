@@ -2,14 +2,14 @@
 //! ([`crate::kinematics::Pose`]) and eq. (18)'s closed-form `2 x 2` solve
 //! ([`crate::ik`]).
 
-use super::{Clearance, Model, PhiAlgebra, Scene};
+use super::{Clearance, Model, PhiAlgebra};
 use crate::arm::{Arm, JointLimits, RateLimits};
 use crate::clearance::{Pair, Pairs};
 use crate::error::Result;
-use crate::ik::{self, DampingSchedule};
+use crate::ik;
 use crate::kinematics::Pose;
 use crate::obstacle;
-use crate::scene::{self, JointWeighting, Params};
+use crate::scene;
 
 impl Model<2> for Arm {
     type Pose = Pose;
@@ -177,41 +177,4 @@ impl PhiAlgebra<2> for Arm {
     }
 }
 
-impl Scene<Arm> for scene::Scene {
-    fn arm(&self) -> &Arm {
-        &self.arm
-    }
-    fn params(&self) -> &Params {
-        &self.params
-    }
-    fn params_mut(&mut self) -> &mut Params {
-        &mut self.params
-    }
-    fn damping(&self) -> Option<DampingSchedule> {
-        self.damping
-    }
-    fn damping_mut(&mut self) -> &mut Option<DampingSchedule> {
-        &mut self.damping
-    }
-    fn weighting(&self) -> JointWeighting {
-        self.weighting
-    }
-    fn theta0(&self) -> &[f64] {
-        &self.theta0
-    }
-    fn dt(&self) -> f64 {
-        self.dt
-    }
-    fn tf(&self) -> f64 {
-        self.tf
-    }
-    fn feedback_gain(&self) -> f64 {
-        self.feedback_gain
-    }
-    fn steps(&self) -> usize {
-        scene::Scene::steps(self)
-    }
-    fn validate(&self) -> Result<()> {
-        scene::Scene::validate(self)
-    }
-}
+scene_of!(scene::Scene, Arm, arm);

@@ -2,11 +2,10 @@
 //! ([`crate::space::SpacePose`]) and eq. (18) with a `3 x 3` Cholesky
 //! solve.
 
-use super::{Clearance, Model, PhiAlgebra, Scene};
+use super::{Clearance, Model, PhiAlgebra};
 use crate::arm::{JointLimits, RateLimits};
 use crate::error::Result;
-use crate::ik::DampingSchedule;
-use crate::scene::{JointWeighting, Params, SpaceScene};
+use crate::scene::SpaceScene;
 use crate::space::linalg::{smallest_singular_value3, solve_spd3};
 use crate::space::{
     criterion, cross, dot, manipulability, phi, sub, Chain, SpacePair, SpacePairs, SpacePose,
@@ -235,41 +234,4 @@ impl PhiAlgebra<3> for Chain {
     }
 }
 
-impl Scene<Chain> for SpaceScene {
-    fn arm(&self) -> &Chain {
-        &self.chain
-    }
-    fn params(&self) -> &Params {
-        &self.params
-    }
-    fn params_mut(&mut self) -> &mut Params {
-        &mut self.params
-    }
-    fn damping(&self) -> Option<DampingSchedule> {
-        self.damping
-    }
-    fn damping_mut(&mut self) -> &mut Option<DampingSchedule> {
-        &mut self.damping
-    }
-    fn weighting(&self) -> JointWeighting {
-        self.weighting
-    }
-    fn theta0(&self) -> &[f64] {
-        &self.theta0
-    }
-    fn dt(&self) -> f64 {
-        self.dt
-    }
-    fn tf(&self) -> f64 {
-        self.tf
-    }
-    fn feedback_gain(&self) -> f64 {
-        self.feedback_gain
-    }
-    fn steps(&self) -> usize {
-        SpaceScene::steps(self)
-    }
-    fn validate(&self) -> Result<()> {
-        SpaceScene::validate(self)
-    }
-}
+scene_of!(SpaceScene, Chain, chain);

@@ -12,7 +12,7 @@
 
 use std::str::FromStr;
 
-use serde::{Deserialize, Serialize};
+use crate::geometry::{Ball, Placement};
 
 use super::pose::{add, dot, norm, scale, sub, SpacePose, Vec3};
 use super::Chain;
@@ -22,16 +22,11 @@ use crate::error::{coordinate, positive, Error, Result};
 /// Most spheres a scene may hold.
 pub const MAX_SPHERES: usize = 8;
 
-/// A sphere obstacle: its centre `O` (the paper's obstacle point) and radius.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct Sphere {
-    /// Centre (m).
-    pub centre: Vec3,
-    /// Radius (m).
-    pub radius: f64,
-}
+/// A sphere obstacle, a ball in space: its centre `O` (the paper's
+/// obstacle point) and radius.
+pub type Sphere = Ball<3>;
 
-impl Sphere {
+impl Ball<3> {
     /// The spheres of a flat list `[x, y, z, r, ...]` (m; the page's
     /// `setSpheres` and its scripted runs), refused with a reason when the
     /// count is not four numbers a sphere or there are more than
@@ -95,20 +90,7 @@ impl Sphere {
 
 /// A sphere as people write it, `X,Y,Z` or `X,Y,Z,R` (the radius then
 /// comes from the scene's default).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SpherePlacement {
-    /// Centre (m).
-    pub centre: Vec3,
-    /// Radius, if given (m).
-    pub radius: Option<f64>,
-}
-
-impl SpherePlacement {
-    /// The sphere, with `default_radius` where none was given.
-    pub fn sphere(self, default_radius: f64) -> Sphere {
-        Sphere::new(self.centre, self.radius.unwrap_or(default_radius))
-    }
-}
+pub type SpherePlacement = Placement<3>;
 
 impl FromStr for SpherePlacement {
     type Err = Error;

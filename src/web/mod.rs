@@ -417,7 +417,7 @@ pub fn parse_obstacles(text: &str) -> Result<Vec<f64>, JsError> {
     Ok(list
         .into_iter()
         .flat_map(|p| {
-            let o = p.obstacle(crate::scene::PAPER_RADIUS);
+            let o = p.ball(crate::scene::PAPER_RADIUS);
             [o.centre[0], o.centre[1], o.radius]
         })
         .collect())

@@ -228,7 +228,7 @@ fn a_sphere_on_the_fixed_base_is_refused_one_beside_it_is_not() {
 #[test]
 fn spheres_read_as_people_write_them_and_a_disc_is_refused() {
     let p: SpherePlacement = "0.4,0.1,0.5".parse().unwrap();
-    assert_eq!(p.sphere(0.07), Sphere::new([0.4, 0.1, 0.5], 0.07));
+    assert_eq!(p.ball(0.07), Sphere::new([0.4, 0.1, 0.5], 0.07));
     let p: SpherePlacement = "0.4, 0.1, 0.5, 0.1".parse().unwrap();
     assert_eq!(p.radius, Some(0.1));
     let e = "0.4,0.1"

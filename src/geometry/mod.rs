@@ -1,8 +1,13 @@
-//! Plane geometry that the kinematics, the obstacle code and the atlas
-//! share: where a point is closest to a segment, and how far. A leaf of the
-//! crate: it imports nothing of it.
+//! Geometry that the kinematics, the obstacle code and the atlas share:
+//! where a point is closest to a segment, and how far; the obstacles
+//! themselves, balls of any dimension ([`Ball`]: a disc in the plane, a
+//! sphere in space). A leaf of the crate but for its errors.
+
+mod ball;
 
 use nalgebra::Vector2;
+
+pub use ball::{Ball, Placement};
 
 /// The parameter `s` in `[0, 1]` of the point `a + s (b - a)` of the
 /// segment `a`-`b` closest to `p` (0 for a segment of zero length).
