@@ -227,10 +227,6 @@ fn output(
     let used = nets.clone();
     let planner = Planner::new(scene.clone(), method, nets.map(|n| n as Networks<_, 3>))
         .map_err(|e| e.to_string())?;
-    let reach = Reach {
-        reachable: planner.reachable(),
-        auto_damping: planner.auto_damping(),
-    };
     let traj = planner.run_to_end().map_err(|e| e.to_string())?;
     if args.json {
         let mut file = SpaceRunFile::new(p, scene, traj);
@@ -242,14 +238,7 @@ fn output(
     if args.csv {
         return emit(&csv(&traj));
     }
-    emit(&summary(p, &scene, &traj, reach))
-}
-
-/// What the planner found of the path's reach.
-#[derive(Clone, Copy)]
-struct Reach {
-    reachable: bool,
-    auto_damping: bool,
+    emit(&summary(p, &scene, &traj))
 }
 
 /// One line per sample: t, the angles, the hand, the reference, the
@@ -279,7 +268,7 @@ fn csv(traj: &Trajectory<3>) -> String {
     out
 }
 
-fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &Trajectory<3>, reach: Reach) -> String {
+fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &Trajectory<3>) -> String {
     let s = &traj.summary;
     let mut out = String::new();
     let list = |v: &[f64]| {
@@ -354,12 +343,12 @@ fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &Trajectory<3>, reach: Rea
     {
         let _ = writeln!(out, "{why}");
     }
-    if !reach.reachable {
+    if !s.target_reachable {
         let _ = writeln!(
             out,
             "target is out of the arm's reach (farther than {:.3} m from the shoulder): not reached{}",
             scene.chain.reach(),
-            if reach.auto_damping {
+            if s.auto_damping {
                 " (damping schedule switched on automatically)"
             } else {
                 ""
