@@ -41,7 +41,7 @@
 pub mod constraints;
 
 use super::influence::{INFLUENCE, STOP_DISTANCE};
-use super::paper::{DELTA, LAMBDA, SIGN_SMOOTHING};
+use super::paper::{obstacle_vector, V, DELTA, LAMBDA};
 use super::{Context, Entry, Group, Method, MethodInfo, Needs, Note, Rule};
 use crate::planner::Planned;
 use crate::arm::Arm;
@@ -183,15 +183,8 @@ impl<A: Model<M>, const M: usize> Rule<A, M> for Qp<A, M> {
         out: &mut [f64],
     ) -> Result<Note> {
         let n = out.len();
+        obstacle_vector(QP, V::Exact, cx, pose, &mut self.g, &mut self.v)?;
         let s = cx.scene;
-        A::obstacle_vector_into(
-            s,
-            pose,
-            s.value(&LAMBDA),
-            s.value(&SIGN_SMOOTHING),
-            &mut self.g,
-            &mut self.v,
-        );
         let damping = 1.0 / s.value(&SLACK_WEIGHT) + s.value(&DELTA) + cx.scheduled_delta(pose);
         // The unconstrained minimum: eq. (5) with damped least squares.
         A::eq18(pose, xdot, &self.v, damping, out)?;
@@ -223,15 +216,7 @@ impl<A: Model<M>, const M: usize> Rule<A, M> for Qp<A, M> {
     }
 
     fn null_space(&mut self, cx: &Context<'_, A, M>, pose: &A::Pose, v: &mut [f64]) -> Result<bool> {
-        let s = cx.scene;
-        A::obstacle_vector_into(
-            s,
-            pose,
-            s.value(&LAMBDA),
-            s.value(&SIGN_SMOOTHING),
-            &mut self.g,
-            v,
-        );
+        obstacle_vector(QP, V::Exact, cx, pose, &mut self.g, v)?;
         Ok(true)
     }
 
