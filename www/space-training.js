@@ -5,11 +5,13 @@
 // one), the progress of both in one bar, Cancel ends both; when both are
 // done the core checks them against the chain and the learned methods use
 // them (SpaceDemo.installNetworks), and Download weights saves the two
-// files the command line reads (--phi-weights, --v-weights).
+// files the command line reads (--phi-weights, --v-weights). The curves of
+// both networks' errors per epoch are the plane's (training.js).
 
 import { runWorker } from './jobs.js';
 import { describe, spaceTrainingRecipes } from './module.js';
 import { saveText } from './download.js';
+import { drawCurves } from './training.js';
 
 /**
  * Wires the training panel under `root` for the spatial `demo` of `preset`;
@@ -40,8 +42,11 @@ export function mountSpaceTraining(root, demo, { preset, show, say, installed })
   const bar = $('train-progress');
   const status = $('train-status');
   const download = $('train-download');
+  const chart = $('train-curves');
   if (download) download.disabled = true;
   let files = null;
+  /** Each network's errors per epoch: `{ phi: [{ epoch, train_mse, val_mse }], v: [...] }`. */
+  let curves = {};
   let controller = null;
   const tell = (text) => {
     if (status) status.textContent = text;
@@ -64,11 +69,18 @@ export function mountSpaceTraining(root, demo, { preset, show, say, installed })
       bar.hidden = false;
       bar.value = 0;
     }
+    curves = {};
+    drawCurves(chart, curves);
     const onProgress = (net) => (p) => {
       done[net] = p.done;
       total[net] = Math.max(1, p.total);
       if (bar) bar.value = (done.phi / total.phi + done.v / total.v) / 2;
-      if (status && p.epoch) status.textContent = `Training: Φ epoch ${done.phi} of ${total.phi}, v epoch ${done.v} of ${total.v}…`;
+      if (!p.epoch) return;
+      const e = p.epoch;
+      (curves[net] ??= []).push({ epoch: e.epoch, train_mse: e.train_mse, val_mse: e.val_mse });
+      drawCurves(chart, curves);
+      if (chart) chart.dataset.epochs = String(Object.values(curves).reduce((sum, c) => sum + c.length, 0));
+      if (status) status.textContent = `Training: Φ epoch ${done.phi} of ${total.phi}, v epoch ${done.v} of ${total.v}…`;
     };
     const started = performance.now();
     tell(`Training the ${preset.label}'s Φ and v networks…`);
@@ -100,6 +112,7 @@ export function mountSpaceTraining(root, demo, { preset, show, say, installed })
     }
   }
   run?.addEventListener('click', () => train().catch(() => {}));
+  panel.addEventListener('toggle', () => panel.open && drawCurves(chart, curves));
   cancel?.addEventListener('click', () => controller?.abort());
   download?.addEventListener('click', () => {
     if (!files) return;

@@ -8,8 +8,8 @@ import { describe, limits, networkMethodLabels, formatArm, builtinWeightsUrl, bu
 import { runWorker, showBusy } from './jobs.js';
 import { metres, sci, seconds as fmtS, row } from './format.js';
 
-/** Draws MSE curves per epoch on a log scale: `series` is `{ name: [{ epoch, train_mse, val_mse }] }`. */
-function drawCurves(canvas, series) {
+/** Draws MSE curves per epoch on a log scale: `series` is `{ name: [{ epoch, train_mse, val_mse }] }` (both pages' training panels). */
+export function drawCurves(canvas, series) {
   if (!canvas) return;
   const dpr = window.devicePixelRatio || 1;
   const r = canvas.getBoundingClientRect();

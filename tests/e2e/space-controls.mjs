@@ -318,7 +318,7 @@ test('space controls: training in the page gives the iiwa networks for Cases 1-3
   await page.click('#train-panel summary');
   assert.match(await page.textContent('#train-panel summary'), /iiwa/);
   assert.equal(await page.isVisible('#train-net'), false, 'both networks, always');
-  assert.equal(await page.isVisible('#train-curves'), false);
+  assert.equal(await page.isVisible('#train-curves'), true, 'the plane\'s training curves');
   // Started from the button and cancelled.
   await page.click('#train-run');
   await page.waitForFunction(() => !document.getElementById('train-cancel').hidden, null, { timeout: 10000 });
@@ -330,6 +330,9 @@ test('space controls: training in the page gives the iiwa networks for Cases 1-3
   const trained = await page.evaluate(() => window.demo.train({ samples: 300, epochs: 3 }).then((r) => ({ phi: JSON.parse(r.phi).arm, v: JSON.parse(r.v).arm })));
   assert.deepEqual(trained, { phi: 'iiwa14', v: 'iiwa14' });
   await textMatching(page, '#train-status', /Trained in .* Cases 1-3 now use them/);
+  // Both networks' curves drew an epoch each (3 epochs each at the most).
+  const epochs = Number(await page.getAttribute('#train-curves', 'data-epochs'));
+  assert.ok(epochs >= 2 && epochs <= 6, `${epochs} epochs on the curves`);
   await page.locator('#train-panel').screenshot({ path: `${shots}/space-training.png` });
   assert.equal((await state(page)).has_networks, true);
   assert.equal(await page.locator('#mode option[value=case3]').isDisabled(), false);
