@@ -171,23 +171,23 @@ fn a_spatial_step_allocates_nothing_in_any_method() {
         busy.feedback_gain = 1.0;
         busy.params.set(&methods::INFLUENCE, 0.8).unwrap();
         // Two spheres 1 cm from the forearm on opposite sides.
-        let pose = SpacePose::new(&task.chain, &task.theta0).unwrap();
-        let segments = task.chain.segments();
+        let pose = SpacePose::new(&task.arm, &task.theta0).unwrap();
+        let segments = task.arm.segments();
         let last = segments[segments.len() - 2];
         let (a, b) = pose.segment(&last);
         let q = [0, 1, 2].map(|k| a[k] + 0.75 * (b[k] - a[k]));
         let c = [b[1] - a[1], a[0] - b[0], 0.0];
         let l = c[0].hypot(c[1]);
-        let off = task.chain.radius() + 0.06;
+        let off = task.arm.radius() + 0.06;
         let mut squeezed = task.clone();
-        squeezed.spheres = [1.0, -1.0]
+        squeezed.obstacles = [1.0, -1.0]
             .map(|s| Sphere::new([0, 1, 2].map(|k| q[k] + s * off * c[k] / l), 0.05))
             .to_vec();
         // As many spheres as a scene may hold, every pair within the
         // influence distance, the floor's too: the most rows there can be.
         let mut crowded = busy.clone();
         crowded.params.set(&methods::INFLUENCE, 50.0).unwrap();
-        crowded.spheres = (0..redundant_ik::space::MAX_SPHERES)
+        crowded.obstacles = (0..redundant_ik::space::MAX_SPHERES)
             .map(|i| {
                 let a = i as f64 * std::f64::consts::TAU / 8.0;
                 Sphere::new([1.2 * a.cos(), 1.2 * a.sin(), 1.0], 0.05)
@@ -232,7 +232,7 @@ fn a_spatial_step_allocates_nothing_in_any_method_in_space() {
     use redundant_ik::space::PRESETS;
     for p in PRESETS {
         let mut scene = SpaceScene::preset(&p);
-        let [lo, hi] = scene.chain.joint_limits().unwrap().ranges()[0];
+        let [lo, hi] = scene.arm.joint_limits().unwrap().ranges()[0];
         scene.theta0[0] = lo + 0.1 * (hi - lo);
         scene.damping = Some(DampingSchedule::default());
         scene.feedback_gain = 1.0;
@@ -282,7 +282,7 @@ fn a_spatial_planner_moved_and_reset_runs_without_allocating() {
     for p in PRESETS {
         let mut scene = SpaceScene::preset(&p);
         scene.tf = 0.2;
-        let s = scene.spheres[0];
+        let s = scene.obstacles[0];
         for m in methods::ALL.iter().filter(|m| m.in_space()) {
             let Some(mut planner) = planner_with_shipped(&scene, p.key, *m) else {
                 continue;

@@ -184,7 +184,7 @@ pub fn default_region(scene: &SpaceScene, plane: Plane) -> [f64; 4] {
     let (a, b) = (scene.start(), scene.target);
     let (u, v) = plane.coordinates([0, 1, 2].map(|k| 0.5 * (a[k] + b[k])));
     let h = 0.5 * DEFAULT_SIDE;
-    let r = scene.spheres.first().map_or(0.05, |s| s.radius);
+    let r = scene.obstacles.first().map_or(0.05, |s| s.radius);
     let bottom = if matches!(plane, Plane::Xy(_)) {
         v - h
     } else {

@@ -86,10 +86,13 @@ pub fn forward_ns(
 ) -> Result<Forward> {
     let nets = nets.in_precision(opts.precision);
     let scene = task(key, 0)?;
-    nets.check_chain(&scene.chain)?;
-    let pose = crate::space::SpacePose::new(&scene.chain, &scene.theta0)?;
+    nets.check_chain(&scene.arm)?;
+    let pose = crate::space::SpacePose::new(&scene.arm, &scene.theta0)?;
     let n = pose.dof();
-    let o = scene.spheres.first().map_or([0.5, 0.0, 0.5], |s| s.centre);
+    let o = scene
+        .obstacles
+        .first()
+        .map_or([0.5, 0.0, 0.5], |s| s.centre);
     let mut out = vec![0.0; 3 * n];
     let phi = time_ns(opts, probes, || {
         nets.phi(std::hint::black_box(&pose), &mut out)

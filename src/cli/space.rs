@@ -27,25 +27,23 @@ pub fn scene(args: &SceneArgs, p: &'static SpacePreset) -> Result<SpaceScene, St
     }
     let mut s = SpaceScene::preset(p);
     if args.joint_limits.is_some() || args.rate_limits.is_some() {
-        let c = s.chain.clone();
-        s.chain = c
+        let c = s.arm.clone();
+        s.arm = c
             .with_limits(
-                args.joint_limits
-                    .clone()
-                    .or(s.chain.joint_limits().cloned()),
-                args.rate_limits.clone().or(s.chain.rate_limits().cloned()),
+                args.joint_limits.clone().or(s.arm.joint_limits().cloned()),
+                args.rate_limits.clone().or(s.arm.rate_limits().cloned()),
             )
             .map_err(|e| e.to_string())?;
     }
-    let radius = args.radius.unwrap_or(s.spheres[0].radius);
+    let radius = args.radius.unwrap_or(s.obstacles[0].radius);
     if !args.obstacle.is_empty() {
-        s.spheres = args
+        s.obstacles = args
             .obstacle
             .iter()
             .map(|o| sphere(o, radius))
             .collect::<Result<_, _>>()?;
     } else {
-        for o in &mut s.spheres {
+        for o in &mut s.obstacles {
             o.radius = radius;
         }
     }
@@ -302,13 +300,13 @@ fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &Trajectory<3>) -> String 
         list(&last.theta),
         point(last.ee)
     );
-    for sp in &scene.spheres {
+    for sp in &scene.obstacles {
         let _ = writeln!(
             out,
             "sphere at {}, radius {} m (the links' capsules: radius {} m)",
             point(sp.centre),
             sp.radius,
-            scene.chain.radius()
+            scene.arm.radius()
         );
     }
     match s.min_clearance {
@@ -339,7 +337,7 @@ fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &Trajectory<3>) -> String 
     );
     if let Some(why) = traj
         .method
-        .without_limits(scene.chain.joint_limits().is_some())
+        .without_limits(scene.arm.joint_limits().is_some())
     {
         let _ = writeln!(out, "{why}");
     }
@@ -347,7 +345,7 @@ fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &Trajectory<3>) -> String 
         let _ = writeln!(
             out,
             "target is out of the arm's reach (farther than {:.3} m from the shoulder): not reached{}",
-            scene.chain.reach(),
+            scene.arm.reach(),
             if s.auto_damping {
                 " (damping schedule switched on automatically)"
             } else {

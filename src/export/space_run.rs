@@ -151,7 +151,7 @@ impl From<&Summary> for WireSummary {
 /// not hold computed from each sample's angles in `scene`; refused where
 /// an angle is not finite.
 fn samples_of(scene: &SpaceScene, wire: Vec<WireSample>) -> Result<Vec<Sample<3>>> {
-    let chain = &scene.chain;
+    let chain = &scene.arm;
     let mut pose = chain.pose();
     wire.into_iter()
         .map(|w| {
@@ -182,8 +182,8 @@ fn summary_of(
     let min = |f: fn(&Sample<3>) -> Option<f64>| samples.iter().filter_map(f).reduce(f64::min);
     let reachable = <Chain as Planned<3>>::track(scene, samples[0].ee, 0.0, scene.tf)
         .ok()
-        .zip(crate::space::SpacePose::new(&scene.chain, &scene.theta0).ok())
-        .is_none_or(|(track, pose)| track.all_points(|p| scene.chain.reaches(&pose, p)));
+        .zip(crate::space::SpacePose::new(&scene.arm, &scene.theta0).ok())
+        .is_none_or(|(track, pose)| track.all_points(|p| scene.arm.reaches(&pose, p)));
     Summary {
         method,
         steps: w.steps,
@@ -259,9 +259,9 @@ impl SpaceRunFile {
             theta0: s.theta0.clone(),
             target: s.target,
             path: s.path.clone(),
-            spheres: s.spheres.clone(),
-            joint_limits: s.chain.joint_limits().cloned(),
-            rate_limits: s.chain.rate_limits().cloned(),
+            spheres: s.obstacles.clone(),
+            joint_limits: s.arm.joint_limits().cloned(),
+            rate_limits: s.arm.rate_limits().cloned(),
             damping: s.damping,
             dt: s.dt,
             tf: s.tf,
@@ -342,11 +342,11 @@ impl SpaceRunFile {
         let mut params = Params::default();
         params.set_all(&values)?;
         let mut scene = SpaceScene::preset(preset);
-        scene.chain = scene.chain.with_limits(f.joint_limits, f.rate_limits)?;
+        scene.arm = scene.arm.with_limits(f.joint_limits, f.rate_limits)?;
         scene.theta0 = f.theta0;
         scene.target = f.target;
         scene.path = f.path;
-        scene.spheres = f.spheres;
+        scene.obstacles = f.spheres;
         scene.damping = f.damping;
         scene.dt = f.dt;
         scene.tf = f.tf;
@@ -355,7 +355,7 @@ impl SpaceRunFile {
         scene.weighting = f.joint_weighting;
         scene.floor = f.floor;
         scene.validate()?;
-        let n = scene.chain.dof();
+        let n = scene.arm.dof();
         if f.samples.is_empty() {
             return Err(refuse("a run has its start sample at least".into()));
         }

@@ -140,7 +140,7 @@ pub fn space_series_svg(arm: &str, scene: &SpaceScene, run: &Trajectory<3>) -> R
         &line,
         run.method,
         &steps(&run.steps),
-        scene.chain.dof(),
+        scene.arm.dof(),
     )
 }
 
@@ -262,7 +262,7 @@ pub fn space_compare_svg(arm: &str, scene: &SpaceScene, runs: &[Trajectory<3>]) 
         runs.first().map_or(Method::NUMERICAL, |r| r.method),
     );
     let runs: Vec<Run<'_>> = runs.iter().map(Run::of).collect();
-    compare_of(&title, &line, !scene.spheres.is_empty(), &runs)
+    compare_of(&title, &line, !scene.obstacles.is_empty(), &runs)
 }
 
 /// The two panels of [`compare_svg`] for any arm: `line` the caption of

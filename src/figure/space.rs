@@ -55,9 +55,9 @@ impl View {
 
 /// The chain's points at `theta` (base, each distinct origin, the flange).
 fn points(scene: &SpaceScene, theta: &[f64]) -> Result<Vec<Vec3>> {
-    let pose = SpacePose::new(&scene.chain, theta)?;
+    let pose = SpacePose::new(&scene.arm, theta)?;
     let mut out = vec![pose.points()[0]];
-    for s in scene.chain.segments() {
+    for s in scene.arm.segments() {
         out.push(pose.points()[s.to]);
     }
     Ok(out)
@@ -79,7 +79,7 @@ pub fn space_caption(arm: &str, scene: &SpaceScene, method: Method) -> String {
         parts.push("the floor is an obstacle".into());
     }
     parts.extend(super::gains(&scene.params, scene.damping.is_some()));
-    match &scene.spheres[..] {
+    match &scene.obstacles[..] {
         [] => parts.push("no sphere".into()),
         [one] => parts.push(format!("a sphere of radius {} m", one.radius)),
         all => {
@@ -112,7 +112,7 @@ pub fn space_svg(
 /// [`super::ELLIPSE_SCALE`] (the plane's [`super::ellipse_outline`] in
 /// space; [`crate::space::manipulability::velocity_ellipsoid`]).
 pub fn ellipsoid_rings(scene: &SpaceScene, theta: &[f64]) -> Result<[Vec<Vec3>; 3]> {
-    let pose = SpacePose::new(&scene.chain, theta)?;
+    let pose = SpacePose::new(&scene.arm, theta)?;
     let (axes, half) = velocity_ellipsoid(pose.jjt());
     let hand = pose.hand();
     Ok([(0, 1), (0, 2), (1, 2)].map(|(a, b)| {
@@ -231,7 +231,7 @@ fn panel(area: &Area<'_>, view: View, d: &Drawn<'_>) -> std::result::Result<(), 
         rings,
     } = *d;
     let mut pts: Vec<(f64, f64)> = poses.iter().flatten().map(|p| view.project(*p)).collect();
-    for sp in &scene.spheres {
+    for sp in &scene.obstacles {
         let (u, v) = view.project(sp.centre);
         pts.extend([
             (u - sp.radius, v - sp.radius),
@@ -283,7 +283,7 @@ fn panel(area: &Area<'_>, view: View, d: &Drawn<'_>) -> std::result::Result<(), 
         }
     }
     // The spheres, filled.
-    for sp in &scene.spheres {
+    for sp in &scene.obstacles {
         let (u, v) = view.project(sp.centre);
         let outline: Vec<(f64, f64)> = (0..=72)
             .map(|i| {

@@ -14,12 +14,12 @@
 //! (`M = 6`) is one more implementation, not another fork.
 
 /// `impl Scene<$arm> for $scene`: the getters of the fields every
-/// scene has (`$field` the arm's), and its own `steps` and `validate`.
+/// scene has, and its own `validate`.
 macro_rules! scene_of {
-    ($scene:ty, $arm:ty, $field:ident) => {
+    ($scene:ty, $arm:ty) => {
         impl $crate::model::Scene<$arm> for $scene {
             fn arm(&self) -> &$arm {
-                &self.$field
+                &self.arm
             }
             fn params(&self) -> &$crate::scene::Params {
                 &self.params

@@ -177,4 +177,4 @@ impl PhiAlgebra<2> for Arm {
     }
 }
 
-scene_of!(scene::Scene, Arm, arm);
+scene_of!(scene::Scene, Arm);

@@ -44,16 +44,16 @@ impl Model<3> for Chain {
         SpacePairs::most(n)
     }
     fn update_pairs(scene: &SpaceScene, pose: &SpacePose, within: f64, pairs: &mut SpacePairs) {
-        pairs.update(&scene.chain, pose, &scene.spheres, within);
+        pairs.update(&scene.arm, pose, &scene.obstacles, within);
         if scene.floor {
-            pairs.add_floor(&scene.chain, pose, within);
+            pairs.add_floor(&scene.arm, pose, within);
         }
     }
     fn pair_list(pairs: &SpacePairs) -> &[SpacePair] {
         pairs.as_slice()
     }
     fn obstacle_centres(scene: &SpaceScene) -> impl Iterator<Item = [f64; 3]> + '_ {
-        scene.spheres.iter().map(|s| s.centre)
+        scene.obstacles.iter().map(|s| s.centre)
     }
     fn obstacle_vector_into(
         scene: &SpaceScene,
@@ -64,7 +64,7 @@ impl Model<3> for Chain {
         v: &mut [f64],
     ) {
         criterion::null_space_vector_into(
-            &scene.chain,
+            &scene.arm,
             pose,
             Self::obstacle_centres(scene),
             lambda,
@@ -234,4 +234,4 @@ impl PhiAlgebra<3> for Chain {
     }
 }
 
-scene_of!(SpaceScene, Chain, chain);
+scene_of!(SpaceScene, Chain);

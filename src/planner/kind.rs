@@ -168,12 +168,12 @@ impl Planned<3> for Chain {
     /// of the methods that keep a clearance, not counted as a collision.
     fn contact(scene: &SpaceScene, pose: &SpacePose) -> Contact {
         let mut c = Contact::default();
-        let chain = &scene.chain;
+        let chain = &scene.arm;
         for (k, s) in chain.segments().iter().enumerate() {
             if s.moved_by == 0 {
                 continue;
             }
-            for (j, sp) in scene.spheres.iter().enumerate() {
+            for (j, sp) in scene.obstacles.iter().enumerate() {
                 let pair = CapsulePair::at(chain, pose, k, j, sp);
                 let axis = pair.distance + chain.radius() + sp.radius;
                 c.distance = Some(c.distance.map_or(axis, |m| m.min(axis)));

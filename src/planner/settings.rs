@@ -172,7 +172,7 @@ impl Planner<Chain, 3> {
     /// sphere does not validate (on the base, not finite), `index` is past
     /// the end or the scene has [`MAX_SPHERES`] already.
     pub fn set_sphere(&mut self, index: usize, sphere: Sphere) -> Result<()> {
-        let count = self.scene.spheres.len();
+        let count = self.scene.obstacles.len();
         if index > count {
             return Err(Error::OutOfRange {
                 what: "sphere index".into(),
@@ -181,7 +181,7 @@ impl Planner<Chain, 3> {
                 max: count as f64,
             });
         }
-        sphere.validate_at(&self.scene.chain, &self.ws.pose)?;
+        sphere.validate_at(&self.scene.arm, &self.ws.pose)?;
         if index == count {
             if count >= MAX_SPHERES {
                 return Err(Error::DimensionMismatch {
@@ -190,9 +190,9 @@ impl Planner<Chain, 3> {
                     found: count + 1,
                 });
             }
-            self.scene.spheres.push(sphere);
+            self.scene.obstacles.push(sphere);
         } else {
-            self.scene.spheres[index] = sphere;
+            self.scene.obstacles[index] = sphere;
         }
         self.resample();
         Ok(())

@@ -14,6 +14,7 @@ mod weighting;
 
 use crate::arm::Arm;
 use crate::error::{coordinate, positive, Error, Result};
+use crate::geometry::Ball;
 use crate::ik::DampingSchedule;
 use crate::obstacle::Obstacle;
 
@@ -30,26 +31,29 @@ pub use weighting::JointWeighting;
 pub const PAPER_TARGET: [f64; 2] = [0.60, 0.20];
 /// Obstacle radius (our choice, `docs/conventions.md`: the paper gives none).
 pub const PAPER_RADIUS: f64 = 0.05;
-/// Everything that defines one planning run.
+/// Everything that defines one planning run, for an arm `A` whose hand has
+/// `M` coordinates and follows a path `P`: the planar arm's by default
+/// (`Scene`), a chain in space's as [`SpaceScene`].
 ///
-/// Written and read as a [`SceneFile`]: its parameters by name, every
-/// declared one written (the planner's list, `crate::planner::params`),
-/// and the fields of older files (`lambda`, `delta`, `avoidance`,
-/// `sign_smoothing`, `refine`) read into them.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(into = "SceneFile", try_from = "SceneFile")]
-pub struct Scene {
-    /// The manipulator.
-    pub arm: Arm,
+/// The planar scene is written and read as a [`SceneFile`]: its
+/// parameters by name, every declared one written (the planner's list,
+/// `crate::planner::params`), and the fields of older files (`lambda`,
+/// `delta`, `avoidance`, `sign_smoothing`, `refine`) read into them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene<A = Arm, P = Path, const M: usize = 2> {
+    /// The manipulator, with its limits.
+    pub arm: A,
     /// Joint angles at `t = 0` (radians).
     pub theta0: Vec<f64>,
-    /// End of the straight line, `X(tf)` (for [`Path::Line`]).
-    pub target: [f64; 2],
+    /// End of the straight line, `X(tf)` (for the path `line`).
+    pub target: [f64; M],
     /// What the hand follows at constant speed over `tf`: the straight
-    /// line to `target` (the paper's), a circle or a polyline ([`Path`]).
-    pub path: Path,
-    /// Obstacle discs; their centres are the points `O` of eq. (16).
-    pub obstacles: Vec<Obstacle>,
+    /// line to `target` (the paper's), a circle or a polyline ([`Path`],
+    /// [`SpacePath`]).
+    pub path: P,
+    /// The obstacles (discs in the plane, spheres in space); their centres
+    /// are the points `O` of eq. (16).
+    pub obstacles: Vec<Ball<M>>,
     /// Optional damping schedule added to `delta` near singular poses.
     pub damping: Option<DampingSchedule>,
     /// Runge-Kutta step (s).
@@ -64,11 +68,58 @@ pub struct Scene {
     /// How the methods of eq. (5) use the arm's joint limits: the paper's
     /// `W = I`, or weighted least norm.
     pub weighting: JointWeighting,
-    /// Whether the floor `y = 0` and the post are obstacles for the methods
-    /// that keep a clearance (`distance`, `priority`, `qp`) and for the
-    /// outcome (a link below the floor or across the post collides); off in
-    /// the paper's tasks.
+    /// Whether the floor (`y = 0` in the plane, `z = 0` in space) is an
+    /// obstacle for the methods that keep a clearance (`distance`,
+    /// `priority`, `qp`), and in the plane the post too, also for the
+    /// outcome (a link below the floor or across the post collides); off
+    /// in the paper's tasks.
     pub floor: bool,
+}
+
+impl<A, P, const M: usize> Scene<A, P, M> {
+    /// The value of parameter `p` in this scene.
+    #[inline]
+    pub fn param(&self, p: &'static Param) -> f64 {
+        self.params.get(p)
+    }
+
+    /// Sets parameter `p`; refused, changing nothing, when out of its
+    /// bounds.
+    pub fn set_param(&mut self, p: &'static Param, value: f64) -> Result<()> {
+        self.params.set(p, value)
+    }
+
+    /// Number of RK4 steps, `tf / dt`.
+    pub fn steps(&self) -> usize {
+        (self.tf / self.dt).round() as usize
+    }
+
+    /// Checks what every scene has: the parameters, the damping schedule,
+    /// `dt`, the feedback gain and `tf`.
+    pub(crate) fn validate_settings(&self) -> Result<()> {
+        validate_settings(
+            &self.params,
+            self.damping.as_ref(),
+            self.dt,
+            self.tf,
+            self.feedback_gain,
+        )
+    }
+}
+
+/// A planar scene is written as its [`SceneFile`].
+impl Serialize for Scene {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        SceneFile::from(self.clone()).serialize(s)
+    }
+}
+
+/// A planar scene is read from a [`SceneFile`], checked as it becomes one.
+impl<'de> Deserialize<'de> for Scene {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        let file = SceneFile::deserialize(d)?;
+        Scene::try_from(file).map_err(serde::de::Error::custom)
+    }
 }
 
 impl Scene {
@@ -141,18 +192,6 @@ impl Scene {
         Vector2::new(self.target[0], self.target[1])
     }
 
-    /// The value of parameter `p` in this scene.
-    #[inline]
-    pub fn param(&self, p: &'static Param) -> f64 {
-        self.params.get(p)
-    }
-
-    /// Sets parameter `p`; refused, changing nothing, when out of its
-    /// bounds.
-    pub fn set_param(&mut self, p: &'static Param, value: f64) -> Result<()> {
-        self.params.set(p, value)
-    }
-
     /// The post's height `L0` where the ground counts as an obstacle
     /// ([`Scene::floor`]), for [`crate::clearance::Pairs::add_ground`].
     #[inline]
@@ -174,11 +213,6 @@ impl Scene {
         true
     }
 
-    /// Number of RK4 steps, `tf / dt`.
-    pub fn steps(&self) -> usize {
-        (self.tf / self.dt).round() as usize
-    }
-
     /// Checks every field; the first problem found is returned.
     pub fn validate(&self) -> Result<()> {
         self.arm.validate()?;
@@ -193,13 +227,7 @@ impl Scene {
         for ob in &self.obstacles {
             ob.validate(&self.arm)?;
         }
-        validate_settings(
-            &self.params,
-            self.damping.as_ref(),
-            self.dt,
-            self.tf,
-            self.feedback_gain,
-        )
+        self.validate_settings()
     }
 }
 

@@ -237,7 +237,7 @@ pub fn v_states(
     rng: &mut Rng,
 ) -> Result<Vec<SpaceVisited>> {
     let base = SpaceScene::preset(p);
-    let chain = &base.chain;
+    let chain = &base.arm;
     let mut pool: Vec<SpaceVisited> = Vec::new();
     for _ in 0..s.tasks {
         let theta0 = uniform_pose(chain, 0.1, rng);
@@ -254,7 +254,7 @@ pub fn v_states(
             let mut scene = base.clone();
             scene.theta0.clone_from(&theta0);
             scene.target = [0, 1, 2].map(|k| start[k] + d[k]);
-            scene.spheres = vec![Sphere::new(centre, p.task.sphere[3])];
+            scene.obstacles = vec![Sphere::new(centre, p.task.sphere[3])];
             // A run that fails (a singular pose, a divergence) gives no poses.
             let Ok(run) = Planner::run(scene, Method::NUMERICAL, None) else {
                 continue;

@@ -279,7 +279,7 @@ impl SpaceDemo {
             let limits = d
                 .session
                 .scene()
-                .chain
+                .arm
                 .joint_limits()
                 .map_or(&[][..], |l| l.ranges());
             plots::draw_points(&d.session.points(), limits, d.session.scene().tf, p);

@@ -116,7 +116,7 @@ pub fn draw(
     surface.begin();
     let proj = s.projection(surface.width, surface.height);
     let scene = s.scene();
-    let chain = &scene.chain;
+    let chain = &scene.arm;
     let pose = s.pose();
     let r = chain.radius();
     let st = s.state();
@@ -150,7 +150,7 @@ pub fn draw(
         let (a0, b0) = ([a[0], a[1], 0.0], [b[0], b[1], 0.0]);
         segment(ctx, &proj, a0, b0, 2.0 * r);
     }
-    for sp in &scene.spheres {
+    for sp in &scene.obstacles {
         let c = sp.centre;
         let ring: Vec<Vec3> = (0..24)
             .map(|k| {
@@ -188,7 +188,7 @@ pub fn draw(
         )
         .chain(
             scene
-                .spheres
+                .obstacles
                 .iter()
                 .enumerate()
                 .map(|(i, sp)| (proj.depth(sp.centre), Item::Sphere(i))),
@@ -226,7 +226,7 @@ pub fn draw(
                 }
             }
             Item::Sphere(i) => {
-                let sp = &scene.spheres[i];
+                let sp = &scene.obstacles[i];
                 let [x, y, z] = proj.project(sp.centre);
                 if z > NEAR {
                     let rad = sp.radius * proj.pixels_per_metre(z);
@@ -309,7 +309,9 @@ pub fn draw(
             let [x, y, z] = proj.project(c);
             let rad = match h {
                 SpaceHandle::Target => 12.0,
-                SpaceHandle::Sphere(i) => scene.spheres[i].radius * proj.pixels_per_metre(z) + 4.0,
+                SpaceHandle::Sphere(i) => {
+                    scene.obstacles[i].radius * proj.pixels_per_metre(z) + 4.0
+                }
             };
             ctx.set_stroke_style_str(INK);
             ctx.set_line_width(1.5);

@@ -32,7 +32,7 @@ fn every_cell_is_the_run_of_its_sphere() {
                 continue;
             }
             let mut s = scene.clone();
-            s.spheres = vec![Sphere::new(c.centre, a.radius)];
+            s.obstacles = vec![Sphere::new(c.centre, a.radius)];
             let direct = Planner::new(s, *m, Some(nets.clone() as Networks<_, 3>))
                 .and_then(Planner::run_to_end)
                 .unwrap();

@@ -25,8 +25,8 @@ fn fresh(
     methods: &[Method],
     nets: Option<&Arc<SpaceNetworks>>,
 ) -> SliceAtlas {
-    let radius = scene.spheres[0].radius;
-    let pose = SpacePose::new(&scene.chain, &scene.theta0).unwrap();
+    let radius = scene.obstacles[0].radius;
+    let pose = SpacePose::new(&scene.arm, &scene.theta0).unwrap();
     let [u0, u1, v0, v1] = grid.region;
     let step = |a: f64, b: f64, i: usize| a + (b - a) * i as f64 / (grid.n - 1) as f64;
     let mut cells = Vec::new();
@@ -34,16 +34,16 @@ fn fresh(
         for i in 0..grid.n {
             let c = plane.point(step(u0, u1, i), step(v0, v1, j));
             let sphere = Sphere::new(c, radius);
-            let pre = if sphere.validate(&scene.chain).is_err()
-                || clearance(&scene.chain, &pose, &[sphere]) <= 0.0
+            let pre = if sphere.validate(&scene.arm).is_err()
+                || clearance(&scene.arm, &pose, &[sphere]) <= 0.0
             {
                 Some(Class::StartOverlap)
             } else {
                 let d = scene.path.distance_to(c, scene.start(), scene.target);
-                (d <= radius + scene.chain.radius()).then_some(Class::PathBlocked)
+                (d <= radius + scene.arm.radius()).then_some(Class::PathBlocked)
             };
             let mut s = scene.clone();
-            s.spheres[0] = sphere;
+            s.obstacles[0] = sphere;
             let outcomes = methods.iter().map(|&m| run(&s, m, pre, nets)).collect();
             cells.push(SliceCell {
                 centre: c,
@@ -173,7 +173,7 @@ fn a_planner_reset_with_its_sphere_moved_runs_as_a_new_one() {
     p.reset();
     assert_eq!(p.time(), 0.0);
     let mut s = scene.clone();
-    s.spheres[0] = moved;
+    s.obstacles[0] = moved;
     let direct = Planner::new(s.clone(), methods::QP, None).unwrap();
     assert_eq!(p.sample(), direct.sample());
     assert_eq!(
@@ -181,12 +181,12 @@ fn a_planner_reset_with_its_sphere_moved_runs_as_a_new_one() {
         direct.run_to_end().unwrap().summary
     );
     // Back to the first sphere: the first run again.
-    p.set_sphere(0, scene.spheres[0]).unwrap();
+    p.set_sphere(0, scene.obstacles[0]).unwrap();
     p.reset();
     assert_eq!(p.summary_to_end().unwrap(), first);
     // A sphere on the base or past the end is refused, changing nothing.
-    let on_base = Sphere::new(scene.chain.base().1, 0.05);
+    let on_base = Sphere::new(scene.arm.base().1, 0.05);
     assert!(p.set_sphere(0, on_base).is_err());
     assert!(p.set_sphere(2, moved).is_err());
-    assert_eq!(p.scene().spheres, scene.spheres);
+    assert_eq!(p.scene().obstacles, scene.obstacles);
 }

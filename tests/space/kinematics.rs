@@ -360,7 +360,7 @@ fn the_velocity_ellipsoid_rebuilds_j_j_transpose() {
         let scene = redundant_ik::scene::SpaceScene::by_key(key).unwrap();
         for shift in [0.0, 0.3, -0.7] {
             let theta: Vec<f64> = scene.theta0.iter().map(|t| t + shift).collect();
-            let pose = SpacePose::new(&scene.chain, &theta).unwrap();
+            let pose = SpacePose::new(&scene.arm, &theta).unwrap();
             let a = pose.jjt();
             let (axes, half) = velocity_ellipsoid(a);
             assert!(half[0] >= half[1] && half[1] >= half[2]);

@@ -33,7 +33,7 @@ fn run(scene: &SpaceScene, m: Method) -> Trajectory<3> {
 /// The preset's task without its sphere.
 fn free(key: &str) -> SpaceScene {
     let mut s = SpaceScene::by_key(key).unwrap();
-    s.spheres.clear();
+    s.obstacles.clear();
     s
 }
 
@@ -42,7 +42,7 @@ fn mean_over(scene: &SpaceScene, run: &Trajectory<3>, f: impl Fn(&SpacePose) -> 
     let sum: f64 = run
         .steps
         .iter()
-        .map(|s| f(&SpacePose::new(&scene.chain, &s.theta).unwrap()))
+        .map(|s| f(&SpacePose::new(&scene.arm, &s.theta).unwrap()))
         .sum();
     sum / run.steps.len() as f64
 }
@@ -50,7 +50,7 @@ fn mean_over(scene: &SpaceScene, run: &Trajectory<3>, f: impl Fn(&SpacePose) -> 
 /// The smallest distance of any joint from a limit over a run, as a
 /// fraction of its range.
 fn closest_to_a_limit(scene: &SpaceScene, run: &Trajectory<3>) -> f64 {
-    let limits = scene.chain.joint_limits().unwrap().ranges();
+    let limits = scene.arm.joint_limits().unwrap().ranges();
     run.steps
         .iter()
         .flat_map(|s| {
@@ -107,7 +107,7 @@ fn the_manipulability_method_keeps_w_higher_than_none() {
         let none = run(&scene, Method::NO_AVOIDANCE);
         let w0 = mean_over(&scene, &none, manipulability);
         let last = |r: &Trajectory<3>| {
-            manipulability(&SpacePose::new(&scene.chain, &r.steps.last().unwrap().theta).unwrap())
+            manipulability(&SpacePose::new(&scene.arm, &r.steps.last().unwrap().theta).unwrap())
         };
         // At the default gain 0.5 and at 20: higher w, more with more gain.
         let mut before = w0;
@@ -143,7 +143,7 @@ fn the_manipulability_method_keeps_w_higher_than_none() {
 /// `((theta_i - mid_i) / (hi_i - lo_i))^2`.
 fn spread(scene: &SpaceScene) -> impl Fn(&SpacePose) -> f64 + '_ {
     move |pose| {
-        let limits = scene.chain.joint_limits().unwrap().ranges();
+        let limits = scene.arm.joint_limits().unwrap().ranges();
         let sum: f64 = pose
             .theta()
             .iter()
@@ -165,7 +165,7 @@ fn the_joint_range_method_keeps_the_joints_nearer_the_middles_of_their_ranges() 
         let none = run(&scene, Method::NO_AVOIDANCE);
         let q0 = mean_over(&scene, &none, spread(&scene));
         let end = |r: &Trajectory<3>| {
-            spread(&scene)(&SpacePose::new(&scene.chain, &r.steps.last().unwrap().theta).unwrap())
+            spread(&scene)(&SpacePose::new(&scene.arm, &r.steps.last().unwrap().theta).unwrap())
         };
         let mut before = q0;
         for gain in [10.0, 50.0] {
@@ -207,7 +207,7 @@ fn the_joint_range_method_keeps_the_joints_nearer_the_middles_of_their_ranges() 
 /// line then drives that joint past it.
 fn near_a_limit(key: &str) -> SpaceScene {
     let mut s = free(key);
-    let [lo, hi] = s.chain.joint_limits().unwrap().ranges()[0];
+    let [lo, hi] = s.arm.joint_limits().unwrap().ranges()[0];
     s.theta0[0] = match key {
         "panda" => lo + 0.1 * (hi - lo),
         _ => hi - 0.1 * (hi - lo),
@@ -260,9 +260,9 @@ fn v_of(m: Method, scene: &SpaceScene, pose: &SpacePose) -> Vec<f64> {
     match m.name() {
         "none" => {}
         "numerical" => criterion::null_space_vector_into(
-            &scene.chain,
+            &scene.arm,
             pose,
-            scene.spheres.iter().map(|s| s.centre),
+            scene.obstacles.iter().map(|s| s.centre),
             scene.param(&LAMBDA),
             scene.param(&SIGN_SMOOTHING),
             &mut v,
@@ -274,7 +274,7 @@ fn v_of(m: Method, scene: &SpaceScene, pose: &SpacePose) -> Vec<f64> {
         }
         "jointrange" => {
             let k = scene.param(&JOINT_RANGE_GAIN);
-            let limits = scene.chain.joint_limits().unwrap().ranges();
+            let limits = scene.arm.joint_limits().unwrap().ranges();
             for ((vi, &t), &[lo, hi]) in v.iter_mut().zip(pose.theta()).zip(limits) {
                 *vi = -k * (t - 0.5 * (lo + hi)) / (n as f64 * (hi - lo) * (hi - lo));
             }
@@ -300,8 +300,8 @@ fn without_weighting_the_rates_are_eq18_with_each_methods_v() {
         ] {
             let planner = Planner::new(scene.clone(), m, None).unwrap();
             for _ in 0..10 {
-                let theta = random_theta(&scene.chain, &mut rng);
-                let pose = SpacePose::new(&scene.chain, &theta).unwrap();
+                let theta = random_theta(&scene.arm, &mut rng);
+                let pose = SpacePose::new(&scene.arm, &theta).unwrap();
                 let mut want = vec![0.0; theta.len()];
                 Chain::eq18(&pose, xdot, &v_of(m, &scene, &pose), delta, &mut want).unwrap();
                 let got = planner.theta_dot(&theta, xdot).unwrap();
@@ -351,8 +351,8 @@ fn the_weighted_eq18_is_eq18_at_unit_weights_and_keeps_the_hand_velocity() {
 #[test]
 fn on_a_chain_without_limits_the_weighting_changes_nothing() {
     let mut scene = near_a_limit("panda");
-    scene.spheres = SpaceScene::by_key("panda").unwrap().spheres;
-    scene.chain = scene.chain.clone().with_limits(None, None).unwrap();
+    scene.obstacles = SpaceScene::by_key("panda").unwrap().obstacles;
+    scene.arm = scene.arm.clone().with_limits(None, None).unwrap();
     let mut wln = scene.clone();
     wln.weighting = JointWeighting::Wln;
     for m in methods::ALL
@@ -409,10 +409,10 @@ fn a_chain_whose_axes_are_parallel_has_the_planar_manipulability_and_weights() {
     planar.weighting = JointWeighting::Wln;
     let o = planar.obstacles[0].centre;
     let mut space = SpaceScene::preset(&PRESETS[0]);
-    space.chain = chain;
+    space.arm = chain;
     space.theta0 = planar.theta0.clone();
     space.target = [planar.target[0], 0.0, planar.target[1]];
-    space.spheres = vec![Sphere::new([o[0], 0.0, o[1]], 0.05)];
+    space.obstacles = vec![Sphere::new([o[0], 0.0, o[1]], 0.05)];
     space.params = planar.params.clone();
     space.weighting = JointWeighting::Wln;
     let mut unweighted = planar.clone();

@@ -50,7 +50,7 @@ fn rows_hold_at_every_step(name: &str, scene: &SpaceScene) -> (Summary, usize) {
     while !p.done() {
         let theta = p.sample().theta.clone();
         let rates = p.theta_dot(&theta, xdot).unwrap();
-        let pose = SpacePose::new(&scene.chain, &theta).unwrap();
+        let pose = SpacePose::new(&scene.arm, &theta).unwrap();
         let t = p.time();
         let sample = p.step().unwrap().clone();
         relaxed_steps += usize::from(sample.relaxed);
@@ -77,13 +77,13 @@ fn rows_hold_at_every_step(name: &str, scene: &SpaceScene) -> (Summary, usize) {
 /// The forearm of `scene`'s chain at its start: the moving segment of the
 /// most joints' segments that is longest, its ends.
 fn forearm(scene: &SpaceScene) -> ([f64; 3], [f64; 3]) {
-    let pose = SpacePose::new(&scene.chain, &scene.theta0).unwrap();
+    let pose = SpacePose::new(&scene.arm, &scene.theta0).unwrap();
     let len = |s: &redundant_ik::space::Segment| {
         let (a, b) = pose.segment(s);
         (0..3).map(|k| (b[k] - a[k]).powi(2)).sum::<f64>().sqrt()
     };
     let s = scene
-        .chain
+        .arm
         .segments()
         .iter()
         .filter(|s| s.moved_by >= 3)
@@ -103,9 +103,9 @@ fn squeezed(scene: &SpaceScene, at: f64) -> SpaceScene {
     // A unit normal to the forearm, horizontal: u x z, normalised.
     let c = [u[1], -u[0], 0.0];
     let l = (c[0] * c[0] + c[1] * c[1]).sqrt();
-    let off = scene.chain.radius() + 0.05 + 0.01;
+    let off = scene.arm.radius() + 0.05 + 0.01;
     let mut s = scene.clone();
-    s.spheres = [1.0, -1.0]
+    s.obstacles = [1.0, -1.0]
         .map(|side| Sphere::new([0, 1, 2].map(|k| q[k] + side * off * c[k] / l), 0.05))
         .to_vec();
     s
@@ -134,8 +134,8 @@ fn on_both_presets_tasks_qp_keeps_every_row_every_capsule_out_of_the_sphere_and_
         assert_eq!(summary.collision_steps, 0, "{}: {summary:?}", p.key);
         assert_eq!(summary.limit_steps, 0, "{}: {summary:?}", p.key);
         assert_eq!(summary.relaxed_steps, 0, "{}: {summary:?}", p.key);
-        let start = SpacePose::new(&scene.chain, &scene.theta0).unwrap();
-        let c0 = redundant_ik::space::clearance(&scene.chain, &start, &scene.spheres);
+        let start = SpacePose::new(&scene.arm, &scene.theta0).unwrap();
+        let c0 = redundant_ik::space::clearance(&scene.arm, &start, &scene.obstacles);
         // Clear at the start; the dampers keep the stop distance (to the
         // step's discretisation, 0.1 mm).
         assert!(c0 > scene.param(&STOP_DISTANCE), "{}: {c0}", p.key);
@@ -179,13 +179,13 @@ fn the_damper_rows_are_minus_n_jq_with_the_damper_bound_for_spheres_and_the_floo
     // above it).
     scene.params.set(&INFLUENCE, 5.0).unwrap();
     scene.params.set(&DAMPER_GAIN, 0.7).unwrap();
-    let pose = SpacePose::new(&scene.chain, &scene.theta0).unwrap();
+    let pose = SpacePose::new(&scene.arm, &scene.theta0).unwrap();
     let (di, ds, xi) = (5.0, scene.param(&STOP_DISTANCE), 0.7);
     let dampers: Vec<_> = rows_at(&scene, &pose)
         .into_iter()
         .filter(|(what, _, _)| *what == "damper")
         .collect();
-    let segments = scene.chain.segments();
+    let segments = scene.arm.segments();
     let moving: Vec<usize> = (0..segments.len())
         .filter(|&k| segments[k].moved_by > 0)
         .collect();
@@ -196,12 +196,12 @@ fn the_damper_rows_are_minus_n_jq_with_the_damper_bound_for_spheres_and_the_floo
     );
     let n = pose.dof();
     let mut jq = vec![0.0; 3 * n];
-    let r = scene.chain.radius();
+    let r = scene.arm.radius();
     for (i, &k) in moving.iter().enumerate() {
         let s = segments[k];
         let (a, b) = pose.segment(&s);
         // The sphere's row: -n . J_Q at the axis point nearest the centre.
-        let sp = scene.spheres[0];
+        let sp = scene.obstacles[0];
         let (t, d) = redundant_ik::space::closest(sp.centre, a, b);
         let q = [0, 1, 2].map(|j| a[j] + t * (b[j] - a[j]));
         let normal = [0, 1, 2].map(|j| (q[j] - sp.centre[j]) / d);
@@ -233,8 +233,8 @@ fn the_damper_rows_are_minus_n_jq_with_the_damper_bound_for_spheres_and_the_floo
     }
     // The same pairs as SpacePairs lists them, in the same order.
     let mut pairs = SpacePairs::default();
-    pairs.update(&scene.chain, &pose, &scene.spheres, 5.0);
-    pairs.add_floor(&scene.chain, &pose, 5.0);
+    pairs.update(&scene.arm, &pose, &scene.obstacles, 5.0);
+    pairs.add_floor(&scene.arm, &pose, 5.0);
     assert_eq!(pairs.len(), dampers.len());
     // Without the floor its rows go.
     scene.floor = false;

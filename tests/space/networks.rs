@@ -125,7 +125,7 @@ fn the_criterion_is_invariant_under_the_turn_the_networks_rely_on() {
 fn every_learned_route_follows_the_line_without_spheres() {
     let nets = panda_nets();
     let mut scene = SpaceScene::by_key("panda").unwrap();
-    scene.spheres.clear();
+    scene.obstacles.clear();
     scene.feedback_gain = 1.0;
     scene.params.set(&REFINE, 2.0).unwrap();
     for m in [methods::CASE1, methods::CASE2, methods::CASE3] {

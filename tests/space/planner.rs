@@ -21,7 +21,7 @@ fn space_methods() -> Vec<Method> {
 fn without_spheres_every_method_keeps_the_hand_on_its_line() {
     for p in PRESETS {
         let mut scene = SpaceScene::preset(&p);
-        scene.spheres.clear();
+        scene.obstacles.clear();
         for m in space_methods() {
             let run = Planner::new(scene.clone(), m, None)
                 .and_then(Planner::run_to_end)
@@ -107,10 +107,10 @@ fn a_chain_whose_axes_are_parallel_gives_the_planar_rates() {
     planar.params.set(&DELTA, 0.02).unwrap();
     let o = planar.obstacles[0].centre;
     let mut space = SpaceScene::preset(&PRESETS[0]);
-    space.chain = chain;
+    space.arm = chain;
     space.theta0 = planar.theta0.clone();
     space.target = [planar.target[0], 0.0, planar.target[1]];
-    space.spheres = vec![Sphere::new([o[0], 0.0, o[1]], 0.05)];
+    space.obstacles = vec![Sphere::new([o[0], 0.0, o[1]], 0.05)];
     space.params = planar.params.clone();
     for m in space_methods() {
         let plane = Planner::new(planar.clone(), m, None).unwrap();
@@ -143,7 +143,7 @@ fn what_cannot_run_in_space_is_refused_with_a_reason() {
     outside.theta0[3] = 0.5; // the Panda's joint 4 stays below -0.0698
     assert!(Planner::new(outside, Method::NUMERICAL, None).is_err());
     let mut on_base = scene.clone();
-    on_base.spheres = vec![Sphere::new([0.02, 0.0, 0.1], 0.05)];
+    on_base.obstacles = vec![Sphere::new([0.02, 0.0, 0.1], 0.05)];
     let e = Planner::new(on_base, Method::NUMERICAL, None)
         .err()
         .unwrap();

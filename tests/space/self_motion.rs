@@ -20,7 +20,7 @@ fn drift(a: [f64; 3], b: [f64; 3]) -> f64 {
 fn the_integrator_moves_a_chain_in_space_along_a_joints_self_motion_and_holds_the_hand() {
     for key in ["panda", "iiwa14"] {
         let scene = SpaceScene::by_key(key).unwrap();
-        let chain = &scene.chain;
+        let chain = &scene.arm;
         let start = SpacePose::new(chain, &scene.theta0).unwrap().hand();
         let mut motion = SelfMotion::new(chain);
         for (joint, amount) in [(0, 0.3), (2, -0.4), (4, 0.25)] {

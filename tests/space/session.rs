@@ -105,7 +105,7 @@ fn the_orbit_keeps_the_pitch_and_the_zoom_the_distance_in_their_ranges() {
 fn a_dragged_sphere_stays_under_the_pointer_and_the_run_follows_it() {
     let mut s = panda(Method::NUMERICAL);
     let proj = s.projection(W, H);
-    let centre = s.scene().spheres[0].centre;
+    let centre = s.scene().obstacles[0].centre;
     let [x, y, _] = proj.project(centre);
     let runs = s.runs();
     // Grabbed off its centre, by 5 px: the offset is kept.
@@ -115,7 +115,7 @@ fn a_dragged_sphere_stays_under_the_pointer_and_the_run_follows_it() {
     );
     for (dx, dy) in [(30.0, -20.0), (-60.0, 15.0), (3.0, 40.0)] {
         s.pointer_move(&proj, x + 5.0 + dx, y + dy).unwrap();
-        let [px, py, _] = proj.project(s.scene().spheres[0].centre);
+        let [px, py, _] = proj.project(s.scene().obstacles[0].centre);
         // Within the rounding of the centre to 0.1 mm (under 0.1 px here).
         assert!(
             (px - (x + dx)).hypot(py - (y + dy)) < 0.2,
@@ -152,9 +152,9 @@ fn the_arrow_keys_move_the_selected_item_in_the_plane_facing_the_camera() {
     let mut s = panda(Method::NUMERICAL);
     let proj = s.projection(W, H);
     assert_eq!(s.select_next(true), SpaceHandle::Sphere(0));
-    let before = s.scene().spheres[0].centre;
+    let before = s.scene().obstacles[0].centre;
     s.nudge(&proj, 1.0, 0.0, false).unwrap();
-    let after = s.scene().spheres[0].centre;
+    let after = s.scene().obstacles[0].centre;
     let (right, _) = proj.screen_axes();
     for k in 0..3 {
         assert!((after[k] - before[k] - NUDGE * right[k]).abs() < 1e-4);

@@ -52,7 +52,7 @@ impl SliceJob {
         grid.validate()?;
         scene.validate()?;
         for m in methods {
-            m.space_rule(scene.chain.dof())?;
+            m.space_rule(scene.arm.dof())?;
             if m.uses_networks() && networks.is_none() {
                 return Err(Error::NetworksUnavailable(format!(
                     "method {m} needs networks trained for this arm in space"
@@ -60,12 +60,12 @@ impl SliceJob {
             }
         }
         if let Some(nets) = networks {
-            nets.check_chain(&scene.chain)?;
+            nets.check_chain(&scene.arm)?;
         }
-        let radius = scene.spheres.first().map_or(0.05, |s| s.radius);
-        let pose = SpacePose::new(&scene.chain, &scene.theta0)?;
+        let radius = scene.obstacles.first().map_or(0.05, |s| s.radius);
+        let pose = SpacePose::new(&scene.arm, &scene.theta0)?;
         let shoulder = pose.joint_origin(0);
-        let reach = scene.chain.reach() + radius + scene.chain.radius();
+        let reach = scene.arm.reach() + radius + scene.arm.radius();
         let near = |c: Vec3| {
             (0..3)
                 .map(|k| (c[k] - shoulder[k]).powi(2))
@@ -185,15 +185,15 @@ fn centre(plane: Plane, grid: &Grid, index: usize) -> Vec3 {
 /// hand's path (`path_blocked`: the flange's capsule follows the path), or
 /// nothing (`None`).
 fn before(scene: &SpaceScene, pose: &SpacePose, s: &Sphere) -> Option<Class> {
-    if s.validate(&scene.chain).is_err()
-        || clearance(&scene.chain, pose, std::slice::from_ref(s)) <= 0.0
+    if s.validate(&scene.arm).is_err()
+        || clearance(&scene.arm, pose, std::slice::from_ref(s)) <= 0.0
     {
         return Some(Class::StartOverlap);
     }
     let d = scene
         .path
         .distance_to(s.centre, scene.start(), scene.target);
-    (d <= s.radius + scene.chain.radius()).then_some(Class::PathBlocked)
+    (d <= s.radius + scene.arm.radius()).then_some(Class::PathBlocked)
 }
 
 /// Every planner's run with the first sphere at `c`.

@@ -86,8 +86,8 @@ impl SpaceSession {
                 choices: crate::error::choices(&PRESETS.iter().map(|p| p.key).collect::<Vec<_>>()),
             })?;
         let scene = SpaceScene::preset(preset);
-        let pose = SpacePose::new(&scene.chain, &scene.theta0)?;
-        let home = Camera::looking_at(home_focus(&scene), 1.8 * scene.chain.reach().max(0.3));
+        let pose = SpacePose::new(&scene.arm, &scene.theta0)?;
+        let home = Camera::looking_at(home_focus(&scene), 1.8 * scene.arm.reach().max(0.3));
         let mut s = Self {
             preset,
             scene,
@@ -152,7 +152,7 @@ impl SpaceSession {
                     && (!needs.v
                         || self
                             .scene
-                            .spheres
+                            .obstacles
                             .iter()
                             .all(|s| n.in_range(&self.pose, Some(s.centre))))
             }
@@ -171,7 +171,7 @@ impl SpaceSession {
         set: Option<SpaceNetworkSet>,
     ) -> Result<()> {
         let nets = SpaceNetworks::from_json(phi_json, v_json)?;
-        nets.check_chain(&self.scene.chain)?;
+        nets.check_chain(&self.scene.arm)?;
         self.networks = Some(Arc::new(nets).in_precision(self.precision));
         self.network_set = set;
         if self.method.uses_networks() {
@@ -202,7 +202,7 @@ impl SpaceSession {
     /// Switches to `method`; refused, changing nothing, when it has no rule
     /// in space or needs networks the session has not.
     pub fn set_method(&mut self, method: Method) -> Result<()> {
-        method.space_rule(self.scene.chain.dof())?;
+        method.space_rule(self.scene.arm.dof())?;
         if method.uses_networks() && self.networks.is_none() {
             return Err(Error::NetworksUnavailable(format!(
                 "{} needs networks for the {}: they have not loaded",
@@ -257,11 +257,11 @@ impl SpaceSession {
         self.index = index;
         if let Some(s) = self.samples.get(index) {
             // The chain and the angles were checked when the run made them.
-            let _ = self.pose.update(&self.scene.chain, &s.theta);
+            let _ = self.pose.update(&self.scene.arm, &s.theta);
         }
         // The ghost at the same time (at its last sample where it stopped
         // sooner).
-        let chain = &self.scene.chain;
+        let chain = &self.scene.arm;
         self.ghost_pose = match self.ghost.get(index).or(self.ghost.last()) {
             Some(g) => match self.ghost_pose.take() {
                 Some(mut pose) => pose.update(chain, &g.theta).is_ok().then_some(pose),
@@ -340,7 +340,7 @@ impl SpaceSession {
 /// the path's end, at their mean height.
 fn home_focus(scene: &SpaceScene) -> Vec3 {
     let (a, b) = (scene.start(), scene.path_end());
-    let base = scene.chain.base().1;
+    let base = scene.arm.base().1;
     [0, 1, 2].map(|i| (a[i] + b[i] + base[i]) / 3.0)
 }
 

@@ -95,7 +95,7 @@ impl SpaceSession {
     pub fn handle_centre(&self, handle: SpaceHandle) -> Option<Vec3> {
         match handle {
             SpaceHandle::Target => Some(self.scene.target),
-            SpaceHandle::Sphere(i) => self.scene.spheres.get(i).map(|s| s.centre),
+            SpaceHandle::Sphere(i) => self.scene.obstacles.get(i).map(|s| s.centre),
         }
     }
 
@@ -105,7 +105,7 @@ impl SpaceSession {
         let target = std::iter::once((SpaceHandle::Target, self.scene.target, 0.0));
         let spheres = self
             .scene
-            .spheres
+            .obstacles
             .iter()
             .enumerate()
             .map(|(i, s)| (SpaceHandle::Sphere(i), s.centre, s.radius));
@@ -230,7 +230,7 @@ impl SpaceSession {
     /// What the keys move (the target when the selected sphere is gone).
     pub fn selected(&self) -> SpaceHandle {
         match self.selected {
-            SpaceHandle::Sphere(i) if i >= self.scene.spheres.len() => SpaceHandle::Target,
+            SpaceHandle::Sphere(i) if i >= self.scene.obstacles.len() => SpaceHandle::Target,
             h => h,
         }
     }
@@ -238,7 +238,7 @@ impl SpaceSession {
     /// Selects the next item (`forward`) or the one before: the target,
     /// then the spheres, and round again.
     pub fn select_next(&mut self, forward: bool) -> SpaceHandle {
-        let n = 1 + self.scene.spheres.len();
+        let n = 1 + self.scene.obstacles.len();
         let at = match self.selected() {
             SpaceHandle::Target => 0,
             SpaceHandle::Sphere(i) => i + 1,

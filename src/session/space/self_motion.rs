@@ -32,7 +32,7 @@ impl SpaceSession {
     }
 
     fn move_in_null_space(&mut self, joint: usize, to: Option<Vec3>, amount: f64) -> Result<()> {
-        let chain = &self.scene.chain;
+        let chain = &self.scene.arm;
         let mut theta = self.pose.theta().to_vec();
         let hold = self.pose.hand();
         let mut motion = SelfMotion::new(chain);

@@ -84,8 +84,8 @@ impl SpaceSession {
     /// Moves sphere `i` to `centre`, its radius kept.
     pub fn move_sphere(&mut self, i: usize, centre: Vec3) -> Result<()> {
         let mut scene = self.scene.clone();
-        let n = scene.spheres.len();
-        let s = scene.spheres.get_mut(i).ok_or_else(|| no_sphere(i, n))?;
+        let n = scene.obstacles.len();
+        let s = scene.obstacles.get_mut(i).ok_or_else(|| no_sphere(i, n))?;
         s.centre = centre;
         self.apply(scene)
     }
@@ -93,7 +93,7 @@ impl SpaceSession {
     /// Replaces the spheres by `flat` (`[x, y, z, r, ...]`, m).
     pub fn set_spheres(&mut self, flat: &[f64]) -> Result<()> {
         let mut scene = self.scene.clone();
-        scene.spheres = Sphere::from_flat(flat)?;
+        scene.obstacles = Sphere::from_flat(flat)?;
         self.apply(scene)
     }
 
@@ -102,18 +102,18 @@ impl SpaceSession {
         let mut flat: Vec<f64> = self.flat_spheres();
         flat.extend_from_slice(&[centre[0], centre[1], centre[2], r]);
         self.set_spheres(&flat)?;
-        let i = self.scene.spheres.len() - 1;
+        let i = self.scene.obstacles.len() - 1;
         self.selected = SpaceHandle::Sphere(i);
         Ok(i)
     }
 
     /// Removes sphere `i`.
     pub fn remove_sphere(&mut self, i: usize) -> Result<()> {
-        if i >= self.scene.spheres.len() {
-            return Err(no_sphere(i, self.scene.spheres.len()));
+        if i >= self.scene.obstacles.len() {
+            return Err(no_sphere(i, self.scene.obstacles.len()));
         }
         let mut scene = self.scene.clone();
-        scene.spheres.remove(i);
+        scene.obstacles.remove(i);
         self.apply(scene)?;
         self.selected = SpaceHandle::Target;
         Ok(())
@@ -122,7 +122,7 @@ impl SpaceSession {
     /// The spheres as `[x, y, z, r, ...]`.
     pub fn flat_spheres(&self) -> Vec<f64> {
         self.scene
-            .spheres
+            .obstacles
             .iter()
             .flat_map(|s| [s.centre[0], s.centre[1], s.centre[2], s.radius])
             .collect()

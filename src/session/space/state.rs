@@ -145,7 +145,7 @@ impl SpaceSession {
             kind: "space",
             arm: self.preset.key,
             arm_label: self.preset.label,
-            dof: self.scene.chain.dof(),
+            dof: self.scene.arm.dof(),
             method: self.method.name(),
             network_set: self.network_set.map(|s| s.name()),
             has_networks: self.networks.is_some(),
@@ -158,7 +158,7 @@ impl SpaceSession {
             speed: self.speed,
             theta: self.pose.theta(),
             theta0: &self.scene.theta0,
-            joint_limits: self.scene.chain.joint_limits().map(|l| l.ranges()),
+            joint_limits: self.scene.arm.joint_limits().map(|l| l.ranges()),
             hand: self.pose.hand(),
             reference: sample.map_or(self.pose.hand(), |s| s.reference),
             target: self.scene.target,
@@ -167,7 +167,7 @@ impl SpaceSession {
             singular_values: velocity_ellipsoid(self.pose.jjt()).1,
             spheres: self
                 .scene
-                .spheres
+                .obstacles
                 .iter()
                 .map(|s| [s.centre[0], s.centre[1], s.centre[2], s.radius])
                 .collect(),

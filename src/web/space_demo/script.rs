@@ -37,7 +37,7 @@ impl SpaceDemo {
             scene.target = super::super::scene::point("target", &t)?;
         }
         if let Some(flat) = spheres {
-            scene.spheres = Sphere::from_flat(&flat).map_err(js_err)?;
+            scene.obstacles = Sphere::from_flat(&flat).map_err(js_err)?;
         }
         if let Some(tf) = tf {
             scene.tf = tf;
