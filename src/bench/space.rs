@@ -1,4 +1,4 @@
-//! The spatial planner's step, timed and its allocations counted, for the
+//! The planner's step on an arm in space, timed and its allocations counted, for the
 //! arms in space (`redundant-ik bench --arm panda`): each preset's own
 //! task, restarted at its end.
 

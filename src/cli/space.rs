@@ -1,6 +1,6 @@
 //! `simulate` for an arm in space (`--arm panda`, `--arm iiwa14`): the
 //! scene from the preset's task and the scene options (or a spatial run
-//! file's, `--from`), the run through the spatial planner, and its summary,
+//! file's, `--from`), the run through the planner, and its summary,
 //! the run file (JSON, `redundant_ik::export::SpaceRunFile`) or CSV.
 
 use std::fmt::Write as _;

@@ -1,9 +1,8 @@
 //! The classical RK4 step of the paper's section V (step e) over the joint
-//! angles, for every arm: the planar planner and the planner of an arm in
-//! space both take their steps here, each handing over how a stage's joint
-//! rates are computed (its pose, its rule, its task velocity). The stages'
-//! angles and the combination are written once, in one order of
-//! operations, so the two planners round alike.
+//! angles, for every arm: the planner (`integrate.rs`) hands over how a
+//! stage's joint rates are computed (its pose, its rule, its task
+//! velocity); the stages' angles and the combination are written once, in
+//! one order of operations, and self-motion's small steps are its own.
 
 use super::methods::Note;
 use crate::error::{Error, Result};

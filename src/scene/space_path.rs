@@ -14,8 +14,8 @@
 //!   points (1 to [`MAX_POINTS`]), ending at the last one.
 //!
 //! The numbers' checks, the laps' and the points' bounds are the planar
-//! path's; the timed reference is the spatial planner's
-//! (`crate::planner::space`), its maths the planar one's.
+//! path's; the timed reference is the one planner's track
+//! ([`crate::planner::Track`]).
 
 use std::fmt;
 use std::str::FromStr;
