@@ -142,7 +142,7 @@ pub fn run_task(
 }
 
 /// [`run_task`] with `refine` Newton-Schulz steps on the learned `Phi`
-/// ([`crate::scene::Scene::refine`]).
+/// (the scene's `refine` parameter, [`crate::planner::methods::REFINE`]).
 pub fn run_task_refined(
     nets: &Networks,
     task: u32,

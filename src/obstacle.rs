@@ -193,7 +193,7 @@ pub fn area_gradient_smoothed(
 /// the jump (`docs/learning.md`). Smoothing turns the criterion into
 /// `sum_k sqrt(D_k^2 + eps^2)`, whose gradient this is; `eps` is a
 /// parameter of the criterion itself, for the exact and the learned route
-/// alike ([`crate::scene::Param::SignSmoothing`]).
+/// alike ([`crate::planner::methods::SIGN_SMOOTHING`]).
 #[inline]
 pub fn smoothed_sign(d: f64, eps: f64) -> f64 {
     if eps > 0.0 {

@@ -9,7 +9,7 @@
 //! Text is laid out here, not by plotters' fonts: in WebAssembly plotters
 //! measures text through the document, which a Web Worker does not have
 //! (it would panic), and natively it guesses from the byte count. The
-//! [`Measured`] backend measures with one table of glyph widths on both,
+//! `Measured` backend measures with one table of glyph widths on both,
 //! so the command line and the page write the same bytes, and the legends
 //! are drawn here too (plotters' own legend measures through the fonts).
 

@@ -21,7 +21,7 @@ fn jwjt(jac: &[f64], winv: &[f64]) -> [f64; 3] {
     [a11, a12, a22]
 }
 
-/// [`theta_dot_symmetric_into`] with a diagonal weight `W` of eqs. (6)-(7)
+/// [`crate::ik::theta_dot_symmetric_into`] with a diagonal weight `W` of eqs. (6)-(7)
 /// (`Z = I`), given as its inverse `winv` (`n` entries, each in `(0, 1]` for
 /// weighted least norm): eq. (5) with `J+ = W^-1 J^T (J W^-1 J^T + delta I)^-1`
 /// and the null-space vector taken in the same metric, `W^-1 v` (the
@@ -31,7 +31,7 @@ fn jwjt(jac: &[f64], winv: &[f64]) -> [f64; 3] {
 /// `theta_dot = W^-1 (J^T varphi + v)`. Every term of joint `i`'s rate is
 /// divided by `w_i`, so a joint whose weight grows without bound stops,
 /// however the secondary task pulls it. With `winv` all ones it is
-/// [`theta_dot_symmetric_into`] to the last bit.
+/// [`crate::ik::theta_dot_symmetric_into`] to the last bit.
 #[inline]
 pub fn theta_dot_weighted_into(
     jac: &[f64],
@@ -121,12 +121,12 @@ pub fn phi_weighted_into(jac: &[f64], winv: &[f64], delta: f64, out: &mut [f64])
 /// and `M_W = J W^-1 Phi_0 + delta P` (`M_I` the same with `W = I`).
 ///
 /// The network cannot learn every `W`; this asks of it what it learned,
-/// as [`damp_phi`] does. With `A = J J^T`, `B = J W^-1 J^T` and an exact
+/// as [`crate::ik::damp_phi`] does. With `A = J J^T`, `B = J W^-1 J^T` and an exact
 /// `Phi_0 = J^T A^-1`: `P = A^-1`, `M_W = (B + delta I) A^-1`, and
 /// `M_I = I + delta P`, so `Phi_W = W^-1 J^T (B + delta I)^-1`, the weighted
 /// damped pseudoinverse exactly (and, to the refinement's accuracy, for a
 /// `Phi_0` refined by [`super::refine_phi`], which converges to
-/// `J^T A^-1`). With `W = I` it is [`damp_phi`]'s
+/// `J^T A^-1`). With `W = I` it is [`crate::ik::damp_phi`]'s
 /// `Phi_0 (I + delta P)^-1`: the network's own error is kept as it is, not
 /// corrected, so the rates move with the weights continuously from those
 /// of the unweighted route. Refused where a 2x2 matrix is singular.

@@ -328,7 +328,7 @@ pub struct Sampling {
     /// Paper tasks whose trajectories seed the pose pool (3-link arms only).
     pub tasks: Vec<u32>,
     /// Random straight-line tasks inside the arm's reach that seed it too
-    /// ([`super::tasks::random_task`]); absent in files written before
+    /// ([`crate::training::tasks::random_task`]); absent in files written before
     /// arms other than the paper's could be trained, hence the default 0.
     #[serde(default, skip_serializing_if = "is_zero_count")]
     pub random_tasks: usize,

@@ -5,7 +5,7 @@
 //!
 //! The shipped weights are embedded in the build, so the command-line tool and
 //! the page need no files; users may load their own with
-//! [`Networks::from_json`]. The file format is [`file`]; how the networks
+//! [`Networks::from_json`]. The file format is [`mod@file`]; how the networks
 //! are trained is `crate::training`; the schema and the measured accuracy
 //! are in `docs/networks.md`. Which networks a method runs with, and
 //! whether they fit the arm, is decided here, in one place ([`for_method`]).

@@ -57,7 +57,7 @@ impl WeightsFile {
 }
 
 impl crate::networks::space::SpaceWeightsFile {
-    /// A file from its JSON text, checked ([`SpaceWeightsFile::validate`]).
+    /// A file from its JSON text, checked ([`crate::networks::space::SpaceWeightsFile::validate`]).
     pub fn from_json(text: &str) -> Result<Self> {
         if text.len() > MAX_FILE_BYTES {
             return Err(Error::Weights(format!(

@@ -9,7 +9,7 @@
 //! page's SIMD build (wasm32 with `simd128`) `matrixmultiply` has no kernel
 //! of its own and runs a scalar 4 x 4 one (three quarters of a
 //! Levenberg-Marquardt epoch in Chromium); there a packed, register-blocked
-//! kernel with wasm SIMD intrinsics ([`simd`]) does the work.
+//! kernel with wasm SIMD intrinsics (`simd`) does the work.
 
 #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
 use nalgebra::{Dyn, MatrixView, MatrixViewMut};

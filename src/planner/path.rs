@@ -143,7 +143,7 @@ impl<const M: usize> Track<M> {
 
     /// The task velocity `Xdot` at an RK4 stage's time `t` of a step whose
     /// midpoint is `t_mid`: zero unless `t_mid` lies inside the path's time;
-    /// a line's [`Line::velocity_at`] the midpoint whatever `t`, a circle's
+    /// a line's `Line::velocity_at` the midpoint whatever `t`, a circle's
     /// and a polyline's exact at `t` (clamped into the path's time; at a
     /// polyline's corner, `after` picks the segment that follows it, for a
     /// step's first stages, or the one before it, for its last).

@@ -109,7 +109,7 @@ impl SpacePath {
 
     /// Checks the numbers (finite, within [`crate::error::MAX_COORDINATE`]),
     /// the laps and the points' count, and a circle's plane for a hand
-    /// starting at `start` ([`circle_plane`]). A point out of reach is
+    /// starting at `start` (`circle_plane`). A point out of reach is
     /// allowed: the run will miss it.
     pub fn validate(&self, start: Vec3) -> Result<()> {
         let refuse = |expected: &str| {

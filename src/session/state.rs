@@ -41,7 +41,7 @@ pub struct State<'a> {
     /// Gain of the obstacle vector.
     pub lambda: f64,
     /// Every parameter of the methods by name (`lambda`, `delta`,
-    /// `influence`, ...; [`Param`]), and which of them the method reads.
+    /// `influence`, ...; [`crate::scene::Param`]), and which of them the method reads.
     pub params: ByName<f64>,
     /// The names of the parameters the method reads.
     pub reads: Vec<&'static str>,

@@ -72,7 +72,7 @@ pub static SIGN_SMOOTHING: Param = Param {
 
 /// Newton-Schulz steps `Phi <- Phi (2I - J Phi)` that refine a learned
 /// `Phi` toward the pseudoinverse of eq. (20) (`delta = 0`) with the pose's
-/// `J` (Cases 1 and 3, [`ik::refine_phi`]); the paper's 0 uses the
+/// `J` (Cases 1 and 3, [`crate::ik::refine_phi`]); the paper's 0 uses the
 /// network's `Phi` as it is. Right after the first step, and not counted
 /// as one, the projection `Phi <- J^T (Phi^T Phi)` puts `Phi` in the range
 /// of `J^T`: `J+` is its fixed point, so the steps converge to `J+` itself
