@@ -65,6 +65,7 @@ pub type Networks<A, const M: usize> = Arc<dyn Surrogate<A, M>>;
 /// The motion planner of an arm `A` whose hand has `M` coordinates (the
 /// planar arm's by default): state plus everything needed to take the next
 /// step.
+#[derive(Clone)]
 pub struct Planner<A: Planned<M> = Arm, const M: usize = 2> {
     scene: A::Scene,
     method: Method,
@@ -83,28 +84,10 @@ pub struct Planner<A: Planned<M> = Arm, const M: usize = 2> {
     ws: Workspace<A, M>,
 }
 
-impl<A: Planned<M>, const M: usize> Clone for Planner<A, M> {
-    fn clone(&self) -> Self {
-        Self {
-            scene: self.scene.clone(),
-            method: self.method,
-            networks: self.networks.clone(),
-            theta: self.theta.clone(),
-            step_index: self.step_index,
-            t: self.t,
-            track: self.track.clone(),
-            stats: self.stats,
-            auto_damping: self.auto_damping,
-            reachable: self.reachable,
-            sample: self.sample.clone(),
-            ws: self.ws.clone(),
-        }
-    }
-}
-
 /// Scratch space the planner owns and reuses at every step (as rapier keeps
 /// a solver workspace), so that [`Planner::step`] allocates nothing once the
 /// planner exists, with every method and for any arm.
+#[derive(Clone)]
 struct Workspace<A: Planned<M>, const M: usize> {
     /// The kinematics of the current state; always up to date. A step's first
     /// RK4 stage reads it, and so does the sample.
@@ -116,17 +99,6 @@ struct Workspace<A: Planned<M>, const M: usize> {
     rk4: Rk4,
     /// The method's computation, with its own scratch space.
     rule: Box<dyn Rule<A, M>>,
-}
-
-impl<A: Planned<M>, const M: usize> Clone for Workspace<A, M> {
-    fn clone(&self) -> Self {
-        Self {
-            pose: self.pose.clone(),
-            stage: self.stage.clone(),
-            rk4: self.rk4.clone(),
-            rule: self.rule.clone(),
-        }
-    }
 }
 
 impl<A: Planned<M>, const M: usize> Workspace<A, M> {

@@ -66,22 +66,12 @@ static ENTRY: Entry = Entry {
 
 /// The rule's scratch space: the pairs, one gradient row, `v` and the
 /// joint weights.
+#[derive(Clone)]
 struct Distance<A: Model<M>, const M: usize> {
     pairs: A::Pairs,
     row: Vec<f64>,
     v: Vec<f64>,
     weights: JointWeights,
-}
-
-impl<A: Model<M>, const M: usize> Clone for Distance<A, M> {
-    fn clone(&self) -> Self {
-        Self {
-            pairs: self.pairs.clone(),
-            row: self.row.clone(),
-            v: self.v.clone(),
-            weights: self.weights.clone(),
-        }
-    }
 }
 
 /// The rule of `distance` for an `n`-joint arm.
@@ -94,22 +84,27 @@ fn rule<A: Model<M>, const M: usize>(n: usize) -> Box<dyn Rule<A, M>> {
     })
 }
 
-impl<A: Model<M>, const M: usize> Distance<A, M> {
-    /// `v = lambda_d sum (1/c - 1/d_i) / c^2 J_p^T n` over the pairs closer
-    /// than `d_i` (see the module documentation) into `v`.
-    fn potential_gradient(&mut self, cx: &Context<'_, A, M>, pose: &A::Pose, v: &mut [f64]) {
-        let s = cx.scene;
-        let (influence, gain) = (s.value(&INFLUENCE), s.value(&DISTANCE_GAIN));
-        A::update_pairs(s, pose, influence, &mut self.pairs);
-        v.iter_mut().for_each(|x| *x = 0.0);
-        let floor = s.value(&STOP_DISTANCE).max(1e-3);
-        for pair in A::pair_list(&self.pairs) {
-            let c = pair.clearance().max(floor);
-            let coef = gain * (1.0 / c - 1.0 / influence) / (c * c);
-            pair.row_into(pose, &mut self.row);
-            for (vi, ri) in v.iter_mut().zip(self.row.iter()) {
-                *vi += coef * ri;
-            }
+/// `v = lambda_d sum (1/c - 1/d_i) / c^2 J_p^T n` over the pairs closer
+/// than `d_i` (see the module documentation) into `v`; `pairs` and `row`
+/// are scratch.
+fn potential_gradient<A: Model<M>, const M: usize>(
+    cx: &Context<'_, A, M>,
+    pose: &A::Pose,
+    pairs: &mut A::Pairs,
+    row: &mut [f64],
+    v: &mut [f64],
+) {
+    let s = cx.scene;
+    let (influence, gain) = (s.value(&INFLUENCE), s.value(&DISTANCE_GAIN));
+    A::update_pairs(s, pose, influence, pairs);
+    v.iter_mut().for_each(|x| *x = 0.0);
+    let floor = s.value(&STOP_DISTANCE).max(1e-3);
+    for pair in A::pair_list(pairs) {
+        let c = pair.clearance().max(floor);
+        let coef = gain * (1.0 / c - 1.0 / influence) / (c * c);
+        pair.row_into(pose, row);
+        for (vi, ri) in v.iter_mut().zip(row.iter()) {
+            *vi += coef * ri;
         }
     }
 }
@@ -122,17 +117,14 @@ impl<A: Model<M>, const M: usize> Rule<A, M> for Distance<A, M> {
         xdot: [f64; M],
         out: &mut [f64],
     ) -> Result<Note> {
-        let mut v = std::mem::take(&mut self.v);
-        self.potential_gradient(cx, pose, &mut v);
+        potential_gradient(cx, pose, &mut self.pairs, &mut self.row, &mut self.v);
         let delta = cx.scene.value(&DELTA) + cx.scheduled_delta(pose);
-        let done = self.weights.eq18(cx, pose, xdot, &v, delta, out);
-        self.v = v;
-        done?;
+        self.weights.eq18(cx, pose, xdot, &self.v, delta, out)?;
         Ok(Note::default())
     }
 
     fn null_space(&mut self, cx: &Context<'_, A, M>, pose: &A::Pose, v: &mut [f64]) -> Result<bool> {
-        self.potential_gradient(cx, pose, v);
+        potential_gradient(cx, pose, &mut self.pairs, &mut self.row, v);
         Ok(true)
     }
 

@@ -75,22 +75,13 @@ static ENTRY: Entry = Entry {
 };
 
 /// The rule's scratch space.
+#[derive(Clone)]
 struct Priority<A: Model<M>, const M: usize> {
     pairs: A::Pairs,
     /// `v = 0` for the first level's route.
     zero: Vec<f64>,
     /// `J_o`, then `b = J_o (I - J^+ J)`.
     jo: Vec<f64>,
-}
-
-impl<A: Model<M>, const M: usize> Clone for Priority<A, M> {
-    fn clone(&self) -> Self {
-        Self {
-            pairs: self.pairs.clone(),
-            zero: self.zero.clone(),
-            jo: self.jo.clone(),
-        }
-    }
 }
 
 /// The rule of `priority` for an `n`-joint arm.

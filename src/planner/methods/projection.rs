@@ -15,20 +15,11 @@ pub(super) type Gradient<A, const M: usize> =
     fn(&Context<'_, A, M>, &<A as Model<M>>::Pose, &mut [f64]);
 
 /// The rule: the method's `v`, then eq. (18), with its scratch space.
+#[derive(Clone)]
 struct Projection<A: Model<M>, const M: usize> {
     gradient: Gradient<A, M>,
     v: Vec<f64>,
     weights: JointWeights,
-}
-
-impl<A: Model<M>, const M: usize> Clone for Projection<A, M> {
-    fn clone(&self) -> Self {
-        Self {
-            gradient: self.gradient,
-            v: self.v.clone(),
-            weights: self.weights.clone(),
-        }
-    }
 }
 
 /// The rule for an `n`-joint arm whose `v` is `gradient`.

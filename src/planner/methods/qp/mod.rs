@@ -109,6 +109,7 @@ static ENTRY: Entry = Entry {
 
 /// The program's scratch space, sized for an `n`-joint arm and grown
 /// (once) when more rows appear than ever before.
+#[derive(Clone)]
 struct Qp<A: Model<M>, const M: usize> {
     /// The constraints of [`constraints::ALL`], each with its scratch space.
     constraints: Vec<Box<dyn Constraint<A, M>>>,
@@ -124,22 +125,6 @@ struct Qp<A: Model<M>, const M: usize> {
     a: Vec<f64>,
     b: Vec<f64>,
     ws: solver::Workspace,
-}
-
-impl<A: Model<M>, const M: usize> Clone for Qp<A, M> {
-    fn clone(&self) -> Self {
-        Self {
-            constraints: self.constraints.clone(),
-            rows: self.rows.clone(),
-            v: self.v.clone(),
-            g: self.g.clone(),
-            h: self.h.clone(),
-            lin: self.lin.clone(),
-            a: self.a.clone(),
-            b: self.b.clone(),
-            ws: self.ws.clone(),
-        }
-    }
 }
 
 /// The rule of `qp` for an `n`-joint arm.

@@ -89,16 +89,9 @@ impl Gains {
 
 /// The pairs of a pose within the influence distance, kept between poses
 /// (grown once when more pairs appear than ever before).
+#[derive(Clone)]
 struct Damper<A: Model<M>, const M: usize> {
     pairs: A::Pairs,
-}
-
-impl<A: Model<M>, const M: usize> Clone for Damper<A, M> {
-    fn clone(&self) -> Self {
-        Self {
-            pairs: self.pairs.clone(),
-        }
-    }
 }
 
 /// The dampers of an `n`-joint arm.
