@@ -10,19 +10,29 @@ use std::sync::Arc;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
+use crate::networks::space::{SpaceNetworkSet, SpaceNetworks};
 use crate::networks::{self, NetworkSet, Networks};
 use crate::nn::Precision;
 use crate::planner::{Method, Surrogate};
 use crate::scene::Scene;
 
-/// The networks of a run: a shipped set, or a pair of weights files.
-/// Written `{"set": "reach"}` or `{"phi": "<weights file>", "v": "<weights
-/// file>"}` (the files' JSON text, so a run file replays without them).
+/// The networks of a run: a shipped set `S` (the planar arm's
+/// [`NetworkSet`], an arm in space's [`SpaceNetworkSet`]), or a pair of
+/// weights files. Written `{"set": "reach"}` or `{"phi": "<weights
+/// file>", "v": "<weights file>"}` (the files' JSON text, so a run file
+/// replays without them).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(try_from = "ChoiceFields", into = "ChoiceFields")]
-pub enum NetworkChoice {
-    /// A shipped set ([`networks::builtin_set`]).
-    Set(NetworkSet),
+#[serde(
+    try_from = "ChoiceFields<S>",
+    into = "ChoiceFields<S>",
+    bound(
+        serialize = "S: Serialize + Clone",
+        deserialize = "S: Deserialize<'de>"
+    )
+)]
+pub enum NetworkChoice<S = NetworkSet> {
+    /// A shipped set ([`networks::builtin_set`], [`SpaceNetworkSet::load`]).
+    Set(S),
     /// The user's weights files (trained in the page or by `train`, or
     /// loaded), as JSON text.
     Files {
@@ -37,18 +47,22 @@ pub enum NetworkChoice {
 /// machinery costs the page's module kilobytes).
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct ChoiceFields {
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    set: Option<NetworkSet>,
+struct ChoiceFields<S> {
+    #[serde(default = "none", skip_serializing_if = "Option::is_none")]
+    set: Option<S>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     phi: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     v: Option<String>,
 }
 
-impl TryFrom<ChoiceFields> for NetworkChoice {
+fn none<S>() -> Option<S> {
+    None
+}
+
+impl<S> TryFrom<ChoiceFields<S>> for NetworkChoice<S> {
     type Error = Error;
-    fn try_from(f: ChoiceFields) -> Result<Self> {
+    fn try_from(f: ChoiceFields<S>) -> Result<Self> {
         match f {
             ChoiceFields {
                 set: Some(set),
@@ -69,8 +83,8 @@ impl TryFrom<ChoiceFields> for NetworkChoice {
     }
 }
 
-impl From<NetworkChoice> for ChoiceFields {
-    fn from(c: NetworkChoice) -> Self {
+impl<S> From<NetworkChoice<S>> for ChoiceFields<S> {
+    fn from(c: NetworkChoice<S>) -> Self {
         match c {
             NetworkChoice::Set(set) => ChoiceFields {
                 set: Some(set),
@@ -95,12 +109,34 @@ impl NetworkChoice {
             NetworkChoice::Files { phi, v } => Ok(Arc::new(Networks::from_json(phi, v)?)),
         }
     }
+}
 
+impl<S: Copy> NetworkChoice<S> {
     /// The shipped set, if the choice is one.
-    pub fn set(&self) -> Option<NetworkSet> {
+    pub fn set(&self) -> Option<S> {
         match self {
             NetworkChoice::Set(set) => Some(*set),
             NetworkChoice::Files { .. } => None,
+        }
+    }
+}
+
+impl NetworkChoice<SpaceNetworkSet> {
+    /// The networks chosen for an arm in space, loaded (a shipped set
+    /// once per process, where the module carries the files); or why
+    /// they cannot be.
+    pub fn load(&self) -> Result<Arc<SpaceNetworks>> {
+        match self {
+            #[cfg(feature = "embedded-weights")]
+            NetworkChoice::Set(set) => set.load(),
+            #[cfg(not(feature = "embedded-weights"))]
+            NetworkChoice::Set(set) => Err(Error::NetworksUnavailable(format!(
+                "this module carries no weights: the set {} is weights/{} and weights/{}",
+                set.name(),
+                set.file_names()[0],
+                set.file_names()[1]
+            ))),
+            NetworkChoice::Files { phi, v } => Ok(Arc::new(SpaceNetworks::from_json(phi, v)?)),
         }
     }
 }
@@ -136,7 +172,7 @@ impl Run {
         let chosen = self
             .networks
             .as_ref()
-            .map(NetworkChoice::load)
+            .map(NetworkChoice::<NetworkSet>::load)
             .transpose()?;
         if let Some(n) = &chosen {
             if !n.arm().same_geometry(&self.scene.arm) {

@@ -76,8 +76,8 @@ export async function bench({ onProgress, signal, batchMs = 20, arm, methods, re
 /**
  * The slice atlas of an arm in space in a worker (`SpaceAtlasJob`,
  * src/web/space_atlas.rs; `redundant-ik atlas --arm A --json`): `run` is a
- * spatial run file's JSON text (`simulate --arm A --json`, format
- * `redundant-ik-space-run/1`), whose scene is mapped; `methods` (names;
+ * run file of an arm in space (`simulate --arm A --json`, format
+ * `redundant-ik-run/2`), whose scene is mapped; `methods` (names;
  * absent: every method in space, the learned ones only with networks),
  * `plane` ('xz:0.0'; absent: the vertical plane through the line), `n`
  * (points per side; absent: 21), `region` ([u0, u1, v0, v1]; absent: the

@@ -13,14 +13,6 @@ import { wireEmbedDialog, snippetsOf } from './takeaway.js';
 import { spaceQuery } from './space-address.js';
 import { mountSpaceAtlas } from './space-atlas.js';
 
-/** A run file's samples as CSV: t, the joint angles, the hand, its reference, the errors. */
-export function spaceRunCsv(run) {
-  const n = run.samples[0]?.theta.length ?? 0;
-  const header = ['t', ...Array.from({ length: n }, (_, i) => `theta${i + 1}`), 'x', 'y', 'z', 'ref_x', 'ref_y', 'ref_z', 'tracking_error', 'clearance', 'past_limits'];
-  const rows = run.samples.map((s) => [s.t, ...s.theta, ...s.hand, ...s.reference, s.tracking_error, s.clearance ?? '', s.past_limits]);
-  return csv(header, rows);
-}
-
 /** Wires the panels; returns { sync(state), compare(), atlas(options) }. */
 export function mountSpacePanels(root, demo, { attempt, show, say, preset, ensureNetworks, changed }) {
   const $ = (id) => root.querySelector('#' + id);
@@ -90,7 +82,7 @@ export function mountSpacePanels(root, demo, { attempt, show, say, preset, ensur
     canvas?.toBlob((blob) => blob && saveBlob(`${stem()}-${suffix}.png`, blob), 'image/png');
   };
   $('save-run-json')?.addEventListener('click', () => saveText(`${stem()}.json`, demo.runFile(), 'application/json'));
-  $('save-run-csv')?.addEventListener('click', () => saveText(`${stem()}.csv`, spaceRunCsv(JSON.parse(demo.runFile())), 'text/csv'));
+  $('save-run-csv')?.addEventListener('click', () => saveText(`${stem()}.csv`, demo.runCsv(), 'text/csv'));
   $('save-figure-png')?.addEventListener('click', () => canvasPng('stage', 'view'));
   $('save-plots-png')?.addEventListener('click', () => canvasPng('plots', 'plots'));
   // The figure (the run's two orthographic views, as redundant-ik figure

@@ -166,7 +166,9 @@ impl SceneArgs {
 
     /// The paper task: `--task`, or the run file's.
     pub fn task(&self) -> Result<u32, String> {
-        Ok(self.run_file()?.map_or(self.task, |r| r.task))
+        Ok(self
+            .run_file()?
+            .map_or(self.task, |r| r.task.unwrap_or(self.task)))
     }
 
     /// The method: `--method`, else the run file's, else `numerical`.
@@ -348,7 +350,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
         }};
     }
     if args.csv {
-        return emit(&export::run_csv(&scene, &traj.steps));
+        return emit(&export::run_csv(&traj.steps));
     }
     if args.json {
         return emit(&format!("{}\n", RunFile::new(run, traj).to_json()));

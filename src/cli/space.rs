@@ -11,6 +11,7 @@ use redundant_ik::ik::DampingSchedule;
 use redundant_ik::networks::space::{SpaceNetworkSet, SpaceNetworks};
 use redundant_ik::nn::Precision;
 use redundant_ik::planner::{Networks, Planner, Trajectory};
+use redundant_ik::run::NetworkChoice;
 use redundant_ik::scene::{SpacePath, SpaceScene};
 use redundant_ik::space::{SpacePreset, Sphere};
 use redundant_ik::Method;
@@ -172,21 +173,21 @@ pub fn job(
 /// A spatial run file's job: its scene again, with its method unless
 /// `method` is given.
 fn from_file(args: &SceneArgs, method: Option<Method>, file: SpaceRunFile) -> Result<Job, String> {
-    let p = SpacePreset::by_key(file.arm).ok_or("the run file's arm is not a preset")?;
+    let p = SpacePreset::of(&file.scene.arm)
+        .ok_or("the run file's arm is none of the arms in space this tool knows")?;
     let method = method.unwrap_or(file.method);
     let nets = match file.networks.filter(|_| method.uses_networks()) {
-        Some(set) => {
+        Some(choice) => {
             // The file names its networks and their arithmetic.
             if let Some(flag) = args.networks.given(&args.given) {
                 return Err(format!(
                     "--from names the networks its run used; {flag} cannot change them"
                 ));
             }
-            Some(
-                set.load()
-                    .map_err(|e| e.to_string())?
-                    .in_precision(file.precision),
-            )
+            let nets = choice.load().map_err(|e| e.to_string())?;
+            nets.check_chain(&file.scene.arm)
+                .map_err(|e| e.to_string())?;
+            Some(nets.in_precision(file.precision))
         }
         // The user's own weights, given again: in the file's arithmetic
         // unless --precision says otherwise.
@@ -227,43 +228,23 @@ fn output(
         .map_err(|e| e.to_string())?;
     let traj = planner.run_to_end().map_err(|e| e.to_string())?;
     if args.json {
-        let mut file = SpaceRunFile::new(p, scene, traj);
-        file.networks = used.as_deref().and_then(super::space_networks::shipped_set);
-        file.precision = used.map_or(Precision::F64, |n| n.precision());
-        let text = file.to_json();
+        let networks = used.as_deref().map(|n| {
+            super::space_networks::shipped_set(n).map_or_else(
+                || NetworkChoice::Files {
+                    phi: n.phi_file().to_json().unwrap_or_default(),
+                    v: n.v_file().to_json().unwrap_or_default(),
+                },
+                NetworkChoice::Set,
+            )
+        });
+        let precision = used.map_or(Precision::F64, |n| n.precision());
+        let text = SpaceRunFile::of(None, scene, traj, networks, precision).to_json();
         return emit(&format!("{text}\n"));
     }
     if args.csv {
-        return emit(&csv(&traj));
+        return emit(&redundant_ik::export::run_csv(&traj.steps));
     }
     emit(&summary(p, &scene, &traj))
-}
-
-/// One line per sample: t, the angles, the hand, the reference, the
-/// error, the clearance, the joints past a limit.
-fn csv(traj: &Trajectory<3>) -> String {
-    let n = traj.steps.first().map_or(0, |s| s.theta.len());
-    let mut out = String::from("t");
-    for i in 1..=n {
-        let _ = write!(out, ",theta{i}");
-    }
-    out.push_str(",x,y,z,x_ref,y_ref,z_ref,tracking_error,clearance,past_limits\n");
-    for s in &traj.steps {
-        let _ = write!(out, "{}", s.t);
-        for th in &s.theta {
-            let _ = write!(out, ",{th}");
-        }
-        let [x, y, z] = s.ee;
-        let [rx, ry, rz] = s.reference;
-        let c = s.clearance.map_or(String::new(), |c| c.to_string());
-        let _ = writeln!(
-            out,
-            ",{x},{y},{z},{rx},{ry},{rz},{},{c},{}",
-            s.tracking_error,
-            s.past_limits.len()
-        );
-    }
-    out
 }
 
 fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &Trajectory<3>) -> String {

@@ -7,30 +7,31 @@ use std::fmt::Write as _;
 
 use crate::atlas::Atlas;
 use crate::planner::Sample;
-use crate::scene::Scene;
 
-/// The columns of a run's CSV after the joint angles `theta1..thetaN`,
-/// which follow `t`: the hand, the reference point on the line, the
-/// tracking error, the smallest link-to-obstacle clearance (distance from
-/// a link to the nearest disc's edge, negative inside it; empty without
-/// obstacles) and whether a link is inside a disc (0 or 1).
-pub const RUN_CSV_FIXED: [&str; 7] = [
-    "x",
-    "y",
-    "ref_x",
-    "ref_y",
-    "tracking_error",
-    "clearance",
-    "collision",
-];
+/// The columns of a run's CSV after the hand's and the reference's
+/// coordinates: the tracking error, the smallest link-to-obstacle
+/// clearance (distance from a link to the nearest obstacle's surface,
+/// negative inside it; empty without obstacles) and whether a link is
+/// inside an obstacle (0 or 1).
+pub const RUN_CSV_FIXED: [&str; 3] = ["tracking_error", "clearance", "collision"];
 
-/// A run as CSV: `t, theta1..thetaN, x, y, ref_x, ref_y, tracking_error,
-/// clearance, collision`, one line per sample.
-pub fn run_csv(scene: &Scene, steps: &[Sample]) -> String {
-    let n = scene.arm.dof();
+/// The coordinates' names, `x, y` in the plane and `x, y, z` in space.
+const AXES: [&str; 3] = ["x", "y", "z"];
+
+/// A run of an arm whose hand has `M` coordinates as CSV: `t,
+/// theta1..thetaN, x, y[, z], ref_x, ref_y[, ref_z], tracking_error,
+/// clearance, collision`, one line per sample (`steps`, the start first).
+pub fn run_csv<const M: usize>(steps: &[Sample<M>]) -> String {
+    let n = steps.first().map_or(0, |s| s.theta.len());
     let mut out = String::from("t");
     for i in 1..=n {
         let _ = write!(out, ",theta{i}");
+    }
+    for a in &AXES[..M] {
+        let _ = write!(out, ",{a}");
+    }
+    for a in &AXES[..M] {
+        let _ = write!(out, ",ref_{a}");
     }
     for c in RUN_CSV_FIXED {
         let _ = write!(out, ",{c}");
@@ -38,16 +39,12 @@ pub fn run_csv(scene: &Scene, steps: &[Sample]) -> String {
     out.push('\n');
     for s in steps {
         let _ = write!(out, "{:?}", s.t);
-        for th in &s.theta {
-            let _ = write!(out, ",{th:?}");
+        for v in s.theta.iter().chain(&s.ee).chain(&s.reference) {
+            let _ = write!(out, ",{v:?}");
         }
         let _ = write!(
             out,
-            ",{:?},{:?},{:?},{:?},{:?},{},{}",
-            s.ee[0],
-            s.ee[1],
-            s.reference[0],
-            s.reference[1],
+            ",{:?},{},{}",
             s.tracking_error,
             s.clearance.map_or(String::new(), |c| format!("{c:?}")),
             u8::from(s.collision)

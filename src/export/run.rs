@@ -1,90 +1,161 @@
-//! A run as a file: the scene, the method, every sample and the summary.
+//! A run as a file, for every arm: the scene (the arm in it, whole), the
+//! method, its networks, every sample and the summary. One format,
+//! versioned by its first field (`format`, [`RUN_FORMAT`]): what
+//! `redundant-ik simulate --json` prints for any arm, what the page's
+//! "Download run" saves and what `simulate --from`, `figure --from` and
+//! `atlas --from` read back. The files of the versions before it still
+//! read: the planar `redundant-ik-run/1` and the unversioned planar files
+//! (the same layout), and `redundant-ik-space-run/1` ([`super::space_run`]).
 
+use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
+use crate::arm::Arm;
 use crate::error::{Error, Result};
+use crate::model::Scene as _;
+use crate::networks::NetworkSet;
 use crate::nn::Precision;
-use crate::planner::{Method, Sample, Summary, Trajectory};
+use crate::planner::{Method, Planned, Sample, Summary, Trajectory};
 use crate::run::{NetworkChoice, Run};
-use crate::scene::Scene;
+use crate::space::Chain;
 
 /// Largest run file read (bytes): a run of the longest scene (10 000
 /// steps of a 6-link arm) is about 6 MB.
 pub const MAX_RUN_FILE_BYTES: usize = 16 << 20;
 
-/// The format and version every planar run file names first (its
-/// `format`, as a run in space names [`super::SPACE_RUN_FORMAT`]). Files
-/// written before it (0.1's and the unversioned ones of 0.2) have none and
-/// read as this version; another version is refused by name.
-pub const RUN_FORMAT: &str = "redundant-ik-run/1";
-/// Every version of the planar run file starts so.
+/// The format and version every run file this version writes names first.
+pub const RUN_FORMAT: &str = "redundant-ik-run/2";
+/// The planar run files of the version before, whose layout is this
+/// one's; files written before `format` existed (0.1's and 0.2's) have
+/// none and read as it.
+pub const PLANAR_RUN_FORMAT_1: &str = "redundant-ik-run/1";
+/// Every version of the run file starts so.
 const RUN_FAMILY: &str = "redundant-ik-run/";
+/// The spatial run files of the version before the one run file (read
+/// by `space_run.rs`).
+pub const SPACE_RUN_FORMAT_1: &str = "redundant-ik-space-run/1";
+/// The spatial runs printed before files could be replayed (refused
+/// with a reason).
+pub(super) const SPACE_UNVERSIONED: &str = "redundant-ik run in space";
+/// The start of every version's `format` of the spatial files before
+/// the one run file.
+pub(super) const SPACE_FAMILY: &str = "redundant-ik-space-run/";
 
 fn run_format() -> String {
     RUN_FORMAT.into()
 }
 
+/// What a run file holds of an arm beyond the planner's model: the kind
+/// of its shipped network sets, and how it reads the files of the
+/// versions before [`RUN_FORMAT`] (the chain's: `space_run.rs`).
+pub trait Recorded<const M: usize>: Planned<M> {
+    /// Its shipped network sets ([`NetworkSet`] in the plane,
+    /// [`crate::networks::space::SpaceNetworkSet`] in space).
+    type Set: Serialize + DeserializeOwned + Copy + PartialEq + std::fmt::Debug;
+    /// The run file of an older `format` (`None`: none), if this arm's
+    /// files had that version; `None` where they never did.
+    fn older(format: Option<&str>, text: &str) -> Option<Result<RunFile<Self, M>>>;
+}
+
+impl Recorded<2> for Arm {
+    type Set = NetworkSet;
+    fn older(format: Option<&str>, text: &str) -> Option<Result<RunFile<Self, 2>>> {
+        matches!(format, None | Some(PLANAR_RUN_FORMAT_1)).then(|| parse(text))
+    }
+}
+
 /// One run: `{ format, task, method, scene, networks, precision, steps,
-/// summary }`, the JSON of `redundant-ik simulate --json` and of the page's
-/// "Download run": the [`Run`] and what it did. Files written before
-/// `format` read as [`RUN_FORMAT`], before `networks` as the paper's set,
-/// those without `precision` as `f64`.
+/// summary }`, of an arm `A` whose hand has `M` coordinates (the planar
+/// arm's by default). `task` is the paper's task a planar scene came
+/// from (absent for an arm in space); `networks` and `precision` are
+/// absent for a method without networks (and `precision` when `f64`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct RunFile {
+#[serde(bound(
+    serialize = "A::Scene: Serialize, [f64; M]: Serialize",
+    deserialize = "A::Scene: Deserialize<'de>, [f64; M]: Deserialize<'de>"
+))]
+pub struct RunFile<A: Recorded<M> = Arm, const M: usize = 2> {
     /// [`RUN_FORMAT`].
     #[serde(default = "run_format")]
     pub format: String,
-    /// The paper task the scene came from (its start pose and target may
-    /// have been changed since: the scene says what was run).
-    pub task: u32,
+    /// The paper task a planar scene came from (its start pose and target
+    /// may have been changed since: the scene says what was run).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub task: Option<u32>,
     /// The method (`method` in the JSON, as every output of the tool names
     /// it; `mode`, the older name, is read too).
     #[serde(alias = "mode")]
     pub method: Method,
-    /// Everything that defines the motion.
-    pub scene: Scene,
+    /// Everything that defines the motion, the arm whole.
+    pub scene: A::Scene,
     /// The networks the method ran with (absent for a method without).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub networks: Option<NetworkChoice>,
+    pub networks: Option<NetworkChoice<A::Set>>,
     /// The arithmetic of the networks (absent: `f64`, and for a method
     /// without networks).
     #[serde(default, skip_serializing_if = "Precision::is_f64")]
     pub precision: Precision,
     /// One sample per RK4 step, the start first.
-    pub steps: Vec<Sample>,
+    pub steps: Vec<Sample<M>>,
     /// The outcome.
     pub summary: Summary,
 }
+
+/// The run file of an arm in space.
+pub type SpaceRunFile = RunFile<Chain, 3>;
 
 impl RunFile {
     /// The file of `run` and what it did: the networks and their precision
     /// are kept for a method that uses them only.
     pub fn new(run: Run, traj: Trajectory) -> Self {
-        let learned = traj.method.uses_networks();
-        Self {
-            format: RUN_FORMAT.into(),
-            task: run.task,
-            method: traj.method,
-            scene: run.scene,
-            networks: run.networks.filter(|_| learned),
-            precision: if learned {
-                run.precision
-            } else {
-                Precision::F64
-            },
-            steps: traj.steps,
-            summary: traj.summary,
-        }
+        RunFile::of(Some(run.task), run.scene, traj, run.networks, run.precision)
     }
 
     /// The run it replays.
     pub fn run(&self) -> Run {
         Run {
-            task: self.task,
+            task: self.task.unwrap_or(1),
             method: self.method,
             scene: self.scene.clone(),
             networks: self.networks.clone(),
             precision: self.precision,
+        }
+    }
+}
+
+impl<A: Recorded<M>, const M: usize> RunFile<A, M>
+where
+    A::Scene: Serialize + DeserializeOwned,
+    [f64; M]: Serialize + DeserializeOwned,
+{
+    /// The file of `traj`, the run of `scene`: `networks` and `precision`
+    /// are kept for a method that uses networks only.
+    pub fn of(
+        task: Option<u32>,
+        scene: A::Scene,
+        traj: Trajectory<M>,
+        networks: Option<NetworkChoice<A::Set>>,
+        precision: Precision,
+    ) -> Self {
+        let learned = traj.method.uses_networks();
+        Self {
+            format: RUN_FORMAT.into(),
+            task,
+            method: traj.method,
+            scene,
+            networks: networks.filter(|_| learned),
+            precision: if learned { precision } else { Precision::F64 },
+            steps: traj.steps,
+            summary: traj.summary,
+        }
+    }
+
+    /// The run it holds, as the planner wrote it.
+    pub fn trajectory(&self) -> Trajectory<M> {
+        Trajectory {
+            method: self.method,
+            steps: self.steps.clone(),
+            summary: self.summary.clone(),
         }
     }
 
@@ -94,41 +165,149 @@ impl RunFile {
         serde_json::to_string(self).unwrap_or_default()
     }
 
-    /// A run file read back; its scene is checked (a file is user input).
+    /// A run file read back, of this version or an older one this arm's
+    /// files had; its scene is checked (a file is user input), and so are
+    /// its samples' sizes and its method (one that runs this arm).
     pub fn from_json(text: &str) -> Result<Self> {
-        let refuse = |expected: String| Error::Syntax {
-            what: "run file",
-            text: text.chars().take(48).collect(),
-            expected,
-        };
         if text.len() > MAX_RUN_FILE_BYTES {
-            return Err(refuse(format!(
-                "{} bytes, more than the {MAX_RUN_FILE_BYTES} allowed",
-                text.len()
-            )));
-        }
-        if super::is_space_run(text) {
-            return Err(refuse(
-                "a run of an arm in space: simulate --from replays it (this reads planar runs)"
-                    .into(),
+            return Err(refusal(
+                text,
+                format!(
+                    "{} bytes, more than the {MAX_RUN_FILE_BYTES} allowed",
+                    text.len()
+                ),
             ));
         }
-        let run: Self = serde_json::from_str(text)
-            .map_err(|e| refuse(format!("not the JSON of simulate --json: {e}")))?;
-        if run.format != RUN_FORMAT {
-            return Err(refuse(if run.format.starts_with(RUN_FAMILY) {
+        let probe = probe(text).map_err(|e| refusal(text, format!("not JSON: {e}")))?;
+        let format = probe.format.as_deref();
+        if probe.in_space().is_some_and(|space| space != (M == 3)) {
+            return Err(refusal(
+                text,
                 format!(
-                    "a run file of format {} is not supported: this version reads {RUN_FORMAT} (and the unversioned files before it)",
-                    run.format
-                )
-            } else {
-                format!("format {RUN_FORMAT}, not {}", run.format)
-            }));
+                    "a run of {}: this reads runs of {}",
+                    if M == 3 {
+                        "a planar arm"
+                    } else {
+                        "an arm in space"
+                    },
+                    if M == 3 {
+                        "arms in space"
+                    } else {
+                        "planar arms"
+                    }
+                ),
+            ));
         }
+        let mut run = match format {
+            Some(RUN_FORMAT) => parse(text)?,
+            other => match A::older(other, text) {
+                Some(read) => read?,
+                None => return Err(refusal(text, unknown_format(other))),
+            },
+        };
         run.scene.validate()?;
-        let mut run = run;
-        run.summary.success =
-            !run.summary.collided && run.summary.limit_steps == 0 && run.summary.reached;
+        if !run.method.in_space() && M == 3 {
+            return Err(refusal(
+                text,
+                format!("method {} does not run an arm in space", run.method),
+            ));
+        }
+        let n = run.scene.theta0().len();
+        if run.steps.is_empty() {
+            return Err(refusal(text, "a run has its start sample at least".into()));
+        }
+        if let Some(s) = run.steps.iter().find(|s| s.theta.len() != n) {
+            return Err(Error::DimensionMismatch {
+                what: format!("the angles of the sample at t = {}", s.t),
+                expected: n,
+                found: s.theta.len(),
+            });
+        }
+        let s = &mut run.summary;
+        s.success = !s.collided && s.limit_steps == 0 && s.reached;
+        run.format = RUN_FORMAT.into();
         Ok(run)
+    }
+}
+
+/// `text` read as this version's layout.
+fn parse<T: DeserializeOwned>(text: &str) -> Result<T> {
+    serde_json::from_str(text)
+        .map_err(|e| refusal(text, format!("not the JSON of simulate --json: {e}")))
+}
+
+/// A run file refused, and why.
+pub(super) fn refusal(text: &str, expected: String) -> Error {
+    Error::Syntax {
+        what: "run file",
+        text: text.chars().take(48).collect(),
+        expected,
+    }
+}
+
+/// What a refusal of an unknown `format` says.
+fn unknown_format(format: Option<&str>) -> String {
+    match format {
+        Some(f) if f.starts_with(RUN_FAMILY) => format!(
+            "a run file of format {} is not supported: this version reads {RUN_FORMAT} and the versions before it",
+            crate::error::clip(f)
+        ),
+        Some(f) => format!("format {RUN_FORMAT}, not {}", crate::error::clip(f)),
+        None => format!("a JSON object with \"format\": \"{RUN_FORMAT}\""),
+    }
+}
+
+/// What a reader first needs of a run file: its version and which kind
+/// of arm it holds (a chain's JSON has `rows`).
+#[derive(Deserialize)]
+struct Probe {
+    #[serde(default)]
+    format: Option<String>,
+    #[serde(default)]
+    scene: Option<SceneProbe>,
+}
+
+#[derive(Deserialize)]
+struct SceneProbe {
+    #[serde(default)]
+    arm: Option<ArmProbe>,
+}
+
+#[derive(Deserialize)]
+struct ArmProbe {
+    #[serde(default)]
+    rows: Option<serde::de::IgnoredAny>,
+}
+
+impl Probe {
+    /// Whether the file holds an arm in space (`None`: it does not say).
+    fn in_space(&self) -> Option<bool> {
+        let format = self.format.as_deref().unwrap_or_default();
+        if format == SPACE_UNVERSIONED || format.starts_with(SPACE_FAMILY) {
+            return Some(true);
+        }
+        let arm = self.scene.as_ref().and_then(|s| s.arm.as_ref());
+        arm.map(|a| a.rows.is_some())
+    }
+}
+
+fn probe(text: &str) -> serde_json::Result<Probe> {
+    serde_json::from_str(text)
+}
+
+/// Whether `text` claims to be a run of an arm in space (any version; a
+/// file cut short too, by the `format` its first bytes name): the readers
+/// send it to [`SpaceRunFile::from_json`], and the rest to
+/// [`RunFile::from_json`].
+pub fn is_space_run(text: &str) -> bool {
+    match probe(text) {
+        Ok(p) => p.in_space() == Some(true),
+        // Not JSON, or cut short: by the format its first bytes name.
+        Err(_) => {
+            let head = &text.as_bytes()[..text.len().min(256)];
+            [SPACE_FAMILY, SPACE_UNVERSIONED]
+                .iter()
+                .any(|f| head.windows(f.len()).any(|w| w == f.as_bytes()))
+        }
     }
 }

@@ -1,67 +1,37 @@
-//! A run of an arm in space as a file: what `simulate --arm panda --json`
-//! prints and `simulate --from` replays, everything a replay needs (the
-//! preset's name, the limits, the start pose, the path, the spheres, the
-//! settings and every declared parameter) with every sample and the
-//! summary. Versioned by its first field, `format` ([`SPACE_RUN_FORMAT`]):
-//! a reader refuses a version it does not know, and the files written
-//! before this one (`"redundant-ik run in space"`, which lacked the limits,
-//! the weighting and the other methods' parameters) with a reason.
+//! The run files of an arm in space written before the one run file
+//! ([`super::RUN_FORMAT`]), read: `redundant-ik-space-run/1`, one flat
+//! object that named its preset and held a part of each sample (what it
+//! does not hold is computed again from each sample's angles). The
+//! spatial runs printed before files could be replayed (`"redundant-ik
+//! run in space"`, which lacked the limits, the weighting and the other
+//! methods' parameters) are refused with a reason.
 
-use serde::{Deserialize, Serialize};
+use serde::Deserialize;
 
-use crate::networks::space::SpaceNetworkSet;
-use crate::nn::Precision;
-
-use super::MAX_RUN_FILE_BYTES;
+use super::run::{
+    refusal, Recorded, SpaceRunFile, PLANAR_RUN_FORMAT_1, RUN_FORMAT, SPACE_FAMILY,
+    SPACE_RUN_FORMAT_1, SPACE_UNVERSIONED,
+};
 use crate::arm::{JointLimits, RateLimits};
 use crate::error::{Error, Result};
 use crate::ik::DampingSchedule;
 use crate::model::Model;
-use crate::planner::params::{all, by_name};
+use crate::networks::space::SpaceNetworkSet;
+use crate::nn::Precision;
+use crate::planner::params::by_name;
 use crate::planner::REACH_TOLERANCE;
-use crate::planner::{observe_pose, Method, Planned, Planner, Sample, Summary, Trajectory};
+use crate::planner::{observe_pose, Method, Planned, Planner, Sample, Summary};
+use crate::run::NetworkChoice;
 use crate::scene::{JointWeighting, ParamMap, Params, SpacePath, SpaceScene};
 use crate::space::{Chain, SpacePreset, Sphere, Vec3};
 
-/// The `format` of a spatial run file this version writes and reads.
-pub const SPACE_RUN_FORMAT: &str = "redundant-ik-space-run/1";
-/// The `format` of the spatial runs printed before files could be
-/// replayed (refused with a reason).
-const UNVERSIONED: &str = "redundant-ik run in space";
-/// The start of every version's `format`.
-const FAMILY: &str = "redundant-ik-space-run/";
-
-/// One spatial run and what it did.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SpaceRunFile {
-    /// The preset's name (`panda`, `iiwa14`): its chain.
-    pub arm: &'static str,
-    /// The method.
-    pub method: Method,
-    /// Everything that defines the motion (the chain is the preset's with
-    /// the scene's limits).
-    pub scene: SpaceScene,
-    /// One sample per RK4 step, the start first (read back from a file,
-    /// what the file does not hold is computed again from each sample's
-    /// angles: the joints, the distance to the spheres, the damping, the
-    /// manipulability).
-    pub samples: Vec<Sample<3>>,
-    /// The outcome.
-    pub summary: Summary,
-    /// The shipped network set a learned method ran with (`None`: no
-    /// learned method, or the user's own weights files, which a replay
-    /// takes again from the command line).
-    pub networks: Option<SpaceNetworkSet>,
-    /// The arithmetic of a learned method's networks (`f64` for the
-    /// others; absent in the file: `f64`).
-    pub precision: Precision,
-}
-
-/// The JSON form of a [`SpaceRunFile`]: one flat object.
-#[derive(Serialize, Deserialize)]
+/// A version 1 file: one flat object.
+#[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct Fields {
-    format: String,
+    /// Read by the probe before this ([`older`]).
+    #[allow(dead_code)]
+    format: serde::de::IgnoredAny,
     arm: String,
     method: Method,
     theta0: Vec<f64>,
@@ -78,16 +48,16 @@ struct Fields {
     params: ParamMap,
     joint_weighting: JointWeighting,
     floor: bool,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(default)]
     networks: Option<SpaceNetworkSet>,
-    #[serde(default, skip_serializing_if = "Precision::is_f64")]
+    #[serde(default)]
     precision: Precision,
     samples: Vec<WireSample>,
     summary: WireSummary,
 }
 
-/// A sample as this version of the file writes it.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// A sample as a version 1 file holds it.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct WireSample {
     t: f64,
@@ -102,24 +72,8 @@ struct WireSample {
     phi_handover: bool,
 }
 
-impl From<&Sample<3>> for WireSample {
-    fn from(s: &Sample<3>) -> Self {
-        Self {
-            t: s.t,
-            theta: s.theta.clone(),
-            hand: s.ee,
-            reference: s.reference,
-            tracking_error: s.tracking_error,
-            clearance: s.clearance,
-            past_limits: s.past_limits.len(),
-            relaxed: s.relaxed,
-            phi_handover: s.phi_handover,
-        }
-    }
-}
-
-/// The summary as this version of the file writes it.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+/// The summary as a version 1 file holds it.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct WireSummary {
     steps: usize,
@@ -130,21 +84,6 @@ struct WireSummary {
     handover_steps: usize,
     max_error: f64,
     final_error: f64,
-}
-
-impl From<&Summary> for WireSummary {
-    fn from(s: &Summary) -> Self {
-        Self {
-            steps: s.steps,
-            min_clearance: s.min_clearance,
-            collision_steps: s.collision_steps,
-            limit_steps: s.limit_steps,
-            relaxed_steps: s.relaxed_steps,
-            handover_steps: s.handover_steps,
-            max_error: s.max_tracking_error,
-            final_error: s.final_error,
-        }
-    }
 }
 
 /// The samples of a file read back: the file's numbers, and what it does
@@ -206,176 +145,99 @@ fn summary_of(
     }
 }
 
-/// Just the version, to tell a spatial run file from a planar one.
-#[derive(Deserialize)]
-struct Probe {
-    #[serde(default)]
-    format: Option<String>,
+impl Recorded<3> for Chain {
+    type Set = SpaceNetworkSet;
+    fn older(format: Option<&str>, text: &str) -> Option<Result<SpaceRunFile>> {
+        older(format, text)
+    }
 }
 
-/// The `format` field of `text`, if it is a JSON object that has one; an
-/// error where it is not JSON.
-fn format_of(text: &str) -> serde_json::Result<Option<String>> {
-    Ok(serde_json::from_str::<Probe>(text)?.format)
+/// The run file of a spatial file of version 1 (`None`: `format` is no
+/// older spatial one); refused with a reason for the unversioned output
+/// and for other versions.
+fn older(format: Option<&str>, text: &str) -> Option<Result<SpaceRunFile>> {
+    match format? {
+        SPACE_RUN_FORMAT_1 => Some(read(text)),
+        PLANAR_RUN_FORMAT_1 => Some(Err(refusal(
+            text,
+            "a run of a planar arm: this reads runs of arms in space".into(),
+        ))),
+        SPACE_UNVERSIONED => Some(Err(refusal(
+            text,
+            "written before runs in space could be replayed (it lacks the limits, the weighting and the parameters): run it again to replay it".into(),
+        ))),
+        other if other.starts_with(SPACE_FAMILY) => Some(Err(refusal(
+            text,
+            format!(
+                "format '{}' is not supported (expected '{}' or '{SPACE_RUN_FORMAT_1}')",
+                crate::error::clip(other),
+                RUN_FORMAT
+            ),
+        ))),
+        _ => None,
+    }
 }
 
-/// Whether `text` claims to be a run of an arm in space (any version, the
-/// unversioned output included; a file cut short too, by the `format` its
-/// first bytes name): the readers of planar runs send it here.
-pub fn is_space_run(text: &str) -> bool {
-    match format_of(text) {
-        Ok(f) => f.is_some_and(|f| f == UNVERSIONED || f.starts_with(FAMILY)),
-        Err(_) => {
-            let head = &text.as_bytes()[..text.len().min(256)];
-            [FAMILY, UNVERSIONED]
+/// A version 1 file: its preset's chain with the file's limits, its
+/// scene, its samples and summary completed from the angles.
+fn read(text: &str) -> Result<SpaceRunFile> {
+    let f: Fields = serde_json::from_str(text).map_err(|e| {
+        refusal(
+            text,
+            format!("not the JSON of simulate --arm ... --json: {e}"),
+        )
+    })?;
+    let preset = SpacePreset::by_key(&f.arm).ok_or_else(|| Error::UnknownName {
+        kind: "arm in space",
+        name: crate::error::clip(&f.arm),
+        choices: crate::error::choices(
+            &crate::space::PRESETS
                 .iter()
-                .any(|f| head.windows(f.len()).any(|w| w == f.as_bytes()))
-        }
+                .map(|p| p.key)
+                .collect::<Vec<_>>(),
+        ),
+    })?;
+    let mut values = Vec::with_capacity(f.params.0.len());
+    for (name, v) in &f.params.0 {
+        values.push((by_name(name)?, *v));
     }
-}
-
-impl SpaceRunFile {
-    /// The file of `traj`, the run of `scene` on the preset `arm`.
-    pub fn new(arm: &'static SpacePreset, scene: SpaceScene, traj: Trajectory<3>) -> Self {
-        Self {
-            arm: arm.key,
-            method: traj.method,
-            scene,
-            samples: traj.steps,
-            summary: traj.summary,
-            networks: None,
-            precision: Precision::F64,
-        }
+    let mut params = Params::default();
+    params.set_all(&values)?;
+    let mut scene = SpaceScene::preset(preset);
+    scene.arm = scene.arm.with_limits(f.joint_limits, f.rate_limits)?;
+    scene.theta0 = f.theta0;
+    scene.target = f.target;
+    scene.path = f.path;
+    scene.obstacles = f.spheres;
+    scene.damping = f.damping;
+    scene.dt = f.dt;
+    scene.tf = f.tf;
+    scene.feedback_gain = f.feedback_gain;
+    scene.params = params;
+    scene.weighting = f.joint_weighting;
+    scene.floor = f.floor;
+    scene.validate()?;
+    let n = scene.arm.dof();
+    if f.samples.is_empty() {
+        return Err(refusal(text, "a run has its start sample at least".into()));
     }
-
-    /// The JSON text (one line). Serialising these types cannot fail (no
-    /// map has keys other than strings).
-    pub fn to_json(&self) -> String {
-        let s = &self.scene;
-        let fields = Fields {
-            format: SPACE_RUN_FORMAT.into(),
-            arm: self.arm.into(),
-            method: self.method,
-            theta0: s.theta0.clone(),
-            target: s.target,
-            path: s.path.clone(),
-            spheres: s.obstacles.clone(),
-            joint_limits: s.arm.joint_limits().cloned(),
-            rate_limits: s.arm.rate_limits().cloned(),
-            damping: s.damping,
-            dt: s.dt,
-            tf: s.tf,
-            feedback_gain: s.feedback_gain,
-            params: ParamMap(
-                all()
-                    .iter()
-                    .map(|p| (p.name.to_string(), s.param(p)))
-                    .collect(),
-            ),
-            joint_weighting: s.weighting,
-            floor: s.floor,
-            networks: self.networks,
-            precision: self.precision,
-            samples: self.samples.iter().map(WireSample::from).collect(),
-            summary: WireSummary::from(&self.summary),
-        };
-        serde_json::to_string(&fields).unwrap_or_default()
+    if let Some(s) = f.samples.iter().find(|s| s.theta.len() != n) {
+        return Err(Error::DimensionMismatch {
+            what: format!("the angles of the sample at t = {}", s.t),
+            expected: n,
+            found: s.theta.len(),
+        });
     }
-
-    /// A spatial run file read back: its version, its preset, its scene
-    /// (validated, as user input), its method (one that runs in space)
-    /// and its samples' sizes are checked.
-    pub fn from_json(text: &str) -> Result<Self> {
-        let refuse = |expected: String| Error::Syntax {
-            what: "run file in space",
-            text: text.chars().take(48).collect(),
-            expected,
-        };
-        if text.len() > MAX_RUN_FILE_BYTES {
-            return Err(refuse(format!(
-                "{} bytes, more than the {MAX_RUN_FILE_BYTES} allowed",
-                text.len()
-            )));
-        }
-        let format = format_of(text).map_err(|e| refuse(format!("not JSON: {e}")))?;
-        match format.as_deref() {
-            Some(SPACE_RUN_FORMAT) => {}
-            Some(UNVERSIONED) => {
-                return Err(refuse(
-                    "written before runs in space could be replayed (it lacks the limits, the weighting and the parameters): run it again to replay it".into(),
-                ))
-            }
-            Some(other) => {
-                return Err(refuse(format!(
-                    "format '{}' is not supported (expected '{SPACE_RUN_FORMAT}')",
-                    crate::error::clip(other)
-                )))
-            }
-            None => {
-                return Err(refuse(format!(
-                    "not a run in space: expected a JSON object with \"format\": \"{SPACE_RUN_FORMAT}\""
-                )))
-            }
-        }
-        let f: Fields = serde_json::from_str(text)
-            .map_err(|e| refuse(format!("not the JSON of simulate --arm ... --json: {e}")))?;
-        let preset = SpacePreset::by_key(&f.arm).ok_or_else(|| Error::UnknownName {
-            kind: "arm in space",
-            name: crate::error::clip(&f.arm),
-            choices: crate::error::choices(
-                &crate::space::PRESETS
-                    .iter()
-                    .map(|p| p.key)
-                    .collect::<Vec<_>>(),
-            ),
-        })?;
-        if !f.method.in_space() {
-            return Err(refuse(format!(
-                "method {} does not run an arm in space",
-                f.method
-            )));
-        }
-        let mut values = Vec::with_capacity(f.params.0.len());
-        for (name, v) in &f.params.0 {
-            values.push((by_name(name)?, *v));
-        }
-        let mut params = Params::default();
-        params.set_all(&values)?;
-        let mut scene = SpaceScene::preset(preset);
-        scene.arm = scene.arm.with_limits(f.joint_limits, f.rate_limits)?;
-        scene.theta0 = f.theta0;
-        scene.target = f.target;
-        scene.path = f.path;
-        scene.obstacles = f.spheres;
-        scene.damping = f.damping;
-        scene.dt = f.dt;
-        scene.tf = f.tf;
-        scene.feedback_gain = f.feedback_gain;
-        scene.params = params;
-        scene.weighting = f.joint_weighting;
-        scene.floor = f.floor;
-        scene.validate()?;
-        let n = scene.arm.dof();
-        if f.samples.is_empty() {
-            return Err(refuse("a run has its start sample at least".into()));
-        }
-        if let Some(s) = f.samples.iter().find(|s| s.theta.len() != n) {
-            return Err(Error::DimensionMismatch {
-                what: format!("the angles of the sample at t = {}", s.t),
-                expected: n,
-                found: s.theta.len(),
-            });
-        }
-        let samples = samples_of(&scene, f.samples)?;
-        let summary = summary_of(f.method, &scene, f.summary, &samples);
-        Ok(Self {
-            networks: f.networks,
-            precision: f.precision,
-            arm: preset.key,
-            method: f.method,
-            scene,
-            samples,
-            summary,
-        })
-    }
+    let steps = samples_of(&scene, f.samples)?;
+    let summary = summary_of(f.method, &scene, f.summary, &steps);
+    Ok(SpaceRunFile {
+        format: SPACE_RUN_FORMAT_1.into(),
+        task: None,
+        method: f.method,
+        scene,
+        networks: f.networks.map(NetworkChoice::Set),
+        precision: f.precision,
+        steps,
+        summary,
+    })
 }

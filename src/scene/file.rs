@@ -14,8 +14,8 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::{JointWeighting, Path};
 use crate::arm::Arm;
+use crate::geometry::Ball;
 use crate::ik::DampingSchedule;
-use crate::obstacle::Obstacle;
 
 /// Parameter values by name, in the order of the methods' list; written
 /// and read as one JSON object (a name given twice is refused).
@@ -60,21 +60,29 @@ impl<'de> Deserialize<'de> for ParamMap {
     }
 }
 
-/// The JSON form of a [`super::Scene`].
+/// The JSON form of a [`super::Scene`], of either kind of arm: the arm
+/// as its own JSON (a planar arm's post and links, a chain's rows), the
+/// hand's `M` coordinates, the obstacles as balls of `M` coordinates.
 #[derive(Debug, Clone, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SceneFile {
+#[serde(
+    deny_unknown_fields,
+    bound(
+        serialize = "A: Serialize, P: Serialize + Default + PartialEq, [f64; M]: Serialize",
+        deserialize = "A: Deserialize<'de>, P: Deserialize<'de> + Default, [f64; M]: Deserialize<'de>"
+    )
+)]
+pub struct SceneFile<A = Arm, P = Path, const M: usize = 2> {
     /// The manipulator.
-    pub arm: Arm,
+    pub arm: A,
     /// Joint angles at `t = 0` (radians).
     pub theta0: Vec<f64>,
     /// End of the straight line, `X(tf)`.
-    pub target: [f64; 2],
+    pub target: [f64; M],
     /// The path, as its text (`circle:1.2,0.8`); absent: the line.
-    #[serde(default, skip_serializing_if = "Path::is_line")]
-    pub path: Path,
-    /// Obstacle discs.
-    pub obstacles: Vec<Obstacle>,
+    #[serde(default, skip_serializing_if = "is_default")]
+    pub path: P,
+    /// The obstacles (discs in the plane, spheres in space).
+    pub obstacles: Vec<Ball<M>>,
     /// Optional damping schedule near singular poses.
     pub damping: Option<DampingSchedule>,
     /// Runge-Kutta step (s).
@@ -107,4 +115,9 @@ pub struct SceneFile {
     /// Older files: the Newton-Schulz steps on a learned `Phi`.
     #[serde(default, skip_serializing)]
     pub refine: Option<f64>,
+}
+
+/// Whether `p` is its type's default (a path's: the line).
+fn is_default<P: Default + PartialEq>(p: &P) -> bool {
+    *p == P::default()
 }

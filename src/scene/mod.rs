@@ -35,8 +35,8 @@ pub const PAPER_RADIUS: f64 = 0.05;
 /// `M` coordinates and follows a path `P`: the planar arm's by default
 /// (`Scene`), a chain in space's as [`SpaceScene`].
 ///
-/// The planar scene is written and read as a [`SceneFile`]: its
-/// parameters by name, every declared one written (the planner's list,
+/// A scene is written and read as a [`SceneFile`]: its parameters by
+/// name, every declared one written (the planner's list,
 /// `crate::planner::params`), and the fields of older files (`lambda`,
 /// `delta`, `avoidance`, `sign_smoothing`, `refine`) read into them.
 #[derive(Debug, Clone, PartialEq)]
@@ -107,17 +107,28 @@ impl<A, P, const M: usize> Scene<A, P, M> {
     }
 }
 
-/// A planar scene is written as its [`SceneFile`].
-impl Serialize for Scene {
+/// A scene is written as its [`SceneFile`] (either kind of arm).
+impl<A, P, const M: usize> Serialize for Scene<A, P, M>
+where
+    A: Serialize + Clone,
+    P: Serialize + Default + PartialEq + Clone,
+    [f64; M]: Serialize,
+{
     fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
         SceneFile::from(self.clone()).serialize(s)
     }
 }
 
-/// A planar scene is read from a [`SceneFile`], checked as it becomes one.
-impl<'de> Deserialize<'de> for Scene {
+/// A scene is read from a [`SceneFile`], its parameters checked as it
+/// becomes one (the whole scene is checked where a file is read).
+impl<'de, A, P, const M: usize> Deserialize<'de> for Scene<A, P, M>
+where
+    A: Deserialize<'de>,
+    P: Deserialize<'de> + Default,
+    [f64; M]: Deserialize<'de>,
+{
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
-        let file = SceneFile::deserialize(d)?;
+        let file = SceneFile::<A, P, M>::deserialize(d)?;
         Scene::try_from(file).map_err(serde::de::Error::custom)
     }
 }

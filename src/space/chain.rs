@@ -28,6 +28,7 @@ pub const MAX_JOINTS: usize = 16;
 
 /// One modified Denavit-Hartenberg row: joint `i`'s frame from frame `i - 1`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Row {
     /// `a_(i-1)`: along `x_(i-1)` (m).
     pub a: f64,
@@ -67,7 +68,12 @@ pub struct Segment {
 /// A serial chain of revolute joints in space: a base placement, one
 /// modified DH row per joint, the flange in the last frame, the capsules'
 /// radius and the joints' limits.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+///
+/// Its JSON (a run file's `scene.arm`) is what [`ChainFile`] reads: a
+/// file carries the whole robot, and reading it checks it as
+/// [`Chain::placed`] and [`Chain::with_limits`] do.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "ChainFile")]
 pub struct Chain {
     /// The base frame in the world: a rotation (rows) and a translation.
     base: ([[f64; 3]; 3], [f64; 3]),
@@ -87,6 +93,29 @@ pub struct Chain {
     /// takes one sine and cosine per joint, of its angle.
     #[serde(skip)]
     twists: Vec<(f64, f64)>,
+}
+
+/// The JSON form of a [`Chain`], as it is written.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ChainFile {
+    base: ([[f64; 3]; 3], [f64; 3]),
+    rows: Vec<Row>,
+    flange: [f64; 3],
+    radius: f64,
+    #[serde(default)]
+    joint_limits: Option<JointLimits>,
+    #[serde(default)]
+    rate_limits: Option<RateLimits>,
+}
+
+impl TryFrom<ChainFile> for Chain {
+    type Error = Error;
+    fn try_from(f: ChainFile) -> Result<Self> {
+        let (rotation, origin) = f.base;
+        Chain::placed(rotation, origin, f.rows, f.flange, f.radius)?
+            .with_limits(f.joint_limits, f.rate_limits)
+    }
 }
 
 /// The identity rotation.
@@ -176,6 +205,13 @@ impl Chain {
         self.joint_limits = joint_limits;
         self.rate_limits = rate_limits;
         Ok(self)
+    }
+
+    /// Whether `other` is this chain, whatever the limits of either: the
+    /// same base, rows, flange and radius.
+    pub fn same_geometry(&self, other: &Chain) -> bool {
+        (self.base, &self.rows, self.flange, self.radius)
+            == (other.base, &other.rows, other.flange, other.radius)
     }
 
     /// Number of joints `n`.

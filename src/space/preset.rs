@@ -57,6 +57,12 @@ impl SpacePreset {
             .expect("a preset's numbers pass the chain's checks (tested)")
     }
 
+    /// The preset whose chain `chain` is, whatever its limits, if any (a
+    /// run file carries the chain, not the preset's name).
+    pub fn of(chain: &Chain) -> Option<&'static SpacePreset> {
+        PRESETS.iter().find(|p| p.chain().same_geometry(chain))
+    }
+
     /// The preset called `key`, if any.
     pub fn by_key(key: &str) -> Option<&'static SpacePreset> {
         PRESETS.iter().find(|p| p.key == key)

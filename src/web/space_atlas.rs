@@ -14,6 +14,8 @@ use crate::error;
 use crate::export::SpaceRunFile;
 use crate::networks::space::{SpaceNetworkSet, SpaceNetworks};
 use crate::planner::{methods, Method};
+use crate::run::NetworkChoice;
+use crate::space::SpacePreset;
 
 /// The options of a slice atlas as the page passes them.
 #[derive(Deserialize)]
@@ -59,8 +61,8 @@ struct Texts {
 /// job.free();
 /// ```
 ///
-/// `runText` is a spatial run file's JSON (`redundant-ik-space-run/1`, what
-/// `simulate --arm A --json` writes): its scene is mapped, its own sphere
+/// `runText` is a run file of an arm in space (what `simulate --arm A
+/// --json` writes, or a file of the versions before it): its scene is mapped, its own sphere
 /// moved over the grid, the networks computing in its `precision`; its
 /// method is not used. `options` is an object or
 /// its JSON text; an unknown field is refused by name. The constructor
@@ -71,7 +73,8 @@ struct Texts {
 #[wasm_bindgen]
 pub struct SpaceAtlasJob {
     job: SliceJob,
-    arm: &'static str,
+    /// The preset the run's chain is, if it is one.
+    arm: Option<&'static str>,
 }
 
 #[wasm_bindgen]
@@ -80,13 +83,19 @@ impl SpaceAtlasJob {
     #[wasm_bindgen(constructor)]
     pub fn new(run: &str, options: JsValue) -> Result<SpaceAtlasJob, JsError> {
         let file = SpaceRunFile::from_json(run).map_err(js_err)?;
+        let arm = SpacePreset::of(&file.scene.arm).map(|p| p.key);
         let o = read_options(options)?;
+        // The user's own weights files travel in the run file.
+        let texts = o.networks.or(match file.networks {
+            Some(NetworkChoice::Files { phi, v }) => Some(Texts { phi, v }),
+            _ => None,
+        });
         let scene = file.scene;
         let methods = match o.methods {
             None => methods::ALL
                 .iter()
                 .copied()
-                .filter(|m| m.in_space() && (o.networks.is_some() || !m.uses_networks()))
+                .filter(|m| m.in_space() && (texts.is_some() || !m.uses_networks()))
                 .collect(),
             Some(names) => Method::parse_list(&names.join(",")).map_err(js_err)?,
         };
@@ -119,7 +128,7 @@ impl SpaceAtlasJob {
         };
         let grid = Grid::new(region, n).map_err(js_err)?;
         let learned = methods.iter().find(|m| m.uses_networks());
-        let networks = match (learned, o.networks) {
+        let networks = match (learned, texts) {
             (None, _) => None,
             // In the run's arithmetic, as on the page.
             (Some(_), Some(t)) => Some(
@@ -127,8 +136,8 @@ impl SpaceAtlasJob {
                     .in_precision(file.precision),
             ),
             (Some(m), None) => {
-                let files = SpaceNetworkSet::for_arm(file.arm).map_or_else(
-                    || format!("no networks are shipped for {}", file.arm),
+                let files = arm.and_then(SpaceNetworkSet::for_arm).map_or_else(
+                    || "no networks are shipped for this arm".to_string(),
                     |s| {
                         let [phi, v] = s.file_names();
                         format!("its set's files are weights/{phi} and weights/{v}")
@@ -141,7 +150,7 @@ impl SpaceAtlasJob {
         };
         let job =
             SliceJob::new(&scene, plane, grid, &methods, networks.as_ref()).map_err(js_err)?;
-        Ok(SpaceAtlasJob { job, arm: file.arm })
+        Ok(SpaceAtlasJob { job, arm })
     }
 
     /// Cells in the grid.
@@ -173,7 +182,7 @@ impl SpaceAtlasJob {
     /// are missing.
     pub fn finish(&self) -> Result<String, JsError> {
         let mut atlas = self.job.clone().finish().map_err(js_err)?;
-        atlas.arm = Some(self.arm);
+        atlas.arm = self.arm;
         serde_json::to_string(&atlas).map_err(|e| JsError::new(&e.to_string()))
     }
 }

@@ -16,6 +16,7 @@ use super::{finite, js_err, plots, to_js, JsResult};
 use crate::export::SpaceRunFile;
 use crate::networks::space::SpaceNetworkSet;
 use crate::planner::Method;
+use crate::run::NetworkChoice;
 use crate::session::space::{SpaceSession, KEY_ORBIT};
 
 /// How the page names elbow `k` (a joint, from 0): `elbow 4`.
@@ -427,21 +428,29 @@ impl SpaceDemo {
     }
 
     /// The run as `redundant-ik simulate --arm A --json` writes it (what
-    /// `simulate --from` replays and the workers' jobs read).
+    /// `simulate --from` replays and the workers' jobs read): the one run
+    /// file, with the shipped set a learned method ran with, so that the
+    /// command line replays it so.
     #[wasm_bindgen(js_name = runFile)]
     pub fn run_file(&self) -> String {
         let s = self.session();
-        let mut file = SpaceRunFile::new(s.preset(), s.scene().clone(), s.trajectory());
-        // The set a learned method ran with, so the command line replays it so.
-        file.networks = s
-            .method()
-            .uses_networks()
-            .then(|| s.network_set())
-            .flatten();
-        if s.method().uses_networks() {
-            file.precision = s.precision();
-        }
-        file.to_json()
+        let networks = s.network_set().map(NetworkChoice::Set);
+        SpaceRunFile::of(
+            None,
+            s.scene().clone(),
+            s.trajectory(),
+            networks,
+            s.precision(),
+        )
+        .to_json()
+    }
+
+    /// The run as CSV, as `redundant-ik simulate --arm A --csv` writes it:
+    /// one line per sample (the library's one run CSV,
+    /// [`crate::export::run_csv`]).
+    #[wasm_bindgen(js_name = runCsv)]
+    pub fn run_csv(&self) -> String {
+        crate::export::run_csv(self.session().samples())
     }
 
     /// Every method that can run here on this scene, run whole:

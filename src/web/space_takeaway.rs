@@ -13,10 +13,10 @@ use crate::export::SpaceRunFile;
 use crate::figure;
 use crate::planner::Trajectory;
 use crate::session::STROBE_EVERY;
-use crate::space::PRESETS;
+use crate::space::SpacePreset;
 
-/// The figure of the run in `run_json` (a `redundant-ik-space-run/1`
-/// file, `SpaceDemo.runFile()`) as SVG, the chain drawn every
+/// The figure of the run in `run_json` (a run file of an arm in space,
+/// `SpaceDemo.runFile()`) as SVG, the chain drawn every
 /// [`STROBE_EVERY`]th step. Throws with the core's message on a file that
 /// does not read.
 #[wasm_bindgen(js_name = spaceFigure)]
@@ -34,16 +34,14 @@ pub fn space_plots(run_json: &str) -> Result<String, JsError> {
     figure::space_series_svg(label, &file.scene, &traj).map_err(js_err)
 }
 
-/// A run file's arm (what a figure calls it), the file and its run.
+/// A run file's arm (what a figure calls it: its preset's label), the
+/// file and its run.
 fn read(run_json: &str) -> Result<(&'static str, SpaceRunFile, Trajectory<3>), JsError> {
     let mut file = SpaceRunFile::from_json(run_json).map_err(js_err)?;
-    let label = PRESETS
-        .iter()
-        .find(|p| p.key == file.arm)
-        .map_or(file.arm, |p| p.label);
+    let label = SpacePreset::of(&file.scene.arm).map_or("Arm in space", |p| p.label);
     let traj = Trajectory {
         method: file.method,
-        steps: std::mem::take(&mut file.samples),
+        steps: std::mem::take(&mut file.steps),
         summary: file.summary.clone(),
     };
     Ok((label, file, traj))

@@ -44,7 +44,7 @@ pub fn run_files(run: JsValue) -> Result<JsValue, JsError> {
     let traj = Planner::run(scene.clone(), method, nets).map_err(js_err)?;
     let figure = figure::arm_svg(task, &scene, &traj, STROBE_EVERY).map_err(js_err)?;
     let plots = figure::series_svg(task, &scene, &traj).map_err(js_err)?;
-    let csv = export::run_csv(&scene, &traj.steps);
+    let csv = export::run_csv(&traj.steps);
     let json = RunFile::new(run, traj).to_json();
     to_js(&RunFiles {
         json,

@@ -255,7 +255,7 @@ fn a_run_file_written_before_the_parameters_moved_loads_and_replays_as_it_ran() 
     // lambda, delta, avoidance, sign_smoothing and refine in its scene.
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/run-0.1.json");
     let old: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
-    let read = RunFile::from_json(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let read = <RunFile>::from_json(&std::fs::read_to_string(path).unwrap()).unwrap();
     let scene = &read.scene;
     for (name, v) in [
         ("lambda", 5.0),
@@ -309,32 +309,36 @@ fn assert_close(a: &Value, b: &Value, tol: f64, at: &str) {
     }
 }
 
-/// Every planar run file names its format and version first; a file of
-/// 0.2 without them (the unversioned files) replays to the same bytes, the
-/// format written; another version, or another format, is refused by name.
+/// Every run file names its format and version first; a planar file of
+/// the version before (`redundant-ik-run/1`, the same layout) and one of
+/// 0.2 without a format (the unversioned files) replay to the same bytes,
+/// this version's format written; another version, or another format, is
+/// refused by name.
 #[test]
 fn every_run_file_names_its_format_and_an_unversioned_one_replays_to_the_same_bytes() {
     let text = ok(&[
         "simulate", "--task", "1", "--method", "qp", "--tf", "1", "--json",
     ]);
     assert!(
-        text.starts_with(r#"{"format":"redundant-ik-run/1","task":1,"#),
+        text.starts_with(r#"{"format":"redundant-ik-run/2","task":1,"#),
         "{}",
         &text[..60]
     );
     let file = super::scratch("unversioned.json");
     let path = file.to_str().unwrap();
-    std::fs::write(
-        &file,
-        text.replacen(r#""format":"redundant-ik-run/1","#, "", 1),
-    )
-    .unwrap();
-    assert_eq!(ok(&["simulate", "--from", path, "--json"]), text);
+    for older in ["", r#""format":"redundant-ik-run/1","#] {
+        std::fs::write(
+            &file,
+            text.replacen(r#""format":"redundant-ik-run/2","#, older, 1),
+        )
+        .unwrap();
+        assert_eq!(ok(&["simulate", "--from", path, "--json"]), text);
+    }
     for (format, what) in [
-        ("redundant-ik-run/2", "redundant-ik-run/2 is not supported"),
+        ("redundant-ik-run/3", "redundant-ik-run/3 is not supported"),
         ("hello", "not hello"),
     ] {
-        std::fs::write(&file, text.replacen("redundant-ik-run/1", format, 1)).unwrap();
+        std::fs::write(&file, text.replacen("redundant-ik-run/2", format, 1)).unwrap();
         refused(&["simulate", "--from", path], what);
     }
 }

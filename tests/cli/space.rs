@@ -48,25 +48,28 @@ fn simulate_json_and_csv_carry_the_run_in_three_dimensions() {
         "--json",
     ]))
     .unwrap();
-    assert_eq!(json["arm"], "panda");
+    assert_eq!(json["format"], "redundant-ik-run/2");
+    assert_eq!(json["scene"]["arm"]["rows"].as_array().unwrap().len(), 7);
     assert_eq!(json["method"], "numerical");
-    let samples = json["samples"].as_array().unwrap();
+    let samples = json["steps"].as_array().unwrap();
     assert_eq!(samples.len(), 41, "2 s at 0.05 s, and t = 0");
     let last = &samples[40];
-    assert_eq!(last["hand"].as_array().unwrap().len(), 3);
-    for (got, want) in last["hand"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .zip([0.45, 0.25, 0.5])
-    {
+    assert_eq!(last["ee"].as_array().unwrap().len(), 3);
+    assert_eq!(
+        last["joints"].as_array().unwrap()[0]
+            .as_array()
+            .unwrap()
+            .len(),
+        3
+    );
+    for (got, want) in last["ee"].as_array().unwrap().iter().zip([0.45, 0.25, 0.5]) {
         assert!((got.as_f64().unwrap() - want).abs() < 1e-6);
     }
-    assert_eq!(json["spheres"][0]["radius"], 0.05);
+    assert_eq!(json["scene"]["obstacles"][0]["radius"], 0.05);
     assert!(json["summary"]["min_clearance"].as_f64().is_some());
     let csv = ok(&["simulate", "--arm", "iiwa14", "--csv"]);
     let head = csv.lines().next().unwrap();
-    assert_eq!(head, "t,theta1,theta2,theta3,theta4,theta5,theta6,theta7,x,y,z,x_ref,y_ref,z_ref,tracking_error,clearance,past_limits");
+    assert_eq!(head, "t,theta1,theta2,theta3,theta4,theta5,theta6,theta7,x,y,z,ref_x,ref_y,ref_z,tracking_error,clearance,collision");
     assert_eq!(csv.lines().count(), 102);
 }
 
@@ -268,16 +271,16 @@ fn simulate_follows_a_circle_and_a_polyline_in_space() {
         "1",
         "--json",
     ]);
-    assert_eq!(run["path"], "circle:0.47,0,0.42,1,0,0");
+    assert_eq!(run["scene"]["path"], "circle:0.47,0,0.42,1,0,0");
     assert!(
-        run["summary"]["max_error"].as_f64().unwrap() < 1e-7,
+        run["summary"]["max_tracking_error"].as_f64().unwrap() < 1e-7,
         "{}",
         run["summary"]
     );
-    let samples = run["samples"].as_array().unwrap();
+    let samples = run["steps"].as_array().unwrap();
     let point = |v: &Value| -> [f64; 3] { [0, 1, 2].map(|k| v[k].as_f64().unwrap()) };
     let (c, n) = ([0.47, 0.0, 0.42], [1.0, 0.0, 0.0]);
-    let u = point(&samples[0]["hand"]);
+    let u = point(&samples[0]["ee"]);
     let u = [u[0] - c[0], u[1] - c[1], u[2] - c[2]];
     let r = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
     // N made perpendicular to start - C.
@@ -423,7 +426,7 @@ fn a_learned_run_in_space_keeps_its_arithmetic_and_replays_in_it() {
     ]);
     let v: Value = serde_json::from_str(&first).unwrap();
     assert_eq!(v["precision"], "f32");
-    assert_eq!(v["networks"], "panda-reach");
+    assert_eq!(v["networks"], serde_json::json!({"set": "panda-reach"}));
     let double: Value = serde_json::from_str(&ok(&[
         "simulate", "--arm", "panda", "--method", "case3", "--tf", "1", "--json",
     ]))
@@ -478,7 +481,7 @@ fn from_refuses_flags_beside_a_spatial_run_and_a_bad_file() {
     for (bad, what) in [
         (text[..text.len() / 3].to_string(), "not json"),
         (
-            text.replacen("space-run/1", "space-run/7", 1),
+            text.replacen("redundant-ik-run/2", "redundant-ik-run/7", 1),
             "not supported",
         ),
         (text.replacen("\"tf\":0.5", "\"tf\":1e300", 1), "tf"),

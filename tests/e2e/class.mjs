@@ -127,7 +127,7 @@ export function classTests(h) {
     assert.match(json.name, /^task1-case3\.json$/);
     const run = JSON.parse(json.text);
     assert.deepEqual(Object.keys(run), ['format', 'task', 'method', 'scene', 'networks', 'steps', 'summary']);
-    assert.equal(run.format, 'redundant-ik-run/1', 'the run file names its format and version');
+    assert.equal(run.format, 'redundant-ik-run/2', 'the run file names its format and version');
     assert.equal(run.method, 'case3');
     assert.deepEqual(run.networks, { set: 'paper' }, 'the run names its networks');
     assert.deepEqual(run.scene, await page.evaluate(() => window.demo.controller.demo.scene()), 'the page scene');

@@ -215,14 +215,16 @@ test('space: the run saved from the page reads back with simulate --from, step f
   await paused(page);
   const json = await download(page, '#save-run-json');
   const run = JSON.parse(json.text);
-  assert.equal(run.format, 'redundant-ik-space-run/1');
+  assert.equal(run.format, 'redundant-ik-run/2', 'the one run file of every arm');
+  assert.ok(run.scene.arm.rows.length === 7, 'the file carries the chain');
   assert.equal(run.method, 'qp');
-  assert.deepEqual(run.target, [0.45, 0.28, 0.55]);
+  assert.deepEqual(run.scene.target, [0.45, 0.28, 0.55]);
   const back = JSON.parse(cli(['simulate', '--from', json.path, '--json']));
-  assert.equal(back.samples.length, run.samples.length);
-  back.samples.forEach((s, k) => s.theta.forEach((v, i) => close(v, run.samples[k].theta[i], 1e-9, `step ${k} theta${i + 1}`)));
+  assert.equal(back.steps.length, run.steps.length);
+  back.steps.forEach((s, k) => s.theta.forEach((v, i) => close(v, run.steps[k].theta[i], 1e-9, `step ${k} theta${i + 1}`)));
   const csv = await download(page, '#save-run-csv');
-  assert.equal(csv.text.trim().split('\n').length, run.samples.length + 1);
+  assert.equal(csv.text.trim().split('\n').length, run.steps.length + 1);
+  assert.match(csv.text, /^t,theta1,.*,theta7,x,y,z,ref_x,ref_y,ref_z,tracking_error,clearance,collision\n/, 'the one run CSV of every arm');
   const png = await download(page, '#save-figure-png');
   assert.ok(png.text.length > 1000);
   // The figure as the command line draws it from the same file.
@@ -250,11 +252,11 @@ test('space: with precision=f32 the Panda\'s networks compute in f32, and simula
   const json = await download(page, '#save-run-json');
   const run = JSON.parse(json.text);
   assert.equal(run.precision, 'f32');
-  assert.equal(run.networks, 'panda-reach');
+  assert.deepEqual(run.networks, { set: 'panda-reach' });
   const back = JSON.parse(cli(['simulate', '--from', json.path, '--json']));
   assert.equal(back.precision, 'f32');
-  assert.equal(back.samples.length, run.samples.length);
-  back.samples.forEach((s, k) => s.theta.forEach((v, i) => close(v, run.samples[k].theta[i], 1e-9, `step ${k} theta${i + 1}`)));
+  assert.equal(back.steps.length, run.steps.length);
+  back.steps.forEach((s, k) => s.theta.forEach((v, i) => close(v, run.steps[k].theta[i], 1e-9, `step ${k} theta${i + 1}`)));
   await page.selectOption('#precision', 'f64');
   await page.waitForFunction(() => window.demo.state().precision === 'f64');
   assert.doesNotMatch(page.url(), /precision=/);

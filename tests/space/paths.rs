@@ -1,13 +1,12 @@
 //! Paths in space: the hand of the Panda and the iiwa tracks a circle in
 //! a tilted plane and a polyline, the circle's reference stays on its
 //! circle, each RK4 stage sees the circle's velocity at its own time, the
-//! malformed paths are refused with a reason, and a run file reads back
-//! as it was written (a hostile one is an error, never a panic).
+//! malformed paths are refused with a reason (the run file's own
+//! specification is `tests/run_file.rs`).
 
-use redundant_ik::export::{is_space_run, SpaceRunFile, SPACE_RUN_FORMAT};
 use redundant_ik::planner::{Planner, Trajectory};
 use redundant_ik::scene::{SpacePath, SpaceScene, MAX_POINTS};
-use redundant_ik::space::{SpacePreset, Vec3, PRESETS};
+use redundant_ik::space::{Vec3, PRESETS};
 use redundant_ik::{Error, Method};
 
 fn sub(a: Vec3, b: Vec3) -> Vec3 {
@@ -179,82 +178,5 @@ fn malformed_paths_in_space_are_refused_with_a_reason() {
         "points:0.5,0.1,0.5;0.45,0.15,0.6",
     ] {
         assert_eq!(t.parse::<SpacePath>().unwrap().to_string(), t);
-    }
-}
-
-fn file(key: &str, path: &str) -> SpaceRunFile {
-    let (scene, traj) = run(key, path, 1.0);
-    SpaceRunFile::new(SpacePreset::by_key(key).unwrap(), scene, traj)
-}
-
-#[test]
-fn a_run_file_in_space_reads_back_as_written_and_replays_to_the_same_samples() {
-    let f = file("iiwa14", paths("iiwa14").1);
-    let text = f.to_json();
-    assert!(text.starts_with(&format!("{{\"format\":\"{SPACE_RUN_FORMAT}\"")));
-    assert!(is_space_run(&text));
-    let back = SpaceRunFile::from_json(&text).unwrap();
-    assert_eq!(back, f);
-    let again = Planner::new(back.scene.clone(), back.method, None)
-        .and_then(Planner::run_to_end)
-        .unwrap();
-    assert_eq!(again.steps, f.samples);
-    assert_eq!(
-        SpaceRunFile::new(SpacePreset::by_key("iiwa14").unwrap(), back.scene, again).to_json(),
-        text
-    );
-}
-
-#[test]
-fn a_corrupt_or_hostile_run_file_in_space_is_an_error() {
-    let text = file("panda", "line").to_json();
-    let edit = |from: &str, to: &str| {
-        assert!(text.contains(from), "{from}");
-        text.replacen(from, to, 1)
-    };
-    let planar = redundant_ik::export::RunFile::from_json(&text).unwrap_err();
-    assert!(planar.to_string().contains("arm in space"), "{planar}");
-    for (bad, says) in [
-        (text[..text.len() / 2].to_string(), "not JSON"),
-        (String::from("[1, 2]"), "not JSON"),
-        (String::from("{}"), "not a run in space"),
-        (
-            edit(SPACE_RUN_FORMAT, "redundant-ik-space-run/2"),
-            "not supported",
-        ),
-        (
-            edit(SPACE_RUN_FORMAT, "redundant-ik run in space"),
-            "run it again",
-        ),
-        (edit("\"arm\":\"panda\"", "\"arm\":\"ur5\""), "unknown arm"),
-        (
-            edit("\"method\":\"numerical\"", "\"method\":\"case9\""),
-            "case9",
-        ),
-        (edit("\"dt\":0.05", "\"dt\":-1"), "positive"),
-        (edit("\"path\":\"line\"", "\"path\":\"circle:1\""), "circle"),
-        (
-            edit("\"floor\":false", "\"floor\":false,\"x\":1"),
-            "unknown field",
-        ),
-        (edit("\"theta0\":[", "\"theta0\":[9,"), "entries"),
-        (
-            edit(
-                "\"samples\":[{\"t\":0.0,\"theta\":[",
-                "\"samples\":[{\"t\":0.0,\"theta\":[1,",
-            ),
-            "entries",
-        ),
-        (
-            edit("\"lambda\":", "\"lambda\":-1,\"nothing\":"),
-            "parameter",
-        ),
-        (
-            edit("\"joint_limits\":[", "\"joint_limits\":[[1,0],"),
-            "joint",
-        ),
-    ] {
-        let e = SpaceRunFile::from_json(&bad).unwrap_err().to_string();
-        assert!(e.contains(says), "'{says}' not in: {e}");
     }
 }

@@ -9,19 +9,20 @@ use redundant_ik::networks::space::SpaceNetworkSet;
 use redundant_ik::planner::methods::QP;
 use redundant_ik::planner::Method;
 use redundant_ik::planner::Planner;
+use redundant_ik::run::NetworkChoice;
 use redundant_ik::scene::{SpacePath, SpaceScene};
 use redundant_ik::session::space::{Camera, SpaceHandle, SpaceSession, DISTANCE, PITCH};
 use redundant_ik::session::NUDGE;
 
 /// The session's run as the page writes its file (`SpaceDemo.runFile`).
 fn run_file(s: &SpaceSession) -> SpaceRunFile {
-    let mut f = SpaceRunFile::new(s.preset(), s.scene().clone(), s.trajectory());
-    f.networks = s
-        .method()
-        .uses_networks()
-        .then(|| s.network_set())
-        .flatten();
-    f
+    SpaceRunFile::of(
+        None,
+        s.scene().clone(),
+        s.trajectory(),
+        s.network_set().map(NetworkChoice::Set),
+        s.precision(),
+    )
 }
 
 const W: f64 = 800.0;
@@ -171,7 +172,7 @@ fn the_run_file_reads_back_as_the_run_on_screen() {
     let text = run_file(&s).to_json();
     let back = SpaceRunFile::from_json(&text).expect("the page's run file reads");
     assert_eq!(back.method, QP);
-    assert_eq!(&back.samples[..], s.samples());
+    assert_eq!(&back.steps[..], s.samples());
     assert_eq!(back.scene, *s.scene());
 }
 
@@ -206,7 +207,7 @@ fn a_learned_method_waits_for_its_networks_and_then_runs() {
     assert_eq!(s.samples().len(), s.scene().steps() + 1);
     assert_eq!(
         run_file(&s).networks,
-        Some(SpaceNetworkSet::PandaReach),
+        Some(NetworkChoice::Set(SpaceNetworkSet::PandaReach)),
         "the run file names the set"
     );
     // The iiwa has no shipped networks: the Panda's do not fit it.

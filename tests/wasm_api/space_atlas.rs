@@ -21,7 +21,8 @@ fn panda_run() -> (SpaceScene, String) {
     let traj = Planner::new(scene.clone(), Method::NUMERICAL, None)
         .and_then(Planner::run_to_end)
         .unwrap();
-    (scene.clone(), SpaceRunFile::new(p, scene, traj).to_json())
+    let file = SpaceRunFile::of(None, scene.clone(), traj, None, Default::default());
+    (scene, file.to_json())
 }
 
 #[wasm_bindgen_test]
@@ -74,5 +75,7 @@ fn a_space_atlas_job_refuses_what_it_cannot_run_with_a_reason() {
             .contains("Phi file")
     );
     let bad = SpaceAtlasJob::new("{\"format\": \"redundant-ik-run/1\"}", JsValue::UNDEFINED);
-    assert!(message(bad.err().unwrap()).contains("redundant-ik-space-run/1"));
+    assert!(message(bad.err().unwrap()).contains("a planar arm"));
+    let bad = SpaceAtlasJob::new("{\"format\": \"redundant-ik-run/9\"}", JsValue::UNDEFINED);
+    assert!(message(bad.err().unwrap()).contains("redundant-ik-run/2"));
 }
