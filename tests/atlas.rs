@@ -151,7 +151,7 @@ fn atlas_outcomes_equal_single_planner_runs_at_random_cells() {
         let cell = &a.cells[k];
         for (&method, o) in a.methods.iter().zip(&cell.outcomes) {
             let mut scene = Scene::task(1).unwrap();
-            scene.obstacles[0].centre = [cell.x, cell.y];
+            scene.obstacles[0].centre = cell.centre;
             if o.class == Class::StartOverlap {
                 continue;
             }
@@ -275,8 +275,8 @@ fn the_json_has_the_documented_shape() {
     assert_eq!(cells.len(), 49);
     let names: Vec<&str> = Class::ALL.iter().map(|c| c.name()).collect();
     for (k, cell) in cells.iter().enumerate() {
-        assert_eq!(cell["x"], a.cells[k].x);
-        assert_eq!(cell["y"], a.cells[k].y);
+        assert_eq!(cell["x"], a.cells[k].x());
+        assert_eq!(cell["y"], a.cells[k].y());
         let outcomes = cell["outcomes"].as_object().unwrap();
         let mut keys: Vec<&str> = outcomes.keys().map(|s| s.as_str()).collect();
         keys.sort_unstable();

@@ -99,7 +99,7 @@ export function mountSpaceAtlas(root, demo, { show, say, preset, changed }) {
     last.methods.forEach((m, i) => {
       const o = c.outcomes[i];
       const cls = classes.find((x) => x.name === o.class)?.label ?? o.class;
-      const nums = o.min_clearance === null ? '' : `, smallest clearance ${metres(Math.max(0, o.min_clearance))}${o.min_clearance < 0 ? ' (inside)' : ''}, ${metres(o.final_error)} from the target`;
+      const nums = o.min_clearance == null ? '' : `, smallest clearance ${metres(Math.max(0, o.min_clearance))}${o.min_clearance < 0 ? ' (inside)' : ''}, ${metres(o.final_error)} from the target`;
       lines.push(`${labelOf(m)}: ${cls}${nums}`);
     });
     tip.textContent = lines.join('\n');

@@ -14,7 +14,7 @@ use crate::scene::{Path, Scene};
 /// hand must follow (its exact distance to the segments or the circle); `None` when avoidance is possible. What the
 /// atlas decides for each cell, for the page's comparison of the methods.
 pub fn unavoidable(scene: &Scene, obstacle: &crate::obstacle::Obstacle) -> Option<Class> {
-    Geometry::new(scene, obstacle.radius)
+    PlaneGeometry::new(scene, obstacle.radius)
         .ok()
         .and_then(|g| g.classify(obstacle.centre))
 }
@@ -22,7 +22,7 @@ pub fn unavoidable(scene: &Scene, obstacle: &crate::obstacle::Obstacle) -> Optio
 /// The start pose and the path, which decide `start_overlap` and
 /// `path_blocked` for every method at once.
 #[derive(Debug, Clone)]
-pub(super) struct Geometry {
+pub struct PlaneGeometry {
     start: Pose,
     post_top: [f64; 2],
     path: Path,
@@ -30,7 +30,7 @@ pub(super) struct Geometry {
     pub(super) radius: f64,
 }
 
-impl Geometry {
+impl PlaneGeometry {
     pub(super) fn new(scene: &Scene, radius: f64) -> Result<Self> {
         let start = Pose::new(&scene.arm, &scene.theta0)?;
         let ends = [start.end_effector(), scene.target];

@@ -16,20 +16,23 @@ mod grid;
 mod read;
 pub mod space;
 mod summary;
+mod sweep;
 
 use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
 
+use crate::arm::Arm;
 use crate::error::{Error, Result};
 use crate::networks::Networks;
 use crate::planner::{methods, Method, Planner, Surrogate};
 use crate::scene::Scene;
 
 pub use geometry::unavoidable;
-use geometry::Geometry;
+pub use geometry::PlaneGeometry;
 pub use grid::{Grid, DEFAULT_GRID, MAX_GRID};
 pub use summary::{Agreement, Clearance, MethodSummary, Rate};
+pub use sweep::{Mapped, Sweep};
 
 /// What happened with the obstacle centred on one cell, in one method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -142,22 +145,37 @@ impl Class {
     }
 }
 
-/// The record of one run (one cell, one method).
+/// The record of one run (one cell, one method), of either kind of arm.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Outcome {
     /// The class.
     pub class: Class,
     /// Smallest obstacle-centre-to-link distance over the run's samples
-    /// (`None` when nothing was run).
+    /// (to a link's axis in space; `None` when nothing was run).
     pub min_distance: Option<f64>,
+    /// Smallest link-to-obstacle clearance over the run's samples, between
+    /// their surfaces (`None` when nothing was run; absent from the planar
+    /// atlases written before it was kept).
+    #[serde(default)]
+    pub min_clearance: Option<f64>,
     /// Distance from the end effector to the target at the end (or where
     /// the run failed).
     pub final_error: Option<f64>,
     /// Steps at which a network's input left its trained range.
     pub out_of_range_steps: usize,
+    /// Steps with a joint past its position limits; absent when none.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub limit_steps: usize,
+    /// Steps whose quadratic program was relaxed; absent when none.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub relaxed_steps: usize,
     /// Why the run stopped, for `failed` (and a `path_blocked` run that failed).
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub error: Option<String>,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 impl Outcome {
@@ -165,21 +183,22 @@ impl Outcome {
         Self {
             class: Class::StartOverlap,
             min_distance: None,
+            min_clearance: None,
             final_error: None,
             out_of_range_steps: 0,
+            limit_steps: 0,
+            relaxed_steps: 0,
             error: None,
         }
     }
 }
 
-/// One grid point and its outcome in each method (in the order of
-/// [`Atlas::methods`]).
+/// One grid point and its outcome in each method (in the order of the
+/// atlas's methods), of an arm whose obstacles have `M` coordinates.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Cell {
-    /// Obstacle centre x (m).
-    pub x: f64,
-    /// Obstacle centre y (m).
-    pub y: f64,
+pub struct Cell<const M: usize = 2> {
+    /// The obstacle's centre (m).
+    pub centre: [f64; M],
     /// One outcome per method.
     pub outcomes: Vec<Outcome>,
     /// Where avoidance is possible (neither `start_overlap` nor
@@ -187,6 +206,18 @@ pub struct Cell {
     /// without avoidance (`none`) collides; `None` elsewhere. Far from the
     /// arm every method succeeds, avoiding or not.
     pub avoidance_needed: Option<bool>,
+}
+
+impl Cell {
+    /// Obstacle centre x (m).
+    pub fn x(&self) -> f64 {
+        self.centre[0]
+    }
+
+    /// Obstacle centre y (m).
+    pub fn y(&self) -> f64 {
+        self.centre[1]
+    }
 }
 
 /// What to map: a scene (whose first obstacle is moved), a grid and methods.
@@ -263,18 +294,14 @@ impl Atlas {
     }
 }
 
-/// An atlas being computed, a chunk of cells at a time.
+/// A planar atlas being computed, a chunk of cells at a time: the one
+/// [`Sweep`] over the arm's plane, and what its summaries need.
 #[derive(Debug, Clone)]
 pub struct Job {
     spec: Spec,
-    geometry: Geometry,
-    steps: usize,
+    radius: f64,
     networks: Option<Arc<Networks>>,
-    /// One planner per method, reused for every cell; then one without
-    /// avoidance if `none` is not among the methods (it says where avoidance
-    /// matters).
-    planners: Vec<Planner>,
-    cells: Vec<Cell>,
+    sweep: Sweep<Arm, 2>,
 }
 
 impl Job {
@@ -289,14 +316,6 @@ impl Job {
                 methods.push(m);
             }
         }
-        if methods.is_empty() {
-            return Err(Error::OutOfRange {
-                what: "number of methods".into(),
-                value: 0.0,
-                min: 1.0,
-                max: methods::ALL.len() as f64,
-            });
-        }
         spec.methods = methods;
         let radius = spec
             .scene
@@ -304,98 +323,46 @@ impl Job {
             .first()
             .ok_or(Error::NoObstacle)?
             .radius;
-        let geometry = Geometry::new(&spec.scene, radius)?;
         let surrogate = networks.clone().map(|n| n as Arc<dyn Surrogate>);
-        let mut planners = spec
-            .methods
-            .iter()
-            .map(|&m| {
-                let nets = m.uses_networks().then(|| surrogate.clone());
-                Planner::new(spec.scene.clone(), m, nets.flatten())
-            })
-            .collect::<Result<Vec<_>>>()?;
-        if !spec.methods.contains(&Method::NO_AVOIDANCE) {
-            planners.push(Planner::new(
-                spec.scene.clone(),
-                Method::NO_AVOIDANCE,
-                None,
-            )?);
-        }
-        let steps = spec.scene.steps();
-        let cells = Vec::with_capacity(spec.grid.cells());
+        let sweep = Sweep::new(&spec.scene, (), spec.grid, &spec.methods, surrogate, radius)?;
         Ok(Self {
             spec,
-            geometry,
-            steps,
+            radius,
             networks,
-            planners,
-            cells,
+            sweep,
         })
     }
 
     /// Cells in the grid.
     pub fn total(&self) -> usize {
-        self.spec.grid.cells()
+        self.sweep.total()
     }
 
     /// Cells computed so far.
     pub fn done(&self) -> usize {
-        self.cells.len()
+        self.sweep.done()
     }
 
     /// Whether every cell is computed.
     pub fn is_done(&self) -> bool {
-        self.done() == self.total()
+        self.sweep.is_done()
     }
 
     /// Computes up to `cells` more cells on this thread; returns how many
     /// are done in all.
     pub fn advance(&mut self, cells: usize) -> usize {
-        let end = self.done().saturating_add(cells).min(self.total());
-        for index in self.done()..end {
-            let cell = run_cell(
-                &mut self.planners,
-                self.spec.methods.len(),
-                &self.geometry,
-                self.steps,
-                self.spec.grid.point(index),
-            );
-            self.cells.push(cell);
-        }
-        self.done()
+        self.sweep.advance(cells)
     }
 
-    /// [`Job::advance`] across the machine's cores (rayon): each thread
-    /// runs its cells with its own copy of the planners. The cells equal
-    /// those of the one-thread path (each run is deterministic).
+    /// [`Job::advance`] across the machine's cores (rayon).
     #[cfg(all(feature = "parallel", not(target_family = "wasm")))]
     pub fn advance_parallel(&mut self, cells: usize) -> usize {
-        use rayon::prelude::*;
-        let end = self.done().saturating_add(cells).min(self.total());
-        let (planners, geometry, steps, grid) =
-            (&self.planners, &self.geometry, self.steps, &self.spec.grid);
-        let methods = self.spec.methods.len();
-        let new: Vec<Cell> = (self.done()..end)
-            .into_par_iter()
-            .map_init(
-                || planners.clone(),
-                |p, index| run_cell(p, methods, geometry, steps, grid.point(index)),
-            )
-            .collect();
-        self.cells.extend(new);
-        self.done()
+        self.sweep.advance_parallel(cells)
     }
 
     /// The atlas with its summaries; refused while cells are missing.
     pub fn finish(self) -> Result<Atlas> {
-        if !self.is_done() {
-            return Err(Error::OutOfRange {
-                what: "atlas cells computed".into(),
-                value: self.done() as f64,
-                min: self.total() as f64,
-                max: self.total() as f64,
-            });
-        }
+        let cells = self.sweep.cells("atlas cells computed")?;
         let trained_region = self.networks.as_ref().map(|n| {
             let r = n.trained_range();
             [
@@ -405,92 +372,34 @@ impl Job {
                 r.obstacle_max[1],
             ]
         });
-        let summary = summary::summarise(
-            &self.spec.methods,
-            &self.cells,
-            trained_region,
-            self.geometry.radius,
-        );
+        let summary = summary::summarise(&self.spec.methods, &cells, trained_region, self.radius);
         Ok(Atlas {
             task: self.spec.task,
             grid: self.spec.grid,
-            radius: self.geometry.radius,
+            radius: self.radius,
             lambda: self.spec.scene.param(&crate::planner::methods::LAMBDA),
             methods: self.spec.methods,
-            cells: self.cells,
+            cells,
             trained_region,
             summary,
         })
     }
 }
 
-/// Runs every planner with the obstacle centred on `o`: the first `methods`
-/// are the atlas's methods, a further one the arm without avoidance.
-fn run_cell(
-    planners: &mut [Planner],
-    methods: usize,
-    geometry: &Geometry,
-    steps: usize,
-    o: [f64; 2],
-) -> Cell {
-    let class = geometry.classify(o);
-    let mut outcomes: Vec<Outcome> = match class {
-        Some(Class::StartOverlap) => planners.iter().map(|_| Outcome::not_run()).collect(),
-        blocked => planners
-            .iter_mut()
-            .map(|p| run_one(p, steps, o, blocked.is_some()))
-            .collect(),
-    };
-    let bare = planners
-        .iter()
-        .position(|p| p.method() == Method::NO_AVOIDANCE);
-    let avoidance_needed = match (class, bare) {
-        (None, Some(k)) => Some(outcomes[k].class == Class::Collision),
-        _ => None,
-    };
-    outcomes.truncate(methods);
-    Cell {
-        x: o[0],
-        y: o[1],
-        outcomes,
-        avoidance_needed,
+/// The planar atlas lies in the arm's plane.
+impl Mapped<2> for Arm {
+    type Surface = ();
+    type Geometry = PlaneGeometry;
+    fn point((): (), x: f64, y: f64) -> [f64; 2] {
+        [x, y]
     }
-}
-
-/// One run from `t = 0` with the obstacle at `o`, to the end or to the first
-/// error; the planner is left at the end of the run.
-fn run_one(p: &mut Planner, steps: usize, o: [f64; 2], path_blocked: bool) -> Outcome {
-    if p.move_obstacle(0, o).is_err() {
-        // Only the post can refuse it, and classify() caught that already.
-        return Outcome::not_run();
+    fn geometry(scene: &Scene, radius: f64) -> Result<PlaneGeometry> {
+        PlaneGeometry::new(scene, radius)
     }
-    p.reset();
-    let mut error = None;
-    for _ in 0..steps {
-        if let Err(e) = p.step() {
-            error = Some(e.to_string());
-            break;
-        }
+    fn classify(geometry: &PlaneGeometry, centre: [f64; 2]) -> Option<Class> {
+        geometry.classify(centre)
     }
-    let s = p.summary();
-    let class = if path_blocked {
-        Class::PathBlocked
-    } else if error.is_some() {
-        Class::Failed
-    } else if s.success {
-        Class::Success
-    } else if s.collided {
-        Class::Collision
-    } else if s.limit_steps > 0 {
-        Class::Limit
-    } else {
-        Class::Missed
-    };
-    Outcome {
-        class,
-        min_distance: s.min_distance,
-        final_error: Some(s.final_error),
-        out_of_range_steps: s.out_of_range_steps,
-        error,
+    fn place(p: &mut Planner, centre: [f64; 2]) -> Result<()> {
+        p.move_obstacle(0, centre)
     }
 }

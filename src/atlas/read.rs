@@ -60,8 +60,7 @@ impl<'de> Deserialize<'de> for Atlas {
                 })
                 .collect::<Result<Vec<_>, _>>()?;
             cells.push(Cell {
-                x: c.x,
-                y: c.y,
+                centre: [c.x, c.y],
                 outcomes,
                 avoidance_needed: c.avoidance_needed,
             });

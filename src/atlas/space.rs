@@ -14,7 +14,7 @@ use serde::Serialize;
 
 mod job;
 
-use super::{Class, Grid};
+use super::{Cell, Class, Grid};
 use crate::error::{Error, Result, Short};
 use crate::networks::space::SpaceNetworks;
 use crate::planner::Method;
@@ -134,33 +134,6 @@ impl fmt::Display for Plane {
     }
 }
 
-/// One run's record on a slice.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct SliceOutcome {
-    /// The class.
-    pub class: Class,
-    /// The smallest capsule-to-sphere clearance over the run (m).
-    pub min_clearance: Option<f64>,
-    /// The hand's distance from the target at the end (m).
-    pub final_error: Option<f64>,
-    /// Steps with a joint past a limit.
-    pub limit_steps: usize,
-    /// Steps whose program was relaxed (infeasible dampers).
-    pub relaxed_steps: usize,
-    /// Why the run stopped, for `failed`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub error: Option<String>,
-}
-
-/// One grid point: the sphere's centre and its outcome in each method.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct SliceCell {
-    /// The sphere's centre.
-    pub centre: Vec3,
-    /// One outcome per method, in the atlas's order.
-    pub outcomes: Vec<SliceOutcome>,
-}
-
 /// A finished slice atlas.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SliceAtlas {
@@ -175,7 +148,20 @@ pub struct SliceAtlas {
     /// The methods, in order.
     pub methods: Vec<Method>,
     /// The cells, row by row (`v` outer, `u` inner).
-    pub cells: Vec<SliceCell>,
+    pub cells: Vec<Cell<3>>,
+}
+
+/// A cell of a slice: `{ centre, outcomes, avoidance_needed }`, the
+/// outcomes in the atlas's order.
+impl Serialize for Cell<3> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let mut st = s.serialize_struct("Cell", 3)?;
+        st.serialize_field("centre", &self.centre)?;
+        st.serialize_field("outcomes", &self.outcomes)?;
+        st.serialize_field("avoidance_needed", &self.avoidance_needed)?;
+        st.end()
+    }
 }
 
 /// The default region on `plane` for `scene`: a square of

@@ -107,7 +107,7 @@ impl MethodSummary {
 }
 
 fn inside(region: [f64; 4], c: &Cell) -> bool {
-    (region[0]..=region[1]).contains(&c.x) && (region[2]..=region[3]).contains(&c.y)
+    (region[0]..=region[1]).contains(&c.centre[0]) && (region[2]..=region[3]).contains(&c.centre[1])
 }
 
 pub(super) fn summarise(
@@ -211,8 +211,8 @@ struct CellJson<'a> {
 impl Serialize for CellJson<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         let mut st = s.serialize_struct("Cell", 4)?;
-        st.serialize_field("x", &self.cell.x)?;
-        st.serialize_field("y", &self.cell.y)?;
+        st.serialize_field("x", &self.cell.centre[0])?;
+        st.serialize_field("y", &self.cell.centre[1])?;
         st.serialize_field("outcomes", &ByMethod(self.methods, &self.cell.outcomes))?;
         st.serialize_field("avoidance_needed", &self.cell.avoidance_needed)?;
         st.end()

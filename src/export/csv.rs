@@ -66,7 +66,7 @@ pub fn atlas_csv(atlas: &Atlas) -> String {
     let num = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:?}"));
     for c in &atlas.cells {
         let needed = c.avoidance_needed.map_or("", |b| if b { "1" } else { "0" });
-        let _ = write!(out, "{:?},{:?},{needed}", c.x, c.y);
+        let _ = write!(out, "{:?},{:?},{needed}", c.centre[0], c.centre[1]);
         for o in &c.outcomes {
             let clearance = o.min_distance.map(|d| d - atlas.radius);
             let _ = write!(

@@ -5,10 +5,8 @@
 
 use std::sync::Arc;
 
-use redundant_ik::atlas::space::{
-    default_region, slice, Plane, SliceAtlas, SliceCell, SliceJob, SliceOutcome,
-};
-use redundant_ik::atlas::{Class, Grid};
+use redundant_ik::atlas::space::{default_region, slice, Plane, SliceAtlas, SliceJob};
+use redundant_ik::atlas::{Cell, Class, Grid, Outcome};
 use redundant_ik::networks::space::{SpaceNetworkSet, SpaceNetworks};
 use redundant_ik::planner::{methods, REACH_TOLERANCE};
 use redundant_ik::planner::{Networks, Planner};
@@ -45,9 +43,14 @@ fn fresh(
             let mut s = scene.clone();
             s.obstacles[0] = sphere;
             let outcomes = methods.iter().map(|&m| run(&s, m, pre, nets)).collect();
-            cells.push(SliceCell {
+            // Whether avoidance matters here: the arm without it collides.
+            let avoidance_needed = pre
+                .is_none()
+                .then(|| run(&s, Method::NO_AVOIDANCE, pre, None).class == Class::Collision);
+            cells.push(Cell {
                 centre: c,
                 outcomes,
+                avoidance_needed,
             });
         }
     }
@@ -66,11 +69,13 @@ fn run(
     m: Method,
     pre: Option<Class>,
     nets: Option<&Arc<SpaceNetworks>>,
-) -> SliceOutcome {
-    let blank = SliceOutcome {
+) -> Outcome {
+    let blank = Outcome {
         class: Class::StartOverlap,
+        min_distance: None,
         min_clearance: None,
         final_error: None,
+        out_of_range_steps: 0,
         limit_steps: 0,
         relaxed_steps: 0,
         error: None,
@@ -79,34 +84,30 @@ fn run(
         return blank;
     }
     let nets = nets.filter(|_| m.uses_networks()).cloned();
-    match Planner::new(s.clone(), m, nets.map(|n| n as Networks<_, 3>))
-        .and_then(Planner::run_to_end)
-    {
-        Ok(run) => {
-            let r = run.summary;
-            let class = pre.unwrap_or(if r.collision_steps > 0 {
-                Class::Collision
-            } else if r.limit_steps > 0 {
-                Class::Limit
-            } else if r.final_error > REACH_TOLERANCE {
-                Class::Missed
-            } else {
-                Class::Success
-            });
-            SliceOutcome {
-                class,
-                min_clearance: r.min_clearance,
-                final_error: Some(r.final_error),
-                limit_steps: r.limit_steps,
-                relaxed_steps: r.relaxed_steps,
-                error: None,
-            }
-        }
-        Err(e) => SliceOutcome {
-            class: pre.unwrap_or(Class::Failed),
-            error: Some(e.to_string()),
-            ..blank
-        },
+    let mut p = Planner::new(s.clone(), m, nets.map(|n| n as Networks<_, 3>)).unwrap();
+    // To the end or to the first error; the summary is the run's so far.
+    let error = p.summary_to_end().err().map(|e| e.to_string());
+    let r = p.summary();
+    let class = pre.unwrap_or(if error.is_some() {
+        Class::Failed
+    } else if r.collision_steps > 0 {
+        Class::Collision
+    } else if r.limit_steps > 0 {
+        Class::Limit
+    } else if r.final_error > REACH_TOLERANCE {
+        Class::Missed
+    } else {
+        Class::Success
+    });
+    Outcome {
+        class,
+        min_distance: r.min_distance,
+        min_clearance: r.min_clearance,
+        final_error: Some(r.final_error),
+        out_of_range_steps: r.out_of_range_steps,
+        limit_steps: r.limit_steps,
+        relaxed_steps: r.relaxed_steps,
+        error,
     }
 }
 
