@@ -155,7 +155,7 @@ fn weights_files_record_their_encoding_and_old_files_read_as_raw() {
     assert_eq!(file.range.names[..2], ["sin theta2", "cos theta2"]);
     let json = file.to_json().unwrap();
     assert!(json.contains("\"encoding\": \"angles\""));
-    assert_eq!(WeightsFile::from_json(&json).unwrap(), file);
+    assert_eq!(<WeightsFile>::from_json(&json).unwrap(), file);
     // The paper's files carry no encoding and read as raw angles.
     let mut raw = Recipe::Paper.spec(&arm, NetKind::V, 1);
     raw.samples = 60;
@@ -165,7 +165,7 @@ fn weights_files_record_their_encoding_and_old_files_read_as_raw() {
     let json = old.to_json().unwrap();
     assert!(!json.contains("encoding"));
     assert_eq!(
-        WeightsFile::from_json(&json).unwrap().encoding,
+        <WeightsFile>::from_json(&json).unwrap().encoding,
         Encoding::Raw
     );
     // A file whose network does not fit its encoding is refused.
@@ -201,7 +201,7 @@ fn the_reach_recipe_trains_phi_by_adam_and_the_file_says_so() {
     let recorded = file.training.adam.expect("the file records Adam's options");
     assert_eq!(recorded.max_epochs, 3);
     let json = file.to_json().unwrap();
-    assert_eq!(WeightsFile::from_json(&json).unwrap(), file);
+    assert_eq!(<WeightsFile>::from_json(&json).unwrap(), file);
     // The same seed gives the same weights through the whole recipe.
     let again = training::train_weights(&small, |_, _| true).unwrap();
     assert_eq!(again.nets[0].mlp, file.nets[0].mlp);

@@ -175,7 +175,7 @@ pub fn run(args: &TrainArgs, net: NetKind) -> Result<(), String> {
         spec.sampling.theta_noise = n;
     }
     spec.sampling.validate().map_err(|e| e.to_string())?;
-    let nets = redundant_ik::networks::file::shape(net, variant, spec.encoding, spec.arm.dof())
+    let nets = redundant_ik::networks::file::shape(net, variant, spec.encoding, spec.arm.dof(), 2)
         .map_err(|e| e.to_string())?
         .0;
 

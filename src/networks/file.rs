@@ -1,9 +1,12 @@
-//! The weights file of the paper's networks: a serde JSON document holding
-//! one trained network family (the `Phi` networks or the `v` network), the
-//! arm, how the networks were trained (including how the samples were
-//! drawn, [`Sampling`], as plain data) and the input range they were
-//! trained on. Schema documented in `docs/networks.md`.
+//! The weights file of the networks of every arm: a serde JSON document
+//! holding one trained network family (the `Phi` networks or the `v`
+//! network), the arm whole (a planar arm, or a chain in space), how the
+//! networks were trained (including how the samples were drawn, as plain
+//! data: [`Sampling`] in the plane, [`crate::networks::space::SpaceSampling`]
+//! in space) and the input range they were trained on; one validator for
+//! both. Schema documented in `docs/networks.md`.
 
+use serde::de::DeserializeOwned;
 use serde::{Deserialize, Deserializer, Serialize};
 
 use crate::arm::Arm;
@@ -13,8 +16,36 @@ use crate::nn::lm::{LmOptions, TrainReport};
 use crate::nn::mlp::Mlp;
 use crate::planner::Method;
 
-/// Value of the `format` field this version reads and writes.
-pub const FORMAT: &str = "redundant-ik-weights/1";
+/// Value of the `format` field this version writes.
+pub const FORMAT: &str = "redundant-ik-weights/2";
+/// The planar files of the version before (the shipped planar sets), whose
+/// layout is this one's: read as they are.
+pub const FORMAT_1: &str = "redundant-ik-weights/1";
+
+/// What a weights file holds of an arm beyond the arm itself.
+pub trait Learned: Serialize + DeserializeOwned + Clone + PartialEq + std::fmt::Debug {
+    /// The coordinates of the hand (the rows of `Phi`'s transpose, the
+    /// obstacle's inputs to `v`).
+    const M: usize;
+    /// How its networks are trained.
+    type Training: Serialize + DeserializeOwned + Clone + PartialEq + std::fmt::Debug;
+    /// The joints.
+    fn joints(&self) -> usize;
+    /// Refused where this arm's networks are not built of `variant` and
+    /// `encoding`.
+    fn check_form(variant: Variant, encoding: Encoding) -> Result<()>;
+}
+
+impl Learned for Arm {
+    const M: usize = 2;
+    type Training = Training;
+    fn joints(&self) -> usize {
+        self.dof()
+    }
+    fn check_form(_: Variant, _: Encoding) -> Result<()> {
+        Ok(())
+    }
+}
 
 /// Which quantity a file's networks compute.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -193,11 +224,12 @@ pub struct NetEntry {
     pub report: TrainReport,
 }
 
-/// A weights file.
+/// A weights file of an arm `A` (the planar arm's by default).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct WeightsFile {
-    /// Always [`FORMAT`].
+#[serde(deny_unknown_fields, bound(serialize = "", deserialize = ""))]
+pub struct WeightsFile<A: Learned = Arm> {
+    /// [`FORMAT`] (or [`FORMAT_1`], the planar files of the version
+    /// before).
     pub format: String,
     /// `phi` or `v`.
     pub net: NetKind,
@@ -210,30 +242,32 @@ pub struct WeightsFile {
     /// `redundant-ik` version that wrote the file.
     pub tool_version: String,
     /// Arm the networks were trained for (checked as it is read).
-    pub arm: Arm,
+    pub arm: A,
     /// Range of network inputs seen in training.
     pub range: InputRange,
     /// How the networks were trained.
-    pub training: Training,
+    pub training: A::Training,
     /// The networks: one, or one per row of `Phi` for the `rows` variant.
     pub nets: Vec<NetEntry>,
 }
 
 /// Network count, inputs and outputs per network for a kind, variant and
-/// encoding on an `n`-link arm.
+/// encoding on an `n`-joint arm whose hand has `m` coordinates (2 in the
+/// plane, 3 in space).
 pub fn shape(
     kind: NetKind,
     variant: Variant,
     encoding: Encoding,
     n: usize,
+    m: usize,
 ) -> Result<(usize, usize, usize)> {
     let angles = |k: usize| encoding.width(k);
     match (kind, variant) {
-        (NetKind::Phi, Variant::Plain) => Ok((1, angles(n), 2 * n)),
-        (NetKind::Phi, Variant::Rows) => Ok((n, angles(n), 2)),
-        (NetKind::Phi, Variant::Equivariant) => Ok((1, angles(n - 1), 2 * n)),
-        (NetKind::V, Variant::Plain) => Ok((1, angles(n) + 2, n)),
-        (NetKind::V, Variant::Equivariant) => Ok((1, angles(n - 1) + 2, n)),
+        (NetKind::Phi, Variant::Plain) => Ok((1, angles(n), m * n)),
+        (NetKind::Phi, Variant::Rows) => Ok((n, angles(n), m)),
+        (NetKind::Phi, Variant::Equivariant) => Ok((1, angles(n - 1), m * n)),
+        (NetKind::V, Variant::Plain) => Ok((1, angles(n) + m, n)),
+        (NetKind::V, Variant::Equivariant) => Ok((1, angles(n - 1) + m, n)),
         (NetKind::V, Variant::Rows) => Err(Error::Weights(
             "variant 'rows' exists only for the phi network".into(),
         )),
@@ -246,7 +280,7 @@ pub fn shape(
 /// cannot hold the page for seconds or its memory.
 pub const MAX_FILE_BYTES: usize = 8 << 20;
 
-impl WeightsFile {
+impl<A: Learned> WeightsFile<A> {
     /// Pretty JSON (f64 values round-trip exactly).
     pub fn to_json(&self) -> Result<String> {
         serde_json::to_string_pretty(self)
@@ -257,14 +291,15 @@ impl WeightsFile {
     /// input/output counts for the kind and variant, every network's shapes
     /// and finiteness, and the range.
     pub fn validate(&self) -> Result<()> {
-        if self.format != FORMAT {
+        if self.format != FORMAT && !(A::M == 2 && self.format == FORMAT_1) {
             return Err(Error::Weights(format!(
                 "format '{}' is not supported (expected '{FORMAT}')",
-                self.format
+                crate::error::clip(&self.format)
             )));
         }
-        let n = self.arm.dof();
-        let (count, n_in, n_out) = shape(self.net, self.variant, self.encoding, n)?;
+        A::check_form(self.variant, self.encoding)?;
+        let n = self.arm.joints();
+        let (count, n_in, n_out) = shape(self.net, self.variant, self.encoding, n, A::M)?;
         let kind = match self.net {
             NetKind::Phi => "phi",
             NetKind::V => "v",
@@ -283,7 +318,7 @@ impl WeightsFile {
                 .map_err(|e| Error::Weights(format!("network {}: {}", i + 1, strip(&e))))?;
             if entry.mlp.inputs() != n_in || entry.mlp.outputs() != n_out {
                 return Err(Error::Weights(format!(
-                    "network {}: {} inputs and {} outputs, but {kind} variant '{}' with {} angles on a {n}-link arm needs {n_in} and {n_out}",
+                    "network {}: {} inputs and {} outputs, but {kind} variant '{}' with {} angles on a {n}-joint arm needs {n_in} and {n_out}",
                     i + 1,
                     entry.mlp.inputs(),
                     entry.mlp.outputs(),

@@ -28,10 +28,11 @@ use crate::planner::Surrogate;
 
 pub use builtin::*;
 pub use file::{
-    Encoding, InputRange, NetEntry, NetKind, Sampling, Training, Variant, WeightsFile,
-    MAX_FILE_BYTES,
+    Encoding, InputRange, Learned, NetEntry, NetKind, Sampling, Training, Variant, WeightsFile,
+    FORMAT, FORMAT_1, MAX_FILE_BYTES,
 };
 pub use inputs::MAX_INPUTS;
+pub use reader::Readable;
 
 /// A `Phi` network family and a `v` network for the same arm.
 #[derive(Debug, Clone, PartialEq)]

@@ -16,8 +16,10 @@
 //! every shipped file with both readers and compares them, so the two
 //! cannot drift apart unseen.
 
-use super::file::{WeightsFile, MAX_FILE_BYTES};
+use super::file::{Learned, WeightsFile, MAX_FILE_BYTES};
+use crate::arm::Arm;
 use crate::error::{Error, Result};
+use crate::space::Chain;
 
 #[cfg(any(
     test,
@@ -36,8 +38,38 @@ pub(crate) mod space;
 #[cfg(test)]
 mod tests;
 
-impl WeightsFile {
-    /// Parses and validates a weights file (at most [`MAX_FILE_BYTES`]).
+/// How a weights file of an arm is read: by serde's derived readers in
+/// the tool, by hand in the page's module (the planar files also in the
+/// workers', which read the spatial ones by hand too).
+pub trait Readable: Learned {
+    /// The file's fields from its text (not yet validated), or why not.
+    fn read(text: &str) -> std::result::Result<WeightsFile<Self>, String>;
+}
+
+impl Readable for Arm {
+    fn read(text: &str) -> std::result::Result<WeightsFile, String> {
+        #[cfg(any(feature = "worker", feature = "cli", feature = "eval"))]
+        return serde_json::from_str::<WeightsFile>(text).map_err(|e| e.to_string());
+        #[cfg(not(any(feature = "worker", feature = "cli", feature = "eval")))]
+        return by_hand::read(text);
+    }
+}
+
+impl Readable for Chain {
+    /// This version's layout, or version 1's
+    /// ([`crate::networks::space::SPACE_FORMAT_1`], turned into this
+    /// version's).
+    fn read(text: &str) -> std::result::Result<WeightsFile<Chain>, String> {
+        #[cfg(feature = "cli")]
+        return derived(text);
+        #[cfg(not(feature = "cli"))]
+        return space::read(text);
+    }
+}
+
+impl<A: Readable> WeightsFile<A> {
+    /// Parses and validates a weights file of an arm `A` (at most
+    /// [`MAX_FILE_BYTES`]).
     pub fn from_json(json: &str) -> Result<Self> {
         if json.len() > MAX_FILE_BYTES {
             return Err(Error::Weights(format!(
@@ -46,33 +78,28 @@ impl WeightsFile {
                 MAX_FILE_BYTES >> 20
             )));
         }
-        #[cfg(any(feature = "worker", feature = "cli", feature = "eval"))]
-        let file = serde_json::from_str::<WeightsFile>(json).map_err(|e| e.to_string());
-        #[cfg(not(any(feature = "worker", feature = "cli", feature = "eval")))]
-        let file = by_hand::read(json);
-        let file = file.map_err(|e| Error::Weights(format!("not a valid weights file: {e}")))?;
+        let file =
+            A::read(json).map_err(|e| Error::Weights(format!("not a valid weights file: {e}")))?;
         file.validate()?;
         Ok(file)
     }
 }
 
-impl crate::networks::space::SpaceWeightsFile {
-    /// A file from its JSON text, checked ([`crate::networks::space::SpaceWeightsFile::validate`]).
-    pub fn from_json(text: &str) -> Result<Self> {
-        if text.len() > MAX_FILE_BYTES {
-            return Err(Error::Weights(format!(
-                "the file has {} bytes, more than the {} a weights file may have",
-                text.len(),
-                MAX_FILE_BYTES
-            )));
-        }
-        // The page's and the workers' modules read it by hand (`networks::reader::space`).
-        #[cfg(feature = "cli")]
-        let file = serde_json::from_str::<Self>(text).map_err(|e| e.to_string());
-        #[cfg(not(feature = "cli"))]
-        let file = space::read(text);
-        let file = file.map_err(|e| Error::Weights(format!("not a spatial weights file: {e}")))?;
-        file.validate()?;
-        Ok(file)
+/// A spatial file by serde's derived readers: version 1's layout where
+/// its `format` says so, else this version's.
+#[cfg(feature = "cli")]
+fn derived(text: &str) -> std::result::Result<WeightsFile<Chain>, String> {
+    use crate::networks::space::{SpaceWeightsFile1, SPACE_FORMAT_1};
+    #[derive(serde::Deserialize)]
+    struct Probe {
+        format: Option<String>,
+    }
+    let probe: Probe = serde_json::from_str(text).map_err(|e| e.to_string())?;
+    if probe.format.as_deref() == Some(SPACE_FORMAT_1) {
+        serde_json::from_str::<SpaceWeightsFile1>(text)
+            .map_err(|e| e.to_string())
+            .and_then(|f| f.into_current().map_err(|e| e.to_string()))
+    } else {
+        serde_json::from_str(text).map_err(|e| e.to_string())
     }
 }

@@ -2,7 +2,8 @@
 //! pseudoinverse of the hand's `3 x n` Jacobian (`n x 3`), and the area
 //! gradient `g(theta, O)` of the criterion generalised to space
 //! ([`crate::space::criterion`], `v = lambda / 4 g`), with their weights
-//! file ([`SpaceWeightsFile`]) and the shipped set for the Panda
+//! file (the one [`WeightsFile`] of every arm, of a chain:
+//! [`SpaceWeightsFile`]) and the shipped set for the Panda
 //! ([`SpaceNetworkSet::PandaReach`]).
 //!
 //! Both networks are rotation-equivariant about the first joint's axis, as
@@ -21,25 +22,53 @@ use std::sync::OnceLock;
 
 use serde::{Deserialize, Serialize};
 
-use super::file::{InputRange, NetEntry, NetKind};
+use super::file::{Encoding, InputRange, Learned, NetEntry, NetKind, Variant, WeightsFile, FORMAT};
 use crate::error::{Error, Result};
 use crate::kinematics::sin_cos;
 use crate::nn::adam::AdamOptions;
 use crate::nn::{Kernel, Precision};
 use crate::space::pose::{cross, dot, sub};
-use crate::space::{Chain, Row, SpacePose, Vec3, MAX_JOINTS};
+use crate::space::{Chain, Row, SpacePose, SpacePreset, Vec3, MAX_JOINTS};
 
-/// The `format` of a spatial weights file.
-pub const SPACE_FORMAT: &str = "redundant-ik-space-weights-1";
+/// The `format` of the spatial weights files of the version before the
+/// one weights file (the shipped Panda set's): read, and turned into
+/// this version's.
+pub const SPACE_FORMAT_1: &str = "redundant-ik-space-weights-1";
 
 /// Most inputs of a spatial network: `2 (n - 1) + 3`.
 const MAX_SPACE_INPUTS: usize = 2 * MAX_JOINTS + 1;
 
-/// A weights file of one spatial network.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// The weights file of one network of an arm in space: the one
+/// [`WeightsFile`] whose arm is a chain (the variant `equivariant`, the
+/// encoding `angles`).
+pub type SpaceWeightsFile = WeightsFile<Chain>;
+
+impl Learned for Chain {
+    const M: usize = 3;
+    type Training = SpaceTraining;
+    fn joints(&self) -> usize {
+        self.dof()
+    }
+    fn check_form(variant: Variant, encoding: Encoding) -> Result<()> {
+        if variant == Variant::Equivariant && encoding == Encoding::Angles {
+            Ok(())
+        } else {
+            Err(Error::Weights(format!(
+                "an arm in space's networks are of the variant 'equivariant' with the encoding 'angles', not '{}' with '{}'",
+                variant.name(),
+                encoding.name()
+            )))
+        }
+    }
+}
+
+/// A spatial weights file of version 1 ([`SPACE_FORMAT_1`]): its preset's
+/// name, rows and flange in place of the chain, the variant and encoding
+/// implied.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct SpaceWeightsFile {
-    /// Always [`SPACE_FORMAT`].
+pub struct SpaceWeightsFile1 {
+    /// Always [`SPACE_FORMAT_1`].
     pub format: String,
     /// `phi` or `v`.
     pub net: NetKind,
@@ -47,7 +76,7 @@ pub struct SpaceWeightsFile {
     pub tool_version: String,
     /// The preset the networks were trained for (`panda`).
     pub arm: String,
-    /// Its rows and flange, so that a file is refused for another geometry.
+    /// Its rows.
     pub rows: Vec<Row>,
     /// The flange offset in the last frame (m).
     pub flange: Vec3,
@@ -57,6 +86,36 @@ pub struct SpaceWeightsFile {
     pub training: SpaceTraining,
     /// The network (one).
     pub nets: Vec<NetEntry>,
+}
+
+impl SpaceWeightsFile1 {
+    /// This version's file: the chain the preset named, with its limits,
+    /// where the rows and flange are the preset's; else the bare chain of
+    /// the rows (refused where they do not make one).
+    pub fn into_current(self) -> Result<SpaceWeightsFile> {
+        if self.format != SPACE_FORMAT_1 {
+            return Err(Error::Weights(format!(
+                "format '{}' is not supported (expected '{FORMAT}' or '{SPACE_FORMAT_1}')",
+                crate::error::clip(&self.format)
+            )));
+        }
+        let bare = Chain::new(self.rows, self.flange, 0.0)?;
+        let arm = SpacePreset::by_key(&self.arm)
+            .map(SpacePreset::chain)
+            .filter(|c| c.same_kinematics(&bare))
+            .unwrap_or(bare);
+        Ok(WeightsFile {
+            format: FORMAT.into(),
+            net: self.net,
+            variant: Variant::Equivariant,
+            encoding: Encoding::Angles,
+            tool_version: self.tool_version,
+            arm,
+            range: self.range,
+            training: self.training,
+            nets: self.nets,
+        })
+    }
 }
 
 /// How a spatial network was trained.
@@ -123,76 +182,6 @@ pub fn space_input_names(kind: NetKind, n: usize) -> Vec<String> {
     names
 }
 
-impl SpaceWeightsFile {
-    /// Whether the file is whole: its format, one network of the shape its
-    /// kind needs for its arm's joints, a range of as many inputs.
-    pub fn validate(&self) -> Result<()> {
-        if self.format != SPACE_FORMAT {
-            return Err(Error::Weights(format!(
-                "format '{}' is not supported (expected '{SPACE_FORMAT}')",
-                self.format
-            )));
-        }
-        let n = self.rows.len();
-        if !(2..=MAX_JOINTS).contains(&n) {
-            return Err(Error::Weights(format!(
-                "the arm has {n} rows; a chain has 2 to {MAX_JOINTS}"
-            )));
-        }
-        let (n_in, n_out) = space_shape(self.net, n);
-        let [entry] = &self.nets[..] else {
-            return Err(Error::Weights(format!(
-                "a spatial file holds one network, this one {}",
-                self.nets.len()
-            )));
-        };
-        entry
-            .mlp
-            .validate()
-            .map_err(|e| Error::Weights(format!("network: {e}")))?;
-        if entry.mlp.inputs() != n_in || entry.mlp.outputs() != n_out {
-            return Err(Error::Weights(format!(
-                "the network has {} inputs and {} outputs; a {} network of a {n}-joint arm needs {n_in} and {n_out}",
-                entry.mlp.inputs(),
-                entry.mlp.outputs(),
-                match self.net {
-                    NetKind::Phi => "Phi",
-                    NetKind::V => "v",
-                }
-            )));
-        }
-        let r = &self.range;
-        if r.min.len() != n_in || r.max.len() != n_in || r.names.len() != n_in {
-            return Err(Error::Weights(format!(
-                "trained range has {} names / {} min / {} max entries, expected {n_in}",
-                r.names.len(),
-                r.min.len(),
-                r.max.len()
-            )));
-        }
-        let geometry = self
-            .rows
-            .iter()
-            .flat_map(|r| [r.a, r.alpha, r.d, r.offset])
-            .chain(self.flange);
-        if geometry
-            .chain(r.min.iter().copied())
-            .chain(r.max.iter().copied())
-            .any(|x| !x.is_finite())
-        {
-            return Err(Error::Weights(
-                "the arm or the range has a non-finite number".into(),
-            ));
-        }
-        Ok(())
-    }
-
-    /// The JSON text, as the shipped files are written.
-    pub fn to_json(&self) -> Result<String> {
-        serde_json::to_string(self).map_err(|e| Error::Weights(e.to_string()))
-    }
-}
-
 /// A `Phi` network and a `v` network for one arm in space, in their
 /// run-time form.
 #[derive(Debug, Clone)]
@@ -213,7 +202,7 @@ impl SpaceNetworks {
                 "expected a Phi file and then a v file".into(),
             ));
         }
-        if phi.arm != v.arm || phi.rows != v.rows || phi.flange != v.flange {
+        if !phi.arm.same_kinematics(&v.arm) {
             return Err(Error::Weights(
                 "the Phi and v files were trained for different arms".into(),
             ));
@@ -269,14 +258,15 @@ impl SpaceNetworks {
         &self.v
     }
 
-    /// Refused unless the networks were trained for `chain`'s geometry.
+    /// Refused unless the networks were trained for `chain`'s kinematics
+    /// (its base, rows and flange; the capsules and limits may differ).
     pub fn check_chain(&self, chain: &Chain) -> Result<()> {
-        if chain.rows() == &self.phi.rows[..] && chain.flange() == self.phi.flange {
+        if chain.same_kinematics(&self.phi.arm) {
             Ok(())
         } else {
             Err(Error::NetworksUnavailable(format!(
                 "the networks were trained for the arm '{}', not for this one",
-                self.phi.arm
+                SpacePreset::of(&self.phi.arm).map_or("of their file", |p| p.key)
             )))
         }
     }
@@ -323,10 +313,10 @@ impl SpaceNetworks {
     }
 
     fn check_dof(&self, n: usize, len: usize, want: usize) -> Result<()> {
-        if n != self.phi.rows.len() || len != want {
+        if n != self.phi.arm.dof() || len != want {
             return Err(Error::DimensionMismatch {
                 what: "pose or output for the spatial networks".into(),
-                expected: self.phi.rows.len(),
+                expected: self.phi.arm.dof(),
                 found: n,
             });
         }

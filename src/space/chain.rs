@@ -214,6 +214,13 @@ impl Chain {
             == (other.base, &other.rows, other.flange, other.radius)
     }
 
+    /// Whether `other` moves as this chain does: the same base, rows and
+    /// flange (what its networks depend on), whatever the capsules and
+    /// limits.
+    pub fn same_kinematics(&self, other: &Chain) -> bool {
+        (self.base, &self.rows, self.flange) == (other.base, &other.rows, other.flange)
+    }
+
     /// Number of joints `n`.
     pub fn dof(&self) -> usize {
         self.rows.len()

@@ -60,7 +60,7 @@ impl SpacePreset {
     /// The preset whose chain `chain` is, whatever its limits, if any (a
     /// run file carries the chain, not the preset's name).
     pub fn of(chain: &Chain) -> Option<&'static SpacePreset> {
-        PRESETS.iter().find(|p| p.chain().same_geometry(chain))
+        PRESETS.iter().find(|p| p.chain().same_kinematics(chain))
     }
 
     /// The preset called `key`, if any.

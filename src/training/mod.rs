@@ -196,7 +196,7 @@ pub fn phi_datasets(
     samples: &[Visited],
 ) -> Result<Vec<Dataset>> {
     let n = arm.dof();
-    let (count, n_in, n_out) = weights::shape(NetKind::Phi, variant, encoding, n)?;
+    let (count, n_in, n_out) = weights::shape(NetKind::Phi, variant, encoding, n, 2)?;
     let mut sets = vec![Dataset::new(n_in, n_out); count];
     let mut buf = [0.0; MAX_INPUTS];
     for s in samples {
@@ -232,7 +232,7 @@ pub fn v_dataset(
     eps: f64,
     samples: &[Visited],
 ) -> Result<Dataset> {
-    let (_, n_in, n_out) = weights::shape(NetKind::V, variant, encoding, arm.dof())?;
+    let (_, n_in, n_out) = weights::shape(NetKind::V, variant, encoding, arm.dof(), 2)?;
     let mut set = Dataset::new(n_in, n_out);
     let mut buf = [0.0; MAX_INPUTS];
     for s in samples {

@@ -15,10 +15,10 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
-use crate::networks::file::{InputRange, NetEntry, NetKind};
+use crate::networks::file::{Encoding, InputRange, NetEntry, NetKind, Variant, FORMAT};
 use crate::networks::space::{
     rotated_obstacle, space_input_names, space_shape, SpaceNetworks, SpaceSampling, SpaceTraining,
-    SpaceWeightsFile, SPACE_FORMAT,
+    SpaceWeightsFile,
 };
 use crate::nn::adam::{self, AdamOptions};
 use crate::nn::lm::{Dataset, EpochReport};
@@ -361,12 +361,12 @@ pub fn train_space(
     sizes.push(set.n_out);
     let (mlp, report) = adam::train(&sizes, &set, spec.adam, spec.seed ^ 0x5EED, |r| on_epoch(r))?;
     let file = SpaceWeightsFile {
-        format: SPACE_FORMAT.into(),
+        format: FORMAT.into(),
         net: spec.net,
+        variant: Variant::Equivariant,
+        encoding: Encoding::Angles,
         tool_version: env!("CARGO_PKG_VERSION").into(),
-        arm: p.key.into(),
-        rows: chain.rows().to_vec(),
-        flange: chain.flange(),
+        arm: chain.clone(),
         range: InputRange {
             names: space_input_names(spec.net, chain.dof()),
             min,

@@ -13,11 +13,11 @@ fn shipped_weights_round_trip_exactly() {
         networks::PHI_EQUIVARIANT_JSON,
         networks::V_PLAIN_JSON,
     ] {
-        let file = WeightsFile::from_json(json).unwrap();
+        let file = <WeightsFile>::from_json(json).unwrap();
         let text = file.to_json().unwrap();
         // The shipped text is exactly what the writer produces (`train` adds a newline).
         assert_eq!(text.trim_end(), json.trim_end());
-        let again = WeightsFile::from_json(&text).unwrap();
+        let again = <WeightsFile>::from_json(&text).unwrap();
         assert_eq!(file, again);
         // Bit-for-bit, not just approximately.
         for (a, b) in file.nets.iter().zip(&again.nets) {
@@ -35,8 +35,8 @@ fn weights_files_that_name_their_sampling_methods_modes_still_load() {
     assert!(json.contains("\"methods\": [") && !json.contains("\"modes\""));
     let old = json.replacen("\"methods\": [", "\"modes\": [", 1);
     let (new, old) = (
-        WeightsFile::from_json(json).unwrap(),
-        WeightsFile::from_json(&old).unwrap(),
+        <WeightsFile>::from_json(json).unwrap(),
+        <WeightsFile>::from_json(&old).unwrap(),
     );
     assert_eq!(old, new);
     assert_eq!(old.to_json().unwrap().trim_end(), json.trim_end());
@@ -58,7 +58,7 @@ fn bad_weights_files_are_rejected_with_a_clear_error() {
     f.nets[0].mlp.layers[0].weights[3] = f64::NAN;
     assert!(matches!(Networks::new(f, v.clone()), Err(Error::Weights(m)) if m.contains("finite")));
     // Wrong input count for the variant: a plain Phi net over 2 inputs.
-    let eq = WeightsFile::from_json(networks::PHI_EQUIVARIANT_JSON).unwrap();
+    let eq = <WeightsFile>::from_json(networks::PHI_EQUIVARIANT_JSON).unwrap();
     let mut f = eq.clone();
     f.variant = Variant::Plain;
     assert!(rejected(&f, &v).contains("inputs"));

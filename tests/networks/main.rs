@@ -24,11 +24,11 @@ use redundant_ik::planner::methods;
 use redundant_ik::{ik, Arm, Error, Method, Planner, Pose, Scene, Surrogate};
 
 fn embedded_v() -> WeightsFile {
-    WeightsFile::from_json(networks::V_PLAIN_JSON).unwrap()
+    <WeightsFile>::from_json(networks::V_PLAIN_JSON).unwrap()
 }
 
 fn embedded_phi() -> WeightsFile {
-    WeightsFile::from_json(networks::PHI_PLAIN_JSON).unwrap()
+    <WeightsFile>::from_json(networks::PHI_PLAIN_JSON).unwrap()
 }
 
 fn rejected(phi: &WeightsFile, v: &WeightsFile) -> String {

@@ -156,8 +156,17 @@ fn bad_files_and_the_wrong_arm_are_refused() {
     file.range.min[0] = f64::NAN;
     assert!(file.validate().is_err());
     let mut file = SpaceWeightsFile::from_json(phi_text).unwrap();
-    file.rows.pop();
+    let rows = file.arm.rows()[..6].to_vec();
+    file.arm = redundant_ik::space::Chain::new(rows, file.arm.flange(), 0.0).unwrap();
     assert!(file.validate().unwrap_err().to_string().contains("inputs"));
+    // An arm in space's networks are equivariant, with angle features.
+    let mut file = SpaceWeightsFile::from_json(phi_text).unwrap();
+    file.variant = redundant_ik::networks::Variant::Plain;
+    assert!(file
+        .validate()
+        .unwrap_err()
+        .to_string()
+        .contains("equivariant"));
     // The Panda's networks on the iiwa: refused by the planner.
     let iiwa = SpaceScene::by_key("iiwa14").unwrap();
     let e = Planner::new(iiwa, methods::CASE3, Some(panda_nets() as Networks<_, 3>))

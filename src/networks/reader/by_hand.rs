@@ -6,7 +6,7 @@
 use crate::arm::{Arm, JointLimits, RateLimits};
 use crate::json::Json;
 use crate::networks::file::{
-    Encoding, InputRange, NetEntry, NetKind, Sampling, Training, WeightsFile,
+    Encoding, InputRange, Learned, NetEntry, NetKind, Sampling, Training, WeightsFile,
 };
 use crate::nn::lm::{LmOptions, StopReason, TrainReport};
 use crate::nn::mlp::{Layer, MapMinMax, Mlp};
@@ -159,7 +159,7 @@ pub(super) fn floats(v: Json) -> Read<Vec<f64>> {
     list(v, float)
 }
 
-fn pair(v: Json) -> Read<[f64; 2]> {
+pub(super) fn pair(v: Json) -> Read<[f64; 2]> {
     let xs = floats(v)?;
     match xs[..] {
         [a, b] => Ok([a, b]),
@@ -324,6 +324,16 @@ pub(super) fn unread_report() -> TrainReport {
 /// A weights file's fields from its JSON text (not yet validated), or why not.
 pub(crate) fn read(json: &str) -> Read<WeightsFile> {
     let tree: Json = serde_json::from_str(json).map_err(|e| e.to_string())?;
+    read_with(tree, arm, training)
+}
+
+/// A weights file's fields from its JSON tree, the arm and the training
+/// read by `arm` and `training` (the planar arm's, or a chain's in space).
+pub(super) fn read_with<A: Learned>(
+    tree: Json,
+    arm: fn(Json) -> Read<A>,
+    training: fn(Json) -> Read<A::Training>,
+) -> Read<WeightsFile<A>> {
     let mut f = Fields::of("WeightsFile", tree)?;
     let file = WeightsFile {
         format: f.required("format", string)?,

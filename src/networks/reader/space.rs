@@ -4,17 +4,22 @@
 //! in space (serde_json's deserializer monomorphised for its structs,
 //! `make web`, docs/web.md); this one takes the fields from the plain JSON
 //! tree the planar reader already parses, with the derived reader's checks
-//! (missing, unknown and repeated fields, types, the kind's name). What
-//! the page does not use, the optimiser's options, takes the default.
+//! (missing, unknown and repeated fields, types, the kind's name): the one
+//! weights file's layout with a chain for its arm, and the files of
+//! version 1 ([`SPACE_FORMAT_1`], the shipped Panda set's). What the page
+//! does not use, the optimiser's options, takes the default.
 
 use super::by_hand::{
-    count, float, floats, list, net_entry, net_kind, nullable, range, string, unsigned, Fields,
-    Read,
+    count, float, floats, list, net_entry, net_kind, nullable, pair, range, read_with, string,
+    unsigned, Fields, Read,
 };
+use crate::arm::{JointLimits, RateLimits};
 use crate::json::Json;
-use crate::networks::space::{SpaceSampling, SpaceTraining, SpaceWeightsFile};
+use crate::networks::space::{
+    SpaceSampling, SpaceTraining, SpaceWeightsFile, SpaceWeightsFile1, SPACE_FORMAT_1,
+};
 use crate::nn::adam::AdamOptions;
-use crate::space::{Row, Vec3};
+use crate::space::{Chain, Row, Vec3};
 
 fn triple(v: Json) -> Read<Vec3> {
     let xs = floats(v)?;
@@ -70,12 +75,59 @@ fn training(v: Json) -> Read<SpaceTraining> {
     })
 }
 
+/// A chain as its JSON holds it (`Chain`'s serde form), checked as it is
+/// built.
+fn chain(v: Json) -> Read<Chain> {
+    let mut f = Fields::of("Chain", v)?;
+    let base = f.required("base", |v| {
+        let [rotation, origin]: [Json; 2] = array(v)?;
+        let [a, b, c]: [Json; 3] = array(rotation)?;
+        Ok(([triple(a)?, triple(b)?, triple(c)?], triple(origin)?))
+    })?;
+    let rows = f.required("rows", |v| list(v, row))?;
+    let flange = f.required("flange", triple)?;
+    let radius = f.required("radius", float)?;
+    let joint_limits = f
+        .optional("joint_limits", |v| nullable(v, |v| list(v, pair)))?
+        .flatten()
+        .map(JointLimits::new)
+        .transpose()
+        .map_err(|e| e.to_string())?;
+    let rate_limits = f
+        .optional("rate_limits", |v| nullable(v, floats))?
+        .flatten()
+        .map(RateLimits::new)
+        .transpose()
+        .map_err(|e| e.to_string())?;
+    f.done()?;
+    Chain::placed(base.0, base.1, rows, flange, radius)
+        .and_then(|c| c.with_limits(joint_limits, rate_limits))
+        .map_err(|e| e.to_string())
+}
+
+/// A JSON array of exactly `N` values.
+fn array<const N: usize>(v: Json) -> Read<[Json; N]> {
+    let Json::Array(items) = v else {
+        return Err(super::by_hand::wrong(&v, &format!("{N} values")));
+    };
+    let found = items.len();
+    items
+        .try_into()
+        .map_err(|_| format!("invalid length {found}, expected {N} values"))
+}
+
 /// A spatial weights file's fields from its JSON text (not yet
-/// validated), or why not.
+/// validated): this version's layout, or version 1's turned into it; or
+/// why not.
 pub(crate) fn read(json: &str) -> Read<SpaceWeightsFile> {
     let tree: Json = serde_json::from_str(json).map_err(|e| e.to_string())?;
+    let version_1 = matches!(&tree, Json::Object(pairs)
+        if pairs.iter().any(|(k, v)| k == "format" && matches!(v, Json::Str(f) if f == SPACE_FORMAT_1)));
+    if !version_1 {
+        return read_with(tree, chain, training);
+    }
     let mut f = Fields::of("SpaceWeightsFile", tree)?;
-    let file = SpaceWeightsFile {
+    let file = SpaceWeightsFile1 {
         format: f.required("format", string)?,
         net: f.required("net", net_kind)?,
         tool_version: f.required("tool_version", string)?,
@@ -87,5 +139,5 @@ pub(crate) fn read(json: &str) -> Read<SpaceWeightsFile> {
         nets: f.required("nets", |v| list(v, net_entry))?,
     };
     f.done()?;
-    Ok(file)
+    file.into_current().map_err(|e| e.to_string())
 }

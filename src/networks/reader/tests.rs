@@ -26,8 +26,8 @@ fn shipped() -> Vec<(String, String)> {
             let text = std::fs::read_to_string(&p).expect("readable");
             (p.display().to_string(), text)
         })
-        // The planar files; the arms in space have their own format.
-        .filter(|(_, text)| text.contains(crate::networks::file::FORMAT))
+        // The planar files (the shipped ones are of version 1).
+        .filter(|(_, text)| text.contains(crate::networks::file::FORMAT_1))
         .collect();
     files.sort();
     assert!(files.len() >= 6, "the shipped weights files");
@@ -174,34 +174,56 @@ fn a_deep_tree_is_refused() {
     assert!(read(&deep).is_err());
 }
 
-/// Every shipped spatial weights file reads to the same file with the
-/// page's reader as with the derived one (the optimiser's options, which
-/// the page does not read, at their defaults).
+/// Every shipped spatial weights file (version 1) reads to the same file
+/// with the page's reader as with the derived one (the optimiser's
+/// options, which the page does not read, at their defaults), and so does
+/// the same file written in this version's layout, the chain whole in it.
 #[cfg(any(feature = "worker", feature = "cli", feature = "eval"))]
 #[test]
 fn the_page_reads_the_spatial_weights_files_as_the_derived_reader_does() {
-    use crate::networks::space::SpaceWeightsFile;
+    use crate::networks::space::{SpaceWeightsFile, SpaceWeightsFile1, SPACE_FORMAT_1};
+    let unread = |mut f: SpaceWeightsFile| {
+        f.training.adam = crate::nn::adam::AdamOptions::default();
+        for net in &mut f.nets {
+            net.report = super::by_hand::unread_report();
+        }
+        f
+    };
     let mut n = 0;
     for entry in std::fs::read_dir("weights").expect("the weights folder") {
         let path = entry.expect("an entry").path();
         let text = std::fs::read_to_string(&path).expect("readable");
-        if !text.contains(crate::networks::space::SPACE_FORMAT) {
+        if !text.contains(SPACE_FORMAT_1) {
             continue;
         }
-        let mut derived: SpaceWeightsFile =
-            serde_json::from_str(&text).expect("the derived reader");
-        derived.training.adam = crate::nn::adam::AdamOptions::default();
-        for net in &mut derived.nets {
-            net.report = super::by_hand::unread_report();
-        }
+        let old: SpaceWeightsFile1 = serde_json::from_str(&text).expect("the derived reader");
+        let derived = old.into_current().expect("a chain");
+        assert_eq!(derived.format, crate::networks::FORMAT);
+        assert!(crate::space::SpacePreset::of(&derived.arm).is_some_and(|p| p.key == "panda"));
         let by_hand = super::space::read(&text).expect("the page's reader");
-        assert_eq!(by_hand, derived, "{}", path.display());
+        assert_eq!(by_hand, unread(derived.clone()), "{}", path.display());
+        // This version's file, written and read back by both readers.
+        let now = derived.to_json().unwrap();
+        let again: SpaceWeightsFile = serde_json::from_str(&now).expect("the derived reader");
+        assert_eq!(again, derived);
+        assert_eq!(super::space::read(&now).unwrap(), unread(derived));
         // A field too many, or one missing, is refused as the derived reader refuses it.
-        let extra = text.replacen('{', "{\"extra\": 1, ", 1);
-        assert!(super::space::read(&extra).is_err());
-        assert!(serde_json::from_str::<SpaceWeightsFile>(&extra).is_err());
-        let missing = text.replacen("\"tool_version\"", "\"tool_versio\"", 1);
-        assert!(super::space::read(&missing).is_err());
+        for text in [&text, &now] {
+            let extra = text.replacen('{', "{\"extra\": 1, ", 1);
+            assert!(super::space::read(&extra).is_err());
+            let missing = text.replacen("\"tool_version\"", "\"tool_versio\"", 1);
+            assert!(super::space::read(&missing).is_err());
+        }
+        assert!(serde_json::from_str::<SpaceWeightsFile1>(&text.replacen(
+            '{',
+            "{\"extra\": 1, ",
+            1
+        ))
+        .is_err());
+        assert!(
+            serde_json::from_str::<SpaceWeightsFile>(&now.replacen('{', "{\"extra\": 1, ", 1))
+                .is_err()
+        );
         n += 1;
     }
     assert_eq!(n, 2, "the Panda's two files");
