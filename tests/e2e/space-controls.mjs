@@ -327,8 +327,9 @@ test('space controls: training in the page gives the iiwa networks for Cases 1-3
   assert.equal((await state(page)).has_networks, false);
   assert.equal(await page.locator('#mode option[value=case3]').isDisabled(), true);
   // A small training (window.demo.train, the recipe's sampling on few samples): installed, Case 3 runs.
-  const trained = await page.evaluate(() => window.demo.train({ samples: 300, epochs: 3 }).then((r) => ({ phi: JSON.parse(r.phi).arm, v: JSON.parse(r.v).arm })));
-  assert.deepEqual(trained, { phi: 'iiwa14', v: 'iiwa14' });
+  const trained = await page.evaluate(() => window.demo.train({ samples: 300, epochs: 3 }).then((r) => [JSON.parse(r.phi), JSON.parse(r.v)].map((f) => ({ format: f.format, variant: f.variant, joints: f.arm.rows.length, d1: f.arm.rows[0].d }))));
+  // The one weights file of every arm, the iiwa's chain whole in it (its first row's d is the iiwa's 0.36 m).
+  assert.deepEqual(trained, [0, 1].map(() => ({ format: 'redundant-ik-weights/2', variant: 'equivariant', joints: 7, d1: 0.36 })));
   await textMatching(page, '#train-status', /Trained in .* Cases 1-3 now use them/);
   // Both networks' curves drew an epoch each (3 epochs each at the most).
   const epochs = Number(await page.getAttribute('#train-curves', 'data-epochs'));
