@@ -69,7 +69,7 @@ pub struct Segment {
 /// modified DH row per joint, the flange in the last frame, the capsules'
 /// radius and the joints' limits.
 ///
-/// Its JSON (a run file's `scene.arm`) is what [`ChainFile`] reads: a
+/// Its JSON (a run file's `scene.arm`) is what `ChainFile` reads: a
 /// file carries the whole robot, and reading it checks it as
 /// [`Chain::placed`] and [`Chain::with_limits`] do.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
