@@ -40,7 +40,7 @@ LAYERS = [
     ["arm"],
     ["kinematics"],
     ["ik", "obstacle", "space"],
-    ["nn", "clearance"],
+    ["nn", "clearance", "urdf"],
     ["scene"],
     ["model"],
     ["planner"],

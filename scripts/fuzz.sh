@@ -19,7 +19,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 export RUSTC_BOOTSTRAP=1
 RUNS=${FUZZ_RUNS:-1000000}
-TARGETS=${FUZZ_TARGETS:-weights scene session atlas trainer}
+TARGETS=${FUZZ_TARGETS:-weights scene session atlas trainer urdf}
 bash scripts/setup-fuzz.sh
 
 sanitizer() {

@@ -213,6 +213,8 @@ pub enum Error {
     Training(String),
     /// A figure that could not be drawn.
     Figure(String),
+    /// A URDF that cannot be read into a chain (what is wrong, and where).
+    Urdf(String),
 }
 
 /// Result alias used throughout the crate.
@@ -354,6 +356,7 @@ impl fmt::Display for Error {
                 trained.0, trained.1, arm.0, arm.1
             ),
             Error::Weights(msg) => write!(f, "bad network weights: {msg}"),
+            Error::Urdf(msg) => write!(f, "URDF: {msg}"),
             Error::NoObstacle => write!(
                 f,
                 "the scene has no obstacle; the atlas moves the first one over the grid"

@@ -33,6 +33,7 @@ pub mod training;
 #[cfg(feature = "eval")]
 pub mod training_job;
 pub mod twin;
+pub mod urdf;
 pub mod view;
 #[cfg(target_family = "wasm")]
 pub mod web;

@@ -69,3 +69,4 @@ target!(scene);
 target!(session);
 target!(atlas);
 target!(trainer);
+target!(urdf);

@@ -34,6 +34,8 @@ mod scene;
 mod session;
 #[path = "targets/trainer.rs"]
 mod trainer;
+#[path = "targets/urdf.rs"]
+mod urdf;
 #[path = "targets/weights.rs"]
 mod weights;
 
@@ -41,4 +43,5 @@ pub use atlas::atlas;
 pub use scene::scene;
 pub use session::session;
 pub use trainer::trainer;
+pub use urdf::urdf;
 pub use weights::weights;

@@ -14,6 +14,7 @@ pub mod eval;
 pub mod figure;
 pub mod params;
 pub mod path_arg;
+pub mod robot;
 pub mod simulate;
 pub mod space;
 pub mod space_networks;
@@ -46,6 +47,9 @@ enum Command {
     Atlas(atlas::AtlasArgs),
     /// Measure theta_dot, RK4 steps, forward passes, an LM epoch, an atlas and allocations per step.
     Bench(bench::BenchArgs),
+    /// Describe a robot's URDF: the chain from its base to its tip, the
+    /// joints' limits, the links' volumes and how each was made.
+    Robot(robot::RobotArgs),
 }
 
 // Each command for every arm: an arm in space (or a spatial run file) goes
@@ -118,6 +122,7 @@ pub fn main() -> i32 {
         Command::Eval(a) => eval_any(a),
         Command::Atlas(a) => atlas_any(a),
         Command::Bench(a) => bench::run(a),
+        Command::Robot(a) => robot::run(a),
     };
     match result {
         Ok(()) => 0,

@@ -64,6 +64,7 @@ mod aliases;
 mod atlas;
 mod outputs;
 mod refusals;
+mod robot;
 mod runs;
 mod simulate;
 mod space;

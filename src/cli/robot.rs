@@ -1,0 +1,203 @@
+//! `redundant-ik robot FILE`: what the core makes of a URDF, before it
+//! runs: the chain from the base to the tip (each moving joint, its kind,
+//! limits and largest rate), the links' volumes and how each was made, and
+//! the warnings (a link without collision geometry, a mesh that cannot be
+//! read). Meshes are read from the file's folder, or `--package-dir` for a
+//! `package://` name.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+use redundant_ik::space::SpacePreset;
+use redundant_ik::urdf::volume::{self, Source, Volume};
+use redundant_ik::urdf::{chain_urdf, JointKind, Urdf, UrdfChain, MAX_URDF_BYTES};
+
+use super::emit;
+
+/// The radius of a link's segment where it has no volume of its own (m).
+pub const DEFAULT_RADIUS: f64 = 0.05;
+
+/// Options of `redundant-ik robot`.
+#[derive(Args, Debug)]
+pub struct RobotArgs {
+    /// The URDF file (plain URDF; a xacro file must be expanded first).
+    #[arg(required_unless_present = "urdf_of")]
+    pub file: Option<PathBuf>,
+    /// Print an arm in space (panda, iiwa14) as URDF instead: its
+    /// modified-DH rows as joints, its capsules as cylinders, its limits
+    /// (what `robots/*.urdf` are).
+    #[arg(long, conflicts_with = "file")]
+    pub urdf_of: Option<String>,
+    /// The chain's base link (default: the tree's root).
+    #[arg(long)]
+    pub base: Option<String>,
+    /// The chain's tip link (default: the one leaf below the base; needed
+    /// where the tree has several).
+    #[arg(long)]
+    pub tip: Option<String>,
+    /// The folder `package://NAME/...` mesh names are read under, as
+    /// `DIR/NAME/...` (default: the URDF's folder, and its parent).
+    #[arg(long)]
+    pub package_dir: Option<PathBuf>,
+    /// Print JSON: `{ chain, volumes, warnings }`.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Reads a URDF file (at most [`MAX_URDF_BYTES`]).
+pub fn read_urdf(path: &Path) -> Result<String, String> {
+    let size = std::fs::metadata(path)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?
+        .len();
+    if size > MAX_URDF_BYTES as u64 {
+        return Err(format!(
+            "{}: {size} bytes, more than the {MAX_URDF_BYTES} a URDF may have",
+            path.display()
+        ));
+    }
+    std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))
+}
+
+/// A mesh file's bytes for its URDF name: `package://NAME/REST` under
+/// `--package-dir` (or the URDF's folder and its parent, as `NAME/REST`
+/// and `REST`), `file://PATH`, or a path relative to the URDF's folder.
+pub fn mesh_reader(urdf: &Path, package_dir: Option<&Path>) -> impl Fn(&str) -> Option<Vec<u8>> {
+    let folder = urdf.parent().map(Path::to_path_buf).unwrap_or_default();
+    let package = package_dir.map(Path::to_path_buf);
+    move |name: &str| {
+        let mut tries: Vec<PathBuf> = Vec::new();
+        if let Some(rest) = name.strip_prefix("package://") {
+            let (pkg, inner) = rest.split_once('/').unwrap_or((rest, ""));
+            if let Some(dir) = &package {
+                tries.push(dir.join(pkg).join(inner));
+            }
+            for dir in [Some(folder.as_path()), folder.parent()]
+                .into_iter()
+                .flatten()
+            {
+                tries.push(dir.join(pkg).join(inner));
+                tries.push(dir.join(inner));
+            }
+        } else if let Some(path) = name.strip_prefix("file://") {
+            tries.push(PathBuf::from(path));
+        } else {
+            tries.push(folder.join(name));
+        }
+        tries.iter().find_map(|p| {
+            let size = std::fs::metadata(p).ok()?.len();
+            (size <= redundant_ik::urdf::stl::MAX_STL_BYTES as u64)
+                .then(|| std::fs::read(p).ok())
+                .flatten()
+        })
+    }
+}
+
+/// The URDF of the arm in space `key`, as `robots/KEY.urdf` holds it.
+pub fn preset_urdf(key: &str) -> Result<String, String> {
+    let p = SpacePreset::by_key(key).ok_or_else(|| {
+        let keys: Vec<&str> = redundant_ik::space::PRESETS.iter().map(|p| p.key).collect();
+        format!(
+            "--urdf-of: no arm in space is called '{key}' ({})",
+            keys.join(", ")
+        )
+    })?;
+    let comment = format!(
+        "{}: written from the preset's modified-DH rows, limits and capsules (src/space/preset.rs) by redundant-ik's robot command, its urdf-of option. Numbers: {}.",
+        p.label, p.source
+    );
+    Ok(chain_urdf(p.key, &comment, &p.chain()))
+}
+
+/// Runs `redundant-ik robot`.
+pub fn run(args: &RobotArgs) -> Result<(), String> {
+    if let Some(key) = &args.urdf_of {
+        return emit(&preset_urdf(key)?);
+    }
+    let Some(file) = &args.file else {
+        return Err("robot: give a URDF file, or --urdf-of PRESET".into());
+    };
+    let text = read_urdf(file)?;
+    let at = |e: redundant_ik::Error| format!("{}: {e}", file.display());
+    let urdf = Urdf::parse(&text).map_err(at)?;
+    let chain = UrdfChain::new(&urdf, args.base.as_deref(), args.tip.as_deref()).map_err(at)?;
+    let mesh = mesh_reader(file, args.package_dir.as_deref());
+    let (volumes, warnings) = volume::volumes(&urdf, &chain, &mesh, DEFAULT_RADIUS);
+    if args.json {
+        #[derive(serde::Serialize)]
+        struct Out<'a> {
+            chain: &'a UrdfChain,
+            volumes: &'a [Volume],
+            warnings: &'a [String],
+        }
+        let json = serde_json::to_string(&Out {
+            chain: &chain,
+            volumes: &volumes,
+            warnings: &warnings,
+        })
+        .map_err(|e| e.to_string())?;
+        return emit(&format!("{json}\n"));
+    }
+    emit(&describe(&chain, &volumes, &warnings))
+}
+
+/// The chain, its volumes and the warnings as text.
+fn describe(chain: &UrdfChain, volumes: &[Volume], warnings: &[String]) -> String {
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "robot '{}': {} moving joints from '{}' to '{}'",
+        chain.robot,
+        chain.dof(),
+        chain.base,
+        chain.tip
+    );
+    for (k, j) in chain.joints.iter().enumerate() {
+        let unit = match j.kind {
+            JointKind::Revolute => ("rad", "rad/s"),
+            JointKind::Prismatic => ("m", "m/s"),
+        };
+        let range = j.limits.map_or("no limits".to_string(), |[lo, hi]| {
+            format!("{lo} to {hi} {}", unit.0)
+        });
+        let rate = j
+            .velocity
+            .map_or(String::new(), |v| format!(", at most {v} {}", unit.1));
+        let [x, y, z] = j.axis;
+        let _ = writeln!(
+            out,
+            "  {:>2} {:<24} {:<9} axis ({x}, {y}, {z})  {range}{rate}",
+            k + 1,
+            j.name,
+            match j.kind {
+                JointKind::Revolute => "revolute",
+                JointKind::Prismatic => "prismatic",
+            }
+        );
+    }
+    let _ = writeln!(out, "{} volumes:", volumes.len());
+    for v in volumes {
+        let how = match &v.source {
+            Source::Sphere => "sphere".to_string(),
+            Source::Cylinder => "capsule around a cylinder".to_string(),
+            Source::Box => "capsule around a box".to_string(),
+            Source::Mesh(f) => format!("capsule around the mesh {f}"),
+            Source::Segment => "segment to the next joint".to_string(),
+        };
+        let _ = writeln!(
+            out,
+            "  {:<24} moved by joint {:<2} radius {:.4} m, length {:.4} m: {how}",
+            v.link,
+            v.moved_by,
+            v.radius,
+            (0..3)
+                .map(|k| (v.b[k] - v.a[k]).powi(2))
+                .sum::<f64>()
+                .sqrt()
+        );
+    }
+    for w in warnings {
+        let _ = writeln!(out, "warning: {w}");
+    }
+    out
+}
