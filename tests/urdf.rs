@@ -424,3 +424,52 @@ fn the_arms_in_space_written_as_urdf_read_back_to_the_same_chain() {
         );
     }
 }
+
+/// Every shipped URDF (and the hand-written arm, with its prismatic joint,
+/// fixed joints, tilted axis and continuous wrist) against an independent
+/// implementation: Pinocchio's frames of every moving joint and of the
+/// tip at 10 random poses each, recorded by
+/// `scripts/check-urdf-pinocchio.py` in `tests/data/urdf/pinocchio.json`,
+/// agree with the reader's chain to 1e-9 m and 1e-9.
+#[test]
+fn every_shipped_urdf_has_pinocchios_frames() {
+    let text = std::fs::read_to_string(format!("{DIR}/pinocchio.json")).unwrap();
+    let data: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let mut files = 0;
+    let mut worst: f64 = 0.0;
+    for f in data["files"].as_array().unwrap() {
+        let path = format!(
+            "{}/{}",
+            env!("CARGO_MANIFEST_DIR"),
+            f["file"].as_str().unwrap()
+        );
+        let urdf = Urdf::parse(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let chain = UrdfChain::new(&urdf, None, f["tip"].as_str()).unwrap();
+        for run in f["runs"].as_array().unwrap() {
+            let q: Vec<f64> = serde_json::from_value(run["q"].clone()).unwrap();
+            let frames = chain.frames(&q).unwrap();
+            let theirs = run["joints"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .chain(std::iter::once(&run["tip"]));
+            for (ours, theirs) in frames.iter().zip(theirs) {
+                let t: [f64; 3] = serde_json::from_value(theirs["translation"].clone()).unwrap();
+                let r: [[f64; 3]; 3] = serde_json::from_value(theirs["rotation"].clone()).unwrap();
+                for k in 0..3 {
+                    worst = worst.max((ours.translation[k] - t[k]).abs());
+                    for c in 0..3 {
+                        worst = worst.max((ours.rotation[k][c] - r[k][c]).abs());
+                    }
+                }
+            }
+            assert_eq!(frames.len(), chain.dof() + 1);
+        }
+        files += 1;
+    }
+    assert_eq!(
+        files, 4,
+        "the three shipped robots and the hand-written arm"
+    );
+    assert!(worst < 1e-9, "{worst:e}");
+}

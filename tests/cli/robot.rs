@@ -63,6 +63,16 @@ fn the_arms_in_space_print_as_the_shipped_urdf_files() {
         assert!(!described.contains("warning"), "{described}");
     }
     refused(&["robot", "--urdf-of", "ur5"], "panda");
+    // Another maker's arm, written by hand from its published DH table.
+    let ur = ok(&[
+        "robot",
+        concat!(env!("CARGO_MANIFEST_DIR"), "/robots/ur5e.urdf"),
+    ]);
+    assert!(
+        ur.starts_with("robot 'ur5e': 6 moving joints from 'base_link' to 'flange'"),
+        "{ur}"
+    );
+    assert!(!ur.contains("warning"), "{ur}");
 }
 
 #[test]
