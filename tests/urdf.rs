@@ -456,11 +456,13 @@ fn every_shipped_urdf_has_pinocchios_frames() {
             for (ours, theirs) in frames.iter().zip(theirs) {
                 let t: [f64; 3] = serde_json::from_value(theirs["translation"].clone()).unwrap();
                 let r: [[f64; 3]; 3] = serde_json::from_value(theirs["rotation"].clone()).unwrap();
-                for k in 0..3 {
-                    worst = worst.max((ours.translation[k] - t[k]).abs());
-                    for c in 0..3 {
-                        worst = worst.max((ours.rotation[k][c] - r[k][c]).abs());
-                    }
+                let ours_all = ours
+                    .translation
+                    .iter()
+                    .chain(ours.rotation.iter().flatten());
+                let theirs_all = t.iter().chain(r.iter().flatten());
+                for (a, b) in ours_all.zip(theirs_all) {
+                    worst = worst.max((a - b).abs());
                 }
             }
             assert_eq!(frames.len(), chain.dof() + 1);

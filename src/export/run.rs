@@ -258,7 +258,8 @@ fn unknown_format(format: Option<&str>) -> String {
 }
 
 /// What a reader first needs of a run file: its version and which kind
-/// of arm it holds (a chain's JSON has `rows`).
+/// of arm it holds (a chain's JSON has `rows`, or `joints` where it was
+/// read from URDF).
 #[derive(Deserialize)]
 struct Probe {
     #[serde(default)]
@@ -277,6 +278,8 @@ struct SceneProbe {
 struct ArmProbe {
     #[serde(default)]
     rows: Option<serde::de::IgnoredAny>,
+    #[serde(default)]
+    joints: Option<serde::de::IgnoredAny>,
 }
 
 impl Probe {
@@ -287,7 +290,7 @@ impl Probe {
             return Some(true);
         }
         let arm = self.scene.as_ref().and_then(|s| s.arm.as_ref());
-        arm.map(|a| a.rows.is_some())
+        arm.map(|a| a.rows.is_some() || a.joints.is_some())
     }
 }
 

@@ -175,7 +175,7 @@ impl Planned<3> for Chain {
             }
             for (j, sp) in scene.obstacles.iter().enumerate() {
                 let pair = CapsulePair::at(chain, pose, k, j, sp);
-                let axis = pair.distance + chain.radius() + sp.radius;
+                let axis = pair.distance + s.radius + sp.radius;
                 c.distance = Some(c.distance.map_or(axis, |m| m.min(axis)));
                 c.clearance = Some(c.clearance.map_or(pair.distance, |m| m.min(pair.distance)));
             }

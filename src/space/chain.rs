@@ -52,16 +52,56 @@ impl Row {
     }
 }
 
-/// A segment of the chain's volume: from one distinct frame origin to the
-/// next, moved by joints `1..=moved_by` (none for the base).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+/// A segment of the chain's volume, moved by joints `1..=moved_by` (none
+/// for the base): for a chain of modified-DH rows, from one distinct frame
+/// origin to the next; for a chain of joint frames (a URDF's), a link's
+/// capsule (a sphere where its ends meet) fixed in joint `moved_by`'s
+/// frame.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Segment {
     /// The index of its start among the pose's points (see
-    /// [`super::SpacePose::points`]).
+    /// [`super::SpacePose::points`]); 0 where `local` gives the ends.
     pub from: usize,
     /// The index of its end.
     pub to: usize,
     /// How many joints, from the first, move it (0: the fixed base).
+    pub moved_by: usize,
+    /// Its ends in joint `moved_by`'s frame (the base's for 0), where they
+    /// are not frame origins.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub local: Option<(Vec3, Vec3)>,
+    /// The capsule's radius (m).
+    pub radius: f64,
+}
+
+/// A 3-vector.
+type Vec3 = [f64; 3];
+
+/// A joint of a chain read from URDF: its frame at zero in the previous
+/// joint's frame (the base's for the first), its axis that frame's `z`
+/// (the reader turns each URDF joint so): frame `i = frame (i-1) F_i
+/// Rz(theta_i)`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct JointFrame {
+    /// `F_i`'s rotation, by rows.
+    pub rotation: [[f64; 3]; 3],
+    /// `F_i`'s translation (m).
+    pub translation: Vec3,
+}
+
+/// A link's capsule in the frame of the joint that moves it, for a chain
+/// read from URDF: a sphere where its ends meet.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LinkVolume {
+    /// One end, in joint `moved_by`'s frame (the base's for 0) (m).
+    pub a: Vec3,
+    /// The other end (m).
+    pub b: Vec3,
+    /// The radius (m).
+    pub radius: f64,
+    /// How many joints move it (0: the fixed base).
     pub moved_by: usize,
 }
 
@@ -77,11 +117,21 @@ pub struct Segment {
 pub struct Chain {
     /// The base frame in the world: a rotation (rows) and a translation.
     base: ([[f64; 3]; 3], [f64; 3]),
+    /// The modified-DH rows (none for a chain of joint frames).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
     rows: Vec<Row>,
+    /// The joint frames of a chain read from URDF (none for rows).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    joints: Vec<JointFrame>,
     /// The flange in the last joint's frame (m).
     flange: [f64; 3],
-    /// The capsules' radius (m).
+    /// The capsules' radius (m): of every capsule of a chain of rows, the
+    /// largest of a chain of joint frames.
     radius: f64,
+    /// The links' capsules of a chain of joint frames (none for rows,
+    /// whose capsules lie between the frames' origins).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    volumes: Vec<LinkVolume>,
     #[serde(skip_serializing_if = "Option::is_none")]
     joint_limits: Option<JointLimits>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -100,9 +150,14 @@ pub struct Chain {
 #[serde(deny_unknown_fields)]
 pub struct ChainFile {
     base: ([[f64; 3]; 3], [f64; 3]),
+    #[serde(default)]
     rows: Vec<Row>,
+    #[serde(default)]
+    joints: Vec<JointFrame>,
     flange: [f64; 3],
     radius: f64,
+    #[serde(default)]
+    volumes: Vec<LinkVolume>,
     #[serde(default)]
     joint_limits: Option<JointLimits>,
     #[serde(default)]
@@ -113,8 +168,25 @@ impl TryFrom<ChainFile> for Chain {
     type Error = Error;
     fn try_from(f: ChainFile) -> Result<Self> {
         let (rotation, origin) = f.base;
-        Chain::placed(rotation, origin, f.rows, f.flange, f.radius)?
-            .with_limits(f.joint_limits, f.rate_limits)
+        let chain = if f.joints.is_empty() {
+            if !f.volumes.is_empty() {
+                return Err(Error::Syntax {
+                    what: "chain",
+                    text: "volumes".into(),
+                    expected: "a chain of modified-DH rows has no volumes of its own".into(),
+                });
+            }
+            Chain::placed(rotation, origin, f.rows, f.flange, f.radius)?
+        } else if f.rows.is_empty() {
+            Chain::of_joints(rotation, origin, f.joints, f.flange, f.volumes)?
+        } else {
+            return Err(Error::Syntax {
+                what: "chain",
+                text: "rows and joints".into(),
+                expected: "either modified-DH rows or joint frames".into(),
+            });
+        };
+        chain.with_limits(f.joint_limits, f.rate_limits)
     }
 }
 
@@ -159,7 +231,7 @@ impl Chain {
         non_negative("capsule radius", radius)?;
         coordinate("capsule radius", radius)?;
         check_rotation(&rotation)?;
-        let segments = segments(&rows, flange);
+        let segments = segments(&rows, flange, radius);
         let twists = rows
             .iter()
             .map(|r| crate::kinematics::sin_cos(r.alpha))
@@ -168,12 +240,91 @@ impl Chain {
             twists,
             base: (rotation, origin),
             rows,
+            joints: Vec::new(),
             flange,
             radius,
+            volumes: Vec::new(),
             joint_limits: None,
             rate_limits: None,
             segments,
         })
+    }
+
+    /// A chain of joint frames (a URDF's, [`crate::urdf`]): each joint
+    /// turns about the `z` of its frame, `frame (i-1) F_i Rz(theta_i)`; the
+    /// links' capsules fixed in their joints' frames. Refused for too few
+    /// or too many joints, a rotation that is not one, a number that is
+    /// not finite, a capsule moved by a joint the chain lacks or of a
+    /// negative radius.
+    pub fn of_joints(
+        rotation: [[f64; 3]; 3],
+        origin: [f64; 3],
+        joints: Vec<JointFrame>,
+        flange: [f64; 3],
+        volumes: Vec<LinkVolume>,
+    ) -> Result<Self> {
+        if !(MIN_JOINTS..=MAX_JOINTS).contains(&joints.len()) {
+            return Err(Error::LinkCount {
+                found: joints.len(),
+                min: MIN_JOINTS,
+                max: MAX_JOINTS,
+            });
+        }
+        check_rotation(&rotation)?;
+        for (&o, axis) in origin.iter().zip(["x", "y", "z"]) {
+            coordinate(&format!("base {axis}"), o)?;
+        }
+        for (i, j) in joints.iter().enumerate() {
+            check_rotation(&j.rotation)?;
+            for (&t, axis) in j.translation.iter().zip(["x", "y", "z"]) {
+                coordinate(&format!("joint {} origin {axis}", i + 1), t)?;
+            }
+        }
+        for (&f, axis) in flange.iter().zip(["x", "y", "z"]) {
+            coordinate(&format!("flange {axis}"), f)?;
+        }
+        let mut radius: f64 = 0.0;
+        let mut segments = Vec::with_capacity(volumes.len());
+        for v in &volumes {
+            if v.moved_by > joints.len() {
+                return Err(Error::OutOfRange {
+                    what: "joint moving a link volume".into(),
+                    value: v.moved_by as f64,
+                    min: 0.0,
+                    max: joints.len() as f64,
+                });
+            }
+            for &x in v.a.iter().chain(&v.b) {
+                coordinate("link volume end", x)?;
+            }
+            non_negative("link volume radius", v.radius)?;
+            coordinate("link volume radius", v.radius)?;
+            radius = radius.max(v.radius);
+            segments.push(Segment {
+                from: 0,
+                to: 0,
+                moved_by: v.moved_by,
+                local: Some((v.a, v.b)),
+                radius: v.radius,
+            });
+        }
+        Ok(Self {
+            twists: Vec::new(),
+            base: (rotation, origin),
+            rows: Vec::new(),
+            joints,
+            flange,
+            radius,
+            volumes,
+            joint_limits: None,
+            rate_limits: None,
+            segments,
+        })
+    }
+
+    /// The joint frames of a chain read from URDF (none for rows).
+    pub fn joint_frames(&self) -> &[JointFrame] {
+        &self.joints
     }
 
     /// The chain with these limits (each `None` for unlimited); refused
@@ -210,20 +361,21 @@ impl Chain {
     /// Whether `other` is this chain, whatever the limits of either: the
     /// same base, rows, flange and radius.
     pub fn same_geometry(&self, other: &Chain) -> bool {
-        (self.base, &self.rows, self.flange, self.radius)
-            == (other.base, &other.rows, other.flange, other.radius)
+        self.same_kinematics(other)
+            && (self.radius, &self.volumes) == (other.radius, &other.volumes)
     }
 
     /// Whether `other` moves as this chain does: the same base, rows and
     /// flange (what its networks depend on), whatever the capsules and
     /// limits.
     pub fn same_kinematics(&self, other: &Chain) -> bool {
-        (self.base, &self.rows, self.flange) == (other.base, &other.rows, other.flange)
+        (self.base, &self.rows, &self.joints, self.flange)
+            == (other.base, &other.rows, &other.joints, other.flange)
     }
 
     /// Number of joints `n`.
     pub fn dof(&self) -> usize {
-        self.rows.len()
+        self.rows.len() + self.joints.len()
     }
 
     /// The modified DH rows, joint 1 first.
@@ -288,6 +440,15 @@ impl Chain {
     /// An upper bound of the hand's distance from the first joint's
     /// origin: the sum of the rows' and the flange's lengths.
     pub fn reach(&self) -> f64 {
+        if !self.joints.is_empty() {
+            return self
+                .joints
+                .iter()
+                .skip(1)
+                .map(|j| norm(j.translation))
+                .sum::<f64>()
+                + norm(self.flange);
+        }
         self.rows
             .iter()
             .skip(1)
@@ -332,7 +493,7 @@ fn check_rotation(r: &[[f64; 3]; 3]) -> Result<()> {
 /// `i - 1`'s by `a_(i-1)` along `x_(i-1)` and `d_i` along `z_i`; both zero,
 /// the origins coincide in every pose. The base's origin and frame 1's
 /// coincide when row 1 has neither.
-fn segments(rows: &[Row], flange: [f64; 3]) -> Vec<Segment> {
+fn segments(rows: &[Row], flange: [f64; 3], radius: f64) -> Vec<Segment> {
     let n = rows.len();
     let mut out = Vec::new();
     let mut from = 0;
@@ -343,6 +504,8 @@ fn segments(rows: &[Row], flange: [f64; 3]) -> Vec<Segment> {
                 from,
                 to: i + 1,
                 moved_by: i,
+                local: None,
+                radius,
             });
             from = i + 1;
         }
@@ -352,6 +515,8 @@ fn segments(rows: &[Row], flange: [f64; 3]) -> Vec<Segment> {
             from,
             to: n + 1,
             moved_by: n,
+            local: None,
+            radius,
         });
     }
     out

@@ -18,7 +18,7 @@ pub(crate) mod pose;
 mod preset;
 mod sphere;
 
-pub use chain::{Chain, Row, Segment, IDENTITY, MAX_JOINTS, MIN_JOINTS};
+pub use chain::{Chain, JointFrame, LinkVolume, Row, Segment, IDENTITY, MAX_JOINTS, MIN_JOINTS};
 pub use pairs::{Obstruction, SpacePair, SpacePairs};
 pub(crate) use pose::{add, cross, dot, norm, scale, sub};
 pub use pose::{SpacePose, Vec3};

@@ -64,7 +64,7 @@ impl SpacePair {
         Self {
             segment,
             against: Obstruction::Floor,
-            distance: q[2] - chain.radius(),
+            distance: q[2] - s.radius,
             point: q,
             normal: [0.0, 0.0, 1.0],
             moved_by: s.moved_by,

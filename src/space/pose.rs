@@ -29,6 +29,9 @@ pub struct SpacePose {
     /// damping schedule's smallest singular value and the manipulability
     /// all read it).
     jjt: [[f64; 3]; 3],
+    /// The base's axes as columns (the frame of the capsules no joint
+    /// moves, for a chain of joint frames).
+    base: [Vec3; 3],
 }
 
 impl SpacePose {
@@ -49,6 +52,7 @@ impl SpacePose {
             points: vec![[0.0; 3]; n + 2],
             jac: vec![0.0; 3 * n],
             jjt: [[0.0; 3]; 3],
+            base: [[0.0; 3]; 3],
         }
     }
 
@@ -73,7 +77,8 @@ impl SpacePose {
     }
 
     /// The one pass: frame `i = frame (i-1) Rx(alpha) Tx(a) Rz(theta_i +
-    /// offset) Tz(d)`, the flange, then the Jacobian's columns.
+    /// offset) Tz(d)` for a chain of rows, `frame (i-1) F_i Rz(theta_i)`
+    /// for one of joint frames; the flange, then the Jacobian's columns.
     fn fill(&mut self, chain: &Chain, theta: &[f64]) {
         let n = self.theta.len();
         self.theta.copy_from_slice(&theta[..n]);
@@ -84,6 +89,7 @@ impl SpacePose {
             [rot[0][1], rot[1][1], rot[2][1]],
             [rot[0][2], rot[1][2], rot[2][2]],
         ];
+        self.base = axes;
         let mut o = origin;
         self.points[0] = o;
         for (i, (row, &(sa, ca))) in chain.rows().iter().zip(chain.twists()).enumerate() {
@@ -99,6 +105,25 @@ impl SpacePose {
             axes = [xi, yi, z];
             // Tz(d) along the new z.
             o = add(o, scale(z, row.d));
+            self.frames[i] = axes;
+            self.points[i + 1] = o;
+        }
+        for (i, j) in chain.joint_frames().iter().enumerate() {
+            // F_i: its translation along the previous axes, its rotation's
+            // columns in them; then Rz(theta).
+            o = add(o, in_frame(&axes, j.translation));
+            let [x, y, z]: [Vec3; 3] = std::array::from_fn(|c| {
+                in_frame(
+                    &axes,
+                    [j.rotation[0][c], j.rotation[1][c], j.rotation[2][c]],
+                )
+            });
+            let (st, ct) = sin_cos(self.theta[i]);
+            axes = [
+                add(scale(x, ct), scale(y, st)),
+                add(scale(x, -st), scale(y, ct)),
+                z,
+            ];
             self.frames[i] = axes;
             self.points[i + 1] = o;
         }
@@ -175,10 +200,21 @@ impl SpacePose {
         &self.jac
     }
 
-    /// A segment's ends.
+    /// A segment's ends in the world.
     #[inline]
     pub fn segment(&self, s: &Segment) -> (Vec3, Vec3) {
-        (self.points[s.from], self.points[s.to])
+        match s.local {
+            None => (self.points[s.from], self.points[s.to]),
+            Some((a, b)) => {
+                let k = s.moved_by;
+                let (axes, o) = if k == 0 {
+                    (&self.base, self.points[0])
+                } else {
+                    (&self.frames[k - 1], self.points[k])
+                };
+                (add(o, in_frame(axes, a)), add(o, in_frame(axes, b)))
+            }
+        }
     }
 
     /// The Jacobian of a point `p` carried by the first `moved_by` joints
@@ -215,6 +251,16 @@ impl SpacePose {
     pub fn jjt(&self) -> [[f64; 3]; 3] {
         self.jjt
     }
+}
+
+/// The vector `v` of a frame whose axes are `axes` (columns), in the
+/// world: `x v_0 + y v_1 + z v_2`.
+#[inline]
+fn in_frame(axes: &[Vec3; 3], v: Vec3) -> Vec3 {
+    add(
+        add(scale(axes[0], v[0]), scale(axes[1], v[1])),
+        scale(axes[2], v[2]),
+    )
 }
 
 #[inline]

@@ -77,7 +77,7 @@ impl Ball<3> {
         coordinate("sphere radius", self.radius)?;
         for s in chain.segments().iter().filter(|s| s.moved_by == 0) {
             let (a, b) = pose.segment(s);
-            if closest(self.centre, a, b).1 <= self.radius + chain.radius() {
+            if closest(self.centre, a, b).1 <= self.radius + s.radius {
                 return Err(Error::SphereOnBase {
                     centre: self.centre,
                     radius: self.radius,
@@ -172,7 +172,7 @@ impl CapsulePair {
         Self {
             segment,
             sphere: index,
-            distance: d - chain.radius() - sphere.radius,
+            distance: d - s.radius - sphere.radius,
             point: q,
             normal,
             moved_by: s.moved_by,

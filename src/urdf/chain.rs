@@ -39,6 +39,8 @@ pub struct ChainJoint {
     pub limits: Option<[f64; 2]>,
     /// Its largest rate (rad/s or m/s), where the file gives one.
     pub velocity: Option<f64>,
+    /// Whether the URDF calls it `continuous` (it turns without limits).
+    pub continuous: bool,
 }
 
 /// A link the chain carries, and where.
@@ -201,6 +203,7 @@ impl UrdfChain {
                 axis: j.axis,
                 limits,
                 velocity: limit.velocity.filter(|&v| v > 0.0),
+                continuous: j.kind == JointType::Continuous,
             });
             if joints.len() > MAX_CHAIN_JOINTS {
                 return Err(refuse(format!(

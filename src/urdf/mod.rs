@@ -20,6 +20,7 @@
 
 mod chain;
 mod frame;
+mod model;
 mod parse;
 pub mod stl;
 pub mod volume;

@@ -19,7 +19,7 @@ use crate::networks::space::{
     SpaceSampling, SpaceTraining, SpaceWeightsFile, SpaceWeightsFile1, SPACE_FORMAT_1,
 };
 use crate::nn::adam::AdamOptions;
-use crate::space::{Chain, Row, Vec3};
+use crate::space::{Chain, JointFrame, LinkVolume, Row, Vec3};
 
 fn triple(v: Json) -> Read<Vec3> {
     let xs = floats(v)?;
@@ -84,9 +84,15 @@ fn chain(v: Json) -> Read<Chain> {
         let [a, b, c]: [Json; 3] = array(rotation)?;
         Ok(([triple(a)?, triple(b)?, triple(c)?], triple(origin)?))
     })?;
-    let rows = f.required("rows", |v| list(v, row))?;
+    let rows = f.optional("rows", |v| list(v, row))?.unwrap_or_default();
+    let joints = f
+        .optional("joints", |v| list(v, joint))?
+        .unwrap_or_default();
     let flange = f.required("flange", triple)?;
     let radius = f.required("radius", float)?;
+    let volumes = f
+        .optional("volumes", |v| list(v, link_volume))?
+        .unwrap_or_default();
     let joint_limits = f
         .optional("joint_limits", |v| nullable(v, |v| list(v, pair)))?
         .flatten()
@@ -100,9 +106,44 @@ fn chain(v: Json) -> Read<Chain> {
         .transpose()
         .map_err(|e| e.to_string())?;
     f.done()?;
-    Chain::placed(base.0, base.1, rows, flange, radius)
+    let chain = match (rows.is_empty(), joints.is_empty(), volumes.is_empty()) {
+        (false, true, true) => Chain::placed(base.0, base.1, rows, flange, radius),
+        (true, false, _) => Chain::of_joints(base.0, base.1, joints, flange, volumes),
+        _ => {
+            return Err("a chain has either modified-DH rows or joint frames (with volumes)".into())
+        }
+    };
+    chain
         .and_then(|c| c.with_limits(joint_limits, rate_limits))
         .map_err(|e| e.to_string())
+}
+
+/// A joint frame of a chain read from URDF.
+fn joint(v: Json) -> Read<JointFrame> {
+    let mut f = Fields::of("JointFrame", v)?;
+    let rotation = f.required("rotation", |v| {
+        let [a, b, c]: [Json; 3] = array(v)?;
+        Ok([triple(a)?, triple(b)?, triple(c)?])
+    })?;
+    let translation = f.required("translation", triple)?;
+    f.done()?;
+    Ok(JointFrame {
+        rotation,
+        translation,
+    })
+}
+
+/// A link's capsule of a chain read from URDF.
+fn link_volume(v: Json) -> Read<LinkVolume> {
+    let mut f = Fields::of("LinkVolume", v)?;
+    let volume = LinkVolume {
+        a: f.required("a", triple)?,
+        b: f.required("b", triple)?,
+        radius: f.required("radius", float)?,
+        moved_by: f.required("moved_by", count)?,
+    };
+    f.done()?;
+    Ok(volume)
 }
 
 /// A JSON array of exactly `N` values.
