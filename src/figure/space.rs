@@ -58,7 +58,7 @@ fn points(scene: &SpaceScene, theta: &[f64]) -> Result<Vec<Vec3>> {
     let pose = SpacePose::new(&scene.arm, theta)?;
     let mut out = vec![pose.points()[0]];
     for s in scene.arm.segments() {
-        out.push(pose.points()[s.to]);
+        out.push(pose.segment(s).1);
     }
     Ok(out)
 }

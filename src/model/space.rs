@@ -25,7 +25,7 @@ impl Model<3> for Chain {
         Chain::dof(self)
     }
     fn pose(&self) -> SpacePose {
-        SpacePose::zeros(Chain::dof(self))
+        SpacePose::of(self)
     }
     fn update(&self, pose: &mut SpacePose, theta: &[f64]) -> Result<()> {
         pose.update(self, theta)

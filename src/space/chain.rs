@@ -57,23 +57,20 @@ impl Row {
 }
 
 /// A segment of the chain's volume, moved by joints `1..=moved_by` (none
-/// for the base): for a chain of modified-DH rows, from one distinct frame
-/// origin to the next; for a chain of joint frames (a URDF's), a link's
-/// capsule (a sphere where its ends meet) fixed in joint `moved_by`'s
-/// frame.
+/// for the base), between two of the pose's points: for a chain of
+/// modified-DH rows, from one distinct frame origin to the next; for a
+/// chain of joint frames (a URDF's), a link's capsule (a sphere where its
+/// ends meet) fixed in joint `moved_by`'s frame, whose ends the pose
+/// places after the hand.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Segment {
     /// The index of its start among the pose's points (see
-    /// [`super::SpacePose::points`]); 0 where `local` gives the ends.
+    /// [`super::SpacePose::segment`]).
     pub from: usize,
     /// The index of its end.
     pub to: usize,
     /// How many joints, from the first, move it (0: the fixed base).
     pub moved_by: usize,
-    /// Its ends in joint `moved_by`'s frame (the base's for 0), where they
-    /// are not frame origins.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub local: Option<(Vec3, Vec3)>,
     /// The capsule's radius (m).
     pub radius: f64,
 }
@@ -308,6 +305,18 @@ impl Chain {
         &self.segments
     }
 
+    /// The links' capsules of a chain of joint frames, in their joints'
+    /// frames (none for rows).
+    pub fn volumes(&self) -> &[LinkVolume] {
+        &self.volumes
+    }
+
+    /// How many points a pose of this chain places: the base's origin,
+    /// the joints' origins, the hand, then each volume's two ends.
+    pub fn point_count(&self) -> usize {
+        self.dof() + 2 + 2 * self.volumes.len()
+    }
+
     /// The joints' position limits, if any.
     pub fn joint_limits(&self) -> Option<&JointLimits> {
         self.joint_limits.as_ref()
@@ -403,7 +412,6 @@ fn segments(rows: &[Row], flange: [f64; 3], radius: f64) -> Vec<Segment> {
                 from,
                 to: i + 1,
                 moved_by: i,
-                local: None,
                 radius,
             });
             from = i + 1;
@@ -414,7 +422,6 @@ fn segments(rows: &[Row], flange: [f64; 3], radius: f64) -> Vec<Segment> {
             from,
             to: n + 1,
             moved_by: n,
-            local: None,
             radius,
         });
     }

@@ -58,8 +58,8 @@ impl SpacePair {
     /// The pair of segment `segment` of `chain` and the floor `z = 0` at
     /// `pose`: its lower end, `d = z - r_c`, `n = +z`.
     pub fn floor(chain: &Chain, pose: &SpacePose, segment: usize) -> Self {
-        let s = chain.segments()[segment];
-        let (a, b) = pose.segment(&s);
+        let s = &chain.segments()[segment];
+        let (a, b) = pose.segment(s);
         let q = if b[2] < a[2] { b } else { a };
         Self {
             segment,

@@ -29,9 +29,6 @@ pub struct SpacePose {
     /// damping schedule's smallest singular value and the manipulability
     /// all read it).
     jjt: [[f64; 3]; 3],
-    /// The base's axes as columns (the frame of the capsules no joint
-    /// moves, for a chain of joint frames).
-    base: [Vec3; 3],
 }
 
 impl SpacePose {
@@ -39,9 +36,18 @@ impl SpacePose {
     /// finite angle per joint.
     pub fn new(chain: &Chain, theta: &[f64]) -> Result<Self> {
         chain.check_angles(theta)?;
-        let mut pose = Self::zeros(chain.dof());
+        let mut pose = Self::of(chain);
         pose.fill(chain, theta);
         Ok(pose)
+    }
+
+    /// Buffers for a pose of `chain`, all zero: its joints, and the ends of
+    /// its volumes where it has volumes of its own (a chain of joint
+    /// frames).
+    pub fn of(chain: &Chain) -> Self {
+        let mut pose = Self::zeros(chain.dof());
+        pose.points.resize(chain.point_count(), [0.0; 3]);
+        pose
     }
 
     /// Buffers for an `n`-joint chain, all zero.
@@ -52,7 +58,6 @@ impl SpacePose {
             points: vec![[0.0; 3]; n + 2],
             jac: vec![0.0; 3 * n],
             jjt: [[0.0; 3]; 3],
-            base: [[0.0; 3]; 3],
         }
     }
 
@@ -61,6 +66,13 @@ impl SpacePose {
     /// joints. Angles are not checked for finiteness (NaN gives NaN).
     pub fn update(&mut self, chain: &Chain, theta: &[f64]) -> Result<()> {
         let n = self.dof();
+        if self.points.len() != chain.point_count() && chain.dof() == n {
+            return Err(Error::DimensionMismatch {
+                what: "points of this pose (SpacePose::of gives a chain's)".into(),
+                expected: chain.point_count(),
+                found: self.points.len(),
+            });
+        }
         if theta.len() != n || chain.dof() != n {
             return Err(Error::DimensionMismatch {
                 what: "theta for this pose".into(),
@@ -89,7 +101,7 @@ impl SpacePose {
             [rot[0][1], rot[1][1], rot[2][1]],
             [rot[0][2], rot[1][2], rot[2][2]],
         ];
-        self.base = axes;
+        let base = axes;
         let mut o = origin;
         self.points[0] = o;
         for (i, (row, &(sa, ca))) in chain.rows().iter().zip(chain.twists()).enumerate() {
@@ -136,6 +148,16 @@ impl SpacePose {
             ),
         );
         self.points[n + 1] = hand;
+        // The ends of the volumes of a chain of joint frames, each in the
+        // frame of the joint that moves it (the base's for none).
+        for (k, v) in chain.volumes().iter().enumerate() {
+            let (axes, o) = match v.moved_by {
+                0 => (&base, self.points[0]),
+                j => (&self.frames[j - 1], self.points[j]),
+            };
+            self.points[n + 2 + 2 * k] = add(o, in_frame(axes, v.a));
+            self.points[n + 3 + 2 * k] = add(o, in_frame(axes, v.b));
+        }
         for i in 0..n {
             let col = cross(self.frames[i][2], sub(hand, self.points[i + 1]));
             self.jac[3 * i..3 * i + 3].copy_from_slice(&col);
@@ -179,7 +201,7 @@ impl SpacePose {
     /// from 1), the flange (`n + 1`).
     #[inline]
     pub fn points(&self) -> &[Vec3] {
-        &self.points
+        &self.points[..self.theta.len() + 2]
     }
 
     /// Joint `i`'s origin (from 0: joint 1): the point its axis goes through.
@@ -191,7 +213,7 @@ impl SpacePose {
     /// The hand (the flange's origin): the task's point.
     #[inline]
     pub fn hand(&self) -> Vec3 {
-        self.points[self.points.len() - 1]
+        self.points[self.theta.len() + 1]
     }
 
     /// `J`, column-major `3 x n`.
@@ -203,18 +225,7 @@ impl SpacePose {
     /// A segment's ends in the world.
     #[inline]
     pub fn segment(&self, s: &Segment) -> (Vec3, Vec3) {
-        match s.local {
-            None => (self.points[s.from], self.points[s.to]),
-            Some((a, b)) => {
-                let k = s.moved_by;
-                let (axes, o) = if k == 0 {
-                    (&self.base, self.points[0])
-                } else {
-                    (&self.frames[k - 1], self.points[k])
-                };
-                (add(o, in_frame(axes, a)), add(o, in_frame(axes, b)))
-            }
-        }
+        (self.points[s.from], self.points[s.to])
     }
 
     /// The Jacobian of a point `p` carried by the first `moved_by` joints

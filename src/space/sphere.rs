@@ -153,6 +153,7 @@ impl CapsulePair {
     /// The pair of segment `segment` of `chain` and sphere `sphere` (index
     /// `index`) at `pose`. Where the centre lies on the axis the normal is
     /// any unit vector perpendicular to the segment.
+    #[inline]
     pub fn at(
         chain: &Chain,
         pose: &SpacePose,
@@ -160,8 +161,8 @@ impl CapsulePair {
         index: usize,
         sphere: &Sphere,
     ) -> Self {
-        let s = chain.segments()[segment];
-        let (a, b) = pose.segment(&s);
+        let s = &chain.segments()[segment];
+        let (a, b) = pose.segment(s);
         let (t, d) = closest(sphere.centre, a, b);
         let q = add(a, scale(sub(b, a), t));
         let normal = if d > 0.0 {

@@ -206,7 +206,7 @@ pub fn phi_poses(
     rng: &mut Rng,
 ) -> Result<Vec<Vec<f64>>> {
     let mut out = Vec::with_capacity(n);
-    let mut pose = SpacePose::zeros(chain.dof());
+    let mut pose = SpacePose::of(chain);
     let mut tries = 0usize;
     while out.len() < n {
         tries += 1;
@@ -295,7 +295,7 @@ pub fn space_dataset(spec: &SpaceTrainSpec) -> Result<Dataset> {
     let mut rng = Rng::new(spec.seed);
     let mut x = vec![0.0; n_in];
     let mut y = vec![0.0; n_out];
-    let mut pose = SpacePose::zeros(n);
+    let mut pose = SpacePose::of(&chain);
     let encode = |theta: &[f64], x: &mut [f64]| {
         for (pair, a) in x.chunks_exact_mut(2).zip(&theta[1..]) {
             let (s, c) = crate::kinematics::sin_cos(*a);
@@ -413,7 +413,7 @@ pub fn space_accuracy(
     let chain = p.chain();
     let n = chain.dof();
     let mut rng = Rng::new(seed);
-    let mut pose = SpacePose::zeros(n);
+    let mut pose = SpacePose::of(&chain);
     let (mut a, mut b) = (vec![0.0; 3 * n], vec![0.0; 3 * n]);
     let mut errs = Vec::with_capacity(samples);
     for mut theta in phi_poses(&chain, &phi_spec.sampling, samples, &mut rng)? {

@@ -72,7 +72,8 @@ impl Chain {
         }
         let mut radius: f64 = 0.0;
         let mut segments = Vec::with_capacity(volumes.len());
-        for v in &volumes {
+        let n = joints.len();
+        for (k, v) in volumes.iter().enumerate() {
             if v.moved_by > joints.len() {
                 return Err(Error::OutOfRange {
                     what: "joint moving a link volume".into(),
@@ -87,11 +88,11 @@ impl Chain {
             non_negative("link volume radius", v.radius)?;
             coordinate("link volume radius", v.radius)?;
             radius = radius.max(v.radius);
+            // The pose places its ends after the hand.
             segments.push(Segment {
-                from: 0,
-                to: 0,
+                from: n + 2 + 2 * k,
+                to: n + 3 + 2 * k,
                 moved_by: v.moved_by,
-                local: Some((v.a, v.b)),
                 radius: v.radius,
             });
         }
