@@ -107,7 +107,7 @@ pub fn space(args: &FigureArgs, job: Job) -> Result<(), String> {
         return Err("--every must be at least 1".into());
     }
     let e = |x: redundant_ik::Error| x.to_string();
-    let label = job.preset.label;
+    let label = job.robot.label.as_str();
     if args.compare || args.all {
         let runs = space_runs(&args.scene, &job)?;
         let compare = figure::space_compare_svg(label, &job.scene, &runs).map_err(e)?;
@@ -116,7 +116,7 @@ pub fn space(args: &FigureArgs, job: Job) -> Result<(), String> {
         }
         std::fs::create_dir_all(&args.out)
             .map_err(|e| format!("cannot create directory {}: {e}", args.out.display()))?;
-        let arm = job.preset.key;
+        let arm = &job.robot.key;
         for traj in &runs {
             let path = args.out.join(format!("{arm}_{}.svg", traj.method));
             write(
@@ -145,7 +145,12 @@ fn space_runs(sa: &SceneArgs, job: &Job) -> Result<Vec<Trajectory<3>>, String> {
     for &method in methods::ALL.iter().filter(|m| m.in_space()) {
         let nets = match &job.nets {
             Some(n) if method.uses_networks() => Some(n.clone()),
-            _ => match super::space_networks::networks(&sa.networks, job.preset, &[method]) {
+            _ => match super::space::networks_for(
+                &sa.networks,
+                &job.robot,
+                &job.scene.arm,
+                &[method],
+            ) {
                 Ok(n) => n,
                 Err(e) => {
                     eprintln!("skipping {method}: {e}");

@@ -17,6 +17,7 @@ pub mod path_arg;
 pub mod robot;
 pub mod simulate;
 pub mod space;
+pub mod space_atlas;
 pub mod space_networks;
 pub mod train;
 
@@ -85,7 +86,7 @@ fn figure_any(a: &figure::FigureArgs) -> Result<(), String> {
 /// file's scene), else the planar atlas.
 fn atlas_any(a: &atlas::AtlasArgs) -> Result<(), String> {
     match space::job(&a.scene, None, space_arm(&a.scene.arm))? {
-        Some(job) => space::atlas(a, job),
+        Some(job) => space_atlas::atlas(a, job),
         None => atlas::run(a),
     }
 }

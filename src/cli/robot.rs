@@ -9,9 +9,13 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
-use redundant_ik::space::SpacePreset;
+use std::sync::Arc;
+
+use redundant_ik::networks::space::SpaceNetworks;
+use redundant_ik::space::{Chain, SpacePreset};
 use redundant_ik::urdf::volume::{self, Source, Volume};
 use redundant_ik::urdf::{chain_urdf, JointKind, Urdf, UrdfChain, MAX_URDF_BYTES};
+use redundant_ik::Method;
 
 use super::emit;
 
@@ -43,6 +47,91 @@ pub struct RobotArgs {
     /// Print JSON: `{ chain, volumes, warnings }`.
     #[arg(long)]
     pub json: bool,
+}
+
+/// `--urdf FILE` and its chain's options, for `simulate`, `figure` and
+/// `atlas` (flattened into their scene options).
+#[derive(Args, Debug, Clone)]
+pub struct UrdfArgs {
+    /// A robot's URDF instead of --arm (plain URDF; docs/urdf.md): the
+    /// chain from its root (or --base) to its one leaf (or --tip), its
+    /// links' volumes from their collision geometry. It starts at the
+    /// middle of its joints' ranges (within +-pi) unless --theta0 is
+    /// given, and its hand's line runs 0.15 m along y unless --target is.
+    #[arg(long, conflicts_with_all = ["arm", "from"])]
+    pub urdf: Option<PathBuf>,
+    /// The chain's base link in --urdf's file (default: the tree's root).
+    #[arg(long)]
+    pub base: Option<String>,
+    /// The chain's tip link in --urdf's file (default: the one leaf).
+    #[arg(long)]
+    pub tip: Option<String>,
+    /// Where --urdf's `package://NAME/...` meshes are, as `DIR/NAME/...`.
+    #[arg(long)]
+    pub package_dir: Option<PathBuf>,
+}
+
+/// The arm a spatial job runs: a preset, or a robot read from URDF (or
+/// carried by a run file) that may be one.
+pub struct Robot {
+    /// The preset it is, if it is one.
+    pub preset: Option<&'static SpacePreset>,
+    /// What the outputs call it.
+    pub label: String,
+    /// Its name in file names (`panda`, or the URDF's robot name).
+    pub key: String,
+}
+
+impl Robot {
+    /// The preset `p`.
+    pub fn preset(p: &'static SpacePreset) -> Self {
+        Self {
+            preset: Some(p),
+            label: p.label.into(),
+            key: p.key.into(),
+        }
+    }
+
+    /// The robot whose chain is `chain`, called `name` unless it is a
+    /// preset.
+    pub fn of_chain(chain: &Chain, name: &str) -> Self {
+        match SpacePreset::of(chain) {
+            Some(p) => Self::preset(p),
+            None => Self {
+                preset: None,
+                label: format!("{name} ({} joints, in space)", chain.dof()),
+                key: name.into(),
+            },
+        }
+    }
+}
+
+/// The networks the learned methods among `methods` run with on `robot`
+/// (whose chain is `chain`): a preset's as `space_networks::networks`
+/// finds them; for another robot only the user's weights files, checked
+/// against its chain.
+pub fn networks_for(
+    args: &super::NetworkArgs,
+    robot: &Robot,
+    chain: &Chain,
+    methods: &[Method],
+) -> Result<Option<Arc<SpaceNetworks>>, String> {
+    if let Some(p) = robot.preset {
+        return super::space_networks::networks(args, p, methods);
+    }
+    if !methods.iter().any(|m| m.uses_networks()) {
+        return Ok(None);
+    }
+    let (Some(phi), Some(v)) = (&args.phi_weights, &args.v_weights) else {
+        return Err(format!(
+            "no networks are shipped for {}: give its own as --phi-weights and --v-weights",
+            robot.label
+        ));
+    };
+    let (phi, v) = (super::read_weights_file(phi)?, super::read_weights_file(v)?);
+    let nets = SpaceNetworks::from_json(&phi, &v).map_err(|e| e.to_string())?;
+    nets.check_chain(chain).map_err(|e| e.to_string())?;
+    Ok(Some(Arc::new(nets).in_precision(args.precision)))
 }
 
 /// Reads a URDF file (at most [`MAX_URDF_BYTES`]).

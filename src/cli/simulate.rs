@@ -116,6 +116,9 @@ pub struct SceneArgs {
     pub params: ParamArgs,
     #[command(flatten)]
     pub networks: NetworkArgs,
+    /// A robot's URDF in place of --arm.
+    #[command(flatten)]
+    pub robot: super::robot::UrdfArgs,
 }
 
 impl SceneArgs {

@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 use redundant_ik::export::{is_space_run, SpaceRunFile};
 use redundant_ik::ik::DampingSchedule;
-use redundant_ik::networks::space::{SpaceNetworkSet, SpaceNetworks};
+use redundant_ik::networks::space::SpaceNetworks;
 use redundant_ik::nn::Precision;
 use redundant_ik::planner::{Networks, Planner, Trajectory};
 use redundant_ik::run::NetworkChoice;
@@ -17,6 +17,7 @@ use redundant_ik::space::{SpacePreset, Sphere};
 use redundant_ik::Method;
 
 use super::path_arg::PathArg;
+pub use super::robot::{networks_for, Robot};
 use super::simulate::{SceneArgs, SimulateArgs};
 use super::{emit, parse_list, Numbers};
 
@@ -26,7 +27,14 @@ pub fn scene(args: &SceneArgs, p: &'static SpacePreset) -> Result<SpaceScene, St
     if args.from.is_some() {
         return Err("--from gives the whole scene; --arm cannot change it".into());
     }
-    let mut s = SpaceScene::preset(p);
+    let s = SpaceScene::preset(p);
+    let radius = s.obstacles[0].radius;
+    apply(args, s, radius)
+}
+
+/// The scene options of `args` on `s`; `radius` is a sphere's without one
+/// of its own (or `--radius`).
+fn apply(args: &SceneArgs, mut s: SpaceScene, radius: f64) -> Result<SpaceScene, String> {
     if args.joint_limits.is_some() || args.rate_limits.is_some() {
         let c = s.arm.clone();
         s.arm = c
@@ -36,7 +44,7 @@ pub fn scene(args: &SceneArgs, p: &'static SpacePreset) -> Result<SpaceScene, St
             )
             .map_err(|e| e.to_string())?;
     }
-    let radius = args.radius.unwrap_or(s.obstacles[0].radius);
+    let radius = args.radius.unwrap_or(radius);
     if !args.obstacle.is_empty() {
         s.obstacles = args
             .obstacle
@@ -130,14 +138,14 @@ pub fn run_file(args: &SceneArgs) -> Result<Option<SpaceRunFile>, String> {
     Ok(Some(file))
 }
 
-/// What a command runs on an arm in space: the preset, the scene, the
-/// method and the networks of a learned method, from `--arm A` and the
-/// scene options, or from a spatial run file (`--from`: its scene, its
-/// method unless `--method` is given, the networks it names in its
-/// arithmetic).
+/// What a command runs on an arm in space: the robot, the scene, the
+/// method and the networks of a learned method, from `--arm A` (or
+/// `--urdf FILE`) and the scene options, or from a spatial run file
+/// (`--from`: its scene, its method unless `--method` is given, the
+/// networks it names in its arithmetic).
 pub struct Job {
     /// The arm.
-    pub preset: &'static SpacePreset,
+    pub robot: Robot,
     /// The scene.
     pub scene: SpaceScene,
     /// The method.
@@ -156,6 +164,19 @@ pub fn job(
     if let Some(file) = run_file(args)? {
         return from_file(args, method, file).map(Some);
     }
+    if args.robot.urdf.is_none() && args.from.is_none() {
+        let given = [
+            ("--base", args.robot.base.is_some()),
+            ("--tip", args.robot.tip.is_some()),
+            ("--package-dir", args.robot.package_dir.is_some()),
+        ];
+        if let Some((flag, _)) = given.iter().find(|(_, on)| *on) {
+            return Err(format!("{flag} goes with --urdf FILE (a robot's URDF)"));
+        }
+    }
+    if args.robot.urdf.is_some() {
+        return urdf_job(args, method).map(Some);
+    }
     let Some(p) = p else {
         return Ok(None);
     };
@@ -163,18 +184,91 @@ pub fn job(
     let method = method.unwrap_or(Method::NUMERICAL);
     let nets = super::space_networks::networks(&args.networks, p, &[method])?;
     Ok(Some(Job {
-        preset: p,
+        robot: Robot::preset(p),
         scene,
         method,
         nets,
     }))
 }
 
+/// The job of `--urdf FILE`: its chain, a scene of its own (see
+/// [`SceneArgs::urdf`]) with the options given; the reader's warnings on
+/// stderr.
+fn urdf_job(args: &SceneArgs, method: Option<Method>) -> Result<Job, String> {
+    use redundant_ik::urdf::{volume, Urdf, UrdfChain};
+    let Some(path) = &args.robot.urdf else {
+        return Err("--urdf: no file".into());
+    };
+    let text = super::robot::read_urdf(path)?;
+    let at = |e: redundant_ik::Error| format!("{}: {e}", path.display());
+    let urdf = Urdf::parse(&text).map_err(at)?;
+    let uc =
+        UrdfChain::new(&urdf, args.robot.base.as_deref(), args.robot.tip.as_deref()).map_err(at)?;
+    let mesh = super::robot::mesh_reader(path, args.robot.package_dir.as_deref());
+    let (volumes, warnings) = volume::volumes(&urdf, &uc, &mesh, super::robot::DEFAULT_RADIUS);
+    let chain = uc
+        .to_chain(&volumes, args.joint_limits.clone())
+        .map_err(at)?;
+    for w in warnings {
+        eprintln!("warning: {w}");
+    }
+    let robot = Robot::of_chain(
+        &chain,
+        if urdf.name.is_empty() {
+            "robot"
+        } else {
+            &urdf.name
+        },
+    );
+    let theta0: Vec<f64> = chain
+        .joint_limits()
+        .map(|l| {
+            l.ranges()
+                .iter()
+                .map(|[lo, hi]| {
+                    (0.5 * (lo + hi)).clamp(-std::f64::consts::PI, std::f64::consts::PI)
+                })
+                .collect()
+        })
+        .unwrap_or_else(|| vec![0.0; chain.dof()]);
+    let start = redundant_ik::space::SpacePose::new(&chain, &theta0)
+        .map_err(|e| e.to_string())?
+        .hand();
+    let s = SpaceScene {
+        arm: chain,
+        theta0,
+        target: [start[0], start[1] + 0.15, start[2]],
+        path: SpacePath::Line,
+        obstacles: Vec::new(),
+        damping: None,
+        dt: 0.05,
+        tf: 5.0,
+        feedback_gain: 0.0,
+        params: redundant_ik::scene::Params::default(),
+        weighting: redundant_ik::scene::JointWeighting::None,
+        floor: false,
+    };
+    let mut scene = apply(args, s, super::robot::DEFAULT_RADIUS)?;
+    if args.target.is_none() {
+        // The line from where --theta0 (or the middle) puts the hand.
+        let start = scene.start();
+        scene.target = [start[0], start[1] + 0.15, start[2]];
+        scene.validate().map_err(|e| e.to_string())?;
+    }
+    let method = method.unwrap_or(Method::NUMERICAL);
+    let nets = networks_for(&args.networks, &robot, &scene.arm, &[method])?;
+    Ok(Job {
+        robot,
+        scene,
+        method,
+        nets,
+    })
+}
+
 /// A spatial run file's job: its scene again, with its method unless
 /// `method` is given.
 fn from_file(args: &SceneArgs, method: Option<Method>, file: SpaceRunFile) -> Result<Job, String> {
-    let p = SpacePreset::of(&file.scene.arm)
-        .ok_or("the run file's arm is none of the arms in space this tool knows")?;
+    let robot = Robot::of_chain(&file.scene.arm, "robot");
     let method = method.unwrap_or(file.method);
     let nets = match file.networks.filter(|_| method.uses_networks()) {
         Some(choice) => {
@@ -191,7 +285,7 @@ fn from_file(args: &SceneArgs, method: Option<Method>, file: SpaceRunFile) -> Re
         }
         // The user's own weights, given again: in the file's arithmetic
         // unless --precision says otherwise.
-        None => super::space_networks::networks(&args.networks, p, &[method])?.map(|n| {
+        None => networks_for(&args.networks, &robot, &file.scene.arm, &[method])?.map(|n| {
             if args.given.has("precision") {
                 n
             } else {
@@ -200,7 +294,7 @@ fn from_file(args: &SceneArgs, method: Option<Method>, file: SpaceRunFile) -> Re
         }),
     };
     Ok(Job {
-        preset: p,
+        robot,
         scene: file.scene,
         method,
         nets,
@@ -210,7 +304,7 @@ fn from_file(args: &SceneArgs, method: Option<Method>, file: SpaceRunFile) -> Re
 /// Runs `simulate` for a spatial job: `--arm A`, or `--from` a spatial
 /// run file.
 pub fn simulate(args: &SimulateArgs, job: Job) -> Result<(), String> {
-    output(args, job.preset, job.scene, job.method, job.nets)
+    output(args, &job.robot, job.scene, job.method, job.nets)
 }
 
 /// Runs `scene` with `method` (and the networks of the learned methods)
@@ -218,7 +312,7 @@ pub fn simulate(args: &SimulateArgs, job: Job) -> Result<(), String> {
 /// replays), CSV or a summary.
 fn output(
     args: &SimulateArgs,
-    p: &'static SpacePreset,
+    robot: &Robot,
     scene: SpaceScene,
     method: Method,
     nets: Option<Arc<SpaceNetworks>>,
@@ -244,10 +338,10 @@ fn output(
     if args.csv {
         return emit(&redundant_ik::export::run_csv(&traj.steps));
     }
-    emit(&summary(p, &scene, &traj))
+    emit(&summary(robot, &scene, &traj))
 }
 
-fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &Trajectory<3>) -> String {
+fn summary(robot: &Robot, scene: &SpaceScene, traj: &Trajectory<3>) -> String {
     let s = &traj.summary;
     let mut out = String::new();
     let list = |v: &[f64]| {
@@ -262,7 +356,7 @@ fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &Trajectory<3>) -> String 
     let _ = writeln!(
         out,
         "{} | method {} | dt {} s | tf {} s",
-        p.label, traj.method, scene.dt, scene.tf
+        robot.label, traj.method, scene.dt, scene.tf
     );
     let _ = writeln!(
         out,
@@ -345,120 +439,4 @@ fn summary(p: &SpacePreset, scene: &SpaceScene, traj: &Trajectory<3>) -> String 
         );
     }
     out
-}
-
-/// `atlas` for a spatial job (`--arm A`, or `--from` a spatial run file:
-/// its scene): the sphere over a grid on a slice, in every method that
-/// runs in space (or those asked for); a table, JSON or CSV.
-pub fn atlas(args: &super::atlas::AtlasArgs, job: Job) -> Result<(), String> {
-    use redundant_ik::atlas::space::{default_region, slice, Plane};
-    use redundant_ik::atlas::{Class, Grid};
-    if args.out.is_some() {
-        return Err("--out: the maps of an atlas in space are not drawn yet; --json and --csv give the cells".into());
-    }
-    let (p, scene) = (job.preset, job.scene);
-    let plane = match &args.slice {
-        Some(t) => t.parse::<Plane>().map_err(|e| format!("--slice: {e}"))?,
-        None => Plane::through_line(&scene),
-    };
-    let methods = match &args.methods {
-        Some(list) => super::atlas::parse_methods(list)?,
-        None => redundant_ik::planner::methods::ALL
-            .iter()
-            .copied()
-            .filter(|m| m.in_space())
-            .filter(|m| !m.uses_networks() || SpaceNetworkSet::for_arm(p.key).is_some())
-            .collect(),
-    };
-    // A run file's networks where it names them, else those the flags give.
-    let nets = match job.nets {
-        Some(n) if methods.iter().any(|m| m.uses_networks()) => Some(n),
-        _ => super::space_networks::networks(&args.scene.networks, p, &methods)?,
-    };
-    let region = match &args.region {
-        Some(r) => match parse_list(r).map_err(|e| format!("--region: {e}"))?[..] {
-            [a, b, c, d] => [a, b, c, d],
-            _ => {
-                return Err(format!(
-                    "--region needs four numbers u0,u1,v0,v1 in the slice's axes, got '{r}'"
-                ))
-            }
-        },
-        None => default_region(&scene, plane),
-    };
-    let grid = Grid::new(region, args.grid).map_err(|e| e.to_string())?;
-    if let Some(t) = args.threads {
-        if t == 0 {
-            return Err("--threads must be at least 1".into());
-        }
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(t)
-            .build_global()
-            .map_err(|e| format!("cannot start {t} threads: {e}"))?;
-    }
-    #[allow(clippy::disallowed_methods)] // the native CLI has a clock
-    let start = std::time::Instant::now();
-    let mut a = slice(&scene, plane, grid, &methods, nets.as_ref()).map_err(|e| e.to_string())?;
-    let seconds = start.elapsed().as_secs_f64();
-    a.arm = Some(p.key);
-    if args.json {
-        let json = serde_json::to_string(&a).map_err(|e| e.to_string())?;
-        return emit(&format!("{json}\n"));
-    }
-    if args.csv {
-        let mut out = String::from("x,y,z");
-        for m in &a.methods {
-            let _ = write!(out, ",{m},{m}_clearance,{m}_final_error");
-        }
-        out.push('\n');
-        for c in &a.cells {
-            let _ = write!(out, "{},{},{}", c.centre[0], c.centre[1], c.centre[2]);
-            for o in &c.outcomes {
-                let opt = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
-                let _ = write!(
-                    out,
-                    ",{},{},{}",
-                    o.class.name(),
-                    opt(o.min_clearance),
-                    opt(o.final_error)
-                );
-            }
-            out.push('\n');
-        }
-        return emit(&out);
-    }
-    let [u, v] = plane.axes();
-    let [u0, u1, v0, v1] = a.grid.region;
-    let mut out = String::new();
-    let _ = writeln!(
-        out,
-        "Atlas of the {} task on the slice {plane}: {n} x {n} sphere centres over {u} {u0:.3}..{u1:.3} m, {v} {v0:.3}..{v1:.3} m (radius {} m)",
-        p.label,
-        a.radius,
-        n = a.grid.n
-    );
-    let _ = writeln!(
-        out,
-        "{} runs in {seconds:.2} s; {} cells where avoidance is possible\n",
-        a.cells.len() * a.methods.len(),
-        a.avoidable()
-    );
-    let _ = writeln!(out, "{:<22} {:>8}   cells: success / collision / limit / missed / failed / path_blocked / start_overlap; relaxed steps", "method", "success");
-    for (k, m) in a.methods.iter().enumerate() {
-        let counts: Vec<String> = Class::ALL
-            .iter()
-            .map(|&c| a.count(k, c).to_string())
-            .collect();
-        let relaxed: usize = a.cells.iter().map(|c| c.outcomes[k].relaxed_steps).sum();
-        let _ = writeln!(
-            out,
-            "{:<22} {:>8}   {}; {relaxed}",
-            m.label(),
-            a.success_rate(k)
-                .map_or("–".into(), |r| format!("{:.1}%", 100.0 * r)),
-            counts.join(" / ")
-        );
-    }
-    let _ = writeln!(out, "\nsuccess: no collision, no joint past a limit and within 5 mm of the target, over the cells where avoidance is possible");
-    emit(&out)
 }

@@ -90,3 +90,86 @@ fn a_file_the_reader_refuses_is_one_readable_error() {
     refused(&["robot", "/no/such/file.urdf"], "cannot read");
     refused(&["robot"], "required");
 }
+
+const UR5E: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/robots/ur5e.urdf");
+
+#[test]
+fn simulate_figure_and_atlas_run_a_robot_from_its_urdf() {
+    let start = ["--urdf", UR5E, "--theta0", "0,-1.2,1.4,-1.8,-1.5,0"];
+    let text = ok(&[&["simulate"][..], &start].concat());
+    assert!(
+        text.starts_with("ur5e (6 joints, in space) | method numerical"),
+        "{text}"
+    );
+    // The line runs 0.15 m along y from where --theta0 puts the hand.
+    let raw = ok(&[
+        &["simulate"][..],
+        &start,
+        &[
+            "--method",
+            "qp",
+            "--obstacle",
+            "-0.74,-0.02,0.48,0.05",
+            "--json",
+        ],
+    ]
+    .concat());
+    let v: serde_json::Value = serde_json::from_str(&raw).unwrap();
+    let (first, last) = (&v["steps"][0]["ee"], &v["steps"][100]["ee"]);
+    assert!(
+        (last[1].as_f64().unwrap() - first[1].as_f64().unwrap() - 0.15).abs() < 1e-4,
+        "{last}"
+    );
+    assert!(v["summary"]["final_error"].as_f64().unwrap() < 1e-4);
+    assert_eq!(
+        v["summary"]["collision_steps"],
+        serde_json::Value::Null,
+        "the QP keeps the sphere off"
+    );
+    assert!(
+        v["scene"]["arm"]["joints"].as_array().unwrap().len() == 6,
+        "the file carries the chain"
+    );
+    // The run file replays anywhere, the URDF not needed.
+    let file = scratch("ur5e-run.json");
+    std::fs::write(&file, &raw).unwrap();
+    let again = ok(&["simulate", "--from", file.to_str().unwrap(), "--json"]);
+    assert!(again == raw, "the replay differs");
+    // A figure and an atlas of its slice.
+    let svg = scratch("ur5e.svg");
+    ok(&[
+        &["figure"][..],
+        &start,
+        &["--method", "qp", "--out", svg.to_str().unwrap()],
+    ]
+    .concat());
+    assert!(std::fs::read_to_string(&svg).unwrap().contains("ur5e"));
+    let atlas = json(
+        &[
+            &["atlas"][..],
+            &start,
+            &["--grid", "4", "--methods", "none,qp", "--json"],
+        ]
+        .concat(),
+    );
+    assert_eq!(atlas["cells"].as_array().unwrap().len(), 16);
+    assert_eq!(atlas["arm"], serde_json::Value::Null, "no preset");
+}
+
+#[test]
+fn what_a_robot_from_urdf_cannot_run_is_refused_with_its_reason() {
+    refused(
+        &["simulate", "--urdf", UR5E, "--method", "case3"],
+        "no networks are shipped",
+    );
+    refused(
+        &["simulate", "--urdf", UR5E, "--arm", "panda"],
+        "cannot be used with",
+    );
+    refused(
+        &["simulate", "--urdf", SLIDER, "--tip", "tool"],
+        "prismatic",
+    );
+    refused(&["simulate", "--urdf", UR5E, "--theta0", "0,0,0"], "theta");
+    refused(&["simulate", "--tip", "tool"], "--tip goes with --urdf");
+}

@@ -91,6 +91,9 @@ fn from_refuses_every_scene_flag_beside_it_and_applies_the_rest() {
         "--rate-limits" => Some("1,1,1"),
         "--joint-weighting" => Some("wln"),
         "--path" => Some("circle:1.2,0.8"),
+        "--urdf" => Some("robots/ur5e.urdf"),
+        "--base" | "--tip" => Some("base_link"),
+        "--package-dir" => Some("robots"),
         _ => None,
     };
     // What goes with --from: the method, the output and the networks

@@ -1,0 +1,131 @@
+//! `atlas` for an arm in space (`--arm A`, `--urdf FILE`, or `--from` a
+//! spatial run file): the slice atlas of its job ([`super::space::Job`]),
+//! as a table, JSON or CSV.
+
+use std::fmt::Write as _;
+
+use redundant_ik::networks::space::SpaceNetworkSet;
+
+use super::space::{networks_for, Job};
+use super::{emit, parse_list};
+
+/// `atlas` for a spatial job (`--arm A`, or `--from` a spatial run file:
+/// its scene): the sphere over a grid on a slice, in every method that
+/// runs in space (or those asked for); a table, JSON or CSV.
+pub fn atlas(args: &super::atlas::AtlasArgs, job: Job) -> Result<(), String> {
+    use redundant_ik::atlas::space::{default_region, slice, Plane};
+    use redundant_ik::atlas::{Class, Grid};
+    if args.out.is_some() {
+        return Err("--out: the maps of an atlas in space are not drawn yet; --json and --csv give the cells".into());
+    }
+    let (robot, scene) = (job.robot, job.scene);
+    let plane = match &args.slice {
+        Some(t) => t.parse::<Plane>().map_err(|e| format!("--slice: {e}"))?,
+        None => Plane::through_line(&scene),
+    };
+    let methods = match &args.methods {
+        Some(list) => super::atlas::parse_methods(list)?,
+        None => redundant_ik::planner::methods::ALL
+            .iter()
+            .copied()
+            .filter(|m| m.in_space())
+            .filter(|m| {
+                !m.uses_networks()
+                    || robot
+                        .preset
+                        .is_some_and(|p| SpaceNetworkSet::for_arm(p.key).is_some())
+            })
+            .collect(),
+    };
+    // A run file's networks where it names them, else those the flags give.
+    let nets = match job.nets {
+        Some(n) if methods.iter().any(|m| m.uses_networks()) => Some(n),
+        _ => networks_for(&args.scene.networks, &robot, &scene.arm, &methods)?,
+    };
+    let region = match &args.region {
+        Some(r) => match parse_list(r).map_err(|e| format!("--region: {e}"))?[..] {
+            [a, b, c, d] => [a, b, c, d],
+            _ => {
+                return Err(format!(
+                    "--region needs four numbers u0,u1,v0,v1 in the slice's axes, got '{r}'"
+                ))
+            }
+        },
+        None => default_region(&scene, plane),
+    };
+    let grid = Grid::new(region, args.grid).map_err(|e| e.to_string())?;
+    if let Some(t) = args.threads {
+        if t == 0 {
+            return Err("--threads must be at least 1".into());
+        }
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(t)
+            .build_global()
+            .map_err(|e| format!("cannot start {t} threads: {e}"))?;
+    }
+    #[allow(clippy::disallowed_methods)] // the native CLI has a clock
+    let start = std::time::Instant::now();
+    let mut a = slice(&scene, plane, grid, &methods, nets.as_ref()).map_err(|e| e.to_string())?;
+    let seconds = start.elapsed().as_secs_f64();
+    a.arm = robot.preset.map(|p| p.key);
+    if args.json {
+        let json = serde_json::to_string(&a).map_err(|e| e.to_string())?;
+        return emit(&format!("{json}\n"));
+    }
+    if args.csv {
+        let mut out = String::from("x,y,z");
+        for m in &a.methods {
+            let _ = write!(out, ",{m},{m}_clearance,{m}_final_error");
+        }
+        out.push('\n');
+        for c in &a.cells {
+            let _ = write!(out, "{},{},{}", c.centre[0], c.centre[1], c.centre[2]);
+            for o in &c.outcomes {
+                let opt = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
+                let _ = write!(
+                    out,
+                    ",{},{},{}",
+                    o.class.name(),
+                    opt(o.min_clearance),
+                    opt(o.final_error)
+                );
+            }
+            out.push('\n');
+        }
+        return emit(&out);
+    }
+    let [u, v] = plane.axes();
+    let [u0, u1, v0, v1] = a.grid.region;
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "Atlas of the {} task on the slice {plane}: {n} x {n} sphere centres over {u} {u0:.3}..{u1:.3} m, {v} {v0:.3}..{v1:.3} m (radius {} m)",
+        robot.label,
+        a.radius,
+        n = a.grid.n
+    );
+    let _ = writeln!(
+        out,
+        "{} runs in {seconds:.2} s; {} cells where avoidance is possible\n",
+        a.cells.len() * a.methods.len(),
+        a.avoidable()
+    );
+    let _ = writeln!(out, "{:<22} {:>8}   cells: success / collision / limit / missed / failed / path_blocked / start_overlap; relaxed steps", "method", "success");
+    for (k, m) in a.methods.iter().enumerate() {
+        let counts: Vec<String> = Class::ALL
+            .iter()
+            .map(|&c| a.count(k, c).to_string())
+            .collect();
+        let relaxed: usize = a.cells.iter().map(|c| c.outcomes[k].relaxed_steps).sum();
+        let _ = writeln!(
+            out,
+            "{:<22} {:>8}   {}; {relaxed}",
+            m.label(),
+            a.success_rate(k)
+                .map_or("–".into(), |r| format!("{:.1}%", 100.0 * r)),
+            counts.join(" / ")
+        );
+    }
+    let _ = writeln!(out, "\nsuccess: no collision, no joint past a limit and within 5 mm of the target, over the cells where avoidance is possible");
+    emit(&out)
+}
