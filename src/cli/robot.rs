@@ -33,17 +33,8 @@ pub struct RobotArgs {
     /// (what `robots/*.urdf` are).
     #[arg(long, conflicts_with = "file")]
     pub urdf_of: Option<String>,
-    /// The chain's base link (default: the tree's root).
-    #[arg(long)]
-    pub base: Option<String>,
-    /// The chain's tip link (default: the one leaf below the base; needed
-    /// where the tree has several).
-    #[arg(long)]
-    pub tip: Option<String>,
-    /// The folder `package://NAME/...` mesh names are read under, as
-    /// `DIR/NAME/...` (default: the URDF's folder, and its parent).
-    #[arg(long)]
-    pub package_dir: Option<PathBuf>,
+    #[command(flatten)]
+    pub chain: ChainArgs,
     /// Print JSON: `{ chain, volumes, warnings }`.
     #[arg(long)]
     pub json: bool,
@@ -60,13 +51,22 @@ pub struct UrdfArgs {
     /// given, and its hand's line runs 0.15 m along y unless --target is.
     #[arg(long, conflicts_with_all = ["arm", "from"])]
     pub urdf: Option<PathBuf>,
-    /// The chain's base link in --urdf's file (default: the tree's root).
+    #[command(flatten)]
+    pub chain: ChainArgs,
+}
+
+/// Which chain of a URDF, and where its meshes are.
+#[derive(Args, Debug, Clone)]
+pub struct ChainArgs {
+    /// The chain's base link in the URDF (default: the tree's root).
     #[arg(long)]
     pub base: Option<String>,
-    /// The chain's tip link in --urdf's file (default: the one leaf).
+    /// The chain's tip link in the URDF (default: the one leaf below the
+    /// base; needed where the tree has several).
     #[arg(long)]
     pub tip: Option<String>,
-    /// Where --urdf's `package://NAME/...` meshes are, as `DIR/NAME/...`.
+    /// The folder `package://NAME/...` mesh names are read under, as
+    /// `DIR/NAME/...` (default: the URDF's folder, and its parent).
     #[arg(long)]
     pub package_dir: Option<PathBuf>,
 }
@@ -209,8 +209,9 @@ pub fn run(args: &RobotArgs) -> Result<(), String> {
     let text = read_urdf(file)?;
     let at = |e: redundant_ik::Error| format!("{}: {e}", file.display());
     let urdf = Urdf::parse(&text).map_err(at)?;
-    let chain = UrdfChain::new(&urdf, args.base.as_deref(), args.tip.as_deref()).map_err(at)?;
-    let mesh = mesh_reader(file, args.package_dir.as_deref());
+    let chain =
+        UrdfChain::new(&urdf, args.chain.base.as_deref(), args.chain.tip.as_deref()).map_err(at)?;
+    let mesh = mesh_reader(file, args.chain.package_dir.as_deref());
     let (volumes, warnings) = volume::volumes(&urdf, &chain, &mesh, DEFAULT_RADIUS);
     if args.json {
         #[derive(serde::Serialize)]

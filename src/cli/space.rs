@@ -166,9 +166,9 @@ pub fn job(
     }
     if args.robot.urdf.is_none() && args.from.is_none() {
         let given = [
-            ("--base", args.robot.base.is_some()),
-            ("--tip", args.robot.tip.is_some()),
-            ("--package-dir", args.robot.package_dir.is_some()),
+            ("--base", args.robot.chain.base.is_some()),
+            ("--tip", args.robot.chain.tip.is_some()),
+            ("--package-dir", args.robot.chain.package_dir.is_some()),
         ];
         if let Some((flag, _)) = given.iter().find(|(_, on)| *on) {
             return Err(format!("{flag} goes with --urdf FILE (a robot's URDF)"));
@@ -202,9 +202,13 @@ fn urdf_job(args: &SceneArgs, method: Option<Method>) -> Result<Job, String> {
     let text = super::robot::read_urdf(path)?;
     let at = |e: redundant_ik::Error| format!("{}: {e}", path.display());
     let urdf = Urdf::parse(&text).map_err(at)?;
-    let uc =
-        UrdfChain::new(&urdf, args.robot.base.as_deref(), args.robot.tip.as_deref()).map_err(at)?;
-    let mesh = super::robot::mesh_reader(path, args.robot.package_dir.as_deref());
+    let uc = UrdfChain::new(
+        &urdf,
+        args.robot.chain.base.as_deref(),
+        args.robot.chain.tip.as_deref(),
+    )
+    .map_err(at)?;
+    let mesh = super::robot::mesh_reader(path, args.robot.chain.package_dir.as_deref());
     let (volumes, warnings) = volume::volumes(&urdf, &uc, &mesh, super::robot::DEFAULT_RADIUS);
     let chain = uc
         .to_chain(&volumes, args.joint_limits.clone())

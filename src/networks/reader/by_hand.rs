@@ -199,6 +199,16 @@ fn arm(v: Json) -> Read<Arm> {
     let mut f = Fields::of("Arm", v)?;
     let post = f.required("post", float)?;
     let links = f.required("links", floats)?;
+    let (joint_limits, rate_limits) = limits(&mut f)?;
+    f.done()?;
+    Arm::new(post, links)
+        .and_then(|a| a.with_limits(joint_limits, rate_limits))
+        .map_err(|e| e.to_string())
+}
+
+/// An arm's optional `joint_limits` and `rate_limits` (the planar arm's
+/// and a chain's), checked as their constructors check them.
+pub(super) fn limits(f: &mut Fields) -> Read<(Option<JointLimits>, Option<RateLimits>)> {
     let joint_limits = f
         .optional("joint_limits", |v| nullable(v, |v| list(v, pair)))?
         .flatten()
@@ -211,10 +221,7 @@ fn arm(v: Json) -> Read<Arm> {
         .map(RateLimits::new)
         .transpose()
         .map_err(|e| e.to_string())?;
-    f.done()?;
-    Arm::new(post, links)
-        .and_then(|a| a.with_limits(joint_limits, rate_limits))
-        .map_err(|e| e.to_string())
+    Ok((joint_limits, rate_limits))
 }
 
 fn map_min_max(v: Json) -> Read<MapMinMax> {

@@ -10,10 +10,9 @@
 //! does not use, the optimiser's options, takes the default.
 
 use super::by_hand::{
-    count, float, floats, list, net_entry, net_kind, nullable, pair, range, read_with, string,
+    count, float, floats, limits, list, net_entry, net_kind, nullable, range, read_with, string,
     unsigned, Fields, Read,
 };
-use crate::arm::{JointLimits, RateLimits};
 use crate::json::Json;
 use crate::networks::space::{
     SpaceSampling, SpaceTraining, SpaceWeightsFile, SpaceWeightsFile1, SPACE_FORMAT_1,
@@ -93,18 +92,7 @@ fn chain(v: Json) -> Read<Chain> {
     let volumes = f
         .optional("volumes", |v| list(v, link_volume))?
         .unwrap_or_default();
-    let joint_limits = f
-        .optional("joint_limits", |v| nullable(v, |v| list(v, pair)))?
-        .flatten()
-        .map(JointLimits::new)
-        .transpose()
-        .map_err(|e| e.to_string())?;
-    let rate_limits = f
-        .optional("rate_limits", |v| nullable(v, floats))?
-        .flatten()
-        .map(RateLimits::new)
-        .transpose()
-        .map_err(|e| e.to_string())?;
+    let (joint_limits, rate_limits) = limits(&mut f)?;
     f.done()?;
     let chain = match (rows.is_empty(), joints.is_empty(), volumes.is_empty()) {
         (false, true, true) => Chain::placed(base.0, base.1, rows, flange, radius),
