@@ -334,6 +334,21 @@ fn parse_variant(s: &str) -> Result<Variant, String> {
         .map_err(|_| format!("unknown --phi-variant '{s}': use equivariant, plain or rows"))
 }
 
+/// Reads the text of `path`, refusing one larger than `max` bytes before
+/// reading it (`what` names the kind of file in the refusal).
+pub fn read_at_most(path: &std::path::Path, max: usize, what: &str) -> Result<String, String> {
+    let size = std::fs::metadata(path)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?
+        .len();
+    if size > max as u64 {
+        return Err(format!(
+            "{}: {size} bytes, more than the {max} {what} may have",
+            path.display()
+        ));
+    }
+    std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))
+}
+
 /// Reads a weights file, refusing one larger than
 /// [`redundant_ik::networks::MAX_FILE_BYTES`] before reading it.
 pub(crate) fn read_weights_file(f: &std::path::Path) -> Result<String, String> {

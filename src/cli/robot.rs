@@ -7,9 +7,9 @@
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use clap::Args;
-use std::sync::Arc;
 
 use redundant_ik::networks::space::SpaceNetworks;
 use redundant_ik::space::{Chain, SpacePreset};
@@ -122,30 +122,46 @@ pub fn networks_for(
     if !methods.iter().any(|m| m.uses_networks()) {
         return Ok(None);
     }
-    let (Some(phi), Some(v)) = (&args.phi_weights, &args.v_weights) else {
+    let Some(nets) = super::space_networks::own(args)? else {
         return Err(format!(
             "no networks are shipped for {}: give its own as --phi-weights and --v-weights",
             robot.label
         ));
     };
-    let (phi, v) = (super::read_weights_file(phi)?, super::read_weights_file(v)?);
-    let nets = SpaceNetworks::from_json(&phi, &v).map_err(|e| e.to_string())?;
     nets.check_chain(chain).map_err(|e| e.to_string())?;
-    Ok(Some(Arc::new(nets).in_precision(args.precision)))
+    Ok(Some(nets))
 }
 
-/// Reads a URDF file (at most [`MAX_URDF_BYTES`]).
-pub fn read_urdf(path: &Path) -> Result<String, String> {
-    let size = std::fs::metadata(path)
-        .map_err(|e| format!("cannot read {}: {e}", path.display()))?
-        .len();
-    if size > MAX_URDF_BYTES as u64 {
-        return Err(format!(
-            "{}: {size} bytes, more than the {MAX_URDF_BYTES} a URDF may have",
-            path.display()
-        ));
-    }
-    std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))
+/// A URDF file read (at most [`MAX_URDF_BYTES`]), its chain from the
+/// options' base to their tip, and its links' volumes with the reader's
+/// warnings.
+pub struct Loaded {
+    /// The document.
+    pub urdf: Urdf,
+    /// Its chain.
+    pub chain: UrdfChain,
+    /// The links' volumes.
+    pub volumes: Vec<Volume>,
+    /// What the volumes' reader warns of.
+    pub warnings: Vec<String>,
+}
+
+/// Reads the URDF at `path` into its chain and volumes (meshes beside it
+/// or under `--package-dir`); a refusal names the file.
+pub fn load(path: &Path, options: &ChainArgs) -> Result<Loaded, String> {
+    let text = super::read_at_most(path, MAX_URDF_BYTES, "a URDF")?;
+    let at = |e: redundant_ik::Error| format!("{}: {e}", path.display());
+    let urdf = Urdf::parse(&text).map_err(at)?;
+    let chain =
+        UrdfChain::new(&urdf, options.base.as_deref(), options.tip.as_deref()).map_err(at)?;
+    let mesh = mesh_reader(path, options.package_dir.as_deref());
+    let (volumes, warnings) = volume::volumes(&urdf, &chain, &mesh, DEFAULT_RADIUS);
+    Ok(Loaded {
+        urdf,
+        chain,
+        volumes,
+        warnings,
+    })
 }
 
 /// A mesh file's bytes for its URDF name: `package://NAME/REST` under
@@ -206,13 +222,12 @@ pub fn run(args: &RobotArgs) -> Result<(), String> {
     let Some(file) = &args.file else {
         return Err("robot: give a URDF file, or --urdf-of PRESET".into());
     };
-    let text = read_urdf(file)?;
-    let at = |e: redundant_ik::Error| format!("{}: {e}", file.display());
-    let urdf = Urdf::parse(&text).map_err(at)?;
-    let chain =
-        UrdfChain::new(&urdf, args.chain.base.as_deref(), args.chain.tip.as_deref()).map_err(at)?;
-    let mesh = mesh_reader(file, args.chain.package_dir.as_deref());
-    let (volumes, warnings) = volume::volumes(&urdf, &chain, &mesh, DEFAULT_RADIUS);
+    let Loaded {
+        chain,
+        volumes,
+        warnings,
+        ..
+    } = load(file, &args.chain)?;
     if args.json {
         #[derive(serde::Serialize)]
         struct Out<'a> {

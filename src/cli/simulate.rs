@@ -127,19 +127,7 @@ impl SceneArgs {
         let Some(path) = &self.from else {
             return Ok(None);
         };
-        let size = std::fs::metadata(path)
-            .map_err(|e| format!("cannot read {}: {e}", path.display()))?
-            .len();
-        if size > export::MAX_RUN_FILE_BYTES as u64 {
-            return Err(format!(
-                "{}: {size} bytes, more than the {} a run file may have",
-                path.display(),
-                export::MAX_RUN_FILE_BYTES
-            ));
-        }
-        std::fs::read_to_string(path)
-            .map(Some)
-            .map_err(|e| format!("cannot read {}: {e}", path.display()))
+        super::read_at_most(path, export::MAX_RUN_FILE_BYTES, "a run file").map(Some)
     }
 
     /// The run file of `--from`, read and checked, if given.

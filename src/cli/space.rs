@@ -195,24 +195,18 @@ pub fn job(
 /// [`SceneArgs::urdf`]) with the options given; the reader's warnings on
 /// stderr.
 fn urdf_job(args: &SceneArgs, method: Option<Method>) -> Result<Job, String> {
-    use redundant_ik::urdf::{volume, Urdf, UrdfChain};
     let Some(path) = &args.robot.urdf else {
         return Err("--urdf: no file".into());
     };
-    let text = super::robot::read_urdf(path)?;
-    let at = |e: redundant_ik::Error| format!("{}: {e}", path.display());
-    let urdf = Urdf::parse(&text).map_err(at)?;
-    let uc = UrdfChain::new(
-        &urdf,
-        args.robot.chain.base.as_deref(),
-        args.robot.chain.tip.as_deref(),
-    )
-    .map_err(at)?;
-    let mesh = super::robot::mesh_reader(path, args.robot.chain.package_dir.as_deref());
-    let (volumes, warnings) = volume::volumes(&urdf, &uc, &mesh, super::robot::DEFAULT_RADIUS);
+    let super::robot::Loaded {
+        urdf,
+        chain: uc,
+        volumes,
+        warnings,
+    } = super::robot::load(path, &args.robot.chain)?;
     let chain = uc
         .to_chain(&volumes, args.joint_limits.clone())
-        .map_err(at)?;
+        .map_err(|e| format!("{}: {e}", path.display()))?;
     for w in warnings {
         eprintln!("warning: {w}");
     }

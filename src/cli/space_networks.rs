@@ -14,6 +14,24 @@ use redundant_ik::Method;
 
 use super::emit;
 
+/// The user's own networks for an arm in space, `--phi-weights` and
+/// `--v-weights` (both, or neither: `None`), in `--precision`.
+pub fn own(args: &super::NetworkArgs) -> Result<Option<Arc<SpaceNetworks>>, String> {
+    match (&args.phi_weights, &args.v_weights) {
+        (Some(phi), Some(v)) => {
+            let (phi, v) = (super::read_weights_file(phi)?, super::read_weights_file(v)?);
+            SpaceNetworks::from_json(&phi, &v)
+                .map(|n| Some(Arc::new(n).in_precision(args.precision)))
+                .map_err(|e| e.to_string())
+        }
+        (None, None) => Ok(None),
+        _ => Err(
+            "an arm in space takes its own networks as --phi-weights and --v-weights together"
+                .into(),
+        ),
+    }
+}
+
 /// The networks the learned methods among `methods` run with on the preset
 /// `p`, in `--precision`: `--phi-weights` and `--v-weights` (spatial
 /// weights files, both), else `--networks` (a set trained for `p`; left at
@@ -30,20 +48,8 @@ pub fn networks(
     if args.phi_variant.is_some() {
         return Err("--phi-variant picks among the paper set's planar Phi networks".into());
     }
-    match (&args.phi_weights, &args.v_weights) {
-        (Some(phi), Some(v)) => {
-            let (phi, v) = (super::read_weights_file(phi)?, super::read_weights_file(v)?);
-            return SpaceNetworks::from_json(&phi, &v)
-                .map(|n| Some(Arc::new(n).in_precision(args.precision)))
-                .map_err(|e| e.to_string());
-        }
-        (None, None) => {}
-        _ => {
-            return Err(
-                "an arm in space takes its own networks as --phi-weights and --v-weights together"
-                    .into(),
-            )
-        }
+    if let Some(nets) = own(args)? {
+        return Ok(Some(nets));
     }
     let set = match args.networks {
         super::SetArg::Space(s) => s,

@@ -150,15 +150,6 @@ where
         }
     }
 
-    /// The run it holds, as the planner wrote it.
-    pub fn trajectory(&self) -> Trajectory<M> {
-        Trajectory {
-            method: self.method,
-            steps: self.steps.clone(),
-            summary: self.summary.clone(),
-        }
-    }
-
     /// The JSON text (one line). Serialising these types cannot fail (no
     /// map has keys other than strings).
     pub fn to_json(&self) -> String {

@@ -23,7 +23,7 @@ use crate::planner::REACH_TOLERANCE;
 use crate::planner::{observe_pose, Method, Planned, Planner, Sample, Summary};
 use crate::run::NetworkChoice;
 use crate::scene::{JointWeighting, ParamMap, Params, SpacePath, SpaceScene};
-use crate::space::{Chain, SpacePreset, Sphere, Vec3};
+use crate::space::{Chain, Sphere, Vec3};
 
 /// A version 1 file: one flat object.
 #[derive(Deserialize)]
@@ -187,23 +187,13 @@ fn read(text: &str) -> Result<SpaceRunFile> {
             format!("not the JSON of simulate --arm ... --json: {e}"),
         )
     })?;
-    let preset = SpacePreset::by_key(&f.arm).ok_or_else(|| Error::UnknownName {
-        kind: "arm in space",
-        name: crate::error::clip(&f.arm),
-        choices: crate::error::choices(
-            &crate::space::PRESETS
-                .iter()
-                .map(|p| p.key)
-                .collect::<Vec<_>>(),
-        ),
-    })?;
     let mut values = Vec::with_capacity(f.params.0.len());
     for (name, v) in &f.params.0 {
         values.push((by_name(name)?, *v));
     }
     let mut params = Params::default();
     params.set_all(&values)?;
-    let mut scene = SpaceScene::preset(preset);
+    let mut scene = SpaceScene::by_key(&f.arm)?;
     scene.arm = scene.arm.with_limits(f.joint_limits, f.rate_limits)?;
     scene.theta0 = f.theta0;
     scene.target = f.target;

@@ -39,7 +39,7 @@ impl SpaceScene {
             .map(Self::preset)
             .ok_or_else(|| Error::UnknownName {
                 kind: "arm in space",
-                name: key.into(),
+                name: crate::error::clip(key),
                 choices: crate::error::choices(
                     &crate::space::PRESETS
                         .iter()
