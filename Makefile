@@ -14,6 +14,10 @@ WASM_BUILD = wasm-pack build --release --target web --no-typescript
 PAGE_ENV = CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_TARGET_DIR=target/wasm-page
 PAGE_SIMD_ENV = CARGO_PROFILE_RELEASE_OPT_LEVEL=z CARGO_TARGET_DIR=target/wasm-page-simd
 WORKER_OPT = CARGO_PROFILE_RELEASE_OPT_LEVEL=s
+# Chromium leaves files in TMPDIR when it is stopped (about 40 MB a launch
+# in scoped_dir folders); the browser tests keep theirs in one folder under
+# target/, emptied at each start, so a long-lived machine's /tmp does not fill.
+BROWSER_TMP = rm -rf target/browser-tmp && mkdir -p target/browser-tmp && TMPDIR=$(CURDIR)/target/browser-tmp
 
 .PHONY: setup web dist test-dist offline test-offline npm test-npm demo test lint test-native test-wasm test-e2e test-fuzz test-soak fuzz soak bench bench-native bench-web figures atlas-figures weights clean-web
 
@@ -77,7 +81,7 @@ dist: web
 ## dist/ served under a sub-path (/courses/robotics/arm/) on a free port,
 ## and the page's smoke test there in headless Chromium (scripts/test-dist.sh).
 test-dist: dist
-	bash scripts/test-dist.sh
+	$(BROWSER_TMP) bash scripts/test-dist.sh
 
 ## Build, then serve www/ on http://127.0.0.1:$(PORT)/, with CORS, so the
 ## Embed button's element snippet also runs on a course page served from
@@ -95,7 +99,7 @@ offline: web
 
 ## The offline file from file:// in headless Chromium (tests/bundle/offline.mjs).
 test-offline: offline
-	bash scripts/test-bundle.sh offline
+	$(BROWSER_TMP) bash scripts/test-bundle.sh offline
 
 ## The npm package: target/npm/redundant-ik/ and its tarball
 ## target/npm/redundant-ik-VERSION.tgz (npm pack), the version Cargo.toml's:
@@ -107,7 +111,7 @@ npm: web
 ## The tarball installed into a scratch folder, served, and the element loaded
 ## from it three ways in headless Chromium (tests/bundle/npm.mjs).
 test-npm: npm
-	bash scripts/test-bundle.sh npm
+	$(BROWSER_TMP) bash scripts/test-bundle.sh npm
 
 ## Everything CI runs: formatting, lints, native tests, the same core tests in
 ## headless Chromium, the end-to-end browser test of the page, and the short
@@ -135,11 +139,11 @@ test-native:
 	cargo test --lib --no-default-features --features page -- arm:: networks::reader
 
 test-wasm: setup
-	CHROMEDRIVER=/usr/bin/chromedriver $(WASM_ENV) wasm-pack test --headless --chrome
-	CHROMEDRIVER=/usr/bin/chromedriver $(WASM_SIMD_ENV) wasm-pack test --headless --chrome -- --test core --test networks --test alloc --test atlas
+	$(BROWSER_TMP) CHROMEDRIVER=/usr/bin/chromedriver $(WASM_ENV) wasm-pack test --headless --chrome
+	$(BROWSER_TMP) CHROMEDRIVER=/usr/bin/chromedriver $(WASM_SIMD_ENV) wasm-pack test --headless --chrome -- --test core --test networks --test alloc --test atlas
 
 test-e2e: web
-	bash scripts/e2e.sh
+	$(BROWSER_TMP) bash scripts/e2e.sh
 
 ## Every cargo-fuzz target (fuzz/) for FUZZ_RUNS executions (1 000 000 by
 ## default); new inputs grow the committed corpora in fuzz/corpus/.
@@ -157,11 +161,11 @@ test-fuzz:
 ## resizes; fails on any error or on memory growing more than 10%.
 SOAK_SECONDS ?= 600
 soak: web
-	SOAK_SECONDS=$(SOAK_SECONDS) E2E_SCRIPT=soak.mjs bash scripts/e2e.sh
+	$(BROWSER_TMP) SOAK_SECONDS=$(SOAK_SECONDS) E2E_SCRIPT=soak.mjs bash scripts/e2e.sh
 
 ## CI's short soak: 60 seconds.
 test-soak: web
-	SOAK_SECONDS=60 E2E_SCRIPT=soak.mjs bash scripts/e2e.sh
+	$(BROWSER_TMP) SOAK_SECONDS=60 E2E_SCRIPT=soak.mjs bash scripts/e2e.sh
 
 ## Criterion benchmarks (for developers; the README quotes `redundant-ik bench`).
 bench:
