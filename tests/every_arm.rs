@@ -97,7 +97,10 @@ where
         let s = p.step().unwrap().clone();
         let n = s.theta.len();
         assert_eq!(s.joints.len(), n + 1, "{label}");
-        assert_eq!(s.joints[n], s.ee, "{label}");
+        // The hand's point is the task's first coordinates (all of them
+        // for the position task, the position of the pose task's).
+        let d = s.joints[n].as_ref().len();
+        assert_eq!(s.joints[n].as_ref(), &s.ee[..d], "{label}");
         assert_eq!(s.ee, A::hand(p.pose()), "{label}");
         let error = (0..M)
             .map(|k| (s.ee[k] - s.reference[k]).powi(2))

@@ -133,6 +133,8 @@ fn summary_of(
         collision_steps: w.collision_steps,
         final_error: w.final_error,
         max_tracking_error: w.max_error,
+        final_orientation_error: None,
+        max_orientation_error: None,
         reached: w.final_error <= REACH_TOLERANCE,
         success: w.collision_steps == 0 && w.limit_steps == 0 && w.final_error <= REACH_TOLERANCE,
         target_reachable: reachable,

@@ -82,6 +82,11 @@ pub trait Model<const M: usize>: PhiAlgebra<M> + Clone + Debug + Send + Sync + '
     type Pair: Clearance<Self::Pose> + Copy + Debug + Send + Sync;
     /// The pairs of a pose within a distance, in a buffer that is reused.
     type Pairs: Clone + Debug + Send + Sync;
+    /// A point of the arm's space (`[f64; 2]` in the plane, `[f64; 3]` in
+    /// space): the joints, the obstacles' centres, a pull on an elbow. The
+    /// task's `M` coordinates are the point's for the hand's position and
+    /// six for its pose.
+    type Point: Point;
 
     /// The number of joints `n`.
     fn dof(&self) -> usize;
@@ -96,7 +101,7 @@ pub trait Model<const M: usize>: PhiAlgebra<M> + Clone + Debug + Send + Sync + '
     fn rate_limits(&self) -> Option<&RateLimits>;
 
     /// The obstacles' centres: the points `O` of eqs. (14)-(16).
-    fn obstacle_centres(scene: &Self::Scene) -> impl Iterator<Item = [f64; M]> + '_;
+    fn obstacle_centres(scene: &Self::Scene) -> impl Iterator<Item = Self::Point> + '_;
     /// The exact obstacle vector of eqs. (14)-(16) summed over the
     /// scene's obstacles, `v = (lambda / 4) sum_O g(theta, O)`, each
     /// area gradient's sign smoothed by `eps`; `scratch` has `n` entries.
@@ -136,11 +141,34 @@ pub trait Model<const M: usize>: PhiAlgebra<M> + Clone + Debug + Send + Sync + '
     fn manipulability_gradient_into(pose: &Self::Pose, floor: f64, out: &mut [f64]);
     /// The position `P(k)` of joint `k` (`0 <= k <= n`: `P(n)` is the
     /// hand; `1 <= k < n` an elbow).
-    fn joint_point(pose: &Self::Pose, k: usize) -> [f64; M];
+    fn joint_point(pose: &Self::Pose, k: usize) -> Self::Point;
     /// `v = J_k^T f` into `v`, or a damped inverse of `J_k` where the
     /// transpose is too weak: the joint rates that move `P(k)` along a
     /// force `f` (the joints before `k` move it, the others not).
-    fn pull(pose: &Self::Pose, k: usize, f: [f64; M], v: &mut [f64]);
+    fn pull(pose: &Self::Pose, k: usize, f: Self::Point, v: &mut [f64]);
+
+    /// The task's error `a - b` (what the feedback `K (X_ref - X)` and the
+    /// tracking error read): the difference of the coordinates, for a
+    /// hand's position; for a hand's pose the position's difference and
+    /// the rotation vector of `R_a R_b^T`.
+    #[inline]
+    fn task_error(a: [f64; M], b: [f64; M]) -> [f64; M] {
+        std::array::from_fn(|k| a[k] - b[k])
+    }
+    /// How far task point `a` is from `b`: the hand's distance (m) and,
+    /// for a pose, the angle of the rotation between them (rad).
+    #[inline]
+    fn errors(a: [f64; M], b: [f64; M]) -> (f64, Option<f64>) {
+        (distance(a, b), None)
+    }
+    /// The task's point at fraction `s` of the shortest path from `a` to
+    /// `b` and its rate `d/ds` (the straight line; for a pose, the
+    /// position's line and the orientation turning about one axis at a
+    /// constant rate, the rate an angular velocity).
+    #[inline]
+    fn geodesic(a: [f64; M], b: [f64; M], s: f64) -> ([f64; M], [f64; M]) {
+        straight(a, b, s)
+    }
 
     /// Eq. (18): `(J J^T + delta I) varphi = Xdot - J v`,
     /// `theta_dot = J^T varphi + v`, into `out` (`v` has `n` entries).
@@ -165,6 +193,46 @@ pub trait Model<const M: usize>: PhiAlgebra<M> + Clone + Debug + Send + Sync + '
         delta: f64,
         out: &mut [f64],
     ) -> Result<()>;
+}
+
+/// Euclidean distance between two points (in the plane exactly
+/// `sqrt(dx^2 + dy^2)`, the published numbers).
+#[inline]
+pub fn distance<const M: usize>(a: [f64; M], b: [f64; M]) -> f64 {
+    let mut sum = 0.0;
+    for k in 0..M {
+        let d = a[k] - b[k];
+        sum += d * d;
+    }
+    sum.sqrt()
+}
+
+/// The straight line from `a` to `b`: `a + s (b - a)` and its rate `b - a`.
+#[inline]
+pub fn straight<const M: usize>(a: [f64; M], b: [f64; M], s: f64) -> ([f64; M], [f64; M]) {
+    let d: [f64; M] = std::array::from_fn(|k| b[k] - a[k]);
+    (std::array::from_fn(|k| a[k] + s * d[k]), d)
+}
+
+/// A point of an arm's space: a fixed-size array of coordinates.
+pub trait Point:
+    Copy
+    + Debug
+    + Default
+    + PartialEq
+    + Send
+    + Sync
+    + AsRef<[f64]>
+    + AsMut<[f64]>
+    + serde::Serialize
+    + serde::de::DeserializeOwned
+    + 'static
+{
+}
+
+impl<const D: usize> Point for [f64; D] where
+    [f64; D]: Default + serde::Serialize + serde::de::DeserializeOwned
+{
 }
 
 /// The learned route's small dense algebra (eqs. 19-21), which

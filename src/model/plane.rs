@@ -16,6 +16,7 @@ impl Model<2> for Arm {
     type Scene = scene::Scene;
     type Pair = Pair;
     type Pairs = Pairs;
+    type Point = [f64; 2];
 
     fn dof(&self) -> usize {
         Arm::dof(self)

@@ -20,6 +20,7 @@ impl Model<3> for Chain {
     type Scene = SpaceScene;
     type Pair = SpacePair;
     type Pairs = SpacePairs;
+    type Point = [f64; 3];
 
     fn dof(&self) -> usize {
         Chain::dof(self)

@@ -79,7 +79,7 @@ impl<A: Planned<M>, const M: usize> Planner<A, M> {
     /// One classical RK4 step of size `dt` (section V, step e), then the new
     /// sample, which the planner keeps (see [`Planner::sample`]). On error
     /// the state is left unchanged. Allocation-free.
-    pub fn step(&mut self) -> Result<&super::Sample<M>> {
+    pub fn step(&mut self) -> Result<&super::Sample<M, A::Point>> {
         let h = self.scene.dt();
         let t = self.t;
         let t_mid = t + 0.5 * h;
@@ -88,7 +88,7 @@ impl<A: Planned<M>, const M: usize> Planner<A, M> {
         let line_xdot = self
             .track
             .is_line()
-            .then(|| self.track.line.velocity_at(t_mid));
+            .then(|| self.track.line_velocity(t_mid));
         let Self {
             scene,
             networks,
@@ -111,8 +111,8 @@ impl<A: Planned<M>, const M: usize> Planner<A, M> {
         let xdot = |tt: f64, last: bool, pose: &A::Pose| -> [f64; M] {
             let v = line_xdot.unwrap_or_else(|| track.velocity(t_mid, tt, !last));
             if gain > 0.0 {
-                let (r, x) = (track.reference(tt), A::hand(pose));
-                std::array::from_fn(|k| v[k] + gain * (r[k] - x[k]))
+                let e = A::task_error(track.reference(tt), A::hand(pose));
+                std::array::from_fn(|k| v[k] + gain * e[k])
             } else {
                 v
             }

@@ -75,6 +75,7 @@ impl Planned<2> for Arm {
         let end = scene.path.end(start, scene.target);
         Ok(Track::from_shape(
             plane_shape(&scene.path, start),
+            <Arm as Model<2>>::geodesic,
             start,
             end,
             t0,
@@ -117,7 +118,14 @@ impl Track<2> {
     /// must have been validated ([`Path::validate`]).
     pub fn new(path: &Path, start: [f64; 2], target: [f64; 2], t0: f64, duration: f64) -> Self {
         let end = path.end(start, target);
-        Track::from_shape(plane_shape(path, start), start, end, t0, duration)
+        Track::from_shape(
+            plane_shape(path, start),
+            <Arm as Model<2>>::geodesic,
+            start,
+            end,
+            t0,
+            duration,
+        )
     }
 }
 
@@ -142,6 +150,7 @@ impl Planned<3> for Chain {
         let end = scene.path.end(start, scene.target);
         Ok(Track::from_shape(
             space_shape(&scene.path, start)?,
+            <Chain as Model<3>>::geodesic,
             start,
             end,
             t0,

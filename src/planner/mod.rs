@@ -59,6 +59,11 @@ use rk4::Rk4;
 /// target (5 mm, the acceptance bound for the network cases).
 pub const REACH_TOLERANCE: f64 = 5e-3;
 
+/// Final orientation error below which a run of the pose task counts as
+/// having reached its target (rad; about 0.29 degrees, what 5 mm is at a
+/// lever of 1 m).
+pub const REACH_ANGLE: f64 = 5e-3;
+
 /// The networks a planner of arm `A` may hold.
 pub type Networks<A, const M: usize> = Arc<dyn Surrogate<A, M>>;
 
@@ -80,7 +85,7 @@ pub struct Planner<A: Planned<M> = Arm, const M: usize = 2> {
     /// where the track is made: the page's state reads it every frame).
     reachable: bool,
     /// The state as the page and the CLI see it, refreshed in place.
-    sample: Sample<M>,
+    sample: Sample<M, A::Point>,
     ws: Workspace<A, M>,
 }
 
@@ -180,7 +185,7 @@ impl<A: Planned<M>, const M: usize> Planner<A, M> {
         scene: S,
         method: Method,
         networks: Option<Networks<A, M>>,
-    ) -> Result<Trajectory<M>>
+    ) -> Result<Trajectory<M, A::Point>>
     where
         S: SceneOf<A, M> + crate::model::Scene<A>,
         A: Planned<M, Scene = S>,
@@ -206,7 +211,7 @@ impl<A: Planned<M>, const M: usize> Planner<A, M> {
 
     /// Runs to `tf` from the current state, recording every sample (the
     /// current one first).
-    pub fn run_to_end(mut self) -> Result<Trajectory<M>> {
+    pub fn run_to_end(mut self) -> Result<Trajectory<M, A::Point>> {
         let left = self.scene.steps().saturating_sub(self.step_index);
         let mut steps = Vec::with_capacity(left + 1);
         steps.push(self.sample.clone());
@@ -312,7 +317,7 @@ impl<A: Planned<M>, const M: usize> Planner<A, M> {
 
     /// A sample of this planner's arm with room for its joints, zero
     /// (what [`observe_pose`] fills).
-    pub fn blank_sample(arm: &A) -> Sample<M> {
+    pub fn blank_sample(arm: &A) -> Sample<M, A::Point> {
         Sample::zeros(arm.dof(), [0.0; M])
     }
 

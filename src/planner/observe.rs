@@ -3,13 +3,13 @@
 //! in their trained range, and the summary of the run so far.
 
 use super::methods::Note;
-use super::{Method, Planned, Planner, Sample, Summary, Surrogate, REACH_TOLERANCE};
+use super::{Method, Planned, Planner, Sample, Summary, Surrogate, REACH_ANGLE, REACH_TOLERANCE};
 use crate::model::Scene as _;
 
 impl<A: Planned<M>, const M: usize> Planner<A, M> {
     /// The current state: the start, or the result of the last step. Kept up
     /// to date by the planner (no copy, no allocation).
-    pub fn sample(&self) -> &Sample<M> {
+    pub fn sample(&self) -> &Sample<M, A::Point> {
         &self.sample
     }
 
@@ -45,7 +45,9 @@ impl<A: Planned<M>, const M: usize> Planner<A, M> {
         let reference = self.track.reference(self.t);
         s.t = self.t;
         s.reference = reference;
-        s.tracking_error = distance(s.ee, reference);
+        let (position, orientation) = A::errors(s.ee, reference);
+        s.tracking_error = position;
+        s.orientation_error = orientation;
         s.in_range = in_range::<A, M>(self.method, self.networks.as_deref(), pose, &self.scene);
         s.phi_handover = note.handover;
         s.relaxed = note.relaxed;
@@ -62,7 +64,9 @@ impl<A: Planned<M>, const M: usize> Planner<A, M> {
         let x = A::hand(&self.ws.pose);
         // The path's end: the target for the line, the start for a circle,
         // the last point of a polyline.
-        let final_error = distance(x, self.track.end());
+        let (final_error, final_orientation_error) = A::errors(x, self.track.end());
+        let reached = final_error <= REACH_TOLERANCE
+            && final_orientation_error.is_none_or(|e| e <= REACH_ANGLE);
         Summary {
             method: self.method,
             steps: self.stats.steps,
@@ -73,10 +77,10 @@ impl<A: Planned<M>, const M: usize> Planner<A, M> {
             collision_steps: self.stats.collision_steps,
             final_error,
             max_tracking_error: self.stats.max_tracking_error,
-            reached: final_error <= REACH_TOLERANCE,
-            success: !self.stats.collided
-                && self.stats.limit_steps == 0
-                && final_error <= REACH_TOLERANCE,
+            final_orientation_error,
+            max_orientation_error: self.stats.max_orientation_error,
+            reached,
+            success: !self.stats.collided && self.stats.limit_steps == 0 && reached,
             target_reachable: self.reachable,
             out_of_range_steps: self.stats.out_of_range_steps,
             max_delta: self.stats.max_delta,
@@ -98,7 +102,7 @@ impl<A: Planned<M>, const M: usize> Planner<A, M> {
 pub fn observe_pose<A: Planned<M>, const M: usize>(
     scene: &A::Scene,
     pose: &A::Pose,
-    s: &mut Sample<M>,
+    s: &mut Sample<M, A::Point>,
 ) {
     s.theta.copy_from_slice(A::theta(pose));
     for (k, p) in s.joints.iter_mut().enumerate() {
@@ -123,18 +127,6 @@ pub fn observe_pose<A: Planned<M>, const M: usize>(
             }
         }
     }
-}
-
-/// Euclidean distance between two points (in the plane exactly
-/// `sqrt(dx^2 + dy^2)`, the published numbers).
-#[inline]
-pub(crate) fn distance<const M: usize>(a: [f64; M], b: [f64; M]) -> f64 {
-    let mut sum = 0.0;
-    for k in 0..M {
-        let d = a[k] - b[k];
-        sum += d * d;
-    }
-    sum.sqrt()
 }
 
 /// Whether the networks `method` uses see `pose` (and every obstacle)

@@ -21,6 +21,7 @@
 
 use super::along::{self, polyline_at, Circle};
 use super::Line;
+use crate::model::straight;
 
 /// What a track runs along, its geometry computed once (borrowed from the
 /// scene's path where it is a list of points).
@@ -42,14 +43,28 @@ enum Owned<const M: usize> {
     Points(Vec<[f64; M]>),
 }
 
+/// The task's shortest path from `a` to `b`: its point at fraction `s`
+/// and its rate `d/ds` ([`crate::model::Model::geodesic`]).
+pub type Geodesic<const M: usize> = fn(a: [f64; M], b: [f64; M], s: f64) -> ([f64; M], [f64; M]);
+
 /// A path with its timing: `line` runs from the start to the path's end
 /// (the target, for the line itself) over the path's time.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct Track<const M: usize = 2> {
     /// From the start to the end, with the path's timing; the path itself
     /// for the straight line.
     pub line: Line<M>,
     shape: Owned<M>,
+    /// How the line runs between its ends (the arm's task's shortest path).
+    geodesic: Geodesic<M>,
+}
+
+/// Tracks are equal where their lines and shapes are (the line's
+/// geodesic is the task's, the same for every track of one arm).
+impl<const M: usize> PartialEq for Track<M> {
+    fn eq(&self, other: &Self) -> bool {
+        self.line == other.line && self.shape == other.shape
+    }
 }
 
 impl<const M: usize> Track<M> {
@@ -57,6 +72,7 @@ impl<const M: usize> Track<M> {
     /// `duration` seconds.
     pub(crate) fn from_shape(
         shape: Shape<'_, M>,
+        geodesic: Geodesic<M>,
         start: [f64; M],
         end: [f64; M],
         t0: f64,
@@ -65,6 +81,7 @@ impl<const M: usize> Track<M> {
         let mut track = Self {
             line: Line::new(start, end, t0, duration),
             shape: Owned::Line,
+            geodesic,
         };
         track.renew(shape, start, end, t0, duration);
         track
@@ -72,7 +89,19 @@ impl<const M: usize> Track<M> {
 
     /// The straight line from `start` at `t0` to `end`, taking `duration`.
     pub fn straight(start: [f64; M], end: [f64; M], t0: f64, duration: f64) -> Self {
-        Self::from_shape(Shape::Line, start, end, t0, duration)
+        Self::from_shape(Shape::Line, straight, start, end, t0, duration)
+    }
+
+    /// The line from `start` at `t0` to `end` along `geodesic`, taking
+    /// `duration`.
+    pub fn line_along(
+        geodesic: Geodesic<M>,
+        start: [f64; M],
+        end: [f64; M],
+        t0: f64,
+        duration: f64,
+    ) -> Self {
+        Self::from_shape(Shape::Line, geodesic, start, end, t0, duration)
     }
 
     /// The same track with a new shape and timing, reusing its buffer: no
@@ -116,10 +145,7 @@ impl<const M: usize> Track<M> {
         match &self.shape {
             Owned::Circle(c) => c.at(s),
             Owned::Points(points) => polyline_at(a, points, s, after),
-            Owned::Line => {
-                let d: [f64; M] = std::array::from_fn(|k| b[k] - a[k]);
-                (std::array::from_fn(|k| a[k] + s * d[k]), d)
-            }
+            Owned::Line => (self.geodesic)(a, b, s),
         }
     }
 
@@ -131,7 +157,9 @@ impl<const M: usize> Track<M> {
     /// (exactly: whole laps end where they began).
     pub fn reference(&self, t: f64) -> [f64; M] {
         if self.is_line() {
-            return self.line.reference(t);
+            let l = &self.line;
+            let s = ((t - l.t0) / l.duration).clamp(0.0, 1.0);
+            return (self.geodesic)(l.start, l.end, s).0;
         }
         let s = self.fraction(t);
         if s >= 1.0 {
@@ -150,10 +178,23 @@ impl<const M: usize> Track<M> {
     pub fn velocity(&self, t_mid: f64, t: f64, after: bool) -> [f64; M] {
         let l = &self.line;
         if self.is_line() || !along::moving(t_mid, l.t0, l.duration) {
-            return l.velocity_at(t_mid);
+            return self.line_velocity(t_mid);
         }
         let d = self.at(self.fraction(t), after).1;
         std::array::from_fn(|k| d[k] / l.duration)
+    }
+
+    /// The line's constant task velocity while it runs (its geodesic's
+    /// rate over its duration), zero before and after; taken at a step's
+    /// midpoint so that every RK4 stage of a step sees the same `Xdot`.
+    pub fn line_velocity(&self, t_mid: f64) -> [f64; M] {
+        let l = &self.line;
+        if t_mid > l.t0 && t_mid < l.t0 + l.duration {
+            let d = (self.geodesic)(l.start, l.end, 0.0).1;
+            std::array::from_fn(|k| d[k] / l.duration)
+        } else {
+            [0.0; M]
+        }
     }
 
     /// Whether `can` holds at every point of the path that bounds it: the

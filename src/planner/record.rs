@@ -34,48 +34,33 @@ impl<const M: usize> Line<M> {
             duration,
         }
     }
-
-    /// Reference point `X_ref(t)` on the line.
-    pub fn reference(&self, t: f64) -> [f64; M] {
-        let s = ((t - self.t0) / self.duration).clamp(0.0, 1.0);
-        let (a, b) = (self.start, self.end);
-        std::array::from_fn(|k| a[k] + s * (b[k] - a[k]))
-    }
-
-    /// Constant task velocity `Xdot` while the line runs, zero before and after.
-    /// Evaluated at a step's midpoint so that every RK4 stage of a step sees the
-    /// same `Xdot`.
-    pub(super) fn velocity_at(&self, t_mid: f64) -> [f64; M] {
-        if t_mid > self.t0 && t_mid < self.t0 + self.duration {
-            let (a, b) = (self.start, self.end);
-            std::array::from_fn(|k| (b[k] - a[k]) / self.duration)
-        } else {
-            [0.0; M]
-        }
-    }
 }
 
 /// The state after one integration step (or at the start), of an arm
 /// whose hand has `M` coordinates (the planar arm's by default).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(bound(
-    serialize = "[f64; M]: Serialize",
-    deserialize = "[f64; M]: Deserialize<'de>"
+    serialize = "[f64; M]: Serialize, P: Serialize",
+    deserialize = "[f64; M]: Deserialize<'de>, P: Deserialize<'de>"
 ))]
-pub struct Sample<const M: usize = 2> {
+pub struct Sample<const M: usize = 2, P = [f64; M]> {
     /// Time (s).
     pub t: f64,
     /// Joint angles (rad).
     pub theta: Vec<f64>,
     /// Joint positions `P(0)..P(n)`, `P(0)` first (in space the joints'
     /// origins, then the hand).
-    pub joints: Vec<[f64; M]>,
+    pub joints: Vec<P>,
     /// The hand (end effector) `X = P(n)`.
     pub ee: [f64; M],
     /// The path's reference point at `t`.
     pub reference: [f64; M],
     /// Distance from the end effector to the reference.
     pub tracking_error: f64,
+    /// For the pose task, the angle between the hand's orientation and the
+    /// reference's (rad); absent for the hand's position.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub orientation_error: Option<f64>,
     /// Smallest distance from an obstacle centre to a moving link (in
     /// space, to a capsule's axis; none without obstacles).
     pub distance: Option<f64>,
@@ -119,17 +104,18 @@ fn is_zero(n: &usize) -> bool {
     *n == 0
 }
 
-impl<const M: usize> Sample<M> {
+impl<const M: usize, P: Clone + Default> Sample<M, P> {
     /// A sample of an `n`-joint arm with everything zero but the end
     /// effector and the reference, at `ee` (the planner fills it at once).
     pub(super) fn zeros(n: usize, ee: [f64; M]) -> Self {
         Self {
             t: 0.0,
             theta: vec![0.0; n],
-            joints: vec![[0.0; M]; n + 1],
+            joints: vec![P::default(); n + 1],
             ee,
             reference: ee,
             tracking_error: 0.0,
+            orientation_error: None,
             distance: None,
             clearance: None,
             collision: false,
@@ -171,7 +157,16 @@ pub struct Summary {
     pub final_error: f64,
     /// Largest distance from the end effector to the reference.
     pub max_tracking_error: f64,
-    /// `final_error <= REACH_TOLERANCE`.
+    /// For the pose task, the angle between the hand's orientation and the
+    /// path's end now (rad); absent for the hand's position.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub final_orientation_error: Option<f64>,
+    /// For the pose task, the largest angle between the hand's orientation
+    /// and the reference's (rad).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_orientation_error: Option<f64>,
+    /// `final_error <= REACH_TOLERANCE` and, for the pose task,
+    /// `final_orientation_error <=` [`super::REACH_ANGLE`].
     pub reached: bool,
     /// The run's success, the one test every report uses (the atlas's
     /// `success`, the training check, `eval`): clear of every obstacle and
@@ -219,6 +214,8 @@ impl Summary {
             collision_steps: 0,
             final_error: f64::NAN,
             max_tracking_error: 0.0,
+            final_orientation_error: None,
+            max_orientation_error: None,
             reached: false,
             success: false,
             target_reachable: false,
@@ -235,15 +232,15 @@ impl Summary {
 /// A whole run: every sample from `t = 0` to `tf`, and the summary.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(bound(
-    serialize = "[f64; M]: Serialize",
-    deserialize = "[f64; M]: Deserialize<'de>"
+    serialize = "[f64; M]: Serialize, P: Serialize",
+    deserialize = "[f64; M]: Deserialize<'de>, P: Deserialize<'de>"
 ))]
-pub struct Trajectory<const M: usize = 2> {
+pub struct Trajectory<const M: usize = 2, P = [f64; M]> {
     /// Method used (`method` in JSON; `mode`, the older name, is read too).
     #[serde(alias = "mode")]
     pub method: Method,
     /// One sample per RK4 step, the initial state first.
-    pub steps: Vec<Sample<M>>,
+    pub steps: Vec<Sample<M, P>>,
     /// Outcome.
     pub summary: Summary,
 }
@@ -256,6 +253,7 @@ pub(super) struct Stats {
     pub(super) collided: bool,
     pub(super) collision_steps: usize,
     pub(super) max_tracking_error: f64,
+    pub(super) max_orientation_error: Option<f64>,
     pub(super) out_of_range_steps: usize,
     pub(super) max_delta: f64,
     pub(super) handover_steps: usize,
@@ -272,6 +270,7 @@ impl Stats {
             collided: false,
             collision_steps: 0,
             max_tracking_error: 0.0,
+            max_orientation_error: None,
             out_of_range_steps: 0,
             max_delta: 0.0,
             handover_steps: 0,
@@ -280,10 +279,13 @@ impl Stats {
         }
     }
 
-    pub(super) fn record<const M: usize>(&mut self, s: &Sample<M>) {
+    pub(super) fn record<const M: usize, P>(&mut self, s: &Sample<M, P>) {
         self.observe(s);
         self.collision_steps += usize::from(s.collision);
         self.max_tracking_error = self.max_tracking_error.max(s.tracking_error);
+        if let Some(e) = s.orientation_error {
+            self.max_orientation_error = Some(self.max_orientation_error.map_or(e, |m| m.max(e)));
+        }
         if !s.in_range {
             self.out_of_range_steps += 1;
         }
@@ -301,7 +303,7 @@ impl Stats {
 
     /// Folds a sample's distance and collision into the run's (a change of
     /// setting between steps: no step is counted).
-    pub(super) fn observe<const M: usize>(&mut self, s: &Sample<M>) {
+    pub(super) fn observe<const M: usize, P>(&mut self, s: &Sample<M, P>) {
         let min = |m: Option<f64>, d: f64| Some(m.map_or(d, |m: f64| m.min(d)));
         if let Some(d) = s.distance {
             self.min_distance = min(self.min_distance, d);

@@ -40,9 +40,9 @@ pub struct SelfMotion<A: Model<M>, const M: usize> {
 /// toward `to`, or (`to` absent) the joint-space direction `(I - J+ J) e_j`
 /// of joint `joint` at unit speed, times `sign`.
 #[derive(Debug, Clone, Copy)]
-struct Pull<const M: usize> {
+struct Pull<P, const M: usize> {
     joint: usize,
-    to: Option<[f64; M]>,
+    to: Option<P>,
     sign: f64,
     hold: [f64; M],
 }
@@ -71,7 +71,7 @@ impl<A: Model<M>, const M: usize> SelfMotion<A, M> {
         arm: &A,
         theta: &mut [f64],
         joint: usize,
-        to: [f64; M],
+        to: A::Point,
         hold: [f64; M],
         steps: usize,
     ) -> Result<()> {
@@ -84,7 +84,7 @@ impl<A: Model<M>, const M: usize> SelfMotion<A, M> {
                 max: n.saturating_sub(1) as f64,
             });
         }
-        for (c, axis) in to.iter().zip(["x", "y", "z"]) {
+        for (c, axis) in to.as_ref().iter().zip(["x", "y", "z"]) {
             crate::error::finite(&format!("drag point {axis}"), *c)?;
         }
         let pull = Pull {
@@ -139,7 +139,13 @@ impl<A: Model<M>, const M: usize> SelfMotion<A, M> {
     }
 
     /// `steps` RK4 steps of `pull`; `theta` as it was if one fails.
-    fn integrate(&mut self, arm: &A, theta: &mut [f64], pull: Pull<M>, steps: usize) -> Result<()> {
+    fn integrate(
+        &mut self,
+        arm: &A,
+        theta: &mut [f64],
+        pull: Pull<A::Point, M>,
+        steps: usize,
+    ) -> Result<()> {
         let start = theta.to_vec();
         for _ in 0..steps {
             if let Err(e) = self.rk4(arm, theta, pull) {
@@ -151,7 +157,7 @@ impl<A: Model<M>, const M: usize> SelfMotion<A, M> {
     }
 
     /// One classical RK4 step of [`SELF_MOTION_DT`].
-    fn rk4(&mut self, arm: &A, theta: &mut [f64], pull: Pull<M>) -> Result<()> {
+    fn rk4(&mut self, arm: &A, theta: &mut [f64], pull: Pull<A::Point, M>) -> Result<()> {
         let h = SELF_MOTION_DT;
         let Self {
             pose,
@@ -183,7 +189,7 @@ impl<A: Model<M>, const M: usize> SelfMotion<A, M> {
 /// oriented as `dir` and times the pull's speed; `v` is scratch.
 fn rates<A: Model<M>, const M: usize>(
     pose: &A::Pose,
-    pull: Pull<M>,
+    pull: Pull<A::Point, M>,
     v: &mut [f64],
     dir: &[f64],
     out: &mut [f64],
@@ -191,7 +197,10 @@ fn rates<A: Model<M>, const M: usize>(
     match pull.to {
         Some(to) => {
             let p = A::joint_point(pose, pull.joint);
-            let f: [f64; M] = std::array::from_fn(|i| PULL_GAIN * (to[i] - p[i]));
+            let mut f = A::Point::default();
+            for ((fi, ti), pi) in f.as_mut().iter_mut().zip(to.as_ref()).zip(p.as_ref()) {
+                *fi = PULL_GAIN * (ti - pi);
+            }
             A::pull(pose, pull.joint, f, v);
         }
         None => {

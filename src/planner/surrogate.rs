@@ -24,9 +24,9 @@ pub trait Surrogate<A: Model<M> = Arm, const M: usize = 2>: Send + Sync {
     fn phi(&self, pose: &A::Pose, out: &mut [f64]) -> Result<()>;
     /// Learned area gradient `g(theta, O)` into `out` (`n` entries), with
     /// `v = (lambda / 4) g` (see [`crate::obstacle::area_gradient`]).
-    fn area_gradient(&self, pose: &A::Pose, o: [f64; M], out: &mut [f64]) -> Result<()>;
+    fn area_gradient(&self, pose: &A::Pose, o: A::Point, out: &mut [f64]) -> Result<()>;
     /// Whether the pose lies in the range the `Phi` network was trained on.
     fn phi_in_range(&self, pose: &A::Pose) -> bool;
     /// Whether `(theta, O)` lies in the range the `v` network was trained on.
-    fn v_in_range(&self, pose: &A::Pose, o: [f64; M]) -> bool;
+    fn v_in_range(&self, pose: &A::Pose, o: A::Point) -> bool;
 }
