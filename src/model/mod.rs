@@ -59,6 +59,7 @@ macro_rules! scene_of {
 }
 
 mod plane;
+mod pose;
 mod space;
 
 use std::fmt::Debug;
@@ -147,6 +148,13 @@ pub trait Model<const M: usize>: PhiAlgebra<M> + Clone + Debug + Send + Sync + '
     /// force `f` (the joints before `k` move it, the others not).
     fn pull(pose: &Self::Pose, k: usize, f: Self::Point, v: &mut [f64]);
 
+    /// The diagonal of the task's metric `Z` (eqs. 6-7): all ones (`Z = I`)
+    /// but for the pose task's orientation rows.
+    #[inline]
+    fn task_weights(pose: &Self::Pose) -> [f64; M] {
+        let _ = pose;
+        [1.0; M]
+    }
     /// The task's error `a - b` (what the feedback `K (X_ref - X)` and the
     /// tracking error read): the difference of the coordinates, for a
     /// hand's position; for a hand's pose the position's difference and

@@ -13,8 +13,8 @@ use crate::clearance::Pair;
 use crate::error::{Error, Result};
 use crate::kinematics::Pose;
 use crate::model::Model;
-use crate::scene::{circle_plane, Path, Scene, SpacePath, SpaceScene};
-use crate::space::{norm, sub, CapsulePair, Chain, SpacePose};
+use crate::scene::{circle_plane, Path, PoseScene, Scene, SpacePath, SpaceScene};
+use crate::space::{norm, sub, CapsulePair, Chain, HandPose, PoseChain, SpacePose, Sphere};
 
 /// What a sample records of the obstacles at a pose.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -34,6 +34,7 @@ pub trait SceneOf<A, const M: usize> {}
 
 impl SceneOf<Arm, 2> for Scene {}
 impl SceneOf<Chain, 3> for SpaceScene {}
+impl SceneOf<PoseChain, 6> for PoseScene {}
 
 /// An arm model the planner plans for.
 pub trait Planned<const M: usize>: Model<M> {
@@ -173,27 +174,75 @@ impl Planned<3> for Chain {
     fn reaches(&self, pose: &SpacePose, p: [f64; 3]) -> bool {
         norm(sub(p, pose.joint_origin(0))) <= self.reach()
     }
-    /// The capsules' clearance from the spheres; the floor is a constraint
-    /// of the methods that keep a clearance, not counted as a collision.
     fn contact(scene: &SpaceScene, pose: &SpacePose) -> Contact {
-        let mut c = Contact::default();
-        let chain = &scene.arm;
-        for (k, s) in chain.segments().iter().enumerate() {
-            if s.moved_by == 0 {
-                continue;
-            }
-            for (j, sp) in scene.obstacles.iter().enumerate() {
-                let pair = CapsulePair::at(chain, pose, k, j, sp);
-                let axis = pair.distance + s.radius + sp.radius;
-                c.distance = Some(c.distance.map_or(axis, |m| m.min(axis)));
-                c.clearance = Some(c.clearance.map_or(pair.distance, |m| m.min(pair.distance)));
-            }
-        }
-        c.collision = c.clearance.is_some_and(|k| k < 0.0);
-        c
+        chain_contact(&scene.arm, &scene.obstacles, pose)
     }
     fn outline(scene: &SpaceScene, start: [f64; 3], end: [f64; 3]) -> Vec<[f64; 3]> {
         scene.path.outline(start, end, 96)
+    }
+}
+
+/// A chain's contact with spheres: the capsules' clearance from them;
+/// the floor is a constraint of the methods that keep a clearance, not
+/// counted as a collision.
+fn chain_contact(chain: &Chain, spheres: &[Sphere], pose: &SpacePose) -> Contact {
+    let mut c = Contact::default();
+    for (k, s) in chain.segments().iter().enumerate() {
+        if s.moved_by == 0 {
+            continue;
+        }
+        for (j, sp) in spheres.iter().enumerate() {
+            let pair = CapsulePair::at(chain, pose, k, j, sp);
+            let axis = pair.distance + s.radius + sp.radius;
+            c.distance = Some(c.distance.map_or(axis, |m| m.min(axis)));
+            c.clearance = Some(c.clearance.map_or(pair.distance, |m| m.min(pair.distance)));
+        }
+    }
+    c.collision = c.clearance.is_some_and(|k| k < 0.0);
+    c
+}
+
+impl Planned<6> for PoseChain {
+    fn rule(entry: &Entry) -> Option<Builder<Self, 6>> {
+        entry.pose
+    }
+    fn constraint(entry: &constraints::Entry) -> constraints::Build<Self, 6> {
+        entry.pose
+    }
+    /// The straight line (the scene accepts no other path for the pose),
+    /// the orientation along its shortest rotation.
+    fn track(scene: &PoseScene, start: [f64; 6], t0: f64, duration: f64) -> Result<Track<6>> {
+        if scene.path != SpacePath::Line {
+            scene.validate()?;
+        }
+        Ok(Track::line_along(
+            Self::geodesic,
+            start,
+            scene.target,
+            t0,
+            duration,
+        ))
+    }
+    fn renew_track(
+        scene: &PoseScene,
+        start: [f64; 6],
+        t0: f64,
+        duration: f64,
+        track: &mut Track<6>,
+    ) {
+        *track = Track::line_along(Self::geodesic, start, scene.target, t0, duration);
+    }
+    fn reaches(&self, pose: &HandPose, p: [f64; 6]) -> bool {
+        self.chain.reaches(pose.space(), [p[0], p[1], p[2]])
+    }
+    fn contact(scene: &PoseScene, pose: &HandPose) -> Contact {
+        chain_contact(&scene.arm.chain, &scene.obstacles, pose.space())
+    }
+    /// The hand's path as 33 poses along the line.
+    fn outline(_: &PoseScene, start: [f64; 6], end: [f64; 6]) -> Vec<[f64; 6]> {
+        (0..=32)
+            .map(|k| Self::geodesic(start, end, f64::from(k) / 32.0).0)
+            .collect()
     }
 }
 

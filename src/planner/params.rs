@@ -43,10 +43,10 @@ pub fn by_flag(flag: &str) -> Option<&'static Param> {
     all().iter().copied().find(|p| p.flag == flag)
 }
 
-impl<A, P, const M: usize> From<Scene<A, P, M>> for SceneFile<A, P, M> {
+impl<A, P, const M: usize, const D: usize> From<Scene<A, P, M, D>> for SceneFile<A, P, M, D> {
     /// Every declared parameter is written, at its value in the scene, so
     /// a file says what ran even after a default changes.
-    fn from(s: Scene<A, P, M>) -> Self {
+    fn from(s: Scene<A, P, M, D>) -> Self {
         let params = ParamMap(
             all()
                 .iter()
@@ -75,14 +75,14 @@ impl<A, P, const M: usize> From<Scene<A, P, M>> for SceneFile<A, P, M> {
     }
 }
 
-impl<A, P, const M: usize> TryFrom<SceneFile<A, P, M>> for Scene<A, P, M> {
+impl<A, P, const M: usize, const D: usize> TryFrom<SceneFile<A, P, M, D>> for Scene<A, P, M, D> {
     type Error = Error;
 
     /// The older fields first, then `params` (a file has one or the
     /// other); each name must be a declared parameter and each value
     /// within its bounds. The whole scene is checked by
     /// [`Scene::validate`] where a file is read.
-    fn try_from(f: SceneFile<A, P, M>) -> Result<Self> {
+    fn try_from(f: SceneFile<A, P, M, D>) -> Result<Self> {
         let mut values: Vec<(&'static Param, f64)> = Vec::new();
         let legacy = [
             ("lambda", f.lambda),

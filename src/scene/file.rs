@@ -67,11 +67,11 @@ impl<'de> Deserialize<'de> for ParamMap {
 #[serde(
     deny_unknown_fields,
     bound(
-        serialize = "A: Serialize, P: Serialize + Default + PartialEq, [f64; M]: Serialize",
-        deserialize = "A: Deserialize<'de>, P: Deserialize<'de> + Default, [f64; M]: Deserialize<'de>"
+        serialize = "A: Serialize, P: Serialize + Default + PartialEq, [f64; M]: Serialize, [f64; D]: Serialize",
+        deserialize = "A: Deserialize<'de>, P: Deserialize<'de> + Default, [f64; M]: Deserialize<'de>, [f64; D]: Deserialize<'de>"
     )
 )]
-pub struct SceneFile<A = Arm, P = Path, const M: usize = 2> {
+pub struct SceneFile<A = Arm, P = Path, const M: usize = 2, const D: usize = M> {
     /// The manipulator.
     pub arm: A,
     /// Joint angles at `t = 0` (radians).
@@ -82,7 +82,7 @@ pub struct SceneFile<A = Arm, P = Path, const M: usize = 2> {
     #[serde(default, skip_serializing_if = "is_default")]
     pub path: P,
     /// The obstacles (discs in the plane, spheres in space).
-    pub obstacles: Vec<Ball<M>>,
+    pub obstacles: Vec<Ball<D>>,
     /// Optional damping schedule near singular poses.
     pub damping: Option<DampingSchedule>,
     /// Runge-Kutta step (s).

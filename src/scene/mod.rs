@@ -8,6 +8,7 @@ use std::f64::consts::PI;
 mod file;
 mod params;
 mod path;
+mod pose;
 mod space;
 mod space_path;
 mod weighting;
@@ -22,6 +23,7 @@ pub use file::{ParamMap, SceneFile};
 pub(crate) use params::validate_gain;
 pub use params::{Param, Params, Scale, MAX_GAIN_STEP};
 pub use path::{Path, DRAWN_SPACING, MAX_LAPS, MAX_POINTS, MIN_RADIUS};
+pub use pose::{PoseScene, ORIENTATION_WEIGHT};
 pub use space::SpaceScene;
 pub(crate) use space_path::circle_plane;
 pub use space_path::{SpacePath, MIN_NORMAL_SINE};
@@ -40,7 +42,7 @@ pub const PAPER_RADIUS: f64 = 0.05;
 /// `crate::planner::params`), and the fields of older files (`lambda`,
 /// `delta`, `avoidance`, `sign_smoothing`, `refine`) read into them.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Scene<A = Arm, P = Path, const M: usize = 2> {
+pub struct Scene<A = Arm, P = Path, const M: usize = 2, const D: usize = M> {
     /// The manipulator, with its limits.
     pub arm: A,
     /// Joint angles at `t = 0` (radians).
@@ -53,7 +55,7 @@ pub struct Scene<A = Arm, P = Path, const M: usize = 2> {
     pub path: P,
     /// The obstacles (discs in the plane, spheres in space); their centres
     /// are the points `O` of eq. (16).
-    pub obstacles: Vec<Ball<M>>,
+    pub obstacles: Vec<Ball<D>>,
     /// Optional damping schedule added to `delta` near singular poses.
     pub damping: Option<DampingSchedule>,
     /// Runge-Kutta step (s).
@@ -76,7 +78,7 @@ pub struct Scene<A = Arm, P = Path, const M: usize = 2> {
     pub floor: bool,
 }
 
-impl<A, P, const M: usize> Scene<A, P, M> {
+impl<A, P, const M: usize, const D: usize> Scene<A, P, M, D> {
     /// The value of parameter `p` in this scene.
     #[inline]
     pub fn param(&self, p: &'static Param) -> f64 {
@@ -108,11 +110,12 @@ impl<A, P, const M: usize> Scene<A, P, M> {
 }
 
 /// A scene is written as its [`SceneFile`] (either kind of arm).
-impl<A, P, const M: usize> Serialize for Scene<A, P, M>
+impl<A, P, const M: usize, const D: usize> Serialize for Scene<A, P, M, D>
 where
     A: Serialize + Clone,
     P: Serialize + Default + PartialEq + Clone,
     [f64; M]: Serialize,
+    [f64; D]: Serialize,
 {
     fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
         SceneFile::from(self.clone()).serialize(s)
@@ -121,14 +124,15 @@ where
 
 /// A scene is read from a [`SceneFile`], its parameters checked as it
 /// becomes one (the whole scene is checked where a file is read).
-impl<'de, A, P, const M: usize> Deserialize<'de> for Scene<A, P, M>
+impl<'de, A, P, const M: usize, const D: usize> Deserialize<'de> for Scene<A, P, M, D>
 where
     A: Deserialize<'de>,
     P: Deserialize<'de> + Default,
     [f64; M]: Deserialize<'de>,
+    [f64; D]: Deserialize<'de>,
 {
-    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
-        let file = SceneFile::<A, P, M>::deserialize(d)?;
+    fn deserialize<De: serde::Deserializer<'de>>(d: De) -> std::result::Result<Self, De::Error> {
+        let file = SceneFile::<A, P, M, D>::deserialize(d)?;
         Scene::try_from(file).map_err(serde::de::Error::custom)
     }
 }

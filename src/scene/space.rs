@@ -62,24 +62,44 @@ impl SpaceScene {
 
     /// Checks every field; the first problem found is returned.
     pub fn validate(&self) -> Result<()> {
-        self.arm.check_angles(&self.theta0)?;
-        if let Some(l) = self.arm.joint_limits() {
-            l.check("start pose theta0", &self.theta0)?;
-        }
-        for (&c, axis) in self.target.iter().zip(["x", "y", "z"]) {
-            coordinate(&format!("target {axis}"), c)?;
-        }
-        self.path.validate(self.start())?;
-        if self.obstacles.len() > MAX_SPHERES {
-            return Err(Error::DimensionMismatch {
-                what: "spheres (at most)".into(),
-                expected: MAX_SPHERES,
-                found: self.obstacles.len(),
-            });
-        }
-        for s in &self.obstacles {
-            s.validate(&self.arm)?;
-        }
+        check_chain_scene(
+            &self.arm,
+            &self.theta0,
+            self.target,
+            &self.path,
+            &self.obstacles,
+        )?;
         self.validate_settings()
     }
+}
+
+/// What a scene of a chain in space checks, whatever its task: the start
+/// pose (one finite angle per joint, within the limits), the hand's
+/// target position, the path from the start, the spheres.
+pub(super) fn check_chain_scene(
+    arm: &Chain,
+    theta0: &[f64],
+    target: Vec3,
+    path: &SpacePath,
+    obstacles: &[Sphere],
+) -> Result<()> {
+    arm.check_angles(theta0)?;
+    if let Some(l) = arm.joint_limits() {
+        l.check("start pose theta0", theta0)?;
+    }
+    for (&c, axis) in target.iter().zip(["x", "y", "z"]) {
+        coordinate(&format!("target {axis}"), c)?;
+    }
+    path.validate(SpacePose::new(arm, theta0)?.hand())?;
+    if obstacles.len() > MAX_SPHERES {
+        return Err(Error::DimensionMismatch {
+            what: "spheres (at most)".into(),
+            expected: MAX_SPHERES,
+            found: obstacles.len(),
+        });
+    }
+    for s in obstacles {
+        s.validate(arm)?;
+    }
+    Ok(())
 }

@@ -17,8 +17,10 @@
 
 use serde::{Deserialize, Serialize};
 
+mod file;
 mod joints;
 
+pub use file::ChainFile;
 pub use joints::{JointFrame, LinkVolume};
 
 use crate::arm::{JointLimits, RateLimits};
@@ -98,6 +100,12 @@ pub struct Chain {
     joints: Vec<JointFrame>,
     /// The flange in the last joint's frame (m).
     flange: [f64; 3],
+    /// The hand's frame in the last joint's frame, by rows: what turns
+    /// the last joint's axes into the hand's (the identity for the
+    /// presets; a URDF tip's fixed rotation). Written where it is not the
+    /// identity.
+    #[serde(skip_serializing_if = "is_identity")]
+    flange_rotation: [[f64; 3]; 3],
     /// The capsules' radius (m): of every capsule of a chain of rows, the
     /// largest of a chain of joint frames.
     radius: f64,
@@ -118,53 +126,12 @@ pub struct Chain {
     twists: Vec<(f64, f64)>,
 }
 
-/// The JSON form of a [`Chain`], as it is written.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ChainFile {
-    base: ([[f64; 3]; 3], [f64; 3]),
-    #[serde(default)]
-    rows: Vec<Row>,
-    #[serde(default)]
-    joints: Vec<JointFrame>,
-    flange: [f64; 3],
-    radius: f64,
-    #[serde(default)]
-    volumes: Vec<LinkVolume>,
-    #[serde(default)]
-    joint_limits: Option<JointLimits>,
-    #[serde(default)]
-    rate_limits: Option<RateLimits>,
+/// Whether `r` is the identity, exactly.
+fn is_identity(r: &[[f64; 3]; 3]) -> bool {
+    *r == IDENTITY
 }
 
-impl TryFrom<ChainFile> for Chain {
-    type Error = Error;
-    fn try_from(f: ChainFile) -> Result<Self> {
-        let (rotation, origin) = f.base;
-        let chain = if f.joints.is_empty() {
-            if !f.volumes.is_empty() {
-                return Err(Error::Syntax {
-                    what: "chain",
-                    text: "volumes".into(),
-                    expected: "a chain of modified-DH rows has no volumes of its own".into(),
-                });
-            }
-            Chain::placed(rotation, origin, f.rows, f.flange, f.radius)?
-        } else if f.rows.is_empty() {
-            Chain::of_joints(rotation, origin, f.joints, f.flange, f.volumes)?
-        } else {
-            return Err(Error::Syntax {
-                what: "chain",
-                text: "rows and joints".into(),
-                expected: "either modified-DH rows or joint frames".into(),
-            });
-        };
-        chain.with_limits(f.joint_limits, f.rate_limits)
-    }
-}
-
-/// The identity rotation.
-pub const IDENTITY: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+pub use super::rotation::IDENTITY;
 
 impl Chain {
     /// A chain with its base at the world's origin, unrotated.
@@ -215,6 +182,7 @@ impl Chain {
             rows,
             joints: Vec::new(),
             flange,
+            flange_rotation: IDENTITY,
             radius,
             volumes: Vec::new(),
             joint_limits: None,
@@ -265,8 +233,19 @@ impl Chain {
     /// flange (what its networks depend on), whatever the capsules and
     /// limits.
     pub fn same_kinematics(&self, other: &Chain) -> bool {
-        (self.base, &self.rows, &self.joints, self.flange)
-            == (other.base, &other.rows, &other.joints, other.flange)
+        (
+            self.base,
+            &self.rows,
+            &self.joints,
+            self.flange,
+            self.flange_rotation,
+        ) == (
+            other.base,
+            &other.rows,
+            &other.joints,
+            other.flange,
+            other.flange_rotation,
+        )
     }
 
     /// Number of joints `n`.
@@ -293,6 +272,19 @@ impl Chain {
     /// The flange (the hand) in the last joint's frame.
     pub fn flange(&self) -> [f64; 3] {
         self.flange
+    }
+
+    /// The hand's rotation in the last joint's frame, by rows.
+    pub fn flange_rotation(&self) -> [[f64; 3]; 3] {
+        self.flange_rotation
+    }
+
+    /// The chain with the hand turned by `rotation` (by rows) in the last
+    /// joint's frame; refused for a matrix that is not a rotation.
+    pub fn with_flange_rotation(mut self, rotation: [[f64; 3]; 3]) -> Result<Self> {
+        check_rotation(&rotation)?;
+        self.flange_rotation = rotation;
+        Ok(self)
     }
 
     /// The capsules' radius (m).

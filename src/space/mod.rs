@@ -10,15 +10,20 @@
 
 mod chain;
 pub mod criterion;
+mod hand_pose;
 pub mod linalg;
 pub mod manipulability;
 mod pairs;
 pub mod phi;
 pub(crate) mod pose;
 mod preset;
+pub mod rotation;
 mod sphere;
 
 pub use chain::{Chain, JointFrame, LinkVolume, Row, Segment, IDENTITY, MAX_JOINTS, MIN_JOINTS};
+pub use hand_pose::{
+    pose_distance, pose_error, pose_geodesic, HandPose, PoseChain, ORIENTATION_WEIGHT,
+};
 pub use pairs::{Obstruction, SpacePair, SpacePairs};
 pub(crate) use pose::{add, cross, dot, norm, scale, sub};
 pub use pose::{SpacePose, Vec3};

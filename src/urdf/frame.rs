@@ -6,7 +6,7 @@
 
 use serde::Serialize;
 
-use crate::kinematics::sin_cos;
+use crate::space::rotation::{self, IDENTITY};
 
 /// A 3-vector.
 pub type Vec3 = [f64; 3];
@@ -19,9 +19,6 @@ pub struct Frame {
     /// The translation (m).
     pub translation: Vec3,
 }
-
-/// The identity rotation.
-const IDENTITY: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
 impl Default for Frame {
     fn default() -> Self {
@@ -38,15 +35,8 @@ impl Frame {
 
     /// The frame of an `<origin>`: `xyz` and the fixed-axis `rpy`.
     pub fn from_xyz_rpy(xyz: Vec3, rpy: Vec3) -> Self {
-        let (sr, cr) = sin_cos(rpy[0]);
-        let (sp, cp) = sin_cos(rpy[1]);
-        let (sy, cy) = sin_cos(rpy[2]);
         Self {
-            rotation: [
-                [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-                [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-                [-sp, cp * sr, cp * cr],
-            ],
+            rotation: rotation::rpy_matrix(rpy),
             translation: xyz,
         }
     }
@@ -91,15 +81,8 @@ impl Frame {
 
     /// The rotation by `angle` about the unit `axis` (Rodrigues).
     pub fn about(axis: Vec3, angle: f64) -> Frame {
-        let (s, c) = sin_cos(angle);
-        let t = 1.0 - c;
-        let [x, y, z] = axis;
         Frame {
-            rotation: [
-                [t * x * x + c, t * x * y - s * z, t * x * z + s * y],
-                [t * x * y + s * z, t * y * y + c, t * y * z - s * x],
-                [t * x * z - s * y, t * y * z + s * x, t * z * z + c],
-            ],
+            rotation: rotation::about(axis, angle),
             translation: [0.0; 3],
         }
     }

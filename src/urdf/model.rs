@@ -69,7 +69,8 @@ impl UrdfChain {
             });
         }
         let last = align.last().map(inverse_rotation).unwrap_or_default();
-        let flange = last.then(&self.tip_frame).translation;
+        let tip = last.then(&self.tip_frame);
+        let flange = tip.translation;
         let links: Vec<LinkVolume> = volumes
             .iter()
             .map(|v| {
@@ -112,6 +113,7 @@ impl UrdfChain {
             .map(RateLimits::new)
             .transpose()?;
         Chain::of_joints(IDENTITY, [0.0; 3], joints, flange, links)?
-            .with_limits(Some(limits), rates)
+            .with_limits(Some(limits), rates)?
+            .with_flange_rotation(tip.rotation)
     }
 }

@@ -12,18 +12,8 @@
 use std::fmt::Write as _;
 
 use super::Frame;
+use crate::space::rotation::matrix_rpy;
 use crate::space::{Chain, SpacePose, Vec3};
-
-/// The roll, pitch and yaw (URDF's fixed axes) of the rotation `r` (rows).
-fn rpy(r: &[[f64; 3]; 3]) -> Vec3 {
-    let pitch = (-r[2][0]).clamp(-1.0, 1.0).asin();
-    if r[2][0].abs() < 1.0 - 1e-12 {
-        [r[2][1].atan2(r[2][2]), pitch, r[1][0].atan2(r[0][0])]
-    } else {
-        // Gimbal lock: the yaw taken as 0.
-        [(-r[1][2]).atan2(r[1][1]), pitch, 0.0]
-    }
-}
 
 /// `v` in full (Rust's shortest text that reads back to the same `f64`).
 fn num(v: f64) -> String {
@@ -40,7 +30,7 @@ fn origin(f: &Frame) -> String {
     format!(
         "<origin xyz=\"{}\" rpy=\"{}\"/>",
         triple(f.translation),
-        triple(rpy(&f.rotation))
+        triple(matrix_rpy(&f.rotation))
     )
 }
 
@@ -161,7 +151,10 @@ pub fn chain_urdf(name: &str, comment: &str, chain: &Chain) -> String {
     let _ = writeln!(
         out,
         "  <joint name=\"flange_joint\" type=\"fixed\">\n    <parent link=\"link{n}\"/>\n    <child link=\"flange\"/>\n    {}\n  </joint>",
-        origin(&Frame::translation(chain.flange()))
+        origin(&Frame {
+            rotation: chain.flange_rotation(),
+            translation: chain.flange(),
+        })
     );
     out.push_str("</robot>\n");
     out

@@ -4,7 +4,7 @@
 use super::paper::{self, Phi, V, DELTA, LAMBDA, REFINE, SIGN_SMOOTHING};
 use super::{Entry, Group, Method, MethodInfo, Needs};
 use crate::arm::Arm;
-use crate::space::Chain;
+use crate::space::{Chain, PoseChain};
 
 /// Case 1 (`case1`).
 pub const CASE1: Method = Method::new(&ENTRY);
@@ -28,4 +28,5 @@ static ENTRY: Entry = Entry {
     },
     rule: |n| paper::rule::<Arm, 2>(n, CASE1, V::Exact, Phi::Network),
     space: Some(|n| paper::rule::<Chain, 3>(n, CASE1, V::Exact, Phi::Network)),
+    pose: Some(|n| paper::rule::<PoseChain, 6>(n, CASE1, V::Exact, Phi::Network)),
 };

@@ -4,7 +4,7 @@
 use super::paper::{self, Phi, V, DELTA, LAMBDA};
 use super::{Entry, Group, Method, MethodInfo, Needs};
 use crate::arm::Arm;
-use crate::space::Chain;
+use crate::space::{Chain, PoseChain};
 
 /// Case 2 (`case2`).
 pub const CASE2: Method = Method::new(&ENTRY);
@@ -28,4 +28,5 @@ static ENTRY: Entry = Entry {
     },
     rule: |n| paper::rule::<Arm, 2>(n, CASE2, V::Network, Phi::Exact),
     space: Some(|n| paper::rule::<Chain, 3>(n, CASE2, V::Network, Phi::Exact)),
+    pose: Some(|n| paper::rule::<PoseChain, 6>(n, CASE2, V::Network, Phi::Exact)),
 };

@@ -4,7 +4,7 @@
 use super::paper::{self, Phi, V, DELTA, LAMBDA, REFINE};
 use super::{Entry, Group, Method, MethodInfo, Needs};
 use crate::arm::Arm;
-use crate::space::Chain;
+use crate::space::{Chain, PoseChain};
 
 /// Case 3 (`case3`).
 pub const CASE3: Method = Method::new(&ENTRY);
@@ -28,4 +28,5 @@ static ENTRY: Entry = Entry {
     },
     rule: |n| paper::rule::<Arm, 2>(n, CASE3, V::Network, Phi::Network),
     space: Some(|n| paper::rule::<Chain, 3>(n, CASE3, V::Network, Phi::Network)),
+    pose: Some(|n| paper::rule::<PoseChain, 6>(n, CASE3, V::Network, Phi::Network)),
 };

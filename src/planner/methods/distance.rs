@@ -22,7 +22,7 @@ use crate::arm::Arm;
 use crate::error::Result;
 use crate::model::{Clearance, Model, Scene as _};
 use crate::scene::{Param, Scale};
-use crate::space::Chain;
+use crate::space::{Chain, PoseChain};
 
 /// Gain `lambda_d` of the clearance potential, chosen on the atlas
 /// (`docs/methods.md`).
@@ -62,6 +62,7 @@ static ENTRY: Entry = Entry {
     },
     rule: rule::<Arm, 2>,
     space: Some(rule::<Chain, 3>),
+    pose: Some(rule::<PoseChain, 6>),
 };
 
 /// The rule's scratch space: the pairs, one gradient row, `v` and the

@@ -20,7 +20,7 @@ use super::{projection, Context, Entry, Group, Method, MethodInfo, Needs};
 use crate::arm::{Arm, JointLimits};
 use crate::model::{Model, Scene as _};
 use crate::scene::{Param, Scale};
-use crate::space::Chain;
+use crate::space::{Chain, PoseChain};
 
 /// Gain `k_r` of the joint-range gradient.
 pub static JOINT_RANGE_GAIN: Param = Param {
@@ -59,6 +59,7 @@ static ENTRY: Entry = Entry {
     },
     rule: |n| projection::rule(n, gradient::<Arm, 2>),
     space: Some(|n| projection::rule(n, gradient::<Chain, 3>)),
+    pose: Some(|n| projection::rule(n, gradient::<PoseChain, 6>)),
 };
 
 /// `v = k_r grad w` (zero for an arm without limits).

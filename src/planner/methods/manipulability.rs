@@ -13,7 +13,7 @@ use super::{projection, Context, Entry, Group, Method, MethodInfo, Needs};
 use crate::arm::Arm;
 use crate::model::{Model, Scene as _};
 use crate::scene::{Param, Scale};
-use crate::space::Chain;
+use crate::space::{Chain, PoseChain};
 
 /// Gain `k_m` of the manipulability gradient.
 pub static MANIPULABILITY_GAIN: Param = Param {
@@ -52,6 +52,7 @@ static ENTRY: Entry = Entry {
     },
     rule: |n| projection::rule(n, gradient::<Arm, 2>),
     space: Some(|n| projection::rule(n, gradient::<Chain, 3>)),
+    pose: Some(|n| projection::rule(n, gradient::<PoseChain, 6>)),
 };
 
 /// `v = k_m grad w`.

@@ -41,7 +41,7 @@ use crate::arm::Arm;
 use crate::error::{Error, Result};
 use crate::model::{Model, Scene as _};
 use crate::scene::Param;
-use crate::space::Chain;
+use crate::space::{Chain, PoseChain};
 
 /// One line per method, in the order of the menus: declares the method's
 /// module and puts its constant into [`ALL`].
@@ -277,6 +277,9 @@ pub struct Entry {
     /// Builds the rule for an `n`-joint chain in space, where the method
     /// has one.
     pub space: Option<Builder<Chain, 3>>,
+    /// Builds the rule for an `n`-joint chain whose task is its hand's
+    /// pose, where the method has one.
+    pub pose: Option<Builder<PoseChain, 6>>,
 }
 
 /// A redundancy-resolution method: a handle on its registration.

@@ -4,7 +4,7 @@
 use super::paper::{self, Phi, V, DELTA};
 use super::{Entry, Group, Method, MethodInfo, Needs};
 use crate::arm::Arm;
-use crate::space::Chain;
+use crate::space::{Chain, PoseChain};
 
 /// No avoidance (`none`).
 pub const NO_AVOIDANCE: Method = Method::new(&ENTRY);
@@ -25,4 +25,5 @@ static ENTRY: Entry = Entry {
     },
     rule: |n| paper::rule::<Arm, 2>(n, NO_AVOIDANCE, V::Zero, Phi::Exact),
     space: Some(|n| paper::rule::<Chain, 3>(n, NO_AVOIDANCE, V::Zero, Phi::Exact)),
+    pose: Some(|n| paper::rule::<PoseChain, 6>(n, NO_AVOIDANCE, V::Zero, Phi::Exact)),
 };

@@ -4,7 +4,7 @@
 use super::paper::{self, Phi, V, DELTA, LAMBDA, SIGN_SMOOTHING};
 use super::{Entry, Group, Method, MethodInfo, Needs};
 use crate::arm::Arm;
-use crate::space::Chain;
+use crate::space::{Chain, PoseChain};
 
 /// Numerical (`numerical`).
 pub const NUMERICAL: Method = Method::new(&ENTRY);
@@ -25,4 +25,5 @@ static ENTRY: Entry = Entry {
     },
     rule: |n| paper::rule::<Arm, 2>(n, NUMERICAL, V::Exact, Phi::Exact),
     space: Some(|n| paper::rule::<Chain, 3>(n, NUMERICAL, V::Exact, Phi::Exact)),
+    pose: Some(|n| paper::rule::<PoseChain, 6>(n, NUMERICAL, V::Exact, Phi::Exact)),
 };

@@ -27,7 +27,7 @@ use crate::arm::Arm;
 use crate::error::Result;
 use crate::model::{closest, Clearance, Model, Scene as _};
 use crate::scene::{Param, Scale};
-use crate::space::Chain;
+use crate::space::{Chain, PoseChain};
 
 /// The escape speed `v_e` (m/s) of the point closest to an obstacle at
 /// the stop distance, chosen on the atlas (`docs/methods.md`).
@@ -72,6 +72,7 @@ static ENTRY: Entry = Entry {
     },
     rule: rule::<Arm, 2>,
     space: Some(rule::<Chain, 3>),
+    pose: Some(rule::<PoseChain, 6>),
 };
 
 /// The rule's scratch space.

@@ -102,6 +102,7 @@ impl Chain {
             rows: Vec::new(),
             joints,
             flange,
+            flange_rotation: super::IDENTITY,
             radius,
             volumes,
             joint_limits: None,

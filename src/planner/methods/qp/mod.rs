@@ -49,7 +49,7 @@ use crate::error::{Error, Result};
 use crate::model::{Model, Scene as _};
 use crate::qp as solver;
 use crate::scene::{Param, Scale};
-use crate::space::Chain;
+use crate::space::{Chain, PoseChain};
 use constraints::{Constraint, Rows};
 use constraints::{DAMPER_GAIN, LIMIT_GAIN, LIMIT_INFLUENCE, LIMIT_STOP, RATE_LIMIT};
 
@@ -105,6 +105,7 @@ static ENTRY: Entry = Entry {
     },
     rule: rule::<Arm, 2>,
     space: Some(rule::<Chain, 3>),
+    pose: Some(rule::<PoseChain, 6>),
 };
 
 /// The program's scratch space, sized for an `n`-joint arm and grown
@@ -148,13 +149,14 @@ fn rule<A: Planned<M>, const M: usize>(n: usize) -> Box<dyn Rule<A, M>> {
     })
 }
 
-/// `a . b` summed left to right from the first product (the order of the
-/// written-out `a0 b0 + a1 b1 (+ a2 b2)`).
+/// `a^T Z b` for `Z`'s diagonal `z`, summed left to right from the first
+/// product (the order of the written-out `a0 b0 + a1 b1 (+ a2 b2)`; with
+/// `z = 1`, exactly `a . b`).
 #[inline]
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let mut sum = a[0] * b[0];
-    for (x, y) in a.iter().zip(b).skip(1) {
-        sum += x * y;
+fn dot(a: &[f64], z: &[f64], b: &[f64]) -> f64 {
+    let mut sum = a[0] * z[0] * b[0];
+    for ((x, zk), y) in a.iter().zip(z).zip(b).skip(1) {
+        sum += x * zk * y;
     }
     sum
 }
@@ -182,14 +184,16 @@ impl<A: Model<M>, const M: usize> Rule<A, M> for Qp<A, M> {
             return Ok(Note::default());
         }
         // Some row binds: the program over theta_dot,
-        // H = I + w' J^T J, g = v + w' J^T Xdot.
+        // H = I + w' J^T Z J, g = v + w' J^T Z Xdot (Z = I but for the
+        // pose task's orientation rows).
         let w = 1.0 / damping;
         let jac = A::jacobian(pose);
+        let z = A::task_weights(pose);
         for (r, jr) in jac.chunks_exact(M).enumerate() {
             for (c, jc) in jac.chunks_exact(M).enumerate() {
-                self.h[r * n + c] = f64::from(u8::from(r == c)) + w * dot(jr, jc);
+                self.h[r * n + c] = f64::from(u8::from(r == c)) + w * dot(jr, &z, jc);
             }
-            self.lin[r] = self.v[r] + w * dot(jr, &xdot);
+            self.lin[r] = self.v[r] + w * dot(jr, &z, &xdot);
         }
         solve_relaxing(
             &mut self.rows,

@@ -22,7 +22,7 @@ use crate::arm::Arm;
 use crate::error::Result;
 use crate::model::{Clearance, Model, Scene as _};
 use crate::planner::methods::Context;
-use crate::space::Chain;
+use crate::space::{Chain, PoseChain};
 use crate::planner::methods::{INFLUENCE, STOP_DISTANCE};
 use crate::scene::{Param, Params, Scale};
 
@@ -36,6 +36,7 @@ pub static DAMPER: Entry = Entry {
     },
     build: build::<Arm, 2>,
     space: build::<Chain, 3>,
+    pose: build::<PoseChain, 6>,
 };
 
 /// Damper gain `xi` (m/s): how fast a link may approach an obstacle at the

@@ -35,6 +35,7 @@ pub static JOINT_LIMIT: Entry = Entry {
     },
     build: |_| Box::new(JointLimit),
     space: |_| Box::new(JointLimit),
+    pose: |_| Box::new(JointLimit),
 };
 
 /// Influence angle `rho_infl` (rad): a joint closer than this to a limit

@@ -19,7 +19,7 @@ use crate::error::Result;
 use crate::model::Model;
 use crate::planner::methods::Context;
 use crate::scene::Param;
-use crate::space::Chain;
+use crate::space::{Chain, PoseChain};
 
 /// One line per constraint, in the order of the program's rows: declares
 /// the constraint's module and puts its entry into [`ALL`].
@@ -63,6 +63,8 @@ pub struct Entry {
     pub build: Build<Arm, 2>,
     /// Builds the constraint for an `n`-joint chain in space.
     pub space: Build<Chain, 3>,
+    /// Builds it for an `n`-joint chain whose task is its hand's pose.
+    pub pose: Build<PoseChain, 6>,
 }
 
 /// How a constraint is built, with its scratch space, for an `n`-joint

@@ -29,6 +29,7 @@ pub static RATE_BOUNDS: Entry = Entry {
     },
     build: |_| Box::new(RateLimit),
     space: |_| Box::new(RateLimit),
+    pose: |_| Box::new(RateLimit),
 };
 
 /// The joints' rate limit (rad/s), as NEO bounds a robot's joint

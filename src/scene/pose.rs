@@ -1,0 +1,109 @@
+//! A run of a chain whose task is its hand's full pose (`m = 6`): the
+//! scene of a chain in space whose target has six coordinates, the
+//! position (m) and the rotation vector of the orientation (rad), and
+//! whose arm carries the paper's metric `Z` ([`PoseChain`]). The path is
+//! the straight line, the orientation turning along the shortest rotation
+//! at a constant rate; the spheres, the floor and the settings are the
+//! position task's.
+
+use super::space::check_chain_scene;
+use super::{Param, Scale, Scene, SpacePath, SpaceScene};
+use crate::error::{coordinate, Error, Result};
+use crate::space::{PoseChain, SpacePreset, Vec3};
+
+/// A run of the hand's pose: a [`PoseChain`], a six-coordinate target,
+/// the straight line, spheres.
+pub type PoseScene = Scene<PoseChain, SpacePath, 6, 3>;
+
+/// The paper's `Z` (eqs. 6-7) for the pose task:
+/// `Z = diag(1, 1, 1, z, z, z)`, `z` weighting the orientation rows
+/// against the position rows (m^2/rad^2). Its default is the paper's
+/// `Z = I`. It acts through the damping only (`delta Z^-1` in eq. 6):
+/// see `crate::space::HandPose`.
+pub static ORIENTATION_WEIGHT: Param = Param {
+    name: "orientation_weight",
+    flag: "--orientation-weight",
+    label: "Orientation weight z (Z)",
+    what: "orientation weight z of Z",
+    #[cfg(feature = "cli")]
+    help: "The pose task's Z = diag(1, 1, 1, z, z, z) of eqs. (6)-(7): a radian of orientation error weighs as sqrt(z) metres of position error where the solve is damped",
+    unit: "m²/rad²",
+    bounds: (1e-6, 1e6),
+    default: crate::space::ORIENTATION_WEIGHT,
+    slider: (-3.0, 3.0, 0.5),
+    scale: Scale::Log,
+    count: false,
+    below: None,
+    above: None,
+};
+
+impl PoseScene {
+    /// The pose task of a scene of the hand's position: the same chain,
+    /// start, spheres, path and settings; the target's position, and
+    /// `orientation` for its orientation (a rotation vector, rad; `None`:
+    /// the start's, kept). Refused for a scene that does not validate, a
+    /// non-finite orientation, or a weight outside
+    /// [`ORIENTATION_WEIGHT`]'s bounds.
+    pub fn from_space(scene: SpaceScene, orientation: Option<Vec3>, weight: f64) -> Result<Self> {
+        scene.validate()?;
+        ORIENTATION_WEIGHT.check(weight)?;
+        let start = PoseChain::new(scene.arm.clone(), weight)?.start(&scene.theta0)?;
+        let r = orientation.unwrap_or([start[3], start[4], start[5]]);
+        let [x, y, z] = scene.target;
+        let pose = Self {
+            arm: PoseChain::new(scene.arm, weight)?,
+            theta0: scene.theta0,
+            target: [x, y, z, r[0], r[1], r[2]],
+            path: scene.path,
+            obstacles: scene.obstacles,
+            damping: scene.damping,
+            dt: scene.dt,
+            tf: scene.tf,
+            feedback_gain: scene.feedback_gain,
+            params: scene.params,
+            weighting: scene.weighting,
+            floor: scene.floor,
+        };
+        pose.validate()?;
+        Ok(pose)
+    }
+
+    /// The preset's own task with its start orientation kept.
+    pub fn preset(p: &SpacePreset) -> Result<Self> {
+        Self::from_space(
+            SpaceScene::preset(p),
+            None,
+            crate::space::ORIENTATION_WEIGHT,
+        )
+    }
+
+    /// The hand's pose at `t = 0` (NaN where `theta0` does not fit).
+    pub fn start(&self) -> [f64; 6] {
+        self.arm.start(&self.theta0).unwrap_or([f64::NAN; 6])
+    }
+
+    /// Checks every field; the first problem found is returned. The pose
+    /// task follows the straight line only.
+    pub fn validate(&self) -> Result<()> {
+        let [x, y, z, ..] = self.target;
+        check_chain_scene(
+            &self.arm.chain,
+            &self.theta0,
+            [x, y, z],
+            &self.path,
+            &self.obstacles,
+        )?;
+        for (&c, axis) in self.target[3..].iter().zip(["rx", "ry", "rz"]) {
+            coordinate(&format!("target orientation {axis}"), c)?;
+        }
+        ORIENTATION_WEIGHT.check(self.arm.orientation_weight())?;
+        if self.path != SpacePath::Line {
+            return Err(Error::Syntax {
+                what: "path",
+                text: self.path.to_string(),
+                expected: "the line: the pose task follows the straight line (a circle or a polyline runs the position task, --task position)".into(),
+            });
+        }
+        self.validate_settings()
+    }
+}

@@ -1,0 +1,163 @@
+//! The hand's full pose as the task (`m = 6`): the geometric Jacobian
+//! against finite differences, the paper's `Z` (eqs. 6-7), every method
+//! on the Panda's pose task, and the numerical route reaching the target
+//! pose.
+
+use redundant_ik::model::Model;
+use redundant_ik::planner::methods::ALL as ALL_METHODS;
+use redundant_ik::planner::{Method, Planner};
+use redundant_ik::scene::{PoseScene, SpaceScene};
+use redundant_ik::space::rotation::{self, exp, log, mul_transpose};
+use redundant_ik::space::{PoseChain, SpacePreset, PRESETS};
+
+fn panda() -> PoseScene {
+    PoseScene::preset(SpacePreset::by_key("panda").unwrap()).unwrap()
+}
+
+/// A few poses of each preset, spread over their ranges.
+fn poses(arm: &PoseChain) -> Vec<Vec<f64>> {
+    let n = arm.chain.dof();
+    (0..5)
+        .map(|k| {
+            (0..n)
+                .map(|i| 0.9 * ((1.7 * i as f64 + 2.3 * k as f64).sin()))
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn the_jacobian_is_the_hands_velocity_and_angular_velocity() {
+    for p in PRESETS.iter() {
+        let scene = PoseScene::preset(p).unwrap();
+        let arm = &scene.arm;
+        let mut pose = arm.pose();
+        let mut moved = arm.pose();
+        let h = 1e-6;
+        for theta in poses(arm) {
+            arm.update(&mut pose, &theta).unwrap();
+            let r0 = exp([pose.hand()[3], pose.hand()[4], pose.hand()[5]]);
+            for i in 0..theta.len() {
+                let mut t = theta.clone();
+                t[i] += h;
+                arm.update(&mut moved, &t).unwrap();
+                let x = moved.hand();
+                // The angular velocity: the rotation vector of R(theta +
+                // h e_i) R(theta)^T over h.
+                let w = log(&mul_transpose(&exp([x[3], x[4], x[5]]), &r0));
+                let fd: Vec<f64> = (0..3)
+                    .map(|k| (x[k] - pose.hand()[k]) / h)
+                    .chain(w.iter().map(|w| w / h))
+                    .collect();
+                let col = &pose.jacobian()[6 * i..6 * i + 6];
+                for (a, b) in fd.iter().zip(col) {
+                    assert!(
+                        (a - b).abs() < 1e-5,
+                        "{} joint {i}: {fd:?} vs {col:?}",
+                        p.key
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// `Z = I` makes eq. (6) the plain damped form `J^T (J J^T + delta I)^-1`;
+/// another `Z` damps the orientation rows by `delta / z` and leaves an
+/// undamped solve as it was.
+#[test]
+fn z_weights_the_orientation_rows_only_through_the_damping() {
+    let scene = panda();
+    let chain = scene.arm.chain.clone();
+    let theta = &scene.theta0;
+    let xdot = [0.05, -0.02, 0.01, 0.1, 0.2, -0.1];
+    let v = vec![0.0; 7];
+    let rates = |z: f64, delta: f64| {
+        let arm = PoseChain::new(chain.clone(), z).unwrap();
+        let mut pose = arm.pose();
+        arm.update(&mut pose, theta).unwrap();
+        let mut out = vec![0.0; 7];
+        PoseChain::eq18(&pose, xdot, &v, delta, &mut out).unwrap();
+        (out, pose)
+    };
+    // Z = I against the written-out J^T (J J^T + delta I)^-1 Xdot.
+    let (identity, pose) = rates(1.0, 0.01);
+    let j = nalgebra::DMatrix::from_column_slice(6, 7, pose.jacobian());
+    let a = &j * j.transpose() + nalgebra::DMatrix::identity(6, 6) * 0.01;
+    let plain = j.transpose()
+        * a.lu()
+            .solve(&nalgebra::DVector::from_row_slice(&xdot))
+            .unwrap();
+    for (x, y) in identity.iter().zip(plain.iter()) {
+        assert!((x - y).abs() < 1e-12, "{identity:?} vs {plain:?}");
+    }
+    // Undamped, Z does not matter; damped, it does.
+    let (a0, _) = rates(1.0, 0.0);
+    let (b0, _) = rates(100.0, 0.0);
+    for (x, y) in a0.iter().zip(&b0) {
+        assert!((x - y).abs() < 1e-12);
+    }
+    let (heavy, _) = rates(100.0, 0.01);
+    assert!(heavy
+        .iter()
+        .zip(&identity)
+        .any(|(x, y)| (x - y).abs() > 1e-6));
+}
+
+/// The numerical route with feedback reaches the target pose, turned
+/// 0.4 rad from the start, within 1e-6 m and 1e-6 rad.
+#[test]
+fn the_numerical_route_reaches_the_target_pose() {
+    let mut scene = panda();
+    let r = [scene.target[3], scene.target[4], scene.target[5]];
+    let turned = log(&rotation::mul(
+        &rotation::about([0.0, 0.6, 0.8], 0.4),
+        &exp(r),
+    ));
+    scene.target[3..].copy_from_slice(&turned);
+    scene.obstacles.clear();
+    scene.feedback_gain = 10.0;
+    let run = Planner::run(scene, Method::NUMERICAL, None).unwrap();
+    let s = &run.summary;
+    assert!(s.final_error < 1e-6, "{s:?}");
+    assert!(s.final_orientation_error.unwrap() < 1e-6, "{s:?}");
+    assert!(s.reached);
+}
+
+/// Every method but the learned ones runs the pose task and ends on the
+/// target; Cases 1-3 are refused for want of networks, and say so.
+#[test]
+fn every_method_runs_the_pose_task() {
+    for &m in ALL_METHODS {
+        let mut scene = panda();
+        scene.feedback_gain = 10.0;
+        let run = Planner::run(scene, m, None);
+        if m.uses_networks() {
+            let e = run.unwrap_err().to_string();
+            assert!(e.contains("networks"), "{m}: {e}");
+            continue;
+        }
+        let run = run.unwrap_or_else(|e| panic!("{m}: {e}"));
+        let s = &run.summary;
+        assert!(s.final_error < 1e-3, "{m}: {s:?}");
+        assert!(s.final_orientation_error.unwrap() < 1e-3, "{m}: {s:?}");
+    }
+}
+
+/// The position scene and the pose scene of a preset share everything
+/// but the target's orientation, which the pose task keeps.
+#[test]
+fn the_pose_scene_keeps_the_start_orientation_by_default() {
+    let space = SpaceScene::by_key("iiwa14").unwrap();
+    let pose = PoseScene::from_space(space.clone(), None, 1.0).unwrap();
+    assert_eq!(pose.target[..3], space.target);
+    assert_eq!(pose.target[3..], pose.start()[3..]);
+    assert!(PoseScene::from_space(space.clone(), Some([f64::NAN, 0.0, 0.0]), 1.0).is_err());
+    assert!(PoseScene::from_space(space.clone(), None, 0.0).is_err());
+    let mut circle = space;
+    circle.path = "circle:0.5,0,0.6,0,0,1".parse().unwrap();
+    let e = PoseScene::from_space(circle, None, 1.0)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("line"), "{e}");
+}
