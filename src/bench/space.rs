@@ -8,8 +8,8 @@ use super::{time_ns, Forward, Options, Probes};
 use crate::error::{Error, Result};
 use crate::networks::space::{SpaceNetworkSet, SpaceNetworks};
 use crate::planner::Method;
-use crate::planner::{Networks, Planner};
-use crate::scene::SpaceScene;
+use crate::planner::{Networks, Planned, Planner, SceneOf};
+use crate::scene::{PoseScene, SpaceScene};
 
 /// One RK4 step of the preset `key`'s task in `method`, sample included
 /// (ns); the run restarts at `tf`.
@@ -34,15 +34,24 @@ pub fn step_ns_with(
             method.name()
         )));
     }
-    let nets = nets.map(|n| n.in_precision(opts.precision));
-    let scene = task(key, opts.refine)?;
-    let fresh = || {
-        Planner::new(
-            scene.clone(),
-            method,
-            nets.clone().map(|n| n as Networks<_, 3>),
-        )
-    };
+    let nets = nets.map(|n| n.in_precision(opts.precision) as Networks<_, 3>);
+    scene_step_ns(task(key, opts.refine)?, method, nets, opts, probes)
+}
+
+/// One RK4 step of `scene` in `method` with `nets`, sample included (ns);
+/// the run restarts at `tf`. For every arm.
+pub fn scene_step_ns<S, A, const M: usize>(
+    scene: S,
+    method: Method,
+    nets: Option<Networks<A, M>>,
+    opts: &Options,
+    probes: &Probes,
+) -> Result<f64>
+where
+    S: SceneOf<A, M> + crate::model::Scene<A> + Clone,
+    A: Planned<M, Scene = S>,
+{
+    let fresh = || Planner::new(scene.clone(), method, nets.clone());
     let mut p = fresh()?;
     time_ns(opts, probes, || {
         if p.done() {
@@ -53,6 +62,38 @@ pub fn step_ns_with(
     })
 }
 
+/// Heap allocations per RK4 step over one whole run of `scene` in
+/// `method`, once the planner exists. For every arm.
+pub fn scene_allocs_per_step<S, A, const M: usize>(
+    scene: S,
+    method: Method,
+    nets: Option<Networks<A, M>>,
+    count: &dyn Fn() -> u64,
+) -> Result<f64>
+where
+    S: SceneOf<A, M> + crate::model::Scene<A> + Clone,
+    A: Planned<M, Scene = S>,
+{
+    let mut p = Planner::new(scene, method, nets)?;
+    let n = p.scene().steps();
+    let before = count();
+    for _ in 0..n {
+        std::hint::black_box(p.step()?);
+    }
+    Ok((count() - before) as f64 / n as f64)
+}
+
+/// The preset `key`'s pose task (`--task pose`): its line and sphere,
+/// the hand's start orientation kept.
+pub fn pose_task(key: &str) -> Result<PoseScene> {
+    let p = crate::space::SpacePreset::by_key(key).ok_or_else(|| Error::UnknownName {
+        kind: "arm in space",
+        name: crate::error::clip(key),
+        choices: "panda or iiwa14".into(),
+    })?;
+    PoseScene::preset(p)
+}
+
 /// Heap allocations per RK4 step over one whole run of the preset `key`'s
 /// task in `method`, once the planner exists.
 pub fn allocs_per_step(
@@ -61,18 +102,9 @@ pub fn allocs_per_step(
     opts: &Options,
     count: &dyn Fn() -> u64,
 ) -> Result<f64> {
-    let nets = shipped_networks(key, method)?.map(|n| n.in_precision(opts.precision));
-    let mut p = Planner::new(
-        task(key, opts.refine)?,
-        method,
-        nets.map(|n| n as Networks<_, 3>),
-    )?;
-    let n = p.scene().steps();
-    let before = count();
-    for _ in 0..n {
-        std::hint::black_box(p.step()?);
-    }
-    Ok((count() - before) as f64 / n as f64)
+    let nets =
+        shipped_networks(key, method)?.map(|n| n.in_precision(opts.precision) as Networks<_, 3>);
+    scene_allocs_per_step(task(key, opts.refine)?, method, nets, count)
 }
 
 /// Forward passes of the spatial `Phi` and `v` networks at the preset

@@ -44,6 +44,11 @@ pub struct BenchArgs {
     /// the planar figures.
     #[arg(long)]
     pub arm: Option<String>,
+    /// With --arm: the task, position (the hand's, the default) or pose
+    /// (the hand's full pose, the start orientation kept; the methods
+    /// without networks).
+    #[arg(long, value_parser = super::task::parse_task, requires = "arm")]
+    pub task: Option<super::task::TaskArg>,
     /// The networks' arithmetic: f64 (the default) or f32 (the kernels the
     /// page can run, `window.demo.bench({ precision: 'f32' })`).
     #[arg(long, default_value = "f64")]
@@ -88,7 +93,17 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
     if let Some(key) = &args.arm {
         // For an arm in space the default is every method.
         let all = args.methods == "paper";
-        return space(key, &opts, all, &probes, args.json);
+        let pose = match args.task {
+            None | Some(super::task::TaskArg::Position) => false,
+            Some(super::task::TaskArg::Pose) => true,
+            Some(t) => {
+                return Err(format!(
+                    "--task {}: bench --arm times the task position or pose",
+                    t.name()
+                ))
+            }
+        };
+        return space(key, pose, &opts, all, &probes, args.json);
     }
     let report = bench::run(&opts, &probes).map_err(|e| e.to_string())?;
     if args.json {
@@ -157,6 +172,7 @@ fn table(r: &Report, layers: [String; 2]) -> String {
 /// allocations per step.
 fn space(
     key: &str,
+    pose: bool,
     opts: &Options,
     all: bool,
     probes: &bench::Probes,
@@ -176,9 +192,23 @@ fn space(
                 || redundant_ik::networks::space::SpaceNetworkSet::for_arm(key).is_some()
         })
     {
-        let ns = sb::step_ns(key, *m, opts, probes).map_err(|e| e.to_string())?;
-        let allocs = sb::allocs_per_step(key, *m, opts, &count).map_err(|e| e.to_string())?;
-        rows.push((m.name(), ns, allocs));
+        let (ns, allocs) = if pose {
+            if m.uses_networks() {
+                continue;
+            }
+            let scene = sb::pose_task(key).map_err(|e| e.to_string())?;
+            (
+                sb::scene_step_ns(scene.clone(), *m, None, opts, probes),
+                sb::scene_allocs_per_step(scene, *m, None, &count),
+            )
+        } else {
+            (
+                sb::step_ns(key, *m, opts, probes),
+                sb::allocs_per_step(key, *m, opts, &count),
+            )
+        };
+        let e = |e: redundant_ik::Error| e.to_string();
+        rows.push((m.name(), ns.map_err(e)?, allocs.map_err(e)?));
     }
     if json {
         let obj: serde_json::Map<String, serde_json::Value> = rows
@@ -192,12 +222,13 @@ fn space(
             .collect();
         return emit(&format!(
             "{}\n",
-            serde_json::json!({ "arm": key, "methods": obj })
+            serde_json::json!({ "arm": key, "task": if pose { "pose" } else { "position" }, "methods": obj })
         ));
     }
     let mut s = format!(
-        "median of timed batches after a warm-up; {}, its own task\n\nmethod              RK4 step   allocs/step\n",
-        preset.label
+        "median of timed batches after a warm-up; {}, its own task{}\n\nmethod              RK4 step   allocs/step\n",
+        preset.label,
+        if pose { " (the hand's pose)" } else { "" }
     );
     for (m, ns, a) in rows {
         s.push_str(&format!("{m:<14} {ns:>10.1} ns {a:>12}\n"));

@@ -81,7 +81,7 @@ pub fn run(args: &FigureArgs) -> Result<(), String> {
         .map_err(|e| format!("cannot create directory {}: {e}", args.out.display()))?;
     for task in [1, 2] {
         let mut sa = args.scene.clone();
-        sa.task = task;
+        sa.task = super::task::TaskArg::Paper(task);
         let scene = sa.scene()?;
         let runs = run_all_methods(&sa, &scene)?;
         for traj in &runs {

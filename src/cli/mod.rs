@@ -14,11 +14,13 @@ pub mod eval;
 pub mod figure;
 pub mod params;
 pub mod path_arg;
+pub mod pose;
 pub mod robot;
 pub mod simulate;
 pub mod space;
 pub mod space_atlas;
 pub mod space_networks;
+pub mod task;
 pub mod train;
 
 /// Motion planning for redundant arms: planar ones (2 to 32 links; the
@@ -77,6 +79,7 @@ fn simulate_any(a: &simulate::SimulateArgs) -> Result<(), String> {
 /// `figure`: a spatial run file's or arm's figures, else a planar run's.
 fn figure_any(a: &figure::FigureArgs) -> Result<(), String> {
     match space::job(&a.scene, a.method.method, space_arm(&a.scene.arm))? {
+        Some(job) if job.pose.is_some() => Err("figure draws runs of the hand's position; the hand's pose task is not drawn yet (simulate --task pose --json or --csv gives its run)".into()),
         Some(job) => figure::space(a, job),
         None => figure::run(a),
     }
@@ -86,6 +89,9 @@ fn figure_any(a: &figure::FigureArgs) -> Result<(), String> {
 /// file's scene), else the planar atlas.
 fn atlas_any(a: &atlas::AtlasArgs) -> Result<(), String> {
     match space::job(&a.scene, None, space_arm(&a.scene.arm))? {
+        Some(job) if job.pose.is_some() => Err(
+            "atlas maps the hand's position task; the pose task's atlas is not built yet".into(),
+        ),
         Some(job) => space_atlas::atlas(a, job),
         None => atlas::run(a),
     }

@@ -48,9 +48,17 @@ pub struct SceneArgs {
     /// method. No other scene option goes with it.
     #[arg(long)]
     pub from: Option<PathBuf>,
-    /// Paper task (1 or 2) that provides the defaults.
-    #[arg(long, default_value_t = 1)]
-    pub task: u32,
+    /// The task: for a planar arm the paper's task (1 or 2) that provides
+    /// the defaults; for an arm in space position (the hand's position,
+    /// the default) or pose (the hand's full pose, its start orientation
+    /// kept unless --target gives one: X,Y,Z,ROLL,PITCH,YAW).
+    #[arg(long, default_value = "1", value_parser = super::task::parse_task)]
+    pub task: super::task::TaskArg,
+    /// The pose task's Z = diag(1, 1, 1, z, z, z) of eqs. (6)-(7): z in
+    /// m²/rad², a radian of orientation error weighing as sqrt(z) metres
+    /// of position error where the solve is damped [default: 1, Z = I]
+    #[arg(long, allow_hyphen_values = true)]
+    pub orientation_weight: Option<f64>,
     /// The arm, POST:L1,L2,... in metres, or a preset's name: paper (the
     /// default, 0.5:0.6,0.85,0.6), four, five or iiwa-planar (a KUKA iiwa14 in its plane, with its limits and its own task); in space, panda (Franka Panda) or iiwa14 (KUKA LBR iiwa 14), each with its limits and its own task (docs/space.md).
     #[arg(long, value_parser = parse_arm, allow_hyphen_values = true)]
@@ -90,7 +98,9 @@ pub struct SceneArgs {
     /// Final time (s), a whole number of steps.
     #[arg(long, allow_hyphen_values = true)]
     pub tf: Option<f64>,
-    /// End of the straight line X,Y in metres (X,Y,Z for an arm in space).
+    /// End of the straight line X,Y in metres (X,Y,Z for an arm in space;
+    /// X,Y,Z,ROLL,PITCH,YAW for its hand's pose, URDF's fixed-axis
+    /// roll-pitch-yaw in radians, which makes the task the pose).
     #[arg(long, value_parser = parse_numbers, allow_hyphen_values = true)]
     pub target: Option<Numbers>,
     /// The path the hand follows at constant speed over tf: line (the
@@ -157,9 +167,8 @@ impl SceneArgs {
 
     /// The paper task: `--task`, or the run file's.
     pub fn task(&self) -> Result<u32, String> {
-        Ok(self
-            .run_file()?
-            .map_or(self.task, |r| r.task.unwrap_or(self.task)))
+        let task = self.task.paper()?;
+        Ok(self.run_file()?.map_or(task, |r| r.task.unwrap_or(task)))
     }
 
     /// The method: `--method`, else the run file's, else `numerical`.
@@ -195,7 +204,7 @@ impl SceneArgs {
             return Ok(run);
         }
         Ok(Run {
-            task: self.task,
+            task: self.task.paper()?,
             method,
             scene: self.scene()?,
             networks: Some(self.networks.choice()?),
@@ -208,7 +217,7 @@ impl SceneArgs {
         if let Some(run) = self.run_file()? {
             return Ok(run.scene);
         }
-        let mut s = Scene::task(self.task).map_err(|e| e.to_string())?;
+        let mut s = Scene::task(self.task.paper()?).map_err(|e| e.to_string())?;
         if let Some(ArmChoice::Space(p)) = &self.arm {
             return Err(format!(
                 "--arm {} is an arm in space: this command takes planar arms (simulate runs it)",

@@ -19,6 +19,7 @@ use redundant_ik::Method;
 use super::path_arg::PathArg;
 pub use super::robot::{networks_for, Robot};
 use super::simulate::{SceneArgs, SimulateArgs};
+use super::task::{pose_spec, PoseSpec};
 use super::{emit, parse_list, Numbers};
 
 /// The scene of `args` for the preset `p`: its task, with the options
@@ -57,11 +58,12 @@ fn apply(args: &SceneArgs, mut s: SpaceScene, radius: f64) -> Result<SpaceScene,
         }
     }
     if let Some(Numbers(v)) = &args.target {
+        // Six numbers are a pose: its orientation is the pose task's.
         s.target = match v[..] {
-            [x, y, z] => [x, y, z],
+            [x, y, z] | [x, y, z, _, _, _] => [x, y, z],
             _ => {
                 return Err(format!(
-                    "--target: the hand of an arm in space goes to X,Y,Z, got {} numbers",
+                    "--target: the hand of an arm in space goes to X,Y,Z (or the pose X,Y,Z,ROLL,PITCH,YAW), got {} numbers",
                     v.len()
                 ))
             }
@@ -152,6 +154,9 @@ pub struct Job {
     pub method: Method,
     /// The networks, for a learned method.
     pub nets: Option<Arc<SpaceNetworks>>,
+    /// The hand's pose task, where the options or the run file ask for
+    /// it (`scene` then holds its position's part).
+    pub pose: Option<PoseSpec>,
 }
 
 /// The spatial job of `args` (`p`: the arm in space `--arm` names, if it
@@ -161,6 +166,15 @@ pub fn job(
     method: Option<Method>,
     p: Option<&'static SpacePreset>,
 ) -> Result<Option<Job>, String> {
+    if let Some((scene, file_method, pose)) = super::pose::run_file(args)? {
+        return Ok(Some(Job {
+            robot: Robot::of_chain(&scene.arm, "robot"),
+            scene,
+            method: method.unwrap_or(file_method),
+            nets: None,
+            pose: Some(pose),
+        }));
+    }
     if let Some(file) = run_file(args)? {
         return from_file(args, method, file).map(Some);
     }
@@ -188,6 +202,7 @@ pub fn job(
         scene,
         method,
         nets,
+        pose: pose_spec(args.task, args.target.as_ref(), args.orientation_weight)?,
     }))
 }
 
@@ -260,6 +275,7 @@ fn urdf_job(args: &SceneArgs, method: Option<Method>) -> Result<Job, String> {
         scene,
         method,
         nets,
+        pose: pose_spec(args.task, args.target.as_ref(), args.orientation_weight)?,
     })
 }
 
@@ -296,12 +312,16 @@ fn from_file(args: &SceneArgs, method: Option<Method>, file: SpaceRunFile) -> Re
         scene: file.scene,
         method,
         nets,
+        pose: None,
     })
 }
 
 /// Runs `simulate` for a spatial job: `--arm A`, or `--from` a spatial
 /// run file.
 pub fn simulate(args: &SimulateArgs, job: Job) -> Result<(), String> {
+    if let Some(spec) = job.pose {
+        return super::pose::simulate(args, &job.robot, job.scene, spec, job.method);
+    }
     output(args, &job.robot, job.scene, job.method, job.nets)
 }
 

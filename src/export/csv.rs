@@ -15,13 +15,17 @@ use crate::planner::Sample;
 /// inside an obstacle (0 or 1).
 pub const RUN_CSV_FIXED: [&str; 3] = ["tracking_error", "clearance", "collision"];
 
-/// The coordinates' names, `x, y` in the plane and `x, y, z` in space.
-const AXES: [&str; 3] = ["x", "y", "z"];
+/// The coordinates' names, `x, y` in the plane, `x, y, z` in space and,
+/// for the hand's pose, the rotation vector's `rx, ry, rz` after them.
+const AXES: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];
 
 /// A run of an arm whose hand has `M` coordinates as CSV: `t,
 /// theta1..thetaN, x, y[, z], ref_x, ref_y[, ref_z], tracking_error,
-/// clearance, collision`, one line per sample (`steps`, the start first).
-pub fn run_csv<const M: usize>(steps: &[Sample<M>]) -> String {
+/// clearance, collision`, one line per sample (`steps`, the start first);
+/// for the hand's pose, its six coordinates, and the orientation error
+/// (rad) after the tracking error.
+pub fn run_csv<const M: usize, P>(steps: &[Sample<M, P>]) -> String {
+    let pose = M == 6;
     let n = steps.first().map_or(0, |s| s.theta.len());
     let mut out = String::from("t");
     for i in 1..=n {
@@ -35,6 +39,9 @@ pub fn run_csv<const M: usize>(steps: &[Sample<M>]) -> String {
     }
     for c in RUN_CSV_FIXED {
         let _ = write!(out, ",{c}");
+        if pose && c == "tracking_error" {
+            out.push_str(",orientation_error");
+        }
     }
     out.push('\n');
     for s in steps {
@@ -42,10 +49,13 @@ pub fn run_csv<const M: usize>(steps: &[Sample<M>]) -> String {
         for v in s.theta.iter().chain(&s.ee).chain(&s.reference) {
             let _ = write!(out, ",{v:?}");
         }
+        let _ = write!(out, ",{:?}", s.tracking_error);
+        if pose {
+            let _ = write!(out, ",{:?}", s.orientation_error.unwrap_or(f64::NAN));
+        }
         let _ = write!(
             out,
-            ",{:?},{},{}",
-            s.tracking_error,
+            ",{},{}",
             s.clearance.map_or(String::new(), |c| format!("{c:?}")),
             u8::from(s.collision)
         );

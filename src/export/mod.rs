@@ -12,6 +12,6 @@ mod space_run;
 
 pub use csv::{atlas_csv, run_csv, RUN_CSV_FIXED};
 pub use run::{
-    is_space_run, Recorded, RunFile, SpaceRunFile, MAX_RUN_FILE_BYTES, PLANAR_RUN_FORMAT_1,
-    RUN_FORMAT, SPACE_RUN_FORMAT_1,
+    is_pose_run, is_space_run, PoseRunFile, Recorded, RunFile, RunKind, SpaceRunFile,
+    MAX_RUN_FILE_BYTES, PLANAR_RUN_FORMAT_1, RUN_FORMAT, SPACE_RUN_FORMAT_1,
 };

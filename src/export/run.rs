@@ -17,7 +17,7 @@ use crate::networks::NetworkSet;
 use crate::nn::Precision;
 use crate::planner::{Method, Planned, Sample, Summary, Trajectory};
 use crate::run::{NetworkChoice, Run};
-use crate::space::Chain;
+use crate::space::{Chain, PoseChain};
 
 /// Largest run file read (bytes): a run of the longest scene (10 000
 /// steps of a 6-link arm) is about 6 MB.
@@ -64,6 +64,14 @@ impl Recorded<2> for Arm {
     }
 }
 
+impl Recorded<6> for PoseChain {
+    type Set = crate::networks::space::SpaceNetworkSet;
+    /// The pose task came with this version: no older files.
+    fn older(_: Option<&str>, _: &str) -> Option<Result<RunFile<Self, 6>>> {
+        None
+    }
+}
+
 /// One run: `{ format, task, method, scene, networks, precision, steps,
 /// summary }`, of an arm `A` whose hand has `M` coordinates (the planar
 /// arm's by default). `task` is the paper's task a planar scene came
@@ -96,13 +104,47 @@ pub struct RunFile<A: Recorded<M> = Arm, const M: usize = 2> {
     #[serde(default, skip_serializing_if = "Precision::is_f64")]
     pub precision: Precision,
     /// One sample per RK4 step, the start first.
-    pub steps: Vec<Sample<M>>,
+    pub steps: Vec<Sample<M, A::Point>>,
     /// The outcome.
     pub summary: Summary,
 }
 
 /// The run file of an arm in space.
 pub type SpaceRunFile = RunFile<Chain, 3>;
+
+/// The run file of an arm in space whose task is its hand's pose.
+pub type PoseRunFile = RunFile<PoseChain, 6>;
+
+/// Which kind of run a file holds: what its arm is and its task.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RunKind {
+    /// A planar arm's (`M = 2`).
+    Planar,
+    /// A chain in space's, the hand's position (`M = 3`).
+    Space,
+    /// A chain in space's, the hand's pose (`M = 6`).
+    Pose,
+}
+
+impl RunKind {
+    /// The kind of run of a hand of `m` coordinates.
+    pub fn of_task(m: usize) -> Self {
+        match m {
+            2 => RunKind::Planar,
+            6 => RunKind::Pose,
+            _ => RunKind::Space,
+        }
+    }
+
+    /// What a message calls it.
+    pub fn label(self) -> &'static str {
+        match self {
+            RunKind::Planar => "a planar arm",
+            RunKind::Space => "an arm in space (the hand's position)",
+            RunKind::Pose => "an arm in space (the hand's pose)",
+        }
+    }
+}
 
 impl RunFile {
     /// The file of `run` and what it did: the networks and their precision
@@ -133,7 +175,7 @@ where
     pub fn of(
         task: Option<u32>,
         scene: A::Scene,
-        traj: Trajectory<M>,
+        traj: Trajectory<M, A::Point>,
         networks: Option<NetworkChoice<A::Set>>,
         precision: Precision,
     ) -> Self {
@@ -171,21 +213,14 @@ where
         }
         let probe = probe(text).map_err(|e| refusal(text, format!("not JSON: {e}")))?;
         let format = probe.format.as_deref();
-        if probe.in_space().is_some_and(|space| space != (M == 3)) {
+        let want = RunKind::of_task(M);
+        if let Some(kind) = probe.kind().filter(|&k| k != want) {
             return Err(refusal(
                 text,
                 format!(
                     "a run of {}: this reads runs of {}",
-                    if M == 3 {
-                        "a planar arm"
-                    } else {
-                        "an arm in space"
-                    },
-                    if M == 3 {
-                        "arms in space"
-                    } else {
-                        "planar arms"
-                    }
+                    kind.label(),
+                    want.label()
                 ),
             ));
         }
@@ -197,7 +232,7 @@ where
             },
         };
         run.scene.validate()?;
-        if !run.method.in_space() && M == 3 {
+        if !run.method.in_space() && M != 2 {
             return Err(refusal(
                 text,
                 format!("method {} does not run an arm in space", run.method),
@@ -271,18 +306,34 @@ struct ArmProbe {
     rows: Option<serde::de::IgnoredAny>,
     #[serde(default)]
     joints: Option<serde::de::IgnoredAny>,
+    /// A pose task's arm is `{ chain, orientation_weight }`.
+    #[serde(default)]
+    chain: Option<serde::de::IgnoredAny>,
 }
 
 impl Probe {
-    /// Whether the file holds an arm in space (`None`: it does not say).
-    fn in_space(&self) -> Option<bool> {
+    /// Which kind of run the file holds (`None`: it does not say).
+    fn kind(&self) -> Option<RunKind> {
         let format = self.format.as_deref().unwrap_or_default();
         if format == SPACE_UNVERSIONED || format.starts_with(SPACE_FAMILY) {
-            return Some(true);
+            return Some(RunKind::Space);
         }
-        let arm = self.scene.as_ref().and_then(|s| s.arm.as_ref());
-        arm.map(|a| a.rows.is_some() || a.joints.is_some())
+        let arm = self.scene.as_ref().and_then(|s| s.arm.as_ref())?;
+        Some(if arm.chain.is_some() {
+            RunKind::Pose
+        } else if arm.rows.is_some() || arm.joints.is_some() {
+            RunKind::Space
+        } else {
+            RunKind::Planar
+        })
     }
+}
+
+/// Whether `text` is a run of the hand's pose task (a whole JSON file
+/// whose arm is a pose task's): the readers send it to
+/// [`PoseRunFile::from_json`].
+pub fn is_pose_run(text: &str) -> bool {
+    probe(text).is_ok_and(|p| p.kind() == Some(RunKind::Pose))
 }
 
 fn probe(text: &str) -> serde_json::Result<Probe> {
@@ -295,7 +346,7 @@ fn probe(text: &str) -> serde_json::Result<Probe> {
 /// [`RunFile::from_json`].
 pub fn is_space_run(text: &str) -> bool {
     match probe(text) {
-        Ok(p) => p.in_space() == Some(true),
+        Ok(p) => matches!(p.kind(), Some(RunKind::Space | RunKind::Pose)),
         // Not JSON, or cut short: by the format its first bytes name.
         Err(_) => {
             let head = &text.as_bytes()[..text.len().min(256)];

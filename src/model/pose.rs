@@ -174,8 +174,13 @@ impl Model<6> for PoseChain {
     fn sigma_min(pose: &HandPose) -> f64 {
         eigen(pose).eigenvalues.min().max(0.0).sqrt()
     }
+    /// `sqrt(det(J J^T))`, the determinant by LU on the stack (every
+    /// sample records it: the eigensolver the gradient needs costs more).
     fn manipulability(pose: &HandPose) -> f64 {
-        det_and_adjugate(pose).0.max(0.0).sqrt()
+        Matrix6::from_fn(|r, c| pose.jjt()[r][c])
+            .determinant()
+            .max(0.0)
+            .sqrt()
     }
     /// `dw/dtheta_j = sum_i (B J_i) . dJ_ij / w` with `B = adj(J J^T)`
     /// (Jacobi's formula, as in `space::manipulability`), the columns'

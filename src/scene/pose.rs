@@ -77,6 +77,28 @@ impl PoseScene {
         )
     }
 
+    /// The scene of the hand's position it extends (the target's
+    /// position), with the target's orientation (a rotation vector) and
+    /// `Z`'s weight: what [`PoseScene::from_space`] takes back.
+    pub fn position_scene(&self) -> (SpaceScene, Vec3, f64) {
+        let t = self.target;
+        let scene = SpaceScene {
+            arm: self.arm.chain.clone(),
+            theta0: self.theta0.clone(),
+            target: [t[0], t[1], t[2]],
+            path: self.path.clone(),
+            obstacles: self.obstacles.clone(),
+            damping: self.damping,
+            dt: self.dt,
+            tf: self.tf,
+            feedback_gain: self.feedback_gain,
+            params: self.params.clone(),
+            weighting: self.weighting,
+            floor: self.floor,
+        };
+        (scene, [t[3], t[4], t[5]], self.arm.orientation_weight())
+    }
+
     /// The hand's pose at `t = 0` (NaN where `theta0` does not fit).
     pub fn start(&self) -> [f64; 6] {
         self.arm.start(&self.theta0).unwrap_or([f64::NAN; 6])
@@ -101,7 +123,7 @@ impl PoseScene {
             return Err(Error::Syntax {
                 what: "path",
                 text: self.path.to_string(),
-                expected: "the line: the pose task follows the straight line (a circle or a polyline runs the position task, --task position)".into(),
+                expected: "the straight line, line: the pose task follows it alone (a circle or a polyline runs the position task, --task position)".into(),
             });
         }
         self.validate_settings()

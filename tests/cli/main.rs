@@ -63,6 +63,7 @@ fn scratch(name: &str) -> PathBuf {
 mod aliases;
 mod atlas;
 mod outputs;
+mod pose;
 mod refusals;
 mod robot;
 mod runs;

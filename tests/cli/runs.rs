@@ -82,7 +82,7 @@ fn from_refuses_every_scene_flag_beside_it_and_applies_the_rest() {
         "--task" => Some("2"),
         "--arm" => Some("paper"),
         "--obstacle" | "--target" => Some("0.5,0.5"),
-        "--radius" => Some("0.05"),
+        "--radius" | "--orientation-weight" => Some("0.05"),
         "--dt" => Some("0.1"),
         "--tf" => Some("1"),
         "--theta0" => Some("0.1,0.2,0.3"),

@@ -1,0 +1,153 @@
+//! `--task pose` and `--target X,Y,Z,ROLL,PITCH,YAW`: the hand's full pose
+//! as the task of an arm in space, its run file replayed by `--from`, its
+//! CSV, its benchmark, and the options it refuses.
+
+use super::{json, ok, refused, scratch};
+
+#[test]
+fn a_pose_target_runs_the_pose_task_and_its_file_replays() {
+    let args = [
+        "simulate",
+        "--arm",
+        "panda",
+        "--target",
+        "0.45,0.25,0.5,3.0,0.2,-0.5",
+        "--method",
+        "qp",
+        "--json",
+    ];
+    let v = json(&args);
+    assert_eq!(v["format"], "redundant-ik-run/2");
+    assert_eq!(v["scene"]["arm"]["orientation_weight"], 1.0);
+    assert_eq!(v["scene"]["target"].as_array().unwrap().len(), 6);
+    let s = &v["summary"];
+    assert!(s["final_error"].as_f64().unwrap() < 5e-3, "{s}");
+    assert!(s["final_orientation_error"].as_f64().unwrap() < 5e-3, "{s}");
+    assert_eq!(s["collided"], false, "{s}");
+    // Each sample's joints are points in space, its hand a pose.
+    let first = &v["steps"][0];
+    assert_eq!(first["joints"][0].as_array().unwrap().len(), 3);
+    assert_eq!(first["ee"].as_array().unwrap().len(), 6);
+    let file = scratch("pose-run.json");
+    std::fs::write(&file, serde_json::to_string(&v).unwrap()).unwrap();
+    let path = file.to_str().unwrap();
+    let again = json(&["simulate", "--from", path, "--json"]);
+    assert_eq!(again["steps"], v["steps"]);
+    let text = ok(&["simulate", "--from", path]);
+    assert!(
+        text.contains("the hand's pose") && text.contains("rad"),
+        "{text}"
+    );
+    refused(&["simulate", "--from", path, "--tf", "2"], "--tf");
+    // A file of the hand's pose is not a planar run nor a position run.
+    refused(&["figure", "--from", path, "--out", "/dev/null"], "pose");
+}
+
+#[test]
+fn the_numerical_route_reaches_the_target_pose_with_feedback() {
+    let v = json(&[
+        "simulate",
+        "--arm",
+        "iiwa14",
+        "--task",
+        "pose",
+        "--target",
+        "0.5,0.1,0.55,3.1,0.3,0.2",
+        "--feedback",
+        "10",
+        "--json",
+    ]);
+    let s = &v["summary"];
+    assert!(s["final_error"].as_f64().unwrap() < 1e-6, "{s}");
+    assert!(s["final_orientation_error"].as_f64().unwrap() < 1e-6, "{s}");
+    let csv = ok(&["simulate", "--arm", "iiwa14", "--task", "pose", "--csv"]);
+    let header = csv.lines().next().unwrap();
+    assert!(
+        header.contains(",rx,ry,rz,ref_x") && header.contains("tracking_error,orientation_error,"),
+        "{header}"
+    );
+}
+
+#[test]
+fn the_pose_task_refuses_what_it_does_not_run() {
+    refused(&["simulate", "--task", "pose"], "planar");
+    refused(&["simulate", "--task", "seven"], "position or pose");
+    refused(
+        &[
+            "simulate",
+            "--arm",
+            "panda",
+            "--task",
+            "position",
+            "--target",
+            "0.4,0,0.5,0,0,0",
+        ],
+        "--task pose",
+    );
+    refused(
+        &["simulate", "--arm", "panda", "--orientation-weight", "2"],
+        "--orientation-weight",
+    );
+    refused(
+        &[
+            "simulate",
+            "--arm",
+            "panda",
+            "--task",
+            "pose",
+            "--orientation-weight",
+            "0",
+        ],
+        "--orientation-weight",
+    );
+    refused(
+        &[
+            "simulate",
+            "--arm",
+            "panda",
+            "--target",
+            "0.4,0,0.5,nan,0,0",
+        ],
+        "finite",
+    );
+    refused(
+        &[
+            "simulate",
+            "--arm",
+            "panda",
+            "--task",
+            "pose",
+            "--path",
+            "circle:0.5,0,0.6,0,0,1",
+        ],
+        "line",
+    );
+    refused(
+        &[
+            "simulate", "--arm", "panda", "--task", "pose", "--method", "case3",
+        ],
+        "none are trained for its pose",
+    );
+}
+
+#[test]
+fn bench_times_the_pose_task() {
+    let v = json(&[
+        "bench",
+        "--arm",
+        "panda",
+        "--task",
+        "pose",
+        "--methods",
+        "numerical,qp",
+        "--batches",
+        "5",
+        "--batch-ms",
+        "1",
+        "--json",
+    ]);
+    assert_eq!(v["task"], "pose");
+    for m in ["numerical", "qp"] {
+        assert_eq!(v["methods"][m]["allocs_per_step"], 0.0, "{v}");
+    }
+}
