@@ -109,7 +109,8 @@ export function mountAtlas(root, demo, { changed }) {
     const counts = atlas.summary[method].counts;
     // The class of a joint past its limits only for an arm with limits.
     const limited = Boolean(demo.state().arm.joint_limits);
-    for (const c of CLASSES.filter((c) => limited || !c.limits)) {
+    // Self-collision only where a cell had it (a chain that checks it).
+    for (const c of CLASSES.filter((c) => (limited || !c.limits) && (!c.self_collision || counts[c.name] > 0))) {
       const li = document.createElement('li');
       li.dataset.key = c.name;
       const key = document.createElement('span');

@@ -54,6 +54,9 @@ pub enum Class {
     Missed,
     /// The run stopped with an error (e.g. diverging at a singular pose).
     Failed,
+    /// No collision with an obstacle, but two capsules of the chain met
+    /// (only a chain that checks self-collision).
+    SelfCollision,
 }
 
 impl Class {
@@ -85,7 +88,7 @@ impl Class {
     }
 
     /// How many classes there are.
-    pub const COUNT: usize = 7;
+    pub const COUNT: usize = 8;
 
     /// Every class, in the order of the legends.
     pub const ALL: [Class; Class::COUNT] = [
@@ -96,6 +99,7 @@ impl Class {
         Class::Failed,
         Class::PathBlocked,
         Class::StartOverlap,
+        Class::SelfCollision,
     ];
 
     /// The name used in JSON and on the command line.
@@ -108,6 +112,7 @@ impl Class {
             Class::Limit => "limit",
             Class::Missed => "missed",
             Class::Failed => "failed",
+            Class::SelfCollision => "self_collision",
         }
     }
 
@@ -121,6 +126,7 @@ impl Class {
             Class::Limit => "clear, past a joint limit",
             Class::Missed => "clear, target missed by > 5 mm",
             Class::Failed => "run failed",
+            Class::SelfCollision => "self-collision",
         }
     }
 
@@ -135,6 +141,7 @@ impl Class {
             Class::Failed => "#7d4e9e",
             Class::PathBlocked => "#8f9aa6",
             Class::StartOverlap => "#d3d9e0",
+            Class::SelfCollision => "#e377c2",
         }
     }
 

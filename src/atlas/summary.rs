@@ -263,9 +263,13 @@ struct Counts<'a>(&'a [usize; Class::COUNT]);
 
 impl Serialize for Counts<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        let mut map = s.serialize_map(Some(Class::COUNT))?;
+        let mut map = s.serialize_map(None)?;
         for (c, n) in Class::ALL.iter().zip(self.0) {
-            map.serialize_entry(c.name(), n)?;
+            // Self-collision only where it happened (a chain that checks
+            // it; the class came after the others).
+            if *c != Class::SelfCollision || *n > 0 {
+                map.serialize_entry(c.name(), n)?;
+            }
         }
         map.end()
     }

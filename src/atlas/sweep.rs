@@ -237,6 +237,8 @@ fn run_one<A: Mapped<M>, const M: usize>(
         Class::Success
     } else if s.collided {
         Class::Collision
+    } else if s.self_collision_steps > 0 {
+        Class::SelfCollision
     } else if s.limit_steps > 0 {
         Class::Limit
     } else {

@@ -190,10 +190,15 @@ fn report(a: &Atlas, seconds: f64, threads: usize) -> String {
         "inside",
         "outside",
         "clearance",
-        "cells: success / collision / missed / failed / path_blocked / start_overlap"
+        "cells: success / collision / limit / missed / failed / path_blocked / start_overlap"
     );
     for s in &a.summary {
-        let counts: Vec<String> = Class::ALL.iter().map(|&c| s.count(c).to_string()).collect();
+        // A planar arm has no self-collision to count.
+        let counts: Vec<String> = Class::ALL
+            .iter()
+            .filter(|&&c| c != Class::SelfCollision)
+            .map(|&c| s.count(c).to_string())
+            .collect();
         let clearance = s
             .clearance
             .map_or("–".into(), |c| format!("{:.3} / {:.3}", c.median, c.p5));

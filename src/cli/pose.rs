@@ -146,6 +146,18 @@ fn summary(robot: &Robot, scene: &PoseScene, traj: &Trajectory<6, [f64; 3]>) -> 
             }
         );
     }
+    if let Some(c) = s.min_self_clearance {
+        let _ = writeln!(
+            out,
+            "smallest self clearance ({} pairs)     {c:.4} m  -> {}",
+            scene.arm.chain.self_pairs().len(),
+            if s.self_collision_steps > 0 {
+                format!("SELF-COLLISION in {} steps", s.self_collision_steps)
+            } else {
+                "no self-collision".into()
+            }
+        );
+    }
     let _ = writeln!(
         out,
         "final hand error                      {:.3e} m, {:.3e} rad",

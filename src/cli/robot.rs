@@ -69,6 +69,10 @@ pub struct ChainArgs {
     /// `DIR/NAME/...` (default: the URDF's folder, and its parent).
     #[arg(long)]
     pub package_dir: Option<PathBuf>,
+    /// MoveIt's SRDF for the robot: its <disable_collisions> pairs are
+    /// not checked for self-collision (which it switches on).
+    #[arg(long)]
+    pub srdf: Option<PathBuf>,
 }
 
 /// The arm a spatial job runs: a preset, or a robot read from URDF (or
@@ -305,4 +309,36 @@ fn describe(chain: &UrdfChain, volumes: &[Volume], warnings: &[String]) -> Strin
         let _ = writeln!(out, "warning: {w}");
     }
     out
+}
+
+/// The capsule pairs `srdf` disables for a chain read from URDF whose
+/// volumes are `volumes`; the SRDF's link names that no volume has are
+/// reported on stderr.
+pub fn srdf_pairs(srdf: &Path, volumes: &[volume::Volume]) -> Result<Vec<[usize; 2]>, String> {
+    let text = super::read_at_most(srdf, MAX_URDF_BYTES, "an SRDF")?;
+    let links = redundant_ik::urdf::srdf::disabled_links(&text)
+        .map_err(|e| format!("{}: {e}", srdf.display()))?;
+    let (pairs, unknown) = redundant_ik::urdf::srdf::disabled_pairs(volumes, &links);
+    if !unknown.is_empty() {
+        eprintln!(
+            "note: {} names links the chain has no volume of ({}): their pairs are not the chain's",
+            srdf.display(),
+            unknown.join(", ")
+        );
+    }
+    Ok(pairs)
+}
+
+/// `chain` with self-collision checked (`--self-collision`, or an SRDF's
+/// `disabled` pairs): every pair of capsules but the adjacent ones, the
+/// disabled ones and those touching at the zero pose or at `theta0`.
+pub fn with_self_collision(
+    chain: Chain,
+    disabled: &[[usize; 2]],
+    theta0: &[f64],
+) -> Result<Chain, String> {
+    let zero = vec![0.0; chain.dof()];
+    chain
+        .with_self_collision(disabled, &[&zero, theta0])
+        .map_err(|e| e.to_string())
 }

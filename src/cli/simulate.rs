@@ -59,6 +59,13 @@ pub struct SceneArgs {
     /// of position error where the solve is damped [default: 1, Z = I]
     #[arg(long, allow_hyphen_values = true)]
     pub orientation_weight: Option<f64>,
+    /// Check the arm in space's capsules against each other: every pair
+    /// but adjacent links, pairs an SRDF disables (--srdf, with --urdf)
+    /// and pairs touching at the zero pose or the start pose; distance,
+    /// priority and qp keep them apart, and a run where two meet is a
+    /// self-collision.
+    #[arg(long)]
+    pub self_collision: bool,
     /// The arm, POST:L1,L2,... in metres, or a preset's name: paper (the
     /// default, 0.5:0.6,0.85,0.6), four, five or iiwa-planar (a KUKA iiwa14 in its plane, with its limits and its own task); in space, panda (Franka Panda) or iiwa14 (KUKA LBR iiwa 14), each with its limits and its own task (docs/space.md).
     #[arg(long, value_parser = parse_arm, allow_hyphen_values = true)]

@@ -183,6 +183,7 @@ pub fn job(
             ("--base", args.robot.chain.base.is_some()),
             ("--tip", args.robot.chain.tip.is_some()),
             ("--package-dir", args.robot.chain.package_dir.is_some()),
+            ("--srdf", args.robot.chain.srdf.is_some()),
         ];
         if let Some((flag, _)) = given.iter().find(|(_, on)| *on) {
             return Err(format!("{flag} goes with --urdf FILE (a robot's URDF)"));
@@ -194,7 +195,10 @@ pub fn job(
     let Some(p) = p else {
         return Ok(None);
     };
-    let scene = scene(args, p)?;
+    let mut scene = scene(args, p)?;
+    if args.self_collision {
+        scene.arm = super::robot::with_self_collision(scene.arm, &[], &scene.theta0)?;
+    }
     let method = method.unwrap_or(Method::NUMERICAL);
     let nets = super::space_networks::networks(&args.networks, p, &[method])?;
     Ok(Some(Job {
@@ -267,6 +271,14 @@ fn urdf_job(args: &SceneArgs, method: Option<Method>) -> Result<Job, String> {
         let start = scene.start();
         scene.target = [start[0], start[1] + 0.15, start[2]];
         scene.validate().map_err(|e| e.to_string())?;
+    }
+    let srdf = &args.robot.chain.srdf;
+    if args.self_collision || srdf.is_some() {
+        let disabled = match srdf {
+            Some(path) => super::robot::srdf_pairs(path, &volumes)?,
+            None => Vec::new(),
+        };
+        scene.arm = super::robot::with_self_collision(scene.arm, &disabled, &scene.theta0)?;
     }
     let method = method.unwrap_or(Method::NUMERICAL);
     let nets = networks_for(&args.networks, &robot, &scene.arm, &[method])?;
@@ -417,6 +429,18 @@ fn summary(robot: &Robot, scene: &SpaceScene, traj: &Trajectory<3>) -> String {
         None => {
             let _ = writeln!(out, "no spheres");
         }
+    }
+    if let Some(c) = s.min_self_clearance {
+        let _ = writeln!(
+            out,
+            "smallest self clearance ({} pairs)     {c:.4} m  -> {}",
+            scene.arm.self_pairs().len(),
+            if s.self_collision_steps > 0 {
+                format!("SELF-COLLISION in {} steps", s.self_collision_steps)
+            } else {
+                "no self-collision".into()
+            }
+        );
     }
     let _ = writeln!(
         out,

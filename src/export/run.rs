@@ -250,7 +250,7 @@ where
             });
         }
         let s = &mut run.summary;
-        s.success = !s.collided && s.limit_steps == 0 && s.reached;
+        s.success = !s.collided && s.self_collision_steps == 0 && s.limit_steps == 0 && s.reached;
         run.format = RUN_FORMAT.into();
         Ok(run)
     }

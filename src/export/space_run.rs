@@ -131,6 +131,8 @@ fn summary_of(
         min_clearance: w.min_clearance,
         collided: w.collision_steps > 0,
         collision_steps: w.collision_steps,
+        min_self_clearance: None,
+        self_collision_steps: 0,
         final_error: w.final_error,
         max_tracking_error: w.max_error,
         final_orientation_error: None,

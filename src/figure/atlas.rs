@@ -93,6 +93,7 @@ pub fn atlas_svg(atlas: &Atlas, scene: &Scene) -> Result<String> {
     for class in Class::ALL
         .into_iter()
         .filter(|&c| c != Class::Limit || limited)
+        .filter(|&c| c != Class::SelfCollision)
     {
         let w = 36 + text_size(class.label(), 13.0).0 as i32;
         if x > 14 && x + w > width - 14 {

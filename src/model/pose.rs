@@ -155,6 +155,7 @@ impl Model<6> for PoseChain {
         if scene.floor {
             pairs.add_floor(chain, pose.space(), within);
         }
+        pairs.add_self(chain, pose.space(), within);
     }
     fn pair_list(pairs: &SpacePairs) -> &[SpacePair] {
         pairs.as_slice()

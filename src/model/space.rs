@@ -49,6 +49,7 @@ impl Model<3> for Chain {
         if scene.floor {
             pairs.add_floor(&scene.arm, pose, within);
         }
+        pairs.add_self(&scene.arm, pose, within);
     }
     fn pair_list(pairs: &SpacePairs) -> &[SpacePair] {
         pairs.as_slice()

@@ -14,6 +14,7 @@ use crate::error::{Error, Result};
 use crate::kinematics::Pose;
 use crate::model::Model;
 use crate::scene::{circle_plane, Path, PoseScene, Scene, SpacePath, SpaceScene};
+use crate::space::self_pairs::self_contact;
 use crate::space::{norm, sub, CapsulePair, Chain, HandPose, PoseChain, SpacePose, Sphere};
 
 /// What a sample records of the obstacles at a pose.
@@ -26,6 +27,9 @@ pub struct Contact {
     /// Whether a link is inside an obstacle (or the ground, where the
     /// scene has one and the arm counts it).
     pub collision: bool,
+    /// The smallest distance between two capsules of the chain that it
+    /// checks for self-collision (none where it checks none).
+    pub self_clearance: Option<f64>,
 }
 
 /// The scene type of one arm model: lets `Planner::new(scene, ...)` find
@@ -199,6 +203,10 @@ fn chain_contact(chain: &Chain, spheres: &[Sphere], pose: &SpacePose) -> Contact
         }
     }
     c.collision = c.clearance.is_some_and(|k| k < 0.0);
+    for &[a, b] in chain.self_pairs() {
+        let d = self_contact(chain, pose, a, b).distance;
+        c.self_clearance = Some(c.self_clearance.map_or(d, |m| m.min(d)));
+    }
     c
 }
 

@@ -75,12 +75,17 @@ impl<A: Planned<M>, const M: usize> Planner<A, M> {
             min_clearance: self.stats.min_clearance,
             collided: self.stats.collided,
             collision_steps: self.stats.collision_steps,
+            min_self_clearance: self.stats.min_self_clearance,
+            self_collision_steps: self.stats.self_collision_steps,
             final_error,
             max_tracking_error: self.stats.max_tracking_error,
             final_orientation_error,
             max_orientation_error: self.stats.max_orientation_error,
             reached,
-            success: !self.stats.collided && self.stats.limit_steps == 0 && reached,
+            success: !self.stats.collided
+                && self.stats.self_collision_steps == 0
+                && self.stats.limit_steps == 0
+                && reached,
             target_reachable: self.reachable,
             out_of_range_steps: self.stats.out_of_range_steps,
             max_delta: self.stats.max_delta,
@@ -113,6 +118,7 @@ pub fn observe_pose<A: Planned<M>, const M: usize>(
     s.distance = contact.distance;
     s.clearance = contact.clearance;
     s.collision = contact.collision;
+    s.self_clearance = contact.self_clearance;
     s.delta = scene.value(&super::methods::DELTA)
         + scene
             .damping()

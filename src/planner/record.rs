@@ -72,6 +72,11 @@ pub struct Sample<const M: usize = 2, P = [f64; M]> {
     /// Whether a link is inside an obstacle now (in the plane, or below
     /// the floor or across the post where the scene has them).
     pub collision: bool,
+    /// The smallest distance between two capsules of the chain that it
+    /// checks for self-collision (m, negative: they overlap); absent where
+    /// it checks none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub self_clearance: Option<f64>,
     /// Damping `delta` in force at this pose.
     pub delta: f64,
     /// Manipulability `sqrt(det(J J^T))`.
@@ -119,6 +124,7 @@ impl<const M: usize, P: Clone + Default> Sample<M, P> {
             distance: None,
             clearance: None,
             collision: false,
+            self_clearance: None,
             delta: 0.0,
             manipulability: 0.0,
             in_range: true,
@@ -152,6 +158,15 @@ pub struct Summary {
     /// absent from the JSON when none was.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub collision_steps: usize,
+    /// The smallest distance between two capsules the chain checks for
+    /// self-collision over all steps (absent where it checks none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub min_self_clearance: Option<f64>,
+    /// Samples with two of those capsules overlapping: a self-collision
+    /// (absent from the JSON when none was); a run with any is no
+    /// [`Summary::success`].
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub self_collision_steps: usize,
     /// Distance from the end effector to the path's end now (the target
     /// for the line, the start for a circle, the last point of a polyline).
     pub final_error: f64,
@@ -212,6 +227,8 @@ impl Summary {
             min_clearance: None,
             collided: false,
             collision_steps: 0,
+            min_self_clearance: None,
+            self_collision_steps: 0,
             final_error: f64::NAN,
             max_tracking_error: 0.0,
             final_orientation_error: None,
@@ -252,6 +269,8 @@ pub(super) struct Stats {
     pub(super) min_clearance: Option<f64>,
     pub(super) collided: bool,
     pub(super) collision_steps: usize,
+    pub(super) min_self_clearance: Option<f64>,
+    pub(super) self_collision_steps: usize,
     pub(super) max_tracking_error: f64,
     pub(super) max_orientation_error: Option<f64>,
     pub(super) out_of_range_steps: usize,
@@ -269,6 +288,8 @@ impl Stats {
             min_clearance: None,
             collided: false,
             collision_steps: 0,
+            min_self_clearance: None,
+            self_collision_steps: 0,
             max_tracking_error: 0.0,
             max_orientation_error: None,
             out_of_range_steps: 0,
@@ -282,6 +303,7 @@ impl Stats {
     pub(super) fn record<const M: usize, P>(&mut self, s: &Sample<M, P>) {
         self.observe(s);
         self.collision_steps += usize::from(s.collision);
+        self.self_collision_steps += usize::from(s.self_clearance.is_some_and(|d| d < 0.0));
         self.max_tracking_error = self.max_tracking_error.max(s.tracking_error);
         if let Some(e) = s.orientation_error {
             self.max_orientation_error = Some(self.max_orientation_error.map_or(e, |m| m.max(e)));
@@ -310,6 +332,9 @@ impl Stats {
         }
         if let Some(c) = s.clearance {
             self.min_clearance = min(self.min_clearance, c);
+        }
+        if let Some(c) = s.self_clearance {
+            self.min_self_clearance = min(self.min_self_clearance, c);
         }
         self.collided |= s.collision;
     }

@@ -19,9 +19,11 @@ use serde::{Deserialize, Serialize};
 
 mod file;
 mod joints;
+mod segments;
 
 pub use file::ChainFile;
 pub use joints::{JointFrame, LinkVolume};
+use segments::segments;
 
 use crate::arm::{JointLimits, RateLimits};
 use crate::error::{coordinate, finite, non_negative, Error, Result};
@@ -117,6 +119,11 @@ pub struct Chain {
     joint_limits: Option<JointLimits>,
     #[serde(skip_serializing_if = "Option::is_none")]
     rate_limits: Option<RateLimits>,
+    /// The pairs of capsules checked for self-collision, as indices into
+    /// the segments (none: self-collision is not checked;
+    /// [`Chain::with_self_collision`]).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    self_pairs: Vec<[usize; 2]>,
     /// The volume's segments, found once from the rows.
     #[serde(skip)]
     segments: Vec<Segment>,
@@ -187,6 +194,7 @@ impl Chain {
             volumes: Vec::new(),
             joint_limits: None,
             rate_limits: None,
+            self_pairs: Vec::new(),
             segments,
         })
     }
@@ -267,6 +275,29 @@ impl Chain {
     /// The base frame: its rotation (rows) and origin in the world.
     pub fn base(&self) -> ([[f64; 3]; 3], [f64; 3]) {
         self.base
+    }
+
+    /// The pairs of capsules checked for self-collision (segment indices).
+    pub fn self_pairs(&self) -> &[[usize; 2]] {
+        &self.self_pairs
+    }
+
+    /// Sets the pairs checked for self-collision; refused for an index
+    /// the chain's segments lack or a capsule paired with itself.
+    pub fn set_self_pairs(&mut self, pairs: Vec<[usize; 2]>) -> Result<()> {
+        let count = self.segments.len();
+        if let Some(&[a, b]) = pairs
+            .iter()
+            .find(|&&[a, b]| a >= count || b >= count || a == b)
+        {
+            return Err(Error::Syntax {
+                what: "self-collision pair",
+                text: format!("{a}, {b}"),
+                expected: format!("two different capsules among the chain's {count}"),
+            });
+        }
+        self.self_pairs = pairs;
+        Ok(())
     }
 
     /// The flange (the hand) in the last joint's frame.
@@ -385,39 +416,6 @@ fn check_rotation(r: &[[f64; 3]; 3]) -> Result<()> {
         });
     }
     Ok(())
-}
-
-/// The segments between consecutive distinct origins. The pose's points
-/// are the base's origin (index 0), the origin of each joint's frame
-/// (1..=n) and the flange (n + 1). Frame `i`'s origin follows frame
-/// `i - 1`'s by `a_(i-1)` along `x_(i-1)` and `d_i` along `z_i`; both zero,
-/// the origins coincide in every pose. The base's origin and frame 1's
-/// coincide when row 1 has neither.
-fn segments(rows: &[Row], flange: [f64; 3], radius: f64) -> Vec<Segment> {
-    let n = rows.len();
-    let mut out = Vec::new();
-    let mut from = 0;
-    for (i, r) in rows.iter().enumerate() {
-        // Point i + 1 is frame (i + 1)'s origin; it moves with joints 1..=i.
-        if r.a != 0.0 || r.d != 0.0 {
-            out.push(Segment {
-                from,
-                to: i + 1,
-                moved_by: i,
-                radius,
-            });
-            from = i + 1;
-        }
-    }
-    if flange != [0.0; 3] || from == 0 {
-        out.push(Segment {
-            from,
-            to: n + 1,
-            moved_by: n,
-            radius,
-        });
-    }
-    out
 }
 
 fn norm(v: [f64; 3]) -> f64 {

@@ -18,6 +18,7 @@ pub mod phi;
 pub(crate) mod pose;
 mod preset;
 pub mod rotation;
+pub mod self_pairs;
 mod sphere;
 
 pub use chain::{Chain, JointFrame, LinkVolume, Row, Segment, IDENTITY, MAX_JOINTS, MIN_JOINTS};

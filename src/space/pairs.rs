@@ -13,6 +13,7 @@
 //! ([`SpacePose::point_jacobian_into`]).
 
 use super::pose::{cross, dot, sub, SpacePose, Vec3};
+use super::self_pairs::self_contact;
 use super::{CapsulePair, Chain, Sphere, MAX_SPHERES};
 
 /// What a capsule keeps clear of.
@@ -23,6 +24,9 @@ pub enum Obstruction {
     Sphere(usize),
     /// The floor, `z = 0`.
     Floor,
+    /// Another capsule of the chain, of this index in
+    /// [`Chain::segments`] (self-collision).
+    Link(usize),
 }
 
 /// One moving capsule and what it keeps clear of, at one pose.
@@ -40,6 +44,12 @@ pub struct SpacePair {
     pub normal: Vec3,
     /// The joints that move the segment.
     pub moved_by: usize,
+    /// For another capsule of the chain: its axis point nearest this one
+    /// (the origin for a sphere or the floor, which do not move).
+    pub other_point: Vec3,
+    /// For another capsule: the joints that move it (0 for a sphere or
+    /// the floor).
+    pub other_moved_by: usize,
 }
 
 impl SpacePair {
@@ -52,6 +62,26 @@ impl SpacePair {
             point: p.point,
             normal: p.normal,
             moved_by: p.moved_by,
+            other_point: [0.0; 3],
+            other_moved_by: 0,
+        }
+    }
+
+    /// The pair of capsules `a` and `b` of `chain` at `pose`
+    /// (self-collision): `Q_a` is its point, `Q_b` the other's, the normal
+    /// from `b` toward `a`.
+    pub fn link(chain: &Chain, pose: &SpacePose, a: usize, b: usize) -> Self {
+        let c = self_contact(chain, pose, a, b);
+        let segments = chain.segments();
+        Self {
+            segment: a,
+            against: Obstruction::Link(b),
+            distance: c.distance,
+            point: c.point_a,
+            normal: c.normal,
+            moved_by: segments[a].moved_by,
+            other_point: c.point_b,
+            other_moved_by: segments[b].moved_by,
         }
     }
 
@@ -68,12 +98,15 @@ impl SpacePair {
             point: q,
             normal: [0.0, 0.0, 1.0],
             moved_by: s.moved_by,
+            other_point: [0.0; 3],
+            other_moved_by: 0,
         }
     }
 
     /// `n . J_Q` into `row` (`n` entries): how fast the distance changes
     /// per unit rate of each joint, `dd/dt = row . theta_dot`; column `i`
     /// of `J_Q` is `z_i x (Q - o_i)` for the joints that move the segment.
+    /// For two capsules of the chain, `n . (J_Qa - J_Qb)`.
     #[inline]
     pub fn gradient_into(&self, pose: &SpacePose, row: &mut [f64]) {
         for (i, g) in row.iter_mut().enumerate().take(pose.dof()) {
@@ -83,6 +116,10 @@ impl SpacePair {
             } else {
                 0.0
             };
+            if i < self.other_moved_by {
+                let r = sub(self.other_point, pose.joint_origin(i));
+                *g -= dot(self.normal, cross(pose.axis(i), r));
+            }
         }
     }
 }
@@ -96,11 +133,12 @@ pub struct SpacePairs {
 }
 
 impl SpacePairs {
-    /// The most pairs an `n`-joint chain can have: every one of its at
-    /// most `n + 1` moving segments with each of [`MAX_SPHERES`] spheres
-    /// and the floor.
+    /// The most pairs an `n`-joint chain of rows can have: every one of
+    /// its at most `n + 1` moving segments with each of [`MAX_SPHERES`]
+    /// spheres and the floor, and every pair of its `n + 2` segments (a
+    /// chain read from URDF with more volumes grows the buffer once).
     pub const fn most(n: usize) -> usize {
-        (MAX_SPHERES + 1) * (n + 1)
+        (MAX_SPHERES + 1) * (n + 1) + (n + 2) * (n + 1) / 2
     }
 
     /// Room for `capacity` pairs.
@@ -142,7 +180,19 @@ impl SpacePairs {
         }
     }
 
-    /// The pairs: the spheres' (sphere by sphere), then the floor's.
+    /// Appends the pairs of capsules the chain checks for self-collision
+    /// ([`Chain::self_pairs`]) closer than `within`.
+    pub fn add_self(&mut self, chain: &Chain, pose: &SpacePose, within: f64) {
+        for &[a, b] in chain.self_pairs() {
+            let pair = SpacePair::link(chain, pose, a, b);
+            if pair.distance < within {
+                self.pairs.push(pair);
+            }
+        }
+    }
+
+    /// The pairs: the spheres' (sphere by sphere), then the floor's, then
+    /// the chain's own.
     pub fn as_slice(&self) -> &[SpacePair] {
         &self.pairs
     }

@@ -22,6 +22,7 @@ mod chain;
 mod frame;
 mod model;
 mod parse;
+pub mod srdf;
 pub mod stl;
 pub mod volume;
 mod write;

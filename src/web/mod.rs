@@ -438,6 +438,8 @@ pub fn atlas_classes() -> Result<JsValue, JsError> {
         swatch: String,
         /// Only an arm with joint limits has it (the class `limit`).
         limits: bool,
+        /// Only a chain that checks self-collision has it.
+        self_collision: bool,
     }
     let all: Vec<Entry> = crate::atlas::Class::ALL
         .iter()
@@ -447,6 +449,7 @@ pub fn atlas_classes() -> Result<JsValue, JsError> {
             colour: c.colour(),
             swatch: style::rgba(c.colour(), style::LAYER_ALPHA),
             limits: *c == crate::atlas::Class::Limit,
+            self_collision: *c == crate::atlas::Class::SelfCollision,
         })
         .collect();
     to_js(&all)

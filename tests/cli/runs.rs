@@ -94,6 +94,7 @@ fn from_refuses_every_scene_flag_beside_it_and_applies_the_rest() {
         "--urdf" => Some("robots/ur5e.urdf"),
         "--base" | "--tip" => Some("base_link"),
         "--package-dir" => Some("robots"),
+        "--srdf" => Some("robots/ur5e.urdf"),
         _ => None,
     };
     // What goes with --from: the method, the output and the networks

@@ -26,6 +26,8 @@ pub struct ChainFile {
     rate_limits: Option<RateLimits>,
     #[serde(default)]
     flange_rotation: Option<[[f64; 3]; 3]>,
+    #[serde(default)]
+    self_pairs: Vec<[usize; 2]>,
 }
 
 impl TryFrom<ChainFile> for Chain {
@@ -50,10 +52,11 @@ impl TryFrom<ChainFile> for Chain {
                 expected: "either modified-DH rows or joint frames".into(),
             });
         };
-        let chain = chain.with_limits(f.joint_limits, f.rate_limits)?;
-        match f.flange_rotation {
-            Some(r) => chain.with_flange_rotation(r),
-            None => Ok(chain),
+        let mut chain = chain.with_limits(f.joint_limits, f.rate_limits)?;
+        if let Some(r) = f.flange_rotation {
+            chain = chain.with_flange_rotation(r)?;
         }
+        chain.set_self_pairs(f.self_pairs)?;
+        Ok(chain)
     }
 }

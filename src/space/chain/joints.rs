@@ -107,6 +107,7 @@ impl Chain {
             volumes,
             joint_limits: None,
             rate_limits: None,
+            self_pairs: Vec::new(),
             segments,
         })
     }
