@@ -18,7 +18,7 @@ use super::{Cell, Class, Grid};
 use crate::error::{Error, Result, Short};
 use crate::networks::space::SpaceNetworks;
 use crate::planner::Method;
-use crate::scene::SpaceScene;
+use crate::scene::{PoseScene, SpaceScene};
 use crate::space::Vec3;
 pub use job::SliceJob;
 
@@ -192,7 +192,24 @@ pub fn slice(
     methods: &[Method],
     networks: Option<&Arc<SpaceNetworks>>,
 ) -> Result<SliceAtlas> {
-    let mut job = SliceJob::new(scene, plane, grid, methods, networks)?;
+    to_end(SliceJob::new(scene, plane, grid, methods, networks)?)
+}
+
+/// [`slice`] for the hand's pose task (the methods without networks).
+pub fn pose_slice(
+    scene: &PoseScene,
+    plane: Plane,
+    grid: Grid,
+    methods: &[Method],
+) -> Result<SliceAtlas> {
+    to_end(SliceJob::pose(scene, plane, grid, methods)?)
+}
+
+/// Runs `job` to the end, across the machine's cores with the feature
+/// `parallel`.
+fn to_end<A: crate::atlas::Mapped<M, 3>, const M: usize>(
+    mut job: SliceJob<A, M>,
+) -> Result<SliceAtlas> {
     #[cfg(all(feature = "parallel", not(target_family = "wasm")))]
     job.advance_parallel(usize::MAX);
     #[cfg(not(all(feature = "parallel", not(target_family = "wasm"))))]

@@ -15,27 +15,27 @@ use crate::error::{Error, Result};
 use crate::planner::{Method, Networks, Planned, Planner, SceneOf};
 
 /// What the atlas needs of an arm beyond the planner's.
-pub trait Mapped<const M: usize>: Planned<M> {
+pub trait Mapped<const M: usize, const D: usize = M>: Planned<M> {
     /// Where the grid's cells lie.
     type Surface: Copy + Send + Sync + std::fmt::Debug;
     /// What decides, before any run, whether an obstacle touches the arm
     /// at the start or the hand's path.
     type Geometry: Clone + Send + Sync + std::fmt::Debug;
     /// The point of `surface` at grid coordinates `(u, v)`.
-    fn point(surface: Self::Surface, u: f64, v: f64) -> [f64; M];
+    fn point(surface: Self::Surface, u: f64, v: f64) -> [f64; D];
     /// The geometry of `scene` for an obstacle of `radius`.
     fn geometry(scene: &Self::Scene, radius: f64) -> Result<Self::Geometry>;
     /// [`Class::StartOverlap`], [`Class::PathBlocked`] or neither (`None`)
     /// for the obstacle centred on `centre`.
-    fn classify(geometry: &Self::Geometry, centre: [f64; M]) -> Option<Class>;
+    fn classify(geometry: &Self::Geometry, centre: [f64; D]) -> Option<Class>;
     /// Moves the first obstacle of `p`'s scene to `centre` (its radius
     /// kept).
-    fn place(p: &mut Planner<Self, M>, centre: [f64; M]) -> Result<()>;
+    fn place(p: &mut Planner<Self, M>, centre: [f64; D]) -> Result<()>;
 }
 
 /// The runs of an atlas, a chunk of cells at a time.
 #[derive(Clone)]
-pub struct Sweep<A: Mapped<M>, const M: usize> {
+pub struct Sweep<A: Mapped<M, D>, const M: usize, const D: usize = M> {
     surface: A::Surface,
     grid: Grid,
     geometry: A::Geometry,
@@ -43,10 +43,10 @@ pub struct Sweep<A: Mapped<M>, const M: usize> {
     /// without avoidance, says where avoidance matters).
     methods: usize,
     planners: Vec<Planner<A, M>>,
-    cells: Vec<Cell<M>>,
+    cells: Vec<Cell<D>>,
 }
 
-impl<A: Mapped<M>, const M: usize> std::fmt::Debug for Sweep<A, M> {
+impl<A: Mapped<M, D>, const M: usize, const D: usize> std::fmt::Debug for Sweep<A, M, D> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Sweep")
             .field("surface", &self.surface)
@@ -57,7 +57,7 @@ impl<A: Mapped<M>, const M: usize> std::fmt::Debug for Sweep<A, M> {
     }
 }
 
-impl<A: Mapped<M>, const M: usize> Sweep<A, M> {
+impl<A: Mapped<M, D>, const M: usize, const D: usize> Sweep<A, M, D> {
     /// One planner per method on `scene` (the learned ones with
     /// `networks`), and one without avoidance where `none` is not among
     /// them; refused for an empty or repeated list of methods, a learned
@@ -129,7 +129,7 @@ impl<A: Mapped<M>, const M: usize> Sweep<A, M> {
     }
 
     /// The centre of cell `index` (rows in `v`, each from `u0`).
-    pub fn centre(&self, index: usize) -> [f64; M] {
+    pub fn centre(&self, index: usize) -> [f64; D] {
         let [u, v] = self.grid.point(index);
         A::point(self.surface, u, v)
     }
@@ -158,7 +158,7 @@ impl<A: Mapped<M>, const M: usize> Sweep<A, M> {
         let end = self.done().saturating_add(cells).min(self.total());
         let (planners, geometry, methods) = (&self.planners, &self.geometry, self.methods);
         let this = &*self;
-        let new: Vec<Cell<M>> = (self.done()..end)
+        let new: Vec<Cell<D>> = (self.done()..end)
             .into_par_iter()
             .map_init(
                 || planners.clone(),
@@ -170,7 +170,7 @@ impl<A: Mapped<M>, const M: usize> Sweep<A, M> {
     }
 
     /// The cells; refused while some are missing (`what` names them).
-    pub(super) fn cells(self, what: &str) -> Result<Vec<Cell<M>>> {
+    pub(super) fn cells(self, what: &str) -> Result<Vec<Cell<D>>> {
         if !self.is_done() {
             return Err(Error::OutOfRange {
                 what: what.into(),
@@ -186,12 +186,12 @@ impl<A: Mapped<M>, const M: usize> Sweep<A, M> {
 /// Runs every planner with the obstacle centred on `centre`: the first
 /// `methods` are the atlas's methods, a further one the arm without
 /// avoidance.
-fn run_cell<A: Mapped<M>, const M: usize>(
+fn run_cell<A: Mapped<M, D>, const M: usize, const D: usize>(
     planners: &mut [Planner<A, M>],
     methods: usize,
     geometry: &A::Geometry,
-    centre: [f64; M],
-) -> Cell<M> {
+    centre: [f64; D],
+) -> Cell<D> {
     let class = A::classify(geometry, centre);
     let mut outcomes: Vec<Outcome> = match class {
         Some(Class::StartOverlap) => planners.iter().map(|_| Outcome::not_run()).collect(),
@@ -217,9 +217,9 @@ fn run_cell<A: Mapped<M>, const M: usize>(
 
 /// One run from `t = 0` with the obstacle at `centre`, to the end or to
 /// the first error; the planner is left at the end of the run.
-fn run_one<A: Mapped<M>, const M: usize>(
+fn run_one<A: Mapped<M, D>, const M: usize, const D: usize>(
     p: &mut Planner<A, M>,
-    centre: [f64; M],
+    centre: [f64; D],
     path_blocked: bool,
 ) -> Outcome {
     if A::place(p, centre).is_err() {

@@ -83,15 +83,25 @@ where
     Ok((count() - before) as f64 / n as f64)
 }
 
-/// The preset `key`'s pose task (`--task pose`): its line and sphere,
-/// the hand's start orientation kept.
+/// A second sphere for the pose task's benchmark, below and beside the
+/// presets' line (m): `(x, y, z, radius)`.
+pub const SECOND_SPHERE: [f64; 4] = [0.3, -0.25, 0.35, 0.05];
+
+/// The preset `key`'s pose task as `bench --task pose` times it: its line
+/// and sphere, the hand's start orientation kept, a second sphere
+/// ([`SECOND_SPHERE`]) and self-collision checked (issue 40's goal scene).
 pub fn pose_task(key: &str) -> Result<PoseScene> {
-    let p = crate::space::SpacePreset::by_key(key).ok_or_else(|| Error::UnknownName {
-        kind: "arm in space",
-        name: crate::error::clip(key),
-        choices: "panda or iiwa14".into(),
-    })?;
-    PoseScene::preset(p)
+    let mut space = SpaceScene::by_key(key)?;
+    let [x, y, z, r] = SECOND_SPHERE;
+    space
+        .obstacles
+        .push(crate::space::Sphere::new([x, y, z], r));
+    let zero = vec![0.0; space.arm.dof()];
+    space.arm = space
+        .arm
+        .clone()
+        .with_self_collision(&[], &[&zero, &space.theta0])?;
+    PoseScene::from_space(space, None, crate::space::ORIENTATION_WEIGHT)
 }
 
 /// Heap allocations per RK4 step over one whole run of the preset `key`'s

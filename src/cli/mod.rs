@@ -89,9 +89,6 @@ fn figure_any(a: &figure::FigureArgs) -> Result<(), String> {
 /// file's scene), else the planar atlas.
 fn atlas_any(a: &atlas::AtlasArgs) -> Result<(), String> {
     match space::job(&a.scene, None, space_arm(&a.scene.arm))? {
-        Some(job) if job.pose.is_some() => Err(
-            "atlas maps the hand's position task; the pose task's atlas is not built yet".into(),
-        ),
         Some(job) => space_atlas::atlas(a, job),
         None => atlas::run(a),
     }

@@ -13,12 +13,13 @@ use super::{emit, parse_list};
 /// its scene): the sphere over a grid on a slice, in every method that
 /// runs in space (or those asked for); a table, JSON or CSV.
 pub fn atlas(args: &super::atlas::AtlasArgs, job: Job) -> Result<(), String> {
-    use redundant_ik::atlas::space::{default_region, slice, Plane};
+    use redundant_ik::atlas::space::{default_region, pose_slice, slice, Plane};
     use redundant_ik::atlas::{Class, Grid};
+    use redundant_ik::scene::PoseScene;
     if args.out.is_some() {
         return Err("--out: the maps of an atlas in space are not drawn yet; --json and --csv give the cells".into());
     }
-    let (robot, scene) = (job.robot, job.scene);
+    let (robot, scene, pose) = (job.robot, job.scene, job.pose);
     let plane = match &args.slice {
         Some(t) => t.parse::<Plane>().map_err(|e| format!("--slice: {e}"))?,
         None => Plane::through_line(&scene),
@@ -30,10 +31,12 @@ pub fn atlas(args: &super::atlas::AtlasArgs, job: Job) -> Result<(), String> {
             .copied()
             .filter(|m| m.in_space())
             .filter(|m| {
+                // No networks are trained for the pose task.
                 !m.uses_networks()
-                    || robot
-                        .preset
-                        .is_some_and(|p| SpaceNetworkSet::for_arm(p.key).is_some())
+                    || pose.is_none()
+                        && robot
+                            .preset
+                            .is_some_and(|p| SpaceNetworkSet::for_arm(p.key).is_some())
             })
             .collect(),
     };
@@ -65,7 +68,15 @@ pub fn atlas(args: &super::atlas::AtlasArgs, job: Job) -> Result<(), String> {
     }
     #[allow(clippy::disallowed_methods)] // the native CLI has a clock
     let start = std::time::Instant::now();
-    let mut a = slice(&scene, plane, grid, &methods, nets.as_ref()).map_err(|e| e.to_string())?;
+    let mut a = match pose {
+        Some(spec) => {
+            let scene = PoseScene::from_space(scene.clone(), spec.orientation, spec.weight)
+                .map_err(|e| e.to_string())?;
+            pose_slice(&scene, plane, grid, &methods)
+        }
+        None => slice(&scene, plane, grid, &methods, nets.as_ref()),
+    }
+    .map_err(|e| e.to_string())?;
     let seconds = start.elapsed().as_secs_f64();
     a.arm = robot.preset.map(|p| p.key);
     if args.json {

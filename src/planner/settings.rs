@@ -164,7 +164,13 @@ impl Planner<Arm, 2> {
     }
 }
 
-impl Planner<Chain, 3> {
+/// The arms in space whose scene holds spheres: a chain whose task is
+/// its hand's position or its pose.
+impl<A, const M: usize> Planner<A, M>
+where
+    A: super::Planned<M, Scene = scene::Scene<A, scene::SpacePath, M, 3>> + AsRef<Chain>,
+    A::Pose: AsRef<crate::space::SpacePose>,
+{
     /// Puts sphere `index` at `sphere` (or adds it, for `index` equal to
     /// the number of spheres); it takes effect at the next step, and the
     /// current sample is measured again. Allocation-free but for an added
@@ -181,7 +187,7 @@ impl Planner<Chain, 3> {
                 max: count as f64,
             });
         }
-        sphere.validate_at(&self.scene.arm, &self.ws.pose)?;
+        sphere.validate_at(self.scene.arm.as_ref(), self.ws.pose.as_ref())?;
         if index == count {
             if count >= MAX_SPHERES {
                 return Err(Error::DimensionMismatch {

@@ -133,6 +133,12 @@ pub struct Chain {
     twists: Vec<(f64, f64)>,
 }
 
+impl AsRef<Chain> for Chain {
+    fn as_ref(&self) -> &Chain {
+        self
+    }
+}
+
 /// Whether `r` is the identity, exactly.
 fn is_identity(r: &[[f64; 3]; 3]) -> bool {
     *r == IDENTITY

@@ -250,3 +250,15 @@ pub fn pose_distance(a: [f64; 6], b: [f64; 6]) -> (f64, f64) {
         dot([e[3], e[4], e[5]], [e[3], e[4], e[5]]).sqrt(),
     )
 }
+
+impl AsRef<Chain> for PoseChain {
+    fn as_ref(&self) -> &Chain {
+        &self.chain
+    }
+}
+
+impl AsRef<SpacePose> for HandPose {
+    fn as_ref(&self) -> &SpacePose {
+        &self.space
+    }
+}

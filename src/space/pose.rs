@@ -264,6 +264,12 @@ impl SpacePose {
     }
 }
 
+impl AsRef<SpacePose> for SpacePose {
+    fn as_ref(&self) -> &SpacePose {
+        self
+    }
+}
+
 /// The vector `v` of a frame whose axes are `axes` (columns), in the
 /// world: `x v_0 + y v_1 + z v_2`.
 #[inline]

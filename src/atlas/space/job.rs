@@ -11,18 +11,20 @@ use crate::atlas::{Class, Grid, Mapped, Sweep};
 use crate::error::{Error, Result};
 use crate::networks::space::SpaceNetworks;
 use crate::planner::{Method, Networks, Planner};
-use crate::scene::{SpacePath, SpaceScene};
-use crate::space::{clearance, Chain, SpacePose, Sphere, Vec3};
+use crate::scene::{PoseScene, SpacePath, SpaceScene};
+use crate::space::{clearance, Chain, PoseChain, SpacePose, Sphere, Vec3};
 
 /// A slice atlas being computed, a chunk of cells at a time: what
 /// [`super::slice`] runs, and what the page's worker runs a row at
 /// a time (`SpaceAtlasJob`, src/web/space_atlas.rs).
+/// For the hand's position (`SliceJob`) or its pose
+/// (`SliceJob<PoseChain, 6>`, [`SliceJob::pose`]).
 #[derive(Debug, Clone)]
-pub struct SliceJob {
+pub struct SliceJob<A: Mapped<M, 3> = Chain, const M: usize = 3> {
     plane: Plane,
     radius: f64,
     methods: Vec<Method>,
-    sweep: Sweep<Chain, 3>,
+    sweep: Sweep<A, M, 3>,
 }
 
 impl SliceJob {
@@ -50,11 +52,64 @@ impl SliceJob {
         if let Some(nets) = networks {
             nets.check_chain(&scene.arm)?;
         }
-        let radius = scene.obstacles.first().map_or(0.05, |s| s.radius);
         let nets = networks.map(|n| n.clone() as Networks<Chain, 3>);
+        Self::of(
+            scene,
+            &scene.obstacles,
+            &scene.theta0,
+            plane,
+            grid,
+            methods,
+            nets,
+        )
+    }
+}
+
+impl SliceJob<PoseChain, 6> {
+    /// [`SliceJob::new`] for the hand's pose task; the learned methods
+    /// are refused (no networks are trained for the pose).
+    pub fn pose(scene: &PoseScene, plane: Plane, grid: Grid, methods: &[Method]) -> Result<Self> {
+        grid.validate()?;
+        scene.validate()?;
+        if let Some(m) = methods.iter().find(|m| m.uses_networks()) {
+            return Err(Error::NetworksUnavailable(format!(
+                "method {m} runs networks trained for the hand's position: none are trained for its pose"
+            )));
+        }
+        Self::of(
+            scene,
+            &scene.obstacles,
+            &scene.theta0,
+            plane,
+            grid,
+            methods,
+            None,
+        )
+    }
+}
+
+impl<A: Mapped<M, 3, Surface = Plane> + AsRef<Chain>, const M: usize> SliceJob<A, M>
+where
+    A::Scene: crate::planner::SceneOf<A, M> + crate::model::Scene<A>,
+{
+    /// One planner per method on `scene`, whose first sphere (or one of
+    /// 0.05 m) the cells move; refused where no cell of the grid lies
+    /// within the arm's reach of its first joint.
+    fn of(
+        scene: &A::Scene,
+        spheres: &[Sphere],
+        theta0: &[f64],
+        plane: Plane,
+        grid: Grid,
+        methods: &[Method],
+        nets: Option<Networks<A, M>>,
+    ) -> Result<Self> {
+        use crate::model::Scene as _;
+        let chain: &Chain = scene.arm().as_ref();
+        let radius = spheres.first().map_or(0.05, |s| s.radius);
         let sweep = Sweep::new(scene, plane, grid, methods, nets, radius)?;
-        let shoulder = SpacePose::new(&scene.arm, &scene.theta0)?.joint_origin(0);
-        let reach = scene.arm.reach() + radius + scene.arm.radius();
+        let shoulder = SpacePose::new(chain, theta0)?.joint_origin(0);
+        let reach = chain.reach() + radius + chain.radius();
         let near = |c: Vec3| {
             (0..3)
                 .map(|k| (c[k] - shoulder[k]).powi(2))
@@ -75,7 +130,9 @@ impl SliceJob {
             sweep,
         })
     }
+}
 
+impl<A: Mapped<M, 3>, const M: usize> SliceJob<A, M> {
     /// Cells in the grid.
     pub fn total(&self) -> usize {
         self.sweep.total()
@@ -164,6 +221,27 @@ impl Mapped<3> for Chain {
         (d <= g.radius + g.chain.radius()).then_some(Class::PathBlocked)
     }
     fn place(p: &mut Planner<Chain, 3>, centre: Vec3) -> Result<()> {
+        let radius = p.scene().obstacles.first().map_or(0.05, |s| s.radius);
+        p.set_sphere(0, Sphere::new(centre, radius))
+    }
+}
+
+/// The pose task's slice atlas: the position task's geometry (the
+/// chain at its start, the hand's line).
+impl Mapped<6, 3> for PoseChain {
+    type Surface = Plane;
+    type Geometry = SliceGeometry;
+    fn point(plane: Plane, u: f64, v: f64) -> Vec3 {
+        plane.point(u, v)
+    }
+    fn geometry(scene: &PoseScene, radius: f64) -> Result<SliceGeometry> {
+        let (space, _, _) = scene.position_scene();
+        <Chain as Mapped<3>>::geometry(&space, radius)
+    }
+    fn classify(g: &SliceGeometry, centre: Vec3) -> Option<Class> {
+        <Chain as Mapped<3>>::classify(g, centre)
+    }
+    fn place(p: &mut Planner<PoseChain, 6>, centre: Vec3) -> Result<()> {
         let radius = p.scene().obstacles.first().map_or(0.05, |s| s.radius);
         p.set_sphere(0, Sphere::new(centre, radius))
     }
