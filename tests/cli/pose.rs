@@ -151,3 +151,31 @@ fn bench_times_the_pose_task() {
         assert_eq!(v["methods"][m]["allocs_per_step"], 0.0, "{v}");
     }
 }
+
+#[test]
+fn the_pose_task_has_its_slice_atlas() {
+    let v = json(&[
+        "atlas",
+        "--arm",
+        "panda",
+        "--task",
+        "pose",
+        "--self-collision",
+        "--grid",
+        "7",
+        "--methods",
+        "numerical,qp",
+        "--json",
+    ]);
+    let cells = v["cells"].as_array().unwrap();
+    assert_eq!(cells.len(), 49);
+    // qp neither collides nor self-collides nor passes a limit.
+    for c in cells {
+        let qp = c["outcomes"][1]["class"].as_str().unwrap();
+        assert!(!["collision", "self_collision", "limit"].contains(&qp), "{c}");
+    }
+    refused(
+        &["atlas", "--arm", "panda", "--task", "pose", "--methods", "case1", "--grid", "5"],
+        "pose",
+    );
+}
