@@ -3,14 +3,14 @@
 //! preset's modified-DH chain does (to 1e-9 rad, every method without
 //! networks); the Jacobians of the shipped robots agree with Pinocchio's;
 //! the UR5e, another maker's arm, reaches a target past a sphere; a run
-//! of a URDF chain is a run file that reads back; what does not run yet
+//! of a URDF chain is a run file that reads back; a joint without limits
 //! is refused with its reason.
 
 use redundant_ik::export::SpaceRunFile;
 use redundant_ik::nn::Precision;
 use redundant_ik::planner::{methods, Planner};
 use redundant_ik::scene::SpaceScene;
-use redundant_ik::space::{Chain, SpacePose, Sphere};
+use redundant_ik::space::{Chain, PoseChain, SpacePose, Sphere};
 use redundant_ik::urdf::volume;
 use redundant_ik::urdf::{Urdf, UrdfChain};
 use redundant_ik::Method;
@@ -69,33 +69,47 @@ fn the_pandas_urdf_runs_its_task_as_the_preset_does() {
     assert!(worst < 1e-9, "{worst:e} rad");
 }
 
+/// The hand's frame and its whole `6 x n` Jacobian (the pose task's:
+/// linear and angular velocity, world-aligned) of every robot Pinocchio
+/// read, the test arm's prismatic joint included.
 #[test]
-fn the_shipped_robots_jacobians_agree_with_pinocchios() {
+fn every_robots_hand_and_jacobian_agree_with_pinocchios() {
     let text = std::fs::read_to_string(format!("{ROOT}/tests/data/urdf/pinocchio.json")).unwrap();
     let data: serde_json::Value = serde_json::from_str(&text).unwrap();
     let mut worst: f64 = 0.0;
     let mut checked = 0;
     for f in data["files"].as_array().unwrap() {
         let path = f["file"].as_str().unwrap();
-        if !path.starts_with("robots/") {
-            continue; // the test arm's prismatic joint does not run yet
-        }
-        let c = chain(path, None).unwrap();
+        let tip = (!path.starts_with("robots/")).then(|| f["tip"].as_str().unwrap());
+        let c = chain(path, tip).unwrap();
+        let arm = PoseChain::new(c.clone(), 1.0).unwrap();
+        let mut pose = arm.pose();
         for run in f["runs"].as_array().unwrap() {
             let q: Vec<f64> = serde_json::from_value(run["q"].clone()).unwrap();
-            let pose = SpacePose::new(&c, &q).unwrap();
+            let space = SpacePose::new(&c, &q).unwrap();
+            pose.update(&arm, &q).unwrap();
             let hand: [f64; 3] = serde_json::from_value(run["tip"]["translation"].clone()).unwrap();
+            let rotation: [[f64; 3]; 3] =
+                serde_json::from_value(run["tip"]["rotation"].clone()).unwrap();
             let jac: Vec<Vec<f64>> = serde_json::from_value(run["jacobian"].clone()).unwrap();
-            for (k, row) in jac.iter().take(3).enumerate() {
-                worst = worst.max((pose.hand()[k] - hand[k]).abs());
+            for (k, row) in rotation.iter().enumerate() {
+                worst = worst.max((space.hand()[k] - hand[k]).abs());
+                for (ours, theirs) in pose.rotation()[k].iter().zip(row) {
+                    worst = worst.max((ours - theirs).abs());
+                }
+            }
+            for (k, row) in jac.iter().enumerate() {
                 for (i, x) in row.iter().enumerate() {
-                    worst = worst.max((pose.jacobian()[3 * i + k] - x).abs());
+                    worst = worst.max((pose.jacobian()[6 * i + k] - x).abs());
+                    if k < 3 {
+                        worst = worst.max((space.jacobian()[3 * i + k] - x).abs());
+                    }
                 }
             }
         }
         checked += 1;
     }
-    assert_eq!(checked, 3);
+    assert_eq!(checked, 4);
     assert!(worst < 1e-9, "{worst:e}");
 }
 
@@ -146,14 +160,7 @@ fn the_ur5e_reaches_a_target_past_a_sphere_and_its_run_file_reads_back() {
 }
 
 #[test]
-fn what_does_not_run_yet_is_refused_with_its_reason() {
-    let e = chain("tests/data/urdf/slider_arm.urdf", Some("tool"))
-        .unwrap_err()
-        .to_string();
-    assert!(
-        e.contains("prismatic") && e.contains("does not run yet"),
-        "{e}"
-    );
+fn a_joint_without_limits_is_refused_with_its_reason() {
     // A revolute joint without limits needs them given.
     let text = "<robot name='r'><link name='a'/><link name='b'/><link name='c'/><link name='d'/>\
         <joint name='j1' type='revolute'><parent link='a'/><child link='b'/></joint>\
@@ -169,4 +176,76 @@ fn what_does_not_run_yet_is_refused_with_its_reason() {
     // Its axis is the URDF's default, x: the chain's first joint turns about it.
     let pose = SpacePose::new(&c, &[0.0; 3]).unwrap();
     assert!((pose.axis(0)[0] - 1.0).abs() < 1e-15);
+}
+
+/// The test arm slides on its first joint: its Jacobian columns, its
+/// manipulability's gradient (position and pose) and a sphere pair's row
+/// against finite differences, and every method without networks runs it.
+#[test]
+fn a_prismatic_joints_columns_and_gradients_are_the_rates_they_claim() {
+    use redundant_ik::model::{Clearance, Model};
+    let c = chain("tests/data/urdf/slider_arm.urdf", Some("tool")).unwrap();
+    let q = [0.2, 0.4, -0.6, 1.1];
+    let h = 1e-7;
+    let pose = SpacePose::new(&c, &q).unwrap();
+    assert!(pose.is_prismatic(0) && !pose.is_prismatic(1));
+    let moved = |i: usize| {
+        let mut t = q;
+        t[i] += h;
+        SpacePose::new(&c, &t).unwrap()
+    };
+    // The hand's columns.
+    for i in 0..4 {
+        let m = moved(i);
+        for k in 0..3 {
+            let fd = (m.hand()[k] - pose.hand()[k]) / h;
+            assert!((fd - pose.jacobian()[3 * i + k]).abs() < 1e-5, "joint {i}");
+        }
+    }
+    // The manipulability's gradient, for the position and for the pose.
+    let mut g = [0.0; 4];
+    <Chain as Model<3>>::manipulability_gradient_into(&pose, 1e-9, &mut g);
+    let w = <Chain as Model<3>>::manipulability(&pose);
+    for (i, gi) in g.iter().enumerate() {
+        let fd = (<Chain as Model<3>>::manipulability(&moved(i)) - w) / h;
+        assert!(
+            (fd - gi).abs() < 1e-5 * (1.0 + fd.abs()),
+            "position, joint {i}: {fd} vs {gi}"
+        );
+    }
+    // A pair's row: a sphere beside the forearm.
+    let s = Sphere::new([0.3, 0.1, 0.5], 0.05);
+    let mut pairs = redundant_ik::space::SpacePairs::with_capacity(16);
+    pairs.update(&c, &pose, &[s], f64::INFINITY);
+    let mut row = [0.0; 4];
+    for p in pairs.as_slice() {
+        p.row_into(&pose, &mut row);
+        for (i, r) in row.iter().enumerate() {
+            let mut again = redundant_ik::space::SpacePairs::with_capacity(16);
+            again.update(&c, &moved(i), &[s], f64::INFINITY);
+            let d = again
+                .as_slice()
+                .iter()
+                .find(|x| x.segment == p.segment)
+                .unwrap();
+            let fd = (d.distance - p.distance) / h;
+            assert!(
+                (fd - r).abs() < 1e-5,
+                "segment {} joint {i}: {fd} vs {r}",
+                p.segment
+            );
+        }
+    }
+    // Every method without networks runs it, the slide in metres.
+    let start = pose.hand();
+    let mut scene = SpaceScene::by_key("panda").unwrap();
+    scene.arm = c;
+    scene.theta0 = q.to_vec();
+    scene.target = [start[0], start[1], start[2] + 0.1];
+    scene.obstacles.clear();
+    scene.validate().unwrap();
+    for m in methods::ALL.iter().filter(|m| !m.uses_networks()) {
+        let run = Planner::run(scene.clone(), *m, None).unwrap();
+        assert!(run.summary.final_error < 1e-3, "{m}: {:?}", run.summary);
+    }
 }

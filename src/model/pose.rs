@@ -205,17 +205,26 @@ impl Model<6> for PoseChain {
                 [b[3], b[4], b[5]],
             )
         };
+        // A joint that slides turns nothing (its angular column `w` is
+        // zero, and so are its `z_j x ...` and `z_i x J_v,j` terms).
+        let space = pose.space();
         let mut suffix = [0.0; 3];
         for j in (0..n).rev() {
-            let (v, z, bv, bw) = parts(j);
-            suffix = add(suffix, add(cross(v, bv), cross(z, bw)));
-            out[j] = dot(z, suffix);
+            let (v, w_j, bv, bw) = parts(j);
+            suffix = add(suffix, add(cross(v, bv), cross(w_j, bw)));
+            out[j] = if space.is_prismatic(j) {
+                0.0
+            } else {
+                dot(space.axis(j), suffix)
+            };
         }
         let mut prefix = [0.0; 3];
         for (j, o) in out.iter_mut().enumerate().take(n) {
-            let (v, z, bv, _) = parts(j);
+            let (v, _, bv, _) = parts(j);
             *o = (*o + dot(v, prefix)) / w;
-            prefix = add(prefix, cross(bv, z));
+            if !space.is_prismatic(j) {
+                prefix = add(prefix, cross(bv, space.axis(j)));
+            }
         }
     }
     fn joint_point(pose: &HandPose, k: usize) -> [f64; 3] {

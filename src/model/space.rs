@@ -7,9 +7,7 @@ use crate::arm::{JointLimits, RateLimits};
 use crate::error::Result;
 use crate::scene::SpaceScene;
 use crate::space::linalg::{smallest_singular_value3, solve_spd3};
-use crate::space::{
-    criterion, cross, dot, manipulability, phi, sub, Chain, SpacePair, SpacePairs, SpacePose,
-};
+use crate::space::{criterion, dot, manipulability, phi, Chain, SpacePair, SpacePairs, SpacePose};
 
 /// The damping (m^2) of the pull's inverse in space: the elbow's
 /// Jacobian `J_k` loses rank where its levers line up.
@@ -114,7 +112,7 @@ impl Model<3> for Chain {
     fn pull(pose: &SpacePose, k: usize, f: [f64; 3], v: &mut [f64]) {
         // Column i of J_k is z_i x (P(k) - o_i) for the joints before k.
         let p = pose.joint_origin(k);
-        let col = |i: usize| cross(pose.axis(i), sub(p, pose.joint_origin(i)));
+        let col = |i: usize| pose.column(i, p);
         let mut a = [[0.0; 3]; 3];
         for i in 0..k.min(v.len()) {
             let c = col(i);

@@ -119,6 +119,14 @@ impl PoseScene {
             coordinate(&format!("target orientation {axis}"), c)?;
         }
         ORIENTATION_WEIGHT.check(self.arm.orientation_weight())?;
+        let n = self.arm.chain.dof();
+        if n < 6 {
+            return Err(Error::Syntax {
+                what: "task",
+                text: "pose".into(),
+                expected: format!("a chain of at least 6 joints: the hand's pose has six coordinates, and this chain has {n}"),
+            });
+        }
         if self.path != SpacePath::Line {
             return Err(Error::Syntax {
                 what: "path",

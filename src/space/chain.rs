@@ -19,6 +19,7 @@ use serde::{Deserialize, Serialize};
 
 mod file;
 mod joints;
+mod reach;
 mod segments;
 
 pub use file::ChainFile;
@@ -372,27 +373,6 @@ impl Chain {
             crate::error::within(&what, t, -crate::arm::MAX_ANGLE, crate::arm::MAX_ANGLE)?;
         }
         Ok(())
-    }
-
-    /// An upper bound of the hand's distance from the first joint's
-    /// origin: the sum of the rows' and the flange's lengths.
-    pub fn reach(&self) -> f64 {
-        if !self.joints.is_empty() {
-            return self
-                .joints
-                .iter()
-                .skip(1)
-                .map(|j| norm(j.translation))
-                .sum::<f64>()
-                + norm(self.flange);
-        }
-        self.rows
-            .iter()
-            .skip(1)
-            .map(|r| r.a.abs() + r.d.abs())
-            .sum::<f64>()
-            + self.rows[0].a.abs()
-            + norm(self.flange)
     }
 }
 

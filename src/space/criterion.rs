@@ -50,9 +50,8 @@ pub fn area_gradient_add(chain: &Chain, pose: &SpacePose, o: Vec3, eps: f64, out
             continue; // the paper's sign(0) = 0
         }
         for (i, g) in out.iter_mut().enumerate().take(s.moved_by) {
-            let (z, origin) = (pose.axis(i), pose.joint_origin(i));
-            let da = cross(z, sub(a, origin));
-            let db = cross(z, sub(b, origin));
+            let da = pose.column(i, a);
+            let db = pose.column(i, b);
             let dc = sub(cross(u, sub(db, da)), cross(da, w));
             *g += dot(c, dc) / norm;
         }

@@ -137,10 +137,15 @@ impl HandPose {
         self.hand = [p[0], p[1], p[2], r[0], r[1], r[2]];
         let linear = self.space.jacobian();
         for i in 0..n {
-            let z = self.space.axis(i);
+            // A joint that slides does not turn the hand.
+            let w = if self.space.is_prismatic(i) {
+                [0.0; 3]
+            } else {
+                self.space.axis(i)
+            };
             let col = &mut self.jac[6 * i..6 * i + 6];
             col[..3].copy_from_slice(&linear[3 * i..3 * i + 3]);
-            col[3..].copy_from_slice(&z);
+            col[3..].copy_from_slice(&w);
         }
         let mut a = [[0.0; 6]; 6];
         for col in self.jac.chunks_exact(6) {

@@ -125,11 +125,18 @@ pub fn manipulability_gradient_into(pose: &SpacePose, floor: f64, out: &mut [f64
     let bj = |col: &[f64]| -> Vec3 { [0, 1, 2].map(|r| dot(b[r], [col[0], col[1], col[2]])) };
     let n = pose.dof().min(out.len());
     // Suffix sums first: out_j = z_j . sum_{i >= j} J_i x (B J_i).
+    // A joint that slides turns nothing: its z_j x J_i and z_i x J_j
+    // terms are zero.
+    let turns = |j: usize| !pose.is_prismatic(j);
     let mut suffix = [0.0; 3];
     for j in (0..n).rev() {
         let col = &jac[3 * j..3 * j + 3];
         suffix = add(suffix, cross([col[0], col[1], col[2]], bj(col)));
-        out[j] = dot(pose.axis(j), suffix);
+        out[j] = if turns(j) {
+            dot(pose.axis(j), suffix)
+        } else {
+            0.0
+        };
     }
     // Then the prefix: out_j += J_j . sum_{i < j} (B J_i) x z_i.
     let mut prefix = [0.0; 3];
@@ -137,6 +144,8 @@ pub fn manipulability_gradient_into(pose: &SpacePose, floor: f64, out: &mut [f64
         let col = &jac[3 * j..3 * j + 3];
         let jj = [col[0], col[1], col[2]];
         *o = (*o + dot(jj, prefix)) / w;
-        prefix = add(prefix, cross(bj(col), pose.axis(j)));
+        if turns(j) {
+            prefix = add(prefix, cross(bj(col), pose.axis(j)));
+        }
     }
 }

@@ -12,7 +12,7 @@
 //! theta_dot`, `J_Q` the point Jacobian at `Q`
 //! ([`SpacePose::point_jacobian_into`]).
 
-use super::pose::{cross, dot, sub, SpacePose, Vec3};
+use super::pose::{dot, SpacePose, Vec3};
 use super::self_pairs::self_contact;
 use super::{CapsulePair, Chain, Sphere, MAX_SPHERES};
 
@@ -111,14 +111,12 @@ impl SpacePair {
     pub fn gradient_into(&self, pose: &SpacePose, row: &mut [f64]) {
         for (i, g) in row.iter_mut().enumerate().take(pose.dof()) {
             *g = if i < self.moved_by {
-                let r = sub(self.point, pose.joint_origin(i));
-                dot(self.normal, cross(pose.axis(i), r))
+                dot(self.normal, pose.column(i, self.point))
             } else {
                 0.0
             };
             if i < self.other_moved_by {
-                let r = sub(self.other_point, pose.joint_origin(i));
-                *g -= dot(self.normal, cross(pose.axis(i), r));
+                *g -= dot(self.normal, pose.column(i, self.other_point));
             }
         }
     }

@@ -29,6 +29,9 @@ pub struct SpacePose {
     /// damping schedule's smallest singular value and the manipulability
     /// all read it).
     jjt: [[f64; 3]; 3],
+    /// Which joints slide along their axis (a URDF's prismatic joints)
+    /// instead of turning about it.
+    prismatic: Vec<bool>,
 }
 
 impl SpacePose {
@@ -47,6 +50,9 @@ impl SpacePose {
     pub fn of(chain: &Chain) -> Self {
         let mut pose = Self::zeros(chain.dof());
         pose.points.resize(chain.point_count(), [0.0; 3]);
+        for (p, j) in pose.prismatic.iter_mut().zip(chain.joint_frames()) {
+            *p = j.prismatic;
+        }
         pose
     }
 
@@ -58,6 +64,7 @@ impl SpacePose {
             points: vec![[0.0; 3]; n + 2],
             jac: vec![0.0; 3 * n],
             jjt: [[0.0; 3]; 3],
+            prismatic: vec![false; n],
         }
     }
 
@@ -130,12 +137,19 @@ impl SpacePose {
                     [j.rotation[0][c], j.rotation[1][c], j.rotation[2][c]],
                 )
             });
-            let (st, ct) = sin_cos(self.theta[i]);
-            axes = [
-                add(scale(x, ct), scale(y, st)),
-                add(scale(x, -st), scale(y, ct)),
-                z,
-            ];
+            self.prismatic[i] = j.prismatic;
+            if j.prismatic {
+                // Tz(q): along the new z.
+                axes = [x, y, z];
+                o = add(o, scale(z, self.theta[i]));
+            } else {
+                let (st, ct) = sin_cos(self.theta[i]);
+                axes = [
+                    add(scale(x, ct), scale(y, st)),
+                    add(scale(x, -st), scale(y, ct)),
+                    z,
+                ];
+            }
             self.frames[i] = axes;
             self.points[i + 1] = o;
         }
@@ -159,7 +173,7 @@ impl SpacePose {
             self.points[n + 3 + 2 * k] = add(o, in_frame(axes, v.b));
         }
         for i in 0..n {
-            let col = cross(self.frames[i][2], sub(hand, self.points[i + 1]));
+            let col = self.column(i, hand);
             self.jac[3 * i..3 * i + 3].copy_from_slice(&col);
         }
         let mut a = [[0.0; 3]; 3];
@@ -195,6 +209,24 @@ impl SpacePose {
     #[inline]
     pub fn axis(&self, i: usize) -> Vec3 {
         self.frames[i][2]
+    }
+
+    /// Whether joint `i` (from 0) slides along its axis (prismatic).
+    #[inline]
+    pub fn is_prismatic(&self, i: usize) -> bool {
+        self.prismatic[i]
+    }
+
+    /// The velocity of a point `p` that joint `i` (from 0) carries, per
+    /// unit rate of the joint: `z_i x (p - o_i)` for a joint that turns,
+    /// `z_i` for one that slides. Column `i` of every point Jacobian.
+    #[inline]
+    pub fn column(&self, i: usize, p: Vec3) -> Vec3 {
+        if self.prismatic[i] {
+            self.frames[i][2]
+        } else {
+            cross(self.frames[i][2], sub(p, self.points[i + 1]))
+        }
     }
 
     /// The points: the base's origin (0), joint frame `i`'s origin (`i`,
@@ -236,7 +268,7 @@ impl SpacePose {
         let n = self.dof();
         for i in 0..n {
             let col = if i < moved_by {
-                cross(self.frames[i][2], sub(p, self.points[i + 1]))
+                self.column(i, p)
             } else {
                 [0.0; 3]
             };
@@ -249,10 +281,7 @@ impl SpacePose {
     pub fn point_velocity(&self, p: Vec3, moved_by: usize, rates: &[f64]) -> Vec3 {
         let mut v = [0.0; 3];
         for (i, &r) in rates.iter().enumerate().take(moved_by.min(self.dof())) {
-            v = add(
-                v,
-                scale(cross(self.frames[i][2], sub(p, self.points[i + 1])), r),
-            );
+            v = add(v, scale(self.column(i, p), r));
         }
         v
     }

@@ -187,9 +187,7 @@ impl CapsulePair {
         let n = pose.dof();
         for (i, g) in row.iter_mut().enumerate().take(n) {
             *g = if i < self.moved_by {
-                let z = pose.axis(i);
-                let r = sub(self.point, pose.joint_origin(i));
-                dot(self.normal, super::pose::cross(z, r))
+                dot(self.normal, pose.column(i, self.point))
             } else {
                 0.0
             };

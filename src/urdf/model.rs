@@ -41,19 +41,13 @@ fn inverse_rotation(f: &Frame) -> Frame {
 
 impl UrdfChain {
     /// The chain model of this chain with `volumes` (`urdf::volume`):
-    /// every joint revolute (a prismatic one is refused: it is read, and
-    /// does not run yet), its range from the file or `joint_limits` (a
-    /// `revolute` joint without one is refused unless `joint_limits` gives
-    /// every range; a `continuous` one turns within +-[`MAX_ANGLE`]), its
-    /// rate limits where the file gives every joint's.
+    /// each joint revolute or prismatic (its coordinate in metres), its
+    /// range from the file or `joint_limits` (a `revolute` or `prismatic`
+    /// joint without one is refused unless `joint_limits` gives every
+    /// range; a `continuous` one turns within +-[`MAX_ANGLE`]), its rate
+    /// limits where the file gives every joint's.
     pub fn to_chain(&self, volumes: &[Volume], joint_limits: Option<JointLimits>) -> Result<Chain> {
         let refuse = |what: String| Error::Urdf(what);
-        if let Some(j) = self.joints.iter().find(|j| j.kind == JointKind::Prismatic) {
-            return Err(refuse(format!(
-                "joint '{}' is prismatic: the reader reads it (redundant-ik robot), and a chain with one does not run yet",
-                crate::error::clip(&j.name)
-            )));
-        }
         let align: Vec<Frame> = self.joints.iter().map(|j| z_to(j.axis)).collect();
         let mut joints = Vec::with_capacity(self.dof());
         for (i, j) in self.joints.iter().enumerate() {
@@ -66,6 +60,7 @@ impl UrdfChain {
             joints.push(JointFrame {
                 rotation: f.rotation,
                 translation: f.translation,
+                prismatic: j.kind == JointKind::Prismatic,
             });
         }
         let last = align.last().map(inverse_rotation).unwrap_or_default();
@@ -96,8 +91,13 @@ impl UrdfChain {
                         None if j.continuous => ranges.push([-MAX_ANGLE, MAX_ANGLE]),
                         None => {
                             return Err(refuse(format!(
-                                "joint '{}' is revolute with no limits: give them (--joint-limits)",
-                                crate::error::clip(&j.name)
+                                "joint '{}' is {} with no limits: give them (--joint-limits)",
+                                crate::error::clip(&j.name),
+                                if j.kind == JointKind::Prismatic {
+                                    "prismatic"
+                                } else {
+                                    "revolute"
+                                }
                             )))
                         }
                     }

@@ -172,10 +172,23 @@ fn the_pose_task_has_its_slice_atlas() {
     // qp neither collides nor self-collides nor passes a limit.
     for c in cells {
         let qp = c["outcomes"][1]["class"].as_str().unwrap();
-        assert!(!["collision", "self_collision", "limit"].contains(&qp), "{c}");
+        assert!(
+            !["collision", "self_collision", "limit"].contains(&qp),
+            "{c}"
+        );
     }
     refused(
-        &["atlas", "--arm", "panda", "--task", "pose", "--methods", "case1", "--grid", "5"],
+        &[
+            "atlas",
+            "--arm",
+            "panda",
+            "--task",
+            "pose",
+            "--methods",
+            "case1",
+            "--grid",
+            "5",
+        ],
         "pose",
     );
 }

@@ -166,9 +166,14 @@ fn what_a_robot_from_urdf_cannot_run_is_refused_with_its_reason() {
         &["simulate", "--urdf", UR5E, "--arm", "panda"],
         "cannot be used with",
     );
+    // The test arm's pose task: four joints cannot hold six coordinates.
+    // The Panda cut at its fourth link cannot hold a pose's six coordinates.
+    let panda = concat!(env!("CARGO_MANIFEST_DIR"), "/robots/panda.urdf");
     refused(
-        &["simulate", "--urdf", SLIDER, "--tip", "tool"],
-        "prismatic",
+        &[
+            "simulate", "--urdf", panda, "--tip", "link4", "--task", "pose",
+        ],
+        "at least 6",
     );
     refused(&["simulate", "--urdf", UR5E, "--theta0", "0,0,0"], "theta");
     refused(&["simulate", "--tip", "tool"], "--tip goes with --urdf");

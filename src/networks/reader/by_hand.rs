@@ -130,7 +130,7 @@ fn task(v: Json) -> Read<u32> {
     u32::try_from(x).map_err(|_| format!("{x} is out of range for u32"))
 }
 
-fn boolean(v: Json) -> Read<bool> {
+pub(super) fn boolean(v: Json) -> Read<bool> {
     match v {
         Json::Bool(b) => Ok(b),
         other => Err(wrong(&other, "a boolean")),

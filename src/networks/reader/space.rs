@@ -114,10 +114,14 @@ fn joint(v: Json) -> Read<JointFrame> {
         Ok([triple(a)?, triple(b)?, triple(c)?])
     })?;
     let translation = f.required("translation", triple)?;
+    let prismatic = f
+        .optional("prismatic", super::by_hand::boolean)?
+        .unwrap_or(false);
     f.done()?;
     Ok(JointFrame {
         rotation,
         translation,
+        prismatic,
     })
 }
 

@@ -9,7 +9,7 @@ use super::{Projection, SpaceSession};
 use crate::error::Result;
 use crate::planner::self_motion::SelfMotion;
 use crate::session::self_motion::DRAG_STEPS;
-use crate::space::{cross, norm, sub, Vec3};
+use crate::space::{norm, Vec3};
 
 /// An elbow's handle radius on the canvas (CSS px).
 const ELBOW_PX: f64 = 8.0;
@@ -65,7 +65,7 @@ impl SpaceSession {
         (1..pose.dof())
             .filter(|&k| {
                 let p = pose.joint_origin(k);
-                (0..k).any(|i| norm(cross(pose.axis(i), sub(p, pose.joint_origin(i)))) > 1e-9)
+                (0..k).any(|i| norm(pose.column(i, p)) > 1e-9)
             })
             .filter_map(|k| {
                 let [px, py, z] = proj.project(pose.joint_origin(k));

@@ -11,7 +11,8 @@ use crate::error::{coordinate, non_negative, Error, Result};
 /// A joint of a chain read from URDF: its frame at zero in the previous
 /// joint's frame (the base's for the first), its axis that frame's `z`
 /// (the reader turns each URDF joint so): frame `i = frame (i-1) F_i
-/// Rz(theta_i)`.
+/// Rz(theta_i)` for a revolute joint, `frame (i-1) F_i Tz(q_i)` for a
+/// prismatic one (its coordinate `q_i` in metres).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct JointFrame {
@@ -19,6 +20,10 @@ pub struct JointFrame {
     pub rotation: [[f64; 3]; 3],
     /// `F_i`'s translation (m).
     pub translation: Vec3,
+    /// Whether the joint slides along its `z` instead of turning about it
+    /// (absent: it turns).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub prismatic: bool,
 }
 
 /// A link's capsule in the frame of the joint that moves it, for a chain
