@@ -195,7 +195,7 @@ pub fn slice(
     to_end(SliceJob::new(scene, plane, grid, methods, networks)?)
 }
 
-/// [`slice`] for the hand's pose task (the methods without networks).
+/// [`slice()`] for the hand's pose task (the methods without networks).
 pub fn pose_slice(
     scene: &PoseScene,
     plane: Plane,
