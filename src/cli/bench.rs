@@ -44,11 +44,20 @@ pub struct BenchArgs {
     /// the planar figures.
     #[arg(long)]
     pub arm: Option<String>,
-    /// With --arm: the task, position (the hand's, the default) or pose
-    /// (the hand's full pose, the start orientation kept; the methods
-    /// without networks).
-    #[arg(long, value_parser = super::task::parse_task, requires = "arm")]
+    /// With --arm or --urdf: the task, position (the hand's, the default)
+    /// or pose (the hand's full pose, the start orientation kept; for a
+    /// preset with a second sphere and self-collision, issue 40's goal
+    /// scene; the methods without networks).
+    #[arg(long, value_parser = super::task::parse_task)]
     pub task: Option<super::task::TaskArg>,
+    /// A robot's URDF instead of --arm: time the RK4 step of its own scene
+    /// (the middle of its ranges, the hand's line 0.15 m along y, no
+    /// sphere; self-collision with --srdf) in every method without
+    /// networks.
+    #[arg(long, conflicts_with = "arm")]
+    pub urdf: Option<std::path::PathBuf>,
+    #[command(flatten)]
+    pub chain: super::robot::ChainArgs,
     /// The networks' arithmetic: f64 (the default) or f32 (the kernels the
     /// page can run, `window.demo.bench({ precision: 'f32' })`).
     #[arg(long, default_value = "f64")]
@@ -90,20 +99,53 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         now_ms: &now,
         allocations: Some(&count),
     };
+    let pose = match args.task {
+        None | Some(super::task::TaskArg::Position) => false,
+        Some(super::task::TaskArg::Pose) => true,
+        Some(t) => {
+            return Err(format!(
+                "--task {}: bench --arm and --urdf time the task position or pose",
+                t.name()
+            ))
+        }
+    };
     if let Some(key) = &args.arm {
         // For an arm in space the default is every method.
         let all = args.methods == "paper";
-        let pose = match args.task {
-            None | Some(super::task::TaskArg::Position) => false,
-            Some(super::task::TaskArg::Pose) => true,
-            Some(t) => {
-                return Err(format!(
-                    "--task {}: bench --arm times the task position or pose",
-                    t.name()
-                ))
-            }
-        };
-        return space(key, pose, &opts, all, &probes, args.json);
+        let p = redundant_ik::space::SpacePreset::by_key(key).ok_or_else(|| {
+            format!("--arm {key}: bench --arm takes an arm in space, panda or iiwa14")
+        })?;
+        return space(Subject::Preset(p), pose, &opts, all, &probes, args.json);
+    }
+    if let Some(path) = &args.urdf {
+        let super::robot::UrdfRobot {
+            robot,
+            mut scene,
+            volumes,
+            ..
+        } = super::robot::urdf_scene(path, &args.chain, None)?;
+        if let Some(srdf) = &args.chain.srdf {
+            let disabled = super::robot::srdf_pairs(srdf, &volumes)?;
+            scene.arm = super::robot::with_self_collision(scene.arm, &disabled, &scene.theta0)?;
+        }
+        let all = args.methods == "paper";
+        return space(
+            Subject::Robot(robot, Box::new(scene)),
+            pose,
+            &opts,
+            all,
+            &probes,
+            args.json,
+        );
+    }
+    let c = &args.chain;
+    if args.task.is_some() {
+        return Err(
+            "--task goes with --arm or --urdf: the planar benchmark times the paper's tasks".into(),
+        );
+    }
+    if c.base.is_some() || c.tip.is_some() || c.package_dir.is_some() || c.srdf.is_some() {
+        return Err("--base, --tip, --package-dir and --srdf go with --urdf FILE".into());
     }
     let report = bench::run(&opts, &probes).map_err(|e| e.to_string())?;
     if args.json {
@@ -167,11 +209,23 @@ fn table(r: &Report, layers: [String; 2]) -> String {
     s
 }
 
-/// `bench --arm KEY`: the RK4 step of the arm in space's own task in every
-/// method that runs it (ns, median of the timed batches) and its
-/// allocations per step.
+/// What `bench` times in space: a preset's own task, or a robot read
+/// from URDF in its own scene (`--urdf`).
+pub enum Subject {
+    /// `--arm KEY`.
+    Preset(&'static redundant_ik::space::SpacePreset),
+    /// `--urdf FILE`: its name, key and scene (self-collision checked
+    /// where `--srdf` is given).
+    Robot(super::robot::Robot, Box<redundant_ik::scene::SpaceScene>),
+}
+
+/// `bench --arm KEY` or `--urdf FILE`: the RK4 step of the arm's own task
+/// (`pose`: the hand's pose; for a preset issue 40's goal scene,
+/// [`redundant_ik::bench::space::pose_task`]) in every method that runs
+/// it (ns, median of the timed batches) and its allocations per step. A
+/// robot from URDF has no networks.
 fn space(
-    key: &str,
+    subject: Subject,
     pose: bool,
     opts: &Options,
     all: bool,
@@ -179,35 +233,52 @@ fn space(
     json: bool,
 ) -> Result<(), String> {
     use redundant_ik::bench::space as sb;
-    let preset = redundant_ik::space::SpacePreset::by_key(key).ok_or_else(|| {
-        format!("--arm {key}: bench --arm takes an arm in space, panda or iiwa14")
-    })?;
+    use redundant_ik::scene::PoseScene;
+    let (key, label, learned) = match &subject {
+        Subject::Preset(p) => (
+            p.key.to_string(),
+            p.label.to_string(),
+            redundant_ik::networks::space::SpaceNetworkSet::for_arm(p.key).is_some() && !pose,
+        ),
+        Subject::Robot(r, _) => (r.key.clone(), r.label.clone(), false),
+    };
     let count = crate::allocations;
+    let e = |e: redundant_ik::Error| e.to_string();
     let mut rows = Vec::new();
-    for m in redundant_ik::planner::methods::ALL
+    for &m in redundant_ik::planner::methods::ALL
         .iter()
         .filter(|m| all || opts.methods.contains(m))
-        .filter(|m| {
-            !m.uses_networks()
-                || redundant_ik::networks::space::SpaceNetworkSet::for_arm(key).is_some()
-        })
+        .filter(|m| !m.uses_networks() || learned)
     {
-        let (ns, allocs) = if pose {
-            if m.uses_networks() {
-                continue;
+        let (ns, allocs) = match (&subject, pose) {
+            (Subject::Preset(p), false) => (
+                sb::step_ns(p.key, m, opts, probes),
+                sb::allocs_per_step(p.key, m, opts, &count),
+            ),
+            (Subject::Preset(p), true) => {
+                let scene = sb::pose_task(p.key).map_err(e)?;
+                (
+                    sb::scene_step_ns(scene.clone(), m, None, opts, probes),
+                    sb::scene_allocs_per_step(scene, m, None, &count),
+                )
             }
-            let scene = sb::pose_task(key).map_err(|e| e.to_string())?;
-            (
-                sb::scene_step_ns(scene.clone(), *m, None, opts, probes),
-                sb::scene_allocs_per_step(scene, *m, None, &count),
-            )
-        } else {
-            (
-                sb::step_ns(key, *m, opts, probes),
-                sb::allocs_per_step(key, *m, opts, &count),
-            )
+            (Subject::Robot(_, scene), false) => (
+                sb::scene_step_ns((**scene).clone(), m, None, opts, probes),
+                sb::scene_allocs_per_step((**scene).clone(), m, None, &count),
+            ),
+            (Subject::Robot(_, scene), true) => {
+                let scene = PoseScene::from_space(
+                    (**scene).clone(),
+                    None,
+                    redundant_ik::space::ORIENTATION_WEIGHT,
+                )
+                .map_err(e)?;
+                (
+                    sb::scene_step_ns(scene.clone(), m, None, opts, probes),
+                    sb::scene_allocs_per_step(scene, m, None, &count),
+                )
+            }
         };
-        let e = |e: redundant_ik::Error| e.to_string();
         rows.push((m.name(), ns.map_err(e)?, allocs.map_err(e)?));
     }
     if json {
@@ -226,8 +297,7 @@ fn space(
         ));
     }
     let mut s = format!(
-        "median of timed batches after a warm-up; {}, its own task{}\n\nmethod              RK4 step   allocs/step\n",
-        preset.label,
+        "median of timed batches after a warm-up; {label}, its own task{}\n\nmethod              RK4 step   allocs/step\n",
         if pose { " (the hand's pose)" } else { "" }
     );
     for (m, ns, a) in rows {

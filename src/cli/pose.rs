@@ -11,6 +11,7 @@ use redundant_ik::nn::Precision;
 use redundant_ik::planner::{Planner, Trajectory};
 use redundant_ik::scene::{PoseScene, SpaceScene};
 use redundant_ik::space::rotation::{exp, matrix_rpy};
+use redundant_ik::urdf::RobotSource;
 use redundant_ik::Method;
 
 use super::emit;
@@ -21,7 +22,10 @@ use super::task::PoseSpec;
 /// A pose run file given to `--from`, if it is one (no scene option may
 /// go with it; networks never do: none are trained for the pose task):
 /// its position scene, its method and its pose.
-pub fn run_file(args: &SceneArgs) -> Result<Option<(SpaceScene, Method, PoseSpec)>, String> {
+#[allow(clippy::type_complexity)]
+pub fn run_file(
+    args: &SceneArgs,
+) -> Result<Option<(SpaceScene, Method, PoseSpec, Option<RobotSource>)>, String> {
     let (Some(path), Some(text)) = (&args.from, args.run_text()?) else {
         return Ok(None);
     };
@@ -34,6 +38,7 @@ pub fn run_file(args: &SceneArgs) -> Result<Option<(SpaceScene, Method, PoseSpec
             "--from gives the whole scene; {flag} cannot change it"
         ));
     }
+    super::robot::check_source(file.robot.as_ref())?;
     let (scene, orientation, weight) = file.scene.position_scene();
     Ok(Some((
         scene,
@@ -42,6 +47,7 @@ pub fn run_file(args: &SceneArgs) -> Result<Option<(SpaceScene, Method, PoseSpec
             orientation: Some(orientation),
             weight,
         },
+        file.robot,
     )))
 }
 
@@ -53,6 +59,7 @@ pub fn simulate(
     scene: SpaceScene,
     spec: PoseSpec,
     method: Method,
+    source: Option<RobotSource>,
 ) -> Result<(), String> {
     if method.uses_networks() {
         return Err(format!(
@@ -66,7 +73,9 @@ pub fn simulate(
         .and_then(Planner::run_to_end)
         .map_err(|e| e.to_string())?;
     if args.json {
-        let text = PoseRunFile::of(None, scene, traj, None, Precision::F64).to_json();
+        let text = PoseRunFile::of(None, scene, traj, None, Precision::F64)
+            .with_robot(source)
+            .to_json();
         return emit(&format!("{text}\n"));
     }
     if args.csv {

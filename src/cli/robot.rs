@@ -14,7 +14,7 @@ use clap::Args;
 use redundant_ik::networks::space::SpaceNetworks;
 use redundant_ik::space::{Chain, SpacePreset};
 use redundant_ik::urdf::volume::{self, Source, Volume};
-use redundant_ik::urdf::{chain_urdf, JointKind, Urdf, UrdfChain, MAX_URDF_BYTES};
+use redundant_ik::urdf::{chain_urdf, JointKind, RobotSource, Urdf, UrdfChain, MAX_URDF_BYTES};
 use redundant_ik::Method;
 
 use super::emit;
@@ -140,6 +140,8 @@ pub fn networks_for(
 /// options' base to their tip, and its links' volumes with the reader's
 /// warnings.
 pub struct Loaded {
+    /// The file's text.
+    pub text: String,
     /// The document.
     pub urdf: Urdf,
     /// Its chain.
@@ -161,6 +163,7 @@ pub fn load(path: &Path, options: &ChainArgs) -> Result<Loaded, String> {
     let mesh = mesh_reader(path, options.package_dir.as_deref());
     let (volumes, warnings) = volume::volumes(&urdf, &chain, &mesh, DEFAULT_RADIUS);
     Ok(Loaded {
+        text,
         urdf,
         chain,
         volumes,
@@ -341,4 +344,120 @@ pub fn with_self_collision(
     chain
         .with_self_collision(disabled, &[&zero, theta0])
         .map_err(|e| e.to_string())
+}
+
+/// A robot read from URDF: what it is called, its own scene, its links'
+/// volumes (for an SRDF) and its source (what a run file records).
+pub struct UrdfRobot {
+    /// Its name and key.
+    pub robot: Robot,
+    /// Its own scene.
+    pub scene: redundant_ik::scene::SpaceScene,
+    /// The links' volumes, in the chain's order.
+    pub volumes: Vec<Volume>,
+    /// The file's text, base, tip and SHA-256.
+    pub source: RobotSource,
+}
+
+/// The hexadecimal SHA-256 of `text`.
+pub fn sha256(text: &str) -> String {
+    use sha2::Digest as _;
+    sha2::Sha256::digest(text.as_bytes())
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
+}
+
+/// Refused where a run file's robot carries a URDF whose SHA-256 is not
+/// the one it records (a file changed by hand, or cut).
+pub fn check_source(source: Option<&RobotSource>) -> Result<(), String> {
+    if let Some(RobotSource {
+        urdf: Some(text),
+        sha256: Some(hash),
+        ..
+    }) = source
+    {
+        if &sha256(text) != hash {
+            return Err(
+                "the run file's URDF does not have the SHA-256 it records: the file was changed"
+                    .into(),
+            );
+        }
+    }
+    Ok(())
+}
+
+/// The robot of the URDF at `path` (its chain as `chain` picks it, the
+/// limits of `joint_limits` where given) and its own scene: it starts at
+/// the middle of its joints' ranges (within +-pi), its hand's line runs
+/// 0.15 m along `y`, no sphere, `dt = 0.05 s`, `tf = 5 s`. The reader's
+/// warnings go to stderr.
+pub fn urdf_scene(
+    path: &Path,
+    options: &ChainArgs,
+    joint_limits: Option<redundant_ik::arm::JointLimits>,
+) -> Result<UrdfRobot, String> {
+    let Loaded {
+        text,
+        urdf,
+        chain: uc,
+        volumes,
+        warnings,
+    } = load(path, options)?;
+    let chain = uc
+        .to_chain(&volumes, joint_limits)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    for w in warnings {
+        eprintln!("warning: {w}");
+    }
+    let name = if urdf.name.is_empty() {
+        "robot"
+    } else {
+        &urdf.name
+    };
+    let robot = Robot::of_chain(&chain, name);
+    let source = match robot.preset {
+        Some(p) => RobotSource::shipped(p.key),
+        None => RobotSource {
+            name: name.to_string(),
+            sha256: Some(sha256(&text)),
+            urdf: Some(text),
+            base: options.base.clone(),
+            tip: options.tip.clone(),
+        },
+    };
+    let theta0: Vec<f64> = chain
+        .joint_limits()
+        .map(|l| {
+            l.ranges()
+                .iter()
+                .map(|[lo, hi]| {
+                    (0.5 * (lo + hi)).clamp(-std::f64::consts::PI, std::f64::consts::PI)
+                })
+                .collect()
+        })
+        .unwrap_or_else(|| vec![0.0; chain.dof()]);
+    let start = redundant_ik::space::SpacePose::new(&chain, &theta0)
+        .map_err(|e| e.to_string())?
+        .hand();
+    let scene = redundant_ik::scene::SpaceScene {
+        arm: chain,
+        theta0,
+        target: [start[0], start[1] + 0.15, start[2]],
+        path: redundant_ik::scene::SpacePath::Line,
+        obstacles: Vec::new(),
+        damping: None,
+        dt: 0.05,
+        tf: 5.0,
+        feedback_gain: 0.0,
+        params: redundant_ik::scene::Params::default(),
+        weighting: redundant_ik::scene::JointWeighting::None,
+        floor: false,
+    };
+    Ok(UrdfRobot {
+        robot,
+        scene,
+        volumes,
+        source,
+    })
 }

@@ -21,6 +21,7 @@ pub use super::robot::{networks_for, Robot};
 use super::simulate::{SceneArgs, SimulateArgs};
 use super::task::{pose_spec, PoseSpec};
 use super::{emit, parse_list, Numbers};
+use redundant_ik::urdf::RobotSource;
 
 /// The scene of `args` for the preset `p`: its task, with the options
 /// given. Options a spatial run does not take yet are refused by name.
@@ -157,6 +158,8 @@ pub struct Job {
     /// The hand's pose task, where the options or the run file ask for
     /// it (`scene` then holds its position's part).
     pub pose: Option<PoseSpec>,
+    /// Where the robot came from, as a run file records it.
+    pub source: Option<RobotSource>,
 }
 
 /// The spatial job of `args` (`p`: the arm in space `--arm` names, if it
@@ -166,13 +169,14 @@ pub fn job(
     method: Option<Method>,
     p: Option<&'static SpacePreset>,
 ) -> Result<Option<Job>, String> {
-    if let Some((scene, file_method, pose)) = super::pose::run_file(args)? {
+    if let Some((scene, file_method, pose, source)) = super::pose::run_file(args)? {
         return Ok(Some(Job {
             robot: Robot::of_chain(&scene.arm, "robot"),
             scene,
             method: method.unwrap_or(file_method),
             nets: None,
             pose: Some(pose),
+            source,
         }));
     }
     if let Some(file) = run_file(args)? {
@@ -207,6 +211,7 @@ pub fn job(
         method,
         nets,
         pose: pose_spec(args.task, args.target.as_ref(), args.orientation_weight)?,
+        source: Some(RobotSource::shipped(p.key)),
     }))
 }
 
@@ -217,54 +222,12 @@ fn urdf_job(args: &SceneArgs, method: Option<Method>) -> Result<Job, String> {
     let Some(path) = &args.robot.urdf else {
         return Err("--urdf: no file".into());
     };
-    let super::robot::Loaded {
-        urdf,
-        chain: uc,
+    let super::robot::UrdfRobot {
+        robot,
+        scene: s,
         volumes,
-        warnings,
-    } = super::robot::load(path, &args.robot.chain)?;
-    let chain = uc
-        .to_chain(&volumes, args.joint_limits.clone())
-        .map_err(|e| format!("{}: {e}", path.display()))?;
-    for w in warnings {
-        eprintln!("warning: {w}");
-    }
-    let robot = Robot::of_chain(
-        &chain,
-        if urdf.name.is_empty() {
-            "robot"
-        } else {
-            &urdf.name
-        },
-    );
-    let theta0: Vec<f64> = chain
-        .joint_limits()
-        .map(|l| {
-            l.ranges()
-                .iter()
-                .map(|[lo, hi]| {
-                    (0.5 * (lo + hi)).clamp(-std::f64::consts::PI, std::f64::consts::PI)
-                })
-                .collect()
-        })
-        .unwrap_or_else(|| vec![0.0; chain.dof()]);
-    let start = redundant_ik::space::SpacePose::new(&chain, &theta0)
-        .map_err(|e| e.to_string())?
-        .hand();
-    let s = SpaceScene {
-        arm: chain,
-        theta0,
-        target: [start[0], start[1] + 0.15, start[2]],
-        path: SpacePath::Line,
-        obstacles: Vec::new(),
-        damping: None,
-        dt: 0.05,
-        tf: 5.0,
-        feedback_gain: 0.0,
-        params: redundant_ik::scene::Params::default(),
-        weighting: redundant_ik::scene::JointWeighting::None,
-        floor: false,
-    };
+        source,
+    } = super::robot::urdf_scene(path, &args.robot.chain, args.joint_limits.clone())?;
     let mut scene = apply(args, s, super::robot::DEFAULT_RADIUS)?;
     if args.target.is_none() {
         // The line from where --theta0 (or the middle) puts the hand.
@@ -288,6 +251,7 @@ fn urdf_job(args: &SceneArgs, method: Option<Method>) -> Result<Job, String> {
         method,
         nets,
         pose: pose_spec(args.task, args.target.as_ref(), args.orientation_weight)?,
+        source: Some(source),
     })
 }
 
@@ -319,12 +283,14 @@ fn from_file(args: &SceneArgs, method: Option<Method>, file: SpaceRunFile) -> Re
             }
         }),
     };
+    super::robot::check_source(file.robot.as_ref())?;
     Ok(Job {
         robot,
         scene: file.scene,
         method,
         nets,
         pose: None,
+        source: file.robot,
     })
 }
 
@@ -332,9 +298,9 @@ fn from_file(args: &SceneArgs, method: Option<Method>, file: SpaceRunFile) -> Re
 /// run file.
 pub fn simulate(args: &SimulateArgs, job: Job) -> Result<(), String> {
     if let Some(spec) = job.pose {
-        return super::pose::simulate(args, &job.robot, job.scene, spec, job.method);
+        return super::pose::simulate(args, &job.robot, job.scene, spec, job.method, job.source);
     }
-    output(args, &job.robot, job.scene, job.method, job.nets)
+    output(args, &job, job.scene.clone(), job.method, job.nets.clone())
 }
 
 /// Runs `scene` with `method` (and the networks of the learned methods)
@@ -342,7 +308,7 @@ pub fn simulate(args: &SimulateArgs, job: Job) -> Result<(), String> {
 /// replays), CSV or a summary.
 fn output(
     args: &SimulateArgs,
-    robot: &Robot,
+    job: &Job,
     scene: SpaceScene,
     method: Method,
     nets: Option<Arc<SpaceNetworks>>,
@@ -362,13 +328,15 @@ fn output(
             )
         });
         let precision = used.map_or(Precision::F64, |n| n.precision());
-        let text = SpaceRunFile::of(None, scene, traj, networks, precision).to_json();
+        let text = SpaceRunFile::of(None, scene, traj, networks, precision)
+            .with_robot(job.source.clone())
+            .to_json();
         return emit(&format!("{text}\n"));
     }
     if args.csv {
         return emit(&redundant_ik::export::run_csv(&traj.steps));
     }
-    emit(&summary(robot, &scene, &traj))
+    emit(&summary(&job.robot, &scene, &traj))
 }
 
 fn summary(robot: &Robot, scene: &SpaceScene, traj: &Trajectory<3>) -> String {

@@ -18,6 +18,7 @@ use crate::nn::Precision;
 use crate::planner::{Method, Planned, Sample, Summary, Trajectory};
 use crate::run::{NetworkChoice, Run};
 use crate::space::{Chain, PoseChain};
+use crate::urdf::RobotSource;
 
 /// Largest run file read (bytes): a run of the longest scene (10 000
 /// steps of a 6-link arm) is about 6 MB.
@@ -55,6 +56,12 @@ pub trait Recorded<const M: usize>: Planned<M> {
     /// The run file of an older `format` (`None`: none), if this arm's
     /// files had that version; `None` where they never did.
     fn older(format: Option<&str>, text: &str) -> Option<Result<RunFile<Self, M>>>;
+    /// The chain a scene runs, for an arm in space (what a file's
+    /// [`RobotSource`] must describe).
+    fn chain_of(scene: &Self::Scene) -> Option<&Chain> {
+        let _ = scene;
+        None
+    }
 }
 
 impl Recorded<2> for Arm {
@@ -69,6 +76,9 @@ impl Recorded<6> for PoseChain {
     /// The pose task came with this version: no older files.
     fn older(_: Option<&str>, _: &str) -> Option<Result<RunFile<Self, 6>>> {
         None
+    }
+    fn chain_of(scene: &Self::Scene) -> Option<&Chain> {
+        Some(&scene.arm.chain)
     }
 }
 
@@ -107,6 +117,10 @@ pub struct RunFile<A: Recorded<M> = Arm, const M: usize = 2> {
     pub steps: Vec<Sample<M, A::Point>>,
     /// The outcome.
     pub summary: Summary,
+    /// Where an arm in space came from: a shipped robot's name, or the
+    /// user's URDF whole (absent for a planar arm and in older files).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub robot: Option<RobotSource>,
 }
 
 /// The run file of an arm in space.
@@ -189,7 +203,14 @@ where
             precision: if learned { precision } else { Precision::F64 },
             steps: traj.steps,
             summary: traj.summary,
+            robot: None,
         }
+    }
+
+    /// The file with `robot` recorded as where its arm came from.
+    pub fn with_robot(mut self, robot: Option<RobotSource>) -> Self {
+        self.robot = robot;
+        self
     }
 
     /// The JSON text (one line). Serialising these types cannot fail (no
@@ -232,6 +253,17 @@ where
             },
         };
         run.scene.validate()?;
+        if let Some(robot) = &run.robot {
+            match A::chain_of(&run.scene) {
+                Some(chain) => robot.check(chain)?,
+                None => {
+                    return Err(refusal(
+                        text,
+                        "a run of a planar arm, which names no robot".into(),
+                    ))
+                }
+            }
+        }
         if !run.method.in_space() && M != 2 {
             return Err(refusal(
                 text,

@@ -154,6 +154,9 @@ impl Recorded<3> for Chain {
     fn older(format: Option<&str>, text: &str) -> Option<Result<SpaceRunFile>> {
         older(format, text)
     }
+    fn chain_of(scene: &SpaceScene) -> Option<&Chain> {
+        Some(&scene.arm)
+    }
 }
 
 /// The run file of a spatial file of version 1 (`None`: `format` is no
@@ -233,5 +236,6 @@ fn read(text: &str) -> Result<SpaceRunFile> {
         precision: f.precision,
         steps,
         summary,
+        robot: None,
     })
 }

@@ -22,6 +22,7 @@ mod chain;
 mod frame;
 mod model;
 mod parse;
+mod source;
 pub mod srdf;
 pub mod stl;
 pub mod volume;
@@ -29,6 +30,7 @@ mod write;
 
 pub use chain::{ChainJoint, ChainLink, JointKind, UrdfChain};
 pub use frame::{Frame, Vec3};
+pub use source::RobotSource;
 pub use write::chain_urdf;
 
 use crate::error::{Error, Result};

@@ -178,3 +178,39 @@ fn what_a_robot_from_urdf_cannot_run_is_refused_with_its_reason() {
     refused(&["simulate", "--urdf", UR5E, "--theta0", "0,0,0"], "theta");
     refused(&["simulate", "--tip", "tool"], "--tip goes with --urdf");
 }
+
+#[test]
+fn a_run_file_records_its_robot_and_refuses_a_changed_urdf() {
+    // A shipped robot by name.
+    let v = json(&["simulate", "--arm", "panda", "--json"]);
+    assert_eq!(v["robot"], serde_json::json!({ "name": "panda" }));
+    // A user's URDF whole, with its SHA-256.
+    let v = json(&["simulate", "--urdf", UR5E, "--method", "qp", "--json"]);
+    let robot = &v["robot"];
+    assert_eq!(robot["name"], "ur5e");
+    let text = std::fs::read_to_string(UR5E).unwrap();
+    assert_eq!(robot["urdf"], text.as_str());
+    let hash = robot["sha256"].as_str().unwrap();
+    assert_eq!(hash.len(), 64);
+    assert!(hash.bytes().all(|b| b.is_ascii_hexdigit()));
+    // It replays anywhere (the file is the robot), and says the same.
+    let file = scratch("ur5e-robot-run.json");
+    std::fs::write(&file, serde_json::to_string(&v).unwrap()).unwrap();
+    let path = file.to_str().unwrap();
+    let again = json(&["simulate", "--from", path, "--json"]);
+    assert_eq!(again["steps"], v["steps"]);
+    assert_eq!(again["robot"], v["robot"]);
+    // A text changed after the hash was taken is refused.
+    let mut changed = v.clone();
+    changed["robot"]["urdf"] = text.replace("ur5e", "ur5f").into();
+    std::fs::write(&file, serde_json::to_string(&changed).unwrap()).unwrap();
+    refused(&["simulate", "--from", path], "sha-256");
+    // A URDF of another robot than the scene's chain is refused.
+    let mut other = v;
+    let slider = std::fs::read_to_string(SLIDER).unwrap();
+    other["robot"]["urdf"] = serde_json::Value::String(slider);
+    other["robot"]["tip"] = "tool".into();
+    other["robot"]["sha256"] = serde_json::Value::Null;
+    std::fs::write(&file, serde_json::to_string(&other).unwrap()).unwrap();
+    refused(&["simulate", "--from", path], "does not describe");
+}

@@ -101,7 +101,8 @@ fn an_atlas_layer_is_checked_then_drawn_and_finds_the_cell_under_the_pointer() {
             "missed",
             "failed",
             "path_blocked",
-            "start_overlap"
+            "start_overlap",
+            "self_collision"
         ]
     );
     assert!(classes[0]["swatch"].as_str().unwrap().starts_with("rgba("));
@@ -114,7 +115,7 @@ fn an_atlas_layer_is_checked_then_drawn_and_finds_the_cell_under_the_pointer() {
         .collect();
     assert_eq!(
         only_limited,
-        [false, false, true, false, false, false, false]
+        [false, false, true, false, false, false, false, false]
     );
     let mut d = demo(1);
     assert_eq!(d.atlas_cell_at(100.0, 100.0), None, "no layer, no cell");
