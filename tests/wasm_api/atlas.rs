@@ -132,7 +132,7 @@ fn an_atlas_layer_is_checked_then_drawn_and_finds_the_cell_under_the_pointer() {
     )
     .contains("has 8 entries"));
     assert!(refused(
-        d.set_atlas_layer(region.clone(), 3, vec![7; 9])
+        d.set_atlas_layer(region.clone(), 3, vec![8; 9])
             .unwrap_err()
     )
     .contains("class index"));
