@@ -20,6 +20,7 @@ pub mod simulate;
 pub mod space;
 pub mod space_atlas;
 pub mod space_networks;
+pub mod summary;
 pub mod task;
 pub mod train;
 

@@ -38,7 +38,7 @@ pub fn run_file(
             "--from gives the whole scene; {flag} cannot change it"
         ));
     }
-    super::robot::check_source(file.robot.as_ref())?;
+    super::robot::check_source(file.robot.as_ref(), &file.scene.arm.chain)?;
     let (scene, orientation, weight) = file.scene.position_scene();
     Ok(Some((
         scene,
@@ -136,37 +136,7 @@ fn summary(robot: &Robot, scene: &PoseScene, traj: &Trajectory<6, [f64; 3]>) -> 
         pose_text(last.ee),
         pose_text(scene.target)
     );
-    for sp in &scene.obstacles {
-        let c = sp.centre;
-        let _ = writeln!(
-            out,
-            "sphere at ({:.4}, {:.4}, {:.4}), radius {} m",
-            c[0], c[1], c[2], sp.radius
-        );
-    }
-    if let Some(c) = s.min_clearance {
-        let _ = writeln!(
-            out,
-            "smallest capsule-to-sphere clearance  {c:.4} m  -> {}",
-            if s.collision_steps > 0 {
-                format!("COLLISION in {} steps", s.collision_steps)
-            } else {
-                "no collision".into()
-            }
-        );
-    }
-    if let Some(c) = s.min_self_clearance {
-        let _ = writeln!(
-            out,
-            "smallest self clearance ({} pairs)     {c:.4} m  -> {}",
-            scene.arm.chain.self_pairs().len(),
-            if s.self_collision_steps > 0 {
-                format!("SELF-COLLISION in {} steps", s.self_collision_steps)
-            } else {
-                "no self-collision".into()
-            }
-        );
-    }
+    super::summary::contact(&mut out, s, &scene.arm.chain, &scene.obstacles);
     let _ = writeln!(
         out,
         "final hand error                      {:.3e} m, {:.3e} rad",
@@ -182,15 +152,6 @@ fn summary(robot: &Robot, scene: &PoseScene, traj: &Trajectory<6, [f64; 3]>) -> 
     if !s.target_reachable {
         let _ = writeln!(out, "target is out of the arm's reach: not reached");
     }
-    if s.limit_steps > 0 {
-        let _ = writeln!(out, "a joint past its limit in {} steps", s.limit_steps);
-    }
-    if s.relaxed_steps > 0 {
-        let _ = writeln!(
-            out,
-            "the program's constraints were relaxed in {} steps",
-            s.relaxed_steps
-        );
-    }
+    super::summary::limits(&mut out, s);
     out
 }

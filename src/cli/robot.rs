@@ -369,14 +369,13 @@ pub fn sha256(text: &str) -> String {
 }
 
 /// Refused where a run file's robot carries a URDF whose SHA-256 is not
-/// the one it records (a file changed by hand, or cut).
-pub fn check_source(source: Option<&RobotSource>) -> Result<(), String> {
-    if let Some(RobotSource {
-        urdf: Some(text),
-        sha256: Some(hash),
-        ..
-    }) = source
-    {
+/// the one it records (a file changed by hand, or cut), or that does not
+/// describe `chain`, the chain its scene runs.
+pub fn check_source(source: Option<&RobotSource>, chain: &Chain) -> Result<(), String> {
+    let Some(source) = source else {
+        return Ok(());
+    };
+    if let (Some(text), Some(hash)) = (&source.urdf, &source.sha256) {
         if &sha256(text) != hash {
             return Err(
                 "the run file's URDF does not have the SHA-256 it records: the file was changed"
@@ -384,7 +383,7 @@ pub fn check_source(source: Option<&RobotSource>) -> Result<(), String> {
             );
         }
     }
-    Ok(())
+    source.check(chain).map_err(|e| e.to_string())
 }
 
 /// The robot of the URDF at `path` (its chain as `chain` picks it, the

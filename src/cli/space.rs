@@ -283,7 +283,7 @@ fn from_file(args: &SceneArgs, method: Option<Method>, file: SpaceRunFile) -> Re
             }
         }),
     };
-    super::robot::check_source(file.robot.as_ref())?;
+    super::robot::check_source(file.robot.as_ref(), &file.scene.arm)?;
     Ok(Job {
         robot,
         scene: file.scene,
@@ -373,43 +373,7 @@ fn summary(robot: &Robot, scene: &SpaceScene, traj: &Trajectory<3>) -> String {
         list(&last.theta),
         point(last.ee)
     );
-    for sp in &scene.obstacles {
-        let _ = writeln!(
-            out,
-            "sphere at {}, radius {} m (the links' capsules: radius {} m)",
-            point(sp.centre),
-            sp.radius,
-            scene.arm.radius()
-        );
-    }
-    match s.min_clearance {
-        Some(c) => {
-            let _ = writeln!(
-                out,
-                "smallest capsule-to-sphere clearance  {c:.4} m  -> {}",
-                if s.collision_steps > 0 {
-                    format!("COLLISION in {} steps", s.collision_steps)
-                } else {
-                    "no collision".into()
-                }
-            );
-        }
-        None => {
-            let _ = writeln!(out, "no spheres");
-        }
-    }
-    if let Some(c) = s.min_self_clearance {
-        let _ = writeln!(
-            out,
-            "smallest self clearance ({} pairs)     {c:.4} m  -> {}",
-            scene.arm.self_pairs().len(),
-            if s.self_collision_steps > 0 {
-                format!("SELF-COLLISION in {} steps", s.self_collision_steps)
-            } else {
-                "no self-collision".into()
-            }
-        );
-    }
+    super::summary::contact(&mut out, s, &scene.arm, &scene.obstacles);
     let _ = writeln!(
         out,
         "final hand error                      {:.3e} m",
@@ -438,15 +402,6 @@ fn summary(robot: &Robot, scene: &SpaceScene, traj: &Trajectory<3>) -> String {
             }
         );
     }
-    if s.limit_steps > 0 {
-        let _ = writeln!(out, "a joint past its limit in {} steps", s.limit_steps);
-    }
-    if s.relaxed_steps > 0 {
-        let _ = writeln!(
-            out,
-            "the program's constraints were relaxed in {} steps",
-            s.relaxed_steps
-        );
-    }
+    super::summary::limits(&mut out, s);
     out
 }

@@ -2,8 +2,10 @@
 //! robot by name, or the user's URDF whole (its text, the chain's base and
 //! tip, and the text's SHA-256, which the command-line tool writes and
 //! checks). The scene's chain is what runs; the text lets a reader open
-//! the robot again (its links, names and meshes' names), and reading a
-//! file checks that the text describes the scene's chain.
+//! the robot again (its links, names and meshes' names). Its reader
+//! checks that the text describes the scene's chain
+//! ([`RobotSource::check`], the tool's `--from`); the wasm modules, which
+//! read run files too, leave the URDF reader out.
 
 use serde::{Deserialize, Serialize};
 
