@@ -47,11 +47,12 @@ impl PoseScene {
     pub fn from_space(scene: SpaceScene, orientation: Option<Vec3>, weight: f64) -> Result<Self> {
         scene.validate()?;
         ORIENTATION_WEIGHT.check(weight)?;
-        let start = PoseChain::new(scene.arm.clone(), weight)?.start(&scene.theta0)?;
+        let arm = PoseChain::new(scene.arm, weight)?;
+        let start = arm.start(&scene.theta0)?;
         let r = orientation.unwrap_or([start[3], start[4], start[5]]);
         let [x, y, z] = scene.target;
         let pose = Self {
-            arm: PoseChain::new(scene.arm, weight)?,
+            arm,
             theta0: scene.theta0,
             target: [x, y, z, r[0], r[1], r[2]],
             path: scene.path,
