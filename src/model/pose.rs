@@ -37,11 +37,22 @@ fn gram(pose: &HandPose, winv: Option<&[f64]>, delta: f64) -> Matrix6<f64> {
 }
 
 /// `a^-1 b` for the symmetric positive definite `a` (Cholesky); refused
-/// where it is not: a singular pose with no damping.
+/// where it is not (numerically: a pivot below `1e-14` of the largest
+/// diagonal entry, as the `3 x 3` solve refuses): a singular pose with no
+/// damping.
 fn solve(a: Matrix6<f64>, b: [f64; 6]) -> Result<[f64; 6]> {
-    let chol = a.cholesky().ok_or_else(|| {
-        Error::Singular("J W^-1 J^T + delta Z^-1 (6 x 6) is not positive definite".into())
-    })?;
+    let singular =
+        || Error::Singular("J W^-1 J^T + delta Z^-1 (6 x 6) is not positive definite".into());
+    let scale = (0..6).map(|i| a[(i, i)].abs()).fold(0.0, f64::max);
+    let tiny = 1e-14 * scale.max(f64::MIN_POSITIVE);
+    let chol = a.cholesky().ok_or_else(singular)?;
+    let l = chol.l_dirty();
+    // Each pivot (the square of L's diagonal) must exceed `tiny`; NaN does not.
+    if !(0..6)
+        .all(|i| (l[(i, i)] * l[(i, i)]).partial_cmp(&tiny) == Some(std::cmp::Ordering::Greater))
+    {
+        return Err(singular());
+    }
     let x = chol.solve(&Vector6::from(b));
     if x.iter().all(|v| v.is_finite()) {
         Ok(x.into())
