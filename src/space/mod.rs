@@ -1,12 +1,13 @@
-//! Arms in space: serial chains of revolute joints from modified
-//! Denavit-Hartenberg rows ([`Chain`]), the named robots ([`PRESETS`]: the
+//! Arms in space: serial chains from modified Denavit-Hartenberg rows or
+//! a URDF's joint frames ([`Chain`]), the named robots ([`PRESETS`]: the
 //! Franka Panda and the KUKA LBR iiwa 14), one kinematics pass per pose
 //! ([`SpacePose`]: the joint frames, the hand and its `3 x n` positional
 //! Jacobian), spheres as obstacles and their distances to the links'
 //! capsules ([`Sphere`], [`CapsulePair`]), and the paper's criterion
 //! generalised to space ([`criterion`]). The task is the hand's position
-//! (`m = 3`); its orientation is left free. `docs/space.md` has the
-//! models, their sources and the formulas.
+//! (`m = 3`), or its full pose ([`PoseChain`], `m = 6`: `docs/pose.md`),
+//! and the chain's capsules may be kept apart ([`self_pairs`]).
+//! `docs/space.md` has the models, their sources and the formulas.
 
 mod chain;
 pub mod criterion;
