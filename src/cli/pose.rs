@@ -11,6 +11,7 @@ use redundant_ik::nn::Precision;
 use redundant_ik::planner::{Planner, Trajectory};
 use redundant_ik::scene::{PoseScene, SpaceScene};
 use redundant_ik::space::rotation::{exp, matrix_rpy};
+use redundant_ik::space::PoseChain;
 use redundant_ik::urdf::RobotSource;
 use redundant_ik::Method;
 
@@ -26,18 +27,9 @@ use super::task::PoseSpec;
 pub fn run_file(
     args: &SceneArgs,
 ) -> Result<Option<(SpaceScene, Method, PoseSpec, Option<RobotSource>)>, String> {
-    let (Some(path), Some(text)) = (&args.from, args.run_text()?) else {
+    let Some(file) = args.run_file_of::<PoseChain, 6>(is_pose_run)? else {
         return Ok(None);
     };
-    if !is_pose_run(&text) {
-        return Ok(None);
-    }
-    let file = PoseRunFile::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-    if let Some(flag) = args.beside_from().first() {
-        return Err(format!(
-            "--from gives the whole scene; {flag} cannot change it"
-        ));
-    }
     super::robot::check_source(file.robot.as_ref(), &file.scene.arm.chain)?;
     let (scene, orientation, weight) = file.scene.position_scene();
     Ok(Some((

@@ -126,19 +126,7 @@ fn space_path(v: &PathArg) -> Result<SpacePath, String> {
 /// The spatial run file of `--from`, if it names one, read and checked
 /// (no scene option may go with it); `None` for a planar run's file.
 pub fn run_file(args: &SceneArgs) -> Result<Option<SpaceRunFile>, String> {
-    let (Some(path), Some(text)) = (&args.from, args.run_text()?) else {
-        return Ok(None);
-    };
-    if !is_space_run(&text) {
-        return Ok(None);
-    }
-    let file = SpaceRunFile::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-    if let Some(flag) = args.beside_from().first() {
-        return Err(format!(
-            "--from gives the whole scene; {flag} cannot change it"
-        ));
-    }
-    Ok(Some(file))
+    args.run_file_of(is_space_run)
 }
 
 /// What a command runs on an arm in space: the robot, the scene, the
@@ -300,19 +288,21 @@ pub fn simulate(args: &SimulateArgs, job: Job) -> Result<(), String> {
     if let Some(spec) = job.pose {
         return super::pose::simulate(args, &job.robot, job.scene, spec, job.method, job.source);
     }
-    output(args, &job, job.scene.clone(), job.method, job.nets.clone())
+    output(args, job)
 }
 
-/// Runs `scene` with `method` (and the networks of the learned methods)
-/// and prints what `args` ask for: the run file (`--json`, what `--from`
-/// replays), CSV or a summary.
-fn output(
-    args: &SimulateArgs,
-    job: &Job,
-    scene: SpaceScene,
-    method: Method,
-    nets: Option<Arc<SpaceNetworks>>,
-) -> Result<(), String> {
+/// Runs the job's scene with its method (and the networks of the learned
+/// methods) and prints what `args` ask for: the run file (`--json`, what
+/// `--from` replays), CSV or a summary.
+fn output(args: &SimulateArgs, job: Job) -> Result<(), String> {
+    let Job {
+        robot,
+        scene,
+        method,
+        nets,
+        source,
+        ..
+    } = job;
     let used = nets.clone();
     let planner = Planner::new(scene.clone(), method, nets.map(|n| n as Networks<_, 3>))
         .map_err(|e| e.to_string())?;
@@ -329,14 +319,14 @@ fn output(
         });
         let precision = used.map_or(Precision::F64, |n| n.precision());
         let text = SpaceRunFile::of(None, scene, traj, networks, precision)
-            .with_robot(job.source.clone())
+            .with_robot(source)
             .to_json();
         return emit(&format!("{text}\n"));
     }
     if args.csv {
         return emit(&redundant_ik::export::run_csv(&traj.steps));
     }
-    emit(&summary(&job.robot, &scene, &traj))
+    emit(&summary(&robot, &scene, &traj))
 }
 
 fn summary(robot: &Robot, scene: &SpaceScene, traj: &Trajectory<3>) -> String {

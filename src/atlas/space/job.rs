@@ -53,15 +53,7 @@ impl SliceJob {
             nets.check_chain(&scene.arm)?;
         }
         let nets = networks.map(|n| n.clone() as Networks<Chain, 3>);
-        Self::of(
-            scene,
-            &scene.obstacles,
-            &scene.theta0,
-            plane,
-            grid,
-            methods,
-            nets,
-        )
+        Self::of(scene, &scene.obstacles, plane, grid, methods, nets)
     }
 }
 
@@ -76,15 +68,7 @@ impl SliceJob<PoseChain, 6> {
                 "method {m} runs networks trained for the hand's position: none are trained for its pose"
             )));
         }
-        Self::of(
-            scene,
-            &scene.obstacles,
-            &scene.theta0,
-            plane,
-            grid,
-            methods,
-            None,
-        )
+        Self::of(scene, &scene.obstacles, plane, grid, methods, None)
     }
 }
 
@@ -98,7 +82,6 @@ where
     fn of(
         scene: &A::Scene,
         spheres: &[Sphere],
-        theta0: &[f64],
         plane: Plane,
         grid: Grid,
         methods: &[Method],
@@ -108,7 +91,7 @@ where
         let chain: &Chain = scene.arm().as_ref();
         let radius = spheres.first().map_or(0.05, |s| s.radius);
         let sweep = Sweep::new(scene, plane, grid, methods, nets, radius)?;
-        let shoulder = SpacePose::new(chain, theta0)?.joint_origin(0);
+        let shoulder = SpacePose::new(chain, scene.theta0())?.joint_origin(0);
         let reach = chain.reach() + radius + chain.radius();
         let near = |c: Vec3| {
             (0..3)
