@@ -25,7 +25,8 @@ const AXES: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];
 /// for the hand's pose, its six coordinates, and the orientation error
 /// (rad) after the tracking error.
 pub fn run_csv<const M: usize, P>(steps: &[Sample<M, P>]) -> String {
-    let pose = M == 6;
+    // A task with an orientation (the pose's) reports its error.
+    let pose = steps.first().is_some_and(|s| s.orientation_error.is_some());
     let n = steps.first().map_or(0, |s| s.theta.len());
     let mut out = String::from("t");
     for i in 1..=n {

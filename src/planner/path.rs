@@ -57,6 +57,9 @@ pub struct Track<const M: usize = 2> {
     shape: Owned<M>,
     /// How the line runs between its ends (the arm's task's shortest path).
     geodesic: Geodesic<M>,
+    /// The line's rate `d/ds` along its geodesic (constant: `end - start`
+    /// for a straight line), found once when the line is made.
+    rate: [f64; M],
 }
 
 /// Tracks are equal where their lines and shapes are (the line's
@@ -82,6 +85,7 @@ impl<const M: usize> Track<M> {
             line: Line::new(start, end, t0, duration),
             shape: Owned::Line,
             geodesic,
+            rate: [0.0; M],
         };
         track.renew(shape, start, end, t0, duration);
         track
@@ -115,6 +119,7 @@ impl<const M: usize> Track<M> {
         duration: f64,
     ) {
         self.line = Line::new(start, end, t0, duration);
+        self.rate = (self.geodesic)(start, end, 0.0).1;
         self.shape = match (shape, std::mem::replace(&mut self.shape, Owned::Line)) {
             (Shape::Line, _) => Owned::Line,
             (Shape::Circle(c), _) => Owned::Circle(c),
@@ -190,8 +195,7 @@ impl<const M: usize> Track<M> {
     pub fn line_velocity(&self, t_mid: f64) -> [f64; M] {
         let l = &self.line;
         if t_mid > l.t0 && t_mid < l.t0 + l.duration {
-            let d = (self.geodesic)(l.start, l.end, 0.0).1;
-            std::array::from_fn(|k| d[k] / l.duration)
+            std::array::from_fn(|k| self.rate[k] / l.duration)
         } else {
             [0.0; M]
         }
