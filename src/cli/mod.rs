@@ -12,6 +12,7 @@ pub mod atlas;
 pub mod bench;
 pub mod eval;
 pub mod figure;
+pub mod from;
 pub mod params;
 pub mod path_arg;
 pub mod pose;
