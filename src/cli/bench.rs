@@ -144,9 +144,7 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
             "--task goes with --arm or --urdf: the planar benchmark times the paper's tasks".into(),
         );
     }
-    if c.base.is_some() || c.tip.is_some() || c.package_dir.is_some() || c.srdf.is_some() {
-        return Err("--base, --tip, --package-dir and --srdf go with --urdf FILE".into());
-    }
+    c.need_urdf(None)?;
     let report = bench::run(&opts, &probes).map_err(|e| e.to_string())?;
     if args.json {
         let json = serde_json::to_string(&report).map_err(|e| e.to_string())?;

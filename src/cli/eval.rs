@@ -40,6 +40,18 @@ pub struct EvalArgs {
     /// learned methods on its task.
     #[arg(long)]
     pub arm: Option<String>,
+    /// A robot's URDF instead of --arm, with its networks as --phi and
+    /// --v: their accuracy, and the learned methods on the robot's own
+    /// line past a sphere in the way of its middle joint (docs/space.md).
+    #[arg(long, conflicts_with = "arm")]
+    pub urdf: Option<std::path::PathBuf>,
+    /// With --urdf: the start pose, one value per moving joint (rad, or m
+    /// for a sliding one; default: the middle of the joints' ranges, which
+    /// for many arms is a straight, singular pose).
+    #[arg(long, requires = "urdf", allow_hyphen_values = true)]
+    pub theta0: Option<String>,
+    #[command(flatten)]
+    pub chain: super::robot::ChainArgs,
     /// A Phi weights file to evaluate instead of the embedded one (needs --v).
     #[arg(long, requires = "v")]
     pub phi: Option<String>,

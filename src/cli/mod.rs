@@ -99,8 +99,12 @@ fn atlas_any(a: &atlas::AtlasArgs) -> Result<(), String> {
 /// `train`: the networks of an arm in space, else a planar arm's.
 fn train_any(a: &train::TrainArgs) -> Result<(), String> {
     let net = train::net_kind(&a.net)?;
-    match &a.arm {
-        Some(ArmChoice::Space(p)) => space_networks::train(a, net, p),
+    a.chain.need_urdf(a.urdf.as_deref())?;
+    match (&a.arm, &a.urdf) {
+        (Some(ArmChoice::Space(p)), _) => space_networks::train(a, net, (*p).into()),
+        (_, Some(path)) => {
+            space_networks::train(a, net, space_networks::urdf_arm(path, &a.chain, None)?)
+        }
         _ => train::run(a, net),
     }
 }
@@ -108,13 +112,18 @@ fn train_any(a: &train::TrainArgs) -> Result<(), String> {
 /// `eval`: an arm in space's networks (`--arm`), else the planar sets.
 fn eval_any(a: &eval::EvalArgs) -> Result<(), String> {
     eval::check_samples(a)?;
-    match &a.arm {
-        Some(key) => {
+    a.chain.need_urdf(a.urdf.as_deref())?;
+    match (&a.arm, &a.urdf) {
+        (Some(key), _) => {
             let p = SpacePreset::by_key(key)
                 .ok_or_else(|| format!("--arm {key}: eval --arm takes an arm in space (panda)"))?;
-            space_networks::eval(a, p)
+            space_networks::eval(a, p.into())
         }
-        None => eval::run(a),
+        (_, Some(path)) => space_networks::eval(
+            a,
+            space_networks::urdf_arm(path, &a.chain, a.theta0.as_deref())?,
+        ),
+        _ => eval::run(a),
     }
 }
 

@@ -7,15 +7,12 @@
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 
 use clap::Args;
 
-use redundant_ik::networks::space::SpaceNetworks;
 use redundant_ik::space::{Chain, SpacePreset};
 use redundant_ik::urdf::volume::{self, Source, Volume};
 use redundant_ik::urdf::{chain_urdf, JointKind, RobotSource, Urdf, UrdfChain, MAX_URDF_BYTES};
-use redundant_ik::Method;
 
 use super::emit;
 
@@ -75,6 +72,24 @@ pub struct ChainArgs {
     pub srdf: Option<PathBuf>,
 }
 
+impl ChainArgs {
+    /// Refused where any of these options is given without `--urdf FILE`.
+    pub fn need_urdf(&self, urdf: Option<&Path>) -> Result<(), String> {
+        let given = [
+            ("--base", self.base.is_some()),
+            ("--tip", self.tip.is_some()),
+            ("--package-dir", self.package_dir.is_some()),
+            ("--srdf", self.srdf.is_some()),
+        ];
+        match given.iter().find(|(_, on)| *on) {
+            Some((flag, _)) if urdf.is_none() => {
+                Err(format!("{flag} goes with --urdf FILE (a robot's URDF)"))
+            }
+            _ => Ok(()),
+        }
+    }
+}
+
 /// The arm a spatial job runs: a preset, or a robot read from URDF (or
 /// carried by a run file) that may be one.
 pub struct Robot {
@@ -108,32 +123,6 @@ impl Robot {
             },
         }
     }
-}
-
-/// The networks the learned methods among `methods` run with on `robot`
-/// (whose chain is `chain`): a preset's as `space_networks::networks`
-/// finds them; for another robot only the user's weights files, checked
-/// against its chain.
-pub fn networks_for(
-    args: &super::NetworkArgs,
-    robot: &Robot,
-    chain: &Chain,
-    methods: &[Method],
-) -> Result<Option<Arc<SpaceNetworks>>, String> {
-    if let Some(p) = robot.preset {
-        return super::space_networks::networks(args, p, methods);
-    }
-    if !methods.iter().any(|m| m.uses_networks()) {
-        return Ok(None);
-    }
-    let Some(nets) = super::space_networks::own(args)? else {
-        return Err(format!(
-            "no networks are shipped for {}: give its own as --phi-weights and --v-weights",
-            robot.label
-        ));
-    };
-    nets.check_chain(chain).map_err(|e| e.to_string())?;
-    Ok(Some(nets))
 }
 
 /// A URDF file read (at most [`MAX_URDF_BYTES`]), its chain from the

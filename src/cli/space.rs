@@ -17,8 +17,9 @@ use redundant_ik::space::{SpacePreset, Sphere};
 use redundant_ik::Method;
 
 use super::path_arg::PathArg;
-pub use super::robot::{networks_for, Robot};
+pub use super::robot::Robot;
 use super::simulate::{SceneArgs, SimulateArgs};
+pub use super::space_networks::networks_for;
 use super::task::{pose_spec, PoseSpec};
 use super::{emit, parse_list, Numbers};
 use redundant_ik::urdf::RobotSource;
@@ -170,16 +171,8 @@ pub fn job(
     if let Some(file) = run_file(args)? {
         return from_file(args, method, file).map(Some);
     }
-    if args.robot.urdf.is_none() && args.from.is_none() {
-        let given = [
-            ("--base", args.robot.chain.base.is_some()),
-            ("--tip", args.robot.chain.tip.is_some()),
-            ("--package-dir", args.robot.chain.package_dir.is_some()),
-            ("--srdf", args.robot.chain.srdf.is_some()),
-        ];
-        if let Some((flag, _)) = given.iter().find(|(_, on)| *on) {
-            return Err(format!("{flag} goes with --urdf FILE (a robot's URDF)"));
-        }
+    if args.from.is_none() {
+        args.robot.chain.need_urdf(args.robot.urdf.as_deref())?;
     }
     if args.robot.urdf.is_some() {
         return urdf_job(args, method).map(Some);

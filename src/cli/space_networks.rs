@@ -8,8 +8,8 @@ use std::sync::Arc;
 use redundant_ik::networks::space::{SpaceNetworkSet, SpaceNetworks};
 use redundant_ik::networks::{NetKind, NetworkSet};
 use redundant_ik::planner::{Networks, Planner};
-use redundant_ik::scene::SpaceScene;
 use redundant_ik::space::SpacePreset;
+use redundant_ik::training::space::TrainArm;
 use redundant_ik::Method;
 
 use super::emit;
@@ -80,13 +80,68 @@ pub fn networks(
         .map_err(|e| e.to_string())
 }
 
+/// The networks the learned methods among `methods` run with on `robot`
+/// (whose chain is `chain`): a preset's as [`networks`]
+/// finds them; for another robot only the user's weights files, checked
+/// against its chain.
+pub fn networks_for(
+    args: &super::NetworkArgs,
+    robot: &super::robot::Robot,
+    chain: &redundant_ik::space::Chain,
+    methods: &[Method],
+) -> Result<Option<Arc<SpaceNetworks>>, String> {
+    if let Some(p) = robot.preset {
+        return networks(args, p, methods);
+    }
+    if !methods.iter().any(|m| m.uses_networks()) {
+        return Ok(None);
+    }
+    let Some(nets) = own(args)? else {
+        return Err(format!(
+            "no networks are shipped for {}: give its own as --phi-weights and --v-weights",
+            robot.label
+        ));
+    };
+    nets.check_chain(chain).map_err(|e| e.to_string())?;
+    Ok(Some(nets))
+}
+
+/// The robot of the URDF at `path` as a training's arm: its own scene
+/// (from `theta0`, else the middle of its joints' ranges) with a sphere in
+/// the way of its middle joint ([`redundant_ik::training::space::TrainArm::new`]); with
+/// `--srdf`, self-collision checked in that scene.
+pub fn urdf_arm(
+    path: &std::path::Path,
+    chain: &super::robot::ChainArgs,
+    theta0: Option<&str>,
+) -> Result<TrainArm, String> {
+    let super::robot::UrdfRobot {
+        robot,
+        mut scene,
+        volumes,
+        ..
+    } = super::robot::urdf_scene(path, chain, None)?;
+    if let Some(text) = theta0 {
+        scene.theta0 = super::parse_list(text).map_err(|e| format!("--theta0: {e}"))?;
+        scene
+            .arm
+            .check_angles(&scene.theta0)
+            .map_err(|e| format!("--theta0: {e}"))?;
+        // The robot's own line, 0.15 m along y from where the hand starts.
+        let start = scene.start();
+        scene.target = [start[0], start[1] + 0.15, start[2]];
+        scene.validate().map_err(|e| e.to_string())?;
+    }
+    if let Some(srdf) = &chain.srdf {
+        let disabled = super::robot::srdf_pairs(srdf, &volumes)?;
+        scene.arm = super::robot::with_self_collision(scene.arm, &disabled, &scene.theta0)?;
+    }
+    TrainArm::new(&robot.key, scene).map_err(|e| e.to_string())
+}
+
 /// `redundant-ik train --arm panda`: the whole-reach recipe in space
 /// ([`redundant_ik::training::space`]), by Adam, with a progress bar.
-pub fn train(
-    args: &super::train::TrainArgs,
-    net: NetKind,
-    p: &'static SpacePreset,
-) -> Result<(), String> {
+pub fn train(args: &super::train::TrainArgs, net: NetKind, arm: TrainArm) -> Result<(), String> {
     use indicatif::{ProgressBar, ProgressStyle};
     use redundant_ik::training::space::{train_space, SpaceTrainSpec};
     for (given, flag) in [
@@ -104,7 +159,14 @@ pub fn train(
             ));
         }
     }
-    let mut spec = SpaceTrainSpec::reach(p, net, args.seed);
+    if args.chain.srdf.is_some() {
+        return Err(
+            "--srdf: self-collision does not enter the networks' training (the sphere's does)"
+                .into(),
+        );
+    }
+    let name = arm.name.clone();
+    let mut spec = SpaceTrainSpec::reach(arm, net, args.seed);
     if let Some(n) = args.samples {
         spec.samples = n;
     }
@@ -160,7 +222,7 @@ pub fn train(
     let r = &file.nets[0].report;
     emit(&format!(
         "{} network for {}, whole reach in space, {} samples, seed {}, trained in {seconds:.1} s -> {}\n  {:?}: {} epochs (best {}), stop: {:?}; MSE (mapminmax units) train {:.3e}, val {:.3e}, test {:.3e}\n",
-        args.net, p.key, spec.samples, spec.seed, args.out,
+        args.net, name, spec.samples, spec.seed, args.out,
         file.nets[0].mlp.sizes, r.epochs, r.best_epoch, r.stop, r.train_mse, r.val_mse, r.test_mse
     ))
 }
@@ -169,7 +231,7 @@ pub fn train(
 /// networks on fresh samples of their training distributions, and the
 /// preset's task in every paper method with the given refinement and
 /// feedback.
-pub fn eval(args: &super::eval::EvalArgs, p: &'static SpacePreset) -> Result<(), String> {
+pub fn eval(args: &super::eval::EvalArgs, arm: TrainArm) -> Result<(), String> {
     use redundant_ik::planner::methods::{self, REFINE};
     use redundant_ik::training::space::space_accuracy;
     if args.samples == 0 || args.samples > 100_000 {
@@ -186,22 +248,35 @@ pub fn eval(args: &super::eval::EvalArgs, p: &'static SpacePreset) -> Result<(),
             )
             .map_err(|e| e.to_string())?,
         ),
-        _ => SpaceNetworkSet::for_arm(p.key)
-            .ok_or_else(|| format!("no networks are shipped for {}: give --phi and --v", p.key))?
+        _ => SpaceNetworkSet::for_arm(&arm.name)
+            .ok_or_else(|| {
+                format!(
+                    "no networks are shipped for {}: give --phi and --v",
+                    arm.name
+                )
+            })?
             .load()
             .map_err(|e| e.to_string())?,
     };
+    nets.check_chain(arm.chain()).map_err(|e| e.to_string())?;
     let (phi_err, v_err) =
-        space_accuracy(p, &nets, args.samples, args.seed).map_err(|e| e.to_string())?;
-    let mut scene = SpaceScene::preset(p);
+        space_accuracy(&arm, &nets, args.samples, args.seed).map_err(|e| e.to_string())?;
+    let mut scene = arm.scene.clone();
     scene.feedback_gain = args.feedback;
     scene
         .params
         .set(&REFINE, f64::from(args.refine))
         .map_err(|e| e.to_string())?;
+    let sphere = scene.obstacles.first().map_or(String::new(), |s| {
+        let [x, y, z] = s.centre;
+        format!(
+            ", past the sphere at ({x:.3}, {y:.3}, {z:.3}) m of radius {:.3} m",
+            s.radius
+        )
+    });
     let mut out = format!(
-        "Networks for {}: median relative error on {} fresh samples (seed {})\n  Phi {:?}: {phi_err:.3e}\n  v   {:?}: {v_err:.3e}\n\nThe task (refine {}, K = {}):\n",
-        p.key,
+        "Networks for {}: median relative error on {} fresh samples (seed {})\n  Phi {:?}: {phi_err:.3e}\n  v   {:?}: {v_err:.3e}\n\nThe task (refine {}, K = {}{sphere}):\n",
+        arm.name,
         args.samples,
         args.seed,
         nets.phi_file().nets[0].mlp.sizes,
@@ -215,10 +290,15 @@ pub fn eval(args: &super::eval::EvalArgs, p: &'static SpacePreset) -> Result<(),
         let s = run.summary;
         let _ = writeln!(
             out,
-            "  {:<14} clearance {:>8.4} m  collision steps {:>3}  final error {:.3e} m",
+            "  {:<14} clearance {:>8.4} m  collision steps {:>3}{}  final error {:.3e} m",
             m.label(),
             s.min_clearance.unwrap_or(f64::INFINITY),
             s.collision_steps,
+            if scene.arm.self_pairs().is_empty() {
+                String::new()
+            } else {
+                format!("  self-collision steps {:>3}", s.self_collision_steps)
+            },
             s.final_error
         );
     }

@@ -42,6 +42,13 @@ pub struct TrainArgs {
     /// trains by the whole-reach recipe in space (docs/space.md).
     #[arg(long, value_parser = super::parse_arm, allow_hyphen_values = true)]
     pub arm: Option<super::ArmChoice>,
+    /// A robot's URDF instead of --arm (docs/urdf.md): its networks by the
+    /// whole-reach recipe in space, from the middle of its joints' ranges,
+    /// with spheres 0.05 of its reach across (docs/space.md).
+    #[arg(long, conflicts_with = "arm")]
+    pub urdf: Option<std::path::PathBuf>,
+    #[command(flatten)]
+    pub chain: super::robot::ChainArgs,
     /// Seed for sampling, the train/validation/test split and initial weights.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,

@@ -264,10 +264,10 @@ impl SpaceNetworks {
         if chain.same_kinematics(&self.phi.arm) {
             Ok(())
         } else {
-            Err(Error::NetworksUnavailable(format!(
-                "the networks were trained for the arm '{}', not for this one",
-                SpacePreset::of(&self.phi.arm).map_or("of their file", |p| p.key)
-            )))
+            Err(Error::NetworksUnavailable(match SpacePreset::of(&self.phi.arm) {
+                Some(p) => format!("the networks were trained for the arm '{}', not for this one", p.key),
+                None => "the networks were trained for another chain (the one their file records), not for this one".into(),
+            }))
         }
     }
 

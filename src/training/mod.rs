@@ -7,6 +7,7 @@
 mod preset;
 pub mod sampling;
 pub mod space;
+mod space_arm;
 pub mod tasks;
 
 use serde::{Deserialize, Serialize};

@@ -12,7 +12,7 @@
 //!   with its run's sphere (both jittered); the target is the criterion's
 //!   area gradient, its norm smoothed by `eps`.
 
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
 use crate::error::{Error, Result};
 use crate::networks::file::{Encoding, InputRange, NetEntry, NetKind, Variant, FORMAT};
@@ -25,8 +25,9 @@ use crate::nn::lm::{Dataset, EpochReport};
 use crate::nn::rng::Rng;
 use crate::planner::Method;
 use crate::planner::Planner;
-use crate::scene::SpaceScene;
-use crate::space::{criterion, linalg, phi, Chain, SpacePose, SpacePreset, Sphere, Vec3};
+use crate::space::{criterion, linalg, phi, Chain, SpacePose, Sphere, Vec3};
+
+pub use super::space_arm::{probe_sphere, TrainArm, SPHERE_CLEARANCE, SPHERE_PER_REACH};
 
 /// The paper's arm's reach (m), the scale the planar recipe's floor and
 /// smoothing were chosen at.
@@ -68,10 +69,10 @@ pub const SPACE_RECIPES: [SpaceRecipe; 2] = [
 ];
 
 /// What to train for an arm in space.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct SpaceTrainSpec {
-    /// The preset's key (`panda`).
-    pub arm: String,
+    /// The arm, its start and its sphere.
+    pub arm: TrainArm,
     /// `phi` or `v`.
     pub net: NetKind,
     /// Seed of sampling, split and initial weights.
@@ -95,12 +96,14 @@ impl SpaceTrainSpec {
     /// states and missed fresh ones by a median relative error of 1.0),
     /// the floor and the smoothing scaled from the paper's arm by the
     /// reach (the floor linearly, the smoothing, an area, by its square).
-    pub fn reach(p: &SpacePreset, net: NetKind, seed: u64) -> Self {
-        let chain = p.chain();
+    /// `arm`: a preset (`&PANDA`) or a [`TrainArm`].
+    pub fn reach(arm: impl Into<TrainArm>, net: NetKind, seed: u64) -> Self {
+        let arm = arm.into();
+        let chain = arm.chain();
         let r = chain.reach();
         let scale = r / paper_reach();
         let shoulder =
-            SpacePose::new(&chain, p.task.theta0).map_or([0.0; 3], |q| q.joint_origin(0));
+            SpacePose::new(chain, &arm.scene.theta0).map_or([0.0; 3], |q| q.joint_origin(0));
         // v's states spread over seven joints and a sphere anywhere: 100 000
         // samples for 300 epochs (a median relative error of 0.63 on fresh
         // states, against 0.71 with 20 000 for 600).
@@ -110,7 +113,7 @@ impl SpaceTrainSpec {
             NetKind::V => recipe.v,
         };
         Self {
-            arm: p.key.to_string(),
+            arm,
             net,
             seed,
             samples,
@@ -139,8 +142,8 @@ impl SpaceTrainSpec {
     /// trains both in seconds. Less accurate than [`SpaceTrainSpec::reach`]
     /// (on the Panda, median relative errors 0.23 and 0.63 against 0.15
     /// and 0.60): `docs/space.md` gives both.
-    pub fn quick(p: &SpacePreset, net: NetKind, seed: u64) -> Self {
-        let mut spec = Self::reach(p, net, seed);
+    pub fn quick(arm: impl Into<TrainArm>, net: NetKind, seed: u64) -> Self {
+        let mut spec = Self::reach(arm, net, seed);
         let recipe = &SPACE_RECIPES[0];
         let [samples, epochs] = match net {
             NetKind::Phi => recipe.phi,
@@ -152,22 +155,17 @@ impl SpaceTrainSpec {
         spec
     }
 
-    /// The recipe called `name` ([`SPACE_RECIPES`]) for the preset `p`.
-    pub fn recipe(name: &str, p: &SpacePreset, net: NetKind, seed: u64) -> Result<Self> {
+    /// The recipe called `name` ([`SPACE_RECIPES`]) for `arm`.
+    pub fn recipe(name: &str, arm: impl Into<TrainArm>, net: NetKind, seed: u64) -> Result<Self> {
         match name {
-            "quick" => Ok(Self::quick(p, net, seed)),
-            "reach" => Ok(Self::reach(p, net, seed)),
+            "quick" => Ok(Self::quick(arm, net, seed)),
+            "reach" => Ok(Self::reach(arm, net, seed)),
             other => Err(Error::UnknownName {
                 kind: "training recipe in space",
                 name: other.into(),
                 choices: crate::error::choices(&SPACE_RECIPES.map(|r| r.name)),
             }),
         }
-    }
-
-    fn preset(&self) -> Result<&'static SpacePreset> {
-        SpacePreset::by_key(&self.arm)
-            .ok_or_else(|| Error::Training(format!("no arm in space is called '{}'", self.arm)))
     }
 }
 
@@ -231,13 +229,14 @@ pub fn phi_poses(
 /// `s.tasks` random lines, each with `s.obstacles_per_task` spheres, drawn
 /// with replacement and jittered.
 pub fn v_states(
-    p: &SpacePreset,
+    arm: &TrainArm,
     s: &SpaceSampling,
     n: usize,
     rng: &mut Rng,
 ) -> Result<Vec<SpaceVisited>> {
-    let base = SpaceScene::preset(p);
+    let base = &arm.scene;
     let chain = &base.arm;
+    let radius = arm.sphere_radius();
     let mut pool: Vec<SpaceVisited> = Vec::new();
     for _ in 0..s.tasks {
         let theta0 = uniform_pose(chain, 0.1, rng);
@@ -254,7 +253,7 @@ pub fn v_states(
             let mut scene = base.clone();
             scene.theta0.clone_from(&theta0);
             scene.target = [0, 1, 2].map(|k| start[k] + d[k]);
-            scene.obstacles = vec![Sphere::new(centre, p.task.sphere[3])];
+            scene.obstacles = vec![Sphere::new(centre, radius)];
             // A run that fails (a singular pose, a divergence) gives no poses.
             let Ok(run) = Planner::run(scene, Method::NUMERICAL, None) else {
                 continue;
@@ -287,15 +286,14 @@ pub fn v_states(
 
 /// The training set of `spec`'s network.
 pub fn space_dataset(spec: &SpaceTrainSpec) -> Result<Dataset> {
-    let p = spec.preset()?;
-    let chain = p.chain();
+    let chain = spec.arm.chain();
     let n = chain.dof();
     let (n_in, n_out) = space_shape(spec.net, n);
     let mut set = Dataset::new(n_in, n_out);
     let mut rng = Rng::new(spec.seed);
     let mut x = vec![0.0; n_in];
     let mut y = vec![0.0; n_out];
-    let mut pose = SpacePose::of(&chain);
+    let mut pose = SpacePose::of(chain);
     let encode = |theta: &[f64], x: &mut [f64]| {
         for (pair, a) in x.chunks_exact_mut(2).zip(&theta[1..]) {
             let (s, c) = crate::kinematics::sin_cos(*a);
@@ -305,19 +303,19 @@ pub fn space_dataset(spec: &SpaceTrainSpec) -> Result<Dataset> {
     };
     match spec.net {
         NetKind::Phi => {
-            for theta in phi_poses(&chain, &spec.sampling, spec.samples, &mut rng)? {
-                pose.update(&chain, &theta)?;
+            for theta in phi_poses(chain, &spec.sampling, spec.samples, &mut rng)? {
+                pose.update(chain, &theta)?;
                 phi::pseudoinverse(pose.jacobian(), &mut y)?;
                 encode(&theta, &mut x);
                 set.push(&x, &y);
             }
         }
         NetKind::V => {
-            for s in v_states(p, &spec.sampling, spec.samples, &mut rng)? {
-                pose.update(&chain, &s.theta)?;
+            for s in v_states(&spec.arm, &spec.sampling, spec.samples, &mut rng)? {
+                pose.update(chain, &s.theta)?;
                 y.iter_mut().for_each(|g| *g = 0.0);
                 criterion::area_gradient_add(
-                    &chain,
+                    chain,
                     &pose,
                     s.obstacle,
                     spec.sampling.sign_smoothing,
@@ -344,8 +342,7 @@ pub fn train_space(
             spec.samples
         )));
     }
-    let p = spec.preset()?;
-    let chain = p.chain();
+    let chain = spec.arm.chain();
     let set = space_dataset(spec)?;
     let n_in = set.n_in;
     let mut min = vec![f64::INFINITY; n_in];
@@ -395,7 +392,7 @@ pub fn train_space(
 /// distribution (seed `seed`): `|Phi - J+| / |J+|` (Frobenius) and
 /// `|g_net - g| / |g|`.
 pub fn space_accuracy(
-    p: &SpacePreset,
+    arm: &TrainArm,
     nets: &SpaceNetworks,
     samples: usize,
     seed: u64,
@@ -403,22 +400,22 @@ pub fn space_accuracy(
     let phi_spec = SpaceTrainSpec {
         samples,
         seed,
-        ..SpaceTrainSpec::reach(p, NetKind::Phi, seed)
+        ..SpaceTrainSpec::reach(arm.clone(), NetKind::Phi, seed)
     };
     let v_spec = SpaceTrainSpec {
         samples,
         seed,
-        ..SpaceTrainSpec::reach(p, NetKind::V, seed)
+        ..SpaceTrainSpec::reach(arm.clone(), NetKind::V, seed)
     };
-    let chain = p.chain();
+    let chain = arm.chain();
     let n = chain.dof();
     let mut rng = Rng::new(seed);
-    let mut pose = SpacePose::of(&chain);
+    let mut pose = SpacePose::of(chain);
     let (mut a, mut b) = (vec![0.0; 3 * n], vec![0.0; 3 * n]);
     let mut errs = Vec::with_capacity(samples);
-    for mut theta in phi_poses(&chain, &phi_spec.sampling, samples, &mut rng)? {
+    for mut theta in phi_poses(chain, &phi_spec.sampling, samples, &mut rng)? {
         theta[0] = rng.range(-2.8, 2.8);
-        pose.update(&chain, &theta)?;
+        pose.update(chain, &theta)?;
         phi::pseudoinverse(pose.jacobian(), &mut a)?;
         nets.phi(&pose, &mut b)?;
         errs.push(relative(&b, &a));
@@ -426,11 +423,11 @@ pub fn space_accuracy(
     let phi_err = median(&mut errs);
     errs.clear();
     let (mut g, mut h) = (vec![0.0; n], vec![0.0; n]);
-    for s in v_states(p, &v_spec.sampling, samples, &mut rng)? {
-        pose.update(&chain, &s.theta)?;
+    for s in v_states(arm, &v_spec.sampling, samples, &mut rng)? {
+        pose.update(chain, &s.theta)?;
         g.iter_mut().for_each(|x| *x = 0.0);
         criterion::area_gradient_add(
-            &chain,
+            chain,
             &pose,
             s.obstacle,
             v_spec.sampling.sign_smoothing,

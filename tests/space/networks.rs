@@ -32,7 +32,7 @@ fn max_diff(a: &[f64], b: &[f64]) -> f64 {
 #[test]
 fn the_shipped_networks_approximate_what_they_replace() {
     let p = SpacePreset::by_key("panda").unwrap();
-    let (phi_err, v_err) = space_accuracy(p, &panda_nets(), 300, 77).unwrap();
+    let (phi_err, v_err) = space_accuracy(&p.into(), &panda_nets(), 300, 77).unwrap();
     // Measured on fresh samples (docs/space.md): 0.15 and 0.63. A v that
     // saw too few tasks (the plane's 40) gave 1.0 on fresh states.
     assert!(phi_err < 0.2, "Phi: median relative error {phi_err}");
@@ -205,4 +205,49 @@ fn the_training_recipes_in_space_are_named_and_the_quick_one_is_smaller() {
         e.contains("slow") && e.contains("quick") && e.contains("reach"),
         "{e}"
     );
+}
+
+#[test]
+fn a_robot_without_a_sphere_gets_one_in_the_way_of_its_middle_joint() {
+    use redundant_ik::training::space::{TrainArm, SPHERE_CLEARANCE, SPHERE_PER_REACH};
+    let p = SpacePreset::by_key("panda").unwrap();
+    let mut scene = SpaceScene::preset(p);
+    scene.obstacles.clear();
+    let arm = TrainArm::new("mine", scene.clone()).unwrap();
+    let chain = &scene.arm;
+    let r = SPHERE_PER_REACH * chain.reach();
+    assert!((arm.sphere_radius() - r).abs() < 1e-15);
+    // Ahead of the middle joint along the hand's line, clear of its
+    // capsule by SPHERE_CLEARANCE.
+    let pose = SpacePose::new(chain, &scene.theta0).unwrap();
+    let (middle, hand) = (pose.joint_origin(chain.dof() / 2), pose.hand());
+    let line = [0, 1, 2].map(|k| scene.target[k] - hand[k]);
+    let len = line.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let gap = SPHERE_CLEARANCE + r + chain.radius();
+    let c = arm.scene.obstacles[0].centre;
+    for k in 0..3 {
+        assert!((c[k] - (middle[k] + gap * line[k] / len)).abs() < 1e-12);
+    }
+    // A scene with its own sphere keeps it: the preset's training is the
+    // one it always was.
+    let preset: TrainArm = p.into();
+    assert_eq!(preset.sphere_radius(), p.task.sphere[3]);
+    assert_eq!(
+        TrainArm::new("panda", SpaceScene::preset(p)).unwrap(),
+        preset
+    );
+}
+
+#[test]
+fn a_chain_whose_first_joint_slides_is_refused_for_training() {
+    use redundant_ik::urdf::{volume, Urdf, UrdfChain};
+    let text = include_str!("../data/urdf/slider_arm.urdf");
+    let urdf = Urdf::parse(text).unwrap();
+    let uc = UrdfChain::new(&urdf, None, Some("tool")).unwrap();
+    let (v, _) = volume::volumes(&urdf, &uc, &|_: &str| None, 0.05);
+    let mut scene = SpaceScene::preset(SpacePreset::by_key("panda").unwrap());
+    scene.arm = uc.to_chain(&v, None).unwrap();
+    scene.theta0 = vec![0.0; scene.arm.dof()];
+    let e = redundant_ik::training::space::TrainArm::new("slider", scene).unwrap_err();
+    assert!(e.to_string().contains("first joint slides"), "{e}");
 }
