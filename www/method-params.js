@@ -8,8 +8,13 @@
 
 import { params, method } from './module.js';
 
-/** Parameters the page gives no slider here. */
-const ELSEWHERE = ['lambda', 'delta'];
+/**
+ * Parameters the page gives no slider here: lambda has its own field, the
+ * damping switch schedules delta, and the self-collision dampers' own
+ * gains act only where self-collision is on, which the page cannot switch
+ * on yet (the command line's --self-collision).
+ */
+const ELSEWHERE = ['lambda', 'delta', 'self_influence', 'self_stop_distance', 'self_damper_gain'];
 
 /** A number as a slider's readout shows it: as many decimals as its step. */
 function shown(value, step) {

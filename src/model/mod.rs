@@ -276,6 +276,11 @@ pub trait Clearance<P> {
     /// `n^T J_p` into `row` (`n` entries): how fast the clearance grows per
     /// unit rate of each joint.
     fn row_into(&self, pose: &P, row: &mut [f64]);
+    /// Whether the obstacle is another link of the same arm
+    /// (self-collision), which the QP's dampers hold with their own gains.
+    fn is_self(&self) -> bool {
+        false
+    }
 }
 
 /// The pair of `pairs` with the smallest clearance, if any.

@@ -285,6 +285,10 @@ impl Clearance<HandPose> for SpacePair {
         self.distance
     }
     #[inline]
+    fn is_self(&self) -> bool {
+        self.is_link()
+    }
+    #[inline]
     fn row_into(&self, pose: &HandPose, row: &mut [f64]) {
         self.gradient_into(pose.space(), row);
     }

@@ -199,6 +199,10 @@ impl Clearance<SpacePose> for SpacePair {
         self.distance
     }
     #[inline]
+    fn is_self(&self) -> bool {
+        self.is_link()
+    }
+    #[inline]
     fn row_into(&self, pose: &SpacePose, row: &mut [f64]) {
         self.gradient_into(pose, row);
     }

@@ -53,6 +53,12 @@ pub struct SpacePair {
 }
 
 impl SpacePair {
+    /// Whether it keeps two capsules of the chain apart (self-collision).
+    #[inline]
+    pub fn is_link(&self) -> bool {
+        matches!(self.against, Obstruction::Link(_))
+    }
+
     /// The pair of a capsule and a sphere.
     pub fn sphere(p: &CapsulePair) -> Self {
         Self {

@@ -27,7 +27,10 @@ pub use jointrange::JOINT_RANGE_GAIN;
 pub use manipulability::MANIPULABILITY_GAIN;
 pub use paper::{DELTA, LAMBDA, REFINE, SIGN_SMOOTHING};
 pub use priority::ESCAPE_SPEED;
-pub use qp::constraints::{DAMPER_GAIN, LIMIT_GAIN, LIMIT_INFLUENCE, LIMIT_STOP, RATE_LIMIT};
+pub use qp::constraints::{
+    DAMPER_GAIN, LIMIT_GAIN, LIMIT_INFLUENCE, LIMIT_STOP, RATE_LIMIT, SELF_DAMPER_GAIN,
+    SELF_INFLUENCE, SELF_STOP_DISTANCE,
+};
 pub use qp::SLACK_WEIGHT;
 
 use std::fmt;

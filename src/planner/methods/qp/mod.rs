@@ -51,7 +51,10 @@ use crate::qp as solver;
 use crate::scene::{Param, Scale};
 use crate::space::{Chain, PoseChain};
 use constraints::{Constraint, Rows};
-use constraints::{DAMPER_GAIN, LIMIT_GAIN, LIMIT_INFLUENCE, LIMIT_STOP, RATE_LIMIT};
+use constraints::{
+    DAMPER_GAIN, LIMIT_GAIN, LIMIT_INFLUENCE, LIMIT_STOP, RATE_LIMIT, SELF_DAMPER_GAIN,
+    SELF_INFLUENCE, SELF_STOP_DISTANCE,
+};
 
 /// Weight `w` of the task slack: with no row binding the rates are eq. (5)
 /// with damped least squares, `delta = 1 / w`. Below 1 the task hardly
@@ -95,6 +98,9 @@ static ENTRY: Entry = Entry {
             &INFLUENCE,
             &STOP_DISTANCE,
             &DAMPER_GAIN,
+            &SELF_INFLUENCE,
+            &SELF_STOP_DISTANCE,
+            &SELF_DAMPER_GAIN,
             &SLACK_WEIGHT,
             &RATE_LIMIT,
             &LIMIT_INFLUENCE,

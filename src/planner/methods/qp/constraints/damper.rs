@@ -16,6 +16,13 @@
 //! `z = 0` where the scene has one ([`crate::space::SpacePairs`]: signed
 //! surface distance `d`, normal `n`, point Jacobian `J_Q`), with the same
 //! bound: one constraint for every arm, over its model's pairs.
+//!
+//! A pair of two capsules of the chain (self-collision, NEO's
+//! `n^T (J_a - J_b) theta_dot` row, [`crate::space::self_pairs`]) has its
+//! own influence distance, stop distance and gain ([`SELF_INFLUENCE`],
+//! [`SELF_STOP_DISTANCE`], [`SELF_DAMPER_GAIN`]): links sit close to each
+//! other by design, and a user may want them held at another distance
+//! than the obstacles.
 
 use super::{Constraint, ConstraintInfo, Entry, Rows};
 use crate::arm::Arm;
@@ -31,7 +38,7 @@ pub static DAMPER: Entry = Entry {
     info: ConstraintInfo {
         name: "damper",
         label: "velocity damper",
-        description: "n^T J_p θ̇ ≥ −ξ (c − d_s) / (d_i − d_s) for every link-obstacle pair with c < d_i",
+        description: "n^T J_p θ̇ ≥ −ξ (c − d_s) / (d_i − d_s) for every link-obstacle pair with c < d_i (link-link pairs with their own d_i, d_s, ξ)",
         params: PARAMS,
     },
     build: build::<Arm, 2>,
@@ -58,10 +65,76 @@ pub static DAMPER_GAIN: Param = Param {
     above: None,
 };
 
-/// The scene's parameters the dampers read: [`Gains::of`] reads them.
-const PARAMS: &[&Param] = &[&INFLUENCE, &STOP_DISTANCE, &DAMPER_GAIN];
+/// Influence distance (m) of the dampers between two links of the chain
+/// (self-collision): link-link pairs closer than this get a row. The
+/// obstacles' default.
+pub static SELF_INFLUENCE: Param = Param {
+    name: "self_influence",
+    flag: "--self-influence",
+    label: "Self influence dᵢ",
+    what: "self-collision influence distance",
+    #[cfg(feature = "cli")]
+    help: "Influence distance of qp's link-link dampers (self-collision): pairs of links closer than this get a row",
+    unit: "m",
+    bounds: (1e-3, 100.0),
+    default: 0.3,
+    slider: (0.02, 0.5, 0.01),
+    scale: Scale::Linear,
+    count: false,
+    below: None,
+    above: Some(&SELF_STOP_DISTANCE),
+};
 
-/// The dampers' parameters, read from the scene in one place.
+/// Stop distance (m) of the dampers between two links of the chain: the
+/// clearance they keep between links. Below [`SELF_INFLUENCE`].
+pub static SELF_STOP_DISTANCE: Param = Param {
+    name: "self_stop_distance",
+    flag: "--self-stop-distance",
+    label: "Self stop distance dₛ",
+    what: "self-collision stop distance",
+    #[cfg(feature = "cli")]
+    help: "Stop distance of qp's link-link dampers (self-collision): the clearance kept between two links",
+    unit: "m",
+    bounds: (0.0, 100.0),
+    default: 0.02,
+    slider: (0.0, 0.1, 0.005),
+    scale: Scale::Linear,
+    count: false,
+    below: Some(&SELF_INFLUENCE),
+    above: None,
+};
+
+/// Damper gain (m/s) between two links of the chain: how fast two links
+/// may approach at [`SELF_INFLUENCE`].
+pub static SELF_DAMPER_GAIN: Param = Param {
+    name: "self_damper_gain",
+    flag: "--self-damper-gain",
+    label: "Self damper gain ξ",
+    what: "self-collision damper gain",
+    #[cfg(feature = "cli")]
+    help: "Damper gain of qp's link-link dampers (self-collision): the approach speed allowed at their influence distance",
+    unit: "m/s",
+    bounds: (1e-3, 100.0),
+    default: 1.0,
+    slider: (0.1, 5.0, 0.1),
+    scale: Scale::Linear,
+    count: false,
+    below: None,
+    above: None,
+};
+
+/// The scene's parameters the dampers read: [`Gains::of`] reads them.
+const PARAMS: &[&Param] = &[
+    &INFLUENCE,
+    &STOP_DISTANCE,
+    &DAMPER_GAIN,
+    &SELF_INFLUENCE,
+    &SELF_STOP_DISTANCE,
+    &SELF_DAMPER_GAIN,
+];
+
+/// One kind of pair's damper parameters, read from the scene in one
+/// place.
 struct Gains {
     /// The influence distance `d_i` (m).
     influence: f64,
@@ -72,13 +145,21 @@ struct Gains {
 }
 
 impl Gains {
-    /// The parameters of [`PARAMS`] in a scene's `params`.
-    fn of(params: &Params) -> Self {
-        Self {
-            influence: params.get(&INFLUENCE),
-            stop: params.get(&STOP_DISTANCE),
-            gain: params.get(&DAMPER_GAIN),
-        }
+    /// The link-obstacle and the link-link parameters of [`PARAMS`] in a
+    /// scene's `params`.
+    fn of(params: &Params) -> [Self; 2] {
+        [
+            Self {
+                influence: params.get(&INFLUENCE),
+                stop: params.get(&STOP_DISTANCE),
+                gain: params.get(&DAMPER_GAIN),
+            },
+            Self {
+                influence: params.get(&SELF_INFLUENCE),
+                stop: params.get(&SELF_STOP_DISTANCE),
+                gain: params.get(&SELF_DAMPER_GAIN),
+            },
+        ]
     }
 
     /// The damper's bound `h = xi (c - d_s) / (d_i - d_s)` at clearance `c`.
@@ -102,9 +183,14 @@ fn build<A: Model<M>, const M: usize>(n: usize) -> Box<dyn Constraint<A, M>> {
 
 impl<A: Model<M>, const M: usize> Constraint<A, M> for Damper<A, M> {
     fn rows(&mut self, cx: &Context<'_, A, M>, pose: &A::Pose, rows: &mut Rows) -> Result<()> {
-        let gains = Gains::of(cx.scene.params());
-        A::update_pairs(cx.scene, pose, gains.influence, &mut self.pairs);
+        let [obstacle, link] = Gains::of(cx.scene.params());
+        let within = obstacle.influence.max(link.influence);
+        A::update_pairs(cx.scene, pose, within, &mut self.pairs);
         for pair in A::pair_list(&self.pairs) {
+            let gains = if pair.is_self() { &link } else { &obstacle };
+            if pair.clearance() >= gains.influence {
+                continue;
+            }
             let row = rows.push(gains.bound(pair.clearance()));
             pair.row_into(pose, row);
             row.iter_mut().for_each(|g| *g = -*g);

@@ -37,7 +37,7 @@ register! {
     rate_limit::RATE_BOUNDS,
 }
 
-pub use damper::DAMPER_GAIN;
+pub use damper::{DAMPER_GAIN, SELF_DAMPER_GAIN, SELF_INFLUENCE, SELF_STOP_DISTANCE};
 pub use joint_limit::{LIMIT_GAIN, LIMIT_INFLUENCE, LIMIT_STOP};
 pub use rate_limit::RATE_LIMIT;
 
