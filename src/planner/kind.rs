@@ -13,7 +13,7 @@ use crate::clearance::Pair;
 use crate::error::{Error, Result};
 use crate::kinematics::Pose;
 use crate::model::Model;
-use crate::scene::{circle_plane, Path, PoseScene, Scene, SpacePath, SpaceScene};
+use crate::scene::{circle_plane, Path, PoseScene, Scene, SpacePath, SpaceScene, MAX_POINTS};
 use crate::space::self_pairs::self_contact;
 use crate::space::{norm, sub, CapsulePair, Chain, HandPose, PoseChain, SpacePose, Sphere};
 
@@ -217,16 +217,20 @@ impl Planned<6> for PoseChain {
     fn constraint(entry: &constraints::Entry) -> constraints::Build<Self, 6> {
         entry.pose
     }
-    /// The straight line (the scene accepts no other path for the pose),
-    /// the orientation along its shortest rotation.
+    /// The straight line, the orientation along its shortest rotation; a
+    /// circle or a polyline of the hand's position with the start
+    /// orientation kept.
     fn track(scene: &PoseScene, start: [f64; 6], t0: f64, duration: f64) -> Result<Track<6>> {
         if scene.path != SpacePath::Line {
             scene.validate()?;
         }
-        Ok(Track::line_along(
+        let mut buf = [[0.0; 6]; MAX_POINTS];
+        let shape = pose_shape(&scene.path, start, &mut buf)?;
+        Ok(Track::from_shape(
+            shape,
             Self::geodesic,
             start,
-            scene.target,
+            pose_end(scene, start),
             t0,
             duration,
         ))
@@ -238,7 +242,11 @@ impl Planned<6> for PoseChain {
         duration: f64,
         track: &mut Track<6>,
     ) {
-        *track = Track::line_along(Self::geodesic, start, scene.target, t0, duration);
+        let mut buf = [[0.0; 6]; MAX_POINTS];
+        // The path validated with this start when the track was made.
+        if let Ok(shape) = pose_shape(&scene.path, start, &mut buf) {
+            track.renew(shape, start, pose_end(scene, start), t0, duration);
+        }
     }
     fn reaches(&self, pose: &HandPose, p: [f64; 6]) -> bool {
         self.chain.reaches(pose.space(), [p[0], p[1], p[2]])
@@ -246,12 +254,70 @@ impl Planned<6> for PoseChain {
     fn contact(scene: &PoseScene, pose: &HandPose) -> Contact {
         chain_contact(&scene.arm.chain, &scene.obstacles, pose.space())
     }
-    /// The hand's path as 33 poses along the line.
-    fn outline(_: &PoseScene, start: [f64; 6], end: [f64; 6]) -> Vec<[f64; 6]> {
-        (0..=32)
-            .map(|k| Self::geodesic(start, end, f64::from(k) / 32.0).0)
+    /// The hand's path: 33 poses along the line, or the circle's or the
+    /// polyline's points with the start orientation.
+    fn outline(scene: &PoseScene, start: [f64; 6], end: [f64; 6]) -> Vec<[f64; 6]> {
+        if scene.path == SpacePath::Line {
+            return (0..=32)
+                .map(|k| Self::geodesic(start, end, f64::from(k) / 32.0).0)
+                .collect();
+        }
+        let (p, q) = ([start[0], start[1], start[2]], [end[0], end[1], end[2]]);
+        scene
+            .path
+            .outline(p, q, 96)
+            .into_iter()
+            .map(|x| lift(x, start))
             .collect()
     }
+}
+
+/// The point `p` of the hand's position with `pose`'s orientation.
+fn lift(p: [f64; 3], pose: [f64; 6]) -> [f64; 6] {
+    [p[0], p[1], p[2], pose[3], pose[4], pose[5]]
+}
+
+/// Where a pose scene's path ends for a hand at `start`: the target, on
+/// the line; else the position path's end with the start orientation.
+fn pose_end(scene: &PoseScene, start: [f64; 6]) -> [f64; 6] {
+    if scene.path == SpacePath::Line {
+        return scene.target;
+    }
+    let [x, y, z, ..] = scene.target;
+    let end = scene.path.end([start[0], start[1], start[2]], [x, y, z]);
+    lift(end, start)
+}
+
+/// The shape of a pose scene's path for a hand at `start`: the line, or
+/// the position's circle or polyline lifted into the pose's coordinates
+/// with the start orientation (the polyline's points in `buf`, no
+/// allocation).
+fn pose_shape<'a>(
+    path: &'a SpacePath,
+    start: [f64; 6],
+    buf: &'a mut [[f64; 6]; MAX_POINTS],
+) -> Result<Shape<'a, 6>> {
+    let p = [start[0], start[1], start[2]];
+    Ok(match space_shape(path, p)? {
+        Shape::Line => Shape::Line,
+        Shape::Points(points) => {
+            let n = points.len().min(MAX_POINTS);
+            for (b, &q) in buf.iter_mut().zip(&points[..n]) {
+                *b = lift(q, start);
+            }
+            Shape::Points(&buf[..n])
+        }
+        Shape::Circle(c) => {
+            let [u, w] = c.axes;
+            Shape::Circle(Circle {
+                centre: lift(c.centre, start),
+                axes: [lift(u, [0.0; 6]), lift(w, [0.0; 6])],
+                radius: c.radius,
+                phase: c.phase,
+                sweep: c.sweep,
+            })
+        }
+    })
 }
 
 /// The shape of a spatial path for a hand at `start`.

@@ -1,10 +1,10 @@
 //! A run of a chain whose task is its hand's full pose (`m = 6`): the
 //! scene of a chain in space whose target has six coordinates, the
 //! position (m) and the rotation vector of the orientation (rad), and
-//! whose arm carries the paper's metric `Z` ([`PoseChain`]). The path is
-//! the straight line, the orientation turning along the shortest rotation
-//! at a constant rate; the spheres, the floor and the settings are the
-//! position task's.
+//! whose arm carries the paper's metric `Z` ([`PoseChain`]). On the
+//! straight line the orientation turns along the shortest rotation at a
+//! constant rate; a circle or a polyline keeps the start orientation. The
+//! spheres, the floor and the settings are the position task's.
 
 use super::space::check_chain_scene;
 use super::{Param, Scale, Scene, SpacePath, SpaceScene};
@@ -12,8 +12,13 @@ use crate::error::{coordinate, Error, Result};
 use crate::space::{PoseChain, SpacePreset, Vec3};
 
 /// A run of the hand's pose: a [`PoseChain`], a six-coordinate target,
-/// the straight line, spheres.
+/// a path, spheres.
 pub type PoseScene = Scene<PoseChain, SpacePath, 6, 3>;
+
+/// How far (rad, per coordinate of the rotation vector) the target's
+/// orientation may lie from the start's where a circle or a polyline
+/// keeps the start's: a run file's round trip, not a turn.
+pub const KEPT: f64 = 1e-9;
 
 /// The paper's `Z` (eqs. 6-7) for the pose task:
 /// `Z = diag(1, 1, 1, z, z, z)`, `z` weighting the orientation rows
@@ -105,8 +110,9 @@ impl PoseScene {
         self.arm.start(&self.theta0).unwrap_or([f64::NAN; 6])
     }
 
-    /// Checks every field; the first problem found is returned. The pose
-    /// task follows the straight line only.
+    /// Checks every field; the first problem found is returned. A circle
+    /// or a polyline keeps the start orientation (the target's must be
+    /// it, within `KEPT`, 1e-9 rad).
     pub fn validate(&self) -> Result<()> {
         let [x, y, z, ..] = self.target;
         check_chain_scene(
@@ -129,11 +135,18 @@ impl PoseScene {
             });
         }
         if self.path != SpacePath::Line {
-            return Err(Error::Syntax {
-                what: "path",
-                text: self.path.to_string(),
-                expected: "the straight line, line: the pose task follows it alone (a circle or a polyline runs the position task, --task position)".into(),
-            });
+            // A circle or a polyline keeps the start orientation: the
+            // target's must be it.
+            let start = self.start();
+            let turned = (3..6).any(|k| (self.target[k] - start[k]).abs() > KEPT);
+            if turned {
+                return Err(Error::Syntax {
+                    what: "path",
+                    text: self.path.to_string(),
+                    expected: "the straight line where the target has an orientation of its own: a circle or a polyline of the pose task keeps the hand's start orientation (--task pose, and no orientation in --target)".into(),
+                });
+            }
+            self.path.validate([start[0], start[1], start[2]])?;
         }
         self.validate_settings()
     }

@@ -44,6 +44,36 @@ fn a_pose_target_runs_the_pose_task_and_its_file_replays() {
 }
 
 #[test]
+fn a_circle_of_the_pose_task_keeps_the_start_orientation_and_replays() {
+    let v = json(&[
+        "simulate",
+        "--arm",
+        "panda",
+        "--task",
+        "pose",
+        "--path",
+        "circle:0.4,0,0.55,0,0,1",
+        "--method",
+        "qp",
+        "--feedback",
+        "1",
+        "--json",
+    ]);
+    assert_eq!(v["scene"]["path"], "circle:0.4,0,0.55,0,0,1");
+    let steps = v["steps"].as_array().unwrap();
+    let first = &steps[0]["reference"];
+    for x in steps {
+        for k in 3..6 {
+            assert_eq!(x["reference"][k], first[k]);
+        }
+    }
+    let file = scratch("pose-circle.json");
+    std::fs::write(&file, serde_json::to_string(&v).unwrap()).unwrap();
+    let again = json(&["simulate", "--from", file.to_str().unwrap(), "--json"]);
+    assert_eq!(again["steps"], v["steps"]);
+}
+
+#[test]
 fn the_numerical_route_reaches_the_target_pose_with_feedback() {
     let v = json(&[
         "simulate",
@@ -115,12 +145,12 @@ fn the_pose_task_refuses_what_it_does_not_run() {
             "simulate",
             "--arm",
             "panda",
-            "--task",
-            "pose",
+            "--target",
+            "0.4,0,0.5,3,0,0",
             "--path",
             "circle:0.5,0,0.6,0,0,1",
         ],
-        "line",
+        "keeps the hand's start orientation",
     );
     refused(
         &[
