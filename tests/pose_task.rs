@@ -211,3 +211,42 @@ fn a_circle_and_a_polyline_keep_the_start_orientation() {
         assert!(run.summary.final_error < 1e-5, "{path}: {:?}", run.summary);
     }
 }
+
+/// Case 2 runs the pose task: its `Phi` is exact (the pose's eq. 18) and
+/// its `v` the Panda's network, which learned the criterion's gradient of
+/// the links and the sphere, whatever the task. Cases 1 and 3 need a
+/// `Phi` for the pose (`n x 6`), which none is: refused by name.
+#[test]
+fn case_2_runs_the_pose_task_with_the_v_network_and_cases_1_and_3_are_refused() {
+    use redundant_ik::networks::space::SpaceNetworkSet;
+    use redundant_ik::planner::methods::{CASE1, CASE2, CASE3};
+    use redundant_ik::planner::{Networks, Surrogate};
+    use redundant_ik::space::{Chain, SpacePose};
+    let nets = SpaceNetworkSet::PandaReach.load().unwrap();
+    let mut scene = panda();
+    scene.feedback_gain = 10.0;
+    let as_pose = || Some(nets.clone() as Networks<PoseChain, 6>);
+    let run = Planner::run(scene.clone(), CASE2, as_pose()).unwrap();
+    assert!(run.summary.final_error < 1e-6, "{:?}", run.summary);
+    assert!(run.summary.final_orientation_error.unwrap() < 1e-6);
+    for m in [CASE1, CASE3] {
+        let e = Planner::new(scene.clone(), m, as_pose())
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(
+            e.contains("needs a Phi network") && e.contains("n x 6"),
+            "{m}: {e}"
+        );
+    }
+    // The pose's v is the chain's, pose by pose.
+    let theta = [0.2, -0.4, 0.1, -2.0, 0.3, 1.8, 0.5];
+    let mut pose = scene.arm.pose();
+    scene.arm.update(&mut pose, &theta).unwrap();
+    let point = SpacePose::new(&scene.arm.chain, &theta).unwrap();
+    let (mut a, mut b) = ([0.0; 7], [0.0; 7]);
+    let o = [0.3, 0.2, 0.6];
+    Surrogate::<PoseChain, 6>::area_gradient(&*nets, &pose, o, &mut a).unwrap();
+    Surrogate::<Chain, 3>::area_gradient(&*nets, &point, o, &mut b).unwrap();
+    assert_eq!(a, b);
+}

@@ -195,14 +195,16 @@ pub fn slice(
     to_end(SliceJob::new(scene, plane, grid, methods, networks)?)
 }
 
-/// [`slice()`] for the hand's pose task (the methods without networks).
+/// [`slice()`] for the hand's pose task (Case 2 with the networks' `v`;
+/// Cases 1 and 3 refused).
 pub fn pose_slice(
     scene: &PoseScene,
     plane: Plane,
     grid: Grid,
     methods: &[Method],
+    networks: Option<&Arc<SpaceNetworks>>,
 ) -> Result<SliceAtlas> {
-    to_end(SliceJob::pose(scene, plane, grid, methods)?)
+    to_end(SliceJob::pose(scene, plane, grid, methods, networks)?)
 }
 
 /// Runs `job` to the end, across the machine's cores with the feature

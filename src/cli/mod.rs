@@ -13,6 +13,7 @@ pub mod bench;
 pub mod eval;
 pub mod figure;
 pub mod from;
+pub mod job;
 pub mod params;
 pub mod path_arg;
 pub mod pose;

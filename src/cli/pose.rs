@@ -7,65 +7,82 @@
 use std::fmt::Write as _;
 
 use redundant_ik::export::{is_pose_run, run_csv, PoseRunFile};
-use redundant_ik::nn::Precision;
-use redundant_ik::planner::{Planner, Trajectory};
-use redundant_ik::scene::{PoseScene, SpaceScene};
+use redundant_ik::planner::{Networks, Planner, Trajectory};
+use redundant_ik::scene::PoseScene;
 use redundant_ik::space::rotation::{exp, matrix_rpy};
 use redundant_ik::space::PoseChain;
-use redundant_ik::urdf::RobotSource;
 use redundant_ik::Method;
 
 use super::emit;
+use super::job::Job;
 use super::robot::Robot;
 use super::simulate::{SceneArgs, SimulateArgs};
 use super::task::PoseSpec;
 
-/// A pose run file given to `--from`, if it is one (no scene option may
-/// go with it; networks never do: none are trained for the pose task):
-/// its position scene, its method and its pose.
-#[allow(clippy::type_complexity)]
-pub fn run_file(
-    args: &SceneArgs,
-) -> Result<Option<(SpaceScene, Method, PoseSpec, Option<RobotSource>)>, String> {
+/// The job of a pose run file given to `--from`, if it is one (no scene
+/// option may go with it): its position scene, its method unless `method`
+/// is given, its pose, the networks it names (Case 2's), its robot.
+pub fn run_file(args: &SceneArgs, method: Option<Method>) -> Result<Option<Job>, String> {
     let Some(file) = args.run_file_of::<PoseChain, 6>(is_pose_run)? else {
         return Ok(None);
     };
     super::robot::check_source(file.robot.as_ref(), &file.scene.arm.chain)?;
+    let method = method.unwrap_or(file.method);
+    let nets = match file.networks.filter(|_| method.uses_networks()) {
+        Some(choice) => {
+            if let Some(flag) = args.networks.given(&args.given) {
+                return Err(format!(
+                    "--from names the networks its run used; {flag} cannot change them"
+                ));
+            }
+            let nets = choice.load().map_err(|e| e.to_string())?;
+            Some(nets.in_precision(file.precision))
+        }
+        None => None,
+    };
     let (scene, orientation, weight) = file.scene.position_scene();
-    Ok(Some((
+    Ok(Some(Job {
+        robot: Robot::of_chain(&scene.arm, "robot"),
         scene,
-        file.method,
-        PoseSpec {
+        method,
+        nets,
+        pose: Some(PoseSpec {
             orientation: Some(orientation),
             weight,
-        },
-        file.robot,
-    )))
+        }),
+        source: file.robot,
+    }))
 }
 
-/// Runs the pose task of `scene` (the position scene of the options)
-/// with `method` and prints what `args` ask for.
-pub fn simulate(
-    args: &SimulateArgs,
-    robot: &Robot,
-    scene: SpaceScene,
-    spec: PoseSpec,
-    method: Method,
-    source: Option<RobotSource>,
-) -> Result<(), String> {
-    if method.uses_networks() {
-        return Err(format!(
-            "method {method} runs the paper's networks, which are trained for the hand's position: none are trained for its pose (choose a method without networks: {})",
-            without_networks()
-        ));
-    }
+/// Runs the pose task of the job (its scene the position scene of the
+/// options, its `pose` set) and prints what `args` ask for. Case 2 runs
+/// with the networks' `v`; Cases 1 and 3 are refused by the planner (no
+/// `Phi` is trained for the pose).
+pub fn simulate(args: &SimulateArgs, job: Job) -> Result<(), String> {
+    let Job {
+        robot,
+        scene,
+        method,
+        nets,
+        pose: Some(spec),
+        source,
+    } = job
+    else {
+        return Err("simulate: not a pose job".into());
+    };
     let scene =
         PoseScene::from_space(scene, spec.orientation, spec.weight).map_err(|e| e.to_string())?;
-    let traj = Planner::new(scene.clone(), method, None)
-        .and_then(Planner::run_to_end)
-        .map_err(|e| e.to_string())?;
+    let used = nets.clone();
+    let traj = Planner::new(
+        scene.clone(),
+        method,
+        nets.map(|n| n as Networks<PoseChain, 6>),
+    )
+    .and_then(Planner::run_to_end)
+    .map_err(|e| e.to_string())?;
     if args.json {
-        let text = PoseRunFile::of(None, scene, traj, None, Precision::F64)
+        let (networks, precision) = super::space_networks::recorded(used.as_deref());
+        let text = PoseRunFile::of(None, scene, traj, networks, precision)
             .with_robot(source)
             .to_json();
         return emit(&format!("{text}\n"));
@@ -73,17 +90,7 @@ pub fn simulate(
     if args.csv {
         return emit(&run_csv(&traj.steps));
     }
-    emit(&summary(robot, &scene, &traj))
-}
-
-/// The methods that run the pose task, for messages.
-fn without_networks() -> String {
-    redundant_ik::planner::methods::ALL
-        .iter()
-        .filter(|m| !m.uses_networks())
-        .map(|m| m.name())
-        .collect::<Vec<_>>()
-        .join(", ")
+    emit(&summary(&robot, &scene, &traj))
 }
 
 /// A pose `(p, r)` as its position and URDF's roll-pitch-yaw.

@@ -4,23 +4,20 @@
 //! the run file (JSON, `redundant_ik::export::SpaceRunFile`) or CSV.
 
 use std::fmt::Write as _;
-use std::sync::Arc;
 
 use redundant_ik::export::{is_space_run, SpaceRunFile};
 use redundant_ik::ik::DampingSchedule;
-use redundant_ik::networks::space::SpaceNetworks;
-use redundant_ik::nn::Precision;
 use redundant_ik::planner::{Networks, Planner, Trajectory};
-use redundant_ik::run::NetworkChoice;
 use redundant_ik::scene::{SpacePath, SpaceScene};
 use redundant_ik::space::{SpacePreset, Sphere};
 use redundant_ik::Method;
 
+pub use super::job::Job;
 use super::path_arg::PathArg;
 pub use super::robot::Robot;
 use super::simulate::{SceneArgs, SimulateArgs};
 pub use super::space_networks::networks_for;
-use super::task::{pose_spec, PoseSpec};
+use super::task::pose_spec;
 use super::{emit, parse_list, Numbers};
 use redundant_ik::urdf::RobotSource;
 
@@ -130,27 +127,6 @@ pub fn run_file(args: &SceneArgs) -> Result<Option<SpaceRunFile>, String> {
     args.run_file_of(is_space_run)
 }
 
-/// What a command runs on an arm in space: the robot, the scene, the
-/// method and the networks of a learned method, from `--arm A` (or
-/// `--urdf FILE`) and the scene options, or from a spatial run file
-/// (`--from`: its scene, its method unless `--method` is given, the
-/// networks it names in its arithmetic).
-pub struct Job {
-    /// The arm.
-    pub robot: Robot,
-    /// The scene.
-    pub scene: SpaceScene,
-    /// The method.
-    pub method: Method,
-    /// The networks, for a learned method.
-    pub nets: Option<Arc<SpaceNetworks>>,
-    /// The hand's pose task, where the options or the run file ask for
-    /// it (`scene` then holds its position's part).
-    pub pose: Option<PoseSpec>,
-    /// Where the robot came from, as a run file records it.
-    pub source: Option<RobotSource>,
-}
-
 /// The spatial job of `args` (`p`: the arm in space `--arm` names, if it
 /// names one), or `None` for a planar one.
 pub fn job(
@@ -158,15 +134,8 @@ pub fn job(
     method: Option<Method>,
     p: Option<&'static SpacePreset>,
 ) -> Result<Option<Job>, String> {
-    if let Some((scene, file_method, pose, source)) = super::pose::run_file(args)? {
-        return Ok(Some(Job {
-            robot: Robot::of_chain(&scene.arm, "robot"),
-            scene,
-            method: method.unwrap_or(file_method),
-            nets: None,
-            pose: Some(pose),
-            source,
-        }));
+    if let Some(job) = super::pose::run_file(args, method)? {
+        return Ok(Some(job));
     }
     if let Some(file) = run_file(args)? {
         return from_file(args, method, file).map(Some);
@@ -278,8 +247,8 @@ fn from_file(args: &SceneArgs, method: Option<Method>, file: SpaceRunFile) -> Re
 /// Runs `simulate` for a spatial job: `--arm A`, or `--from` a spatial
 /// run file.
 pub fn simulate(args: &SimulateArgs, job: Job) -> Result<(), String> {
-    if let Some(spec) = job.pose {
-        return super::pose::simulate(args, &job.robot, job.scene, spec, job.method, job.source);
+    if job.pose.is_some() {
+        return super::pose::simulate(args, job);
     }
     output(args, job)
 }
@@ -301,16 +270,7 @@ fn output(args: &SimulateArgs, job: Job) -> Result<(), String> {
         .map_err(|e| e.to_string())?;
     let traj = planner.run_to_end().map_err(|e| e.to_string())?;
     if args.json {
-        let networks = used.as_deref().map(|n| {
-            super::space_networks::shipped_set(n).map_or_else(
-                || NetworkChoice::Files {
-                    phi: n.phi_file().to_json().unwrap_or_default(),
-                    v: n.v_file().to_json().unwrap_or_default(),
-                },
-                NetworkChoice::Set,
-            )
-        });
-        let precision = used.map_or(Precision::F64, |n| n.precision());
+        let (networks, precision) = super::space_networks::recorded(used.as_deref());
         let text = SpaceRunFile::of(None, scene, traj, networks, precision)
             .with_robot(source)
             .to_json();

@@ -31,9 +31,10 @@ pub fn atlas(args: &super::atlas::AtlasArgs, job: Job) -> Result<(), String> {
             .copied()
             .filter(|m| m.in_space())
             .filter(|m| {
-                // No networks are trained for the pose task.
+                // The learned methods where networks are shipped, but
+                // those that need a Phi on the pose task (none is trained).
                 !m.uses_networks()
-                    || pose.is_none()
+                    || !(pose.is_some() && m.entry().info.networks.phi)
                         && robot
                             .preset
                             .is_some_and(|p| SpaceNetworkSet::for_arm(p.key).is_some())
@@ -72,7 +73,7 @@ pub fn atlas(args: &super::atlas::AtlasArgs, job: Job) -> Result<(), String> {
         Some(spec) => {
             let scene = PoseScene::from_space(scene.clone(), spec.orientation, spec.weight)
                 .map_err(|e| e.to_string())?;
-            pose_slice(&scene, plane, grid, &methods)
+            pose_slice(&scene, plane, grid, &methods, nets.as_ref())
         }
         None => slice(&scene, plane, grid, &methods, nets.as_ref()),
     }

@@ -305,6 +305,29 @@ pub fn eval(args: &super::eval::EvalArgs, arm: TrainArm) -> Result<(), String> {
     emit(&out)
 }
 
+/// What a run file records of the networks a run used: the shipped set
+/// by name, else the files whole; and their arithmetic (`f64` without
+/// networks).
+pub fn recorded(
+    used: Option<&SpaceNetworks>,
+) -> (
+    Option<redundant_ik::run::NetworkChoice<SpaceNetworkSet>>,
+    redundant_ik::nn::Precision,
+) {
+    use redundant_ik::run::NetworkChoice;
+    let choice = used.map(|n| {
+        shipped_set(n).map_or_else(
+            || NetworkChoice::Files {
+                phi: n.phi_file().to_json().unwrap_or_default(),
+                v: n.v_file().to_json().unwrap_or_default(),
+            },
+            NetworkChoice::Set,
+        )
+    });
+    let precision = used.map_or(redundant_ik::nn::Precision::F64, |n| n.precision());
+    (choice, precision)
+}
+
 /// The shipped set `nets` is, if it is one (the user's files are not).
 pub fn shipped_set(nets: &SpaceNetworks) -> Option<SpaceNetworkSet> {
     SpaceNetworkSet::ALL.into_iter().find(|s| {

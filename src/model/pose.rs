@@ -294,9 +294,10 @@ impl Clearance<HandPose> for SpacePair {
     }
 }
 
-/// No networks are trained for the pose task: the planner refuses Cases
-/// 1-3 on it before any of these could run (they would need a
-/// `Surrogate<PoseChain, 6>`, and none exists), and each says so.
+/// No `Phi` network is trained for the pose task: the planner refuses
+/// Cases 1 and 3 on it before any of these could run (their networks have
+/// no `Phi` for the pose, `Surrogate::has_phi`), and each says so. Case 2,
+/// whose `Phi` is exact, never calls them.
 impl PhiAlgebra<6> for PoseChain {
     fn refine_phi(_: &mut [f64], _: &[f64], _: u32) -> Result<bool> {
         Err(no_networks())
@@ -324,7 +325,8 @@ impl PhiAlgebra<6> for PoseChain {
 
 fn no_networks() -> Error {
     Error::NetworksUnavailable(
-        "no networks are trained for the hand's pose task (Cases 1-3 run the position task)".into(),
+        "no Phi network is trained for the hand's pose task (Case 2, whose Phi is exact, runs it)"
+            .into(),
     )
 }
 

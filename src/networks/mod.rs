@@ -15,6 +15,7 @@ pub mod file;
 pub mod inputs;
 mod reader;
 pub mod space;
+pub mod space_pose;
 
 use std::sync::Arc;
 

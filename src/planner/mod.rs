@@ -338,6 +338,11 @@ fn check_networks<A: Planned<M>, const M: usize>(
         None if method.uses_networks() => Err(Error::NetworksUnavailable(format!(
             "method {method} needs networks trained for this arm and none are loaded (--networks)"
         ))),
+        Some(n) if method.entry().info.networks.phi && !n.has_phi() => {
+            Err(Error::NetworksUnavailable(format!(
+                "method {method} needs a Phi network, and none is trained for this task (the hand's pose: its pseudoinverse is n x 6, the networks' n x 3); Case 2, whose Phi is exact, runs with the v network"
+            )))
+        }
         Some(n) => n.check(arm),
         None => Ok(()),
     }

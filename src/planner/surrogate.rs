@@ -29,4 +29,10 @@ pub trait Surrogate<A: Model<M> = Arm, const M: usize = 2>: Send + Sync {
     fn phi_in_range(&self, pose: &A::Pose) -> bool;
     /// Whether `(theta, O)` lies in the range the `v` network was trained on.
     fn v_in_range(&self, pose: &A::Pose, o: A::Point) -> bool;
+    /// Whether it has a `Phi` network for this task (the networks of an
+    /// arm in space have none for its hand's pose: the planner refuses
+    /// the methods that need one).
+    fn has_phi(&self) -> bool {
+        true
+    }
 }

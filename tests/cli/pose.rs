@@ -74,6 +74,23 @@ fn a_circle_of_the_pose_task_keeps_the_start_orientation_and_replays() {
 }
 
 #[test]
+fn case_2_runs_the_pose_task_and_its_file_names_its_networks() {
+    let v = json(&[
+        "simulate", "--arm", "panda", "--task", "pose", "--method", "case2", "--json",
+    ]);
+    assert_eq!(v["networks"]["set"], "panda-reach", "{}", v["networks"]);
+    let file = scratch("pose-case2.json");
+    std::fs::write(&file, serde_json::to_string(&v).unwrap()).unwrap();
+    let path = file.to_str().unwrap();
+    let again = json(&["simulate", "--from", path, "--json"]);
+    assert_eq!(again["steps"], v["steps"]);
+    refused(
+        &["simulate", "--from", path, "--networks", "panda-reach"],
+        "--from names the networks",
+    );
+}
+
+#[test]
 fn the_numerical_route_reaches_the_target_pose_with_feedback() {
     let v = json(&[
         "simulate",
@@ -156,7 +173,13 @@ fn the_pose_task_refuses_what_it_does_not_run() {
         &[
             "simulate", "--arm", "panda", "--task", "pose", "--method", "case3",
         ],
-        "none are trained for its pose",
+        "needs a phi network",
+    );
+    refused(
+        &[
+            "simulate", "--arm", "iiwa14", "--task", "pose", "--method", "case2",
+        ],
+        "no networks are shipped for iiwa14",
     );
 }
 

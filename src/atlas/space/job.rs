@@ -58,17 +58,30 @@ impl SliceJob {
 }
 
 impl SliceJob<PoseChain, 6> {
-    /// [`SliceJob::new`] for the hand's pose task; the learned methods
-    /// are refused (no networks are trained for the pose).
-    pub fn pose(scene: &PoseScene, plane: Plane, grid: Grid, methods: &[Method]) -> Result<Self> {
+    /// [`SliceJob::new`] for the hand's pose task: Case 2 runs with the
+    /// networks' `v`; Cases 1 and 3 are refused (no `Phi` is trained for
+    /// the pose).
+    pub fn pose(
+        scene: &PoseScene,
+        plane: Plane,
+        grid: Grid,
+        methods: &[Method],
+        networks: Option<&Arc<SpaceNetworks>>,
+    ) -> Result<Self> {
         grid.validate()?;
         scene.validate()?;
-        if let Some(m) = methods.iter().find(|m| m.uses_networks()) {
-            return Err(Error::NetworksUnavailable(format!(
-                "method {m} runs networks trained for the hand's position: none are trained for its pose"
-            )));
+        for m in methods {
+            if m.uses_networks() && networks.is_none() {
+                return Err(Error::NetworksUnavailable(format!(
+                    "method {m} needs networks trained for this arm in space"
+                )));
+            }
         }
-        Self::of(scene, &scene.obstacles, plane, grid, methods, None)
+        if let Some(nets) = networks {
+            nets.check_chain(&scene.arm.chain)?;
+        }
+        let nets = networks.map(|n| n.clone() as Networks<PoseChain, 6>);
+        Self::of(scene, &scene.obstacles, plane, grid, methods, nets)
     }
 }
 
