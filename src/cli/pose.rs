@@ -28,21 +28,19 @@ pub fn run_file(args: &SceneArgs, method: Option<Method>) -> Result<Option<Job>,
     };
     super::robot::check_source(file.robot.as_ref(), &file.scene.arm.chain)?;
     let method = method.unwrap_or(file.method);
-    let nets = match file.networks.filter(|_| method.uses_networks()) {
-        Some(choice) => {
-            if let Some(flag) = args.networks.given(&args.given) {
-                return Err(format!(
-                    "--from names the networks its run used; {flag} cannot change them"
-                ));
-            }
-            let nets = choice.load().map_err(|e| e.to_string())?;
-            Some(nets.in_precision(file.precision))
-        }
-        None => None,
-    };
+    let robot = Robot::of_chain(&file.scene.arm.chain, "robot");
+    let nets = super::space_networks::of_run_file(
+        &args.networks,
+        &args.given,
+        file.networks,
+        file.precision,
+        &robot,
+        &file.scene.arm.chain,
+        method,
+    )?;
     let (scene, orientation, weight) = file.scene.position_scene();
     Ok(Some(Job {
-        robot: Robot::of_chain(&scene.arm, "robot"),
+        robot,
         scene,
         method,
         nets,

@@ -210,29 +210,15 @@ fn urdf_job(args: &SceneArgs, method: Option<Method>) -> Result<Job, String> {
 fn from_file(args: &SceneArgs, method: Option<Method>, file: SpaceRunFile) -> Result<Job, String> {
     let robot = Robot::of_chain(&file.scene.arm, "robot");
     let method = method.unwrap_or(file.method);
-    let nets = match file.networks.filter(|_| method.uses_networks()) {
-        Some(choice) => {
-            // The file names its networks and their arithmetic.
-            if let Some(flag) = args.networks.given(&args.given) {
-                return Err(format!(
-                    "--from names the networks its run used; {flag} cannot change them"
-                ));
-            }
-            let nets = choice.load().map_err(|e| e.to_string())?;
-            nets.check_chain(&file.scene.arm)
-                .map_err(|e| e.to_string())?;
-            Some(nets.in_precision(file.precision))
-        }
-        // The user's own weights, given again: in the file's arithmetic
-        // unless --precision says otherwise.
-        None => networks_for(&args.networks, &robot, &file.scene.arm, &[method])?.map(|n| {
-            if args.given.has("precision") {
-                n
-            } else {
-                n.in_precision(file.precision)
-            }
-        }),
-    };
+    let nets = super::space_networks::of_run_file(
+        &args.networks,
+        &args.given,
+        file.networks,
+        file.precision,
+        &robot,
+        &file.scene.arm,
+        method,
+    )?;
     super::robot::check_source(file.robot.as_ref(), &file.scene.arm)?;
     Ok(Job {
         robot,

@@ -305,6 +305,40 @@ pub fn eval(args: &super::eval::EvalArgs, arm: TrainArm) -> Result<(), String> {
     emit(&out)
 }
 
+/// The networks the job of a run file runs `method` with: those the file
+/// names, in its arithmetic (no network option may change them); else the
+/// user's own given again, in the file's arithmetic unless `--precision`
+/// says otherwise. Checked against the file's `chain`.
+pub fn of_run_file(
+    args: &super::NetworkArgs,
+    given: &super::params::Given,
+    named: Option<redundant_ik::run::NetworkChoice<SpaceNetworkSet>>,
+    precision: redundant_ik::nn::Precision,
+    robot: &super::robot::Robot,
+    chain: &redundant_ik::space::Chain,
+    method: Method,
+) -> Result<Option<Arc<SpaceNetworks>>, String> {
+    match named.filter(|_| method.uses_networks()) {
+        Some(choice) => {
+            if let Some(flag) = args.given(given) {
+                return Err(format!(
+                    "--from names the networks its run used; {flag} cannot change them"
+                ));
+            }
+            let nets = choice.load().map_err(|e| e.to_string())?;
+            nets.check_chain(chain).map_err(|e| e.to_string())?;
+            Ok(Some(nets.in_precision(precision)))
+        }
+        None => Ok(networks_for(args, robot, chain, &[method])?.map(|n| {
+            if given.has("precision") {
+                n
+            } else {
+                n.in_precision(precision)
+            }
+        })),
+    }
+}
+
 /// What a run file records of the networks a run used: the shipped set
 /// by name, else the files whole; and their arithmetic (`f64` without
 /// networks).
