@@ -126,12 +126,20 @@ fn summary(robot: &Robot, scene: &PoseScene, traj: &Trajectory<6, [f64; 3]>) -> 
         list(&first.theta),
         pose_text(first.ee)
     );
+    let goal = if scene.path == redundant_ik::scene::SpacePath::Line {
+        format!("target {}", pose_text(scene.target))
+    } else {
+        format!(
+            "path {} ending at {}",
+            scene.path,
+            pose_text(traj.steps.last().map_or(scene.target, |x| x.reference))
+        )
+    };
     let _ = writeln!(
         out,
-        "end    theta = [{}]  hand {}  target {}",
+        "end    theta = [{}]  hand {}  {goal}",
         list(&last.theta),
         pose_text(last.ee),
-        pose_text(scene.target)
     );
     super::summary::contact(&mut out, s, &scene.arm.chain, &scene.obstacles);
     let _ = writeln!(

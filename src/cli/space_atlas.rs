@@ -69,6 +69,7 @@ pub fn atlas(args: &super::atlas::AtlasArgs, job: Job) -> Result<(), String> {
     }
     #[allow(clippy::disallowed_methods)] // the native CLI has a clock
     let start = std::time::Instant::now();
+    let is_pose = pose.is_some();
     let mut a = match pose {
         Some(spec) => {
             let scene = PoseScene::from_space(scene.clone(), spec.orientation, spec.weight)
@@ -111,7 +112,8 @@ pub fn atlas(args: &super::atlas::AtlasArgs, job: Job) -> Result<(), String> {
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "Atlas of the {} task on the slice {plane}: {n} x {n} sphere centres over {u} {u0:.3}..{u1:.3} m, {v} {v0:.3}..{v1:.3} m (radius {} m)",
+        "Atlas of the hand's {} task of the {} on the slice {plane}: {n} x {n} sphere centres over {u} {u0:.3}..{u1:.3} m, {v} {v0:.3}..{v1:.3} m (radius {} m)",
+        if is_pose { "pose" } else { "position" },
         robot.label,
         a.radius,
         n = a.grid.n

@@ -71,6 +71,12 @@ fn a_circle_of_the_pose_task_keeps_the_start_orientation_and_replays() {
     std::fs::write(&file, serde_json::to_string(&v).unwrap()).unwrap();
     let again = json(&["simulate", "--from", file.to_str().unwrap(), "--json"]);
     assert_eq!(again["steps"], v["steps"]);
+    // The summary names the path where it has no target.
+    let text = ok(&["simulate", "--from", file.to_str().unwrap()]);
+    assert!(
+        text.contains("path circle:0.4,0,0.55,0,0,1 ending at") && !text.contains("target"),
+        "{text}"
+    );
 }
 
 #[test]
