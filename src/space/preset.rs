@@ -54,7 +54,9 @@ impl SpacePreset {
                     Some(RateLimits::new(self.rate_limits.to_vec())?),
                 )
             })
-            .expect("a preset's numbers pass the chain's checks (tested)")
+            // Display, not Debug: the page's module carries no Debug of
+            // the error (2 KB of code) for a message no user sees.
+            .unwrap_or_else(|e| panic!("a preset's numbers pass the chain's checks (tested): {e}"))
     }
 
     /// The preset whose chain `chain` is, whatever its limits, if any (a
