@@ -248,15 +248,24 @@ pub fn eval(args: &super::eval::EvalArgs, arm: TrainArm) -> Result<(), String> {
             )
             .map_err(|e| e.to_string())?,
         ),
-        _ => SpaceNetworkSet::for_arm(&arm.name)
-            .ok_or_else(|| {
-                format!(
-                    "no networks are shipped for {}: give --phi and --v",
-                    arm.name
-                )
-            })?
-            .load()
-            .map_err(|e| e.to_string())?,
+        // The set shipped for the chain's preset; a chain read from URDF
+        // is never a preset's rows, even where its robot has the name.
+        _ => match SpacePreset::of(arm.chain()).and_then(|p| SpaceNetworkSet::for_arm(p.key)) {
+            Some(set) => set.load().map_err(|e| e.to_string())?,
+            None => {
+                return Err(match SpaceNetworkSet::for_arm(&arm.name) {
+                    Some(set) => format!(
+                        "the shipped {} networks were trained for the preset's chain of modified-DH rows, not for this {} read from URDF (a chain of joint frames): give --phi and --v (train --urdf writes them)",
+                        set.name(),
+                        arm.name
+                    ),
+                    None => format!(
+                        "no networks are shipped for {}: give --phi and --v (train --urdf writes them)",
+                        arm.name
+                    ),
+                })
+            }
+        },
     };
     nets.check_chain(arm.chain()).map_err(|e| e.to_string())?;
     let (phi_err, v_err) =

@@ -155,6 +155,13 @@ fn a_robot_read_from_urdf_trains_its_own_networks_and_runs_them() {
         &["eval", "--urdf", urdf, "--samples", "10"],
         "no networks are shipped for ur5e",
     );
+    // The Panda read from its URDF is not the preset's chain of rows: its
+    // shipped networks do not serve it, and the message says why.
+    let panda = concat!(env!("CARGO_MANIFEST_DIR"), "/robots/panda.urdf");
+    refused(
+        &["eval", "--urdf", panda, "--samples", "10"],
+        "not for this panda read from urdf",
+    );
     refused(
         &[
             "simulate",
