@@ -41,20 +41,31 @@ impl SliceJob {
     ) -> Result<Self> {
         grid.validate()?;
         scene.validate()?;
-        for m in methods {
-            m.space_rule(scene.arm.dof())?;
-            if m.uses_networks() && networks.is_none() {
-                return Err(Error::NetworksUnavailable(format!(
-                    "method {m} needs networks trained for this arm in space"
-                )));
-            }
-        }
-        if let Some(nets) = networks {
-            nets.check_chain(&scene.arm)?;
-        }
+        let n = scene.arm.dof();
+        check_methods(methods, networks, &scene.arm, |m| m.space_rule(n).map(drop))?;
         let nets = networks.map(|n| n.clone() as Networks<Chain, 3>);
         Self::of(scene, &scene.obstacles, plane, grid, methods, nets)
     }
+}
+
+/// Refused, method by method in order, where `runs` refuses one or a
+/// learned one has no networks; then where the networks were trained for
+/// another chain than `chain`.
+fn check_methods(
+    methods: &[Method],
+    networks: Option<&Arc<SpaceNetworks>>,
+    chain: &Chain,
+    runs: impl Fn(Method) -> Result<()>,
+) -> Result<()> {
+    for &m in methods {
+        runs(m)?;
+        if m.uses_networks() && networks.is_none() {
+            return Err(Error::NetworksUnavailable(format!(
+                "method {m} needs networks trained for this arm in space"
+            )));
+        }
+    }
+    networks.map_or(Ok(()), |nets| nets.check_chain(chain))
 }
 
 impl SliceJob<PoseChain, 6> {
@@ -70,16 +81,7 @@ impl SliceJob<PoseChain, 6> {
     ) -> Result<Self> {
         grid.validate()?;
         scene.validate()?;
-        for m in methods {
-            if m.uses_networks() && networks.is_none() {
-                return Err(Error::NetworksUnavailable(format!(
-                    "method {m} needs networks trained for this arm in space"
-                )));
-            }
-        }
-        if let Some(nets) = networks {
-            nets.check_chain(&scene.arm.chain)?;
-        }
+        check_methods(methods, networks, &scene.arm.chain, |_| Ok(()))?;
         let nets = networks.map(|n| n.clone() as Networks<PoseChain, 6>);
         Self::of(scene, &scene.obstacles, plane, grid, methods, nets)
     }
