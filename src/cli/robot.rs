@@ -375,6 +375,19 @@ pub fn check_source(source: Option<&RobotSource>, chain: &Chain) -> Result<(), S
     source.check(chain).map_err(|e| e.to_string())
 }
 
+/// Where a robot's own line ends for a hand at `start`: 0.15 m along `y`.
+pub fn own_line_end(start: [f64; 3]) -> [f64; 3] {
+    [start[0], start[1] + 0.15, start[2]]
+}
+
+/// `scene`'s target moved to the end of the robot's own line from where
+/// its start pose puts the hand (after `--theta0`); refused where the
+/// scene then does not validate.
+pub fn own_line_from_start(scene: &mut redundant_ik::scene::SpaceScene) -> Result<(), String> {
+    scene.target = own_line_end(scene.start());
+    scene.validate().map_err(|e| e.to_string())
+}
+
 /// The robot of the URDF at `path` (its chain as `chain` picks it, the
 /// limits of `joint_limits` where given) and its own scene: it starts at
 /// the middle of its joints' ranges (within +-pi), its hand's line runs
@@ -431,7 +444,7 @@ pub fn urdf_scene(
     let scene = redundant_ik::scene::SpaceScene {
         arm: chain,
         theta0,
-        target: [start[0], start[1] + 0.15, start[2]],
+        target: own_line_end(start),
         path: redundant_ik::scene::SpacePath::Line,
         obstacles: Vec::new(),
         damping: None,

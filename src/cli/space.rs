@@ -181,9 +181,7 @@ fn urdf_job(args: &SceneArgs, method: Option<Method>) -> Result<Job, String> {
     let mut scene = apply(args, s, super::robot::DEFAULT_RADIUS)?;
     if args.target.is_none() {
         // The line from where --theta0 (or the middle) puts the hand.
-        let start = scene.start();
-        scene.target = [start[0], start[1] + 0.15, start[2]];
-        scene.validate().map_err(|e| e.to_string())?;
+        super::robot::own_line_from_start(&mut scene)?;
     }
     let srdf = &args.robot.chain.srdf;
     if args.self_collision || srdf.is_some() {

@@ -127,10 +127,7 @@ pub fn urdf_arm(
             .arm
             .check_angles(&scene.theta0)
             .map_err(|e| format!("--theta0: {e}"))?;
-        // The robot's own line, 0.15 m along y from where the hand starts.
-        let start = scene.start();
-        scene.target = [start[0], start[1] + 0.15, start[2]];
-        scene.validate().map_err(|e| e.to_string())?;
+        super::robot::own_line_from_start(&mut scene)?;
     }
     if let Some(srdf) = &chain.srdf {
         let disabled = super::robot::srdf_pairs(srdf, &volumes)?;
