@@ -39,7 +39,8 @@ setup:
 ## strip also drops a section wasm-bindgen needs). The built-in networks'
 ## weights files go beside the page (www/weights/), which fetches them and
 ## hands them to its workers: no module embeds them (docs/web.md, "Bytes on
-## the wire").
+## the wire"). Last, the 3-D view of the arms in space with three.js, one
+## module www/pkg/three-view.js (scripts/bundle.sh view).
 PAGE = -- --no-default-features --features page,small-alloc
 WORKER = --out-name redundant_ik_worker -- --no-default-features --features worker,small-alloc
 web: setup
@@ -55,6 +56,7 @@ web: setup
 	rm -f www/pkg/redundant_ik_space_bg.wasm www/pkg/redundant_ik_space_simd_bg.wasm www/pkg/redundant_ik_worker_space_bg.wasm www/pkg/redundant_ik_worker_space_simd_bg.wasm www/pkg/space-arms.js
 	for f in www/pkg/*.wasm; do python3 scripts/strip-wasm-names.py $$f; done
 	mkdir -p www/weights && cp weights/*.json www/weights/
+	bash scripts/bundle.sh view
 	@for f in www/pkg/*.wasm; do echo "$$f: $$(stat -c %s $$f) B, gzip -9 $$(gzip -9 -c $$f | wc -c) B"; done
 
 ## The page as one folder for any static host, dist/ (docs/hosting.md,

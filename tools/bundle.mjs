@@ -4,6 +4,7 @@
 //
 //   node tools/bundle.mjs offline   # dist/redundant-ik.html: the page in one file
 //   node tools/bundle.mjs npm       # target/npm/redundant-ik/: the package folder
+//   node tools/bundle.mjs view      # www/pkg/three-view.js: the 3-D view with three.js
 //
 // The files a build inlines (the SIMD builds of both modules, the built-in
 // networks' weights files of every shipped set, bench-native.json and the
@@ -194,7 +195,29 @@ async function npm() {
   for (const f of ['compat.js', 'widget.js']) console.log(`bundle: ${relative(root, join(out, f))}: ${readFileSync(join(out, f)).length.toLocaleString('en')} B`);
 }
 
+/**
+ * www/pkg/three-view.js: the 3-D view of the arms in space (www/view/)
+ * with the parts of three.js it imports, one module (make web runs this;
+ * space-view.js imports it only when an arm in space is shown). three is
+ * pinned in tools/package-lock.json.
+ */
+async function view() {
+  const out = join(www, 'pkg/three-view.js');
+  const three = JSON.parse(read(join(root, 'tools/node_modules/three/package.json')));
+  await esbuild.build({
+    ...COMMON,
+    entryPoints: [join(www, 'view/three-view.js')],
+    nodePaths: [join(root, 'tools/node_modules')],
+    banner: { js: `// redundant-ik ${version()}'s 3-D view (MIT OR Apache-2.0) with three.js ${three.version} (MIT, Copyright 2010-2025 three.js authors), bundled by tools/bundle.mjs.` },
+    write: true,
+    outfile: out,
+  });
+  const bytes = readFileSync(out);
+  console.log(`bundle: ${relative(root, out)}: ${bytes.length.toLocaleString('en')} B, gzip -9 ${gzipSync(bytes, { level: 9 }).length.toLocaleString('en')} B`);
+}
+
 const what = process.argv[2];
 if (what === 'offline') await offline();
 else if (what === 'npm') await npm();
-else fail(`usage: node tools/bundle.mjs offline|npm (got '${what ?? ''}')`);
+else if (what === 'view') await view();
+else fail(`usage: node tools/bundle.mjs offline|npm|view (got '${what ?? ''}')`);

@@ -43,6 +43,7 @@ export {
   SpaceDemo,
   spaceNetworkSets,
   spaceTrainingRecipes,
+  palette,
 } from './pkg/redundant_ik.js';
 import { spacePresets } from './pkg/redundant_ik.js';
 export { spacePresets };

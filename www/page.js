@@ -239,6 +239,7 @@ async function startSpace() {
     simulate: (options) => controller.simulate(options),
     train: (options) => controller.train(options),
     runFile: () => controller.runFile(),
+    snapshot: () => controller.snapshot(),
     atlas: (options) => controller.atlas(options),
     spaceAtlas: (options) => spaceAtlas(options),
     networks: () => controller.networks(),

@@ -56,7 +56,8 @@ const STYLE = `
   min-width: 0;
 }
 :host(:focus-visible) { outline: 2px solid #6ea0dc; outline-offset: 2px; }
-.wrap { position: relative; }
+.wrap { position: relative; isolation: isolate; }
+.view-3d { position: absolute; inset: 0; width: 100%; height: 100%; z-index: -1; pointer-events: none; }
 #stage { display: block; width: 100%; aspect-ratio: 14 / 11; touch-action: pan-y; user-select: none; }
 #stage:focus { outline: none; }
 #stage:focus-visible { outline: 2px solid #6ea0dc; outline-offset: 2px; }

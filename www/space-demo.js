@@ -26,6 +26,7 @@ import { mountLab } from './lab.js';
 import { mountSelfMotion } from './self-motion.js';
 import { mountWeightsUpload } from './weights-upload.js';
 import { mountSpaceTraining } from './space-training.js';
+import { mountView, preloadView } from './space-view.js';
 
 const READOUTS = {
   t: (s) => fixed(s.t, 1),
@@ -70,11 +71,14 @@ async function installNetworks(demo, arm) {
  */
 export async function mountSpace(root, options) {
   const $ = (id) => root.querySelector('#' + id);
+  // three.js arrives while the module starts (a failure is said when the view mounts).
+  preloadView().catch(() => {});
   await loadModule();
   const preset = spacePresets().find((p) => p.key === options.arm);
   const stage = $('stage');
   const plots = $('plots');
   const demo = new SpaceDemo(stage, plots ?? undefined, preset.key, undefined);
+
   // The page's own <html> (its stylesheet hides the plane's controls); an
   // element (a shadow root) marks only itself.
   (root.host ?? root.documentElement).dataset.space = preset.key;
@@ -88,7 +92,15 @@ export async function mountSpace(root, options) {
   const changed = () => {
     if (options.onChange) options.onChange(demo.state(), preset);
   };
-
+  // The 3-D view under the stage (three.js, fetched now: space-view.js).
+  // Its gizmo moves the selected item (the target or a sphere) along an axis or in a plane.
+  const view3d = await mountView(stage, demo, { attempt, say, changed });
+  // The frame's state when anything changed (then both drawings are redrawn), else undefined.
+  const frame = (elapsed) => {
+    const s = demo.frame(elapsed);
+    if (s !== undefined) view3d.draw();
+    return s;
+  };
   // ---- the method menu: every method; the learned ones when networks are in
   const menu = $('mode');
   menu.replaceChildren();
@@ -183,6 +195,7 @@ export async function mountSpace(root, options) {
     }
   }
   if (refused.length) show(`${options.problemsLabel ?? 'Not applied'}: ${refused.join('; ')}`, 'warn', true);
+  else if (view3d.error) show(view3d.error, 'warn', true);
 
   // ---- controls ------------------------------------------------------------
   const play = $('play');
@@ -263,7 +276,7 @@ export async function mountSpace(root, options) {
     }
   });
   const syncParams = mountMethodParams(root, demo, { attempt, changed });
-  wireSpaceStage(stage, demo, { attempt, changed, say, togglePlay, reset, keyboard: options.keyboard });
+  wireSpaceStage(stage, demo, { attempt, changed, say, togglePlay, reset, keyboard: options.keyboard, gizmoAxis: view3d.gizmoAxis });
   const view = document.createElement('button');
   Object.assign(view, { type: 'button', id: 'fit-view', textContent: 'Reset view' });
   view.title = 'Back to the first view (key 0); orbit by dragging the empty drawing (or Shift+drag, two fingers, keys o and u), zoom with the wheel, two fingers or + and -';
@@ -299,7 +312,7 @@ export async function mountSpace(root, options) {
     fillLegend(legendList, legend(true));
   }
 
-  const panels = mountSpacePanels(root, demo, { attempt, show, say, preset, ensureNetworks, changed });
+  const panels = mountSpacePanels(root, demo, { attempt, show, say, preset, ensureNetworks, changed, snapshot: () => view3d.snapshot() });
   const training = mountSpaceTraining(root, demo, { preset, show, say, installed: ownNetworks });
 
   // ---- size ------------------------------------------------------------------
@@ -311,11 +324,15 @@ export async function mountSpace(root, options) {
     new ResizeObserver(apply).observe(canvas);
     apply();
   };
-  fit(stage, (w, h, d) => demo.resize(w, h, d));
+  fit(stage, (w, h, d) => {
+    demo.resize(w, h, d);
+    view3d.resize(w, h, d);
+  });
   if (plots) fit(plots, (w, h, d) => demo.resizePlots(w, h, d));
   // The drawing is kept between frames (an idle page draws nothing), so a
   // 2D context the browser discarded and gave back blank is drawn again.
   for (const canvas of [stage, plots]) canvas?.addEventListener('contextrestored', () => attempt(() => demo.draw()));
+  view3d.three?.renderer.domElement.addEventListener('webglcontextrestored', () => view3d.draw());
 
   // ---- readouts, the live region and the loop ----------------------------------
   // The networks' trained range, as on the plane.
@@ -371,14 +388,14 @@ export async function mountSpace(root, options) {
     last = now;
     try {
       // The state when anything changed; undefined when nothing did (nothing repainted).
-      const s = demo.frame(elapsed);
+      const s = frame(elapsed);
       if (s !== undefined) update(s);
     } catch (e) {
       show(describe(e), 'error', true);
     }
     requestAnimationFrame(tick);
   }
-  update(demo.frame(0) ?? demo.state());
+  update(frame(0) ?? demo.state());
   const loading = $('loading');
   if (loading) loading.hidden = true;
   requestAnimationFrame((now) => {
@@ -398,7 +415,7 @@ export async function mountSpace(root, options) {
     },
     runUntil(t) {
       demo.runUntil(t);
-      return update(demo.frame(0) ?? demo.state());
+      return update(frame(0) ?? demo.state());
     },
     compare: () => panels.compare(),
     train: (options) => training.train(options),
@@ -422,6 +439,10 @@ export async function mountSpace(root, options) {
       return demo.simulate(String(options.method ?? demo.state().method), nums(options.target, 'target'), nums(options.obstacles, 'obstacles'), number(options.tf), nums(options.theta0, 'theta0'), number(options.feedback), number(options.refine));
     },
     runFile: () => demo.runFile(),
+    /** The 3-D view with the overlay over it, one 2-D canvas (the PNG saved; the tests' pixels). */
+    snapshot: () => view3d.snapshot(),
+    /** The 3-D view (space-view.js): its three.js scene is `view3d.three.scene`. */
+    view3d,
     atlas: (o) => panels.atlas(o),
     show,
     clear: () => messages.clear(),

@@ -14,9 +14,10 @@
  * Wires `stage` of the SpaceDemo `demo`. Hooks: `attempt(fn)` runs a call
  * and shows its error; `changed()` after a user change; `say(text)` tells
  * the live region; `togglePlay()`, `reset()`; `keyboard`, the element that
- * receives the page-wide keys (space plays, r resets).
+ * receives the page-wide keys (space plays, r resets); `gizmoAxis()`, the
+ * 3-D view's gizmo part under the pointer (a press there is the gizmo's).
  */
-export function wireSpaceStage(stage, demo, { attempt, changed, say, togglePlay, reset, keyboard }) {
+export function wireSpaceStage(stage, demo, { attempt, changed, say, togglePlay, reset, keyboard, gizmoAxis }) {
   keyboard?.addEventListener('keydown', (e) => {
     if (e.ctrlKey || e.metaKey || e.altKey) return;
     const t = e.composedPath()[0];
@@ -114,6 +115,12 @@ export function wireSpaceStage(stage, demo, { attempt, changed, say, togglePlay,
       }
       if (touches.size > 2) return;
     }
+    // The gizmo's arrows and squares (its listener ran first and found the part under the pointer).
+    if (gizmoAxis?.() && !e.shiftKey && e.button !== 2) {
+      claimed = true;
+      e.preventDefault();
+      return;
+    }
     const orbitOnly = e.shiftKey || e.button === 2;
     const grabbed = orbitOnly ? undefined : demo.pointerDown(p[0], p[1], slopFor(e));
     if (grabbed) {
@@ -141,7 +148,7 @@ export function wireSpaceStage(stage, demo, { attempt, changed, say, togglePlay,
       }
     }
     if (!drag || drag.id !== e.pointerId) {
-      if (e.pointerType === 'mouse') stage.style.cursor = demo.hover(p[0], p[1], 4) ? 'grab' : 'default';
+      if (e.pointerType === 'mouse') stage.style.cursor = gizmoAxis?.() || demo.hover(p[0], p[1], 4) ? 'grab' : 'default';
       return;
     }
     if (drag.kind === 'item') attempt(() => demo.pointerMove(p[0], p[1]));

@@ -14,7 +14,7 @@ import { spaceQuery } from './space-address.js';
 import { mountSpaceAtlas } from './space-atlas.js';
 
 /** Wires the panels; returns { sync(state), compare(), atlas(options) }. */
-export function mountSpacePanels(root, demo, { attempt, show, say, preset, ensureNetworks, changed }) {
+export function mountSpacePanels(root, demo, { attempt, show, say, preset, ensureNetworks, changed, snapshot }) {
   const $ = (id) => root.querySelector('#' + id);
   const stem = () => {
     const s = demo.state();
@@ -77,8 +77,9 @@ export function mountSpacePanels(root, demo, { attempt, show, say, preset, ensur
   });
 
   // ---- Save and share ------------------------------------------------------------
+  // The view: the 3-D drawing with the overlay over it (space-view.js's snapshot).
   const canvasPng = (id, suffix) => {
-    const canvas = $(id);
+    const canvas = id === 'stage' ? snapshot() : $(id);
     canvas?.toBlob((blob) => blob && saveBlob(`${stem()}-${suffix}.png`, blob), 'image/png');
   };
   $('save-run-json')?.addEventListener('click', () => saveText(`${stem()}.json`, demo.runFile(), 'application/json'));

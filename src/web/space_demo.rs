@@ -10,6 +10,7 @@ use super::space_stage::{self, SliceLayer};
 
 mod layer;
 mod script;
+mod view;
 use super::surface::Surface;
 use super::tracked::Tracked;
 use super::{finite, js_err, plots, to_js, JsResult};
@@ -45,6 +46,9 @@ struct Drawn {
     stage: Surface,
     plots: Option<Surface>,
     layer: Option<SliceLayer>,
+    /// Counts the layers set or cleared, so the 3-D view redraws its
+    /// cells only when they change.
+    layer_revision: u32,
     keyboard: bool,
     /// The ellipsoids drawn at the hand (`setShown`, the legend's switches,
     /// as the plane's ellipses).
@@ -90,6 +94,7 @@ impl SpaceDemo {
                 stage: Surface::new(stage)?,
                 plots: plots.map(Surface::new).transpose()?,
                 layer: None,
+                layer_revision: 0,
                 keyboard: false,
                 shown: space_stage::Shown::default(),
             }),
@@ -272,10 +277,11 @@ impl SpaceDemo {
         to_js(&self.session().state())
     }
 
-    /// Draws the stage and the plots.
+    /// Draws the stage's overlay and the plots (the 3-D view draws
+    /// [`SpaceDemo::view`]).
     pub fn draw(&self) {
         let d = self.drawn.get();
-        space_stage::draw(&d.session, &d.stage, d.layer.as_ref(), d.keyboard, d.shown);
+        space_stage::draw(&d.session, &d.stage, d.keyboard);
         if let Some(p) = &d.plots {
             let limits = d
                 .session
@@ -299,28 +305,6 @@ impl SpaceDemo {
             Some(p) => p.resize(width, height, dpr),
             None => Ok(()),
         }
-    }
-
-    /// Switches a legend entry's drawing: `ellipse`, the velocity ellipsoid
-    /// `{J theta_dot : |theta_dot| <= 1}` at the hand (its three principal
-    /// ellipses at 1/4 scale), or `force`, the force ellipsoid (half-axes
-    /// `1 / sigma_i` at 1/10 scale, at most 0.6 m): the plane's
-    /// `setShown`. Returns whether the key names one.
-    #[wasm_bindgen(js_name = setShown)]
-    pub fn set_shown(&mut self, key: &str, on: bool) -> bool {
-        let shown = &mut self.drawn.edit().shown;
-        match key {
-            "ellipse" => shown.velocity = on,
-            "force" => shown.force = on,
-            _ => return false,
-        }
-        true
-    }
-
-    /// Whether the drawing has the keyboard (the selected item is ringed).
-    #[wasm_bindgen(js_name = setKeyboardFocus)]
-    pub fn set_keyboard_focus(&mut self, on: bool) {
-        self.drawn.edit().keyboard = on;
     }
 
     /// The item under canvas pixel `(x, y)` (`target`, `sphere 1`, ...,

@@ -87,6 +87,17 @@ impl Surface {
         c.set_line_cap("round");
         c.set_line_join("round");
     }
+
+    /// Clears to transparent (an overlay over another drawing) and sets
+    /// the CSS-pixel transform.
+    pub fn begin_clear(&self) {
+        let c = &self.ctx;
+        let _ = c.set_transform(self.dpr, 0.0, 0.0, self.dpr, 0.0, 0.0);
+        c.set_global_alpha(1.0);
+        c.clear_rect(0.0, 0.0, self.width, self.height);
+        c.set_line_cap("round");
+        c.set_line_join("round");
+    }
 }
 
 pub fn dash(ctx: &CanvasRenderingContext2d, pattern: &[f64]) {

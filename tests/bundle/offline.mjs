@@ -72,9 +72,12 @@ test('the built-in weights download; a quick training completes in its workers',
   await page.close();
 });
 
-test('the Panda opens from the same file; its learned method runs with the networks carried inline', async () => {
+test('the Panda opens from the same file, in its 3-D view; its learned method runs with the networks carried inline', async () => {
   const page = await open(`${FILE}?arm=panda&method=case3&autoplay=0`);
   assert.equal((await page.evaluate(() => window.demo.state())).kind, 'space');
+  // The 3-D view (three.js) is in the file too, and draws the arm.
+  const view = await page.evaluate(() => ({ canvas: Boolean(document.querySelector('canvas.view-3d')), links: window.demo.controller.demo.view().links.length }));
+  assert.deepEqual(view, { canvas: true, links: 6 }, 'the 3-D view is drawn from the file');
   await page.evaluate(() => window.demo.networks());
   await page.waitForFunction(() => window.demo.state().method === 'case3', null, { timeout: 60000 });
   const s = await page.evaluate(() => window.demo.runUntil(1e9));

@@ -219,7 +219,7 @@ test('space controls: the manipulability readouts and the legend\'s switches of 
   assert.equal(await page.evaluate(() => getComputedStyle(document.querySelector('.readouts div:has([data-readout="sigma"]) dt i')).textTransform), 'none');
   const green = () =>
     page.evaluate(() => {
-      const c = document.getElementById('stage');
+      const c = window.demo.snapshot();
       const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
       let n = 0;
       for (let i = 0; i < d.length; i += 4) if (Math.abs(d[i] - 46) < 20 && Math.abs(d[i + 1] - 125) < 20 && Math.abs(d[i + 2] - 50) < 20) n++;
@@ -230,7 +230,7 @@ test('space controls: the manipulability readouts and the legend\'s switches of 
   assert.equal(await box.isVisible(), true);
   await box.check();
   await page.waitForFunction((b) => {
-    const c = document.getElementById('stage');
+    const c = window.demo.snapshot();
     const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
     let n = 0;
     for (let i = 0; i < d.length; i += 4) if (Math.abs(d[i] - 46) < 20 && Math.abs(d[i + 1] - 125) < 20 && Math.abs(d[i + 2] - 50) < 20) n++;
@@ -243,7 +243,7 @@ test('space controls: the manipulability readouts and the legend\'s switches of 
   // The force ellipsoid, its own switch and colour (#6d4c41).
   const brown = () =>
     page.evaluate(() => {
-      const c = document.getElementById('stage');
+      const c = window.demo.snapshot();
       const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
       let n = 0;
       for (let i = 0; i < d.length; i += 4) if (Math.abs(d[i] - 109) < 16 && Math.abs(d[i + 1] - 76) < 16 && Math.abs(d[i + 2] - 65) < 16) n++;

@@ -37,9 +37,9 @@ test('space: the Panda and the iiwa open from the address on the 3-D stage', asy
     assert.equal(await page.isVisible('#target-x'), false);
     assert.ok(await page.isVisible('#mode'));
     assert.match(await page.textContent('#task1'), /Task/);
-    // The drawing is not blank: the arm's colour is on it.
+    // The drawing is not blank: the arm's colour is on it (the 3-D view with the overlay over it).
     const inked = await page.evaluate(() => {
-      const c = document.getElementById('stage');
+      const c = window.demo.snapshot();
       const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
       let n = 0;
       for (let i = 0; i < d.length; i += 4) if (d[i] < 120 && d[i + 2] > 100) n++;
@@ -59,6 +59,9 @@ test("space: one module holds every arm; the page in space fetches no planar net
   const files = await loaded(space);
   assert.ok(files.some((f) => /^redundant_ik(_simd)?_bg\.wasm$/.test(f)), files.join(' '));
   assert.ok(!files.some((f) => f.includes('space')), `no second module: ${files.join(' ')}`);
+  // The 3-D view (three.js, bundled by make web) is loaded, and draws with WebGL.
+  assert.ok(await space.evaluate(() => performance.getEntriesByType('resource').some((e) => e.name.endsWith('/pkg/three-view.js'))), 'three-view.js is loaded');
+  assert.equal(await space.evaluate(() => Boolean(document.querySelector('canvas.view-3d')?.getContext('webgl2'))), true, 'the 3-D view has its WebGL canvas');
   // The planar networks' weights files are not fetched on the page in space.
   const planarWeights = await space.evaluate(() => import('./module.js').then((m) => m.builtinWeightsFiles('paper')));
   assert.ok(!files.some((f) => planarWeights.includes(f)), files.join(' '));
@@ -76,7 +79,7 @@ test("space: one module holds every arm; the page in space fetches no planar net
   );
   // Nor the scripts of the page in space (page.js imports them only for an arm in space).
   const scripts = await plane.evaluate(() => performance.getEntriesByType('resource').map((e) => new URL(e.name).pathname.split('/').pop()).filter((n) => n.endsWith('.js')));
-  assert.ok(!scripts.some((f) => /^space-(demo|input|panels|atlas)\.js$/.test(f)), `no script of the page in space: ${scripts.join(' ')}`);
+  assert.ok(!scripts.some((f) => /^(space-(demo|input|panels|atlas|view)|three-view)\.js$/.test(f)), `no script of the page in space, nor three.js: ${scripts.join(' ')}`);
   assert.notEqual((await state(plane)).kind, 'space', 'the planar page');
   const preset = await plane.evaluate(() => import('./module.js').then((m) => m.limits().arm_presets.find((p) => p.key === 'iiwa-planar')));
   assert.deepEqual((await state(plane)).arm.joint_limits, preset.joint_limits);
@@ -225,8 +228,23 @@ test('space: the run saved from the page reads back with simulate --from, step f
   const csv = await download(page, '#save-run-csv');
   assert.equal(csv.text.trim().split('\n').length, run.steps.length + 1);
   assert.match(csv.text, /^t,theta1,.*,theta7,x,y,z,ref_x,ref_y,ref_z,tracking_error,clearance,collision\n/, 'the one run CSV of every arm');
+  // The view's PNG is the 3-D drawing with the overlay over it: decoded in the page, the arm's blue and the floor's white are in it.
   const png = await download(page, '#save-figure-png');
-  assert.ok(png.text.length > 1000);
+  const pixels = await page.evaluate(async (b64) => {
+    const img = await createImageBitmap(await (await fetch(`data:image/png;base64,${b64}`)).blob());
+    const c = new OffscreenCanvas(img.width, img.height);
+    const ctx = c.getContext('2d');
+    ctx.drawImage(img, 0, 0);
+    const d = ctx.getImageData(0, 0, img.width, img.height).data;
+    let arm = 0;
+    let white = 0;
+    for (let i = 0; i < d.length; i += 4) {
+      if (d[i] < 120 && d[i + 2] > 100) arm++;
+      if (d[i] > 250 && d[i + 1] > 250 && d[i + 2] > 250) white++;
+    }
+    return { arm, white, pixels: d.length / 4 };
+  }, png.bytes.toString('base64'));
+  assert.ok(pixels.arm > 500 && pixels.white > pixels.pixels / 4, `the PNG is the 3-D view: ${JSON.stringify(pixels)}`);
   // The figure as the command line draws it from the same file.
   const svg = await download(page, '#save-figure-svg');
   assert.match(svg.text, /^<svg|<\?xml/);

@@ -52,6 +52,51 @@ fn a_point_projected_and_unprojected_at_its_depth_comes_back() {
     }
 }
 
+/// The page's 3-D renderer (three.js) draws with a pinhole camera at the
+/// eye, looking along the view with `z` up, whose vertical field of view is
+/// `vertical_fov`: written out here as that camera's own arithmetic (the
+/// right axis `forward x z`, normalised device coordinates scaled by the
+/// canvas), it puts every point on the pixel `project` gives, on a wide and
+/// a tall canvas, so the drawing and the pointer's picking agree.
+#[test]
+fn a_pinhole_camera_with_the_vertical_field_of_view_draws_where_the_projection_says() {
+    let mut cam = Camera::looking_at([0.3, 0.1, 0.4], 2.0);
+    for (w, h) in [(W, H), (390.0, 640.0)] {
+        for (yaw, pitch) in [(0.0, 0.0), (1.0, 0.4), (-2.5, 1.2), (3.0, -0.3)] {
+            cam.yaw = yaw;
+            cam.pitch = pitch;
+            let proj = cam.projection(w, h);
+            let (eye, f) = (proj.eye(), proj.forward());
+            let r = {
+                let c = [f[1], -f[0], 0.0];
+                let n = (c[0] * c[0] + c[1] * c[1]).sqrt();
+                [c[0] / n, c[1] / n, 0.0]
+            };
+            let u = [
+                r[1] * f[2] - r[2] * f[1],
+                r[2] * f[0] - r[0] * f[2],
+                r[0] * f[1] - r[1] * f[0],
+            ];
+            let t = (0.5 * proj.vertical_fov()).tan();
+            let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+            for p in [[0.3, 0.1, 0.4], [0.0, 0.0, 0.0], [0.6, -0.4, 1.1]] {
+                let q = [p[0] - eye[0], p[1] - eye[1], p[2] - eye[2]];
+                let depth = dot(q, f);
+                let ndc = [dot(q, r) / (depth * t * w / h), dot(q, u) / (depth * t)];
+                let pixel = [0.5 * w * (1.0 + ndc[0]), 0.5 * h * (1.0 - ndc[1])];
+                let [x, y, z] = proj.project(p);
+                assert!(
+                    (pixel[0] - x).abs() < 1e-9
+                        && (pixel[1] - y).abs() < 1e-9
+                        && (depth - z).abs() < 1e-12,
+                    "{w}x{h} at yaw {yaw}, pitch {pitch}: {p:?} at {pixel:?}, projected to {:?}",
+                    [x, y]
+                );
+            }
+        }
+    }
+}
+
 /// The pointer's ray meets a slice atlas's plane where the point it shows
 /// lies (the page finds the cell under the pointer so), and misses a plane
 /// it runs parallel to or away from.

@@ -177,4 +177,18 @@ impl Projection {
     pub fn forward(&self) -> Vec3 {
         self.forward
     }
+
+    /// The eye's position (m).
+    pub fn eye(&self) -> Vec3 {
+        self.eye
+    }
+
+    /// The vertical field of view (rad) of a pinhole camera with this
+    /// projection on its canvas (whose centre is the image's): what a 3-D
+    /// renderer's perspective camera, placed at the eye and looking along
+    /// [`Projection::forward`] with `z` up, needs to draw every point where
+    /// [`Projection::project`] puts it.
+    pub fn vertical_fov(&self) -> f64 {
+        2.0 * (self.centre[1] / self.focal).atan()
+    }
 }

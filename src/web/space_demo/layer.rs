@@ -5,7 +5,7 @@
 use wasm_bindgen::prelude::*;
 
 use super::super::space_stage::SliceLayer;
-use super::super::{finite, js_err, JsResult};
+use super::super::{finite, js_err, to_js, JsResult};
 use super::SpaceDemo;
 use crate::atlas::space::Plane;
 use crate::atlas::Grid;
@@ -36,7 +36,10 @@ impl SpaceDemo {
             .try_into()
             .map_err(|_| JsError::new("an atlas region is [u0, u1, v0, v1]"))?;
         let grid = Grid::new(region, n).map_err(js_err)?;
-        self.drawn.edit().layer = Some(SliceLayer::new(plane, grid, classes).map_err(js_err)?);
+        let layer = SliceLayer::new(plane, grid, classes).map_err(js_err)?;
+        let d = self.drawn.edit();
+        d.layer = Some(layer);
+        d.layer_revision = d.layer_revision.wrapping_add(1).max(1);
         Ok(())
     }
 
@@ -68,6 +71,19 @@ impl SpaceDemo {
     /// Hides the atlas.
     #[wasm_bindgen(js_name = clearAtlasLayer)]
     pub fn clear_atlas_layer(&mut self) {
-        self.drawn.edit().layer = None;
+        let d = self.drawn.edit();
+        if d.layer.take().is_some() {
+            d.layer_revision = d.layer_revision.wrapping_add(1).max(1);
+        }
+    }
+
+    /// The shown slice atlas as the 3-D view draws it: `{ corners, colours }`
+    /// (four corners `x, y, z` a cell, one colour a cell), or `null`.
+    #[wasm_bindgen(js_name = layerView)]
+    pub fn layer_view(&self) -> JsResult<JsValue> {
+        match &self.drawn.get().layer {
+            Some(l) => to_js(&l.view()),
+            None => Ok(JsValue::NULL),
+        }
     }
 }
