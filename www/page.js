@@ -130,7 +130,7 @@ async function start() {
     const note = document.getElementById('network-note');
     if (note) note.dataset.original = note.innerHTML;
     followLayout();
-    if (spaceArmOf(location.search)) {
+    if (spaceArmOf(location.search) || new URLSearchParams(location.search).has('robot')) {
       await startSpace();
       return;
     }
@@ -181,13 +181,12 @@ async function start() {
   }
 }
 
-/** The prose that describes the arm, for an arm in space. */
-function describeSpaceArm(preset) {
-  const n = preset.rows.length;
+/** The prose that describes the arm, for an arm in space (`n` joints). */
+function describeSpaceArm(preset, n) {
   const lede = document.getElementById('lede-text');
   if (lede) lede.textContent = `The ${preset.label} moves its hand along a straight line past spheres: the hand's position takes three of its ${word(n)} joints' freedoms, and the planner spends the ${word(n - 3)} spare ones keeping its links clear. Orbit the view, drag the target or a sphere, switch methods.`;
   const see = document.getElementById('what-you-see');
-  if (see) see.textContent = `The ${preset.label} (${preset.source}) drawn in perspective: its links as capsules of the radius the clearance is measured to, the spheres, their shadows on the floor's 0.1 m grid. The hand follows the dashed line to the target at constant speed over the run; its orientation is left free.`;
+  if (see) see.textContent = `The ${preset.label} (${preset.source}) drawn in 3-D: its links as capsules of the radius the clearance is measured to, the spheres, their shadows on the floor's 0.1 m grid. The hand follows the dashed line to the target at constant speed over the run; its orientation is left free.`;
   for (const el of document.querySelectorAll('[data-arm="links"]')) el.textContent = word(n);
 }
 
@@ -197,15 +196,29 @@ async function startSpace() {
   // Fetched only here: the planar page never loads the drawing in space
   // and its panels (about 13 KB gzipped; docs/web.md, "Bytes on the wire").
   const { mountSpace } = await import('./space-demo.js');
+  // A robot of the user's (robot=HASH): read from this browser's storage by
+  // the workers' module; where it cannot be, the first shipped arm, and why.
+  let robot = null;
+  const hash = new URLSearchParams(location.search).get('robot');
+  if (hash !== null) {
+    const { openStored } = await import('./robot-open.js');
+    try {
+      robot = await openStored(hash);
+    } catch (e) {
+      problems.push(`robot: ${describe(e)}`);
+      settings.arm = spacePresets()[0].key;
+    }
+  }
   const controller = await mountSpace(document, {
     ...settings,
+    robot,
     problems,
     problemsLabel: 'Ignored in the address',
     keyboard: document,
     onChange: (s, preset) => writeSpaceAddress(s, preset),
   });
   const preset = controller.preset;
-  describeSpaceArm(preset);
+  describeSpaceArm(preset, controller.state().dof);
   const arms = document.getElementById('arm-preset');
   if (arms) {
     // The designer offers every preset; another arm opens its own page.
@@ -217,17 +230,27 @@ async function startSpace() {
     space.label = 'In space';
     for (const p of spacePresets()) space.append(new Option(p.label, p.key));
     arms.append(plane, space);
+    if (robot) arms.append(new Option(`${preset.label} (your URDF)`, preset.key));
     arms.value = preset.key;
     arms.addEventListener('change', () => (location.search = `?arm=${arms.value}`));
     const lim = document.getElementById('arm-limits');
     const rates = document.getElementById('arm-rates');
     if (lim) Object.assign(lim, { value: formatJointLimits(Float64Array.from(preset.joint_limits.flat())), readOnly: true });
-    if (rates) Object.assign(rates, { value: formatRateLimits(Float64Array.from(preset.rate_limits)), readOnly: true });
+    if (rates) Object.assign(rates, { value: preset.rate_limits ? formatRateLimits(Float64Array.from(preset.rate_limits)) : '', readOnly: true });
     const source = document.createElement('p');
     source.className = 'hint';
     source.id = 'space-arm-source';
     source.textContent = `${preset.label}: ${preset.source}`;
     arms.closest('.row, p, div')?.after(source);
+    if (robot) {
+      // What the reader made of the robot: its chain, joints and limits, volumes, warnings.
+      const { describeRobot } = await import('./robot-open.js');
+      const made = document.createElement('ul');
+      made.id = 'robot-read';
+      made.className = 'hint';
+      for (const line of describeRobot(robot.read)) made.append(Object.assign(document.createElement('li'), { textContent: line }));
+      source.after(made);
+    }
   }
   writeSpaceAddress(controller.state(), preset);
   window.demo = {
@@ -252,7 +275,34 @@ async function startSpace() {
   document.body.dataset.ready = 'true';
 }
 
+/** "Open robot…" (robot-open.js, imported when first used): a .urdf with its meshes opens the page in space on it. */
+function wireOpenRobot() {
+  const button = document.getElementById('open-robot');
+  const input = document.getElementById('robot-files');
+  if (!button || !input) return;
+  button.addEventListener('click', () => input.click());
+  input.addEventListener('change', async () => {
+    if (!input.files?.length) return;
+    const { openFiles } = await import('./robot-open.js');
+    const { messenger } = await import('./messages.js');
+    const { show } = messenger(document);
+    button.disabled = true;
+    show('Reading the robot…', 'info', false, button);
+    try {
+      const link = (id) => document.getElementById(id)?.value.trim() || undefined;
+      const { hash } = await openFiles(input.files, { base: link('robot-base'), tip: link('robot-tip') });
+      location.search = `?robot=${hash}`;
+    } catch (e) {
+      show(`The robot could not be opened: ${describe(e)}`, 'error', true, button);
+    } finally {
+      button.disabled = false;
+      input.value = '';
+    }
+  });
+}
+
 if (isEmbedded()) document.documentElement.dataset.embed = 'true';
+wireOpenRobot();
 wireLede();
 start();
 mountBenchPanel(document);

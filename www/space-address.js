@@ -1,4 +1,5 @@
-// The address of a scene in space (arm=panda or arm=iiwa14): what it asks
+// The address of a scene in space (arm=panda or arm=iiwa14; robot=HASH, a
+// robot of the user's kept in this browser: robot-open.js): what it asks
 // for, and the state written back into it. Keys: arm, method, lambda and
 // the methods' other parameters by name, target=X,Y,Z,
 // obstacles=X,Y,Z,R;X,Y,Z,R (the spheres, m), feedback, weighting, floor,
@@ -77,11 +78,13 @@ const exact = (v) => String(Math.round(v * 1e4) / 1e4);
 /** The query of spatial state `s` (what "Copy link" and the Embed snippets give). */
 export function spaceQuery(s, preset) {
   const q = new URLSearchParams();
-  q.set('arm', s.arm);
+  // A robot of the user's is named by its files' hash (robot-open.js).
+  const [key, value] = preset.address ?? ['arm', s.arm];
+  q.set(key, value);
   q.set('method', s.method);
   if (s.target.some((v, i) => Math.abs(v - preset.task.target[i]) > 1e-9)) q.set('target', s.target.map(exact).join(','));
   const own = preset.task.sphere;
-  const same = s.spheres.length === 1 && s.spheres[0].every((v, i) => Math.abs(v - own[i]) < 1e-9);
+  const same = own ? s.spheres.length === 1 && s.spheres[0].every((v, i) => Math.abs(v - own[i]) < 1e-9) : s.spheres.length === 0;
   if (!same) q.set('obstacles', s.spheres.map((sp) => sp.map(exact).join(',')).join(';'));
   if (s.feedback > 0) q.set('feedback', String(s.feedback));
   if (s.weighting !== limits().joint_weightings[0][0]) q.set('weighting', s.weighting);

@@ -74,10 +74,17 @@ export async function mountSpace(root, options) {
   // three.js arrives while the module starts (a failure is said when the view mounts).
   preloadView().catch(() => {});
   await loadModule();
-  const preset = spacePresets().find((p) => p.key === options.arm);
+  // A shipped arm, or a robot of the user's (robot-open.js: its chain read from its URDF; its own task).
+  const robot = options.robot;
+  const preset = robot ? robot.preset : spacePresets().find((p) => p.key === options.arm);
   const stage = $('stage');
   const plots = $('plots');
-  const demo = new SpaceDemo(stage, plots ?? undefined, preset.key, undefined);
+  const demo = robot ? SpaceDemo.ofChain(stage, plots ?? undefined, preset.key, preset.label, robot.chain, undefined) : new SpaceDemo(stage, plots ?? undefined, preset.key, undefined);
+  if (robot) {
+    const s = demo.state();
+    preset.task = { target: s.target, sphere: null, theta0: s.theta0 };
+    preset.joint_limits = s.joint_limits;
+  }
 
   // The page's own <html> (its stylesheet hides the plane's controls); an
   // element (a shadow root) marks only itself.
@@ -462,7 +469,7 @@ export async function mountSpace(root, options) {
         }
       };
       const own = preset.task;
-      if ('obstacles' in changed) one('obstacles', () => demo.setSpheres(Float64Array.from(changed.obstacles ?? own.sphere)));
+      if ('obstacles' in changed) one('obstacles', () => demo.setSpheres(Float64Array.from(changed.obstacles ?? own.sphere ?? [])));
       if ('target' in changed) one('target', () => demo.setTarget(...(changed.target ?? own.target)));
       for (const [name, value] of Object.entries(changed.params ?? {})) one(name, () => demo.setParam(name, value));
       if ('feedback' in changed) one('feedback', () => demo.setFeedback(changed.feedback ?? 0));

@@ -24,6 +24,12 @@ export function mountSpaceTraining(root, demo, { preset, show, say, installed })
   if (!panel) return { train: () => Promise.reject(new Error('this page has no training panel')) };
   panel.querySelector('summary').textContent = `Train the networks for the ${preset.label}`;
   const intro = panel.querySelector('p');
+  // A robot of the user's: the workers' trainer takes a shipped arm's key; the command line trains any URDF.
+  if (preset.key === 'robot') {
+    if (intro) intro.textContent = `Training in the page takes a shipped arm for now. For the ${preset.label}: redundant-ik train --urdf FILE --net phi (then --net v) writes the two files, which "Use your own network weights" installs here.`;
+    for (const el of panel.querySelectorAll('.field, button, progress, canvas')) el.hidden = true;
+    return { train: () => Promise.reject(new Error(`training in the page takes a shipped arm; the ${preset.label} trains with redundant-ik train --urdf`)) };
+  }
   if (intro) {
     intro.textContent =
       `Adam training of the Φ and v networks of the ${preset.label}, as redundant-ik train --arm ${preset.key} does it, ` +

@@ -27,6 +27,9 @@
 //       both at once in two workers): its weights file as JSON text
 //   { kind: 'conclude', wasm, request, phi, v }
 //       the check and report of a request whose networks were trained so
+//   { kind: 'robot', wasm, urdf, base, tip, meshes: { name: Uint8Array } }
+//       a robot's URDF read into the chain SpaceDemo.ofChain runs, with what
+//       the reader made of it (src/web/robot.rs, readRobot)
 //   { kind: 'run-files', wasm, run }
 //       a run as the JSON of `simulate --json`, CSV, and its figures as SVG
 //   { kind: 'atlas-files', wasm, atlas, scene, methods }
@@ -56,6 +59,7 @@ import init, {
   benchSpaceStep,
   benchSpaceForward,
   runFiles,
+  readRobot,
   atlasFiles,
   spaceFigure,
   spacePlots,
@@ -190,6 +194,7 @@ self.onmessage = async ({ data }) => {
     else if (data.kind === 'space-train') result = trainSpace(data);
     else if (data.kind === 'conclude') result = concludeTraining(data.request, data.phi, data.v);
     else if (data.kind === 'run-files') result = runFiles(data.run);
+    else if (data.kind === 'robot') result = readRobot(data.urdf, data.base ?? undefined, data.tip ?? undefined, data.meshes ?? {});
     else if (data.kind === 'atlas-files') result = atlasFiles(data.atlas, data.scene, data.methods ?? []);
     else throw new Error(`unknown job '${data.kind}'`);
     self.postMessage({ type: 'done', result, ms: performance.now() - t0 });

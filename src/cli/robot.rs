@@ -375,24 +375,18 @@ pub fn check_source(source: Option<&RobotSource>, chain: &Chain) -> Result<(), S
     source.check(chain).map_err(|e| e.to_string())
 }
 
-/// Where a robot's own line ends for a hand at `start`: 0.15 m along `y`.
-pub fn own_line_end(start: [f64; 3]) -> [f64; 3] {
-    [start[0], start[1] + 0.15, start[2]]
-}
-
 /// `scene`'s target moved to the end of the robot's own line from where
 /// its start pose puts the hand (after `--theta0`); refused where the
 /// scene then does not validate.
 pub fn own_line_from_start(scene: &mut redundant_ik::scene::SpaceScene) -> Result<(), String> {
-    scene.target = own_line_end(scene.start());
+    scene.target = redundant_ik::scene::own_line_end(scene.start());
     scene.validate().map_err(|e| e.to_string())
 }
 
 /// The robot of the URDF at `path` (its chain as `chain` picks it, the
-/// limits of `joint_limits` where given) and its own scene: it starts at
-/// the middle of its joints' ranges (within +-pi), its hand's line runs
-/// 0.15 m along `y`, no sphere, `dt = 0.05 s`, `tf = 5 s`. The reader's
-/// warnings go to stderr.
+/// limits of `joint_limits` where given) and its own scene
+/// ([`SpaceScene::own`](redundant_ik::scene::SpaceScene::own)). The
+/// reader's warnings go to stderr.
 pub fn urdf_scene(
     path: &Path,
     options: &ChainArgs,
@@ -427,34 +421,7 @@ pub fn urdf_scene(
             tip: options.tip.clone(),
         },
     };
-    let theta0: Vec<f64> = chain
-        .joint_limits()
-        .map(|l| {
-            l.ranges()
-                .iter()
-                .map(|[lo, hi]| {
-                    (0.5 * (lo + hi)).clamp(-std::f64::consts::PI, std::f64::consts::PI)
-                })
-                .collect()
-        })
-        .unwrap_or_else(|| vec![0.0; chain.dof()]);
-    let start = redundant_ik::space::SpacePose::new(&chain, &theta0)
-        .map_err(|e| e.to_string())?
-        .hand();
-    let scene = redundant_ik::scene::SpaceScene {
-        arm: chain,
-        theta0,
-        target: own_line_end(start),
-        path: redundant_ik::scene::SpacePath::Line,
-        obstacles: Vec::new(),
-        damping: None,
-        dt: 0.05,
-        tf: 5.0,
-        feedback_gain: 0.0,
-        params: redundant_ik::scene::Params::default(),
-        weighting: redundant_ik::scene::JointWeighting::None,
-        floor: false,
-    };
+    let scene = redundant_ik::scene::SpaceScene::own(chain).map_err(|e| e.to_string())?;
     Ok(UrdfRobot {
         robot,
         scene,

@@ -376,3 +376,16 @@ impl Surrogate for Networks {
             && self.v_in_range_raw(pose.theta(), pose.sin()[0], pose.cos()[0], o)
     }
 }
+
+/// A chain from its JSON text (the layout a weights file or a run file
+/// writes), checked as its constructors check it: by serde's derived reader
+/// in the tool, by hand ([`reader`]'s reader of spatial weights files) in
+/// the wasm modules, which have no serde reader of a chain. The page's
+/// module reads a robot the workers' module made of a URDF so.
+pub fn chain_from_json(json: &str) -> Result<crate::space::Chain> {
+    #[cfg(feature = "cli")]
+    let read = serde_json::from_str::<crate::space::Chain>(json).map_err(|e| e.to_string());
+    #[cfg(not(feature = "cli"))]
+    let read = reader::space::read_chain(json);
+    read.map_err(|e| Error::Weights(format!("a chain: {e}")))
+}

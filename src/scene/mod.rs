@@ -24,7 +24,7 @@ pub(crate) use params::validate_gain;
 pub use params::{Param, Params, Scale, MAX_GAIN_STEP};
 pub use path::{Path, DRAWN_SPACING, MAX_LAPS, MAX_POINTS, MIN_RADIUS};
 pub use pose::{PoseScene, ORIENTATION_WEIGHT};
-pub use space::SpaceScene;
+pub use space::{own_line_end, SpaceScene};
 pub(crate) use space_path::circle_plane;
 pub use space_path::{SpacePath, MIN_NORMAL_SINE};
 pub use weighting::JointWeighting;

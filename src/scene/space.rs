@@ -12,6 +12,11 @@ use crate::space::{Chain, SpacePose, SpacePreset, Sphere, Vec3, MAX_SPHERES};
 /// [`SpacePath`] past spheres.
 pub type SpaceScene = Scene<Chain, SpacePath, 3>;
 
+/// Where a robot's own line ends for a hand at `start`: 0.15 m along `y`.
+pub fn own_line_end(start: Vec3) -> Vec3 {
+    [start[0], start[1] + 0.15, start[2]]
+}
+
 impl SpaceScene {
     /// The preset's own task: its ready pose, line and sphere, `dt = 0.05
     /// s`, `tf = 5 s`, every parameter at its default.
@@ -31,6 +36,41 @@ impl SpaceScene {
             weighting: JointWeighting::None,
             floor: false,
         }
+    }
+
+    /// The own task of a robot that has none of its own (a chain read from
+    /// URDF, by the command line or in the page): it starts at the middle
+    /// of its joints' ranges (each within +-pi; zero without limits), its
+    /// hand's line runs 0.15 m along `y` ([`own_line_end`]), no sphere,
+    /// `dt = 0.05 s`, `tf = 5 s`, every parameter at its default. Refused
+    /// where that start is not a pose of the chain.
+    pub fn own(arm: Chain) -> Result<Self> {
+        let theta0: Vec<f64> = arm
+            .joint_limits()
+            .map(|l| {
+                l.ranges()
+                    .iter()
+                    .map(|[lo, hi]| {
+                        (0.5 * (lo + hi)).clamp(-std::f64::consts::PI, std::f64::consts::PI)
+                    })
+                    .collect()
+            })
+            .unwrap_or_else(|| vec![0.0; arm.dof()]);
+        let start = SpacePose::new(&arm, &theta0)?.hand();
+        Ok(Self {
+            arm,
+            theta0,
+            target: own_line_end(start),
+            path: SpacePath::Line,
+            obstacles: Vec::new(),
+            damping: None,
+            dt: 0.05,
+            tf: 5.0,
+            feedback_gain: 0.0,
+            params: Params::default(),
+            weighting: JointWeighting::None,
+            floor: false,
+        })
     }
 
     /// The preset called `key`'s task.

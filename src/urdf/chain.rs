@@ -293,7 +293,7 @@ fn only_leaf(urdf: &Urdf, base: &str) -> Result<String> {
     match leaves[..] {
         [one] => Ok(one.to_string()),
         _ => Err(refuse(format!(
-            "the tree below '{}' has the leaves {}: name the tip (--tip LINK)",
+            "the tree below '{}' has the leaves {}: name the tip link (--tip LINK; the page's Tip link)",
             clip(base),
             names(&leaves)
         ))),

@@ -34,6 +34,8 @@ mod lab;
 mod layer;
 #[cfg(feature = "page")]
 mod plots;
+#[cfg(feature = "worker")]
+mod robot;
 #[cfg(feature = "page")]
 mod scene;
 #[cfg(feature = "worker")]
@@ -71,6 +73,8 @@ use crate::networks::{self, NetworkSet};
 
 #[cfg(feature = "page")]
 pub use demo::Demo;
+#[cfg(feature = "worker")]
+pub use robot::read_robot;
 #[cfg(feature = "worker")]
 pub use space_atlas::SpaceAtlasJob;
 #[cfg(feature = "worker")]

@@ -9,6 +9,7 @@ use web_sys::HtmlCanvasElement;
 use super::space_stage::{self, SliceLayer};
 
 mod layer;
+mod robot;
 mod script;
 mod view;
 use super::surface::Surface;
@@ -69,6 +70,25 @@ impl SpaceDemo {
         let d = self.drawn.get();
         d.session.projection(d.stage.width, d.stage.height)
     }
+
+    /// `session` drawn on `stage`, its plots on `plots` if given.
+    fn with_session(
+        stage: HtmlCanvasElement,
+        plots: Option<HtmlCanvasElement>,
+        session: SpaceSession,
+    ) -> JsResult<SpaceDemo> {
+        Ok(Self {
+            drawn: Tracked::new(Drawn {
+                session,
+                stage: Surface::new(stage)?,
+                plots: plots.map(Surface::new).transpose()?,
+                layer: None,
+                layer_revision: 0,
+                keyboard: false,
+                shown: space_stage::Shown::default(),
+            }),
+        })
+    }
 }
 
 #[wasm_bindgen]
@@ -88,17 +108,7 @@ impl SpaceDemo {
             None => Method::NUMERICAL,
         };
         let session = SpaceSession::new(arm, method).map_err(js_err)?;
-        Ok(Self {
-            drawn: Tracked::new(Drawn {
-                session,
-                stage: Surface::new(stage)?,
-                plots: plots.map(Surface::new).transpose()?,
-                layer: None,
-                layer_revision: 0,
-                keyboard: false,
-                shown: space_stage::Shown::default(),
-            }),
-        })
+        Self::with_session(stage, plots, session)
     }
 
     /// The weights files' text of the arm's networks; `set` names the

@@ -13,7 +13,7 @@
 //
 // The tests live in one file per part of the page, registered in this order:
 // stage.mjs, methods.mjs, page.mjs, atlas.mjs, module.mjs, playground.mjs,
-// hostile.mjs, reach.mjs, runs.mjs, self-motion.mjs, paths.mjs, embed.mjs (embedding from the page), a11y.mjs (accessibility: axe-core, the live region, phone, projector), view.mjs (the view holds the reach; zoom, pan, Fit), the page in space (space.mjs, space-controls.mjs, embed-space.mjs) and its 3-D view (view3d.mjs), then the page for a class (class.mjs)
+// hostile.mjs, reach.mjs, runs.mjs, self-motion.mjs, paths.mjs, embed.mjs (embedding from the page), a11y.mjs (accessibility: axe-core, the live region, phone, projector), view.mjs (the view holds the reach; zoom, pan, Fit), the page in space (space.mjs, space-controls.mjs, embed-space.mjs) its 3-D view (view3d.mjs) and a robot of the user's (robot.mjs), then the page for a class (class.mjs)
 // and the arm's joint limits (limits.mjs) and the lab's page (lab.mjs); harness.mjs
 // holds the browser and the helpers they share.
 
@@ -36,6 +36,7 @@ import './space.mjs';
 import './space-controls.mjs';
 import './embed-space.mjs';
 import './view3d.mjs';
+import './robot.mjs';
 import { classTests } from './class.mjs';
 import { limitsTests } from './limits.mjs';
 import { labTests } from './lab.mjs';

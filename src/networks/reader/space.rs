@@ -93,6 +93,18 @@ fn chain(v: Json) -> Read<Chain> {
         .optional("volumes", |v| list(v, link_volume))?
         .unwrap_or_default();
     let (joint_limits, rate_limits) = limits(&mut f)?;
+    let flange_rotation = f.optional("flange_rotation", |v| {
+        let [a, b, c]: [Json; 3] = array(v)?;
+        Ok([triple(a)?, triple(b)?, triple(c)?])
+    })?;
+    let self_pairs = f
+        .optional("self_pairs", |v| {
+            list(v, |p| {
+                let [a, b]: [Json; 2] = array(p)?;
+                Ok([count(a)?, count(b)?])
+            })
+        })?
+        .unwrap_or_default();
     f.done()?;
     let chain = match (rows.is_empty(), joints.is_empty(), volumes.is_empty()) {
         (false, true, true) => Chain::placed(base.0, base.1, rows, flange, radius),
@@ -103,6 +115,16 @@ fn chain(v: Json) -> Read<Chain> {
     };
     chain
         .and_then(|c| c.with_limits(joint_limits, rate_limits))
+        .and_then(|c| match flange_rotation {
+            Some(r) => c.with_flange_rotation(r),
+            None => Ok(c),
+        })
+        .and_then(|mut c| {
+            if !self_pairs.is_empty() {
+                c.set_self_pairs(self_pairs)?;
+            }
+            Ok(c)
+        })
         .map_err(|e| e.to_string())
 }
 
@@ -173,4 +195,13 @@ pub(crate) fn read(json: &str) -> Read<SpaceWeightsFile> {
     };
     f.done()?;
     file.into_current().map_err(|e| e.to_string())
+}
+
+/// A chain from its JSON text, as a weights file or a run file writes it
+/// (serde's layout of [`Chain`]), read by hand: the page's module reads a
+/// robot the workers' module made of a URDF so, without serde's derived
+/// reader ([`crate::space::Chain::from_json`]).
+pub(crate) fn read_chain(json: &str) -> Read<Chain> {
+    let tree: Json = serde_json::from_str(json).map_err(|e| e.to_string())?;
+    chain(tree)
 }

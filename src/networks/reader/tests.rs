@@ -228,3 +228,32 @@ fn the_page_reads_the_spatial_weights_files_as_the_derived_reader_does() {
     }
     assert_eq!(n, 2, "the Panda's two files");
 }
+
+/// A chain read from URDF, with a tip's fixed rotation and self pairs, as
+/// the workers' module hands it to the page: the page's reader by hand
+/// reads it back equal, and refuses what the derived reader refuses.
+#[test]
+fn a_urdf_chain_reads_back_by_hand_with_its_flange_rotation_and_self_pairs() {
+    use crate::urdf::{volume, Urdf, UrdfChain};
+    let text = std::fs::read_to_string("robots/ur5e.urdf").expect("the UR5e's URDF");
+    let urdf = Urdf::parse(&text).expect("it reads");
+    let uc = UrdfChain::new(&urdf, None, None).expect("one chain");
+    let (volumes, _) = volume::volumes(&urdf, &uc, &|_: &str| None, 0.05);
+    let chain = uc.to_chain(&volumes, None).expect("a chain");
+    let chain = chain
+        .with_flange_rotation([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+        .expect("a rotation");
+    let zero = vec![0.0; chain.dof()];
+    let chain = chain
+        .with_self_collision(&[], &[&zero])
+        .expect("self pairs");
+    assert!(!chain.self_pairs().is_empty());
+    let json = serde_json::to_string(&chain).unwrap();
+    assert!(json.contains("flange_rotation") && json.contains("self_pairs"));
+    assert_eq!(
+        super::space::read_chain(&json).expect("read by hand"),
+        chain
+    );
+    assert!(super::space::read_chain(&json.replacen('{', "{\"extra\": 1, ", 1)).is_err());
+    assert!(super::space::read_chain(&json.replacen("\"radius\"", "\"radios\"", 1)).is_err());
+}

@@ -93,7 +93,7 @@ impl SpaceSession {
             return Err(Error::NetworksUnavailable(format!(
                 "{} needs networks for the {}: they have not loaded",
                 method.label(),
-                self.preset.label
+                self.robot.label
             )));
         }
         let nets = self.networks.clone().map(|n| n as Networks<_, 3>);

@@ -34,12 +34,12 @@ use crate::nn::Precision;
 use crate::planner::methods::Method;
 use crate::planner::{Networks, Planner, Sample, Summary, Trajectory};
 use crate::scene::SpaceScene;
-use crate::space::{Chain, SpacePose, SpacePreset, Vec3, PRESETS};
+use crate::space::{Chain, SpacePose, Vec3, PRESETS};
 
 /// A spatial run played on the page: see the module documentation.
 #[derive(Clone)]
 pub struct SpaceSession {
-    preset: &'static SpacePreset,
+    robot: SessionRobot,
     scene: SpaceScene,
     method: Method,
     networks: Option<Arc<SpaceNetworks>>,
@@ -72,6 +72,15 @@ pub struct SpaceSession {
     runs: u64,
 }
 
+/// The robot a session shows: its key and name as the page says them, and
+/// its own task (what Task loads).
+#[derive(Debug, Clone)]
+struct SessionRobot {
+    key: String,
+    label: String,
+    task: SpaceScene,
+}
+
 impl SpaceSession {
     /// The preset `key`'s task (`panda`, `iiwa14`) in `method`, paused at
     /// `t = 0`; learned methods need [`SpaceSession::install_networks`]
@@ -85,11 +94,25 @@ impl SpaceSession {
                 name: key.into(),
                 choices: crate::error::choices(&PRESETS.iter().map(|p| p.key).collect::<Vec<_>>()),
             })?;
-        let scene = SpaceScene::preset(preset);
+        Self::of_robot(preset.key, preset.label, SpaceScene::preset(preset), method)
+    }
+
+    /// A robot of the user's (a chain read from URDF): `key` and `label`
+    /// name it, `task` is its own task ([`SpaceScene::own`]), which the
+    /// session starts with and Task loads; refused where the task does not
+    /// validate.
+    pub fn of_robot(key: &str, label: &str, task: SpaceScene, method: Method) -> Result<Self> {
+        task.validate()?;
+        let scene = task.clone();
+        let robot = SessionRobot {
+            key: key.into(),
+            label: label.into(),
+            task,
+        };
         let pose = SpacePose::new(&scene.arm, &scene.theta0)?;
         let home = Camera::looking_at(home_focus(&scene), 1.8 * scene.arm.reach().max(0.3));
         let mut s = Self {
-            preset,
+            robot,
             scene,
             method: Method::NUMERICAL,
             networks: None,
@@ -115,9 +138,15 @@ impl SpaceSession {
         Ok(s)
     }
 
-    /// The preset.
-    pub fn preset(&self) -> &'static SpacePreset {
-        self.preset
+    /// The robot's key (a preset's, `panda`; or the name given a robot of
+    /// the user's).
+    pub fn robot_key(&self) -> &str {
+        &self.robot.key
+    }
+
+    /// The robot's name as the page says it (`Franka Panda`).
+    pub fn robot_label(&self) -> &str {
+        &self.robot.label
     }
 
     /// The scene.
@@ -207,7 +236,7 @@ impl SpaceSession {
             return Err(Error::NetworksUnavailable(format!(
                 "{} needs networks for the {}: they have not loaded",
                 method.label(),
-                self.preset.label
+                self.robot.label
             )));
         }
         self.method = method;
@@ -215,10 +244,10 @@ impl SpaceSession {
         Ok(())
     }
 
-    /// Back to the preset's own task (its target, sphere and settings), the
+    /// Back to the robot's own task (its target, sphere and settings), the
     /// method and networks kept.
     pub fn load_task(&mut self) -> Result<()> {
-        self.scene = SpaceScene::preset(self.preset);
+        self.scene = self.robot.task.clone();
         self.selected = SpaceHandle::Target;
         self.index = 0;
         self.recompute();

@@ -18,9 +18,9 @@ pub struct SpaceState<'a> {
     /// `"space"`: what tells the page's code this snapshot from the plane's.
     pub kind: &'static str,
     /// The preset's key (`panda`, `iiwa14`) and what a menu says of it.
-    pub arm: &'static str,
+    pub arm: &'a str,
     /// See `arm`.
-    pub arm_label: &'static str,
+    pub arm_label: &'a str,
     /// The number of joints.
     pub dof: usize,
     /// Method name.
@@ -143,8 +143,8 @@ impl SpaceSession {
         let c = &self.camera;
         SpaceState {
             kind: "space",
-            arm: self.preset.key,
-            arm_label: self.preset.label,
+            arm: &self.robot.key,
+            arm_label: &self.robot.label,
             dof: self.scene.arm.dof(),
             method: self.method.name(),
             network_set: self.network_set.map(|s| s.name()),

@@ -1,0 +1,121 @@
+// A robot of the user's in the page (robot-open.js): a URDF, with its STL
+// meshes, chosen through "Open robot…" is read by the workers' module,
+// kept in this browser under its content hash and opened as `?robot=HASH`
+// (a reload opens it again); the page says what the reader made of it; a
+// qp run of it, saved as the run file, replays with `simulate --from`; a
+// refused file leaves the page working with the reader's own message.
+// Registered by e2e.mjs.
+
+import assert from 'node:assert/strict';
+import { writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { test, open, clean, state, shots } from './harness.mjs';
+import { cli, download, scratch } from './class-helpers.mjs';
+
+/** Chooses `files` in "Open robot…" on `page` and waits for the robot's page. */
+async function openRobot(page, files) {
+  await page.click('#arm-panel summary');
+  await Promise.all([page.waitForURL(/[?&]robot=[0-9a-f]{16}/, { timeout: 30000 }), page.setInputFiles('#robot-files', files)]);
+  await page.waitForSelector('body[data-ready="true"]', { timeout: 30000 });
+}
+
+test('your robot: the UR5e from its URDF through Open robot…, what the reader made of it, a reload, and a qp run replayed by simulate --from', async () => {
+  const page = await open('?task=1&method=numerical');
+  await openRobot(page, 'robots/ur5e.urdf');
+  const s = await state(page);
+  assert.deepEqual([s.kind, s.arm, s.arm_label, s.dof], ['space', 'robot', 'ur5e', 6]);
+  assert.equal(s.spheres.length, 0, 'its own task has no sphere');
+  const read = await page.textContent('#robot-read');
+  assert.match(read, /ur5e: 6 moving joints from base_link to flange/);
+  assert.match(read, /shoulder_pan \(revolute, -360° to 360°\)/);
+  assert.match(read, /6 capsules/);
+  assert.match(await page.textContent('#space-arm-source'), /your URDF ur5e\.urdf/);
+  assert.equal(await page.inputValue('#arm-preset'), 'robot');
+  // The 3-D view draws its six joints and its links.
+  assert.equal(await page.evaluate(() => window.demo.controller.demo.view().joints.length), 8);
+  // Kept in this browser: a reload opens it again, with the scene in the address.
+  const hash = new URL(page.url()).searchParams.get('robot');
+  await page.evaluate(() => window.demo.controller.demo.setSpheres(Float64Array.of(-0.6, 0, 0.2, 0.05)));
+  await page.evaluate(() => window.demo.runUntil(0));
+  await page.reload();
+  await page.waitForSelector('body[data-ready="true"]', { timeout: 30000 });
+  const again = await state(page);
+  assert.equal(again.arm_label, 'ur5e');
+  assert.equal(new URL(page.url()).searchParams.get('robot'), hash, 'the address names the same hash');
+  // A qp run to its end, saved and replayed by the command line.
+  await page.selectOption('#mode', 'qp');
+  const end = await page.evaluate(() => window.demo.runUntil(1e9));
+  assert.equal(end.failure, null);
+  assert.ok(end.ended);
+  const json = await download(page, '#save-run-json');
+  const run = JSON.parse(json.text);
+  assert.equal(run.method, 'qp');
+  assert.equal(run.scene.arm.joints.length, 6, 'the file carries the chain read from the URDF');
+  const back = JSON.parse(cli(['simulate', '--from', json.path, '--json']));
+  assert.equal(back.steps.length, run.steps.length);
+  let worst = 0;
+  back.steps.forEach((st, k) => st.theta.forEach((v, i) => (worst = Math.max(worst, Math.abs(v - run.steps[k].theta[i])))));
+  assert.ok(worst < 1e-9, `simulate --from replays the page's run to ${worst} rad`);
+  await page.locator('#stage').screenshot({ path: join(shots, 'robot-ur5e.png') });
+  clean(page);
+  await page.close();
+});
+
+test('your robot: a URDF with an STL mesh (its volume fitted around the mesh), a mesh not chosen said as a warning', async () => {
+  const page = await open('?arm=panda&method=numerical&autoplay=0');
+  // Its tree has two leaves: the reader asks for the tip, which the page's field names.
+  await page.click('#arm-panel summary');
+  await page.setInputFiles('#robot-files', ['tests/data/urdf/slider_arm.urdf', 'tests/data/urdf/meshes/forearm.stl']);
+  await page.waitForFunction(() => /name the tip link/.test(document.getElementById('message')?.textContent ?? ''), null, { timeout: 30000 });
+  assert.match(await page.textContent('#message'), /the leaves 'camera', 'tool'.*Tip link/);
+  await page.fill('#robot-tip', 'tool');
+  await Promise.all([page.waitForURL(/[?&]robot=[0-9a-f]{16}/, { timeout: 30000 }), page.setInputFiles('#robot-files', ['tests/data/urdf/slider_arm.urdf', 'tests/data/urdf/meshes/forearm.stl'])]);
+  await page.waitForSelector('body[data-ready="true"]', { timeout: 30000 });
+  const s = await state(page);
+  assert.equal(s.arm, 'robot');
+  const read = await page.textContent('#robot-read');
+  assert.match(read, /1 fitted around meshes/);
+  assert.match(read, /Warning: .*missing\.stl/);
+  assert.match(read, /prismatic/);
+  clean(page);
+  await page.close();
+});
+
+test('your robot: hostile and wrong files are refused with the reader\'s own message, and the page goes on', async () => {
+  const page = await open('?arm=panda&method=qp&autoplay=0');
+  await page.click('#arm-panel summary');
+  const bad = [
+    ['entity.urdf', '<?xml version="1.0"?><!DOCTYPE r [<!ENTITY a "aaaaaaaaaa">]><robot name="r">&a;</robot>', /DTD|document type|entit/i],
+    ['broken.urdf', '<robot name="r"><link name="a"></robot>', /robot could not be opened/],
+    ['floating.urdf', '<robot name="r"><link name="a"/><link name="b"/><joint name="j" type="floating"><parent link="a"/><child link="b"/></joint></robot>', /floating/],
+    ['notes.txt', 'hello', /no \.urdf file was chosen/],
+  ];
+  for (const [name, text, why] of bad) {
+    const path = join(scratch, name);
+    writeFileSync(path, text);
+    await page.setInputFiles('#robot-files', path);
+    await page.waitForFunction(() => /could not be opened/.test(document.getElementById('message')?.textContent ?? ''), null, { timeout: 30000 });
+    const message = await page.textContent('#message');
+    assert.match(message, why, `${name}: ${message}`);
+    assert.doesNotMatch(page.url(), /robot=/, `${name} opened nothing`);
+    await page.evaluate(() => (document.getElementById('message').textContent = ''));
+  }
+  // Two URDFs at once are refused by name.
+  await page.setInputFiles('#robot-files', ['robots/ur5e.urdf', 'robots/panda.urdf']);
+  await page.waitForFunction(() => /2 URDF files/.test(document.getElementById('message')?.textContent ?? ''), null, { timeout: 30000 });
+  // The page still runs its Panda.
+  const s = await page.evaluate(() => window.demo.runUntil(1e9));
+  assert.equal(s.arm, 'panda');
+  assert.ok(s.ended);
+  clean(page);
+  await page.close();
+});
+
+test('your robot: an address naming a robot this browser has not kept opens the first shipped arm and says why', async () => {
+  const page = await open('?robot=0123456789abcdef&method=qp');
+  const s = await state(page);
+  assert.equal(s.arm, 'panda');
+  assert.match(await page.textContent('#message'), /robot: the robot 0123456789abcdef is not in this browser's storage/);
+  clean(page);
+  await page.close();
+});

@@ -1,0 +1,132 @@
+// A robot of the user's: "Open robot…" takes a .urdf file with the STL
+// mesh files its collision geometry names (several files, or a folder);
+// the workers' module reads them (readRobot, src/web/robot.rs: the URDF
+// reader stays out of the page's module) into the chain SpaceDemo.ofChain
+// runs. The files are kept in this browser's IndexedDB under their content
+// hash (SHA-256 of the URDF and the meshes, 16 hex digits), and the page
+// opens `?robot=HASH`: a reload, or the same link in this browser, opens
+// the robot again. A run file carries the chain itself, so `simulate
+// --from` replays a run of it on any machine.
+
+import { runWorker } from './jobs.js';
+
+const DB = 'redundant-ik-robots';
+const STORE = 'robots';
+/** Largest URDF, and all files together, the page takes (bytes): the reader's own limit is 8 MB a URDF. */
+const MAX_URDF = 8 << 20;
+const MAX_TOTAL = 64 << 20;
+/** The hash an address names: 16 hexadecimal digits. */
+export const ROBOT_HASH = /^[0-9a-f]{16}$/;
+
+function database() {
+  return new Promise((resolve, reject) => {
+    const open = indexedDB.open(DB, 1);
+    open.onupgradeneeded = () => open.result.createObjectStore(STORE);
+    open.onsuccess = () => resolve(open.result);
+    open.onerror = () => reject(new Error(`this browser's storage refused to open (${open.error?.message ?? 'IndexedDB'})`));
+  });
+}
+
+async function transact(mode, fn) {
+  const db = await database();
+  try {
+    return await new Promise((resolve, reject) => {
+      const tx = db.transaction(STORE, mode);
+      const req = fn(tx.objectStore(STORE));
+      tx.oncomplete = () => resolve(req?.result);
+      tx.onerror = () => reject(new Error(`this browser's storage failed: ${tx.error?.message ?? 'IndexedDB'}`));
+    });
+  } finally {
+    db.close();
+  }
+}
+
+/** The stored robot `hash` ({ name, urdf, meshes: { name: Uint8Array }, base, tip }), or null. */
+export async function storedRobot(hash) {
+  if (!ROBOT_HASH.test(hash)) return null;
+  return (await transact('readonly', (s) => s.get(hash))) ?? null;
+}
+
+/** The content hash of a robot's files: 16 hex digits of SHA-256 over the URDF and each mesh's name and bytes. */
+async function contentHash(urdf, meshes) {
+  const enc = new TextEncoder();
+  const parts = [enc.encode(urdf)];
+  for (const name of Object.keys(meshes).sort()) parts.push(enc.encode(`\0${name}\0`), meshes[name]);
+  const all = new Uint8Array(parts.reduce((n, p) => n + p.length, 0));
+  let at = 0;
+  for (const p of parts) {
+    all.set(p, at);
+    at += p.length;
+  }
+  const digest = new Uint8Array(await crypto.subtle.digest('SHA-256', all));
+  return [...digest.slice(0, 8)].map((b) => b.toString(16).padStart(2, '0')).join('');
+}
+
+/**
+ * The robot's files read by the workers' module: resolves to readRobot's
+ * result ({ name, base, tip, chain, joints, volumes, warnings }) or
+ * rejects with the reader's message.
+ */
+export async function readRobot({ urdf, meshes, base, tip }) {
+  const { result } = await runWorker({ kind: 'robot', urdf, meshes, base: base || null, tip: tip || null });
+  return result;
+}
+
+/**
+ * The files a person chose (a .urdf and its meshes): read, checked by the
+ * reader, stored; resolves to { hash, read }. Rejects with a message that
+ * says what is wrong (no URDF, two, too large, the reader's own).
+ */
+export async function openFiles(files, { base, tip } = {}) {
+  const list = [...files];
+  const urdfs = list.filter((f) => /\.(urdf|xml)$/i.test(f.name));
+  if (urdfs.length !== 1) throw new Error(urdfs.length ? `${urdfs.length} URDF files were chosen (${urdfs.map((f) => f.name).join(', ')}): choose one, with its mesh files` : 'no .urdf file was chosen: choose the robot\'s .urdf with its mesh files');
+  const total = list.reduce((n, f) => n + f.size, 0);
+  if (urdfs[0].size > MAX_URDF) throw new Error(`${urdfs[0].name} has ${urdfs[0].size} bytes, more than the ${MAX_URDF} a URDF may have`);
+  if (total > MAX_TOTAL) throw new Error(`the files have ${total} bytes together, more than the ${MAX_TOTAL} the page takes`);
+  const urdf = await urdfs[0].text();
+  const meshes = {};
+  for (const f of list) if (f !== urdfs[0] && /\.stl$/i.test(f.name)) meshes[f.name] = new Uint8Array(await f.arrayBuffer());
+  const read = await readRobot({ urdf, meshes, base, tip });
+  const hash = await contentHash(urdf, meshes);
+  await transact('readwrite', (s) => s.put({ name: read.name, urdf, meshes, base: base || null, tip: tip || null, file: urdfs[0].name }, hash));
+  return { hash, read };
+}
+
+/**
+ * The page's options for the stored robot `hash` (`?robot=HASH`): { hash,
+ * chain, read, preset } (`preset` what the page in space reads of a
+ * shipped arm's: key, label, source, its own task filled in by the page),
+ * or a rejection that says why (not in this browser's storage, or the
+ * reader's message).
+ */
+export async function openStored(hash) {
+  const record = await storedRobot(hash);
+  if (!record) throw new Error(`the robot ${String(hash).slice(0, 16)} is not in this browser's storage (robots opened here are kept where they were opened): open its URDF again with "Open robot…"`);
+  const read = await readRobot(record);
+  const preset = {
+    key: 'robot',
+    label: read.name,
+    source: `your URDF ${record.file ?? ''}, ${read.joints.length} joints from ${read.base} to ${read.tip}, kept in this browser as ${hash}`,
+    address: ['robot', hash],
+    rate_limits: null,
+    task: null,
+  };
+  return { hash, chain: read.chain, read, preset };
+}
+
+/** What the reader made of a robot, as a few lines for the page (the chain, its joints and limits, the volumes, the warnings). */
+export function describeRobot(read) {
+  const deg = (v) => `${Math.round((v * 180) / Math.PI)}°`;
+  const joints = read.joints.map((j) => {
+    const range = j.limits ? (j.kind === 'prismatic' ? `${j.limits[0]} to ${j.limits[1]} m` : `${deg(j.limits[0])} to ${deg(j.limits[1])}`) : 'no limits';
+    return `${j.name} (${j.kind}, ${range})`;
+  });
+  const meshes = read.volumes.filter((v) => v.source.startsWith('mesh')).length;
+  return [
+    `${read.name}: ${read.joints.length} moving joints from ${read.base} to ${read.tip}.`,
+    `Joints: ${joints.join('; ')}.`,
+    `Collision volumes: ${read.volumes.length} capsules (${meshes} fitted around meshes), radius ${Math.min(...read.volumes.map((v) => v.radius)).toFixed(3)} to ${Math.max(...read.volumes.map((v) => v.radius)).toFixed(3)} m.`,
+    ...read.warnings.map((w) => `Warning: ${w}`),
+  ];
+}
