@@ -72,6 +72,67 @@ fn the_pandas_urdf_runs_its_task_as_the_preset_does() {
 /// The hand's frame and its whole `6 x n` Jacobian (the pose task's:
 /// linear and angular velocity, world-aligned) of every robot Pinocchio
 /// read, the test arm's prismatic joint included.
+/// Where a drawing puts a link's visuals, the chain model's joint frame
+/// times `UrdfChain::link_frames`' frame, is the link's frame as Pinocchio
+/// places it: for every moving joint's child link of the four files at
+/// Pinocchio's poses, to 1e-9 (the page's 3-D view places its meshes so).
+#[test]
+fn every_links_frame_placed_on_the_chain_model_is_pinocchios() {
+    let text = std::fs::read_to_string(format!("{ROOT}/tests/data/urdf/pinocchio.json")).unwrap();
+    let data: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let mut worst: f64 = 0.0;
+    let mut links = 0;
+    for f in data["files"].as_array().unwrap() {
+        let path = f["file"].as_str().unwrap();
+        let tip = (!path.starts_with("robots/")).then(|| f["tip"].as_str().unwrap());
+        let urdf =
+            Urdf::parse(&std::fs::read_to_string(format!("{ROOT}/{path}")).unwrap()).unwrap();
+        let uc = UrdfChain::new(&urdf, None, tip).unwrap();
+        let c = chain(path, tip).unwrap();
+        let placed = uc.link_frames();
+        for run in f["runs"].as_array().unwrap() {
+            let q: Vec<f64> = serde_json::from_value(run["q"].clone()).unwrap();
+            let pose = SpacePose::new(&c, &q).unwrap();
+            let joints = run["joints"].as_array().unwrap();
+            for (k, j) in uc.joints.iter().enumerate() {
+                // The joint's child link: the one it moves whose frame is the joint's own.
+                let child = urdf
+                    .joints
+                    .iter()
+                    .find(|u| u.name == j.name)
+                    .unwrap()
+                    .child
+                    .clone();
+                let (_, moved_by, frame) = placed.iter().find(|(n, _, _)| *n == child).unwrap();
+                assert_eq!(*moved_by, k + 1, "{path}: {child}");
+                let axes = pose.frame(k);
+                let origin = pose.joint_origin(k);
+                let rotation: [[f64; 3]; 3] =
+                    serde_json::from_value(joints[k]["rotation"].clone()).unwrap();
+                let translation: [f64; 3] =
+                    serde_json::from_value(joints[k]["translation"].clone()).unwrap();
+                for r in 0..3 {
+                    // World = joint frame (axes as columns) times the link's frame.
+                    let t = origin[r]
+                        + (0..3)
+                            .map(|m| axes[m][r] * frame.translation[m])
+                            .sum::<f64>();
+                    worst = worst.max((t - translation[r]).abs());
+                    for col in 0..3 {
+                        let x = (0..3)
+                            .map(|m| axes[m][r] * frame.rotation[m][col])
+                            .sum::<f64>();
+                        worst = worst.max((x - rotation[r][col]).abs());
+                    }
+                }
+                links += 1;
+            }
+        }
+    }
+    assert!(links >= 4 * 10 * 4, "{links} links checked");
+    assert!(worst < 1e-9, "{worst:e}");
+}
+
 #[test]
 fn every_robots_hand_and_jacobian_agree_with_pinocchios() {
     let text = std::fs::read_to_string(format!("{ROOT}/tests/data/urdf/pinocchio.json")).unwrap();

@@ -248,7 +248,9 @@ async function startSpace() {
       const made = document.createElement('ul');
       made.id = 'robot-read';
       made.className = 'hint';
-      for (const line of describeRobot(robot.read)) made.append(Object.assign(document.createElement('li'), { textContent: line }));
+      const drawn = controller.view3d.robotDrawn;
+      const shown = !drawn ? [] : [`Drawn: ${drawn.drawn} visual${drawn.drawn === 1 ? '' : 's'} from the URDF${drawn.missing.length ? `; mesh files not chosen, so not drawn: ${drawn.missing.join(', ')}` : ''}${drawn.drawn ? ' ("Collision volumes" shows the capsules)' : ': the collision capsules are drawn'}.`];
+      for (const line of [...describeRobot(robot.read), ...shown]) made.append(Object.assign(document.createElement('li'), { textContent: line }));
       source.after(made);
     }
   }

@@ -86,7 +86,7 @@ export async function openFiles(files, { base, tip } = {}) {
   if (total > MAX_TOTAL) throw new Error(`the files have ${total} bytes together, more than the ${MAX_TOTAL} the page takes`);
   const urdf = await urdfs[0].text();
   const meshes = {};
-  for (const f of list) if (f !== urdfs[0] && /\.stl$/i.test(f.name)) meshes[f.name] = new Uint8Array(await f.arrayBuffer());
+  for (const f of list) if (f !== urdfs[0] && /\.(stl|dae|obj)$/i.test(f.name)) meshes[f.name] = new Uint8Array(await f.arrayBuffer());
   const read = await readRobot({ urdf, meshes, base, tip });
   const hash = await contentHash(urdf, meshes);
   await transact('readwrite', (s) => s.put({ name: read.name, urdf, meshes, base: base || null, tip: tip || null, file: urdfs[0].name }, hash));
@@ -104,6 +104,7 @@ export async function openStored(hash) {
   const record = await storedRobot(hash);
   if (!record) throw new Error(`the robot ${String(hash).slice(0, 16)} is not in this browser's storage (robots opened here are kept where they were opened): open its URDF again with "Open robot…"`);
   const read = await readRobot(record);
+  const visuals = visualsOf(record.urdf);
   const preset = {
     key: 'robot',
     label: read.name,
@@ -112,7 +113,58 @@ export async function openStored(hash) {
     rate_limits: null,
     task: null,
   };
-  return { hash, chain: read.chain, read, preset };
+  return { hash, chain: read.chain, read, preset, visuals, meshes: record.meshes };
+}
+
+const numbers = (text, n, fallback) => {
+  const v = (text ?? '').trim().split(/\s+/).map(Number);
+  return v.length === n && v.every(Number.isFinite) ? v : fallback;
+};
+
+/**
+ * The `<visual>` elements of a URDF's links, for the 3-D view: `[{ link,
+ * xyz, rpy, geometry: { mesh, scale } | { box } | { cylinder: [r, l] } |
+ * { sphere }, colour }]`. Read by the browser's XML parser after the core's
+ * reader accepted the file (it refuses a document type declaration); what
+ * does not parse is left out (the link is then drawn by its capsules).
+ */
+export function visualsOf(urdf) {
+  const doc = new DOMParser().parseFromString(urdf, 'application/xml');
+  if (doc.querySelector('parsererror')) return [];
+  const robot = doc.documentElement;
+  const named = new Map();
+  for (const m of robot.children) {
+    if (m.tagName !== 'material') continue;
+    const c = m.querySelector('color')?.getAttribute('rgba');
+    if (c) named.set(m.getAttribute('name'), numbers(c, 4, null));
+  }
+  const out = [];
+  for (const link of robot.children) {
+    if (link.tagName !== 'link') continue;
+    for (const v of link.children) {
+      if (v.tagName !== 'visual') continue;
+      const origin = [...v.children].find((c) => c.tagName === 'origin');
+      const g = [...v.children].find((c) => c.tagName === 'geometry')?.firstElementChild;
+      if (!g) continue;
+      const geometry =
+        g.tagName === 'mesh' ? { mesh: g.getAttribute('filename') ?? '', scale: numbers(g.getAttribute('scale'), 3, [1, 1, 1]) }
+        : g.tagName === 'box' ? { box: numbers(g.getAttribute('size'), 3, null) }
+        : g.tagName === 'cylinder' ? { cylinder: [Number(g.getAttribute('radius')), Number(g.getAttribute('length'))] }
+        : g.tagName === 'sphere' ? { sphere: Number(g.getAttribute('radius')) }
+        : null;
+      if (!geometry || Object.values(geometry).some((x) => x === null || (typeof x === 'number' && !Number.isFinite(x)))) continue;
+      const m = [...v.children].find((c) => c.tagName === 'material');
+      const rgba = m?.querySelector('color')?.getAttribute('rgba');
+      out.push({
+        link: link.getAttribute('name'),
+        xyz: numbers(origin?.getAttribute('xyz'), 3, [0, 0, 0]),
+        rpy: numbers(origin?.getAttribute('rpy'), 3, [0, 0, 0]),
+        geometry,
+        colour: (rgba ? numbers(rgba, 4, null) : named.get(m?.getAttribute('name'))) ?? null,
+      });
+    }
+  }
+  return out;
 }
 
 /** What the reader made of a robot, as a few lines for the page (the chain, its joints and limits, the volumes, the warnings). */

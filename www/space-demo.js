@@ -101,7 +101,7 @@ export async function mountSpace(root, options) {
   };
   // The 3-D view under the stage (three.js, fetched now: space-view.js).
   // Its gizmo moves the selected item (the target or a sphere) along an axis or in a plane.
-  const view3d = await mountView(stage, demo, { attempt, say, changed });
+  const view3d = await mountView(stage, demo, { attempt, say, changed }, robot);
   // The frame's state when anything changed (then both drawings are redrawn), else undefined.
   const frame = (elapsed) => {
     const s = demo.frame(elapsed);

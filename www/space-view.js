@@ -12,6 +12,27 @@ let loading = null;
 export const preloadView = () => (loading ??= import('./pkg/three-view.js'));
 const threeView = preloadView;
 
+/**
+ * "Collision volumes" over the drawing, beside "Reset view", where a
+ * robot's visuals are drawn: it shows the capsules the planner measures
+ * clearance to (hidden under the visuals by default).
+ */
+function volumesSwitch(stage, view, say) {
+  const button = document.createElement('button');
+  Object.assign(button, { type: 'button', id: 'show-volumes', textContent: 'Collision volumes' });
+  button.setAttribute('aria-pressed', 'false');
+  button.title = "Draw the capsules the planner measures clearance to, over the robot's own meshes";
+  const tap = window.matchMedia?.('(pointer: coarse)').matches ? 44 : 0;
+  button.style.cssText = `position: absolute; top: 6px; right: 100px; flex: none; min-height: ${tap}px; min-width: ${tap}px; padding: 1px 8px; font-size: 12px;`;
+  button.addEventListener('click', () => {
+    const on = button.getAttribute('aria-pressed') !== 'true';
+    view.setVolumes(on);
+    button.setAttribute('aria-pressed', String(on));
+    say?.(on ? 'collision volumes shown over the meshes' : 'collision volumes hidden');
+  });
+  stage.after(button);
+}
+
 /** The selected item's index among the spheres (`sphere 2` -> 1), or -1 for the target. */
 const sphereIndex = (selected) => (selected === 'target' ? -1 : Number(selected.split(' ')[1]) - 1);
 
@@ -52,17 +73,20 @@ function gizmoHooks(stage, demo, { attempt, say, changed }) {
  * where the browser gives no WebGL (then draw does nothing and the overlay
  * alone is shown).
  */
-export async function mountView(stage, demo, hooks) {
+export async function mountView(stage, demo, hooks, robot = null) {
   const canvas = document.createElement('canvas');
   canvas.className = 'view-3d';
   canvas.setAttribute('aria-hidden', 'true');
   stage.before(canvas);
   let view = null;
   let error = null;
+  let drawn = null;
   try {
     const { createView } = await threeView();
     view = createView(canvas, palette());
     view.attachGizmo(stage, gizmoHooks(stage, demo, hooks));
+    if (robot) drawn = view.setRobot({ links: robot.read.links, visuals: robot.visuals, meshes: robot.meshes });
+    if (drawn?.drawn) volumesSwitch(stage, view, hooks.say);
   } catch (e) {
     error = `this browser draws no 3-D view (${e?.message ?? e}): WebGL is off or missing. The run, its readouts and its plots still work.`;
     canvas.remove();
@@ -83,6 +107,8 @@ export async function mountView(stage, demo, hooks) {
       view.draw(demo.view(), () => demo.layerView());
       return view.snapshot(stage);
     },
+    /** A robot's visuals: { drawn, missing } (how many drawn, the mesh files not at hand), or null. */
+    robotDrawn: drawn,
     /** The gizmo's part under the pointer, or null (space-input.js leaves a press there to it). */
     gizmoAxis: () => view?.gizmoAxis() ?? null,
     three: view,

@@ -40,6 +40,24 @@ fn inverse_rotation(f: &Frame) -> Frame {
 }
 
 impl UrdfChain {
+    /// Each link the chain carries, placed as the chain model places it:
+    /// `(name, moved_by, frame)`, the frame in the chain's joint
+    /// `moved_by`'s frame (the URDF joint's frame turned so that its axis
+    /// is `z`, as [`UrdfChain::to_chain`] turns it; the world for 0). A
+    /// drawing puts a link's visuals at the chain's joint frame times this.
+    pub fn link_frames(&self) -> Vec<(&str, usize, Frame)> {
+        self.links
+            .iter()
+            .map(|l| {
+                let turn = match l.moved_by {
+                    0 => Frame::IDENTITY,
+                    k => inverse_rotation(&z_to(self.joints[k - 1].axis)),
+                };
+                (l.name.as_str(), l.moved_by, turn.then(&l.frame))
+            })
+            .collect()
+    }
+
     /// The chain model of this chain with `volumes` (`urdf::volume`):
     /// each joint revolute or prismatic (its coordinate in metres), its
     /// range from the file or `joint_limits` (a `revolute` or `prismatic`

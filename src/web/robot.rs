@@ -30,6 +30,10 @@ struct RobotRead {
     joints: Vec<JointRead>,
     /// Each link volume: its link, how it was made, its radius (m).
     volumes: Vec<VolumeRead>,
+    /// Each link the chain carries, where its visuals go: the moving joint
+    /// that moves it (from 1; 0: the base) and its frame in that joint's
+    /// frame of the chain model (`UrdfChain::link_frames`).
+    links: Vec<LinkRead>,
     /// What the reader warns of (a mesh not at hand, a link without geometry).
     warnings: Vec<String>,
 }
@@ -43,6 +47,15 @@ struct JointRead {
     limits: Option<[f64; 2]>,
     /// The largest rate, where the file gives it.
     velocity: Option<f64>,
+}
+
+#[derive(Serialize)]
+struct LinkRead {
+    name: String,
+    moved_by: usize,
+    /// The rotation, by rows.
+    rotation: [[f64; 3]; 3],
+    translation: [f64; 3],
 }
 
 #[derive(Serialize)]
@@ -123,6 +136,16 @@ pub fn read_robot(
                     volume::Source::Segment => "segment".into(),
                 },
                 radius: v.radius,
+            })
+            .collect(),
+        links: uc
+            .link_frames()
+            .into_iter()
+            .map(|(name, moved_by, f)| LinkRead {
+                name: name.into(),
+                moved_by,
+                rotation: f.rotation,
+                translation: f.translation,
             })
             .collect(),
         warnings,

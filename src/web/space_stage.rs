@@ -136,6 +136,10 @@ pub struct SceneView {
     pub links: Vec<[Vec3; 2]>,
     /// The joints' and the hand's points.
     pub joints: Vec<Vec3>,
+    /// Each joint's frame in the world (from joint 1): its axes `x, y, z`
+    /// as columns, then its origin (12 numbers); a robot's visuals are
+    /// placed on them.
+    pub frames: Vec<[f64; 12]>,
     /// The spheres, `[x, y, z, r]`.
     pub spheres: Vec<[f64; 4]>,
     /// Whether a link is inside a sphere now.
@@ -198,6 +202,14 @@ pub fn view(s: &SpaceSession, width: f64, height: f64, layer: u32, shown: Shown)
             })
             .collect(),
         joints: pose.points().to_vec(),
+        frames: (0..pose.dof())
+            .map(|i| {
+                let ([x, y, z], o) = (pose.frame(i), pose.joint_origin(i));
+                [
+                    x[0], x[1], x[2], y[0], y[1], y[2], z[0], z[1], z[2], o[0], o[1], o[2],
+                ]
+            })
+            .collect(),
         spheres: scene
             .obstacles
             .iter()

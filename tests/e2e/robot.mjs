@@ -7,7 +7,7 @@
 // Registered by e2e.mjs.
 
 import assert from 'node:assert/strict';
-import { writeFileSync } from 'node:fs';
+import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { test, open, clean, state, shots } from './harness.mjs';
 import { cli, download, scratch } from './class-helpers.mjs';
@@ -77,6 +77,54 @@ test('your robot: a URDF with an STL mesh (its volume fitted around the mesh), a
   assert.match(read, /1 fitted around meshes/);
   assert.match(read, /Warning: .*missing\.stl/);
   assert.match(read, /prismatic/);
+  clean(page);
+  await page.close();
+});
+
+test("your robot: its URDF's visuals drawn on the core's frames (three's matrices against Pinocchio's link frames to 1e-6), the collision volumes on a switch", async () => {
+  // The test arm with visuals: its forearm's STL mesh in orange, a box on the upper arm.
+  const text = readFileSync('tests/data/urdf/slider_arm.urdf', 'utf8')
+    .replace('<link name="forearm">', '<link name="forearm"><visual><origin xyz="0.15 0 0"/><geometry><mesh filename="package://slider_arm/meshes/forearm.stl"/></geometry><material name="orange"><color rgba="1 0.5 0 1"/></material></visual>')
+    .replace('<link name="upper_arm">', '<link name="upper_arm"><visual><origin xyz="0.2 0 0" rpy="0 1.5707963267948966 0"/><geometry><box size="0.08 0.08 0.4"/></geometry></visual><visual><geometry><mesh filename="package://slider_arm/meshes/shoulder.dae"/></geometry></visual>');
+  const path = join(scratch, 'visual_arm.urdf');
+  writeFileSync(path, text);
+  const page = await open('?arm=panda&method=numerical&autoplay=0');
+  await page.click('#arm-panel summary');
+  await page.fill('#robot-tip', 'tool');
+  await Promise.all([page.waitForURL(/[?&]robot=[0-9a-f]{16}/, { timeout: 30000 }), page.setInputFiles('#robot-files', [path, 'tests/data/urdf/meshes/forearm.stl'])]);
+  await page.waitForSelector('body[data-ready="true"]', { timeout: 30000 });
+  assert.match(await page.textContent('#robot-read'), /Drawn: 2 visuals from the URDF; mesh files not chosen, so not drawn: shoulder\.dae/);
+  // At Pinocchio's poses of this arm, each moving joint's child link is drawn where Pinocchio has its frame.
+  const pinocchio = JSON.parse(readFileSync('tests/data/urdf/pinocchio.json', 'utf8')).files.find((f) => f.file.endsWith('slider_arm.urdf'));
+  const children = ['carriage', 'upper_arm', 'forearm', 'hand'];
+  let worst = 0;
+  for (const run of pinocchio.runs.slice(0, 3)) {
+    const drawn = await page.evaluate(async ([q, names]) => {
+      const c = window.demo.controller;
+      c.demo.setStart(Float64Array.from(q));
+      c.view3d.draw();
+      const scene = c.view3d.three.scene;
+      scene.updateMatrixWorld(true);
+      return names.map((n) => scene.getObjectByName(`urdf link ${n}`).matrixWorld.elements);
+    }, [run.q, children]);
+    drawn.forEach((e, k) => {
+      const { rotation: R, translation: t } = run.joints[k];
+      for (let r = 0; r < 3; r++) {
+        worst = Math.max(worst, Math.abs(e[12 + r] - t[r]));
+        for (let col = 0; col < 3; col++) worst = Math.max(worst, Math.abs(e[4 * col + r] - R[r][col]));
+      }
+    });
+  }
+  assert.ok(worst < 1e-6, `the links are drawn on Pinocchio's frames to ${worst}`);
+  // The visuals hide the capsules; "Collision volumes" shows them over the meshes.
+  const volumes = () => page.evaluate(() => window.demo.controller.view3d.three.volumes());
+  assert.equal(await volumes(), false);
+  await page.locator('#stage').screenshot({ path: join(shots, 'robot-visuals.png') });
+  await page.click('#show-volumes');
+  assert.equal(await volumes(), true);
+  assert.equal(await page.getAttribute('#show-volumes', 'aria-pressed'), 'true');
+  assert.match(await page.textContent('#announcer'), /collision volumes shown/);
+  await page.locator('#stage').screenshot({ path: join(shots, 'robot-volumes.png') });
   clean(page);
   await page.close();
 });

@@ -40,8 +40,14 @@ import {
   WebGLRenderer,
   Color,
   LineSegments,
+  BoxGeometry,
+  Euler,
+  Matrix4,
 } from 'three';
 import { TransformControls } from 'three/addons/controls/TransformControls.js';
+import { STLLoader } from 'three/addons/loaders/STLLoader.js';
+import { OBJLoader } from 'three/addons/loaders/OBJLoader.js';
+import { ColladaLoader } from 'three/addons/loaders/ColladaLoader.js';
 
 const UP = new Vector3(0, 1, 0);
 
@@ -87,6 +93,47 @@ function placeCylinder(mesh, a, b, r) {
   mesh.position.copy(va).addScaledVector(d, 0.5);
   mesh.quaternion.copy(len > 1e-12 ? new Quaternion().setFromUnitVectors(UP, d.divideScalar(len)) : new Quaternion());
   mesh.scale.set(r, Math.max(len, 1e-9), r);
+}
+
+const decoder = new TextDecoder();
+/** A <visual>'s object, or null where its mesh is not at hand or does not parse. */
+function visualObject(v, meshes) {
+  const rgba = v.colour ?? [0.78, 0.8, 0.83, 1];
+  const material = new MeshStandardMaterial({ color: new Color(rgba[0], rgba[1], rgba[2]), roughness: 0.6, metalness: 0.1, transparent: rgba[3] < 1, opacity: rgba[3] });
+  const g = v.geometry;
+  if (g.box) return new Mesh(new BoxGeometry(...g.box), material);
+  if (g.sphere) return new Mesh(new SphereGeometry(g.sphere, 24, 16), material);
+  if (g.cylinder) return new Mesh(new CylinderGeometry(g.cylinder[0], g.cylinder[0], g.cylinder[1], 24).rotateX(Math.PI / 2), material);
+  const name = g.mesh.split(/[\\/]/).pop();
+  const bytes = meshes[name];
+  if (!bytes) return null;
+  let object = null;
+  try {
+    if (/\.stl$/i.test(name)) {
+      // Many writers leave a facet's normal zero: the normals are taken from the triangles.
+      const geometry = new STLLoader().parse(bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength));
+      geometry.computeVertexNormals();
+      object = new Mesh(geometry, material);
+    }
+    else if (/\.obj$/i.test(name)) {
+      object = new OBJLoader().parse(decoder.decode(bytes));
+      object.traverse((o) => {
+        if (o.isMesh) o.material = material;
+      });
+    } else if (/\.dae$/i.test(name)) {
+      // Collada: the loader turns a Z-up file Y-up; the URDF's frames are the file's own.
+      object = new ColladaLoader().parse(decoder.decode(bytes), '').scene;
+      object.rotation.set(0, 0, 0);
+      const strays = [];
+      object.traverse((o) => (o.isCamera || o.isLight) && strays.push(o));
+      for (const o of strays) o.removeFromParent();
+      if (v.colour) object.traverse((o) => o.isMesh && (o.material = material));
+    }
+  } catch (_) {
+    return null;
+  }
+  if (object) object.scale.set(...g.scale);
+  return object;
 }
 
 /**
@@ -277,6 +324,60 @@ export function createView(canvas, palette) {
     if (p) handle.position.set(p[0], p[1], p[2]);
   };
 
+  // A robot's visuals (its URDF's <visual> meshes and shapes): a group a
+  // link, placed each frame on the core's joint frame times the link's
+  // frame in it (readRobot's links); the capsules are then drawn only when
+  // "Collision volumes" is on.
+  const robot = new Group();
+  scene.add(robot);
+  let placed = [];
+  let volumes = true;
+  const setRobot = ({ links, visuals, meshes }) => {
+    const missing = new Set();
+    let drawn = 0;
+    placed = links.map((l) => {
+      const g = new Group();
+      g.name = `urdf link ${l.name}`;
+      g.matrixAutoUpdate = false;
+      const [r, t] = [l.rotation, l.translation];
+      const local = new Matrix4().set(r[0][0], r[0][1], r[0][2], t[0], r[1][0], r[1][1], r[1][2], t[1], r[2][0], r[2][1], r[2][2], t[2], 0, 0, 0, 1);
+      for (const v of visuals.filter((x) => x.link === l.name)) {
+        const part = visualObject(v, meshes ?? {});
+        if (!part) {
+          if (v.geometry.mesh !== undefined) missing.add(v.geometry.mesh.split(/[\\/]/).pop());
+          continue;
+        }
+        part.position.set(...v.xyz);
+        part.rotation.copy(new Euler(v.rpy[0], v.rpy[1], v.rpy[2], 'ZYX'));
+        part.traverse((o) => {
+          if (o.isMesh) {
+            o.castShadow = true;
+            o.receiveShadow = true;
+          }
+        });
+        g.add(part);
+        drawn++;
+      }
+      robot.add(g);
+      return { group: g, movedBy: l.moved_by, local };
+    });
+    volumes = drawn === 0;
+    return { drawn, missing: [...missing] };
+  };
+  const joint = new Matrix4();
+  const placeRobot = (frames) => {
+    for (const p of placed) {
+      if (p.movedBy === 0) joint.identity();
+      else {
+        const f = frames[p.movedBy - 1];
+        joint.set(f[0], f[3], f[6], f[9], f[1], f[4], f[7], f[10], f[2], f[5], f[8], f[11], 0, 0, 0, 1);
+      }
+      p.group.matrix.multiplyMatrices(joint, p.local);
+      p.group.matrixWorldNeedsUpdate = true;
+    }
+    arm.visible = volumes;
+  };
+
   let size = { width: 1, height: 1 };
   const api = {
     renderer,
@@ -339,6 +440,7 @@ export function createView(canvas, palette) {
         g[i].scale.setScalar(0.25 * r);
       });
       placeGizmo(v);
+      if (placed.length) placeRobot(v.frames);
       setEllipsoid('velocity', v.velocity, v.hand);
       setEllipsoid('force', v.force, v.hand);
       if (v.layer !== layerRevision) {
@@ -370,6 +472,21 @@ export function createView(canvas, palette) {
      * to the page.
      */
     attachGizmo,
+    /**
+     * A robot's visuals: `links` (readRobot's: name, moved_by, the frame in
+     * the joint's), `visuals` (robot-open.js's visualsOf) and `meshes` ({
+     * file name: bytes }: STL, OBJ, Collada). Returns { drawn, missing }:
+     * how many visuals are drawn and the mesh files not at hand. With
+     * visuals drawn the capsules are hidden until setVolumes(true).
+     */
+    setRobot,
+    /** Whether the collision volumes (the capsules the planner uses) are drawn. */
+    setVolumes(on) {
+      volumes = on;
+      arm.visible = on || !placed.length;
+      renderer.render(scene, camera);
+    },
+    volumes: () => arm.visible,
     /** The gizmo's item's centre as drawn, [x, y, z]. */
     gizmoAt: () => handle.position.toArray(),
     /** The gizmo's part under the pointer ('X', 'XY', ...) or null: a press there is the gizmo's. */
