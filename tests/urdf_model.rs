@@ -111,18 +111,18 @@ fn every_links_frame_placed_on_the_chain_model_is_pinocchios() {
                     serde_json::from_value(joints[k]["rotation"].clone()).unwrap();
                 let translation: [f64; 3] =
                     serde_json::from_value(joints[k]["translation"].clone()).unwrap();
-                for r in 0..3 {
+                for (r, theirs) in rotation.iter().enumerate() {
                     // World = joint frame (axes as columns) times the link's frame.
                     let t = origin[r]
                         + (0..3)
                             .map(|m| axes[m][r] * frame.translation[m])
                             .sum::<f64>();
                     worst = worst.max((t - translation[r]).abs());
-                    for col in 0..3 {
+                    for (col, x_theirs) in theirs.iter().enumerate() {
                         let x = (0..3)
                             .map(|m| axes[m][r] * frame.rotation[m][col])
                             .sum::<f64>();
-                        worst = worst.max((x - rotation[r][col]).abs());
+                        worst = worst.max((x - x_theirs).abs());
                     }
                 }
                 links += 1;
