@@ -4,7 +4,7 @@
 //
 //   node tools/bundle.mjs offline   # dist/redundant-ik.html: the page in one file
 //   node tools/bundle.mjs npm       # target/npm/redundant-ik/: the package folder
-//   node tools/bundle.mjs view      # www/pkg/three-view.js: the 3-D view with three.js
+//   node tools/bundle.mjs view      # www/pkg/three-view.js (three.js) and www/pkg/unzip.js (fflate)
 //
 // The files a build inlines (the SIMD builds of both modules, the built-in
 // networks' weights files of every shipped set, bench-native.json and the
@@ -196,24 +196,32 @@ async function npm() {
 }
 
 /**
- * www/pkg/three-view.js: the 3-D view of the arms in space (www/view/)
- * with the parts of three.js it imports, one module (make web runs this;
- * space-view.js imports it only when an arm in space is shown). three is
- * pinned in tools/package-lock.json.
+ * The page's vendored modules, each one file under www/pkg/ (make web runs
+ * this): three-view.js, the 3-D view of the arms in space (www/view/) with
+ * the parts of three.js it imports (space-view.js imports it only when an
+ * arm in space is shown), and unzip.js, fflate's unzip for a robot's .zip
+ * (robot-open.js imports it only then). three and fflate are pinned in
+ * tools/package-lock.json.
  */
 async function view() {
-  const out = join(www, 'pkg/three-view.js');
-  const three = JSON.parse(read(join(root, 'tools/node_modules/three/package.json')));
-  await esbuild.build({
-    ...COMMON,
-    entryPoints: [join(www, 'view/three-view.js')],
-    nodePaths: [join(root, 'tools/node_modules')],
-    banner: { js: `// redundant-ik ${version()}'s 3-D view (MIT OR Apache-2.0) with three.js ${three.version} (MIT, Copyright 2010-2025 three.js authors), bundled by tools/bundle.mjs.` },
-    write: true,
-    outfile: out,
-  });
-  const bytes = readFileSync(out);
-  console.log(`bundle: ${relative(root, out)}: ${bytes.length.toLocaleString('en')} B, gzip -9 ${gzipSync(bytes, { level: 9 }).length.toLocaleString('en')} B`);
+  const pinned = (name) => JSON.parse(read(join(root, `tools/node_modules/${name}/package.json`))).version;
+  const modules = [
+    ['view/three-view.js', 'pkg/three-view.js', `the 3-D view (MIT OR Apache-2.0) with three.js ${pinned('three')} (MIT, Copyright 2010-2025 three.js authors)`],
+    ['view/unzip.js', 'pkg/unzip.js', `a robot's .zip unpacked with fflate ${pinned('fflate')} (MIT, Copyright 2023 Arjun Barrett)`],
+  ];
+  for (const [entry, file, what] of modules) {
+    const out = join(www, file);
+    await esbuild.build({
+      ...COMMON,
+      entryPoints: [join(www, entry)],
+      nodePaths: [join(root, 'tools/node_modules')],
+      banner: { js: `// redundant-ik ${version()}: ${what}, bundled by tools/bundle.mjs.` },
+      write: true,
+      outfile: out,
+    });
+    const bytes = readFileSync(out);
+    console.log(`bundle: ${relative(root, out)}: ${bytes.length.toLocaleString('en')} B, gzip -9 ${gzipSync(bytes, { level: 9 }).length.toLocaleString('en')} B`);
+  }
 }
 
 const what = process.argv[2];

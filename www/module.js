@@ -76,14 +76,14 @@ const BUILDS = {
 /**
  * Whether an address asks for an arm in space (after loadModule): it names
  * one by its preset's key (`arm=panda`), or `arm=space` (the first), or a
- * robot of the user's (`robot=HASH`: robot-open.js). Every
+ * robot of the user's (`robot=HASH`, `urdf=URL`: robot-open.js). Every
  * other address (a planar preset's key such as `arm=iiwa-planar`, an arm
  * written out, `0.5:1,1,1`) is the plane's.
  */
 export function asksForSpace(search = globalThis.location?.search ?? '') {
   const q = new URLSearchParams(search);
   const arm = q.get('arm') ?? '';
-  return arm === 'space' || spacePresets().some((p) => p.key === arm) || q.has('robot');
+  return arm === 'space' || spacePresets().some((p) => p.key === arm) || q.has('robot') || q.has('urdf');
 }
 
 /** The same two builds of the workers' module (the atlas, the benchmark, the trainer, the figures). */

@@ -130,7 +130,7 @@ async function start() {
     const note = document.getElementById('network-note');
     if (note) note.dataset.original = note.innerHTML;
     followLayout();
-    if (spaceArmOf(location.search) || new URLSearchParams(location.search).has('robot')) {
+    if (spaceArmOf(location.search) || /[?&](robot|urdf)=/.test(location.search)) {
       await startSpace();
       return;
     }
@@ -198,14 +198,17 @@ async function startSpace() {
   const { mountSpace } = await import('./space-demo.js');
   // A robot of the user's (robot=HASH): read from this browser's storage by
   // the workers' module; where it cannot be, the first shipped arm, and why.
+  // A robot at an address (urdf=URL, with base and tip) is fetched, kept and opened the same way.
   let robot = null;
-  const hash = new URLSearchParams(location.search).get('robot');
-  if (hash !== null) {
-    const { openStored } = await import('./robot-open.js');
+  const q = new URLSearchParams(location.search);
+  const key = q.has('urdf') ? 'urdf' : 'robot';
+  if (q.has(key)) {
+    const { openStored, openUrl } = await import('./robot-open.js');
     try {
+      const hash = key === 'urdf' ? (await openUrl(q.get('urdf'), { base: q.get('base') ?? undefined, tip: q.get('tip') ?? undefined })).hash : q.get('robot');
       robot = await openStored(hash);
     } catch (e) {
-      problems.push(`robot: ${describe(e)}`);
+      problems.push(`${key}: ${describe(e)}`);
       settings.arm = spacePresets()[0].key;
     }
   }
@@ -277,30 +280,32 @@ async function startSpace() {
   document.body.dataset.ready = 'true';
 }
 
-/** "Open robot…" (robot-open.js, imported when first used): a .urdf with its meshes opens the page in space on it. */
+/** "Open robot…" and "Open folder…" (robot-open.js, imported when first used): a .urdf with its meshes, a folder or a .zip opens the page in space on it. */
 function wireOpenRobot() {
-  const button = document.getElementById('open-robot');
-  const input = document.getElementById('robot-files');
-  if (!button || !input) return;
-  button.addEventListener('click', () => input.click());
-  input.addEventListener('change', async () => {
-    if (!input.files?.length) return;
-    const { openFiles } = await import('./robot-open.js');
-    const { messenger } = await import('./messages.js');
-    const { show } = messenger(document);
-    button.disabled = true;
-    show('Reading the robot…', 'info', false, button);
-    try {
-      const link = (id) => document.getElementById(id)?.value.trim() || undefined;
-      const { hash } = await openFiles(input.files, { base: link('robot-base'), tip: link('robot-tip') });
-      location.search = `?robot=${hash}`;
-    } catch (e) {
-      show(`The robot could not be opened: ${describe(e)}`, 'error', true, button);
-    } finally {
-      button.disabled = false;
-      input.value = '';
-    }
-  });
+  for (const [buttonId, inputId] of [['open-robot', 'robot-files'], ['open-robot-folder', 'robot-folder']]) {
+    const button = document.getElementById(buttonId);
+    const input = document.getElementById(inputId);
+    if (!button || !input) continue;
+    button.addEventListener('click', () => input.click());
+    input.addEventListener('change', async () => {
+      if (!input.files?.length) return;
+      const { openFiles } = await import('./robot-open.js');
+      const { messenger } = await import('./messages.js');
+      const { show } = messenger(document);
+      button.disabled = true;
+      show('Reading the robot…', 'info', false, button);
+      try {
+        const link = (id) => document.getElementById(id)?.value.trim() || undefined;
+        const { hash } = await openFiles(input.files, { base: link('robot-base'), tip: link('robot-tip') });
+        location.search = `?robot=${hash}`;
+      } catch (e) {
+        show(`The robot could not be opened: ${describe(e)}`, 'error', true, button);
+      } finally {
+        button.disabled = false;
+        input.value = '';
+      }
+    });
+  }
 }
 
 if (isEmbedded()) document.documentElement.dataset.embed = 'true';

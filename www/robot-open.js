@@ -1,5 +1,6 @@
-// A robot of the user's: "Open robot…" takes a .urdf file with the STL
-// mesh files its collision geometry names (several files, or a folder);
+// A robot of the user's: "Open robot…" takes a .urdf file with the mesh
+// files it names (several files, a folder, or a .zip: pkg/unzip.js), and
+// `urdf=URL` (with `base`, `tip`) fetches them from a host that allows it;
 // the workers' module reads them (readRobot, src/web/robot.rs: the URDF
 // reader stays out of the page's module) into the chain SpaceDemo.ofChain
 // runs. The files are kept in this browser's IndexedDB under their content
@@ -72,25 +73,111 @@ export async function readRobot({ urdf, meshes, base, tip }) {
   return result;
 }
 
+/** A file name's last part, `/` or `\\` separated. */
+const lastPart = (path) => path.split(/[\\/]/).pop();
+
+/** The chosen files as entries { name, path, bytes }: a .zip unpacked (pkg/unzip.js, fflate), a folder's files with their paths. */
+async function entriesOf(files) {
+  const out = [];
+  for (const f of files) {
+    if (/\.zip$/i.test(f.name)) {
+      const { unzipRobot } = await import('./pkg/unzip.js');
+      const unpacked = unzipRobot(new Uint8Array(await f.arrayBuffer()), MAX_TOTAL);
+      for (const [path, bytes] of Object.entries(unpacked)) out.push({ name: lastPart(path), path, bytes });
+    } else if (/\.(urdf|xml|stl|dae|obj)$/i.test(f.name)) {
+      out.push({ name: f.name, path: f.webkitRelativePath || f.name, bytes: new Uint8Array(await f.arrayBuffer()) });
+    }
+  }
+  return out;
+}
+
+/** Every mesh file name a URDF's <mesh> elements give (collision and visual). */
+function meshNames(urdf) {
+  const doc = new DOMParser().parseFromString(urdf, 'application/xml');
+  return [...new Set([...doc.getElementsByTagName('mesh')].map((m) => m.getAttribute('filename')).filter(Boolean))];
+}
+
 /**
- * The files a person chose (a .urdf and its meshes): read, checked by the
- * reader, stored; resolves to { hash, read }. Rejects with a message that
- * says what is wrong (no URDF, two, too large, the reader's own).
+ * The bytes of each mesh a URDF names, keyed by the name as the URDF gives
+ * it: the entry whose path ends with the name's path (after `package://PKG/`
+ * or `file://`), else the one with the same file name.
+ */
+export function resolveMeshes(urdf, entries) {
+  const meshes = {};
+  for (const name of meshNames(urdf)) {
+    const rest = name.replace(/^package:\/\/[^/]*\//, '').replace(/^file:\/\//, '').replace(/\\/g, '/');
+    const path = (e) => e.path.replace(/\\/g, '/');
+    const hit = entries.find((e) => path(e).endsWith(rest) || rest.endsWith(path(e))) ?? entries.find((e) => e.name === lastPart(rest));
+    if (hit) meshes[name] = hit.bytes;
+  }
+  return meshes;
+}
+
+/**
+ * The files a person chose (a .urdf and its meshes, a folder of them, or a
+ * .zip): read, checked by the reader, stored; resolves to { hash, read }.
+ * Rejects with a message that says what is wrong (no URDF, two, too large,
+ * the reader's own).
  */
 export async function openFiles(files, { base, tip } = {}) {
   const list = [...files];
-  const urdfs = list.filter((f) => /\.(urdf|xml)$/i.test(f.name));
-  if (urdfs.length !== 1) throw new Error(urdfs.length ? `${urdfs.length} URDF files were chosen (${urdfs.map((f) => f.name).join(', ')}): choose one, with its mesh files` : 'no .urdf file was chosen: choose the robot\'s .urdf with its mesh files');
   const total = list.reduce((n, f) => n + f.size, 0);
-  if (urdfs[0].size > MAX_URDF) throw new Error(`${urdfs[0].name} has ${urdfs[0].size} bytes, more than the ${MAX_URDF} a URDF may have`);
   if (total > MAX_TOTAL) throw new Error(`the files have ${total} bytes together, more than the ${MAX_TOTAL} the page takes`);
-  const urdf = await urdfs[0].text();
-  const meshes = {};
-  for (const f of list) if (f !== urdfs[0] && /\.(stl|dae|obj)$/i.test(f.name)) meshes[f.name] = new Uint8Array(await f.arrayBuffer());
+  const entries = await entriesOf(list);
+  const decoder = new TextDecoder();
+  // The URDF: the one .urdf, else the one .xml that is a <robot> (a ROS package's package.xml is not).
+  let urdfs = entries.filter((e) => /\.urdf$/i.test(e.name));
+  if (!urdfs.length) urdfs = entries.filter((e) => /\.xml$/i.test(e.name) && /<robot[\s>]/.test(decoder.decode(e.bytes.subarray(0, 4096))));
+  if (urdfs.length !== 1) throw new Error(urdfs.length ? `${urdfs.length} URDF files were chosen (${urdfs.map((f) => f.path).join(', ')}): choose one, with its mesh files` : "no .urdf file was chosen: choose the robot's .urdf with its mesh files, a folder or a .zip of them");
+  if (urdfs[0].bytes.length > MAX_URDF) throw new Error(`${urdfs[0].name} has ${urdfs[0].bytes.length} bytes, more than the ${MAX_URDF} a URDF may have`);
+  const urdf = decoder.decode(urdfs[0].bytes);
+  return keep({ urdf, entries, base, tip, file: urdfs[0].name });
+}
+
+/** A robot's URDF and its files read by the reader and stored; { hash, read }. */
+async function keep({ urdf, entries, base, tip, file, url = null }) {
+  const meshes = resolveMeshes(urdf, entries);
   const read = await readRobot({ urdf, meshes, base, tip });
   const hash = await contentHash(urdf, meshes);
-  await transact('readwrite', (s) => s.put({ name: read.name, urdf, meshes, base: base || null, tip: tip || null, file: urdfs[0].name }, hash));
+  await transact('readwrite', (s) => s.put({ name: read.name, urdf, meshes, base: base || null, tip: tip || null, file, url }, hash));
   return { hash, read };
+}
+
+/**
+ * A robot fetched from `url` (`urdf=URL` in the address), with the meshes
+ * its URDF names fetched beside it (a `package://PKG/REST` as REST under the
+ * URDF's folder and its parent, a relative name under its folder); kept and
+ * read as a chosen file is. A host that does not allow this page to read
+ * its files (CORS) is named in the refusal.
+ */
+export async function openUrl(url, { base, tip } = {}) {
+  const get = async (u) => {
+    let r;
+    try {
+      r = await fetch(u);
+    } catch (_) {
+      throw new Error(`${u} could not be fetched: its host is not reachable, or does not allow this page to read it (it sends no Access-Control-Allow-Origin header: CORS)`);
+    }
+    if (!r.ok) throw new Error(`${u}: HTTP ${r.status}`);
+    return new Uint8Array(await r.arrayBuffer());
+  };
+  const bytes = await get(url);
+  if (bytes.length > MAX_URDF) throw new Error(`${url} has ${bytes.length} bytes, more than the ${MAX_URDF} a URDF may have`);
+  const urdf = new TextDecoder().decode(bytes);
+  const entries = [];
+  for (const name of meshNames(urdf)) {
+    const rest = name.replace(/^package:\/\/[^/]*\//, '');
+    // A package's meshes usually sit beside its urdf/ folder: the parent first.
+    const tries = /^package:/.test(name) ? [new URL(`../${rest}`, url), new URL(rest, url)] : /^[a-z]+:/i.test(name) ? [] : [new URL(name, url)];
+    for (const u of tries) {
+      const got = await get(u.href).catch(() => null);
+      if (got) {
+        entries.push({ name: lastPart(rest), path: rest, bytes: got });
+        break;
+      }
+    }
+  }
+  return keep({ urdf, entries, base, tip, file: lastPart(new URL(url).pathname), url });
 }
 
 /**
@@ -108,8 +195,9 @@ export async function openStored(hash) {
   const preset = {
     key: 'robot',
     label: read.name,
-    source: `your URDF ${record.file ?? ''}, ${read.joints.length} joints from ${read.base} to ${read.tip}, kept in this browser as ${hash}`,
-    address: ['robot', hash],
+    source: `your URDF ${record.url ?? record.file ?? ''}, ${read.joints.length} joints from ${read.base} to ${read.tip}, kept in this browser as ${hash}`,
+    // Fetched from an address: the link names it (any browser fetches it again); else the browser's own copy.
+    address: record.url ? [['urdf', record.url], ...(record.base ? [['base', record.base]] : []), ...(record.tip ? [['tip', record.tip]] : [])] : [['robot', hash]],
     rate_limits: null,
     task: null,
   };

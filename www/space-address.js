@@ -79,8 +79,7 @@ const exact = (v) => String(Math.round(v * 1e4) / 1e4);
 export function spaceQuery(s, preset) {
   const q = new URLSearchParams();
   // A robot of the user's is named by its files' hash (robot-open.js).
-  const [key, value] = preset.address ?? ['arm', s.arm];
-  q.set(key, value);
+  for (const [key, value] of preset.address ?? [['arm', s.arm]]) q.set(key, value);
   q.set('method', s.method);
   if (s.target.some((v, i) => Math.abs(v - preset.task.target[i]) > 1e-9)) q.set('target', s.target.map(exact).join(','));
   const own = preset.task.sphere;

@@ -67,8 +67,8 @@ struct VolumeRead {
 
 /// Reads a URDF's `text` into the chain from `base` to `tip` (each
 /// optional: the tree's root and its one leaf); `meshes` maps a mesh's
-/// file name (the last part of its path) to its bytes (STL), for the
-/// links' volumes. Throws with the reader's message where the file is not
+/// name, as the URDF gives it or as its last part, to its bytes (STL),
+/// for the links' volumes. Throws with the reader's message where the file is not
 /// a URDF it reads or the chain is not one it runs.
 #[wasm_bindgen(js_name = readRobot)]
 pub fn read_robot(
@@ -89,11 +89,16 @@ pub fn read_robot(
             files.set(&pair.get(0), &pair.get(1));
         }
     }
-    // A mesh by its name's last part: the URDF's package:// and relative
-    // paths point into folders the page does not have.
+    // A mesh by its name as the URDF gives it (the page resolved each to
+    // a file it was given), else by its name's last part.
     let mesh = |name: &str| -> Option<Vec<u8>> {
         let file = name.rsplit(['/', '\\']).next()?;
-        let bytes = files.get(&JsValue::from_str(file));
+        let exact = files.get(&JsValue::from_str(name));
+        let bytes = if exact.is_undefined() {
+            files.get(&JsValue::from_str(file))
+        } else {
+            exact
+        };
         let array = bytes.dyn_ref::<js_sys::Uint8Array>()?;
         (array.length() as usize <= crate::urdf::stl::MAX_STL_BYTES).then(|| array.to_vec())
     };

@@ -1,5 +1,6 @@
-// A robot of the user's in the page (robot-open.js): a URDF, with its STL
-// meshes, chosen through "Open robot…" is read by the workers' module,
+// A robot of the user's in the page (robot-open.js): a URDF, with its
+// meshes, chosen through "Open robot…" (files, a folder or a .zip) or
+// fetched from `urdf=URL` is read by the workers' module,
 // kept in this browser under its content hash and opened as `?robot=HASH`
 // (a reload opens it again); the page says what the reader made of it; a
 // qp run of it, saved as the run file, replays with `simulate --from`; a
@@ -7,10 +8,13 @@
 // Registered by e2e.mjs.
 
 import assert from 'node:assert/strict';
-import { readFileSync, writeFileSync } from 'node:fs';
+import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { test, open, clean, state, shots } from './harness.mjs';
+import { serve } from './serve.mjs';
 import { cli, download, scratch } from './class-helpers.mjs';
+// fflate as make web installs it for the page's own unzip (tools/package.json).
+import { zipSync } from '../../tools/node_modules/fflate/esm/index.mjs';
 
 /** Chooses `files` in "Open robot…" on `page` and waits for the robot's page. */
 async function openRobot(page, files) {
@@ -127,6 +131,66 @@ test("your robot: its URDF's visuals drawn on the core's frames (three's matrice
   await page.locator('#stage').screenshot({ path: join(shots, 'robot-volumes.png') });
   clean(page);
   await page.close();
+});
+
+test('your robot: the same arm as a .zip, as a folder (a ROS package, its package.xml left out), and from urdf=URL on a host that allows it, or the CORS message', async () => {
+  const urdf = readFileSync('tests/data/urdf/slider_arm.urdf');
+  const stl = readFileSync('tests/data/urdf/meshes/forearm.stl');
+  const packageXml = Buffer.from('<?xml version="1.0"?><package format="2"><name>slider_arm</name></package>');
+  // A .zip of the package: its URDF under urdf/, its mesh under meshes/.
+  const zip = join(scratch, 'slider_arm.zip');
+  writeFileSync(zip, zipSync({ 'slider_arm/package.xml': packageXml, 'slider_arm/urdf/slider_arm.urdf': urdf, 'slider_arm/meshes/forearm.stl': stl }));
+  const page = await open('?arm=panda&method=numerical&autoplay=0');
+  await page.click('#arm-panel summary');
+  await page.fill('#robot-tip', 'tool');
+  await Promise.all([page.waitForURL(/[?&]robot=[0-9a-f]{16}/, { timeout: 30000 }), page.setInputFiles('#robot-files', zip)]);
+  await page.waitForSelector('body[data-ready="true"]', { timeout: 30000 });
+  const zipped = new URL(page.url()).searchParams.get('robot');
+  assert.match(await page.textContent('#robot-read'), /1 fitted around meshes/, 'the mesh inside the archive gave its volume');
+  // The same files as a folder: the same robot, the same hash.
+  const folder = join(scratch, 'slider_arm');
+  mkdirSync(join(folder, 'urdf'), { recursive: true });
+  mkdirSync(join(folder, 'meshes'), { recursive: true });
+  writeFileSync(join(folder, 'package.xml'), packageXml);
+  writeFileSync(join(folder, 'urdf/slider_arm.urdf'), urdf);
+  writeFileSync(join(folder, 'meshes/forearm.stl'), stl);
+  await page.click('#arm-panel summary');
+  await page.fill('#robot-tip', 'tool');
+  await Promise.all([page.waitForURL(/[?&]robot=[0-9a-f]{16}/, { timeout: 30000 }), page.setInputFiles('#robot-folder', folder)]);
+  await page.waitForSelector('body[data-ready="true"]', { timeout: 30000 });
+  assert.equal(new URL(page.url()).searchParams.get('robot'), zipped, 'the folder is the same robot as the archive');
+  clean(page);
+  await page.close();
+  // urdf=URL: the package on a host of its own (another origin), which sends
+  // Access-Control-Allow-Origin or not; its mesh is beside the URDF's folder (package://).
+  const root = join(scratch, 'host');
+  mkdirSync(join(root, 'slider_arm/urdf'), { recursive: true });
+  mkdirSync(join(root, 'slider_arm/meshes'), { recursive: true });
+  writeFileSync(join(root, 'slider_arm/urdf/slider_arm.urdf'), urdf);
+  writeFileSync(join(root, 'slider_arm/meshes/forearm.stl'), stl);
+  const [open_, closed] = await Promise.all([serve(root, ['--cors']), serve(root)]);
+  try {
+    const url = `${open_.url}slider_arm/urdf/slider_arm.urdf`;
+    const allowed = await open(`?urdf=${encodeURIComponent(url)}&tip=tool&method=qp`);
+    const s = await state(allowed);
+    assert.deepEqual([s.arm, s.arm_label, s.method], ['robot', 'slider_arm', 'qp']);
+    assert.match(await allowed.textContent('#robot-read'), /1 fitted around meshes/, 'the mesh was fetched beside the URDF');
+    const link = new URL(allowed.url()).searchParams;
+    assert.deepEqual([link.get('urdf'), link.get('tip'), link.has('robot')], [url, 'tool', false], 'the link names the URDF, so any browser fetches it again');
+    // The one mesh the host has not (meshes/missing.stl) is the one failed request the browser logs.
+    assert.deepEqual(allowed.problems, ['console error: Failed to load resource: the server responded with a status of 404 (File not found)']);
+    allowed.problems.length = 0;
+    clean(allowed);
+    await allowed.close();
+    const blocked = `${closed.url}slider_arm/urdf/slider_arm.urdf`;
+    const refused = await open(`?urdf=${encodeURIComponent(blocked)}&tip=tool`);
+    assert.equal((await state(refused)).arm, 'panda', 'the first shipped arm instead');
+    assert.match(await refused.textContent('#message'), /urdf: http:\/\/127\.0\.0\.1:\d+\/slider_arm\/urdf\/slider_arm\.urdf could not be fetched: .*CORS/);
+    await refused.close();
+  } finally {
+    open_.stop();
+    closed.stop();
+  }
 });
 
 test('your robot: hostile and wrong files are refused with the reader\'s own message, and the page goes on', async () => {

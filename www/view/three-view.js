@@ -104,8 +104,9 @@ function visualObject(v, meshes) {
   if (g.box) return new Mesh(new BoxGeometry(...g.box), material);
   if (g.sphere) return new Mesh(new SphereGeometry(g.sphere, 24, 16), material);
   if (g.cylinder) return new Mesh(new CylinderGeometry(g.cylinder[0], g.cylinder[0], g.cylinder[1], 24).rotateX(Math.PI / 2), material);
+  // Keyed by the name as the URDF gives it (robot-open.js's resolveMeshes); by its file name as a fallback.
   const name = g.mesh.split(/[\\/]/).pop();
-  const bytes = meshes[name];
+  const bytes = meshes[g.mesh] ?? meshes[name];
   if (!bytes) return null;
   let object = null;
   try {
