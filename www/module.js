@@ -44,6 +44,7 @@ export {
   spaceNetworkSets,
   spaceTrainingRecipes,
   palette,
+  moduleVersion,
 } from './pkg/redundant_ik.js';
 import { spacePresets } from './pkg/redundant_ik.js';
 export { spacePresets };

@@ -1,5 +1,5 @@
 // Placing the target without dragging (WCAG 2.5.7): number fields for its
-// x and y (`#target-x`, `#target-y`), kept in step with drags and with
+// x and y (`#target-x`, `#target-y`; and `#target-z` for an arm in space), kept in step with drags and with
 // the keyboard, except while one holds a number typed and not yet applied. A change plans a line
 // to the new target, as dropping it there does. The obstacles' fields are
 // the playground's list (arm-designer.js).
@@ -8,35 +8,34 @@
 const mm = (v) => String(Number(v.toFixed(3)));
 
 /**
- * Wires the target's fields under `root` (none: nothing). Hooks:
- * `attempt(fn, kind, near)` runs a call and shows its error beside `near`;
- * `changed()` after a user change. Returns `sync(state)` for the loop.
+ * Wires the target's fields under `root` (none: nothing): x and y, and z
+ * where `dims` is 3 (an arm in space: `#target-z`). Hooks: `attempt(fn,
+ * kind, near)` runs a call and shows its error beside `near`; `changed()`
+ * after a user change. Returns `sync(state)` for the loop.
  */
-export function mountTargetFields(root, demo, { attempt, changed }) {
-  const x = root.querySelector('#target-x');
-  const y = root.querySelector('#target-y');
-  if (!x || !y) return () => {};
+export function mountTargetFields(root, demo, { attempt, changed, dims = 2 }) {
+  const fields = ['x', 'y', 'z'].slice(0, dims).map((a) => root.querySelector(`#target-${a}`));
+  if (fields.some((f) => !f)) return () => {};
   const apply = (field) => {
-    const [vx, vy] = [Number(x.value), Number(y.value)];
-    if (x.value.trim() === '' || y.value.trim() === '' || !Number.isFinite(vx) || !Number.isFinite(vy)) {
+    const v = fields.map((f) => Number(f.value));
+    if (fields.some((f, i) => f.value.trim() === '' || !Number.isFinite(v[i]))) {
       attempt(() => {
-        throw new Error('the target needs two numbers, x and y in metres');
+        throw new Error(`the target needs ${dims === 3 ? 'three numbers, x, y and z' : 'two numbers, x and y'} in metres`);
       }, 'error', field);
       return;
     }
-    if (attempt(() => demo.setTarget(vx, vy), 'error', field)) {
-      applied(x, y);
+    if (attempt(() => demo.setTarget(...v), 'error', field)) {
+      applied(...fields);
       changed();
     }
   };
-  for (const f of [x, y]) f.addEventListener('change', () => apply(f));
+  for (const f of fields) f.addEventListener('change', () => apply(f));
   let shown = '';
   return function sync(s) {
-    const key = `${s.target[0]},${s.target[1]}`;
+    const key = s.target.slice(0, dims).join(',');
     if (key === shown) return;
     shown = key;
-    follow(x, s.target[0]);
-    follow(y, s.target[1]);
+    fields.forEach((f, i) => follow(f, s.target[i]));
   };
 }
 

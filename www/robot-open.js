@@ -10,6 +10,7 @@
 // --from` replays a run of it on any machine.
 
 import { runWorker } from './jobs.js';
+import { moduleVersion } from './module.js';
 
 const DB = 'redundant-ik-robots';
 const STORE = 'robots';
@@ -139,7 +140,8 @@ async function keep({ urdf, entries, base, tip, file, url = null }) {
   const meshes = resolveMeshes(urdf, entries);
   const read = await readRobot({ urdf, meshes, base, tip });
   const hash = await contentHash(urdf, meshes);
-  await transact('readwrite', (s) => s.put({ name: read.name, urdf, meshes, base: base || null, tip: tip || null, file, url }, hash));
+  // The reading is kept too, stamped with the version that made it: the page opened next uses it without reading again.
+  await transact('readwrite', (s) => s.put({ name: read.name, urdf, meshes, base: base || null, tip: tip || null, file, url, read, version: moduleVersion() }, hash));
   return { hash, read };
 }
 
@@ -190,7 +192,8 @@ export async function openUrl(url, { base, tip } = {}) {
 export async function openStored(hash) {
   const record = await storedRobot(hash);
   if (!record) throw new Error(`the robot ${String(hash).slice(0, 16)} is not in this browser's storage (robots opened here are kept where they were opened): open its URDF again with "Open robot…"`);
-  const read = await readRobot(record);
+  // The reading kept with the files, where this version made it; else read again (in a worker).
+  const read = record.read && record.version === moduleVersion() ? record.read : await readRobot(record);
   const visuals = visualsOf(record.urdf);
   const preset = {
     key: 'robot',

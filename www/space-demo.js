@@ -27,6 +27,7 @@ import { mountSelfMotion } from './self-motion.js';
 import { mountWeightsUpload } from './weights-upload.js';
 import { mountSpaceTraining } from './space-training.js';
 import { mountView, preloadView } from './space-view.js';
+import { mountTargetFields } from './place-fields.js';
 
 const READOUTS = {
   t: (s) => fixed(s.t, 1),
@@ -283,6 +284,8 @@ export async function mountSpace(root, options) {
     }
   });
   const syncParams = mountMethodParams(root, demo, { attempt, changed });
+  // The target's x, y and z without dragging (WCAG 2.5.7).
+  const syncTarget = mountTargetFields(root, demo, { attempt, changed, dims: 3 });
   wireSpaceStage(stage, demo, { attempt, changed, say, togglePlay, reset, keyboard: options.keyboard, gizmoAxis: view3d.gizmoAxis });
   const view = document.createElement('button');
   Object.assign(view, { type: 'button', id: 'fit-view', textContent: 'Reset view' });
@@ -360,6 +363,7 @@ export async function mountSpace(root, options) {
     syncLab(s);
     syncPrecision(s, menu.selectedOptions[0]?.dataset.networks === 'true');
     syncParams(s);
+    syncTarget(s);
     if (range) range.hidden = s.in_range;
     const ghostKey = legendList?.querySelector('[data-key=ghost]');
     if (ghostKey) ghostKey.hidden = !s.ghost;

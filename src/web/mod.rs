@@ -137,6 +137,14 @@ pub fn last_panic() -> Option<String> {
     LAST_PANIC.with(|p| p.borrow().clone())
 }
 
+/// The crate's version (`Cargo.toml`'s): the page stamps what it keeps
+/// with it (a robot's reading, `robot-open.js`), so another version reads
+/// again.
+#[wasm_bindgen(js_name = moduleVersion)]
+pub fn module_version() -> String {
+    env!("CARGO_PKG_VERSION").into()
+}
+
 /// A shipped network set by name (`paper` when absent).
 fn network_set(set: Option<String>) -> Result<NetworkSet, JsError> {
     set.as_deref()

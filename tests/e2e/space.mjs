@@ -32,9 +32,9 @@ test('space: the Panda and the iiwa open from the address on the 3-D stage', asy
     assert.equal(s.method, 'qp');
     assert.match(s.arm_label, label);
     assert.equal(await page.getAttribute('html', 'data-space'), arm);
-    // The plane's own controls are hidden (its second task, the target's two fields); the method menu, Play and the readouts are there.
+    // The plane's own controls are hidden (its second task); the method menu, Play, the target's three fields and the readouts are there.
     assert.equal(await page.isVisible('#task2'), false);
-    assert.equal(await page.isVisible('#target-x'), false);
+    assert.equal(await page.isVisible('#target-z'), true, "the target's x, y and z fields");
     assert.ok(await page.isVisible('#mode'));
     assert.match(await page.textContent('#task1'), /Task/);
     // The drawing is not blank: the arm's colour is on it (the 3-D view with the overlay over it).

@@ -59,7 +59,7 @@ test("3-D view: three's matrices put every link, joint and sphere where the core
   }
 });
 
-test('3-D view: the gizmo dragged along its x arrow by mouse moves the target along x only, and the core reports it where it is drawn', async () => {
+test('3-D view: the gizmo dragged along its x arrow by mouse moves the target along x only, the core reports it where it is drawn; the keys and the z field move it too', async () => {
   const page = await open('?arm=panda&method=qp&autoplay=0');
   const before = (await state(page)).target;
   const client = (p) => page.evaluate(([x, y, z]) => window.demo.worldToClient(x, y, z), p);
@@ -93,6 +93,15 @@ test('3-D view: the gizmo dragged along its x arrow by mouse moves the target al
   const drawnAfterKey = await page.evaluate(() => window.demo.controller.view3d.three.gizmoAt());
   assert.ok(Math.hypot(...keyed.map((d, i) => d - after[i])) > 1e-3, 'the key moved the target');
   assert.ok(Math.hypot(...drawnAfterKey.map((d, i) => d - keyed[i])) < 1e-3, 'the gizmo followed the key');
+  // Without dragging: the target's z field moves it (WCAG 2.5.7), and the gizmo follows.
+  await page.fill('#target-z', '0.4');
+  await page.press('#target-z', 'Enter');
+  await nextFrames(page);
+  const typed = (await state(page)).target;
+  assert.ok(Math.abs(typed[2] - 0.4) < 1e-12 && Math.abs(typed[0] - keyed[0]) <= 5e-4, `z typed (x and y kept, to the millimetre the fields show): ${typed}`);
+  const drawnAfterField = await page.evaluate(() => window.demo.controller.view3d.three.gizmoAt());
+  assert.ok(Math.hypot(...drawnAfterField.map((d, i) => d - typed[i])) < 1e-3, 'the gizmo followed the field');
+  assert.equal(await page.inputValue('#target-x'), String(Number(typed[0].toFixed(3))), 'the x field follows the target');
   await page.locator('#stage').screenshot({ path: join(shots, 'view3d-gizmo.png') });
   clean(page);
   await page.close();

@@ -261,7 +261,8 @@ export function createView(canvas, palette) {
     element.addEventListener('pointercancel', release);
     gizmo = new TransformControls(camera, element);
     gizmo.setMode('translate');
-    gizmo.setSize(0.9);
+    // Larger under a finger (its arrows' ends then about 44 px apart).
+    gizmo.setSize(window.matchMedia?.('(pointer: coarse)').matches ? 1.5 : 0.9);
     gizmo.attach(handle);
     for (const part of [gizmo._gizmo.picker.translate, gizmo._gizmo.gizmo.translate]) {
       for (const c of [...part.children]) if (c.name === 'XYZ') c.removeFromParent();
