@@ -137,9 +137,7 @@ pub fn last_panic() -> Option<String> {
     LAST_PANIC.with(|p| p.borrow().clone())
 }
 
-/// The crate's version (`Cargo.toml`'s): the page stamps what it keeps
-/// with it (a robot's reading, `robot-open.js`), so another version reads
-/// again.
+/// The crate's version: the page stamps a robot's kept reading with it.
 #[wasm_bindgen(js_name = moduleVersion)]
 pub fn module_version() -> String {
     env!("CARGO_PKG_VERSION").into()
