@@ -22,12 +22,23 @@ impl SpaceScene {
     /// s`, `tf = 5 s`, every parameter at its default.
     pub fn preset(p: &SpacePreset) -> Self {
         let [x, y, z, r] = p.task.sphere;
+        Self::line(
+            p.chain(),
+            p.task.theta0.to_vec(),
+            p.task.target,
+            vec![Sphere::new([x, y, z], r)],
+        )
+    }
+
+    /// A robot's own line: from `theta0` to `target` past `obstacles`,
+    /// `dt = 0.05 s`, `tf = 5 s`, every parameter at its default.
+    fn line(arm: Chain, theta0: Vec<f64>, target: Vec3, obstacles: Vec<Sphere>) -> Self {
         Self {
-            arm: p.chain(),
-            theta0: p.task.theta0.to_vec(),
-            target: p.task.target,
+            arm,
+            theta0,
+            target,
             path: SpacePath::Line,
-            obstacles: vec![Sphere::new([x, y, z], r)],
+            obstacles,
             damping: None,
             dt: 0.05,
             tf: 5.0,
@@ -57,20 +68,7 @@ impl SpaceScene {
             })
             .unwrap_or_else(|| vec![0.0; arm.dof()]);
         let start = SpacePose::new(&arm, &theta0)?.hand();
-        Ok(Self {
-            arm,
-            theta0,
-            target: own_line_end(start),
-            path: SpacePath::Line,
-            obstacles: Vec::new(),
-            damping: None,
-            dt: 0.05,
-            tf: 5.0,
-            feedback_gain: 0.0,
-            params: Params::default(),
-            weighting: JointWeighting::None,
-            floor: false,
-        })
+        Ok(Self::line(arm, theta0, own_line_end(start), Vec::new()))
     }
 
     /// The preset called `key`'s task.
