@@ -379,7 +379,7 @@ impl Surrogate for Networks {
 
 /// A chain from its JSON text (the layout a weights file or a run file
 /// writes), checked as its constructors check it: by serde's derived reader
-/// in the tool, by hand ([`reader`]'s reader of spatial weights files) in
+/// in the tool, by hand (the page's reader of spatial weights files) in
 /// the wasm modules, which have no serde reader of a chain. The page's
 /// module reads a robot the workers' module made of a URDF so.
 pub fn chain_from_json(json: &str) -> Result<crate::space::Chain> {
