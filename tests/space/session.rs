@@ -446,3 +446,45 @@ fn a_run_off_screen_is_the_planners_and_changes_nothing_on_the_stage() {
     scene.tf = -1.0;
     assert!(s.run_offscreen(scene, QP).is_err());
 }
+
+/// A robot of the user's (the page's "Open robot…"): the UR5e read from
+/// its URDF runs its own task (the middle of its ranges, a line 0.15 m
+/// along `y`, no sphere), the state names it, and Task loads that task
+/// again after the scene changed.
+#[test]
+fn a_robot_of_the_users_runs_its_own_task_and_task_loads_it_again() {
+    use redundant_ik::urdf::{volume, Urdf, UrdfChain};
+    let text =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/ur5e.urdf")).unwrap();
+    let urdf = Urdf::parse(&text).unwrap();
+    let uc = UrdfChain::new(&urdf, None, None).unwrap();
+    let (v, _) = volume::volumes(&urdf, &uc, &|_| None, 0.05);
+    let chain = uc.to_chain(&v, None).unwrap();
+    // The chain as the workers' module hands it to the page, read back.
+    let json = serde_json::to_string(&chain).unwrap();
+    let chain = redundant_ik::networks::chain_from_json(&json).unwrap();
+    let task = SpaceScene::own(chain).unwrap();
+    let start = task.start();
+    assert!((task.target[1] - start[1] - 0.15).abs() < 1e-12 && task.obstacles.is_empty());
+    let mut s = SpaceSession::of_robot("robot", "ur5e", task, Method::NUMERICAL).unwrap();
+    assert_eq!((s.robot_key(), s.robot_label()), ("robot", "ur5e"));
+    let st = s.state();
+    assert_eq!((st.arm, st.arm_label, st.dof), ("robot", "ur5e", 6));
+    s.run_until(1e9).unwrap();
+    assert!(
+        s.summary().final_error < 1e-3,
+        "{}",
+        s.summary().final_error
+    );
+    s.set_target([start[0], start[1] + 0.1, start[2] + 0.05])
+        .unwrap();
+    s.load_task().unwrap();
+    assert!(
+        (s.scene().target[1] - start[1] - 0.15).abs() < 1e-12,
+        "Task loads the robot's own task"
+    );
+    // A task that does not validate is refused.
+    let mut bad = s.scene().clone();
+    bad.dt = -1.0;
+    assert!(SpaceSession::of_robot("robot", "ur5e", bad, Method::NUMERICAL).is_err());
+}
