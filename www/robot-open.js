@@ -190,8 +190,9 @@ export async function openUrl(url, { base, tip } = {}) {
  * reader's message).
  */
 export async function openStored(hash) {
+  if (!ROBOT_HASH.test(String(hash))) throw new Error(`'${String(hash).slice(0, 40)}' is not a robot's hash (16 hexadecimal digits, as "Open robot…" writes it)`);
   const record = await storedRobot(hash);
-  if (!record) throw new Error(`the robot ${String(hash).slice(0, 16)} is not in this browser's storage (robots opened here are kept where they were opened): open its URDF again with "Open robot…"`);
+  if (!record) throw new Error(`the robot ${hash} is not in this browser's storage (robots opened here are kept where they were opened): open its URDF again with "Open robot…"`);
   // The reading kept with the files, where this version made it; else read again (in a worker).
   const read = record.read && record.version === moduleVersion() ? record.read : await readRobot(record);
   const visuals = visualsOf(record.urdf);

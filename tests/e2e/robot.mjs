@@ -226,11 +226,22 @@ test('your robot: hostile and wrong files are refused with the reader\'s own mes
   await page.close();
 });
 
-test('your robot: an address naming a robot this browser has not kept opens the first shipped arm and says why', async () => {
-  const page = await open('?robot=0123456789abcdef&method=qp');
-  const s = await state(page);
-  assert.equal(s.arm, 'panda');
-  assert.match(await page.textContent('#message'), /robot: the robot 0123456789abcdef is not in this browser's storage/);
-  clean(page);
-  await page.close();
+test('your robot: an address naming a robot this browser has not kept, or a hostile one, opens the first shipped arm and says why', async () => {
+  const cases = [
+    ['robot=0123456789abcdef', /robot: the robot 0123456789abcdef is not in this browser's storage/],
+    ['robot=%3Cscript%3Ealert(1)%3C%2Fscript%3E', /robot: '<script>alert\(1\)<\/script>' is not a robot's hash \(16 hexadecimal digits/],
+    ['urdf=javascript:alert(1)', /urdf: javascript:alert\(1\) could not be fetched/],
+    ['urdf=%00%FF', /urdf: .* could not be fetched|urdf: Invalid URL|urdf: .*HTTP 404/],
+  ];
+  for (const [query, why] of cases) {
+    const page = await open(`?${query}&method=qp`);
+    const s = await state(page);
+    assert.equal(s.arm, 'panda', query);
+    assert.match(await page.textContent('#message'), why, query);
+    assert.equal(await page.evaluate(() => document.body.innerHTML.includes('<script>alert')), false, 'nothing of the address became markup');
+    const end = await page.evaluate(() => window.demo.runUntil(1e9));
+    assert.ok(end.ended, `${query}: the Panda runs`);
+    page.problems.length = 0; // a failed fetch is logged by the browser
+    await page.close();
+  }
 });
