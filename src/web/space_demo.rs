@@ -9,13 +9,14 @@ use web_sys::HtmlCanvasElement;
 use super::space_stage::{self, SliceLayer};
 
 mod layer;
+mod pose;
 mod robot;
 mod script;
 mod view;
 use super::surface::Surface;
 use super::tracked::Tracked;
 use super::{finite, js_err, plots, to_js, JsResult};
-use crate::export::SpaceRunFile;
+use crate::export::{PoseRunFile, SpaceRunFile};
 use crate::networks::space::SpaceNetworkSet;
 use crate::planner::Method;
 use crate::run::NetworkChoice;
@@ -421,7 +422,8 @@ impl SpaceDemo {
         self.projection().project([x, y, z]).to_vec()
     }
 
-    /// The run as `redundant-ik simulate --arm A --json` writes it (what
+    /// The run as `redundant-ik simulate --arm A --json` writes it (with
+    /// `--task pose` for the hand's pose; what
     /// `simulate --from` replays and the workers' jobs read): the one run
     /// file, with the shipped set a learned method ran with, so that the
     /// command line replays it so.
@@ -429,6 +431,9 @@ impl SpaceDemo {
     pub fn run_file(&self) -> String {
         let s = self.session();
         let networks = s.network_set().map(NetworkChoice::Set);
+        if let (Some(scene), Some(run)) = (s.pose_scene(), s.pose_trajectory()) {
+            return PoseRunFile::of(None, scene, run, networks, s.precision()).to_json();
+        }
         SpaceRunFile::of(
             None,
             s.scene().clone(),

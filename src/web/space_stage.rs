@@ -18,6 +18,7 @@ use crate::atlas::{Class, Grid};
 use crate::error::Result;
 use crate::session::space::{Projection, SpaceHandle, SpaceSession, NEAR};
 use crate::space::manipulability::velocity_ellipsoid;
+use crate::space::rotation::Mat3;
 use crate::space::Vec3;
 
 /// Half the floor grid's side (m) and its spacing.
@@ -160,6 +161,13 @@ pub struct SceneView {
     pub force: Option<EllipsoidView>,
     /// The target: the end of the hand's line.
     pub target: Vec3,
+    /// The target's orientation (a rotation matrix by rows) where the
+    /// task is the hand's pose: the view draws its frame and the gizmo
+    /// turns it.
+    pub target_rotation: Option<Mat3>,
+    /// The hand's orientation now (by rows): its frame is drawn for the
+    /// pose task.
+    pub hand_rotation: Mat3,
     /// Half the floor grid's side and its spacing (m).
     pub floor: [f64; 2],
     /// What the keys move (the gizmo's item): `target` or `sphere 2`.
@@ -227,6 +235,8 @@ pub fn view(s: &SpaceSession, width: f64, height: f64, layer: u32, shown: Shown)
         velocity: scaled(shown.velocity, &|s| VELOCITY_SCALE * s),
         force: scaled(shown.force, &|s| (FORCE_SCALE / s).min(MAX_FORCE)),
         target: scene.target,
+        target_rotation: s.target_rotation(),
+        hand_rotation: s.hand_rotation(),
         floor: [FLOOR_HALF, FLOOR_STEP],
         selected: s.selected().describe(),
         layer,

@@ -251,3 +251,35 @@ fn the_pose_task_has_its_slice_atlas() {
         "pose",
     );
 }
+
+#[test]
+fn the_pages_pose_run_file_replays_on_the_command_line() {
+    use redundant_ik::export::PoseRunFile;
+    use redundant_ik::session::space::SpaceSession;
+    // The page's session: the Panda's pose task, the target turned, in qp.
+    let mut s = SpaceSession::new("panda", redundant_ik::planner::methods::QP).unwrap();
+    s.set_pose_task(true).unwrap();
+    s.turn_target(2, 0.4).unwrap();
+    s.turn_target(1, -0.2).unwrap();
+    let file = PoseRunFile::of(
+        None,
+        s.pose_scene().unwrap(),
+        s.pose_trajectory().unwrap(),
+        None,
+        s.precision(),
+    );
+    let path = scratch("page-pose-run.json");
+    std::fs::write(&path, file.to_json()).unwrap();
+    let again = json(&["simulate", "--from", path.to_str().unwrap(), "--json"]);
+    let (ours, theirs) = (&file.steps, again["steps"].as_array().unwrap());
+    assert_eq!(ours.len(), theirs.len());
+    for (a, b) in ours.iter().zip(theirs) {
+        for (x, y) in a.theta.iter().zip(b["theta"].as_array().unwrap()) {
+            assert!((x - y.as_f64().unwrap()).abs() <= 1e-9, "{x} {y}");
+        }
+    }
+    let e = again["summary"]["final_orientation_error"]
+        .as_f64()
+        .unwrap();
+    assert!(e < 5e-3, "{e}");
+}

@@ -11,6 +11,7 @@ mod paths;
 mod planner;
 mod self_motion;
 mod session;
+mod session_pose;
 
 use redundant_ik::space::{Chain, Row};
 use redundant_ik::Arm;

@@ -84,7 +84,8 @@ impl SpaceSession {
     // ---- off screen -----------------------------------------------------
 
     /// Runs `scene` whole in `method` with the session's networks, off
-    /// screen (the page's scripted `simulate()`): its outcome; refused when
+    /// screen (the page's scripted `simulate()`), as its pose task where
+    /// the session's task is the hand's pose: its outcome; refused when
     /// the scene does not validate, the method needs networks the session
     /// has not, or a step fails. The scene on the stage does not change.
     pub fn run_offscreen(&self, scene: SpaceScene, method: Method) -> Result<Summary> {
@@ -95,6 +96,11 @@ impl SpaceSession {
                 method.label(),
                 self.robot.label
             )));
+        }
+        if let Some(o) = self.orientation {
+            let pose = crate::scene::PoseScene::from_space(scene, Some(o.rotation), o.weight)?;
+            let nets = self.networks.clone().map(|n| n as Networks<_, 6>);
+            return Planner::run_summary(pose, method, nets);
         }
         let nets = self.networks.clone().map(|n| n as Networks<_, 3>);
         Planner::run_summary(scene, method, nets)
@@ -108,8 +114,11 @@ impl SpaceSession {
     pub fn compare(&self) -> Vec<SpaceMethodRun> {
         ALL.iter()
             .filter(|m| m.in_space() && (!m.uses_networks() || self.networks.is_some()))
+            .filter(|&&m| self.orientation.is_none() || super::pose_task::runs_pose(m))
             .map(|&m| {
-                let (_, summary, failure) = run(&self.scene, m, self.networks.clone());
+                let super::pose_task::Played {
+                    summary, failure, ..
+                } = run(&self.scene, self.orientation, m, self.networks.clone());
                 SpaceMethodRun {
                     method: m,
                     summary,

@@ -16,6 +16,7 @@
 mod camera;
 mod clock;
 mod pointer;
+mod pose_task;
 mod self_motion;
 mod settings;
 mod state;
@@ -25,6 +26,7 @@ use std::sync::Arc;
 
 pub use camera::{Camera, Projection, DISTANCE, FIELD_OF_VIEW, NEAR, PITCH};
 pub use pointer::{SpaceHandle, KEY_ORBIT};
+pub use pose_task::Orientation;
 pub use state::{SpaceMethodRun, SpaceState};
 
 use super::history::Point;
@@ -32,15 +34,18 @@ use crate::error::{Error, Result};
 use crate::networks::space::{SpaceNetworkSet, SpaceNetworks};
 use crate::nn::Precision;
 use crate::planner::methods::Method;
-use crate::planner::{Networks, Planner, Sample, Summary, Trajectory};
+use crate::planner::{Sample, Summary, Trajectory};
 use crate::scene::SpaceScene;
-use crate::space::{Chain, SpacePose, Vec3, PRESETS};
+use crate::space::{SpacePose, Vec3, PRESETS};
+use pose_task::run;
 
 /// A spatial run played on the page: see the module documentation.
 #[derive(Clone)]
 pub struct SpaceSession {
     robot: SessionRobot,
     scene: SpaceScene,
+    /// The target's orientation where the task is the hand's pose.
+    orientation: Option<Orientation>,
     method: Method,
     networks: Option<Arc<SpaceNetworks>>,
     network_set: Option<SpaceNetworkSet>,
@@ -48,6 +53,9 @@ pub struct SpaceSession {
     precision: Precision,
     /// Every sample of the run from `t = 0` (up to a failed step).
     samples: Vec<Sample<3>>,
+    /// The pose task's samples (six coordinates), for its run file; empty
+    /// for the position task.
+    pose_steps: Vec<Sample<6, Vec3>>,
     /// In the network cases, the numerical route's run of the same scene
     /// (the dashed ghost the page draws beside the learned arm, as in the
     /// plane); empty otherwise.
@@ -114,11 +122,13 @@ impl SpaceSession {
         let mut s = Self {
             robot,
             scene,
+            orientation: None,
             method: Method::NUMERICAL,
             networks: None,
             network_set: None,
             precision: Precision::F64,
             samples: Vec::new(),
+            pose_steps: Vec::new(),
             ghost: Vec::new(),
             ghost_pose: None,
             summary: Summary::nothing(method),
@@ -232,6 +242,9 @@ impl SpaceSession {
     /// in space or needs networks the session has not.
     pub fn set_method(&mut self, method: Method) -> Result<()> {
         method.space_rule(self.scene.arm.dof())?;
+        if self.orientation.is_some() {
+            pose_task::check_pose_method(method)?;
+        }
         if method.uses_networks() && self.networks.is_none() {
             return Err(Error::NetworksUnavailable(format!(
                 "{} needs networks for the {}: they have not loaded",
@@ -239,44 +252,58 @@ impl SpaceSession {
                 self.robot.label
             )));
         }
-        self.method = method;
-        self.recompute();
-        Ok(())
+        self.take(self.scene.clone(), self.orientation, method)
     }
 
     /// Back to the robot's own task (its target, sphere and settings), the
-    /// method and networks kept.
+    /// method and networks kept; for the pose task, the target's
+    /// orientation the hand's at the start.
     pub fn load_task(&mut self) -> Result<()> {
-        self.scene = self.robot.task.clone();
+        let orientation = match self.orientation {
+            Some(o) => {
+                let start =
+                    crate::scene::PoseScene::from_space(self.robot.task.clone(), None, o.weight)?
+                        .start();
+                Some(Orientation {
+                    rotation: [start[3], start[4], start[5]],
+                    ..o
+                })
+            }
+            None => None,
+        };
+        self.take(self.robot.task.clone(), orientation, self.method)?;
         self.selected = SpaceHandle::Target;
         self.index = 0;
-        self.recompute();
+        self.show(0);
         Ok(())
     }
 
-    /// Takes `scene` when it validates (and the method still runs on it),
-    /// then recomputes the run, the time shown kept.
+    /// Takes `scene` when it validates (and the method still runs on it,
+    /// in the task in use), then recomputes the run, the time shown kept.
     fn apply(&mut self, scene: SpaceScene) -> Result<()> {
-        scene.validate()?;
-        self.scene = scene;
-        self.recompute();
-        Ok(())
+        self.take(scene, self.orientation, self.method)
     }
 
     /// Runs the scene from `t = 0` to `tf` (or to the first failed step)
     /// and shows the sample at the time shown before.
     fn recompute(&mut self) {
-        let (samples, summary, failure) = run(&self.scene, self.method, self.networks.clone());
+        let played = run(
+            &self.scene,
+            self.orientation,
+            self.method,
+            self.networks.clone(),
+        );
         // The ghost: the exact route on the same scene, about 0.15 ms of
         // the Panda's task natively (a learned run is 1 ms).
         self.ghost = if self.method.uses_networks() {
-            run(&self.scene, Method::NUMERICAL, None).0
+            run(&self.scene, self.orientation, Method::NUMERICAL, None).samples
         } else {
             Vec::new()
         };
-        self.summary = summary;
-        self.samples = samples;
-        self.failure = failure;
+        self.summary = played.summary;
+        self.samples = played.samples;
+        self.pose_steps = played.pose_steps;
+        self.failure = played.failure;
         self.runs += 1;
         let last = self.samples.len().saturating_sub(1);
         self.show(self.index.min(last));
@@ -371,27 +398,4 @@ fn home_focus(scene: &SpaceScene) -> Vec3 {
     let (a, b) = (scene.start(), scene.path_end());
     let base = scene.arm.base().1;
     [0, 1, 2].map(|i| (a[i] + b[i] + base[i]) / 3.0)
-}
-
-/// `scene` run in `method` from `t = 0` to `tf`: the samples up to the
-/// first step that failed, the run's outcome so far, and why it failed.
-pub(super) fn run(
-    scene: &SpaceScene,
-    method: Method,
-    networks: Option<Arc<SpaceNetworks>>,
-) -> (Vec<Sample<3>>, Summary, Option<String>) {
-    let nets = networks.map(|n| n as Networks<Chain, 3>);
-    let mut p = match Planner::new(scene.clone(), method, nets) {
-        Ok(p) => p,
-        Err(e) => return (Vec::new(), Summary::nothing(method), Some(e.to_string())),
-    };
-    let mut samples = Vec::with_capacity(scene.steps() + 1);
-    samples.push(p.sample().clone());
-    while !p.done() {
-        match p.step() {
-            Ok(s) => samples.push(s.clone()),
-            Err(e) => return (samples, p.summary(), Some(e.to_string())),
-        }
-    }
-    (samples, p.summary(), None)
 }

@@ -10,7 +10,7 @@ use crate::planner::Summary;
 use crate::scene::JointWeighting;
 use crate::session::ByName;
 use crate::space::manipulability::{manipulability, velocity_ellipsoid};
-use crate::space::Vec3;
+use crate::space::{rotation, Vec3};
 
 /// The snapshot the page reads every frame.
 #[derive(Debug, Serialize)]
@@ -59,6 +59,18 @@ pub struct SpaceState<'a> {
     pub target: Vec3,
     /// `|hand - reference|` (m).
     pub tracking_error: f64,
+    /// `position` or `pose`: what the hand's task is.
+    pub task: &'static str,
+    /// The target's roll, pitch and yaw (rad; URDF's fixed axes) and `Z`'s
+    /// orientation weight, for the pose task.
+    pub target_rpy: Option<Vec3>,
+    /// See `target_rpy`.
+    pub orientation_weight: Option<f64>,
+    /// The hand's roll, pitch and yaw at the pose shown (rad).
+    pub hand_rpy: Vec3,
+    /// For the pose task, the angle between the hand's orientation and the
+    /// reference's at the time shown (rad).
+    pub orientation_error: Option<f64>,
     /// Yoshikawa's manipulability `sqrt(det(J J^T))` at the pose shown
     /// (m^3), and the singular values `sigma_1 >= sigma_2 >= sigma_3` of
     /// `J` (m), the velocity ellipsoid's half-lengths.
@@ -163,6 +175,15 @@ impl SpaceSession {
             reference: sample.map_or(self.pose.hand(), |s| s.reference),
             target: self.scene.target,
             tracking_error: sample.map_or(0.0, |s| s.tracking_error),
+            task: if self.orientation.is_some() {
+                "pose"
+            } else {
+                "position"
+            },
+            target_rpy: self.target_rotation().map(|r| rotation::matrix_rpy(&r)),
+            orientation_weight: self.orientation.map(|o| o.weight),
+            hand_rpy: rotation::matrix_rpy(&self.hand_rotation()),
+            orientation_error: sample.and_then(|s| s.orientation_error),
             manipulability: manipulability(&self.pose),
             singular_values: velocity_ellipsoid(self.pose.jjt()).1,
             spheres: self
