@@ -1,7 +1,9 @@
 // The address of a scene in space (arm=panda or arm=iiwa14; robot=HASH, a
 // robot of the user's kept in this browser: robot-open.js): what it asks
 // for, and the state written back into it. Keys: arm, method, lambda and
-// the methods' other parameters by name, target=X,Y,Z,
+// the methods' other parameters by name, target=X,Y,Z (or
+// X,Y,Z,ROLL,PITCH,YAW, rad: the hand's full pose, as task=pose),
+// orientation_weight (Z's z),
 // obstacles=X,Y,Z,R;X,Y,Z,R (the spheres, m), feedback, weighting, floor,
 // damping (1: the schedule near singular poses on; off by default in
 // space), theta0 (the start pose, rad: self-motion moves it), path (the
@@ -48,7 +50,10 @@ export function readSpaceAddress(search) {
   const settings = {
     arm: spaceArmOf(search),
     method: q.get('method') ?? q.get('mode') ?? undefined,
-    target: read('target', (v) => numbers(v, 3)),
+    task: q.get('task') ?? undefined,
+    // x, y, z (m), or the hand's full pose with roll, pitch, yaw (rad).
+    target: read('target', (v) => numbers(v, v.split(',').length === 6 ? 6 : 3)),
+    orientation_weight: read('orientation_weight', (v) => numbers(v, 1)[0]),
     obstacles: read('obstacles', (v) => v.split(';').filter((x) => x.trim()).flatMap((x) => numbers(x, 4))),
     feedback: read('feedback', (v) => numbers(v, 1)[0]),
     weighting: q.get('weighting') ?? undefined,
@@ -81,7 +86,11 @@ export function spaceQuery(s, preset) {
   // A robot of the user's is named by its files' hash (robot-open.js).
   for (const [key, value] of preset.address ?? [['arm', s.arm]]) q.set(key, value);
   q.set('method', s.method);
-  if (s.target.some((v, i) => Math.abs(v - preset.task.target[i]) > 1e-9)) q.set('target', s.target.map(exact).join(','));
+  if (s.task === 'pose') {
+    // The full pose: the target's orientation always (its start differs with theta0), its angles exact.
+    q.set('target', [...s.target.map(exact), ...s.target_rpy.map(String)].join(','));
+    if (s.orientation_weight !== 1) q.set('orientation_weight', String(s.orientation_weight));
+  } else if (s.target.some((v, i) => Math.abs(v - preset.task.target[i]) > 1e-9)) q.set('target', s.target.map(exact).join(','));
   const own = preset.task.sphere;
   const same = own ? s.spheres.length === 1 && s.spheres[0].every((v, i) => Math.abs(v - own[i]) < 1e-9) : s.spheres.length === 0;
   if (!same) q.set('obstacles', s.spheres.map((sp) => sp.map(exact).join(',')).join(';'));

@@ -28,6 +28,7 @@ import { mountWeightsUpload } from './weights-upload.js';
 import { mountSpaceTraining } from './space-training.js';
 import { mountView, preloadView } from './space-view.js';
 import { mountTargetFields } from './place-fields.js';
+import { mountPoseFields } from './pose-fields.js';
 
 const READOUTS = {
   t: (s) => fixed(s.t, 1),
@@ -40,7 +41,6 @@ const READOUTS = {
   delta: () => '—',
   solver: () => '—',
 };
-
 
 /** The shipped networks of `arm`, fetched and installed; resolves to null or the reason they are not. */
 async function installNetworks(demo, arm) {
@@ -63,10 +63,11 @@ async function installNetworks(demo, arm) {
 
 /**
  * Starts the spatial demo on `root` (the page's document). Options: arm
- * (a spatial preset's key), method, target [x, y, z], obstacles (flat x, y,
- * z, r, ...), params { name: value }, feedback, weighting, damping, path,
- * floor, precision, view
- * [yaw°, pitch°, distance], autoplay, keyboard, problems (shown), onChange
+ * (a spatial preset's key), method, task (position or pose), target [x, y, z]
+ * (or [x, y, z, roll, pitch, yaw] rad: the full pose, as task=pose),
+ * orientation_weight, obstacles (flat x, y, z, r, ...), params { name: value },
+ * feedback, weighting, damping, path, floor, precision, view [yaw°, pitch°,
+ * distance], autoplay, keyboard, problems (shown), onChange
  * (after user changes). Returns a controller with state(), demo,
  * worldToClient(x, y, z), runUntil(t), compare(), runFile().
  */
@@ -185,7 +186,9 @@ export async function mountSpace(root, options) {
   };
   if (options.theta0) initial('theta0', () => demo.setStart(Float64Array.from(options.theta0)));
   if (options.obstacles) initial('obstacles', () => demo.setSpheres(Float64Array.from(options.obstacles)));
-  if (options.target) initial('target', () => demo.setTarget(...options.target));
+  if (options.task || options.target?.length === 6) initial('task', () => demo.setTask(options.task ?? 'pose'));
+  if (options.target) initial('target', () => [demo.setTarget(...options.target.slice(0, 3)), options.target.length === 6 && demo.setTargetOrientation(...options.target.slice(3))]);
+  if (options.orientation_weight !== undefined) initial('orientation_weight', () => demo.setOrientationWeight(options.orientation_weight));
   for (const [name, value] of Object.entries(options.params ?? {})) initial(name, () => demo.setParam(name, value));
   if (options.feedback !== undefined) initial('feedback', () => demo.setFeedback(options.feedback));
   if (options.weighting) initial('weighting', () => demo.setWeighting(options.weighting));
@@ -237,7 +240,7 @@ export async function mountSpace(root, options) {
     hint.innerHTML =
       '<kbd>Space</kbd> play / pause · <kbd>R</kbd> reset · on the drawing: <kbd>n</kbd> selects the target or a sphere, ' +
       '<kbd>←</kbd><kbd>↑</kbd><kbd>→</kbd><kbd>↓</kbd> move it in the plane facing you (<kbd>Shift</kbd>: 5 mm), ' +
-      '<kbd>o</kbd> / <kbd>u</kbd> orbit (<kbd>Shift</kbd>: back), <kbd>+</kbd> / <kbd>-</kbd> zoom, <kbd>0</kbd> resets the view';
+      '<kbd>o</kbd> / <kbd>u</kbd> orbit (<kbd>Shift</kbd>: back), <kbd>+</kbd> / <kbd>-</kbd> zoom, <kbd>0</kbd> resets the view; for the full pose <kbd>x</kbd> <kbd>y</kbd> <kbd>z</kbd> turn the target';
   }
   const speed = $('speed');
   speed?.addEventListener('change', () => attempt(() => demo.setSpeed(Number(speed.value)), 'error', speed));
@@ -286,6 +289,7 @@ export async function mountSpace(root, options) {
   const syncParams = mountMethodParams(root, demo, { attempt, changed });
   // The target's x, y and z without dragging (WCAG 2.5.7).
   const syncTarget = mountTargetFields(root, demo, { attempt, changed, dims: 3 });
+  const syncPose = mountPoseFields(root, demo, { attempt, changed, say, view: view3d });
   wireSpaceStage(stage, demo, { attempt, changed, say, togglePlay, reset, keyboard: options.keyboard, gizmoAxis: view3d.gizmoAxis });
   const view = document.createElement('button');
   Object.assign(view, { type: 'button', id: 'fit-view', textContent: 'Reset view' });
@@ -299,7 +303,7 @@ export async function mountSpace(root, options) {
   stage.after(view);
   stage.setAttribute(
     'aria-label',
-    `The ${preset.label} in 3-D, the spheres and the path. Drag the target or a sphere, or an elbow to move the arm with its hand held still; drag the empty drawing to orbit. With the keyboard: n selects the next item, the arrows move it in the view's plane, o and u orbit, + and - zoom, 0 resets the view.`,
+    `The ${preset.label} in 3-D, the spheres and the path. Drag the target or a sphere, or an elbow to move the arm with its hand held still; drag the empty drawing to orbit. With the keyboard: n selects the next item, the arrows move it in the view's plane, o and u orbit, + and - zoom, 0 resets the view; for the hand's full pose x, y and z turn the target.`,
   );
 
   // The readouts of the velocity ellipsoid: three singular values, m³.
@@ -364,6 +368,7 @@ export async function mountSpace(root, options) {
     syncPrecision(s, menu.selectedOptions[0]?.dataset.networks === 'true');
     syncParams(s);
     syncTarget(s);
+    syncPose(s);
     if (range) range.hidden = s.in_range;
     const ghostKey = legendList?.querySelector('[data-key=ghost]');
     if (ghostKey) ghostKey.hidden = !s.ghost;

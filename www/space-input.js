@@ -6,9 +6,13 @@
 // page), two fingers orbit (their midpoint) and zoom (their spread). Keys
 // on the drawing: n / Shift+n select the next / previous item, the arrows
 // move it in the view's plane (Shift: fine steps), o / Shift+o orbit by 15
-// degrees (u / Shift+u up and down), + and - zoom, 0 resets the view. The
+// degrees (u / Shift+u up and down), + and - zoom, 0 resets the view; in
+// the pose task x, y and z (Shift: backwards) turn the target by 15 degrees
+// about the world's axes. The
 // module decides what a point grabs and how it moves (src/session/space);
 // this file only routes the events and says what changed (`say`).
+
+import { orientationWords } from './pose-fields.js';
 
 /**
  * Wires `stage` of the SpaceDemo `demo`. Hooks: `attempt(fn)` runs a call
@@ -71,6 +75,13 @@ export function wireSpaceStage(stage, demo, { attempt, changed, say, togglePlay,
     } else if (k === '0') {
       demo.resetView();
       said = `view reset: ${view()}`;
+    } else if ('xyzXYZ'.includes(k) && demo.state().task === 'pose') {
+      // The pose task's target turned by 15 degrees about a world axis.
+      const axis = 'xyz'.indexOf(k.toLowerCase());
+      if (attempt(() => demo.turnTarget(axis, ((e.shiftKey ? -1 : 1) * Math.PI) / 12))) {
+        changed();
+        said = `target turned about ${'xyz'[axis]}: ${orientationWords(demo.state().target_rpy)}`;
+      }
     } else {
       return;
     }

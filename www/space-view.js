@@ -6,6 +6,7 @@
 // shown. Each frame the core changed, it draws SpaceDemo.view().
 
 import { palette } from './module.js';
+import { orientationWords } from './pose-fields.js';
 
 let loading = null;
 /** pkg/three-view.js, imported once; the page in space starts it with the core's module, so the two arrive together. */
@@ -50,11 +51,14 @@ function gizmoHooks(stage, demo, { attempt, say, changed }) {
       if (k < 0) attempt(() => demo.setTarget(...p));
       else attempt(() => demo.setSpheres(Float64Array.from(s.spheres.flatMap((c, i) => (i === k ? [...p, c[3]] : c)))));
     },
+    // The rings, for the pose task's target: its orientation, by rows.
+    turned: (rows) => attempt(() => demo.setTargetRotation(Float64Array.from(rows))),
     ended: () => {
       const s = demo.state();
       const k = sphereIndex(s.selected);
       const c = k < 0 ? s.target : s.spheres[k];
-      say(`moved: ${s.selected} at x ${c[0].toFixed(2)}, y ${c[1].toFixed(2)}, z ${c[2].toFixed(2)} m`);
+      const turned = k < 0 && s.task === 'pose' ? `, turned to ${orientationWords(s.target_rpy)}` : '';
+      say(`moved: ${s.selected} at x ${c[0].toFixed(2)}, y ${c[1].toFixed(2)}, z ${c[2].toFixed(2)} m${turned}`);
       changed();
     },
     yields: (e) => {
@@ -111,6 +115,11 @@ export async function mountView(stage, demo, hooks, robot = null) {
     robotDrawn: drawn,
     /** The gizmo's part under the pointer, or null (space-input.js leaves a press there to it). */
     gizmoAxis: () => view?.gizmoAxis() ?? null,
+    /** Whether the gizmo turns the pose task's target rather than moving it (redrawn now). */
+    setTurn(on) {
+      view?.setTurn(on);
+      this.draw();
+    },
     three: view,
   };
 }

@@ -37,6 +37,7 @@ import './space-controls.mjs';
 import './embed-space.mjs';
 import './view3d.mjs';
 import './robot.mjs';
+import './pose.mjs';
 import { classTests } from './class.mjs';
 import { limitsTests } from './limits.mjs';
 import { labTests } from './lab.mjs';

@@ -14,6 +14,7 @@
 // the axis cross and the caption are the overlay's, the 2-D canvas above.
 
 import {
+  AxesHelper,
   BufferGeometry,
   CylinderGeometry,
   DirectionalLight,
@@ -44,7 +45,7 @@ import {
   Matrix4,
 } from 'three';
 import { TransformControls } from 'three/addons/controls/TransformControls.js';
-import { visualObject } from './visuals.js';
+import { visualObject, byRows } from './visuals.js';
 
 const UP = new Vector3(0, 1, 0);
 
@@ -248,7 +249,7 @@ export function createView(canvas, palette) {
   let gizmo = null;
   const handle = new Group();
   scene.add(handle);
-  const attachGizmo = (element, { moved, ended, yields }) => {
+  const attachGizmo = (element, { moved, turned, ended, yields }) => {
     // Registered before the gizmo's own listener, so it runs first: a press
     // on an item the core grabs (yields(event)) is not the gizmo's.
     const release = () => {
@@ -269,7 +270,13 @@ export function createView(canvas, palette) {
     }
     scene.add(gizmo.getHelper());
     gizmo.addEventListener('change', () => renderer.render(scene, camera));
-    gizmo.addEventListener('objectChange', () => moved(handle.position.toArray()));
+    gizmo.addEventListener('objectChange', () => {
+      if (gizmo.mode === 'rotate') {
+        // The handle's rotation, by rows (Matrix4's elements are by columns).
+        const m = new Matrix4().makeRotationFromQuaternion(handle.quaternion).elements;
+        turned?.([m[0], m[4], m[8], m[1], m[5], m[9], m[2], m[6], m[10]]);
+      } else moved(handle.position.toArray());
+    });
     gizmo.addEventListener('dragging-changed', (e) => {
       if (!e.value) ended();
     });
@@ -279,6 +286,26 @@ export function createView(canvas, palette) {
     const k = v.selected === 'target' ? -1 : Number(v.selected.split(' ')[1]) - 1;
     const p = k < 0 ? v.target : v.spheres[k];
     if (p) handle.position.set(p[0], p[1], p[2]);
+    // The pose task's target turns: the gizmo carries its orientation.
+    const turnable = k < 0 && Boolean(v.target_rotation);
+    if (turnable) handle.quaternion.setFromRotationMatrix(byRows(v.target_rotation));
+    else handle.quaternion.identity();
+    gizmo.setMode(turn && turnable ? 'rotate' : 'translate');
+  };
+  // Whether the gizmo turns the pose task's target (else it moves it).
+  let turn = false;
+
+  // The pose task's frames: the target's orientation and the hand's, each
+  // as its x, y and z axes (red, green, blue).
+  const targetFrame = new AxesHelper(0.12);
+  const handFrame = new AxesHelper(0.08);
+  targetFrame.visible = handFrame.visible = false;
+  scene.add(targetFrame, handFrame);
+  const placeFrame = (frame, rotation, at) => {
+    frame.visible = Boolean(rotation);
+    if (!rotation) return;
+    frame.position.set(...at);
+    frame.quaternion.setFromRotationMatrix(byRows(rotation));
   };
 
   // A robot's visuals (its URDF's <visual> meshes and shapes): a group a
@@ -397,6 +424,8 @@ export function createView(canvas, palette) {
         g[i].scale.setScalar(0.25 * r);
       });
       placeGizmo(v);
+      placeFrame(targetFrame, v.target_rotation, v.target);
+      placeFrame(handFrame, v.target_rotation && v.hand_rotation, v.hand);
       if (placed.length) placeRobot(v.frames);
       setEllipsoid('velocity', v.velocity, v.hand);
       setEllipsoid('force', v.force, v.hand);
@@ -444,6 +473,20 @@ export function createView(canvas, palette) {
       renderer.render(scene, camera);
     },
     volumes: () => arm.visible,
+    /**
+     * Whether the gizmo turns the pose task's target (its rings) rather
+     * than moving it (its arrows); takes effect at the next draw.
+     */
+    setTurn(on) {
+      turn = on;
+    },
+    /** The gizmo's mode now: 'translate' or 'rotate'. */
+    gizmoMode: () => gizmo?.mode ?? null,
+    /** The gizmo's orientation as drawn, a rotation matrix by rows. */
+    gizmoRotation: () => {
+      const m = new Matrix4().makeRotationFromQuaternion(handle.quaternion).elements;
+      return [m[0], m[4], m[8], m[1], m[5], m[9], m[2], m[6], m[10]];
+    },
     /** The gizmo's item's centre as drawn, [x, y, z]. */
     gizmoAt: () => handle.position.toArray(),
     /** The gizmo's part under the pointer ('X', 'XY', ...) or null: a press there is the gizmo's. */

@@ -1,8 +1,9 @@
 // A robot's <visual> as a three.js object (bundled with three-view.js):
 // a mesh file through three's own loaders (STL, OBJ, Collada), a box, a
-// cylinder or a sphere, in the URDF's colour or a light grey.
+// cylinder or a sphere, in the URDF's colour or a light grey; and the
+// core's rotations (by rows) as three's matrices.
 
-import { BoxGeometry, Color, CylinderGeometry, Mesh, MeshStandardMaterial, SphereGeometry } from 'three';
+import { BoxGeometry, Color, CylinderGeometry, Matrix4, Mesh, MeshStandardMaterial, SphereGeometry } from 'three';
 import { STLLoader } from 'three/addons/loaders/STLLoader.js';
 import { OBJLoader } from 'three/addons/loaders/OBJLoader.js';
 import { ColladaLoader } from 'three/addons/loaders/ColladaLoader.js';
@@ -49,3 +50,13 @@ export function visualObject(v, meshes) {
   return object;
 }
 
+
+const rows = new Matrix4();
+/**
+ * The core's rotation matrix `r` (three rows of three, SceneView's
+ * target_rotation and hand_rotation) as a three.js Matrix4 (one shared
+ * instance: read it before the next call).
+ */
+export function byRows(r) {
+  return rows.set(r[0][0], r[0][1], r[0][2], 0, r[1][0], r[1][1], r[1][2], 0, r[2][0], r[2][1], r[2][2], 0, 0, 0, 0, 1);
+}

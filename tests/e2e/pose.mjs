@@ -1,0 +1,145 @@
+// The hand's full pose as the task of the page in space: the Hand menu,
+// the gizmo's rings dragged by mouse, the keys x, y and z and the roll,
+// pitch and yaw fields turn the target as the core reports it (within 1 mm
+// and 0.01 rad of what is drawn), a pose run in qp to its end, and its run
+// file replayed by the command line's simulate --from to 1e-9; the
+// address keeps the pose task. Registered by e2e.mjs.
+
+import assert from 'node:assert/strict';
+import { join } from 'node:path';
+import { test, open, clean, state, shots, nextFrames } from './harness.mjs';
+import { cli, download, close } from './class-helpers.mjs';
+
+/** The angle (rad) between two rotations given by rows (nine numbers or three rows). */
+const angle = (a, b) => {
+  const [p, q] = [a.flat(), b.flat()];
+  // trace(A B^T) = 1 + 2 cos(angle)
+  let tr = 0;
+  for (let i = 0; i < 3; i++) for (let k = 0; k < 3; k++) tr += p[3 * i + k] * q[3 * i + k];
+  return Math.acos(Math.max(-1, Math.min(1, (tr - 1) / 2)));
+};
+
+test("pose: the Hand menu makes the task the hand's full pose; the gizmo's rings by mouse, the keys and the fields turn the target as the core reports it; a qp run to its end replays on the command line", async () => {
+  const page = await open('?arm=panda&method=qp&autoplay=0');
+  assert.equal(await page.isVisible('#target-roll'), false, 'no orientation fields for the position task');
+  await page.selectOption('#hand-task', 'pose');
+  await nextFrames(page);
+  let s = await state(page);
+  assert.equal(s.task, 'pose');
+  assert.ok(s.target_rpy.every((a, i) => Math.abs(a - s.hand_rpy[i]) < 1e-9), 'the target starts turned as the hand is');
+  assert.match(await page.textContent('#announcer'), /full pose/);
+  assert.equal(await page.isVisible('#target-roll'), true);
+
+  // The gizmo turns the target: its z ring (about world z) dragged by mouse.
+  await page.click('#gizmo-turn');
+  assert.equal(await page.getAttribute('#gizmo-turn', 'aria-pressed'), 'true');
+  await nextFrames(page);
+  assert.equal(await page.evaluate(() => window.demo.controller.view3d.three.gizmoMode()), 'rotate');
+  const before = s.target_rpy;
+  // Look from above so the z ring is a circle on screen; find it around the target.
+  await page.evaluate(() => window.demo.controller.demo.setView(0.3, 1.2, 1.6));
+  await nextFrames(page);
+  const c = await page.evaluate(([x, y, z]) => window.demo.worldToClient(x, y, z), s.target);
+  let at = null;
+  for (let r = 20; r < 200 && !at; r += 2) {
+    for (const a of [0, Math.PI / 2, Math.PI, -Math.PI / 2]) {
+      await page.mouse.move(c.x + r * Math.cos(a), c.y + r * Math.sin(a));
+      if ((await page.evaluate(() => window.demo.controller.view3d.gizmoAxis())) === 'Z') {
+        at = [c.x + r * Math.cos(a), c.y + r * Math.sin(a), a, r];
+        break;
+      }
+    }
+  }
+  assert.ok(at, "the gizmo's z ring is found around the target");
+  await page.mouse.down();
+  // Along the ring, a quarter of the way round.
+  for (let k = 1; k <= 8; k++) {
+    const a = at[2] + (k / 8) * 0.8;
+    await page.mouse.move(c.x + at[3] * Math.cos(a), c.y + at[3] * Math.sin(a));
+  }
+  await page.mouse.up();
+  await nextFrames(page);
+  s = await state(page);
+  assert.ok(Math.abs(s.target_rpy[2] - before[2]) > 0.05, `the yaw turned: ${before} -> ${s.target_rpy}`);
+  const drawn = await page.evaluate(() => window.demo.controller.view3d.three.gizmoRotation());
+  const core = await page.evaluate(() => window.demo.controller.demo.view().target_rotation);
+  assert.ok(angle(drawn, core) < 0.01, `the gizmo is turned as the core has the target: ${angle(drawn, core)} rad`);
+  const where = await page.evaluate(() => window.demo.controller.view3d.three.gizmoAt());
+  assert.ok(Math.hypot(...where.map((d, i) => d - s.target[i])) < 1e-3, 'and sits on it');
+  assert.match(await page.textContent('#announcer'), /turned to roll -?\d+, pitch -?\d+, yaw -?\d+ degrees/);
+  await page.locator('#stage').screenshot({ path: join(shots, 'pose-gizmo.png') });
+
+  // The keys: z turns the target by 15 degrees about world z.
+  const keyed0 = await page.evaluate(() => window.demo.controller.demo.view().target_rotation);
+  await page.focus('#stage');
+  await page.keyboard.press('z');
+  await nextFrames(page);
+  const keyed1 = await page.evaluate(() => window.demo.controller.demo.view().target_rotation);
+  assert.ok(Math.abs(angle(keyed0, keyed1) - Math.PI / 12) < 1e-9, `z turned by 15 degrees: ${angle(keyed0, keyed1)}`);
+  assert.match(await page.textContent('#announcer'), /^target turned about z: roll/);
+
+  // The fields, in degrees: the target as typed, the gizmo following.
+  await page.fill('#target-roll', '180');
+  await page.fill('#target-pitch', '10');
+  await page.fill('#target-yaw', '-20');
+  await page.press('#target-yaw', 'Enter');
+  await nextFrames(page);
+  s = await state(page);
+  const want = [180, 10, -20].map((d) => (d * Math.PI) / 180);
+  const rpy = (r) => [Math.atan2(r[2][1], r[2][2]), -Math.asin(r[2][0]), Math.atan2(r[1][0], r[0][0])];
+  const got = rpy(await page.evaluate(() => window.demo.controller.demo.view().target_rotation));
+  // Roll 180 and -180 are one orientation: compare rotations.
+  const R = (a) => {
+    const [cr, sr, cp, sp, cy, sy] = [Math.cos(a[0]), Math.sin(a[0]), Math.cos(a[1]), Math.sin(a[1]), Math.cos(a[2]), Math.sin(a[2])];
+    return [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr, sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr, -sp, cp * sr, cp * cr];
+  };
+  assert.ok(angle(R(got), R(want)) < 1e-9, `the fields set the orientation: ${got} against ${want}`);
+  const gizmo = await page.evaluate(() => window.demo.controller.view3d.three.gizmoRotation());
+  assert.ok(angle(gizmo, R(want)) < 0.01, 'the gizmo follows the fields');
+  assert.match(page.url(), /task=pose|target=[^&]*%2C[^&]*%2C[^&]*%2C[^&]*%2C[^&]*%2C/, 'the address keeps the pose');
+
+  // A pose run in qp to its end: it reaches the pose; the command line replays its file to 1e-9.
+  await page.fill('#target-roll', String((s.hand_rpy[0] * 180) / Math.PI + 20));
+  await page.press('#target-roll', 'Enter');
+  await nextFrames(page);
+  await page.evaluate(() => window.demo.controller.runUntil(1e9));
+  s = await state(page);
+  assert.ok(s.ended && s.summary.final_error < 5e-3 && s.summary.final_orientation_error < 5e-3, JSON.stringify(s.summary));
+  const json = await download(page, '#save-run-json');
+  const run = JSON.parse(json.text);
+  assert.equal(run.scene.target.length, 6, 'the run file is the pose run');
+  s.theta.forEach((v, i) => close(run.steps.at(-1).theta[i], v, 1e-12, `theta${i + 1}: the file's run is the drawing's`));
+  const back = JSON.parse(cli(['simulate', '--from', json.path, '--json']));
+  assert.equal(back.steps.length, run.steps.length);
+  back.steps.forEach((st, k) => st.theta.forEach((v, i) => close(v, run.steps[k].theta[i], 1e-9, `step ${k} theta${i + 1}`)));
+
+  // Cases 1 and 3 do not run the pose: refused with the reason, qp kept.
+  await page.selectOption('#mode', 'case1').catch(() => {});
+  await nextFrames(page);
+  assert.equal((await state(page)).method, 'qp');
+  // Back to the position task: no orientation.
+  await page.selectOption('#hand-task', 'position');
+  await nextFrames(page);
+  s = await state(page);
+  assert.equal(s.task, 'position');
+  assert.equal(s.target_rpy, null);
+  assert.equal(await page.evaluate(() => window.demo.controller.view3d.three.gizmoMode()), 'translate');
+  clean(page);
+  await page.close();
+});
+
+test('pose: an address with six numbers for the target opens the pose task turned so; a bad orientation is refused and said, the rest applied', async () => {
+  const page = await open('?arm=panda&method=qp&autoplay=0&target=0.45,0.25,0.5,3,0.2,-0.5');
+  const s = await state(page);
+  assert.equal(s.task, 'pose');
+  [3, 0.2, -0.5].forEach((a, i) => assert.ok(Math.abs(s.target_rpy[i] - a) < 1e-9, `rpy ${i}: ${s.target_rpy}`));
+  clean(page);
+  await page.close();
+  const bad = await open('?arm=panda&method=qp&autoplay=0&task=pose&orientation_weight=0');
+  const b = await state(bad);
+  assert.equal(b.task, 'pose');
+  assert.equal(b.orientation_weight, 1);
+  assert.match(await bad.textContent('body'), /orientation_weight/);
+  clean(bad);
+  await bad.close();
+});
