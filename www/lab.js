@@ -1,7 +1,8 @@
 // The lab's controls (issue 25): the joint weighting of eq. (7)
 // (`#joint-weighting`, its choices from the module's limits().joint_weightings,
 // shown for the methods whose MethodInfo says the weighting reaches them),
-// the floor and post as obstacles (`#floor`), the legend's switches for the
+// the floor and post as obstacles (`#floor`), in space the links kept apart
+// from each other (`#self-collision`), the legend's switches for the
 // ellipses at the hand (entries whose `toggle` the module sets) and the note
 // of a joint past its limits (`#limit-warning`). Every element is optional.
 
@@ -31,7 +32,7 @@ export function limitText(s) {
  */
 export function mountLab(root, demo, { attempt, changed }) {
   const $ = (id) => root.querySelector('#' + id);
-  const el = { weighting: $('joint-weighting'), weightingField: $('joint-weighting-field'), floor: $('floor'), note: $('limit-warning'), legend: $('legend') };
+  const el = { weighting: $('joint-weighting'), weightingField: $('joint-weighting-field'), floor: $('floor'), self: $('self-collision'), note: $('limit-warning'), legend: $('legend') };
   if (el.weighting && !el.weighting.options.length) {
     for (const [name, label] of limits().joint_weightings) el.weighting.add(new Option(label, name));
   }
@@ -42,6 +43,11 @@ export function mountLab(root, demo, { attempt, changed }) {
     demo.setFloor(el.floor.checked);
     changed();
   });
+  // In space: the links kept apart from each other (SpaceDemo.setSelfCollision).
+  el.self?.addEventListener('change', () => {
+    if (attempt(() => demo.setSelfCollision(el.self.checked), 'error', el.self)) changed();
+    else el.self.checked = !el.self.checked;
+  });
   el.legend?.addEventListener('change', (e) => {
     const key = e.target?.dataset?.toggle;
     if (key) demo.setShown(key, e.target.checked);
@@ -51,6 +57,12 @@ export function mountLab(root, demo, { attempt, changed }) {
     const field = el.weightingField ?? el.weighting;
     if (field) field.hidden = !method(s.method)?.weighting;
     if (el.floor && el.floor.checked !== s.floor) el.floor.checked = s.floor;
+    if (el.self && s.self_collision !== undefined && el.self.checked !== s.self_collision) el.self.checked = s.self_collision;
+    // The legend's entries of the pose task's frames and of self-collision, where they are drawn.
+    for (const [key, on] of [['frame', s.task === 'pose'], ['self', s.self_collision]]) {
+      const entry = el.legend?.querySelector(`[data-key=${key}]`);
+      if (entry) entry.hidden = !on;
+    }
     if (el.note) {
       const text = limitText(s);
       if (text && el.note.textContent !== text) el.note.textContent = text;

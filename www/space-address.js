@@ -5,6 +5,7 @@
 // X,Y,Z,ROLL,PITCH,YAW, rad: the hand's full pose, as task=pose),
 // orientation_weight (Z's z),
 // obstacles=X,Y,Z,R;X,Y,Z,R (the spheres, m), feedback, weighting, floor,
+// self_collision (1: the links kept apart from each other),
 // damping (1: the schedule near singular poses on; off by default in
 // space), theta0 (the start pose, rad: self-motion moves it), path (the
 // core's syntax: line, circle:CX,CY,CZ,NX,NY,NZ[,LAPS], points:X,Y,Z;...),
@@ -58,6 +59,7 @@ export function readSpaceAddress(search) {
     feedback: read('feedback', (v) => numbers(v, 1)[0]),
     weighting: q.get('weighting') ?? undefined,
     floor: q.has('floor') ? q.get('floor') === '1' : undefined,
+    self_collision: q.has('self_collision') ? q.get('self_collision') === '1' : undefined,
     damping: q.has('damping') ? q.get('damping') === '1' : undefined,
     path: q.get('path') ?? undefined,
     theta0: read('theta0', (v) => v.split(',').map((x) => {
@@ -97,6 +99,7 @@ export function spaceQuery(s, preset) {
   if (s.feedback > 0) q.set('feedback', String(s.feedback));
   if (s.weighting !== limits().joint_weightings[0][0]) q.set('weighting', s.weighting);
   if (s.floor) q.set('floor', '1');
+  if (s.self_collision) q.set('self_collision', '1');
   if (s.damping) q.set('damping', '1');
   if (s.path) q.set('path', s.path);
   // A start of the user's own (self-motion moves it), its angles exact.

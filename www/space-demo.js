@@ -66,7 +66,7 @@ async function installNetworks(demo, arm) {
  * (a spatial preset's key), method, task (position or pose), target [x, y, z]
  * (or [x, y, z, roll, pitch, yaw] rad: the full pose, as task=pose),
  * orientation_weight, obstacles (flat x, y, z, r, ...), params { name: value },
- * feedback, weighting, damping, path, floor, precision, view [yaw°, pitch°,
+ * feedback, weighting, damping, path, floor, self_collision, precision, view [yaw°, pitch°,
  * distance], autoplay, keyboard, problems (shown), onChange
  * (after user changes). Returns a controller with state(), demo,
  * worldToClient(x, y, z), runUntil(t), compare(), runFile().
@@ -194,7 +194,7 @@ export async function mountSpace(root, options) {
   if (options.weighting) initial('weighting', () => demo.setWeighting(options.weighting));
   if (options.damping !== undefined) initial('damping', () => demo.setDamping(options.damping));
   if (options.path) initial('path', () => demo.setPath(options.path));
-  if (options.floor !== undefined) initial('floor', () => demo.setFloor(options.floor));
+  for (const [key, set] of [['floor', (on) => demo.setFloor(on)], ['self_collision', (on) => demo.setSelfCollision(on)]]) if (options[key] !== undefined) initial(key, () => set(options[key]));
   if (options.precision) initial('precision', () => demo.setPrecision(options.precision));
   if (options.view) initial('view', () => demo.setView((options.view[0] * Math.PI) / 180, (options.view[1] * Math.PI) / 180, options.view[2]));
   if (options.projector) (root.host ?? root.documentElement).toggleAttribute('data-projector', true);
@@ -388,7 +388,7 @@ export async function mountSpace(root, options) {
     }
     if (s.run_revision !== seen.revision && summary) {
       const m = s.summary;
-      summary.textContent = `The ${s.arm_label} (${s.dof} joints) in ${menu.selectedOptions[0]?.textContent ?? s.method}; ${s.spheres.length} sphere(s); the run ${m.collision_steps ? `collides for ${m.collision_steps} steps` : 'does not collide'} and ends ${metres(m.final_error)} from its target${s.failure ? `; it stopped early: ${s.failure}` : ''}.`;
+      summary.textContent = `The ${s.arm_label} (${s.dof} joints) in ${menu.selectedOptions[0]?.textContent ?? s.method}; ${s.spheres.length} sphere(s); the run ${m.collision_steps ? `collides for ${m.collision_steps} steps` : 'does not collide'}${m.self_collision_steps ? `, two of its links meet for ${m.self_collision_steps} steps,` : ''} and ends ${metres(m.final_error)} from its target${s.failure ? `; it stopped early: ${s.failure}` : ''}.`;
       if (s.failure) show(`The run stopped at t = ${fixed(s.t, 2)} s: ${s.failure}`, 'warn', true);
     }
     seen = { revision: s.run_revision, collided: s.collided && s.t > 0, ended: s.ended, running: s.running };

@@ -12,6 +12,7 @@ mod layer;
 mod pose;
 mod robot;
 mod script;
+mod self_collision;
 mod view;
 use super::surface::Surface;
 use super::tracked::Tracked;

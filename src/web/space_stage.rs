@@ -16,7 +16,7 @@ use super::surface::{dash, disc, text, Surface};
 use crate::atlas::space::Plane;
 use crate::atlas::{Class, Grid};
 use crate::error::Result;
-use crate::session::space::{Projection, SpaceHandle, SpaceSession, NEAR};
+use crate::session::space::{Projection, SelfNear, SpaceHandle, SpaceSession, NEAR};
 use crate::space::manipulability::velocity_ellipsoid;
 use crate::space::rotation::Mat3;
 use crate::space::Vec3;
@@ -168,6 +168,9 @@ pub struct SceneView {
     /// The hand's orientation now (by rows): its frame is drawn for the
     /// pose task.
     pub hand_rotation: Mat3,
+    /// The checked pairs of capsules within `self_influence` of each
+    /// other: the segment between their closest points and the distance.
+    pub self_near: Vec<SelfNear>,
     /// Half the floor grid's side and its spacing (m).
     pub floor: [f64; 2],
     /// What the keys move (the gizmo's item): `target` or `sphere 2`.
@@ -237,6 +240,7 @@ pub fn view(s: &SpaceSession, width: f64, height: f64, layer: u32, shown: Shown)
         target: scene.target,
         target_rotation: s.target_rotation(),
         hand_rotation: s.hand_rotation(),
+        self_near: s.self_near(),
         floor: [FLOOR_HALF, FLOOR_STEP],
         selected: s.selected().describe(),
         layer,

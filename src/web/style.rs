@@ -233,7 +233,7 @@ pub fn legend() -> Vec<Entry> {
 /// method only, `ellipse` and `force` are the page's switches
 /// ([`super::SpaceDemo::set_shown`]).
 pub fn space_legend() -> Vec<Entry> {
-    const ENTRIES: [(&str, &str, &str, f64, &str); 10] = [
+    const ENTRIES: [(&str, &str, &str, f64, &str); 12] = [
         ("arm", "the arm: its links as capsules of the collision radius", ARM, 1.0, "thick"),
         ("sphere", "a sphere (red when a link is inside it)", DANGER, 0.28, "disc"),
         ("target", "the target: the end of the hand's line", TEAL, 1.0, "target"),
@@ -241,6 +241,20 @@ pub fn space_legend() -> Vec<Entry> {
         ("trail", "where the hand has been", ACCENT, 1.0, "line"),
         ("reference", "where the hand should be now", MUTED, 1.0, "dot"),
         ("shadow", "shadows on the floor (grid: 0.1 m)", INK, 0.13, "thick"),
+        (
+            "frame",
+            "the hand's full pose: the target's frame and the hand's (x, y, z in red, green, blue)",
+            DANGER,
+            1.0,
+            "line",
+        ),
+        (
+            "self",
+            "two links near each other (self-collision on): their closest points joined, red where they overlap",
+            DAMPER,
+            1.0,
+            "line",
+        ),
         (
             "ghost",
             "numerical route (the same scene solved exactly), beside a learned method",

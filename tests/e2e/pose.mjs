@@ -166,3 +166,51 @@ test('pose: axe finds nothing serious with the pose task on and the gizmo turnin
   clean(phone);
   await phone.close();
 });
+
+test('self-collision: the switch keeps the links apart in qp where the numerical route folds the Panda into itself; the pairs near each other are drawn; the run file replays on the command line', async () => {
+  const page = await open('?arm=panda&method=numerical&autoplay=0&obstacles=&target=0,0.25,0.2&task=pose');
+  await page.click('label[for=self-collision]');
+  await nextFrames(page);
+  let s = await state(page);
+  assert.equal(s.self_collision, true);
+  assert.ok(s.summary.self_collision_steps > 0, `the numerical route folds the arm into itself: ${JSON.stringify(s.summary)}`);
+  assert.match(await page.textContent('#stage-summary'), /two of its links meet/);
+  assert.match(page.url(), /self_collision=1/);
+  // Where its links overlap most, the view draws the pair red between its closest points.
+  const worst = await page.evaluate(() => {
+    const c = window.demo.controller;
+    const run = JSON.parse(c.runFile());
+    const k = run.steps.reduce((b, st, i) => (st.self_clearance < run.steps[b].self_clearance ? i : b), 0);
+    c.runUntil(run.steps[k].t);
+    return run.steps[k].self_clearance;
+  });
+  assert.ok(worst < 0, `the links overlap: ${worst}`);
+  await nextFrames(page);
+  const drawn = await page.evaluate(() => {
+    const v = window.demo.controller.demo.view();
+    let line = null;
+    window.demo.controller.view3d.three.scene.traverse((o) => {
+      if (o.name === 'self near') line = o;
+    });
+    return { near: v.self_near, visible: line?.visible, count: line?.geometry.getAttribute('position')?.count };
+  });
+  assert.ok(drawn.near.some((n) => n.distance < 0) && drawn.visible && drawn.count === 2 * drawn.near.length, JSON.stringify(drawn));
+  await page.locator('#stage').screenshot({ path: join(shots, 'self-collision-numerical.png') });
+  // qp keeps them apart; its file replays on the command line with the pairs.
+  await page.selectOption('#mode', 'qp');
+  await nextFrames(page);
+  s = await state(page);
+  assert.equal(s.method, 'qp');
+  assert.equal(s.summary.self_collision_steps ?? 0, 0, JSON.stringify(s.summary));
+  const json = await download(page, '#save-run-json');
+  const back = JSON.parse(cli(['simulate', '--from', json.path, '--json']));
+  assert.equal(back.summary.self_collision_steps ?? 0, 0);
+  close(back.summary.min_self_clearance, s.summary.min_self_clearance, 1e-9, 'the command line keeps the same distance');
+  // Off: no pairs drawn.
+  await page.click('label[for=self-collision]');
+  await nextFrames(page);
+  assert.equal((await state(page)).self_collision, false);
+  assert.deepEqual(await page.evaluate(() => window.demo.controller.demo.view().self_near), []);
+  clean(page);
+  await page.close();
+});

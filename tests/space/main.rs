@@ -12,6 +12,7 @@ mod planner;
 mod self_motion;
 mod session;
 mod session_pose;
+mod session_self;
 
 use redundant_ik::space::{Chain, Row};
 use redundant_ik::Arm;

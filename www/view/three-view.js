@@ -37,7 +37,6 @@ import {
   Scene,
   ShadowMaterial,
   SphereGeometry,
-  Vector3,
   WebGLRenderer,
   Color,
   LineSegments,
@@ -46,52 +45,7 @@ import {
 } from 'three';
 import { TransformControls } from 'three/addons/controls/TransformControls.js';
 import { visualObject, byRows } from './visuals.js';
-
-const UP = new Vector3(0, 1, 0);
-
-/** A line's geometry through flat points, its buffer grown when needed. */
-function setPoints(line, points, dashed = false) {
-  const n = points.length;
-  let geom = line.geometry;
-  const attr = geom.getAttribute('position');
-  if (!attr || attr.count < n) {
-    geom.dispose();
-    geom = new BufferGeometry();
-    geom.setAttribute('position', new Float32BufferAttribute(new Float32Array(Math.max(n, 16) * 3), 3));
-    line.geometry = geom;
-  }
-  const a = geom.getAttribute('position');
-  for (let i = 0; i < n; i++) a.setXYZ(i, points[i][0], points[i][1], points[i][2]);
-  a.needsUpdate = true;
-  geom.setDrawRange(0, n);
-  geom.computeBoundingSphere();
-  if (dashed) line.computeLineDistances();
-  line.visible = n > 1;
-}
-
-/** A pool of meshes made by `make`, as many shown as asked. */
-function pool(parent, make) {
-  const items = [];
-  return (n) => {
-    while (items.length < n) {
-      const m = make();
-      parent.add(m);
-      items.push(m);
-    }
-    items.forEach((m, i) => (m.visible = i < n));
-    return items;
-  };
-}
-
-/** Places a unit cylinder (along y, height 1) from `a` to `b` with radius `r`. */
-function placeCylinder(mesh, a, b, r) {
-  const va = new Vector3(...a);
-  const d = new Vector3(...b).sub(va);
-  const len = d.length();
-  mesh.position.copy(va).addScaledVector(d, 0.5);
-  mesh.quaternion.copy(len > 1e-12 ? new Quaternion().setFromUnitVectors(UP, d.divideScalar(len)) : new Quaternion());
-  mesh.scale.set(r, Math.max(len, 1e-9), r);
-}
+import { setPoints, pool, placeCylinder } from './parts.js';
 
 /**
  * Whether the browser's WebGL draws on the CPU (SwiftShader, llvmpipe: no
@@ -191,6 +145,30 @@ export function createView(canvas, palette) {
     return m;
   });
   scene.add(path, trail, ghost);
+
+  // Self-collision: each checked pair of links near each other as the
+  // segment between their closest points, red where they overlap; drawn
+  // through the links.
+  const selfNear = new LineSegments(new BufferGeometry(), new LineBasicMaterial({ vertexColors: true, depthTest: false, transparent: true }));
+  selfNear.name = 'self near';
+  selfNear.renderOrder = 3;
+  scene.add(selfNear);
+  const [near, overlap] = [new Color(palette.damper), new Color(palette.danger)];
+  const setSelfNear = (pairs) => {
+    selfNear.visible = pairs.length > 0;
+    if (!pairs.length) return;
+    const position = new Float32Array(pairs.length * 6);
+    const colour = new Float32Array(pairs.length * 6);
+    pairs.forEach((p, k) => {
+      position.set([...p.points[0], ...p.points[1]], 6 * k);
+      const c = p.distance < 0 ? overlap : near;
+      colour.set([c.r, c.g, c.b, c.r, c.g, c.b], 6 * k);
+    });
+    selfNear.geometry.dispose();
+    selfNear.geometry = new BufferGeometry();
+    selfNear.geometry.setAttribute('position', new Float32BufferAttribute(position, 3));
+    selfNear.geometry.setAttribute('color', new Float32BufferAttribute(colour, 3));
+  };
 
   // The ellipsoids at the hand: each as its three principal ellipses.
   const ellipses = { velocity: [], force: [] };
@@ -424,6 +402,7 @@ export function createView(canvas, palette) {
         g[i].scale.setScalar(0.25 * r);
       });
       placeGizmo(v);
+      setSelfNear(v.self_near);
       placeFrame(targetFrame, v.target_rotation, v.target);
       placeFrame(handFrame, v.target_rotation && v.hand_rotation, v.hand);
       if (placed.length) placeRobot(v.frames);

@@ -17,6 +17,7 @@ mod camera;
 mod clock;
 mod pointer;
 mod pose_task;
+mod self_collision;
 mod self_motion;
 mod settings;
 mod state;
@@ -27,6 +28,7 @@ use std::sync::Arc;
 pub use camera::{Camera, Projection, DISTANCE, FIELD_OF_VIEW, NEAR, PITCH};
 pub use pointer::{SpaceHandle, KEY_ORBIT};
 pub use pose_task::Orientation;
+pub use self_collision::SelfNear;
 pub use state::{SpaceMethodRun, SpaceState};
 
 use super::history::Point;
@@ -256,8 +258,8 @@ impl SpaceSession {
     }
 
     /// Back to the robot's own task (its target, sphere and settings), the
-    /// method and networks kept; for the pose task, the target's
-    /// orientation the hand's at the start.
+    /// method, the networks and the self-collision switch kept; for the
+    /// pose task, the target's orientation the hand's at the start.
     pub fn load_task(&mut self) -> Result<()> {
         let orientation = match self.orientation {
             Some(o) => {
@@ -271,7 +273,8 @@ impl SpaceSession {
             }
             None => None,
         };
-        self.take(self.robot.task.clone(), orientation, self.method)?;
+        let task = self.with_self_collision(self.robot.task.clone(), self.self_collision())?;
+        self.take(task, orientation, self.method)?;
         self.selected = SpaceHandle::Target;
         self.index = 0;
         self.show(0);

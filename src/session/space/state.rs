@@ -110,6 +110,12 @@ pub struct SpaceState<'a> {
     pub weighting: JointWeighting,
     /// Whether the floor is an obstacle.
     pub floor: bool,
+    /// Whether the chain's capsules are checked against each other, and
+    /// the smallest distance between two checked capsules now (m;
+    /// negative: they overlap).
+    pub self_collision: bool,
+    /// See `self_collision`.
+    pub self_clearance: Option<f64>,
     /// Whether the damping schedule near singular poses is on.
     pub damping: bool,
     /// The path the hand follows as its text (`points:0.5,0,0.6;...`, the
@@ -223,6 +229,8 @@ impl SpaceSession {
                 .collect(),
             weighting: self.scene.weighting,
             floor: self.scene.floor,
+            self_collision: self.self_collision(),
+            self_clearance: sample.and_then(|s| s.self_clearance),
             damping: self.scene.damping.is_some(),
             path: (!self.scene.path.is_line()).then(|| self.scene.path.to_string()),
             feedback: self.scene.feedback_gain,
