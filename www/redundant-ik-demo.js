@@ -24,7 +24,9 @@
 // obstacles="x,y,z,r;...", path, theta0, lambda and the parameters,
 // feedback, weighting, floor, damping="1", precision,
 // view="yaw,pitch,distance") and its drawing in perspective (orbit, drag,
-// keys).
+// keys). So does a robot's URDF at an address (urdf="URL", with base and
+// tip: fetched with its meshes from a host that allows it, as the page's
+// urdf= key; where it cannot be, the first shipped arm and the reason).
 // The element's own: autoplay ("false" to start paused; unset, it plays
 // unless the user prefers reduced motion) and plots (present:
 // show the time series). A value that does not parse, or that the core
@@ -161,7 +163,7 @@ const readAttributes = (el, m) => (m.readSpaceAddress ?? m.readAddress)(attribut
 const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
 
 /** The keys of an arm in space an element watches (space-address.js's, the methods' parameters besides). */
-const SPACE_KEYS = ['arm', 'method', 'theta0', 'target', 'obstacles', 'feedback', 'weighting', 'floor', 'damping', 'path', 'precision', 'view'];
+const SPACE_KEYS = ['arm', 'method', 'task', 'theta0', 'target', 'orientation_weight', 'obstacles', 'feedback', 'weighting', 'floor', 'self_collision', 'damping', 'path', 'precision', 'view'];
 
 class RedundantIkDemo extends HTMLElement {
   connectedCallback() {
@@ -196,14 +198,27 @@ class RedundantIkDemo extends HTMLElement {
       // An arm in space (arm="panda"): the page in space's mount, its own
       // address reader; the attributes are its address keys.
       const arm = this.getAttribute('arm');
-      if (arm === 'space' || m.spacePresets().some((p) => p.key === arm)) {
+      const urdf = this.getAttribute('urdf');
+      if (urdf || arm === 'space' || m.spacePresets().some((p) => p.key === arm)) {
         const space = await importSpace();
         m = { ...m, ...space, mount: space.mountSpace };
       }
       this.space = Boolean(m.readSpaceAddress);
       const { problems, ...settings } = readAttributes(this, m);
+      let robot = null;
+      if (urdf) {
+        const { openUrl, openStored } = await import('./robot-open.js');
+        const [base, tip] = ['base', 'tip'].map((k) => this.getAttribute(k) ?? undefined);
+        try {
+          robot = await openStored((await openUrl(new URL(urdf, document.baseURI).href, { base, tip })).hash);
+        } catch (e) {
+          problems.push(`urdf: ${m.describe(e)}`);
+          settings.arm = m.spacePresets()[0].key;
+        }
+      }
       this.controller = await m.mount(root, {
         ...settings,
+        robot,
         problems,
         // Unset: the run plays unless the user prefers reduced motion.
         autoplay: { true: true, false: false }[this.getAttribute('autoplay')],

@@ -167,12 +167,15 @@ export async function openUrl(url, { base, tip } = {}) {
   if (bytes.length > MAX_URDF) throw new Error(`${url} has ${bytes.length} bytes, more than the ${MAX_URDF} a URDF may have`);
   const urdf = new TextDecoder().decode(bytes);
   const entries = [];
+  // The meshes together may not pass what the page takes of files chosen.
+  let total = bytes.length;
   for (const name of meshNames(urdf)) {
     const rest = name.replace(/^package:\/\/[^/]*\//, '');
     // A package's meshes usually sit beside its urdf/ folder: the parent first.
     const tries = /^package:/.test(name) ? [new URL(`../${rest}`, url), new URL(rest, url)] : /^[a-z]+:/i.test(name) ? [] : [new URL(name, url)];
     for (const u of tries) {
       const got = await get(u.href).catch(() => null);
+      if (got && (total += got.length) > MAX_TOTAL) throw new Error(`${url} and its meshes have more than the ${MAX_TOTAL} bytes the page takes`);
       if (got) {
         entries.push({ name: lastPart(rest), path: rest, bytes: got });
         break;

@@ -479,12 +479,12 @@ export async function mountSpace(root, options) {
       };
       const own = preset.task;
       if ('obstacles' in changed) one('obstacles', () => demo.setSpheres(Float64Array.from(changed.obstacles ?? own.sphere ?? [])));
-      if ('target' in changed) one('target', () => demo.setTarget(...(changed.target ?? own.target)));
+      if ('task' in changed || changed.target?.length === 6) one('task', () => demo.setTask(changed.task ?? (changed.target?.length === 6 ? 'pose' : 'position')));
+      if ('target' in changed) one('target', () => [demo.setTarget(...(changed.target ?? own.target).slice(0, 3)), changed.target?.length === 6 && demo.setTargetOrientation(...changed.target.slice(3))]);
       for (const [name, value] of Object.entries(changed.params ?? {})) one(name, () => demo.setParam(name, value));
       if ('feedback' in changed) one('feedback', () => demo.setFeedback(changed.feedback ?? 0));
       if ('weighting' in changed) one('weighting', () => demo.setWeighting(changed.weighting ?? limits().joint_weightings[0][0]));
-      if ('floor' in changed) one('floor', () => demo.setFloor(changed.floor ?? false));
-      if ('damping' in changed) one('damping', () => demo.setDamping(changed.damping ?? false));
+      for (const [key, set] of [['floor', (v) => demo.setFloor(v ?? false)], ['self_collision', (v) => demo.setSelfCollision(v ?? false)], ['damping', (v) => demo.setDamping(v ?? false)], ['orientation_weight', (v) => v !== undefined && demo.setOrientationWeight(v)]]) if (key in changed) one(key, () => set(changed[key]));
       if ('path' in changed) one('path', () => demo.setPath(changed.path ?? 'line'));
       if ('theta0' in changed) one('theta0', () => demo.setStart(Float64Array.from(changed.theta0 ?? own.theta0)));
       if ('precision' in changed) one('precision', () => demo.setPrecision(changed.precision ?? precisions()[0].name));

@@ -191,7 +191,8 @@ fn names_colours_and_the_legend_come_from_the_module() {
     let p = json_of(palette().unwrap());
     assert_eq!(p["arm"], "#1d4e89");
     // The drawing in perspective's legend: its own entries in the same
-    // form, the two ellipsoids switched by the page, the plane's colours.
+    // form (the pose task's frames and the self pairs among them), the two
+    // ellipsoids switched by the page, the plane's colours.
     let space = json_of(legend(Some(true)).unwrap());
     let keys: Vec<&str> = space
         .as_array()
@@ -209,6 +210,8 @@ fn names_colours_and_the_legend_come_from_the_module() {
             "trail",
             "reference",
             "shadow",
+            "frame",
+            "self",
             "ghost",
             "ellipse",
             "force"
