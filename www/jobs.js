@@ -8,6 +8,18 @@ import { assetUrl, loadModule, workerModuleUrl, networkSetsFor } from './module.
 const namedSets = (job) => [job.options?.networks, job.run?.networks?.set].filter((s) => typeof s === 'string');
 
 /**
+ * The workers' script: worker.js beside the page's module; for an element
+ * on another site's page (a worker's script must have the page's origin),
+ * a same-origin blob that imports it (its host sends
+ * Access-Control-Allow-Origin, as the element needs anyway).
+ */
+function workerScript() {
+  const url = new URL(assetUrl('worker.js'), location.href);
+  if (url.origin === location.origin || url.protocol !== 'http:' && url.protocol !== 'https:') return url;
+  return URL.createObjectURL(new Blob([`import ${JSON.stringify(url.href)};`], { type: 'text/javascript' }));
+}
+
+/**
  * Runs one job in a Web Worker. `onProgress({ done, total, label })`
  * follows it; `signal` (an AbortSignal) cancels it. Resolves to `{ result,
  * ms }` (`ms`: the job's time inside the worker).
@@ -22,7 +34,7 @@ export async function runWorker(job, { onProgress, signal } = {}) {
       reject(new DOMException('Cancelled.', 'AbortError'));
     };
     if (signal?.aborted) return abort();
-    const worker = new Worker(assetUrl('worker.js'), { type: 'module' });
+    const worker = new Worker(workerScript(), { type: 'module' });
     function finish() {
       worker.terminate();
       if (signal) signal.removeEventListener('abort', abort);
