@@ -7,6 +7,7 @@
 #   scripts/e2e.sh              # all tests
 #   CHROMIUM=/path/to/chromium scripts/e2e.sh
 #   E2E_SCRIPT=soak.mjs scripts/e2e.sh   # the soak instead (make soak)
+#   E2E_JOBS=1 scripts/e2e.sh            # one browser (two shards by default)
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -43,4 +44,25 @@ export REDUNDANT_IK="$root/target/debug/redundant-ik"
 source scripts/serve-lib.sh
 serve_dir e2e www
 
-BASE_URL="$url" CHROMIUM="$chromium" node "tests/e2e/${E2E_SCRIPT:-e2e.mjs}"
+# The tests in E2E_JOBS shards at once (2 by default; one for E2E_ONLY or
+# another script), each its own browser; their reports follow each other.
+script="${E2E_SCRIPT:-e2e.mjs}"
+jobs="${E2E_JOBS:-2}"
+if [[ -n "${E2E_ONLY:-}" || "$script" != e2e.mjs ]]; then jobs=1; fi
+if (( jobs <= 1 )); then
+  BASE_URL="$url" CHROMIUM="$chromium" node "tests/e2e/$script"
+  exit
+fi
+pids=()
+logs=()
+for ((k = 0; k < jobs; k++)); do
+  logs+=("$(mktemp -t e2e-shard.XXXXXX)")
+  E2E_SHARD="$k/$jobs" BASE_URL="$url" CHROMIUM="$chromium" node "tests/e2e/$script" >"${logs[$k]}" 2>&1 &
+  pids+=($!)
+done
+status=0
+for pid in "${pids[@]}"; do wait "$pid" || status=1; done
+cat "${logs[@]}"
+awk '/^e2e: [0-9]+ passed, [0-9]+ failed$/ { p += $2; f += $4 } END { printf "e2e: %d passed, %d failed (%d shards)\n", p, f, '"$jobs"' }' "${logs[@]}"
+rm -f "${logs[@]}"
+exit "$status"

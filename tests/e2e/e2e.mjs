@@ -47,10 +47,15 @@ limitsTests({ test, open, clean, state, shots });
 labTests({ test, open, clean, state, shots });
 
 // E2E_ONLY=text runs only the tests whose name contains it (for development).
+// E2E_SHARD=k/n runs every nth test from the kth (scripts/e2e.sh runs shards
+// at once: each test has its own browser context, and a test mostly waits
+// on its page, so two shards take about half the time on two cores).
 const only = process.env.E2E_ONLY;
+const [shard, shards] = (process.env.E2E_SHARD ?? '0/1').split('/').map(Number);
+if (!(Number.isInteger(shard) && Number.isInteger(shards) && shard >= 0 && shard < shards)) throw new Error(`E2E_SHARD=${process.env.E2E_SHARD}: expected k/n with 0 <= k < n`);
 let passed = 0;
 let failed = 0;
-for (const { name, fn } of tests.filter((t) => !only || t.name.includes(only))) {
+for (const { name, fn } of tests.filter((t) => !only || t.name.includes(only)).filter((_, i) => i % shards === shard)) {
   const t0 = Date.now();
   try {
     await fn();

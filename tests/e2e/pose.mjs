@@ -114,6 +114,31 @@ test("pose: the Hand menu makes the task the hand's full pose; the gizmo's rings
   assert.equal(back.steps.length, run.steps.length);
   back.steps.forEach((st, k) => st.theta.forEach((v, i) => close(v, run.steps[k].theta[i], 1e-9, `step ${k} theta${i + 1}`)));
 
+  // Hostile calls: each throws the core's reason, and the scene is kept.
+  const kept = await page.evaluate(() => window.demo.controller.demo.view().target_rotation);
+  const thrown = await page.evaluate(() => {
+    const d = window.demo.controller.demo;
+    const calls = [
+      () => d.setTargetRotation(Float64Array.of(1, 2)),
+      () => d.setTargetRotation(new Float64Array(9).fill(NaN)),
+      () => d.setTargetOrientation(NaN, 0, 0),
+      () => d.turnTarget(7, 0.1),
+      () => d.turnTarget(0, Infinity),
+      () => d.setOrientationWeight(-1),
+      () => d.setTask('elbow'),
+    ];
+    return calls.map((f) => {
+      try {
+        f();
+        return 'no error';
+      } catch (e) {
+        return String(e.message ?? e);
+      }
+    });
+  });
+  assert.ok(thrown.every((m) => m !== 'no error' && m.length > 10 && !/unreachable|panicked/.test(m)), thrown.join(' | '));
+  assert.deepEqual(await page.evaluate(() => window.demo.controller.demo.view().target_rotation), kept, 'nothing changed');
+
   // Cases 1 and 3 do not run the pose: refused with the reason, qp kept.
   await page.selectOption('#mode', 'case1').catch(() => {});
   await nextFrames(page);

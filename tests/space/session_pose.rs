@@ -130,8 +130,12 @@ fn the_pose_task_refuses_what_it_cannot_run_and_loses_nothing() {
     for bad in [[f64::NAN, 0.0, 0.0], [0.0, f64::INFINITY, 0.0]] {
         assert!(s.set_target_rpy(bad).is_err());
     }
-    let nan = [[f64::NAN; 3]; 3];
-    assert!(s.set_target_rotation(&nan).is_err());
+    // Not rotations: NaN, zero, a scaling, a reflection.
+    let mirror = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, -1.0]];
+    let twice = [[2.0, 0.0, 0.0], [0.0, 2.0, 0.0], [0.0, 0.0, 2.0]];
+    for bad in [[[f64::NAN; 3]; 3], [[0.0; 3]; 3], twice, mirror] {
+        assert!(s.set_target_rotation(&bad).is_err(), "{bad:?}");
+    }
     assert!(s.turn_target(3, 0.1).is_err() && s.turn_target(0, f64::NAN).is_err());
     for w in [0.0, -1.0, f64::NAN, 1e9] {
         assert!(s.set_orientation_weight(w).is_err(), "{w}");

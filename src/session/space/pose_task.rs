@@ -194,11 +194,21 @@ impl SpaceSession {
                 expected: "the straight line for an orientation of the target's own: a circle or a polyline of the pose task keeps the hand's start orientation".into(),
             });
         }
-        if r.iter().flatten().any(|x| !x.is_finite()) {
+        // A rotation: finite, `R R^T = I` and `det R = 1` (to 1e-6, what a
+        // gizmo's matrix in single precision keeps).
+        let rrt = rotation::mul_transpose(r, r);
+        let off = (0..3)
+            .flat_map(|i| (0..3).map(move |j| (i, j)))
+            .map(|(i, j)| (rrt[i][j] - f64::from(u8::from(i == j))).abs())
+            .fold(0.0, f64::max);
+        let det = r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1])
+            - r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0])
+            + r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]);
+        if !(off <= 1e-6 && (det - 1.0).abs() <= 1e-6) {
             return Err(Error::Syntax {
                 what: "target orientation",
                 text: format!("{r:?}"),
-                expected: "a rotation matrix of finite numbers".into(),
+                expected: "a rotation matrix: finite, orthonormal rows, determinant 1".into(),
             });
         }
         o.rotation = rotation::log(r);
