@@ -19,7 +19,7 @@ WORKER_OPT = CARGO_PROFILE_RELEASE_OPT_LEVEL=s
 # target/, emptied at each start, so a long-lived machine's /tmp does not fill.
 BROWSER_TMP = rm -rf target/browser-tmp && mkdir -p target/browser-tmp && TMPDIR=$(CURDIR)/target/browser-tmp
 
-.PHONY: setup web dist test-dist offline test-offline npm test-npm demo test lint test-native test-wasm test-e2e test-fuzz test-soak fuzz soak bench bench-native bench-web figures atlas-figures weights clean-web
+.PHONY: setup web dist test-dist offline test-offline npm test-npm demo test lint test-native test-wasm test-e2e test-fuzz fuzz-start fuzz-wait test-soak fuzz soak bench bench-native bench-web figures atlas-figures weights clean-web
 
 ## Make this machine able to build and test for wasm32 (idempotent).
 setup:
@@ -122,8 +122,21 @@ test-npm: npm
 ## headless Chromium, the end-to-end browser test of the page, and the short
 ## versions of the fuzzing and of the browser soak (docs/reliability.md),
 ## the page as dist/ builds it, served under a sub-path, the offline file
-## from file:// and the npm package installed from its tarball.
-test: lint test-native test-wasm test-e2e test-dist test-offline test-npm test-fuzz test-soak
+## from file:// and the npm package installed from its tarball. The short
+## fuzzing (its builds take the cores) runs beside the last browser tests,
+## which mostly wait on their pages (fuzz-start, fuzz-wait); its report
+## follows theirs.
+test: lint test-native test-wasm test-e2e fuzz-start test-dist test-offline test-npm test-soak fuzz-wait
+
+FUZZ_LOG = target/test-fuzz.log
+fuzz-start:
+	@mkdir -p target && rm -f $(FUZZ_LOG) $(FUZZ_LOG).status
+	@echo "test-fuzz: started beside the next tests, its report in $(FUZZ_LOG)"
+	@( $(MAKE) --no-print-directory test-fuzz > $(FUZZ_LOG) 2>&1; echo $$? > $(FUZZ_LOG).status ) &
+fuzz-wait:
+	@while [ ! -f $(FUZZ_LOG).status ]; do sleep 2; done
+	@cat $(FUZZ_LOG)
+	@exit $$(cat $(FUZZ_LOG).status)
 
 lint: setup
 	python3 scripts/check-house.py

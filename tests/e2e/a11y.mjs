@@ -10,24 +10,10 @@
 
 import { join } from 'node:path';
 import assert from 'node:assert/strict';
-import { createRequire } from 'node:module';
-import { browser, test, open, clean, state, shots, BASE, pause } from './harness.mjs';
+import { browser, test, open, clean, state, shots, BASE, pause, axe } from './harness.mjs';
 
-const AXE = createRequire(import.meta.url).resolve('axe-core/axe.min.js');
 const DESKTOP = { viewport: { width: 1366, height: 768 } };
 const PHONE = { viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true, deviceScaleFactor: 2 };
-
-/** axe's violations of impact serious or critical on `page` now, each as `rule (impact): where`. */
-async function axe(page, where) {
-  if (!(await page.evaluate(() => 'axe' in window))) await page.addScriptTag({ path: AXE });
-  const found = await page.evaluate(async () => {
-    const r = await window.axe.run(document, { resultTypes: ['violations'] });
-    return r.violations
-      .filter((v) => v.impact === 'serious' || v.impact === 'critical')
-      .map((v) => `${v.id} (${v.impact}): ${v.nodes.slice(0, 4).map((n) => n.target.join(' ')).join(', ')}${v.nodes.length > 4 ? ` and ${v.nodes.length - 4} more` : ''}`);
-  });
-  return found.map((f) => `[${where}] ${f}`);
-}
 
 /** Every state of the page axe looks at, on a page opened with `options`; the violations found. */
 async function axeStates(options, label) {

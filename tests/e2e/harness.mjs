@@ -7,6 +7,7 @@ import { mkdirSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import assert from 'node:assert/strict';
+import { createRequire } from 'node:module';
 
 export const here = dirname(fileURLToPath(import.meta.url));
 export const shots = join(here, 'screenshots');
@@ -39,6 +40,19 @@ export function clean(page) {
 
 export const state = (page) => page.evaluate(() => window.demo.state());
 export const near = (a, b, tol) => Math.hypot(a[0] - b[0], a[1] - b[1]) <= tol;
+
+const AXE = createRequire(import.meta.url).resolve('axe-core/axe.min.js');
+/** axe's violations of impact serious or critical on `page` now (details open as they are), each as `[where] rule (impact): where`. */
+export async function axe(page, where) {
+  if (!(await page.evaluate(() => 'axe' in window))) await page.addScriptTag({ path: AXE });
+  const found = await page.evaluate(async () => {
+    const r = await window.axe.run(document, { resultTypes: ['violations'] });
+    return r.violations
+      .filter((v) => v.impact === 'serious' || v.impact === 'critical')
+      .map((v) => `${v.id} (${v.impact}): ${v.nodes.slice(0, 4).map((n) => n.target.join(' ')).join(', ')}${v.nodes.length > 4 ? ` and ${v.nodes.length - 4} more` : ''}`);
+  });
+  return found.map((f) => `[${where}] ${f}`);
+}
 
 export async function pause(page) {
   await page.evaluate(() => window.demo.controller.demo.setRunning(false));

@@ -7,9 +7,8 @@
 
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
-import { test, open, clean, state, shots, nextFrames } from './harness.mjs';
+import { test, open, clean, state, shots, nextFrames, axe } from './harness.mjs';
 import { cli, download, close } from './class-helpers.mjs';
-import { createRequire } from 'node:module';
 
 /** The angle (rad) between two rotations given by rows (nine numbers or three rows). */
 const angle = (a, b) => {
@@ -173,12 +172,8 @@ test('pose: an address with six numbers for the target opens the pose task turne
 test('pose: axe finds nothing serious with the pose task on and the gizmo turning; on a 390 px phone the pose fields fit without sideways scroll', async () => {
   const page = await open('?arm=panda&method=qp&autoplay=0&task=pose');
   await page.click('#gizmo-turn');
-  await page.addScriptTag({ path: createRequire(import.meta.url).resolve('axe-core/axe.min.js') });
-  const result = await page.evaluate(async () => {
-    document.querySelectorAll('details').forEach((d) => (d.open = true));
-    const r = await window.axe.run(document, { resultTypes: ['violations'] });
-    return r.violations.filter((v) => v.impact === 'serious' || v.impact === 'critical').map((v) => `${v.id}: ${v.nodes.map((n) => n.target.join(' ')).join(', ')}`);
-  });
+  await page.evaluate(() => document.querySelectorAll('details').forEach((d) => (d.open = true)));
+  const result = await axe(page, 'the pose task, the rings shown');
   assert.deepEqual(result, [], 'no serious or critical violations');
   clean(page);
   await page.close();

@@ -10,8 +10,7 @@
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
 import { readFileSync } from 'node:fs';
-import { createRequire } from 'node:module';
-import { test, open, clean, state, shots } from './harness.mjs';
+import { test, open, clean, state, shots, axe } from './harness.mjs';
 import { cli, download, close } from './class-helpers.mjs';
 
 const client = (page, p) => page.evaluate(([x, y, z]) => window.demo.worldToClient(x, y, z), p);
@@ -284,12 +283,8 @@ test('space: with precision=f32 the Panda\'s networks compute in f32, and simula
 
 test('space: axe finds nothing serious on the Panda page', async () => {
   const page = await open('?arm=panda&method=qp&autoplay=0');
-  await page.addScriptTag({ path: createRequire(import.meta.url).resolve('axe-core/axe.min.js') });
-  const result = await page.evaluate(async () => {
-    document.querySelectorAll('details').forEach((d) => (d.open = true));
-    const r = await window.axe.run(document, { resultTypes: ['violations'] });
-    return r.violations.filter((v) => v.impact === 'serious' || v.impact === 'critical').map((v) => `${v.id}: ${v.nodes.map((n) => n.target.join(' ')).join(', ')}`);
-  });
+  await page.evaluate(() => document.querySelectorAll('details').forEach((d) => (d.open = true)));
+  const result = await axe(page, 'the Panda page');
   assert.deepEqual(result, [], 'no serious or critical violations');
   clean(page);
   await page.close();
