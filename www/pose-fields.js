@@ -78,6 +78,10 @@ export function mountPoseFields(root, demo, { attempt, changed, say, view }) {
     for (const el of posed) el.hidden = s.task !== 'pose';
     if (s.task !== 'pose') return;
     angles.forEach((f, i) => follow(f, s.target_rpy[i] / DEG));
-    follow(weight, s.orientation_weight);
+    // The weight spans 1e-6 to 1e6: six significant digits, not millimetres.
+    if (!(weight.matches(':focus') && weight.value !== weight.dataset.written)) {
+      weight.value = String(Number(s.orientation_weight.toPrecision(6)));
+      weight.dataset.written = weight.value;
+    }
   };
 }

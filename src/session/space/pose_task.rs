@@ -194,8 +194,8 @@ impl SpaceSession {
                 expected: "the straight line for an orientation of the target's own: a circle or a polyline of the pose task keeps the hand's start orientation".into(),
             });
         }
-        // A rotation: finite, `R R^T = I` and `det R = 1` (to 1e-6, what a
-        // gizmo's matrix in single precision keeps).
+        // A rotation: finite, `R R^T = I` and `det R = 1` (to 1e-6: a
+        // matrix written to six digits passes, a scaling or a mirror not).
         let rrt = rotation::mul_transpose(r, r);
         let off = (0..3)
             .flat_map(|i| (0..3).map(move |j| (i, j)))
