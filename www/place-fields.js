@@ -45,14 +45,14 @@ export function applied(...fields) {
 }
 
 /**
- * Writes `metres` (to the millimetre) into a number `field` unless the
- * user has typed there something not yet applied (a focused field whose
- * text is not the one last written), so a drag never overwrites a
- * half-typed number.
+ * Writes `metres` (to the millimetre; `format` writes another quantity)
+ * into a number `field` unless the user has typed there something not yet
+ * applied (a focused field whose text is not the one last written), so a
+ * drag never overwrites a half-typed number.
  */
-export function follow(field, metres) {
+export function follow(field, metres, format = mm) {
   const edited = field.matches(':focus') && field.value !== field.dataset.written;
   if (edited) return;
-  field.value = mm(metres);
+  field.value = format(metres);
   field.dataset.written = field.value;
 }

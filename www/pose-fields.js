@@ -79,9 +79,6 @@ export function mountPoseFields(root, demo, { attempt, changed, say, view }) {
     if (s.task !== 'pose') return;
     angles.forEach((f, i) => follow(f, s.target_rpy[i] / DEG));
     // The weight spans 1e-6 to 1e6: six significant digits, not millimetres.
-    if (!(weight.matches(':focus') && weight.value !== weight.dataset.written)) {
-      weight.value = String(Number(s.orientation_weight.toPrecision(6)));
-      weight.dataset.written = weight.value;
-    }
+    follow(weight, s.orientation_weight, (z) => String(Number(z.toPrecision(6))));
   };
 }
