@@ -3,9 +3,11 @@
 // collision flags, the nearest obstacle, the joints, the run's end and its
 // errors), and the drawing's text summary (`#stage-summary`, the canvas's
 // aria-describedby), rewritten when the run's scene changes. At most one
-// announcement every 1.5 s: one that comes sooner waits, and a newer one
-// replaces it (the latest wins), so a burst of changes is one sentence;
-// but a collision waiting is not dropped: what comes after is added to it.
+// announcement every 1.5 s: one that comes sooner waits. Each kind of news
+// (a collision, the run's end, the method, what the keys hold, the task)
+// keeps its latest text while it waits, and the kinds waiting are said
+// together, in the order they came: a burst of selections is one phrase,
+// and a run that ends meanwhile does not drown the selection.
 
 import { method } from './module.js';
 import { fixed, metres } from './format.js';
@@ -81,32 +83,30 @@ export function sceneSummary(s) {
 
 /**
  * Wires `#announcer` and `#stage-summary` under `root` (each optional).
- * Returns `{ say(text), sync(state), task(n) }`: `sync` for the animation
- * loop, `task` for a task loaded (the task buttons).
+ * Returns `{ say(text, kind), sync(state), task(n) }`: `sync` for the
+ * animation loop, `task` for a task loaded (the task buttons).
  */
 export function mountAnnouncer(root, { gap = ANNOUNCE_GAP_MS } = {}) {
   const region = root.querySelector('#announcer');
   const summary = root.querySelector('#stage-summary');
   let last = -Infinity;
-  let pending = null;
-  let keep = false; // whether the text waiting must be said (a collision)
+  const pending = new Map(); // kind -> its latest text, in the order the kinds came
   let timer = 0;
 
   function flush() {
     timer = 0;
-    if (pending === null || !region) return;
-    region.textContent = pending;
-    pending = null;
-    keep = false;
+    if (pending.size === 0 || !region) return;
+    region.textContent = [...pending.values()].join('; ');
+    pending.clear();
     last = performance.now();
   }
   /**
-   * Says `text` now, or as soon as the gap allows (a newer text replaces it
-   * meanwhile, or is added to it where it is `kept`).
+   * Says `text` now, or as soon as the gap allows; meanwhile a newer text
+   * of the same `kind` replaces it, and one of another kind joins it.
    */
-  function say(text, kept = false) {
-    pending = keep && pending !== null ? `${pending}; ${text}` : text;
-    keep = keep || kept;
+  function say(text, kind = 'note') {
+    pending.delete(kind);
+    pending.set(kind, text);
     if (timer) return;
     const wait = last + gap - performance.now();
     if (wait <= 0) flush();
@@ -116,10 +116,10 @@ export function mountAnnouncer(root, { gap = ANNOUNCE_GAP_MS } = {}) {
   let seen = null; // what the last state said: { collided, ended, method, run }
   function sync(s) {
     if (seen) {
-      if (s.collided && !seen.collided) say(collisionText(s), true);
-      if (s.ended && !seen.ended) say(endText(s));
-      if (s.method !== seen.method) say(`method: ${label(s.method)}`);
-      if (s.selected !== seen.selected || s.selected_index !== seen.selectedIndex) say(`selected: ${selectedText(s)}`);
+      if (s.collided && !seen.collided) say(collisionText(s), 'collision');
+      if (s.ended && !seen.ended) say(endText(s), 'end');
+      if (s.method !== seen.method) say(`method: ${label(s.method)}`, 'method');
+      if (s.selected !== seen.selected || s.selected_index !== seen.selectedIndex) say(`selected: ${selectedText(s)}`, 'selected');
     }
     if (summary && (!seen || s.revision.run !== seen.run || s.method !== seen.method)) {
       const text = sceneSummary(s);
@@ -128,5 +128,5 @@ export function mountAnnouncer(root, { gap = ANNOUNCE_GAP_MS } = {}) {
     seen = { collided: s.collided, ended: s.ended, method: s.method, run: s.revision.run, selected: s.selected, selectedIndex: s.selected_index };
   }
 
-  return { say, sync, task: (n) => say(`task ${n}: the paper's scene, from t = 0`) };
+  return { say, sync, task: (n) => say(`task ${n}: the paper's scene, from t = 0`, 'task') };
 }

@@ -152,10 +152,13 @@ test('keyboard on the drawing: n selects the target, each obstacle, each elbow; 
   assert.equal(await page.getAttribute('#obstacle-add', 'aria-pressed'), 'true', 'waiting for a click');
   await page.keyboard.press('Escape');
   assert.equal(await page.getAttribute('#obstacle-add', 'aria-pressed'), 'false', 'Escape leaves placing');
-  // The live region says what the keys hold.
+  // The live region says what the keys hold now (within its 1.5 s gap), not what they held before.
+  await textMatching(page, '#announcer', /(^|; )selected: obstacle 2 at \(/);
   await page.focus('#stage');
   await page.keyboard.press('n');
-  await page.waitForFunction(() => /selected: obstacle 1/.test(document.getElementById('announcer')?.textContent ?? ''), null, { timeout: 15000 });
+  s = await state(page);
+  assert.deepEqual([s.selected, s.selected_index], ['joint', 1], 'after the second obstacle, the first elbow');
+  await textMatching(page, '#announcer', /(^|; )selected: elbow 1 \(the hand holds still\)($|; )/);
   await page.screenshot({ path: join(shots, 'keys-selected.png') });
   clean(page);
   await page.close();
