@@ -9,6 +9,7 @@ use web_sys::HtmlCanvasElement;
 use super::space_stage::{self, SliceLayer};
 
 mod layer;
+mod networks;
 mod pose;
 mod robot;
 mod script;
@@ -20,7 +21,6 @@ use super::{finite, js_err, plots, to_js, JsResult};
 use crate::export::{PoseRunFile, SpaceRunFile};
 use crate::networks::space::SpaceNetworkSet;
 use crate::planner::Method;
-use crate::run::NetworkChoice;
 use crate::session::space::{SpaceSession, KEY_ORBIT};
 
 /// How the page names elbow `k` (a joint, from 0): `elbow 4`.
@@ -111,19 +111,6 @@ impl SpaceDemo {
         };
         let session = SpaceSession::new(arm, method).map_err(js_err)?;
         Self::with_session(stage, plots, session)
-    }
-
-    /// The weights files' text of the arm's networks; `set` names the
-    /// shipped set they are (`panda-reach`), if they are one.
-    #[wasm_bindgen(js_name = installNetworks)]
-    pub fn install_networks(&mut self, phi: &str, v: &str, set: Option<String>) -> JsResult {
-        let set = set
-            .map(|s| s.parse::<SpaceNetworkSet>())
-            .transpose()
-            .map_err(js_err)?;
-        self.session_mut()
-            .install_networks(phi, v, set)
-            .map_err(js_err)
     }
 
     /// The networks' arithmetic from now on: `f64` (the default) or `f32`
@@ -426,12 +413,13 @@ impl SpaceDemo {
     /// The run as `redundant-ik simulate --arm A --json` writes it (with
     /// `--task pose` for the hand's pose; what
     /// `simulate --from` replays and the workers' jobs read): the one run
-    /// file, with the shipped set a learned method ran with, so that the
-    /// command line replays it so.
+    /// file, with the networks a learned method ran with (the shipped
+    /// set's name, or the weights files' text of networks of your own),
+    /// so that the command line replays it so.
     #[wasm_bindgen(js_name = runFile)]
     pub fn run_file(&self) -> String {
         let s = self.session();
-        let networks = s.network_set().map(NetworkChoice::Set);
+        let networks = s.network_choice().cloned();
         if let (Some(scene), Some(run)) = (s.pose_scene(), s.pose_trajectory()) {
             return PoseRunFile::of(None, scene, run, networks, s.precision()).to_json();
         }

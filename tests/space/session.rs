@@ -20,7 +20,7 @@ fn run_file(s: &SpaceSession) -> SpaceRunFile {
         None,
         s.scene().clone(),
         s.trajectory(),
-        s.network_set().map(NetworkChoice::Set),
+        s.network_choice().cloned(),
         s.precision(),
     )
 }
@@ -254,6 +254,16 @@ fn a_learned_method_waits_for_its_networks_and_then_runs() {
         run_file(&s).networks,
         Some(NetworkChoice::Set(SpaceNetworkSet::PandaReach)),
         "the run file names the set"
+    );
+    // As networks of one's own, the run file carries the files' text.
+    s.install_networks(phi, v, None).unwrap();
+    assert_eq!(s.network_set(), None);
+    assert_eq!(
+        run_file(&s).networks,
+        Some(NetworkChoice::Files {
+            phi: phi.into(),
+            v: v.into()
+        })
     );
     // The iiwa has no shipped networks: the Panda's do not fit it.
     let mut iiwa = SpaceSession::new("iiwa14", Method::NUMERICAL).unwrap();

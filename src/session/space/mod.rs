@@ -37,6 +37,7 @@ use crate::networks::space::{SpaceNetworkSet, SpaceNetworks};
 use crate::nn::Precision;
 use crate::planner::methods::Method;
 use crate::planner::{Sample, Summary, Trajectory};
+use crate::run::NetworkChoice;
 use crate::scene::SpaceScene;
 use crate::space::{SpacePose, Vec3, PRESETS};
 use pose_task::run;
@@ -50,7 +51,9 @@ pub struct SpaceSession {
     orientation: Option<Orientation>,
     method: Method,
     networks: Option<Arc<SpaceNetworks>>,
-    network_set: Option<SpaceNetworkSet>,
+    /// What the networks installed are: a shipped set, or the weights
+    /// files' text (which the run file carries).
+    network_choice: Option<NetworkChoice<SpaceNetworkSet>>,
     /// The arithmetic the networks compute in.
     precision: Precision,
     /// Every sample of the run from `t = 0` (up to a failed step).
@@ -127,7 +130,7 @@ impl SpaceSession {
             orientation: None,
             method: Method::NUMERICAL,
             networks: None,
-            network_set: None,
+            network_choice: None,
             precision: Precision::F64,
             samples: Vec::new(),
             pose_steps: Vec::new(),
@@ -173,7 +176,13 @@ impl SpaceSession {
 
     /// The shipped set installed, if one is.
     pub fn network_set(&self) -> Option<SpaceNetworkSet> {
-        self.network_set
+        self.network_choice.as_ref().and_then(NetworkChoice::set)
+    }
+
+    /// What the networks installed are (a shipped set, or the weights
+    /// files' text), if any are.
+    pub fn network_choice(&self) -> Option<&NetworkChoice<SpaceNetworkSet>> {
+        self.network_choice.as_ref()
     }
 
     /// Whether networks are installed.
@@ -214,7 +223,13 @@ impl SpaceSession {
         let nets = SpaceNetworks::from_json(phi_json, v_json)?;
         nets.check_chain(&self.scene.arm)?;
         self.networks = Some(Arc::new(nets).in_precision(self.precision));
-        self.network_set = set;
+        self.network_choice = Some(match set {
+            Some(set) => NetworkChoice::Set(set),
+            None => NetworkChoice::Files {
+                phi: phi_json.into(),
+                v: v_json.into(),
+            },
+        });
         if self.method.uses_networks() {
             self.recompute();
         }

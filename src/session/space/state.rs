@@ -165,7 +165,7 @@ impl SpaceSession {
             arm_label: &self.robot.label,
             dof: self.scene.arm.dof(),
             method: self.method.name(),
-            network_set: self.network_set.map(|s| s.name()),
+            network_set: self.network_set().map(|s| s.name()),
             has_networks: self.networks.is_some(),
             in_range: self.in_range(),
             precision: self.precision.name(),
