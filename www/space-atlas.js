@@ -185,9 +185,15 @@ export function mountSpaceAtlas(root, demo, { show, say, preset, changed }) {
     const learned = methods().filter((m) => wanted.includes(m.name) && (m.networks.phi || m.networks.v));
     // The learned methods with the arm's shipped networks, fetched for the worker (none shipped: left out).
     const set = spaceNetworkSets().find((x) => x.arm === s.arm);
-    const chosen = set ? wanted : wanted.filter((m) => !learned.some((l) => l.name === m));
-    let networks;
-    if (set && learned.length) {
+    // Networks of your own (trained here or given): their files travel with the job.
+    const own = demo.networkFiles();
+    // The hand's pose: Cases 1 and 3 need a Φ for it, which no network has (the core refuses them).
+    const pose = s.task === 'pose';
+    const noPhi = (name) => !(pose && learned.some((l) => l.name === name && l.networks.phi));
+    const chosen = (set || own ? wanted : wanted.filter((m) => !learned.some((l) => l.name === m))).filter(noPhi);
+    const left = wanted.filter((m) => !noPhi(m));
+    let networks = own ?? undefined;
+    if (!own && set && learned.length) {
       const [phi, v] = await Promise.all(set.files.map((f) => fetch(assetUrl(`weights/${f}`)).then((r) => r.text())));
       networks = { phi, v };
     }
@@ -217,7 +223,9 @@ export function mountSpaceAtlas(root, demo, { show, say, preset, changed }) {
       draw(0);
       const took = ms ?? performance.now() - started;
       const [axes, at] = planeOf(last);
-      const text = `Atlas on ${axes}:${Math.round(at * 1000) / 1000}: ${last.cells.length} cells x ${last.methods.length} methods in ${(took / 1000).toFixed(1)} s.`;
+      const task = pose ? " of the hand's pose" : '';
+      const without = left.length ? ` ${left.map(labelOf).join(' and ')} left out: no network has a Φ for the pose.` : '';
+      const text = `Atlas${task} on ${axes}:${Math.round(at * 1000) / 1000}: ${last.cells.length} cells x ${last.methods.length} methods in ${(took / 1000).toFixed(1)} s.${without}`;
       status.textContent = text;
       status.dataset.ms = String(Math.round(took));
       say(text);

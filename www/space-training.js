@@ -24,16 +24,13 @@ export function mountSpaceTraining(root, demo, { preset, show, say, installed })
   if (!panel) return { train: () => Promise.reject(new Error('this page has no training panel')) };
   panel.querySelector('summary').textContent = `Train the networks for the ${preset.label}`;
   const intro = panel.querySelector('p');
-  // A robot of the user's: the workers' trainer takes a shipped arm's key; the command line trains any URDF.
-  if (preset.key === 'robot') {
-    if (intro) intro.textContent = `Training in the page takes a shipped arm for now. For the ${preset.label}: redundant-ik train --urdf FILE --net phi (then --net v) writes the two files, which "Use your own network weights" installs here.`;
-    for (const el of panel.querySelectorAll('.field, button, progress, canvas')) el.hidden = true;
-    return { train: () => Promise.reject(new Error(`training in the page takes a shipped arm; the ${preset.label} trains with redundant-ik train --urdf`)) };
-  }
+  // A robot of the user's travels to the workers as its run file (its chain, start and sphere).
+  const own = preset.key === 'robot';
   if (intro) {
     intro.textContent =
-      `Adam training of the Φ and v networks of the ${preset.label}, as redundant-ik train --arm ${preset.key} does it, ` +
-      'in two workers at once: Φ on poses within the joint limits, v on states of numerical runs with spheres anywhere in the reach. ' +
+      `Adam training of the Φ and v networks of the ${preset.label}, as redundant-ik train ${own ? '--urdf FILE' : `--arm ${preset.key}`} does it, ` +
+      'in two workers at once: Φ on poses within the joint limits, v on states of numerical runs with spheres anywhere in the reach' +
+      `${own ? " (of the first sphere's radius, from the scene as it is now)" : ''}. ` +
       'When both are done the learned methods (Cases 1-3) use them; Download weights saves the two files the command line reads.';
   }
   const recipe = $('train-preset');
@@ -91,7 +88,8 @@ export function mountSpaceTraining(root, demo, { preset, show, say, installed })
     const started = performance.now();
     tell(`Training the ${preset.label}'s Φ and v networks…`);
     try {
-      const request = (net) => ({ arm: preset.key, net, preset: recipeName, ...(samples && { samples }), ...(epochs && { epochs }), ...(seed !== undefined && { seed }) });
+      const arm = own ? { run: demo.runFile(), name: preset.label } : { arm: preset.key };
+      const request = (net) => ({ ...arm, net, preset: recipeName, ...(samples && { samples }), ...(epochs && { epochs }), ...(seed !== undefined && { seed }) });
       const [phi, v] = await Promise.all(
         ['phi', 'v'].map((net) => runWorker({ kind: 'space-train', request: request(net) }, { onProgress: onProgress(net), signal: controller.signal }).then((r) => r.result)),
       );
@@ -122,8 +120,9 @@ export function mountSpaceTraining(root, demo, { preset, show, say, installed })
   cancel?.addEventListener('click', () => controller?.abort());
   download?.addEventListener('click', () => {
     if (!files) return;
-    saveText(`phi-${preset.key}-trained.json`, files.phi, 'application/json');
-    saveText(`v-${preset.key}-trained.json`, files.v, 'application/json');
+    const stem = own ? (preset.label.replace(/[^\w.-]+/g, '-').replace(/^-+|-+$/g, '') || 'robot') : preset.key;
+    saveText(`phi-${stem}-trained.json`, files.phi, 'application/json');
+    saveText(`v-${stem}-trained.json`, files.v, 'application/json');
   });
   return { train };
 }

@@ -25,6 +25,10 @@
 //   { kind: 'train-net', wasm, request, net }
 //       one network of such a request alone ('phi' or 'v'; the page runs
 //       both at once in two workers): its weights file as JSON text
+//   { kind: 'space-train', wasm, request: { arm | run, name, net, preset, samples, epochs, seed } }
+//       one network of an arm in space, of a shipped arm (`arm`, its key) or
+//       of the robot of a run file (`run`, its text; `name` in the weights
+//       file): its weights file as JSON text (src/web/space_training.rs)
 //   { kind: 'conclude', wasm, request, phi, v }
 //       the check and report of a request whose networks were trained so
 //   { kind: 'robot', wasm, urdf, base, tip, meshes: { name: Uint8Array } }

@@ -11,11 +11,12 @@ use super::js_err;
 use crate::atlas::space::{default_region, Plane, SliceJob, DEFAULT_SLICE_GRID};
 use crate::atlas::{Grid, MAX_GRID};
 use crate::error;
-use crate::export::SpaceRunFile;
+use crate::export::{is_pose_run, PoseRunFile, SpaceRunFile};
 use crate::networks::space::{SpaceNetworkSet, SpaceNetworks};
 use crate::planner::{methods, Method};
 use crate::run::NetworkChoice;
-use crate::space::SpacePreset;
+use crate::scene::{PoseScene, SpaceScene};
+use crate::space::{PoseChain, SpacePreset};
 
 /// The options of a slice atlas as the page passes them.
 #[derive(Deserialize)]
@@ -62,7 +63,10 @@ struct Texts {
 /// ```
 ///
 /// `runText` is a run file of an arm in space (what `simulate --arm A
-/// --json` writes, or a file of the versions before it): its scene is mapped, its own sphere
+/// --json` writes, with `--task pose` too, or a file of the versions
+/// before it): its scene is mapped (the hand's pose task where the file
+/// is of the pose: Cases 1 and 3 are left out, as `atlas --task pose`
+/// leaves them), its own sphere
 /// moved over the grid, the networks computing in its `precision`; its
 /// method is not used. `options` is an object or
 /// its JSON text; an unknown field is refused by name. The constructor
@@ -72,9 +76,26 @@ struct Texts {
 /// (the page terminates the worker).
 #[wasm_bindgen]
 pub struct SpaceAtlasJob {
-    job: SliceJob,
+    job: Slice,
     /// The preset the run's chain is, if it is one.
     arm: Option<&'static str>,
+}
+
+/// The job of the hand's position task or of its pose task.
+#[derive(Clone)]
+enum Slice {
+    Position(SliceJob),
+    Pose(SliceJob<PoseChain, 6>),
+}
+
+/// Calls `$f` on the job whichever task it maps.
+macro_rules! on_job {
+    ($job:expr, $j:ident => $f:expr) => {
+        match $job {
+            Slice::Position($j) => $f,
+            Slice::Pose($j) => $f,
+        }
+    };
 }
 
 #[wasm_bindgen]
@@ -82,20 +103,30 @@ impl SpaceAtlasJob {
     /// See the type's documentation.
     #[wasm_bindgen(constructor)]
     pub fn new(run: &str, options: JsValue) -> Result<SpaceAtlasJob, JsError> {
-        let file = SpaceRunFile::from_json(run).map_err(js_err)?;
-        let arm = SpacePreset::of(&file.scene.arm).map(|p| p.key);
+        // The run's scene: the hand's position, or its pose (and the
+        // position scene it extends, whose line and sphere set the plane).
+        let (pose, scene, networks, precision) = if is_pose_run(run) {
+            let file = PoseRunFile::from_json(run).map_err(js_err)?;
+            let scene = file.scene.position_scene().0;
+            (Some(file.scene), scene, file.networks, file.precision)
+        } else {
+            let file = SpaceRunFile::from_json(run).map_err(js_err)?;
+            (None, file.scene, file.networks, file.precision)
+        };
+        let arm = SpacePreset::of(&scene.arm).map(|p| p.key);
         let o = read_options(options)?;
         // The user's own weights files travel in the run file.
-        let texts = o.networks.or(match file.networks {
+        let texts = o.networks.or(match networks {
             Some(NetworkChoice::Files { phi, v }) => Some(Texts { phi, v }),
             _ => None,
         });
-        let scene = file.scene;
+        // Cases 1 and 3 need a Phi, which no network has for the pose.
+        let runs = |m: &Method| pose.is_none() || !m.info().networks.phi;
         let methods = match o.methods {
             None => methods::ALL
                 .iter()
                 .copied()
-                .filter(|m| m.in_space() && (texts.is_some() || !m.uses_networks()))
+                .filter(|m| m.in_space() && (texts.is_some() || !m.uses_networks()) && runs(m))
                 .collect(),
             Some(names) => Method::parse_list(&names.join(",")).map_err(js_err)?,
         };
@@ -133,7 +164,7 @@ impl SpaceAtlasJob {
             // In the run's arithmetic, as on the page.
             (Some(_), Some(t)) => Some(
                 std::sync::Arc::new(SpaceNetworks::from_json(&t.phi, &t.v).map_err(js_err)?)
-                    .in_precision(file.precision),
+                    .in_precision(precision),
             ),
             (Some(m), None) => {
                 let files = arm.and_then(SpaceNetworkSet::for_arm).map_or_else(
@@ -148,32 +179,39 @@ impl SpaceAtlasJob {
                 )));
             }
         };
-        let job =
-            SliceJob::new(&scene, plane, grid, &methods, networks.as_ref()).map_err(js_err)?;
+        let job = slice_job(
+            &scene,
+            pose.as_ref(),
+            plane,
+            grid,
+            &methods,
+            networks.as_ref(),
+        )
+        .map_err(js_err)?;
         Ok(SpaceAtlasJob { job, arm })
     }
 
     /// Cells in the grid.
     #[wasm_bindgen(getter)]
     pub fn total(&self) -> usize {
-        self.job.total()
+        on_job!(&self.job, j => j.total())
     }
 
     /// Cells computed so far.
     #[wasm_bindgen(getter)]
     pub fn done(&self) -> usize {
-        self.job.done()
+        on_job!(&self.job, j => j.done())
     }
 
     /// Points per side: a sensible chunk is one row.
     #[wasm_bindgen(getter)]
     pub fn row(&self) -> usize {
-        self.job.row()
+        on_job!(&self.job, j => j.row())
     }
 
     /// Computes up to `cells` more cells; returns how many are done in all.
     pub fn advance(&mut self, cells: usize) -> usize {
-        self.job.advance(cells)
+        on_job!(&mut self.job, j => j.advance(cells))
     }
 
     /// The finished atlas as the JSON text of `redundant-ik atlas --arm A
@@ -181,10 +219,26 @@ impl SpaceAtlasJob {
     /// `methods`, `cells` of `{ centre, outcomes }`); throws while cells
     /// are missing.
     pub fn finish(&self) -> Result<String, JsError> {
-        let mut atlas = self.job.clone().finish().map_err(js_err)?;
+        let mut atlas = on_job!(self.job.clone(), j => j.finish()).map_err(js_err)?;
         atlas.arm = self.arm;
         serde_json::to_string(&atlas).map_err(|e| JsError::new(&e.to_string()))
     }
+}
+
+/// The job of `scene`'s position task, or of `pose`'s where the run is of
+/// the hand's pose.
+fn slice_job(
+    scene: &SpaceScene,
+    pose: Option<&PoseScene>,
+    plane: Plane,
+    grid: crate::atlas::Grid,
+    methods: &[Method],
+    networks: Option<&std::sync::Arc<SpaceNetworks>>,
+) -> crate::error::Result<Slice> {
+    Ok(match pose {
+        Some(p) => Slice::Pose(SliceJob::pose(p, plane, grid, methods, networks)?),
+        None => Slice::Position(SliceJob::new(scene, plane, grid, methods, networks)?),
+    })
 }
 
 /// The options as an object or as JSON text (absent: every default).

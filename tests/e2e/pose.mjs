@@ -169,6 +169,17 @@ test('pose: an address with six numbers for the target opens the pose task turne
   await bad.close();
 });
 
+test("pose: the slice atlas maps the hand's pose task in a worker; Cases 1 and 3 are left out and said", async () => {
+  const page = await open('?arm=panda&method=qp&autoplay=0&task=pose');
+  assert.equal((await state(page)).task, 'pose');
+  const a = await page.evaluate(() => window.demo.atlas({ methods: ['none', 'qp', 'case1', 'case2'], n: 3 }));
+  assert.deepEqual(a.methods, ['none', 'qp', 'case2'], 'case1 left out, case2 (v only) mapped with the shipped networks');
+  assert.equal(a.cells.length, 9);
+  assert.match(await page.textContent('#space-atlas-status'), /^Atlas of the hand's pose on .* Case 1 left out: no network has a Φ for the pose\.$/);
+  clean(page);
+  await page.close();
+});
+
 test('pose: axe finds nothing serious with the pose task on and the gizmo turning; on a 390 px phone the pose fields fit without sideways scroll', async () => {
   const page = await open('?arm=panda&method=qp&autoplay=0&task=pose');
   await page.click('#gizmo-turn');

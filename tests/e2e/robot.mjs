@@ -10,7 +10,7 @@
 import assert from 'node:assert/strict';
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { test, open, clean, state, shots } from './harness.mjs';
+import { test, open, clean, state, shots, textMatching } from './harness.mjs';
 import { serve } from './serve.mjs';
 import { cli, download, scratch } from './class-helpers.mjs';
 // fflate as make web installs it for the page's own unzip (tools/package.json).
@@ -64,6 +64,40 @@ test('your robot: the UR5e from its URDF through Open robot…, what the reader 
   back.steps.forEach((st, k) => st.theta.forEach((v, i) => (worst = Math.max(worst, Math.abs(v - run.steps[k].theta[i])))));
   assert.ok(worst < 1e-9, `simulate --from replays the page's run to ${worst} rad`);
   await page.locator('#stage').screenshot({ path: join(shots, 'robot-ur5e.png') });
+  clean(page);
+  await page.close();
+});
+
+test('your robot: the training panel trains its networks from its run file in two workers; Cases 1-3 then run on it', async () => {
+  const page = await open('?task=1&method=numerical');
+  await openRobot(page, 'robots/ur5e.urdf');
+  await page.click('#train-panel summary');
+  assert.match(await page.textContent('#train-panel summary'), /ur5e/);
+  assert.match(await page.textContent('#train-panel p'), /redundant-ik train --urdf FILE/);
+  assert.equal(await page.isVisible('#train-run'), true, 'the button is there for a robot of the user\'s');
+  assert.equal(await page.locator('#mode option[value=case3]').isDisabled(), true, 'no networks before');
+  const files = await page.evaluate(() => window.demo.train({ samples: 300, epochs: 2 }).then((r) => [JSON.parse(r.phi), JSON.parse(r.v)]));
+  // The weights files carry the chain read from the URDF (six joint frames), which the core checked before installing them.
+  assert.deepEqual(files.map((f) => [f.format, f.arm.joints.length]), [['redundant-ik-weights/2', 6], ['redundant-ik-weights/2', 6]]);
+  await textMatching(page, '#train-status', /Trained in .* Cases 1-3 now use them/);
+  assert.equal((await state(page)).has_networks, true);
+  await page.selectOption('#mode', 'case3');
+  const end = await page.evaluate(() => window.demo.runUntil(1e9));
+  assert.equal(end.method, 'case3');
+  assert.ok(end.ended, 'a run of Case 3 with the networks just trained ends');
+  assert.deepEqual(await download(page, '#train-download').then((d) => d.name), 'phi-ur5e-trained.json');
+  // The run file carries the networks' files, so the command line replays the learned run on any machine.
+  const json = await download(page, '#save-run-json');
+  const run = JSON.parse(json.text);
+  assert.deepEqual([run.method, typeof run.networks?.phi, typeof run.networks?.v], ['case3', 'string', 'string']);
+  const back = JSON.parse(cli(['simulate', '--from', json.path, '--json']));
+  let worst = 0;
+  back.steps.forEach((st, k) => st.theta.forEach((v, i) => (worst = Math.max(worst, Math.abs(v - run.steps[k].theta[i])))));
+  assert.equal(back.steps.length, run.steps.length);
+  assert.ok(worst < 1e-9, `simulate --from replays the page's Case 3 run to ${worst} rad`);
+  // The slice atlas maps Case 3 with them in a worker.
+  const a = await page.evaluate(() => window.demo.atlas({ methods: ['numerical', 'case3'], n: 3 }));
+  assert.deepEqual(a.methods, ['numerical', 'case3']);
   clean(page);
   await page.close();
 });

@@ -69,3 +69,4 @@ mod atlas;
 mod panels;
 mod scene;
 mod space_atlas;
+mod space_training;

@@ -15,7 +15,7 @@ use redundant_ik::Method;
 use wasm_bindgen_test::wasm_bindgen_test;
 
 /// The run file `simulate --arm panda --json` writes.
-fn panda_run() -> (SpaceScene, String) {
+pub(crate) fn panda_run() -> (SpaceScene, String) {
     let p = SpacePreset::by_key("panda").unwrap();
     let scene = SpaceScene::preset(p);
     let traj = Planner::new(scene.clone(), Method::NUMERICAL, None)
@@ -78,4 +78,59 @@ fn a_space_atlas_job_refuses_what_it_cannot_run_with_a_reason() {
     assert!(message(bad.err().unwrap()).contains("a planar arm"));
     let bad = SpaceAtlasJob::new("{\"format\": \"redundant-ik-run/9\"}", JsValue::UNDEFINED);
     assert!(message(bad.err().unwrap()).contains("redundant-ik-run/2"));
+}
+
+#[wasm_bindgen_test]
+fn a_pose_run_file_maps_the_pose_task_as_the_native_pose_slice_does() {
+    use redundant_ik::atlas::space::pose_slice;
+    use redundant_ik::export::PoseRunFile;
+    use redundant_ik::scene::PoseScene;
+    let p = SpacePreset::by_key("panda").unwrap();
+    let scene = PoseScene::preset(p).unwrap();
+    let traj = Planner::new(scene.clone(), redundant_ik::planner::methods::QP, None)
+        .and_then(Planner::run_to_end)
+        .unwrap();
+    let run = PoseRunFile::of(None, scene.clone(), traj, None, Default::default()).to_json();
+    // Without a list of methods: every one that runs the pose without networks.
+    let mut job = SpaceAtlasJob::new(&run, js_sys::JSON::parse(r#"{"n": 3}"#).unwrap()).unwrap();
+    job.advance(9);
+    let a: serde_json::Value = serde_json::from_str(&job.finish().unwrap()).unwrap();
+    let names: Vec<&str> = a["methods"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m.as_str().unwrap())
+        .collect();
+    assert!(
+        names.contains(&"qp") && names.contains(&"numerical"),
+        "{names:?}"
+    );
+    assert!(!names.iter().any(|m| m.starts_with("case")), "{names:?}");
+    // A list of its own: the native pose slice, cell for cell.
+    let options = js_sys::JSON::parse(r#"{"methods": ["none", "qp"], "n": 3}"#).unwrap();
+    let mut job = SpaceAtlasJob::new(&run, options).unwrap();
+    job.advance(9);
+    let (position, _, _) = scene.position_scene();
+    let plane = Plane::through_line(&position);
+    let grid = Grid::new(default_region(&position, plane), 3).unwrap();
+    let methods = [Method::NO_AVOIDANCE, redundant_ik::planner::methods::QP];
+    let mut native = pose_slice(&scene, plane, grid, &methods, None).unwrap();
+    native.arm = Some("panda");
+    assert_eq!(
+        job.finish().unwrap(),
+        serde_json::to_string(&native).unwrap()
+    );
+    // With the Panda's networks: Case 2 maps (v serves the pose), Case 1
+    // is refused (it needs a Phi for the pose, which no network has).
+    let networks = serde_json::json!({
+        "phi": include_str!("../../weights/phi-panda-reach.json"),
+        "v": include_str!("../../weights/v-panda-reach.json"),
+    });
+    let with = |method: &str| {
+        let o = serde_json::json!({ "methods": [method], "n": 2, "networks": networks });
+        SpaceAtlasJob::new(&run, js_sys::JSON::parse(&o.to_string()).unwrap())
+    };
+    assert!(with("case2").is_ok());
+    let e = message(with("case1").err().unwrap());
+    assert!(e.contains("Phi"), "{e}");
 }
