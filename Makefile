@@ -123,10 +123,10 @@ test-npm: npm
 ## versions of the fuzzing and of the browser soak (docs/reliability.md),
 ## the page as dist/ builds it, served under a sub-path, the offline file
 ## from file:// and the npm package installed from its tarball. The short
-## fuzzing (its builds take the cores) runs beside the last browser tests,
-## which mostly wait on their pages (fuzz-start, fuzz-wait); its report
-## follows theirs.
-test: lint test-native test-wasm test-e2e fuzz-start test-dist test-offline test-npm test-soak fuzz-wait
+## fuzzing (its builds take the cores) runs beside the wasm tests and the
+## page's build, whose browser runs mostly wait (fuzz-start, fuzz-wait);
+## its report comes last.
+test: lint test-native fuzz-start test-wasm test-e2e test-dist test-offline test-npm test-soak fuzz-wait
 
 FUZZ_LOG = target/test-fuzz.log
 fuzz-start:
