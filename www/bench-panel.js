@@ -31,8 +31,7 @@ export function mountBenchPanel(root) {
     if (!last) return;
     const { r, nat, build } = last;
     const rows = Object.keys(r.step_ns).map((m) => [m, build, r.theta_dot_ns[m], r.step_ns[m], nat?.step_ns?.[m]]);
-    rows.push(['forward phi', build, '', r.forward_ns.phi, '']);
-    rows.push(['forward v', build, '', r.forward_ns.v, '']);
+    if (r.forward_ns) rows.push(['forward phi', build, '', r.forward_ns.phi, ''], ['forward v', build, '', r.forward_ns.v, '']);
     saveText('benchmark.csv', csv(['method', 'build', 'theta_dot_ns', 'step_ns', 'native_step_ns'], rows), 'text/csv');
   });
   const controls = { run: button, cancel, progress };
@@ -43,12 +42,17 @@ export function mountBenchPanel(root) {
     result.textContent = 'Measuring…';
     abort = new AbortController();
     try {
-      // On the page in space (html[data-space]), its arm's task (the workers' build with the arms in space).
-      const arm = document.documentElement.dataset.space || undefined;
+      // On the page in space (html[data-space]), its arm's task (the workers' build with the arms in space);
+      // a robot of the user's goes as its run file, with its networks' files where it has its own.
+      const key = document.documentElement.dataset.space || undefined;
+      const robot = key === 'robot' ? window.demo?.controller?.demo : null;
+      const arm = robot ? robot.runFile() : key;
+      const own = robot?.networkFiles() ?? undefined;
       // In the arithmetic the page's networks run in (its Arithmetic selector).
       const precision = $('precision')?.value || undefined;
       const r = await bench({
         arm,
+        own,
         precision,
         signal: abort.signal,
         onProgress: ({ done, total, label }) => {
@@ -69,6 +73,12 @@ export function mountBenchPanel(root) {
       if (download) download.hidden = false;
       const [learned, exact] = r.verdict;
       const [L, E] = [method(learned), method(exact)];
+      if (r.step_ns[learned] === undefined) {
+        // No networks for this arm: the exact methods only.
+        result.textContent = `Per RK4 step, ${E.label} takes ${nanoseconds(r.step_ns[exact])} here; ${L.label} is not timed: this arm has no networks yet (train them in the page, or give your own).`;
+        Object.assign(result.dataset, { learned: '', exact, learnedNs: '', exactNs: String(r.step_ns[exact]), precision: r.precision });
+        return;
+      }
       const ratio = r.step_ns[learned] / r.step_ns[exact];
       const buildName = moduleBuild() === 'simd' ? 'wasm SIMD build' : 'baseline wasm build, no SIMD';
       let text = `Per RK4 step, ${L.label} (${L.description}) is ${verdictText(ratio)} than ${E.label} (${E.description}) here (${buildName}, networks in ${r.precision})`;

@@ -74,13 +74,16 @@ export async function runWorker(job, { onProgress, signal } = {}) {
  * (`methods` to choose; `refine` Newton-Schulz steps on the learned Phi) and
  * the forward passes of its networks, whose weights files the worker fetches
  * from weights/ beside the page; `theta_dot_ns` is empty and `arm` names it.
+ * A robot of the user's: `arm` is its run file's text (`SpaceDemo.runFile()`)
+ * and `own` its networks' files `{ phi, v }` if it has its own (the learned
+ * methods are timed only then); the result's `arm` is `'robot'`.
  *
  * `precision` is the networks' arithmetic, `'f64'` (the default, the page's
  * runs) or `'f32'` (`redundant-ik bench --precision f32`); the result names it.
  */
-export async function bench({ onProgress, signal, batchMs = 20, arm, methods, refine = 0, precision = 'f64' } = {}) {
+export async function bench({ onProgress, signal, batchMs = 20, arm, own, methods, refine = 0, precision = 'f64' } = {}) {
   const job = { kind: 'bench', batchMs, precision };
-  if (arm !== undefined) Object.assign(job, { arm, methods, refine, weights: weightsLocation() });
+  if (arm !== undefined) Object.assign(job, { arm, own, methods, refine, weights: weightsLocation() });
   const { result } = await runWorker(job, { onProgress, signal });
   return result;
 }

@@ -8,11 +8,13 @@
 //   { kind: 'bench', wasm, batchMs, precision }
 //       the code behind `redundant-ik bench`, one figure per call, over the
 //       methods of benchMethods(); the result names benchVerdict()'s pair
-//   { kind: 'bench', wasm, batchMs, arm, methods, refine, weights, precision }
+//   { kind: 'bench', wasm, batchMs, arm, own, methods, refine, weights, precision }
 //       the same for an arm in space (`redundant-ik bench --arm KEY`): the
 //       RK4 step of its own task per method and its networks' forward passes;
 //       the networks' files (benchSpaceNetworkFiles(arm)) fetched from
-//       `weights` (the URL of weights/, or a map of name to URL)
+//       `weights` (the URL of weights/, or a map of name to URL); a robot
+//       of the user's as its run file's text in `arm`, `own` its networks'
+//       files { phi, v } if it has its own
 //   { kind: 'atlas', wasm, run, options: { methods, n, region, task, feedback, refine, networks } }
 //       the atlas of `redundant-ik atlas`, one row of cells per chunk
 //   { kind: 'space-atlas', wasm, run, options: { methods, plane, n, region, networks: { phi, v } } }
@@ -100,11 +102,12 @@ async function weightsText(weights, name) {
   return r.text();
 }
 
-async function benchSpace({ batchMs = 20, arm, methods, refine = 0, weights, precision = 'f64' }) {
-  const timed = methods ?? benchSpaceMethods(arm);
-  const files = benchSpaceNetworkFiles(arm);
-  const [phi, v] = files.length ? await Promise.all(files.map((f) => weightsText(weights, f))) : [undefined, undefined];
-  const result = { arm, theta_dot_ns: {}, step_ns: {}, forward_ns: null, verdict: benchVerdict(), precision };
+async function benchSpace({ batchMs = 20, arm, own, methods, refine = 0, weights, precision = 'f64' }) {
+  const timed = methods ?? benchSpaceMethods(arm, !!own);
+  const files = own ? [] : benchSpaceNetworkFiles(arm);
+  const [phi, v] = own ? [own.phi, own.v] : files.length ? await Promise.all(files.map((f) => weightsText(weights, f))) : [undefined, undefined];
+  // A robot's run file is not a name: the result calls it 'robot'.
+  const result = { arm: arm.trimStart().startsWith('{') ? 'robot' : arm, theta_dot_ns: {}, step_ns: {}, forward_ns: null, verdict: benchVerdict(), precision };
   // A warm-up pass first, its figures dropped: each job runs in a fresh
   // worker, whose module V8 compiles lazily and optimises (TurboFan) only
   // once a function is hot, in the background; timed cold, the first

@@ -28,14 +28,29 @@ pub fn step_ns_with(
     opts: &Options,
     probes: &Probes,
 ) -> Result<f64> {
+    step_ns_of(SpaceScene::by_key(key)?, key, method, nets, opts, probes)
+}
+
+/// [`step_ns_with`] on `scene` (a robot's own, read from its run file),
+/// which messages call `name`; the options' refinement steps replace the
+/// scene's.
+pub fn step_ns_of(
+    mut scene: SpaceScene,
+    name: &str,
+    method: Method,
+    nets: Option<Arc<SpaceNetworks>>,
+    opts: &Options,
+    probes: &Probes,
+) -> Result<f64> {
     if method.uses_networks() && nets.is_none() {
         return Err(Error::NetworksUnavailable(format!(
-            "{} needs the networks of the arm '{key}'",
+            "{} needs the networks of the arm '{name}'",
             method.name()
         )));
     }
     let nets = nets.map(|n| n.in_precision(opts.precision) as Networks<_, 3>);
-    scene_step_ns(task(key, opts.refine)?, method, nets, opts, probes)
+    refined(&mut scene, opts.refine)?;
+    scene_step_ns(scene, method, nets, opts, probes)
 }
 
 /// One RK4 step of `scene` in `method` with `nets`, sample included (ns);
@@ -114,7 +129,9 @@ pub fn allocs_per_step(
 ) -> Result<f64> {
     let nets =
         shipped_networks(key, method)?.map(|n| n.in_precision(opts.precision) as Networks<_, 3>);
-    scene_allocs_per_step(task(key, opts.refine)?, method, nets, count)
+    let mut scene = SpaceScene::by_key(key)?;
+    refined(&mut scene, opts.refine)?;
+    scene_allocs_per_step(scene, method, nets, count)
 }
 
 /// Forward passes of the spatial `Phi` and `v` networks at the preset
@@ -126,8 +143,18 @@ pub fn forward_ns(
     opts: &Options,
     probes: &Probes,
 ) -> Result<Forward> {
+    forward_ns_of(&SpaceScene::by_key(key)?, nets, opts, probes)
+}
+
+/// [`forward_ns`] at `scene`'s start pose and first sphere (a robot's own
+/// scene, read from its run file).
+pub fn forward_ns_of(
+    scene: &SpaceScene,
+    nets: Arc<SpaceNetworks>,
+    opts: &Options,
+    probes: &Probes,
+) -> Result<Forward> {
     let nets = nets.in_precision(opts.precision);
-    let scene = task(key, 0)?;
     nets.check_chain(&scene.arm)?;
     let pose = crate::space::SpacePose::new(&scene.arm, &scene.theta0)?;
     let n = pose.dof();
@@ -169,11 +196,9 @@ pub fn shipped_networks(key: &str, method: Method) -> Result<Option<Arc<SpaceNet
     )))
 }
 
-/// The preset `key`'s task with `refine` refinement steps (Cases 1 and 3).
-fn task(key: &str, refine: u32) -> Result<SpaceScene> {
-    let mut scene = SpaceScene::by_key(key)?;
+/// Gives `scene` `refine` refinement steps (Cases 1 and 3).
+fn refined(scene: &mut SpaceScene, refine: u32) -> Result<()> {
     scene
         .params
-        .set(&crate::planner::methods::REFINE, f64::from(refine))?;
-    Ok(scene)
+        .set(&crate::planner::methods::REFINE, f64::from(refine))
 }

@@ -76,6 +76,14 @@ test('your robot: the training panel trains its networks from its run file in tw
   assert.match(await page.textContent('#train-panel p'), /redundant-ik train --urdf FILE/);
   assert.equal(await page.isVisible('#train-run'), true, 'the button is there for a robot of the user\'s');
   assert.equal(await page.locator('#mode option[value=case3]').isDisabled(), true, 'no networks before');
+  // The benchmark times its own task from its run file: without networks, the exact methods only, and says so.
+  await page.click('#bench-panel summary');
+  const bench = async () => {
+    await page.click('#bench');
+    await page.waitForFunction(() => /^(Per|The benchmark failed)/.test(document.getElementById('bench-result').textContent), null, { timeout: 120000 });
+    return page.textContent('#bench-result');
+  };
+  assert.match(await bench(), /^Per RK4 step, .* takes .* here; Case 3 is not timed: this arm has no networks yet/);
   const files = await page.evaluate(() => window.demo.train({ samples: 300, epochs: 2 }).then((r) => [JSON.parse(r.phi), JSON.parse(r.v)]));
   // The weights files carry the chain read from the URDF (six joint frames), which the core checked before installing them.
   assert.deepEqual(files.map((f) => [f.format, f.arm.joints.length]), [['redundant-ik-weights/2', 6], ['redundant-ik-weights/2', 6]]);
@@ -95,6 +103,9 @@ test('your robot: the training panel trains its networks from its run file in tw
   back.steps.forEach((st, k) => st.theta.forEach((v, i) => (worst = Math.max(worst, Math.abs(v - run.steps[k].theta[i])))));
   assert.equal(back.steps.length, run.steps.length);
   assert.ok(worst < 1e-9, `simulate --from replays the page's Case 3 run to ${worst} rad`);
+  // The benchmark now times Case 3 with them.
+  assert.match(await bench(), /^Per RK4 step, Case 3 .* is .* than .* Forward passes: Φ .*, v .*\.$/);
+  assert.equal(await page.getAttribute('#bench-result', 'data-learned'), 'case3');
   // The slice atlas maps Case 3 with them in a worker.
   const a = await page.evaluate(() => window.demo.atlas({ methods: ['numerical', 'case3'], n: 3 }));
   assert.deepEqual(a.methods, ['numerical', 'case3']);

@@ -78,3 +78,45 @@ fn a_request_names_its_arm_once_and_a_bad_run_is_refused_by_the_reader() {
         .unwrap_err()
         .contains("no arm in space is called 'ur99'"));
 }
+
+/// The benchmark of a robot of the user's: its run file's text in place of
+/// a preset's key; its learned methods only with networks of its own.
+#[wasm_bindgen_test]
+fn the_benchmark_times_the_scene_of_a_run_file() {
+    use redundant_ik::web::{bench_space_forward, bench_space_methods, bench_space_step};
+    let (_, run) = panda_run();
+    // A run file names no shipped set: the learned methods need networks handed over.
+    let plain = bench_space_methods(&run, None).unwrap();
+    assert!(plain.contains(&"qp".to_string()) && !plain.iter().any(|m| m.starts_with("case")));
+    assert!(bench_space_methods(&run, Some(true))
+        .unwrap()
+        .contains(&"case3".to_string()));
+    let ns = bench_space_step(&run, "qp", 1.0, 0, None, None, None).unwrap();
+    assert!(ns.is_finite() && ns > 0.0, "{ns}");
+    let e = message(bench_space_step(&run, "case3", 1.0, 0, None, None, None).unwrap_err());
+    assert!(e.contains("needs the networks of the arm 'robot'"), "{e}");
+    let phi = include_str!("../../weights/phi-panda-reach.json");
+    let v = include_str!("../../weights/v-panda-reach.json");
+    let ns = bench_space_step(
+        &run,
+        "case3",
+        1.0,
+        0,
+        Some(phi.into()),
+        Some(v.into()),
+        None,
+    )
+    .unwrap();
+    assert!(ns.is_finite() && ns > 0.0, "{ns}");
+    let f = json_of(bench_space_forward(&run, 1.0, phi.into(), v.into(), None).unwrap());
+    assert!(
+        f["phi"].as_f64().unwrap() > 0.0 && f["v"].as_f64().unwrap() > 0.0,
+        "{f}"
+    );
+    // A run file cut short is read as one and refused by the reader; other text is an unknown arm.
+    let cut = &run[..run.len() / 2];
+    let e = message(bench_space_step(cut, "qp", 1.0, 0, None, None, None).unwrap_err());
+    assert!(e.contains("run file"), "{e}");
+    let e = message(bench_space_step("ur99", "qp", 1.0, 0, None, None, None).unwrap_err());
+    assert!(e.contains("unknown arm in space 'ur99'"), "{e}");
+}
