@@ -15,10 +15,11 @@ const CRASHY = /unreachable|RuntimeError|panicked|is not a function|Cannot read 
 async function stillWorks(page) {
   const s = await page.evaluate(() => window.demo.runUntil(window.demo.state().t + 1));
   for (const v of [s.t, ...s.theta, ...s.ee, s.tracking_error]) assert.ok(Number.isFinite(v), `finite state: ${JSON.stringify(s)}`);
+  // Frames keep coming (a page that froze draws none): a few, within 5 s on a loaded machine.
   await countFrames(page);
-  await page.waitForTimeout(300);
+  await page.waitForFunction(() => window.__frames > 3, null, { timeout: 5000 }).catch(() => {});
   const frames = await page.evaluate(() => window.__frames);
-  assert.ok(frames > 3, `the page keeps drawing (${frames} frames in 300 ms)`);
+  assert.ok(frames > 3, `the page keeps drawing (${frames} frames)`);
   return s;
 }
 
