@@ -3,7 +3,8 @@
 // the SIMD build fetching nothing but its own data: URLs, Task 1 runs in
 // every method of the menu, the whole-reach networks run, the benchmark,
 // an atlas and a quick training complete in their workers, the Panda runs
-// Case 3 with its networks inline, the built-in
+// Case 3 with its networks inline, a robot of the user's opens through
+// "Open robot…" and survives a reload, the built-in
 // weights download, and where the browser had no wasm SIMD it says why it
 // cannot start. Run by `make test-offline`.
 
@@ -83,6 +84,25 @@ test('the Panda opens from the same file, in its 3-D view; its learned method ru
   const s = await page.evaluate(() => window.demo.runUntil(1e9));
   assert.equal(s.failure, null, 'Case 3 runs the Panda task to its end');
   assert.ok(s.ended);
+  assert.deepEqual(page.requests.filter((u) => u.split('?')[0] !== FILE), [], 'no request but the file itself');
+  assert.deepEqual(page.problems, []);
+  await page.close();
+});
+
+test("a robot of the user's opens from the same file through Open robot…, is kept for a reload, and runs qp", async () => {
+  const page = await open(FILE);
+  await page.click('#arm-panel summary');
+  await Promise.all([page.waitForURL(/[?&]robot=[0-9a-f]{16}/, { timeout: 30000 }), page.setInputFiles('#robot-files', join(root, 'robots/ur5e.urdf'))]);
+  await page.waitForSelector('body[data-ready="true"]', { timeout: 30000, state: 'attached' });
+  const s = await page.evaluate(() => window.demo.state());
+  assert.deepEqual([s.kind, s.arm, s.arm_label, s.dof], ['space', 'robot', 'ur5e', 6]);
+  await page.reload();
+  await page.waitForSelector('body[data-ready="true"]', { timeout: 30000, state: 'attached' });
+  assert.equal((await page.evaluate(() => window.demo.state())).arm_label, 'ur5e', 'kept in this browser');
+  await page.selectOption('#mode', 'qp');
+  const end = await page.evaluate(() => window.demo.runUntil(1e9));
+  assert.equal(end.failure, null);
+  assert.ok(end.ended);
   assert.deepEqual(page.requests.filter((u) => u.split('?')[0] !== FILE), [], 'no request but the file itself');
   assert.deepEqual(page.problems, []);
   await page.close();
