@@ -290,12 +290,12 @@ impl SpaceSession {
     ) -> Result<()> {
         scene.validate()?;
         if let Some(o) = orientation.as_mut() {
-            if scene.path != SpacePath::Line {
-                let kept = PoseScene::from_space(scene.clone(), None, o.weight)?;
-                o.rotation = [kept.target[3], kept.target[4], kept.target[5]];
-            }
             check_pose_method(method)?;
-            PoseScene::from_space(scene.clone(), Some(o.rotation), o.weight)?;
+            // A circle or a polyline keeps the start's orientation; the
+            // line takes the target's. Built once: checked and read back.
+            let given = (scene.path == SpacePath::Line).then_some(o.rotation);
+            let pose = PoseScene::from_space(scene.clone(), given, o.weight)?;
+            o.rotation = [pose.target[3], pose.target[4], pose.target[5]];
         }
         self.scene = scene;
         self.orientation = orientation;
