@@ -16,19 +16,8 @@ const mm = (v) => String(Number(v.toFixed(3)));
 export function mountTargetFields(root, demo, { attempt, changed, dims = 2 }) {
   const fields = ['x', 'y', 'z'].slice(0, dims).map((a) => root.querySelector(`#target-${a}`));
   if (fields.some((f) => !f)) return () => {};
-  const apply = (field) => {
-    const v = fields.map((f) => Number(f.value));
-    if (fields.some((f, i) => f.value.trim() === '' || !Number.isFinite(v[i]))) {
-      attempt(() => {
-        throw new Error(`the target needs ${dims === 3 ? 'three numbers, x, y and z' : 'two numbers, x and y'} in metres`);
-      }, 'error', field);
-      return;
-    }
-    if (attempt(() => demo.setTarget(...v), 'error', field)) {
-      applied(...fields);
-      changed();
-    }
-  };
+  const need = `the target needs ${dims === 3 ? 'three numbers, x, y and z' : 'two numbers, x and y'} in metres`;
+  const apply = (field) => applyGroup(fields, field, { need, set: (...v) => demo.setTarget(...v), attempt, changed });
   for (const f of fields) f.addEventListener('change', () => apply(f));
   let shown = '';
   return function sync(s) {
@@ -37,6 +26,26 @@ export function mountTargetFields(root, demo, { attempt, changed, dims = 2 }) {
     shown = key;
     fields.forEach((f, i) => follow(f, s.target[i]));
   };
+}
+
+/**
+ * Applies a group of number `fields` together (the one the user changed
+ * is `field`): where each holds a finite number, `set(...values)`, each
+ * times `scale`, through `attempt`, then marks them applied and calls
+ * `changed()`; else says `need` beside `field`, changing nothing.
+ */
+export function applyGroup(fields, field, { scale = 1, need, set, attempt, changed }) {
+  const v = fields.map((f) => Number(f.value) * scale);
+  if (fields.some((f, i) => f.value.trim() === '' || !Number.isFinite(v[i]))) {
+    attempt(() => {
+      throw new Error(need);
+    }, 'error', field);
+    return;
+  }
+  if (attempt(() => set(...v), 'error', field)) {
+    applied(...fields);
+    changed();
+  }
 }
 
 /** The fields' texts are applied: the state follows them now. */

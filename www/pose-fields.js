@@ -6,7 +6,7 @@
 // keys x, y and z on the drawing turn the target about the world's axes
 // (space-input.js).
 
-import { applied, follow } from './place-fields.js';
+import { applied, applyGroup, follow } from './place-fields.js';
 
 const DEG = Math.PI / 180;
 
@@ -43,19 +43,8 @@ export function mountPoseFields(root, demo, { attempt, changed, say, view }) {
       changed();
     } else task.value = demo.state().task;
   });
-  const apply = (field) => {
-    const v = angles.map((f) => Number(f.value) * DEG);
-    if (angles.some((f, i) => f.value.trim() === '' || !Number.isFinite(v[i]))) {
-      attempt(() => {
-        throw new Error('the target orientation needs three angles, roll, pitch and yaw, in degrees');
-      }, 'error', field);
-      return;
-    }
-    if (attempt(() => demo.setTargetOrientation(...v), 'error', field)) {
-      applied(...angles);
-      changed();
-    }
-  };
+  const need = 'the target orientation needs three angles, roll, pitch and yaw, in degrees';
+  const apply = (field) => applyGroup(angles, field, { scale: DEG, need, set: (...v) => demo.setTargetOrientation(...v), attempt, changed });
   for (const f of angles) f.addEventListener('change', () => apply(f));
   weight.addEventListener('change', () => {
     if (attempt(() => demo.setOrientationWeight(Number(weight.value)), 'error', weight)) {
