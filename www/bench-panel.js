@@ -26,6 +26,16 @@ export function mountBenchPanel(root) {
   const result = $('bench-result');
   const download = $('bench-csv');
   if (!button || !result) return;
+  // On the page in space the benchmark times the arm's own task: the intro says so when the panel opens.
+  const panel = $('bench-panel');
+  const intro = panel?.querySelector('p');
+  panel?.addEventListener('toggle', () => {
+    const key = document.documentElement.dataset.space;
+    if (!panel.open || !key || !intro) return;
+    const label = window.demo?.state?.().arm_label ?? key;
+    const flag = key === 'robot' ? '--urdf FILE' : `--arm ${key}`;
+    intro.textContent = `Times one Runge–Kutta step of the ${label}'s own task with each method in this browser, as redundant-ik bench ${flag} does natively: a warm-up, then the median of seven batches. It runs in the background; the drawing goes on.`;
+  });
   let last = null; // { r, nat, build }
   download?.addEventListener('click', () => {
     if (!last) return;
