@@ -139,7 +139,8 @@ an anywidget module for notebooks. No runtime dependencies.
 | \`redundant-ik/widget\` | an anywidget front-end module (\`export default { render }\`), one self-contained file |
 
 Attributes (and the widget's traits): \`task\`, \`method\`, \`lambda\`, \`feedback\`, \`weighting\`,
-\`floor\`, \`path\`, \`autoplay\`, \`plots\`, with the page's address keys. Recipes for plain HTML,
+\`floor\`, \`path\`, \`autoplay\`, \`plots\`, with the page's address keys; an arm in space with
+\`arm="panda"\` or a robot's \`urdf\` (with \`base\`, \`tip\`). Recipes for plain HTML,
 mdBook, Jupyter Book, Quarto, Docusaurus and notebooks: docs/embedding.md in the repository.
 
 Licence: MIT OR Apache-2.0 (LICENSE-MIT, LICENSE-APACHE).

@@ -165,6 +165,9 @@ const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
 /** The keys of an arm in space an element watches (space-address.js's, the methods' parameters besides). */
 const SPACE_KEYS = ['arm', 'method', 'task', 'theta0', 'target', 'orientation_weight', 'obstacles', 'feedback', 'weighting', 'floor', 'self_collision', 'damping', 'path', 'precision', 'view'];
 
+/** The attributes of an arm in space beyond the plane's address keys: its keys, and a robot's URDF (urdf, base, tip). */
+export const SPACE_ATTRIBUTES = [...SPACE_KEYS, 'urdf', 'base', 'tip'];
+
 class RedundantIkDemo extends HTMLElement {
   connectedCallback() {
     if (this.shadowRoot) return;

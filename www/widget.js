@@ -3,12 +3,16 @@
 // The scene is the model's traits, named as the element's attributes,
 // which are the page's address keys (address.js's addressKeys(): task,
 // method, lambda, target "x,y", obstacles, arm, ..., the methods'
-// parameters by name) and autoplay, plots: each trait the model has is set
-// as that attribute, and a change of it (`change:NAME`) sets it again. The
+// parameters by name), those of an arm in space (arm="panda", urdf, base,
+// tip, orientation_weight, self_collision, view, ...) and autoplay, plots:
+// each trait the model has is set as that attribute, and a change of it
+// (`change:NAME`) sets it again; a change that moves the demo between the
+// plane and space (arm, urdf) makes a new element, whose kind is read
+// when it starts. The
 // package's widget.js is this module bundled with the compat element
 // (tools/bundle.mjs), so a notebook loads it as its one module text.
 
-import './redundant-ik-demo.js';
+import { SPACE_ATTRIBUTES } from './redundant-ik-demo.js';
 import { loadModule } from './module.js';
 import { addressKeys } from './address.js';
 
@@ -27,15 +31,29 @@ function attribute(name, value) {
 export default {
   async render({ model, el, signal }) {
     await loadModule({ space: false });
-    const demo = document.createElement('redundant-ik-demo');
-    const names = [...addressKeys(), 'autoplay', 'plots'];
-    const apply = (name) => {
+    const names = [...new Set([...addressKeys(), ...SPACE_ATTRIBUTES, 'autoplay', 'plots'])];
+    const make = () => {
+      const demo = document.createElement('redundant-ik-demo');
+      for (const name of names) apply(demo, name);
+      return demo;
+    };
+    const apply = (demo, name) => {
       const text = attribute(name, model.get(name));
       if (text === null) demo.removeAttribute(name);
       else demo.setAttribute(name, text);
     };
-    const handlers = names.map((name) => [`change:${name}`, () => apply(name)]);
-    for (const name of names) apply(name);
+    let demo = make();
+    const handlers = names.map((name) => [
+      `change:${name}`,
+      () => {
+        // The element reads whether it shows the plane or space when it starts.
+        if (name === 'arm' || name === 'urdf') {
+          const next = make();
+          demo.replaceWith(next);
+          demo = next;
+        } else apply(demo, name);
+      },
+    ]);
     for (const [event, handler] of handlers) model.on(event, handler);
     el.append(demo);
     const cleanup = () => {

@@ -10,7 +10,7 @@
 
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
+import { mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { open, root, run, shots, test } from './browser.mjs';
@@ -33,6 +33,8 @@ const pages = {
   'widget.html': '<!doctype html><meta charset="utf-8"><link rel="icon" href="data:,"><div id="out" style="max-width:720px"></div>\n',
 };
 for (const [name, html] of Object.entries(pages)) writeFileSync(join(scratch, name), html);
+// A robot's URDF beside the notebook, for the widget's urdf trait.
+writeFileSync(join(scratch, 'ur5e.urdf'), readFileSync(join(root, 'robots/ur5e.urdf')));
 
 const server = await serve(scratch);
 const base = server.url;
@@ -111,6 +113,51 @@ test('the widget: its module text alone renders the element from the traits; a t
     return { elements: document.querySelectorAll('redundant-ik-demo').length, listening: window.widgetTest.listening() };
   });
   assert.deepEqual(gone, { elements: 0, listening: 0 });
+  assert.deepEqual(p.problems, []);
+  await p.close();
+});
+
+test("the widget in space: arm='panda' renders the 3-D page; a urdf trait opens the user's robot in a new element", async () => {
+  const p = await open(`${base}widget.html`, { ready: null });
+  const r = await p.evaluate(async () => {
+    const text = await (await fetch('node_modules/redundant-ik/widget.js')).text();
+    const widget = (await import(URL.createObjectURL(new Blob([text], { type: 'text/javascript' })))).default;
+    const traits = { arm: 'panda', method: 'qp', autoplay: false, self_collision: true };
+    const handlers = new Map();
+    const model = {
+      get: (name) => traits[name],
+      on: (event, fn) => handlers.set(event, [...(handlers.get(event) ?? []), fn]),
+      off: (event, fn) => handlers.set(event, (handlers.get(event) ?? []).filter((f) => f !== fn)),
+    };
+    const change = (name, value) => {
+      traits[name] = value;
+      for (const fn of handlers.get(`change:${name}`) ?? []) fn();
+    };
+    const el = document.getElementById('out');
+    await widget.render({ model, el });
+    const ready = (demo) => new Promise((resolve, reject) => {
+      if (demo.dataset.ready) resolve();
+      demo.addEventListener('ready', resolve, { once: true });
+      setTimeout(() => reject(new Error(`not ready: ${demo.shadowRoot?.textContent.slice(0, 300)}`)), 30000);
+    });
+    let demo = el.querySelector('redundant-ik-demo');
+    await ready(demo);
+    const panda = demo.controller.state();
+    change('arm', undefined);
+    change('urdf', 'ur5e.urdf');
+    demo = el.querySelector('redundant-ik-demo');
+    await ready(demo);
+    const robot = demo.controller.state();
+    return {
+      panda: [panda.kind, panda.arm, panda.method, panda.self_collision],
+      robot: [robot.kind, robot.arm, robot.arm_label, robot.dof],
+      elements: el.querySelectorAll('redundant-ik-demo').length,
+    };
+  });
+  assert.deepEqual(r.panda, ['space', 'panda', 'qp', true]);
+  assert.deepEqual(r.robot, ['space', 'robot', 'ur5e', 6]);
+  assert.equal(r.elements, 1, 'the element of the Panda gave way to the robot\'s');
+  await p.screenshot({ path: join(shots, 'widget-space.png') });
   assert.deepEqual(p.problems, []);
   await p.close();
 });
