@@ -64,6 +64,11 @@ test('your robot: the UR5e from its URDF through Open robot…, what the reader 
   back.steps.forEach((st, k) => st.theta.forEach((v, i) => (worst = Math.max(worst, Math.abs(v - run.steps[k].theta[i])))));
   assert.ok(worst < 1e-9, `simulate --from replays the page's run to ${worst} rad`);
   await page.locator('#stage').screenshot({ path: join(shots, 'robot-ur5e.png') });
+  // From three sides, its volumes as the planner sees them.
+  for (const [name, yaw, pitch] of [['front', 0, 0.2], ['side', Math.PI / 2, 0.25], ['above', 0.45, 1.2]]) {
+    await page.evaluate(([yaw, pitch]) => window.demo.controller.demo.setView(yaw, pitch, window.demo.state().view[2]), [yaw, pitch]);
+    await page.locator('#stage').screenshot({ path: join(shots, `robot-ur5e-${name}.png`) });
+  }
   clean(page);
   await page.close();
 });
