@@ -140,18 +140,57 @@ test('your robot: a URDF with an STL mesh (its volume fitted around the mesh), a
 });
 
 test("your robot: its URDF's visuals drawn on the core's frames (three's matrices against Pinocchio's link frames to 1e-6), the collision volumes on a switch", async () => {
-  // The test arm with visuals: its forearm's STL mesh in orange, a box on the upper arm.
+  // The test arm with visuals: its forearm's STL mesh in orange, a box on the upper arm, an OBJ and a Collada mesh.
   const text = readFileSync('tests/data/urdf/slider_arm.urdf', 'utf8')
     .replace('<link name="forearm">', '<link name="forearm"><visual><origin xyz="0.15 0 0"/><geometry><mesh filename="package://slider_arm/meshes/forearm.stl"/></geometry><material name="orange"><color rgba="1 0.5 0 1"/></material></visual>')
-    .replace('<link name="upper_arm">', '<link name="upper_arm"><visual><origin xyz="0.2 0 0" rpy="0 1.5707963267948966 0"/><geometry><box size="0.08 0.08 0.4"/></geometry></visual><visual><geometry><mesh filename="package://slider_arm/meshes/shoulder.dae"/></geometry></visual>');
+    .replace('<link name="upper_arm">', '<link name="upper_arm"><visual><origin xyz="0.2 0 0" rpy="0 1.5707963267948966 0"/><geometry><box size="0.08 0.08 0.4"/></geometry></visual><visual><geometry><mesh filename="package://slider_arm/meshes/shoulder.dae"/></geometry></visual>')
+    // The two other mesh formats three's loaders read: a Collada triangle on the forearm, an OBJ tetrahedron on the hand.
+    .replace('<link name="hand">', '<link name="hand"><visual><geometry><mesh filename="package://slider_arm/meshes/wrist.obj"/></geometry></visual>')
+    .replace('<link name="forearm">', '<link name="forearm"><visual><geometry><mesh filename="package://slider_arm/meshes/elbow.dae" scale="2 2 2"/></geometry></visual>');
   const path = join(scratch, 'visual_arm.urdf');
   writeFileSync(path, text);
+  const obj = join(scratch, 'wrist.obj');
+  writeFileSync(obj, 'v 0 0 0\nv 0.05 0 0\nv 0 0.05 0\nv 0 0 0.05\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n');
+  const dae = join(scratch, 'elbow.dae');
+  writeFileSync(
+    dae,
+    `<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><unit name="meter" meter="1"/><up_axis>Z_UP</up_axis></asset>
+  <library_geometries><geometry id="tri"><mesh>
+    <source id="pos"><float_array id="pos-array" count="9">0 0 0 0.05 0 0 0 0.05 0</float_array>
+      <technique_common><accessor source="#pos-array" count="3" stride="3"><param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>
+    <vertices id="vtx"><input semantic="POSITION" source="#pos"/></vertices>
+    <triangles count="1"><input semantic="VERTEX" source="#vtx" offset="0"/><p>0 1 2</p></triangles>
+  </mesh></geometry></library_geometries>
+  <library_visual_scenes><visual_scene id="scene"><node id="n"><instance_geometry url="#tri"/></node></visual_scene></library_visual_scenes>
+  <scene><instance_visual_scene url="#scene"/></scene>
+</COLLADA>
+`,
+  );
   const page = await open('?arm=panda&method=numerical&autoplay=0');
   await page.click('#arm-panel summary');
   await page.fill('#robot-tip', 'tool');
-  await Promise.all([page.waitForURL(/[?&]robot=[0-9a-f]{16}/, { timeout: 30000 }), page.setInputFiles('#robot-files', [path, 'tests/data/urdf/meshes/forearm.stl'])]);
+  await Promise.all([page.waitForURL(/[?&]robot=[0-9a-f]{16}/, { timeout: 30000 }), page.setInputFiles('#robot-files', [path, 'tests/data/urdf/meshes/forearm.stl', obj, dae])]);
   await page.waitForSelector('body[data-ready="true"]', { timeout: 30000 });
-  assert.match(await page.textContent('#robot-read'), /Drawn: 2 visuals from the URDF; mesh files not chosen, so not drawn: shoulder\.dae/);
+  assert.match(await page.textContent('#robot-read'), /Drawn: 4 visuals from the URDF; mesh files not chosen, so not drawn: shoulder\.dae/);
+  // Each format's loader made its mesh: the OBJ's four faces (12 corners), the Collada triangle scaled by the URDF's 2.
+  const meshes = await page.evaluate(() => {
+    const scene = window.demo.controller.view3d.three.scene;
+    const corners = (link) => {
+      let n = 0;
+      scene.getObjectByName(`urdf link ${link}`).traverse((o) => o.isMesh && (n += o.geometry.attributes.position.count));
+      return n;
+    };
+    scene.updateMatrixWorld(true);
+    let scaled = null;
+    scene.getObjectByName('urdf link forearm').traverse((o) => {
+      if (o.isMesh && o.geometry.attributes.position.count === 3) scaled = o.getWorldScale(o.position.clone()).toArray();
+    });
+    return { hand: corners('hand'), scaled };
+  });
+  assert.equal(meshes.hand, 12, 'the OBJ tetrahedron');
+  assert.ok(meshes.scaled && meshes.scaled.every((v) => Math.abs(v - 2) < 1e-9), `the Collada triangle, scaled by 2: ${meshes.scaled}`);
   // At Pinocchio's poses of this arm, each moving joint's child link is drawn where Pinocchio has its frame.
   const pinocchio = JSON.parse(readFileSync('tests/data/urdf/pinocchio.json', 'utf8')).files.find((f) => f.file.endsWith('slider_arm.urdf'));
   const children = ['carriage', 'upper_arm', 'forearm', 'hand'];
