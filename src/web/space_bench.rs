@@ -11,9 +11,8 @@ use std::sync::Arc;
 use wasm_bindgen::prelude::*;
 
 use super::js_err;
-use super::worker::{bench_options, probes, to_js};
+use super::worker::{bench_options, probes, space_scene_of, to_js};
 use crate::bench::space as sb;
-use crate::export::{is_pose_run, PoseRunFile, SpaceRunFile};
 use crate::networks::space::{SpaceNetworkSet, SpaceNetworks};
 use crate::planner::{methods, Method};
 use crate::scene::SpaceScene;
@@ -22,14 +21,10 @@ use crate::scene::SpaceScene;
 /// run file's text (of the hand's position or its pose: the position
 /// scene is timed).
 fn scene_of(arm: &str) -> Result<(SpaceScene, String), JsError> {
-    if is_pose_run(arm) {
-        let file = PoseRunFile::from_json(arm).map_err(js_err)?;
-        return Ok((file.scene.position_scene().0, "robot".into()));
-    }
-    // A key is a word; anything in braces is a run file, refused by its reader where it is not one.
+    // A key is a word; anything in braces is a run file, refused by its
+    // reader where it is not one.
     if arm.trim_start().starts_with('{') {
-        let file = SpaceRunFile::from_json(arm).map_err(js_err)?;
-        return Ok((file.scene, "robot".into()));
+        return Ok((space_scene_of(arm)?, "robot".into()));
     }
     Ok((SpaceScene::by_key(arm).map_err(js_err)?, arm.into()))
 }

@@ -9,9 +9,8 @@
 use serde::Deserialize;
 use wasm_bindgen::prelude::*;
 
-use super::worker::from_js;
+use super::worker::{from_js, space_scene_of};
 use super::{js_err, to_js};
-use crate::export::{is_pose_run, PoseRunFile, SpaceRunFile};
 use crate::networks::NetKind;
 use crate::space::SpacePreset;
 use crate::training::space::{train_space, SpaceTrainSpec, TrainArm, SPACE_RECIPES};
@@ -108,11 +107,7 @@ fn train_arm(r: &Request) -> Result<TrainArm, JsError> {
             .map(TrainArm::from)
             .ok_or_else(|| JsError::new(&format!("no arm in space is called '{key}'"))),
         (None, Some(text)) => {
-            let scene = if is_pose_run(text) {
-                PoseRunFile::from_json(text).map_err(js_err)?.scene.position_scene().0
-            } else {
-                SpaceRunFile::from_json(text).map_err(js_err)?.scene
-            };
+            let scene = space_scene_of(text)?;
             if r.name.as_ref().is_some_and(|n| n.chars().count() > MAX_NAME_CHARS) {
                 return Err(JsError::new(&format!(
                     "the robot's name is longer than {MAX_NAME_CHARS} characters"

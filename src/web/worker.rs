@@ -79,6 +79,18 @@ pub(super) fn read_run(run: JsValue) -> Result<Run, JsError> {
     Ok(run)
 }
 
+/// The scene of a run file of an arm in space as the workers' jobs take it
+/// (the training, the benchmark): the file's own scene, or, for a run of
+/// the hand's pose, the position scene it extends.
+pub(super) fn space_scene_of(text: &str) -> Result<crate::scene::SpaceScene, JsError> {
+    use crate::export::{is_pose_run, PoseRunFile, SpaceRunFile};
+    if is_pose_run(text) {
+        let file = PoseRunFile::from_json(text).map_err(js_err)?;
+        return Ok(file.scene.position_scene().0);
+    }
+    Ok(SpaceRunFile::from_json(text).map_err(js_err)?.scene)
+}
+
 // ---- the atlas -----------------------------------------------------------
 
 /// The options of an atlas as the page passes them.
