@@ -88,7 +88,8 @@ export function mountSpaceTraining(root, demo, { preset, show, say, installed })
     const started = performance.now();
     tell(`Training the ${preset.label}'s Φ and v networks…`);
     try {
-      const arm = own ? { run: demo.runFile(), name: preset.label } : { arm: preset.key };
+      // The name is for the messages only, which take up to 200 characters of it.
+      const arm = own ? { run: demo.runFile(), name: preset.label.slice(0, 200) } : { arm: preset.key };
       const request = (net) => ({ ...arm, net, preset: recipeName, ...(samples && { samples }), ...(epochs && { epochs }), ...(seed !== undefined && { seed }) });
       const [phi, v] = await Promise.all(
         ['phi', 'v'].map((net) => runWorker({ kind: 'space-train', request: request(net) }, { onProgress: onProgress(net), signal: controller.signal }).then((r) => r.result)),
