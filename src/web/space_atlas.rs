@@ -8,10 +8,10 @@ use serde::Deserialize;
 use wasm_bindgen::prelude::*;
 
 use super::js_err;
+use super::worker::{read_space_run, SpaceRun};
 use crate::atlas::space::{default_region, Plane, SliceJob, DEFAULT_SLICE_GRID};
 use crate::atlas::{Grid, MAX_GRID};
 use crate::error;
-use crate::export::{is_pose_run, PoseRunFile, SpaceRunFile};
 use crate::networks::space::{SpaceNetworkSet, SpaceNetworks};
 use crate::planner::{methods, Method};
 use crate::run::NetworkChoice;
@@ -105,14 +105,12 @@ impl SpaceAtlasJob {
     pub fn new(run: &str, options: JsValue) -> Result<SpaceAtlasJob, JsError> {
         // The run's scene: the hand's position, or its pose (and the
         // position scene it extends, whose line and sphere set the plane).
-        let (pose, scene, networks, precision) = if is_pose_run(run) {
-            let file = PoseRunFile::from_json(run).map_err(js_err)?;
-            let scene = file.scene.position_scene().0;
-            (Some(file.scene), scene, file.networks, file.precision)
-        } else {
-            let file = SpaceRunFile::from_json(run).map_err(js_err)?;
-            (None, file.scene, file.networks, file.precision)
-        };
+        let SpaceRun {
+            pose,
+            scene,
+            networks,
+            precision,
+        } = read_space_run(run)?;
         let arm = SpacePreset::of(&scene.arm).map(|p| p.key);
         let o = read_options(options)?;
         // The user's own weights files travel in the run file.

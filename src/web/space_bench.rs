@@ -11,7 +11,7 @@ use std::sync::Arc;
 use wasm_bindgen::prelude::*;
 
 use super::js_err;
-use super::worker::{bench_options, probes, space_scene_of, to_js};
+use super::worker::{bench_options, probes, read_space_run, to_js};
 use crate::bench::space as sb;
 use crate::networks::space::{SpaceNetworkSet, SpaceNetworks};
 use crate::planner::{methods, Method};
@@ -24,7 +24,7 @@ fn scene_of(arm: &str) -> Result<(SpaceScene, String), JsError> {
     // A key is a word; anything in braces is a run file, refused by its
     // reader where it is not one.
     if arm.trim_start().starts_with('{') {
-        return Ok((space_scene_of(arm)?, "robot".into()));
+        return Ok((read_space_run(arm)?.scene, "robot".into()));
     }
     Ok((SpaceScene::by_key(arm).map_err(js_err)?, arm.into()))
 }

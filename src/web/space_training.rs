@@ -9,7 +9,7 @@
 use serde::Deserialize;
 use wasm_bindgen::prelude::*;
 
-use super::worker::{from_js, space_scene_of};
+use super::worker::{from_js, read_space_run};
 use super::{js_err, to_js};
 use crate::networks::NetKind;
 use crate::space::SpacePreset;
@@ -107,7 +107,7 @@ fn train_arm(r: &Request) -> Result<TrainArm, JsError> {
             .map(TrainArm::from)
             .ok_or_else(|| JsError::new(&format!("no arm in space is called '{key}'"))),
         (None, Some(text)) => {
-            let scene = space_scene_of(text)?;
+            let scene = read_space_run(text)?.scene;
             if r.name.as_ref().is_some_and(|n| n.chars().count() > MAX_NAME_CHARS) {
                 return Err(JsError::new(&format!(
                     "the robot's name is longer than {MAX_NAME_CHARS} characters"

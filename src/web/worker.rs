@@ -79,16 +79,39 @@ pub(super) fn read_run(run: JsValue) -> Result<Run, JsError> {
     Ok(run)
 }
 
-/// The scene of a run file of an arm in space as the workers' jobs take it
-/// (the training, the benchmark): the file's own scene, or, for a run of
-/// the hand's pose, the position scene it extends.
-pub(super) fn space_scene_of(text: &str) -> Result<crate::scene::SpaceScene, JsError> {
+/// A run file of an arm in space as the workers' jobs read it (the slice
+/// atlas, the training, the benchmark): of the hand's position, or of its
+/// pose, with the position scene that pose scene extends.
+pub(super) struct SpaceRun {
+    /// The pose task's scene, for a run of the hand's pose.
+    pub pose: Option<crate::scene::PoseScene>,
+    /// The position scene (the pose scene's where the run is of the pose).
+    pub scene: crate::scene::SpaceScene,
+    /// The networks the run names.
+    pub networks: Option<NetworkChoice<crate::networks::space::SpaceNetworkSet>>,
+    /// The networks' arithmetic.
+    pub precision: crate::nn::Precision,
+}
+
+/// Reads `text`, a run file of an arm in space of either task.
+pub(super) fn read_space_run(text: &str) -> Result<SpaceRun, JsError> {
     use crate::export::{is_pose_run, PoseRunFile, SpaceRunFile};
     if is_pose_run(text) {
         let file = PoseRunFile::from_json(text).map_err(js_err)?;
-        return Ok(file.scene.position_scene().0);
+        return Ok(SpaceRun {
+            scene: file.scene.position_scene().0,
+            pose: Some(file.scene),
+            networks: file.networks,
+            precision: file.precision,
+        });
     }
-    Ok(SpaceRunFile::from_json(text).map_err(js_err)?.scene)
+    let file = SpaceRunFile::from_json(text).map_err(js_err)?;
+    Ok(SpaceRun {
+        pose: None,
+        scene: file.scene,
+        networks: file.networks,
+        precision: file.precision,
+    })
 }
 
 // ---- the atlas -----------------------------------------------------------
