@@ -103,10 +103,10 @@ PATH = re.compile(r"\b(crate|super|self)((?:::(?:\w+|\{[^;]*?\}))+)")
 
 
 def module_of(rel):
-    """src/<rel> -> (crate, module path): the binary's files (main.rs, cli/)
-    are a crate of their own."""
+    """src/<rel> -> (crate, module path): the shells' files (main.rs, the
+    tool's cli/, the Python module's python/) count as a crate of their own."""
     parts = list(rel.parts)
-    crate = "bin" if parts[0] in ("cli", "main.rs") else "lib"
+    crate = "bin" if parts[0] in ("cli", "python", "main.rs") else "lib"
     if parts[-1] in ("mod.rs", "lib.rs", "main.rs"):
         parts = parts[:-1]
     else:
@@ -200,8 +200,8 @@ def main():
     siblings = defaultdict(set)  # (module, file stem) -> sibling stems it imports
     for path in sorted(root.rglob("*.rs")):
         rel = path.relative_to(root)
-        if rel.parts[0] in ("cli", "main.rs", "lib.rs"):
-            continue  # the binary's shell and the crate root sit above everything
+        if rel.parts[0] in ("cli", "python", "main.rs", "lib.rs"):
+            continue  # the shells (the tool's, the Python module's) and the crate root sit above everything
         module = rel.parts[0].removesuffix(".rs")
         if module not in LAYER:
             problems.append(f"{rel}: module '{module}' has no layer in scripts/check-house.py")

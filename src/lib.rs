@@ -3,11 +3,21 @@
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
 
+// The command-line shell (module `cli`) names the library as a user does,
+// `redundant_ik::...`, inside the library too.
+extern crate self as redundant_ik;
+
 pub mod arm;
 pub mod atlas;
 #[cfg(any(feature = "embedded-weights", feature = "worker"))]
 pub mod bench;
 pub mod clearance;
+// The command-line shell: the binary's, and the Python module's (which runs
+// its commands in process). Its interface is its `--help`, whose text its
+// doc comments are, so it stays out of the library's documentation.
+#[cfg(all(feature = "cli", not(target_family = "wasm")))]
+#[doc(hidden)]
+pub mod cli;
 pub mod error;
 #[cfg(feature = "eval")]
 pub mod evaluation;
@@ -24,6 +34,9 @@ pub mod nn;
 pub mod obstacle;
 pub mod palette;
 pub mod planner;
+// The Python package's native module (feature python; docs/python.md).
+#[cfg(all(feature = "python", not(target_family = "wasm")))]
+pub mod python;
 pub mod qp;
 pub mod run;
 pub mod scene;

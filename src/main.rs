@@ -3,9 +3,6 @@
 //! library.
 
 #[cfg(not(target_family = "wasm"))]
-mod cli;
-
-#[cfg(not(target_family = "wasm"))]
 mod counting {
     //! The system allocator, counting allocations so that `bench` can report
     //! heap allocations per step (one relaxed atomic add per allocation).
@@ -48,7 +45,7 @@ fn allocations() -> u64 {
 
 #[cfg(not(target_family = "wasm"))]
 fn main() {
-    std::process::exit(cli::main());
+    std::process::exit(redundant_ik::cli::main(Some(allocations)));
 }
 
 /// The command-line tool is native only; the wasm build is the library.

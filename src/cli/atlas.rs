@@ -137,6 +137,9 @@ fn compute(
         .build()
         .map_err(|e| format!("cannot start {threads} threads: {e}"))?;
     while !job.is_done() {
+        if super::embed::interrupted() {
+            return Err(super::embed::INTERRUPTED.into());
+        }
         let done = if threads == 1 {
             job.advance(row)
         } else {

@@ -94,7 +94,7 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
     #[allow(clippy::disallowed_methods)] // the native CLI has a clock
     let origin = Instant::now();
     let now = move || origin.elapsed().as_secs_f64() * 1e3;
-    let count = crate::allocations;
+    let count = super::allocation_counter();
     let probes = bench::Probes {
         now_ms: &now,
         allocations: Some(&count),
@@ -240,7 +240,7 @@ fn space(
         ),
         Subject::Robot(r, _) => (r.key.clone(), r.label.clone(), false),
     };
-    let count = crate::allocations;
+    let count = super::allocation_counter();
     let e = |e: redundant_ik::Error| e.to_string();
     let mut rows = Vec::new();
     for &m in redundant_ik::planner::methods::ALL

@@ -2,6 +2,12 @@
 //! returns `Err(message)` on bad input; `main` prints it on one line and exits
 //! with status 2.
 
+// The shell's public items are documented by its `--help` (their doc
+// comments are the help text); clap's flattened groups carry none.
+#![allow(missing_docs)]
+// Its doc comments are help text (`[,LAPS]` is an optional part, not a link).
+#![allow(rustdoc::broken_intra_doc_links)]
+
 use clap::{Parser, Subcommand};
 use redundant_ik::networks::{self, NetworkSet, Variant};
 use redundant_ik::run::NetworkChoice;
@@ -10,12 +16,14 @@ use redundant_ik::{Arm, Method};
 
 pub mod atlas;
 pub mod bench;
+pub mod embed;
 pub mod eval;
 pub mod figure;
 pub mod from;
 pub mod job;
 pub mod params;
 pub mod path_arg;
+pub mod planner;
 pub mod pose;
 pub mod robot;
 pub mod simulate;
@@ -128,19 +136,39 @@ fn eval_any(a: &eval::EvalArgs) -> Result<(), String> {
     }
 }
 
-/// Parses the command line, runs it, and returns the exit status.
-pub fn main() -> i32 {
-    let cli = Cli::parse();
-    let result = match &cli.command {
+/// The binary's allocation counter (heap allocations since it started),
+/// which `bench` reports per step; set once by [`main`].
+static ALLOCATIONS: std::sync::OnceLock<fn() -> u64> = std::sync::OnceLock::new();
+
+/// The allocation counter [`main`] was given; `bench` runs only where one
+/// was (the command-line tool), so this is never reached without one.
+fn allocation_counter() -> fn() -> u64 {
+    *ALLOCATIONS.get().unwrap_or(&((|| 0) as fn() -> u64))
+}
+
+/// Runs the command `cli` parsed.
+fn dispatch(cli: &Cli) -> Result<(), String> {
+    match &cli.command {
         Command::Simulate(a) => simulate_any(a),
         Command::Figure(a) => figure_any(a),
         Command::Train(a) => train_any(a),
         Command::Eval(a) => eval_any(a),
         Command::Atlas(a) => atlas_any(a),
-        Command::Bench(a) => bench::run(a),
+        Command::Bench(a) if ALLOCATIONS.get().is_some() => bench::run(a),
+        Command::Bench(_) => Err("bench runs in the command-line tool, whose allocator counts the allocations it reports (redundant-ik bench)".into()),
         Command::Robot(a) => robot::run(a),
-    };
-    match result {
+    }
+}
+
+/// Parses the command line, runs it, and returns the exit status.
+/// `allocations` counts the process's heap allocations (the binary's global
+/// allocator), for `bench`.
+pub fn main(allocations: Option<fn() -> u64>) -> i32 {
+    if let Some(count) = allocations {
+        let _ = ALLOCATIONS.set(count);
+    }
+    let cli = Cli::parse();
+    match dispatch(&cli) {
         Ok(()) => 0,
         Err(msg) => {
             eprintln!("error: {msg}");
@@ -229,6 +257,9 @@ pub fn parse_list(s: &str) -> Result<Vec<f64>, String> {
 /// Writes `text` to standard output; a closed pipe (`| head`) is not an error.
 pub fn emit(text: &str) -> Result<(), String> {
     use std::io::Write;
+    if embed::capture(text) {
+        return Ok(());
+    }
     match std::io::stdout().lock().write_all(text.as_bytes()) {
         Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
             Err(format!("cannot write output: {e}"))

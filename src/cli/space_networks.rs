@@ -202,15 +202,21 @@ pub fn train(args: &super::train::TrainArgs, net: NetKind, arm: TrainArm) -> Res
             .map_err(|e| e.to_string())?
             .progress_chars("=> "),
     );
+    let stopped = std::cell::Cell::new(false);
     #[allow(clippy::disallowed_methods)] // the native CLI has a clock
     let start = std::time::Instant::now();
     let mut file = train_space(&spec, |r| {
         bar.set_position(r.epoch as u64);
         bar.set_message(format!("train {:.3e}  val {:.3e}", r.train_mse, r.val_mse));
-        true
+        // Ctrl-C in the Python package stops between epochs.
+        stopped.set(super::embed::interrupted());
+        !stopped.get()
     })
     .map_err(|e| e.to_string())?;
     bar.finish_and_clear();
+    if stopped.get() {
+        return Err(super::embed::INTERRUPTED.into());
+    }
     let seconds = start.elapsed().as_secs_f64();
     file.training.seconds = Some((seconds * 10.0).round() / 10.0);
     let json = file.to_json().map_err(|e| e.to_string())?;

@@ -196,6 +196,7 @@ pub fn run(args: &TrainArgs, net: NetKind) -> Result<(), String> {
             .map_err(|e| e.to_string())?
             .progress_chars("=> "),
     );
+    let stopped = std::cell::Cell::new(false);
     #[allow(clippy::disallowed_methods)] // the native CLI has a clock
     let start = Instant::now();
     let mut file = training::train_weights(&spec, |k, r| {
@@ -208,10 +209,15 @@ pub fn run(args: &TrainArgs, net: NetKind) -> Result<(), String> {
             r.mu,
             r.gradient
         ));
-        true
+        // Ctrl-C in the Python package stops between epochs.
+        stopped.set(super::embed::interrupted());
+        !stopped.get()
     })
     .map_err(|e| e.to_string())?;
     bar.finish_and_clear();
+    if stopped.get() {
+        return Err(super::embed::INTERRUPTED.into());
+    }
     let seconds = start.elapsed().as_secs_f64();
     file.training.seconds = Some((seconds * 10.0).round() / 10.0);
     let json = file.to_json().map_err(|e| e.to_string())?;

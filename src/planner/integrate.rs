@@ -76,6 +76,37 @@ impl<A: Planned<M>, const M: usize> Planner<A, M> {
         Ok(())
     }
 
+    /// The joint rates at `theta` and time `t` for a loop of the user's own
+    /// (the Python package's `Controller.step`): the path's task velocity
+    /// at `t` ([`Track::velocity_after`](super::Track::velocity_after))
+    /// plus, when the feedback gain `K > 0`, `K (X_ref(t) - X(theta))`,
+    /// through the method's rule, into `out` (`n` entries). One kinematics
+    /// pass and no allocation, as [`Planner::theta_dot_into`].
+    pub fn rates_at(&mut self, theta: &[f64], t: f64, out: &mut [f64]) -> Result<()> {
+        let Self {
+            scene,
+            networks,
+            ws,
+            track,
+            ..
+        } = self;
+        scene.arm().update(&mut ws.stage, theta)?;
+        let v = track.velocity_after(t);
+        let gain = scene.feedback_gain();
+        let xdot = if gain > 0.0 {
+            let e = A::task_error(track.reference(t), A::hand(&ws.stage));
+            std::array::from_fn(|k| v[k] + gain * e[k])
+        } else {
+            v
+        };
+        let cx = Context {
+            scene,
+            networks: networks.as_deref(),
+        };
+        ws.rule.theta_dot(&cx, &ws.stage, xdot, out)?;
+        Ok(())
+    }
+
     /// One classical RK4 step of size `dt` (section V, step e), then the new
     /// sample, which the planner keeps (see [`Planner::sample`]). On error
     /// the state is left unchanged. Allocation-free.

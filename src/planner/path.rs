@@ -189,6 +189,24 @@ impl<const M: usize> Track<M> {
         std::array::from_fn(|k| d[k] / l.duration)
     }
 
+    /// The task velocity at time `t` in a loop of the user's own (the
+    /// Python package's `Controller.step`): the path's `Xdot` over the
+    /// instant after `t`, so a line's constant rate on `[t0, t0 +
+    /// duration)`, a circle's and a polyline's exact at `t` (at a corner,
+    /// the segment after it); zero before the path starts and once it has
+    /// ended.
+    pub fn velocity_after(&self, t: f64) -> [f64; M] {
+        let l = &self.line;
+        if !(t >= l.t0 && t < l.t0 + l.duration) {
+            return [0.0; M];
+        }
+        if self.is_line() {
+            return std::array::from_fn(|k| self.rate[k] / l.duration);
+        }
+        let d = self.at(self.fraction(t), true).1;
+        std::array::from_fn(|k| d[k] / l.duration)
+    }
+
     /// The line's constant task velocity while it runs (its geodesic's
     /// rate over its duration), zero before and after; taken at a step's
     /// midpoint so that every RK4 stage of a step sees the same `Xdot`.

@@ -203,4 +203,23 @@ where
         self.resample();
         Ok(())
     }
+
+    /// Replaces the spheres by `spheres` (at most [`MAX_SPHERES`]); takes
+    /// effect at the next step. Refused, changing nothing, where one does
+    /// not validate (on the base, not finite) or there are too many.
+    pub fn set_spheres(&mut self, spheres: Vec<Sphere>) -> Result<()> {
+        if spheres.len() > MAX_SPHERES {
+            return Err(Error::DimensionMismatch {
+                what: "spheres (at most)".into(),
+                expected: MAX_SPHERES,
+                found: spheres.len(),
+            });
+        }
+        for s in &spheres {
+            s.validate_at(self.scene.arm.as_ref(), self.ws.pose.as_ref())?;
+        }
+        self.scene.obstacles = spheres;
+        self.resample();
+        Ok(())
+    }
 }
