@@ -19,7 +19,7 @@ WORKER_OPT = CARGO_PROFILE_RELEASE_OPT_LEVEL=s
 # target/, emptied at each start, so a long-lived machine's /tmp does not fill.
 BROWSER_TMP = rm -rf target/browser-tmp && mkdir -p target/browser-tmp && TMPDIR=$(CURDIR)/target/browser-tmp
 
-.PHONY: setup web dist test-dist offline test-offline npm test-npm demo test lint test-native test-wasm test-e2e test-fuzz fuzz-start fuzz-wait test-soak fuzz soak bench bench-native bench-web figures atlas-figures weights clean-web
+.PHONY: setup web dist test-dist offline test-offline npm test-npm demo test lint test-native test-wasm test-e2e test-fuzz fuzz-start fuzz-wait test-soak fuzz soak bench bench-native bench-web figures atlas-figures weights clean-web python-env python-dev test-python wheel bench-python
 
 ## Make this machine able to build and test for wasm32 (idempotent).
 setup:
@@ -113,6 +113,43 @@ test-offline: offline
 npm: web
 	bash scripts/bundle.sh npm
 
+## The Python package (python/, docs/python.md). Its virtual environment
+## target/py/venv, made here with the build backend, the test runner and
+## the optional dependencies the tests use (python/requirements-test.txt,
+## pinned, from PyPI).
+PY_VENV = target/py/venv
+python-env: setup
+	test -x $(PY_VENV)/bin/python || python3 -m venv $(PY_VENV)
+	$(PY_VENV)/bin/python -m pip install --quiet --disable-pip-version-check -r python/requirements-test.txt
+
+## The package built as the tests build the crate (the dev profile) and
+## installed into target/py/venv (maturin develop), with the notebook
+## widget's front end, the npm package's widget.js.
+python-dev: npm python-env
+	cp target/npm/redundant-ik/widget.js python/redundant_ik/widget.js
+	VIRTUAL_ENV=$(CURDIR)/$(PY_VENV) $(PY_VENV)/bin/maturin develop --quiet
+
+## The Python tests (pytest, python/tests): the package against the
+## command-line tool (byte for byte), its controller against the runs,
+## bad input, pickling, the Dask example on two local workers, and the
+## widget in headless Chromium.
+test-python: python-dev
+	cargo build --quiet --bin redundant-ik
+	$(BROWSER_TMP) $(PY_VENV)/bin/python -m pytest -q python/tests
+
+## The wheel (release build, abi3: one wheel for CPython 3.9 and later)
+## into target/wheels, the widget's front end inside.
+wheel: npm python-env
+	cp target/npm/redundant-ik/widget.js python/redundant_ik/widget.js
+	rm -f target/wheels/redundant_ik-*.whl
+	$(PY_VENV)/bin/maturin build --release --quiet --out target/wheels
+	@for w in target/wheels/redundant_ik-*.whl; do echo "$$w: $$(stat -c %s $$w) B"; done
+
+## The peer benchmark (python/bench, not a test): the wheel against mink
+## and Robotics Toolbox's NEO on the same Panda task, in target/bench-venv.
+bench-python: wheel
+	bash python/bench/run.sh
+
 ## The tarball installed into a scratch folder, served, and the element loaded
 ## from it three ways in headless Chromium (tests/bundle/npm.mjs).
 test-npm: npm
@@ -122,11 +159,12 @@ test-npm: npm
 ## headless Chromium, the end-to-end browser test of the page, and the short
 ## versions of the fuzzing and of the browser soak (docs/reliability.md),
 ## the page as dist/ builds it, served under a sub-path, the offline file
-## from file:// and the npm package installed from its tarball. The short
+## from file:// and the npm package installed from its tarball, the Python
+## package against the tool (its own virtual environment). The short
 ## fuzzing (its builds take the cores) runs beside the wasm tests and the
 ## page's build, whose browser runs mostly wait (fuzz-start, fuzz-wait);
 ## its report comes last.
-test: lint test-native fuzz-start test-wasm test-e2e test-dist test-offline test-npm test-soak fuzz-wait
+test: lint test-native fuzz-start test-wasm test-e2e test-dist test-offline test-npm test-python test-soak fuzz-wait
 
 FUZZ_LOG = target/test-fuzz.log
 fuzz-start:
@@ -149,6 +187,7 @@ lint: setup
 	$(WASM_SIMD_ENV) cargo clippy --target wasm32-unknown-unknown --lib --tests -- -D warnings
 	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features page,small-alloc -- -D warnings
 	$(WASM_ENV) cargo clippy --target wasm32-unknown-unknown --lib --no-default-features --features worker,small-alloc -- -D warnings
+	cargo clippy --lib --features python -- -D warnings
 
 test-native:
 	cargo test

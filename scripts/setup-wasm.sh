@@ -15,7 +15,8 @@
 #       wasm-pack test --headless --chrome
 #
 # Also installs wasm-bindgen-cli (exactly the version in Cargo.lock), wasm-pack,
-# chromium + chromedriver, and writes webdriver.json (Chromium flags needed as root).
+# chromium + chromedriver, node and npm, python3's venv (for the Python
+# package's tests), and writes webdriver.json (Chromium flags needed as root).
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -243,6 +244,16 @@ else
     log "node/npm missing"
     apt_install nodejs npm
     log "node $(node --version), npm $(npm --version)"
+fi
+
+# ------------------------------------------------------------ 7. python venv
+# The Python package's tests make their own virtual environment (make
+# python-env); Debian's python3 needs python3-venv for that (ensurepip).
+if python3 -c 'import ensurepip, venv' 2>/dev/null; then
+    log "$(python3 --version) with venv"
+else
+    apt_install python3-venv
+    log "$(python3 --version) with venv"
 fi
 
 log "ready: toolchain=$WASM_TC, $(wasm-bindgen --version), $(wasm-pack --version), $(/usr/bin/chromium --version 2>/dev/null), $(/usr/bin/chromedriver --version 2>/dev/null | cut -d' ' -f1-2)"

@@ -30,7 +30,8 @@ def test_the_slice_atlas_in_space():
 
 
 def test_to_pandas_has_a_row_per_cell_and_method():
-    pd = pytest.importorskip("pandas")
+    import pandas as pd  # python/requirements-test.txt
+
     a = rik.atlas(grid=4, methods=["numerical", "distance"])
     df = a.to_pandas()
     assert isinstance(df, pd.DataFrame) and len(df) == 32
