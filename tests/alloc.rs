@@ -153,6 +153,11 @@ fn theta_dot_into_allocates_nothing() {
         let mut out = [0.0; 3];
         let n = allocations_in(|| p.theta_dot_into(&theta, [-0.1, -0.08], &mut out).unwrap());
         assert_eq!(n, 0, "{method}");
+        // What the Python package's Controller.step calls: the path's rates
+        // at a time of the user's loop, with feedback.
+        p.set_feedback_gain(1.0).unwrap();
+        let n = allocations_in(|| p.rates_at(&theta, 0.35, &mut out).unwrap());
+        assert_eq!(n, 0, "{method}: rates_at");
     }
 }
 
@@ -267,6 +272,11 @@ fn a_spatial_step_allocates_nothing_in_any_method_in_space() {
                     "{} {m} {}: {n} allocations in 20 steps",
                     p.key, scene.path
                 );
+                // The Python package's Controller.step along the path.
+                let theta = planner.theta().as_slice().to_vec();
+                let mut out = vec![0.0; theta.len()];
+                let n = allocations_in(|| planner.rates_at(&theta, 1.3, &mut out).unwrap());
+                assert_eq!(n, 0, "{} {m} {}: rates_at", p.key, scene.path);
             }
         }
     }
