@@ -206,7 +206,9 @@ def _restore_robot(kind: str, *args: Any) -> Robot:
 def __getattr__(name: str) -> Any:
     # The widget needs anywidget, an optional dependency: imported on use.
     if name == "Widget":
-        from .widget import Widget
-
+        try:
+            from .widget import Widget
+        except ImportError as e:
+            raise ImportError(f"redundant_ik.Widget needs anywidget: pip install anywidget ({e})") from None
         return Widget
     raise AttributeError(f"module 'redundant_ik' has no attribute '{name}'")
