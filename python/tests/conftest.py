@@ -24,3 +24,15 @@ def cli(*args: str) -> str:
     done = subprocess.run([str(tool()), *args], capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
     return done.stdout
+
+
+@pytest.fixture
+def ctrl_c():
+    """Python's own Ctrl-C handler for the test's duration. A runner started
+    in the background (CI's) inherits SIGINT ignored, and then Python
+    leaves it ignored and `_thread.interrupt_main()` does nothing."""
+    import signal
+
+    before = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, before)

@@ -51,10 +51,10 @@ def test_the_gil_is_released_while_an_atlas_runs():
         time.sleep(0.001)
     worker.join()
     # Held, the GIL would leave this loop a tick or two until the atlas ended.
-    assert ticks > 50
+    assert ticks > 20
 
 
-def test_ctrl_c_stops_an_atlas_between_rows():
+def test_ctrl_c_stops_an_atlas_between_rows(ctrl_c):
     timer = threading.Timer(0.3, _thread.interrupt_main)
     start = time.perf_counter()
     timer.start()

@@ -39,7 +39,7 @@ def test_evaluate_gives_the_tools_numbers():
     assert mine == json.loads(cli("eval", "--json", "--samples", "200"))
 
 
-def test_ctrl_c_stops_a_training_between_epochs(tmp_path):
+def test_ctrl_c_stops_a_training_between_epochs(tmp_path, ctrl_c):
     timer = threading.Timer(0.5, _thread.interrupt_main)
     start = time.perf_counter()
     timer.start()

@@ -41,3 +41,14 @@ def test_a_run_and_an_atlas_pickle():
 def test_a_controller_says_what_to_pickle_instead():
     with pytest.raises(TypeError, match="Robot"):
         pickle.dumps(rik.Controller("paper"))
+
+
+def test_a_robot_with_an_srdf_given_as_text_pickles(tmp_path):
+    urdf = (DATA / "urdf" / "slider_arm.urdf").read_text()
+    srdf = '<robot name="slider_arm"><disable_collisions link1="base" link2="upper_arm" reason="Never"/></robot>'
+    robot = rik.Robot.from_urdf(urdf, tip="tool", srdf=srdf)
+    assert "--srdf" in robot._flags
+    back = pickle.loads(pickle.dumps(robot))
+    assert back._flags == robot._flags
+    run = rik.simulate(robot=back, method="qp", tf=1)
+    assert run.to_json() == rik.simulate(robot=robot, method="qp", tf=1).to_json()

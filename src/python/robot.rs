@@ -37,7 +37,8 @@ enum Made {
         text: String,
         base: Option<String>,
         tip: Option<String>,
-        srdf: Option<String>,
+        /// MoveIt's SRDF: its file and its text.
+        srdf: Option<(PathBuf, String)>,
         package_dir: Option<String>,
     },
 }
@@ -71,10 +72,11 @@ impl Robot {
                 ..
             } => {
                 let mut f = vec!["--urdf".to_string(), path.display().to_string()];
+                let srdf = srdf.as_ref().map(|(p, _)| p.display().to_string());
                 for (flag, v) in [
                     ("--base", base),
                     ("--tip", tip),
-                    ("--srdf", srdf),
+                    ("--srdf", &srdf),
                     ("--package-dir", package_dir),
                 ] {
                     if let Some(v) = v {
@@ -100,7 +102,31 @@ impl Robot {
     }
 }
 
-/// A URDF's text, from a file (at most [`MAX_URDF_BYTES`]).
+/// The file of a URDF or an SRDF given as its text or as a path (`ext`),
+/// and its text.
+fn file_and_text(given: &str, ext: &str) -> PyResult<(PathBuf, String)> {
+    if given.trim_start().starts_with('<') {
+        Ok((text_file(given, ext)?, given.to_string()))
+    } else {
+        let path = PathBuf::from(given);
+        let text = read_urdf(&path)?;
+        Ok((path, text))
+    }
+}
+
+/// A path (str or os.PathLike) or a document's text.
+fn path_or_text(value: &Bound<'_, PyAny>, name: &str) -> PyResult<String> {
+    match value.extract::<PathBuf>() {
+        Ok(p) => Ok(p.to_string_lossy().into_owned()),
+        Err(_) => value.extract::<String>().map_err(|_| {
+            error(format!(
+                "{name}: expected a path (str or os.PathLike) or the file's text"
+            ))
+        }),
+    }
+}
+
+/// A URDF's (or an SRDF's) text, from a file (at most [`MAX_URDF_BYTES`]).
 fn read_urdf(path: &Path) -> PyResult<String> {
     let meta = std::fs::metadata(path)
         .map_err(|e| error(format!("cannot read {}: {e}", path.display())))?;
@@ -114,14 +140,15 @@ fn read_urdf(path: &Path) -> PyResult<String> {
     std::fs::read_to_string(path).map_err(|e| error(format!("cannot read {}: {e}", path.display())))
 }
 
-/// A URDF given as text, kept as a file under the temporary folder named
-/// by its content's hash (what `--urdf` reads; the same text is the same
-/// file, in this process and in one that unpickles the robot).
-fn text_file(text: &str) -> PyResult<PathBuf> {
+/// A URDF (or an SRDF, `ext`) given as text, kept as a file under the
+/// temporary folder named by its content's hash (what `--urdf` reads; the
+/// same text is the same file, in this process and in one that unpickles
+/// the robot).
+fn text_file(text: &str, ext: &str) -> PyResult<PathBuf> {
     let dir = std::env::temp_dir().join("redundant-ik-urdf");
     std::fs::create_dir_all(&dir)
         .map_err(|e| error(format!("cannot write {}: {e}", dir.display())))?;
-    let path = dir.join(format!("{}.urdf", &crate::cli::robot::sha256(text)[..16]));
+    let path = dir.join(format!("{}.{ext}", &crate::cli::robot::sha256(text)[..16]));
     if std::fs::read_to_string(&path).ok().as_deref() != Some(text) {
         std::fs::write(&path, text)
             .map_err(|e| error(format!("cannot write {}: {e}", path.display())))?;
@@ -167,8 +194,8 @@ impl Robot {
     /// chain from `base` (default: the tree's root) to `tip` (default: the
     /// one leaf), its links' volumes from their collision geometry (meshes
     /// read beside the file, or under `package_dir` for `package://`
-    /// names). `srdf` (a path): MoveIt's SRDF, whose disabled pairs are not
-    /// checked for self-collision. Hostile or broken XML raises Error.
+    /// names). `srdf` (a path or the text): MoveIt's SRDF, whose disabled
+    /// pairs are not checked for self-collision (which it switches on). Hostile or broken XML raises Error.
     #[staticmethod]
     #[pyo3(signature = (urdf, base=None, tip=None, srdf=None, package_dir=None))]
     fn from_urdf(
@@ -176,32 +203,20 @@ impl Robot {
         urdf: &Bound<'_, PyAny>,
         base: Option<String>,
         tip: Option<String>,
-        srdf: Option<PathBuf>,
+        srdf: Option<&Bound<'_, PyAny>>,
         package_dir: Option<PathBuf>,
     ) -> PyResult<Self> {
-        let given: String = match urdf.extract::<PathBuf>() {
-            Ok(p) if !p.to_string_lossy().trim_start().starts_with('<') => {
-                p.to_string_lossy().into_owned()
-            }
-            _ => urdf.extract::<String>().map_err(|_| {
-                error("urdf: expected a path (str or os.PathLike) or the URDF's text")
-            })?,
-        };
-        let (path, text) = if given.trim_start().starts_with('<') {
-            (text_file(&given)?, given)
-        } else {
-            let path = PathBuf::from(&given);
-            let text = read_urdf(&path)?;
-            (path, text)
-        };
-        let s = |p: Option<PathBuf>| p.map(|p| p.display().to_string());
+        let (path, text) = file_and_text(&path_or_text(urdf, "urdf")?, "urdf")?;
+        let srdf = srdf
+            .map(|s| file_and_text(&path_or_text(s, "srdf")?, "srdf"))
+            .transpose()?;
         let made = Made::Urdf {
             path,
             text,
             base,
             tip,
-            srdf: s(srdf),
-            package_dir: s(package_dir),
+            srdf,
+            package_dir: package_dir.map(|p| p.display().to_string()),
         };
         py.detach(|| Self::of_urdf(made))
     }
@@ -381,7 +396,8 @@ impl Robot {
                 text,
                 base,
                 tip,
-                srdf,
+                srdf.as_ref()
+                    .map(|(p, t)| (p.display().to_string(), t.clone())),
                 package_dir,
             )
                 .into_pyobject(py)?,
@@ -390,8 +406,8 @@ impl Robot {
     }
 
     /// What `__reduce__` gave back: `("arm", key)` or `("urdf", path,
-    /// text, base, tip, srdf, package_dir)` (the file where it still holds
-    /// the text, else the text).
+    /// text, base, tip, srdf, package_dir)`, `srdf` its `(path, text)` (for
+    /// each, the file where it still holds the text, else the text).
     #[staticmethod]
     #[pyo3(signature = (kind, *args))]
     fn _restore(py: Python<'_>, kind: &str, args: &Bound<'_, PyTuple>) -> PyResult<Self> {
@@ -403,16 +419,22 @@ impl Robot {
                     String,
                     Option<String>,
                     Option<String>,
-                    Option<String>,
+                    Option<(String, String)>,
                     Option<String>,
                 );
                 let (path, text, base, tip, srdf, package_dir): State = args.extract()?;
-                let path = PathBuf::from(path);
-                let path = if std::fs::read_to_string(&path).ok().as_deref() == Some(&text) {
-                    path
-                } else {
-                    text_file(&text)?
-                };
+                // The file where it still holds the text, else the text.
+                let again =
+                    |path: String, text: String, ext: &str| -> PyResult<(PathBuf, String)> {
+                        let path = PathBuf::from(path);
+                        if std::fs::read_to_string(&path).ok().as_deref() == Some(text.as_str()) {
+                            Ok((path, text))
+                        } else {
+                            Ok((text_file(&text, ext)?, text))
+                        }
+                    };
+                let (path, text) = again(path, text, "urdf")?;
+                let srdf = srdf.map(|(p, t)| again(p, t, "srdf")).transpose()?;
                 let made = Made::Urdf {
                     path,
                     text,
@@ -459,7 +481,7 @@ impl Robot {
             base: base.clone(),
             tip: tip.clone(),
             package_dir: package_dir.as_ref().map(PathBuf::from),
-            srdf: srdf.as_ref().map(PathBuf::from),
+            srdf: srdf.as_ref().map(|(p, _)| p.clone()),
         };
         let robot = urdf_scene(path, &options, None).map_err(error)?;
         let chain: Chain = robot.scene.arm;
