@@ -19,7 +19,7 @@ WORKER_OPT = CARGO_PROFILE_RELEASE_OPT_LEVEL=s
 # target/, emptied at each start, so a long-lived machine's /tmp does not fill.
 BROWSER_TMP = rm -rf target/browser-tmp && mkdir -p target/browser-tmp && TMPDIR=$(CURDIR)/target/browser-tmp
 
-.PHONY: setup web dist test-dist offline test-offline npm test-npm demo test lint test-native test-wasm test-e2e test-fuzz fuzz-start fuzz-wait test-soak fuzz soak bench bench-native bench-web figures atlas-figures weights clean-web python-env python-dev test-python wheel bench-python
+.PHONY: setup web dist test-dist offline test-offline npm test-npm demo test lint test-native test-wasm test-e2e test-fuzz fuzz-start fuzz-wait test-soak fuzz soak bench bench-native bench-web figures atlas-figures weights clean-web python-env python-build python-start python-wait python-dev test-python wheel bench-python
 
 ## Make this machine able to build and test for wasm32 (idempotent).
 setup:
@@ -118,16 +118,39 @@ npm: web
 ## the optional dependencies the tests use (python/requirements-test.txt,
 ## pinned, from PyPI).
 PY_VENV = target/py/venv
-python-env: setup
+# The machine's setup first (python3's venv; scripts/setup-wasm.sh), but
+# not in python-start's background build: make test set it up already.
+PY_SETUP ?= setup
+python-env: $(PY_SETUP)
 	test -x $(PY_VENV)/bin/python || python3 -m venv $(PY_VENV)
 	$(PY_VENV)/bin/python -m pip install --quiet --disable-pip-version-check -r python/requirements-test.txt
 
 ## The package built as the tests build the crate (the dev profile) and
-## installed into target/py/venv (maturin develop), with the notebook
-## widget's front end, the npm package's widget.js.
-python-dev: npm python-env
-	cp target/npm/redundant-ik/widget.js python/redundant_ik/widget.js
+## installed into target/py/venv (maturin develop, an editable install: the
+## package's Python files are read where they are).
+python-build: python-env
 	VIRTUAL_ENV=$(CURDIR)/$(PY_VENV) $(PY_VENV)/bin/maturin develop --quiet
+
+## make test builds the package in the background beside the bundles'
+## browser tests (python-start), which mostly wait, and test-python waits
+## for it (python-wait); alone, test-python builds it itself.
+PY_LOG = target/python-build.log
+python-start:
+	@mkdir -p target && rm -f $(PY_LOG) $(PY_LOG).status && touch $(PY_LOG).started
+	@echo "python-build: started beside the next tests, its log in $(PY_LOG)"
+	@( $(MAKE) --no-print-directory python-build PY_SETUP= > $(PY_LOG) 2>&1; echo $$? > $(PY_LOG).status ) &
+python-wait:
+	@if [ -f $(PY_LOG).started ]; then \
+	  rm -f $(PY_LOG).started; \
+	  for i in $$(seq 900); do [ -f $(PY_LOG).status ] && break; sleep 2; done; \
+	  cat $(PY_LOG); [ -f $(PY_LOG).status ] || { echo "python-build: no result in 30 min"; exit 1; }; \
+	  exit $$(cat $(PY_LOG).status); \
+	else $(MAKE) --no-print-directory python-build; fi
+
+## The package with the notebook widget's front end (the npm package's
+## widget.js beside its Python files).
+python-dev: npm python-wait
+	cp target/npm/redundant-ik/widget.js python/redundant_ik/widget.js
 
 ## The Python tests (pytest, python/tests): the package against the
 ## command-line tool (byte for byte), its controller against the runs,
@@ -163,8 +186,9 @@ test-npm: npm
 ## package against the tool (its own virtual environment). The short
 ## fuzzing (its builds take the cores) runs beside the wasm tests and the
 ## page's build, whose browser runs mostly wait (fuzz-start, fuzz-wait);
-## its report comes last.
-test: lint test-native fuzz-start test-wasm test-e2e test-dist test-offline test-npm test-python test-soak fuzz-wait
+## its report comes last. The Python package builds beside the bundles'
+## browser tests (python-start, python-wait).
+test: lint test-native fuzz-start test-wasm test-e2e python-start test-dist test-offline test-npm test-python test-soak fuzz-wait
 
 FUZZ_LOG = target/test-fuzz.log
 fuzz-start:
