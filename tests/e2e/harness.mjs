@@ -64,7 +64,13 @@ export async function mouseDrag(page, from, to, steps = 12) {
   const b = await page.evaluate(([x, y]) => window.demo.worldToClient(x, y), to);
   await page.mouse.move(a.x, a.y);
   await page.mouse.down();
-  await page.mouse.move(b.x, b.y, { steps });
+  // One move a frame, as a person's hand gives them: a browser busy with a
+  // slow frame merges the moves that arrive within it into one event, and
+  // a drag whose moves were merged moves the page's handle less.
+  for (let i = 1; i <= steps; i++) {
+    await page.mouse.move(a.x + ((b.x - a.x) * i) / steps, a.y + ((b.y - a.y) * i) / steps);
+    await nextFrames(page);
+  }
   await page.mouse.up();
 }
 
