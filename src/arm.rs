@@ -192,27 +192,34 @@ impl Arm {
     }
 
     /// Checks that `theta` has `n` finite entries, none beyond
-    /// [`MAX_ANGLE`] (the message is only formatted when there is a problem).
+    /// [`MAX_ANGLE`] ([`check_angles`]).
     pub fn check_angles(&self, theta: &[f64]) -> Result<()> {
-        if theta.len() != self.dof() {
-            return Err(Error::DimensionMismatch {
-                what: "theta".into(),
-                expected: self.dof(),
-                found: theta.len(),
-            });
-        }
-        match theta.iter().position(|t| t.abs() > MAX_ANGLE || t.is_nan()) {
-            Some(i) if theta[i].is_finite() => Err(Error::TooLarge {
-                what: format!("theta_{}", i + 1),
-                value: theta[i],
-                max: MAX_ANGLE,
-                unit: "rad",
-            }),
-            Some(i) => Err(Error::NonFinite {
-                what: format!("theta_{}", i + 1),
-            }),
-            None => Ok(()),
-        }
+        check_angles(theta, self.dof())
+    }
+}
+
+/// Checks that `theta` has `n` finite entries, none beyond [`MAX_ANGLE`]
+/// (the message is only formatted when there is a problem): every arm's
+/// angles, the planar arm's and a chain's.
+pub fn check_angles(theta: &[f64], n: usize) -> Result<()> {
+    if theta.len() != n {
+        return Err(Error::DimensionMismatch {
+            what: "theta".into(),
+            expected: n,
+            found: theta.len(),
+        });
+    }
+    match theta.iter().position(|t| t.abs() > MAX_ANGLE || t.is_nan()) {
+        Some(i) if theta[i].is_finite() => Err(Error::TooLarge {
+            what: format!("theta_{}", i + 1),
+            value: theta[i],
+            max: MAX_ANGLE,
+            unit: "rad",
+        }),
+        Some(i) => Err(Error::NonFinite {
+            what: format!("theta_{}", i + 1),
+        }),
+        None => Ok(()),
     }
 }
 

@@ -139,7 +139,6 @@ pub fn urdf_arm(
 /// `redundant-ik train --arm panda`: the whole-reach recipe in space
 /// ([`redundant_ik::training::space`]), by Adam, with a progress bar.
 pub fn train(args: &super::train::TrainArgs, net: NetKind, arm: TrainArm) -> Result<(), String> {
-    use indicatif::{ProgressBar, ProgressStyle};
     use redundant_ik::training::space::{train_space, SpaceTrainSpec};
     for (given, flag) in [
         (args.variant.is_some(), "--variant"),
@@ -192,16 +191,7 @@ pub fn train(args: &super::train::TrainArgs, net: NetKind, arm: TrainArm) -> Res
         spec.sampling.sign_smoothing = eps;
     }
     let epochs = spec.adam.max_epochs;
-    let bar = if args.quiet {
-        ProgressBar::hidden()
-    } else {
-        ProgressBar::new(epochs as u64)
-    };
-    bar.set_style(
-        ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} epochs  {msg}")
-            .map_err(|e| e.to_string())?
-            .progress_chars("=> "),
-    );
+    let bar = super::train::epochs_bar(args.quiet, epochs)?;
     let stopped = std::cell::Cell::new(false);
     #[allow(clippy::disallowed_methods)] // the native CLI has a clock
     let start = std::time::Instant::now();
@@ -213,15 +203,9 @@ pub fn train(args: &super::train::TrainArgs, net: NetKind, arm: TrainArm) -> Res
         !stopped.get()
     })
     .map_err(|e| e.to_string())?;
-    bar.finish_and_clear();
-    if stopped.get() {
-        return Err(super::embed::INTERRUPTED.into());
-    }
-    let seconds = start.elapsed().as_secs_f64();
-    file.training.seconds = Some((seconds * 10.0).round() / 10.0);
-    let json = file.to_json().map_err(|e| e.to_string())?;
-    std::fs::write(&args.out, json + "\n")
-        .map_err(|e| format!("cannot write {}: {e}", args.out))?;
+    let seconds = super::train::trained_in(&bar, stopped.get(), start)?;
+    file.training.seconds = Some(seconds);
+    super::train::write_weights(file.to_json(), &args.out)?;
     let r = &file.nets[0].report;
     emit(&format!(
         "{} network for {}, whole reach in space, {} samples, seed {}, trained in {seconds:.1} s -> {}\n  {:?}: {} epochs (best {}), stop: {:?}; MSE (mapminmax units) train {:.3e}, val {:.3e}, test {:.3e}\n",

@@ -186,16 +186,7 @@ pub fn run(args: &TrainArgs, net: NetKind) -> Result<(), String> {
         .map_err(|e| e.to_string())?
         .0;
 
-    let bar = if args.quiet {
-        ProgressBar::hidden()
-    } else {
-        ProgressBar::new((nets * epochs) as u64)
-    };
-    bar.set_style(
-        ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} epochs  {msg}")
-            .map_err(|e| e.to_string())?
-            .progress_chars("=> "),
-    );
+    let bar = epochs_bar(args.quiet, nets * epochs)?;
     let stopped = std::cell::Cell::new(false);
     #[allow(clippy::disallowed_methods)] // the native CLI has a clock
     let start = Instant::now();
@@ -214,15 +205,9 @@ pub fn run(args: &TrainArgs, net: NetKind) -> Result<(), String> {
         !stopped.get()
     })
     .map_err(|e| e.to_string())?;
-    bar.finish_and_clear();
-    if stopped.get() {
-        return Err(super::embed::INTERRUPTED.into());
-    }
-    let seconds = start.elapsed().as_secs_f64();
-    file.training.seconds = Some((seconds * 10.0).round() / 10.0);
-    let json = file.to_json().map_err(|e| e.to_string())?;
-    std::fs::write(&args.out, json + "\n")
-        .map_err(|e| format!("cannot write {}: {e}", args.out))?;
+    let seconds = trained_in(&bar, stopped.get(), start)?;
+    file.training.seconds = Some(seconds);
+    write_weights(file.to_json(), &args.out)?;
 
     let mut text = format!(
         "{} network(s), recipe {}, variant {}, encoding {}, {} samples, seed {}, trained in {seconds:.1} s -> {}\n",
@@ -249,4 +234,37 @@ pub fn run(args: &TrainArgs, net: NetKind) -> Result<(), String> {
         ));
     }
     super::emit(&text)
+}
+
+/// The progress bar of a training of `epochs` epochs in all (hidden with
+/// `--quiet`): every arm's.
+pub(super) fn epochs_bar(quiet: bool, epochs: usize) -> Result<ProgressBar, String> {
+    let bar = if quiet {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::new(epochs as u64)
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} epochs  {msg}")
+            .map_err(|e| e.to_string())?
+            .progress_chars("=> "),
+    );
+    Ok(bar)
+}
+
+/// Ends a training begun at `start`: refused if Ctrl-C `stopped` it (the
+/// Python package's), so that nothing is written; else the seconds it took
+/// to the tenth. Every arm's.
+pub(super) fn trained_in(bar: &ProgressBar, stopped: bool, start: Instant) -> Result<f64, String> {
+    bar.finish_and_clear();
+    if stopped {
+        return Err(super::embed::INTERRUPTED.into());
+    }
+    Ok((start.elapsed().as_secs_f64() * 10.0).round() / 10.0)
+}
+
+/// Writes a weights file's `json` to `out`, with the line's end.
+pub(super) fn write_weights(json: redundant_ik::Result<String>, out: &str) -> Result<(), String> {
+    let json = json.map_err(|e| e.to_string())?;
+    std::fs::write(out, json + "\n").map_err(|e| format!("cannot write {out}: {e}"))
 }

@@ -298,19 +298,11 @@ fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
 impl FromStr for Path {
     type Err = Error;
     fn from_str(text: &str) -> Result<Self> {
-        let refuse = |expected: &str| Error::Syntax {
-            what: "path",
-            text: text.to_string(),
-            expected: expected.into(),
-        };
-        let t = text.trim();
-        if t == "line" {
-            return Ok(Path::Line);
-        }
-        let (kind, rest) = t.split_once(':').unwrap_or((t, ""));
-        match kind {
-            "circle" => {
-                let (centre, laps) = match number_list(rest).map_err(|e| refuse(&e))?[..] {
+        parse_path(
+            text,
+            Path::Line,
+            |numbers, refuse| {
+                let (centre, laps) = match numbers[..] {
                     [x, y] => ([x, y], 1.0),
                     [x, y, laps] => ([x, y], laps),
                     _ => return Err(refuse("expected circle:CX,CY or circle:CX,CY,LAPS")),
@@ -319,12 +311,40 @@ impl FromStr for Path {
                     centre,
                     laps: whole_laps(laps).ok_or_else(|| refuse(LAPS))?,
                 })
-            }
-            "points" => Ok(Path::Points(parse_points(rest, refuse, COUNT)?)),
-            _ => Err(refuse(
-                "expected line, circle:CX,CY[,LAPS] or points:X,Y;X,Y;...",
-            )),
-        }
+            },
+            Path::Points,
+            COUNT,
+            "expected line, circle:CX,CY[,LAPS] or points:X,Y;X,Y;...",
+        )
+    }
+}
+
+/// `line`, `circle:NUMBERS` or `points:...` read into `line`, what `circle`
+/// makes of the numbers, or `points` of the points of `D` coordinates;
+/// `count` and `expected` what a refusal of the points' number and of the
+/// kind say: both kinds of path.
+pub(super) fn parse_path<T, const D: usize>(
+    text: &str,
+    line: T,
+    circle: impl FnOnce(Vec<f64>, &dyn Fn(&str) -> Error) -> Result<T>,
+    points: impl FnOnce(Vec<[f64; D]>) -> T,
+    count: &str,
+    expected: &str,
+) -> Result<T> {
+    let refuse = |expected: &str| Error::Syntax {
+        what: "path",
+        text: text.to_string(),
+        expected: expected.into(),
+    };
+    let t = text.trim();
+    if t == "line" {
+        return Ok(line);
+    }
+    let (kind, rest) = t.split_once(':').unwrap_or((t, ""));
+    match kind {
+        "circle" => circle(number_list(rest).map_err(|e| refuse(&e))?, &refuse),
+        "points" => Ok(points(parse_points(rest, refuse, count)?)),
+        _ => Err(refuse(expected)),
     }
 }
 

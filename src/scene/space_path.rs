@@ -21,11 +21,10 @@ use std::fmt;
 use std::str::FromStr;
 
 use super::path::{
-    check_points, parse_points, path_as_text, polyline_distance, thinned, whole_laps, write_points,
+    check_points, parse_path, path_as_text, polyline_distance, thinned, whole_laps, write_points,
     LAPS,
 };
 use super::{MAX_POINTS, MIN_RADIUS};
-use crate::arm::number_list;
 use crate::error::{coordinate, Error, Result};
 use crate::space::{closest, cross, dot, norm, scale, sub, Vec3};
 
@@ -212,19 +211,11 @@ impl SpacePath {
 impl FromStr for SpacePath {
     type Err = Error;
     fn from_str(text: &str) -> Result<Self> {
-        let refuse = |expected: &str| Error::Syntax {
-            what: "path",
-            text: text.to_string(),
-            expected: expected.into(),
-        };
-        let t = text.trim();
-        if t == "line" {
-            return Ok(SpacePath::Line);
-        }
-        let (kind, rest) = t.split_once(':').unwrap_or((t, ""));
-        match kind {
-            "circle" => {
-                let (numbers, laps) = match number_list(rest).map_err(|e| refuse(&e))?[..] {
+        parse_path(
+            text,
+            SpacePath::Line,
+            |numbers, refuse| {
+                let (numbers, laps) = match numbers[..] {
                     [cx, cy, cz, nx, ny, nz] => ([cx, cy, cz, nx, ny, nz], 1.0),
                     [cx, cy, cz, nx, ny, nz, laps] => ([cx, cy, cz, nx, ny, nz], laps),
                     _ => return Err(refuse(CIRCLE)),
@@ -235,12 +226,11 @@ impl FromStr for SpacePath {
                     normal: [nx, ny, nz],
                     laps: whole_laps(laps).ok_or_else(|| refuse(LAPS))?,
                 })
-            }
-            "points" => Ok(SpacePath::Points(parse_points(rest, refuse, COUNT)?)),
-            _ => Err(refuse(
-                "expected line, circle:CX,CY,CZ,NX,NY,NZ[,LAPS] or points:X,Y,Z;X,Y,Z;...",
-            )),
-        }
+            },
+            SpacePath::Points,
+            COUNT,
+            "expected line, circle:CX,CY,CZ,NX,NY,NZ[,LAPS] or points:X,Y,Z;X,Y,Z;...",
+        )
     }
 }
 

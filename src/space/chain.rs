@@ -358,21 +358,9 @@ impl Chain {
     }
 
     /// Checks `theta` has one finite angle per joint (within
-    /// [`crate::arm::MAX_ANGLE`]).
+    /// [`crate::arm::MAX_ANGLE`]: [`crate::arm::check_angles`]).
     pub fn check_angles(&self, theta: &[f64]) -> Result<()> {
-        if theta.len() != self.dof() {
-            return Err(Error::DimensionMismatch {
-                what: "theta".into(),
-                expected: self.dof(),
-                found: theta.len(),
-            });
-        }
-        for (i, &t) in theta.iter().enumerate() {
-            let what = format!("theta_{}", i + 1);
-            finite(&what, t)?;
-            crate::error::within(&what, t, -crate::arm::MAX_ANGLE, crate::arm::MAX_ANGLE)?;
-        }
-        Ok(())
+        crate::arm::check_angles(theta, self.dof())
     }
 }
 

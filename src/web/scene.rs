@@ -256,31 +256,48 @@ impl Demo {
     ) -> JsResult<JsValue> {
         let method: Method = method.parse().map_err(js_err)?;
         let mut scene = self.session.planner().scene().clone();
-        if let Some(t) = target {
-            scene.target = point("target", &t)?;
-        }
         if let Some(flat) = obstacles {
             scene.obstacles = obstacles_from(&flat)?;
         }
-        if let Some(tf) = tf {
-            scene.tf = tf;
-        }
-        if let Some(t) = theta0 {
-            scene.theta0 = t;
-        }
-        if let Some(k) = feedback {
-            crate::scene::validate_gain(k, scene.dt).map_err(js_err)?;
-            scene.feedback_gain = k;
-        }
-        if let Some(k) = refine {
-            scene
-                .set_param(&crate::planner::methods::REFINE, k)
-                .map_err(js_err)?;
-        }
+        overridden(&mut scene, target, tf, theta0, feedback, refine)?;
         scene.validate().map_err(js_err)?;
         let summary = self.session.run_offscreen(scene, method).map_err(js_err)?;
         to_js(&summary)
     }
+}
+
+/// The overrides of a run off screen that every arm's `simulate` takes
+/// (the target, `tf`, the start, the closed-loop gain, the refinement
+/// steps on a learned `Phi`), each checked as it is set; the obstacles are
+/// each kind's own (discs, spheres).
+pub(super) fn overridden<A, P, const M: usize, const D: usize>(
+    scene: &mut crate::scene::Scene<A, P, M, D>,
+    target: Option<Vec<f64>>,
+    tf: Option<f64>,
+    theta0: Option<Vec<f64>>,
+    feedback: Option<f64>,
+    refine: Option<f64>,
+) -> JsResult<()> {
+    if let Some(t) = target {
+        scene.target = point("target", &t)?;
+    }
+    if let Some(tf) = tf {
+        scene.tf = tf;
+    }
+    if let Some(t) = theta0 {
+        scene.theta0 = t;
+    }
+    if let Some(k) = feedback {
+        crate::scene::validate_gain(k, scene.dt).map_err(js_err)?;
+        scene.feedback_gain = k;
+    }
+    if let Some(k) = refine {
+        scene
+            .params
+            .set(&crate::planner::methods::REFINE, k)
+            .map_err(js_err)?;
+    }
+    Ok(())
 }
 
 /// An obstacle index from JavaScript: a whole number from 0.

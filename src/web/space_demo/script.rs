@@ -33,27 +33,10 @@ impl SpaceDemo {
         let method: Method = method.parse().map_err(js_err)?;
         let session = self.session();
         let mut scene = session.scene().clone();
-        if let Some(t) = target {
-            scene.target = super::super::scene::point("target", &t)?;
-        }
         if let Some(flat) = spheres {
             scene.obstacles = Sphere::from_flat(&flat).map_err(js_err)?;
         }
-        if let Some(tf) = tf {
-            scene.tf = tf;
-        }
-        if let Some(t) = theta0 {
-            scene.theta0 = t;
-        }
-        if let Some(k) = feedback {
-            scene.feedback_gain = k;
-        }
-        if let Some(k) = refine {
-            scene
-                .params
-                .set(&crate::planner::methods::REFINE, k)
-                .map_err(js_err)?;
-        }
+        super::super::scene::overridden(&mut scene, target, tf, theta0, feedback, refine)?;
         to_js(&session.run_offscreen(scene, method).map_err(js_err)?)
     }
 }
