@@ -466,7 +466,7 @@ pub(crate) fn by_name<T: Copy>(
 
 mod checks;
 pub use checks::MAX_COORDINATE;
-pub(crate) use checks::{coordinate, finite, non_negative, positive, within};
+pub(crate) use checks::{coordinate, finite, non_negative, pose_counts, positive, within};
 
 #[cfg(test)]
 mod tests;

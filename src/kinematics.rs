@@ -15,7 +15,7 @@
 use nalgebra::{DVector, Matrix2xX, Vector2};
 
 use crate::arm::Arm;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::geometry::segment_distance_squared;
 
 /// The kinematics of an [`Arm`] as plain values (each a [`Pose`] computed
@@ -122,17 +122,7 @@ impl Pose {
     /// finiteness: NaN gives NaN joints, which the planner's step rejects.
     pub fn update(&mut self, arm: &Arm, theta: &[f64]) -> Result<()> {
         let n = self.dof();
-        if theta.len() != n || arm.dof() != n {
-            return Err(Error::DimensionMismatch {
-                what: "theta for this pose".into(),
-                expected: n,
-                found: if arm.dof() != n {
-                    arm.dof()
-                } else {
-                    theta.len()
-                },
-            });
-        }
+        crate::error::pose_counts(n, arm.dof(), theta.len())?;
         self.fill(arm, theta);
         Ok(())
     }

@@ -72,3 +72,16 @@ pub(crate) fn non_negative(what: &str, value: f64) -> Result<f64> {
         })
     }
 }
+
+/// Checks that a pose of `n` joints is updated for an arm of `arm` joints
+/// with `theta` of `theta` angles: every arm's pose.
+pub(crate) fn pose_counts(n: usize, arm: usize, theta: usize) -> Result<()> {
+    if theta != n || arm != n {
+        return Err(Error::DimensionMismatch {
+            what: "theta for this pose".into(),
+            expected: n,
+            found: if arm != n { arm } else { theta },
+        });
+    }
+    Ok(())
+}

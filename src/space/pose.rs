@@ -80,17 +80,7 @@ impl SpacePose {
                 found: self.points.len(),
             });
         }
-        if theta.len() != n || chain.dof() != n {
-            return Err(Error::DimensionMismatch {
-                what: "theta for this pose".into(),
-                expected: n,
-                found: if chain.dof() != n {
-                    chain.dof()
-                } else {
-                    theta.len()
-                },
-            });
-        }
+        crate::error::pose_counts(n, chain.dof(), theta.len())?;
         self.fill(chain, theta);
         Ok(())
     }
