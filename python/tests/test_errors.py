@@ -27,6 +27,7 @@ def test_error_is_a_value_error():
         (dict(arm="panda", obstacles=[(1, 2)]), "^obstacles: X,Y places a disc"),
         (dict(arm="iiwa14", method="case1"), "no networks are shipped for iiwa14"),
         (dict(json=True), "no keyword 'json'"),
+        (dict(arm="ur99"), "unknown arm 'ur99': the planar paper, four, five, iiwa-planar or, in space, panda, iiwa14"),
     ],
 )
 def test_simulate_refuses(kwargs, message):
@@ -83,6 +84,11 @@ HOSTILE = {
 def test_a_hostile_urdf_raises(name):
     with pytest.raises(rik.Error):
         rik.Robot.from_urdf(HOSTILE[name])
+
+
+def test_an_unknown_preset_names_every_arm():
+    with pytest.raises(rik.Error, match="no preset 'ur99': the planar paper, four, five, iiwa-planar or, in space, panda, iiwa14"):
+        rik.Robot.preset("ur99")
 
 
 def test_a_missing_urdf_file_raises():

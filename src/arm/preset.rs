@@ -102,6 +102,12 @@ pub const PRESETS: [Preset; 4] = [
 ];
 
 impl Preset {
+    /// The planar preset called `key`, if any (every arm's names:
+    /// [`crate::space::Named`]).
+    pub fn by_key(key: &str) -> Option<&'static Preset> {
+        PRESETS.iter().find(|p| p.key == key)
+    }
+
     /// The preset whose post and links `arm` has, if any.
     pub fn of(arm: &Arm) -> Option<&'static Preset> {
         PRESETS

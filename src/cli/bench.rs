@@ -112,9 +112,8 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
     if let Some(key) = &args.arm {
         // For an arm in space the default is every method.
         let all = args.methods == "paper";
-        let p = redundant_ik::space::SpacePreset::by_key(key).ok_or_else(|| {
-            format!("--arm {key}: bench --arm takes an arm in space, panda or iiwa14")
-        })?;
+        let p = redundant_ik::space::SpacePreset::named(key)
+            .map_err(|e| format!("--arm: {e} (bench --arm takes an arm in space)"))?;
         return space(Subject::Preset(p), pose, &opts, all, &probes, args.json);
     }
     if let Some(path) = &args.urdf {

@@ -11,7 +11,7 @@
 use clap::{Parser, Subcommand};
 use redundant_ik::networks::{self, NetworkSet, Variant};
 use redundant_ik::run::NetworkChoice;
-use redundant_ik::space::SpacePreset;
+use redundant_ik::space::{Named, SpacePreset};
 use redundant_ik::{Arm, Method};
 
 pub mod atlas;
@@ -124,8 +124,8 @@ fn eval_any(a: &eval::EvalArgs) -> Result<(), String> {
     a.chain.need_urdf(a.urdf.as_deref())?;
     match (&a.arm, &a.urdf) {
         (Some(key), _) => {
-            let p = SpacePreset::by_key(key)
-                .ok_or_else(|| format!("--arm {key}: eval --arm takes an arm in space (panda)"))?;
+            let p = SpacePreset::named(key)
+                .map_err(|e| format!("--arm: {e} (eval --arm takes an arm in space)"))?;
             space_networks::eval(a, p.into())
         }
         (_, Some(path)) => space_networks::eval(
@@ -193,28 +193,29 @@ pub enum ArmChoice {
 /// `POST:L1,L2,...` (post height and link lengths, m), as the core reads
 /// the syntax.
 pub fn parse_arm(s: &str) -> Result<ArmChoice, String> {
-    match SpacePreset::by_key(s.trim()) {
-        Some(p) => Ok(ArmChoice::Space(p)),
-        None => parse_planar_arm(s).map(ArmChoice::Planar),
+    match Named::find(s) {
+        Some(Named::Space(p)) => Ok(ArmChoice::Space(p)),
+        // A word that names no arm: every name, and the planar arm's text.
+        None if !s.contains(':') && s.trim().parse::<f64>().is_err() => Err(format!(
+            "unknown arm '{}': {}, or a planar arm POST:L1,L2,... (e.g. 0.5:0.6,0.85,0.6)",
+            s.trim(),
+            Named::choices()
+        )),
+        _ => parse_planar_arm(s).map(ArmChoice::Planar),
     }
 }
 
 /// Parses a planar arm (a planar preset's name or `POST:L1,L2,...`); an
 /// arm in space is refused by name.
 pub fn parse_planar_arm(s: &str) -> Result<Arm, String> {
-    if let Some(p) = SpacePreset::by_key(s.trim()) {
-        return Err(format!(
+    match Named::find(s) {
+        Some(Named::Space(p)) => Err(format!(
             "{} is an arm in space; this takes a planar arm",
             p.key
-        ));
+        )),
+        Some(Named::Planar(p)) => Ok(p.arm()),
+        None => s.parse().map_err(|e: redundant_ik::Error| e.to_string()),
     }
-    if let Some(p) = redundant_ik::arm::PRESETS
-        .iter()
-        .find(|p| p.key == s.trim())
-    {
-        return Ok(p.arm());
-    }
-    s.parse().map_err(|e: redundant_ik::Error| e.to_string())
 }
 
 /// Numbers as written, `A,B,...`: an obstacle (`X,Y[,R]` for a planar

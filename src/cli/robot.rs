@@ -196,13 +196,7 @@ pub fn mesh_reader(urdf: &Path, package_dir: Option<&Path>) -> impl Fn(&str) -> 
 
 /// The URDF of the arm in space `key`, as `robots/KEY.urdf` holds it.
 pub fn preset_urdf(key: &str) -> Result<String, String> {
-    let p = SpacePreset::by_key(key).ok_or_else(|| {
-        let keys: Vec<&str> = redundant_ik::space::PRESETS.iter().map(|p| p.key).collect();
-        format!(
-            "--urdf-of: no arm in space is called '{key}' ({})",
-            keys.join(", ")
-        )
-    })?;
+    let p = SpacePreset::named(key).map_err(|e| format!("--urdf-of: {e}"))?;
     let comment = format!(
         "{}: written from the preset's modified-DH rows, limits and capsules (src/space/preset.rs) by redundant-ik's robot command, its urdf-of option. Numbers: {}.",
         p.label, p.source

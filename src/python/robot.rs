@@ -163,14 +163,10 @@ impl Robot {
     /// `iiwa14` (KUKA LBR iiwa 14), each with its limits.
     #[staticmethod]
     fn preset(name: &str) -> PyResult<Self> {
-        let known = crate::arm::PRESETS.iter().any(|p| p.key == name.trim())
-            || crate::space::SpacePreset::by_key(name.trim()).is_some();
-        if !known {
-            let planar: Vec<&str> = crate::arm::PRESETS.iter().map(|p| p.key).collect();
+        if crate::space::Named::find(name).is_none() {
             return Err(error(format!(
-                "no preset '{name}': the planar {} or, in space, {} (Robot.planar takes POST:L1,L2,...)",
-                planar.join(", "),
-                crate::space::PRESETS.iter().map(|p| p.key).collect::<Vec<_>>().join(", ")
+                "no preset '{name}': {} (Robot.planar takes POST:L1,L2,...)",
+                crate::space::Named::choices()
             )));
         }
         Self::of_arm(name)

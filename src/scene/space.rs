@@ -73,18 +73,7 @@ impl SpaceScene {
 
     /// The preset called `key`'s task.
     pub fn by_key(key: &str) -> Result<Self> {
-        SpacePreset::by_key(key)
-            .map(Self::preset)
-            .ok_or_else(|| Error::UnknownName {
-                kind: "arm in space",
-                name: crate::error::clip(key),
-                choices: crate::error::choices(
-                    &crate::space::PRESETS
-                        .iter()
-                        .map(|p| p.key)
-                        .collect::<Vec<_>>(),
-                ),
-            })
+        SpacePreset::named(key).map(Self::preset)
     }
 
     /// The hand at `t = 0` (NaN where `theta0` does not fit the chain).

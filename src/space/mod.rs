@@ -29,5 +29,5 @@ pub use hand_pose::{
 pub use pairs::{Obstruction, SpacePair, SpacePairs};
 pub(crate) use pose::{add, cross, dot, norm, scale, sub};
 pub use pose::{SpacePose, Vec3};
-pub use preset::{SpacePreset, SpaceTask, PRESETS};
+pub use preset::{Named, SpacePreset, SpaceTask, PRESETS};
 pub use sphere::{clearance, closest, CapsulePair, Sphere, SpherePlacement, MAX_SPHERES};

@@ -8,7 +8,8 @@ use serde::Serialize;
 
 use super::chain::{Chain, Row};
 use super::pose::Vec3;
-use crate::arm::{JointLimits, RateLimits};
+use crate::arm::{JointLimits, Preset, RateLimits};
+use crate::error::{Error, Result};
 
 /// A named arm in space.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -68,6 +69,52 @@ impl SpacePreset {
     /// The preset called `key`, if any.
     pub fn by_key(key: &str) -> Option<&'static SpacePreset> {
         PRESETS.iter().find(|p| p.key == key)
+    }
+
+    /// The preset called `key`, or an error that names every arm in space.
+    pub fn named(key: &str) -> Result<&'static SpacePreset> {
+        Self::by_key(key.trim()).ok_or_else(|| Error::UnknownName {
+            kind: "arm in space",
+            name: crate::error::clip(key),
+            choices: crate::error::choices(&PRESETS.map(|p| p.key)),
+        })
+    }
+}
+
+/// Every named arm, the planar presets ([`crate::arm::PRESETS`]) and the
+/// arms in space ([`PRESETS`]): one namespace, which the command line's
+/// `--arm`, the address's `arm=` and Python's `Robot.preset` read.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Named {
+    /// A planar arm.
+    Planar(&'static Preset),
+    /// An arm in space.
+    Space(&'static SpacePreset),
+}
+
+impl Named {
+    /// The arm called `key` (spaces around it ignored), if any.
+    pub fn find(key: &str) -> Option<Named> {
+        let key = key.trim();
+        SpacePreset::by_key(key)
+            .map(Named::Space)
+            .or_else(|| Preset::by_key(key).map(Named::Planar))
+    }
+
+    /// Its name.
+    pub fn key(&self) -> &'static str {
+        match self {
+            Named::Planar(p) => p.key,
+            Named::Space(p) => p.key,
+        }
+    }
+
+    /// What a refusal of an unknown name lists: the planar names, then
+    /// those in space.
+    pub fn choices() -> String {
+        let planar = crate::arm::PRESETS.map(|p| p.key).join(", ");
+        let space = PRESETS.map(|p| p.key).join(", ");
+        format!("the planar {planar} or, in space, {space}")
     }
 }
 

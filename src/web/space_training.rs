@@ -103,9 +103,7 @@ pub fn train_space_network(
 /// robot; refused where it gives both or neither.
 fn train_arm(r: &Request) -> Result<TrainArm, JsError> {
     match (&r.arm, &r.run) {
-        (Some(key), None) => SpacePreset::by_key(key)
-            .map(TrainArm::from)
-            .ok_or_else(|| JsError::new(&format!("no arm in space is called '{key}'"))),
+        (Some(key), None) => SpacePreset::named(key).map(TrainArm::from).map_err(js_err),
         (None, Some(text)) => {
             let scene = read_space_run(text)?.scene;
             if r.name.as_ref().is_some_and(|n| n.chars().count() > MAX_NAME_CHARS) {

@@ -22,6 +22,14 @@ fn bad_input_is_one_error_line_and_exit_status_2() {
         (&["simulate", "--method", "case4"], "method"),
         (&["simulate", "--theta0", "0,1"], "3"),
         (&["figure", "--task", "1"], "required"),
+        // One namespace of arms: a word that names none lists every name.
+        (
+            &["simulate", "--arm", "ur99"],
+            "unknown arm 'ur99': the planar paper, four, five, iiwa-planar or, in space, panda, iiwa14, or a planar arm post:l1,l2,...",
+        ),
+        (&["train", "--net", "phi", "--arm", "ur99", "--out", "x.json"], "unknown arm 'ur99'"),
+        (&["bench", "--arm", "paper"], "unknown arm in space 'paper': use panda or iiwa14"),
+        (&["robot", "--urdf-of", "ur99"], "unknown arm in space 'ur99'"),
     ];
     for (args, what) in table {
         refused(args, what);

@@ -74,9 +74,11 @@ fn a_request_names_its_arm_once_and_a_bad_run_is_refused_by_the_reader() {
     let long = serde_json::json!({ "run": run, "name": "x".repeat(201), "net": "phi" });
     assert!(train(long).unwrap_err().contains("longer than 200"));
     let unknown = serde_json::json!({ "arm": "ur99", "net": "phi" });
-    assert!(train(unknown)
-        .unwrap_err()
-        .contains("no arm in space is called 'ur99'"));
+    let e = train(unknown).unwrap_err();
+    assert!(
+        e.contains("unknown arm in space 'ur99': use panda or iiwa14"),
+        "{e}"
+    );
 }
 
 /// The benchmark of a robot of the user's: its run file's text in place of

@@ -39,7 +39,7 @@ use crate::planner::methods::Method;
 use crate::planner::{Sample, Summary, Trajectory};
 use crate::run::NetworkChoice;
 use crate::scene::SpaceScene;
-use crate::space::{SpacePose, Vec3, PRESETS};
+use crate::space::{SpacePose, Vec3};
 use pose_task::run;
 
 /// A spatial run played on the page: see the module documentation.
@@ -99,14 +99,7 @@ impl SpaceSession {
     /// `t = 0`; learned methods need [`SpaceSession::install_networks`]
     /// first.
     pub fn new(key: &str, method: Method) -> Result<Self> {
-        let preset = PRESETS
-            .iter()
-            .find(|p| p.key == key)
-            .ok_or_else(|| Error::UnknownName {
-                kind: "arm in space",
-                name: key.into(),
-                choices: crate::error::choices(&PRESETS.iter().map(|p| p.key).collect::<Vec<_>>()),
-            })?;
+        let preset = crate::space::SpacePreset::named(key)?;
         Self::of_robot(preset.key, preset.label, SpaceScene::preset(preset), method)
     }
 
