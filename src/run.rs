@@ -136,7 +136,7 @@ impl NetworkChoice<SpaceNetworkSet> {
                 set.file_names()[0],
                 set.file_names()[1]
             ))),
-            NetworkChoice::Files { phi, v } => Ok(Arc::new(SpaceNetworks::from_json(phi, v)?)),
+            NetworkChoice::Files { phi, v } => Ok(Arc::new(SpaceNetworks::read(phi, v)?)),
         }
     }
 }

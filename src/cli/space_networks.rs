@@ -20,7 +20,7 @@ pub fn own(args: &super::NetworkArgs) -> Result<Option<Arc<SpaceNetworks>>, Stri
     match (&args.phi_weights, &args.v_weights) {
         (Some(phi), Some(v)) => {
             let (phi, v) = (super::read_weights_file(phi)?, super::read_weights_file(v)?);
-            SpaceNetworks::from_json(&phi, &v)
+            SpaceNetworks::read(&phi, &v)
                 .map(|n| Some(Arc::new(n).in_precision(args.precision)))
                 .map_err(|e| e.to_string())
         }
@@ -229,7 +229,7 @@ pub fn eval(args: &super::eval::EvalArgs, arm: TrainArm) -> Result<(), String> {
     }
     let nets = match (&args.phi, &args.v) {
         (Some(phi), Some(v)) => Arc::new(
-            SpaceNetworks::from_json(
+            SpaceNetworks::read(
                 &super::read_weights_file(std::path::Path::new(phi))?,
                 &super::read_weights_file(std::path::Path::new(v))?,
             )
@@ -362,7 +362,7 @@ pub fn recorded(
 pub fn shipped_set(nets: &SpaceNetworks) -> Option<SpaceNetworkSet> {
     SpaceNetworkSet::ALL.into_iter().find(|s| {
         let (phi, v) = s.files();
-        SpaceNetworks::from_json(phi, v)
+        SpaceNetworks::read(phi, v)
             .is_ok_and(|n| n.phi_file() == nets.phi_file() && n.v_file() == nets.v_file())
     })
 }

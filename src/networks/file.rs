@@ -34,6 +34,10 @@ pub trait Learned: Serialize + DeserializeOwned + Clone + PartialEq + std::fmt::
     /// Refused where this arm's networks are not built of `variant` and
     /// `encoding`.
     fn check_form(variant: Variant, encoding: Encoding) -> Result<()>;
+    /// Whether networks trained for `other` serve this arm: the same
+    /// kinematics (a planar arm's post and links; a chain's base, rows and
+    /// flange, whatever its volumes and limits).
+    fn same_kinematics(&self, other: &Self) -> bool;
 }
 
 impl Learned for Arm {
@@ -44,6 +48,9 @@ impl Learned for Arm {
     }
     fn check_form(_: Variant, _: Encoding) -> Result<()> {
         Ok(())
+    }
+    fn same_kinematics(&self, other: &Self) -> bool {
+        self.same_geometry(other)
     }
 }
 

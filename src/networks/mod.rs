@@ -35,14 +35,19 @@ pub use file::{
 pub use inputs::MAX_INPUTS;
 pub use reader::Readable;
 
-/// A `Phi` network family and a `v` network for the same arm.
+/// A `Phi` network family and a `v` network for the same arm: the planar
+/// arm's (`A` = [`Arm`], the default) or a chain's in space
+/// ([`space::SpaceNetworks`] names `Networks<Chain>`). What is written here
+/// holds for every arm (pairing two files, their kernels, the precision);
+/// each kind's inputs and outputs are its own (below, and
+/// [`mod@space`]).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Networks {
+pub struct Networks<A: Learned = Arm> {
     /// The files, shared by the same networks in another precision
     /// ([`Networks::in_precision`] builds kernels, and copies no weights).
-    phi: Arc<WeightsFile>,
-    v: Arc<WeightsFile>,
-    arm: Arm,
+    phi: Arc<WeightsFile<A>>,
+    v: Arc<WeightsFile<A>>,
+    arm: A,
     /// The run-time form of each `Phi` network and of the `v` network
     /// (`mapminmax` folded in, padded, vectorised), built at load.
     phi_kernels: Vec<Kernel>,
@@ -71,10 +76,11 @@ pub struct TrainedRange {
     pub links: Vec<f64>,
 }
 
-impl Networks {
-    /// Pairs a `Phi` file and a `v` file; both must be valid, of the right
-    /// kind and trained for the same arm.
-    pub fn new(phi: WeightsFile, v: WeightsFile) -> Result<Self> {
+impl<A: Learned> Networks<A> {
+    /// Pairs a `Phi` file and a `v` file of any arm; both must be valid,
+    /// of the right kind and trained for the same arm (the planar arm's
+    /// [`Networks::new`] too).
+    pub fn pair(phi: WeightsFile<A>, v: WeightsFile<A>) -> Result<Self> {
         phi.validate()?;
         v.validate()?;
         if phi.net != NetKind::Phi {
@@ -87,7 +93,7 @@ impl Networks {
                 "the second file holds Phi networks, expected the v network".into(),
             ));
         }
-        if !phi.arm.same_geometry(&v.arm) {
+        if !phi.arm.same_kinematics(&v.arm) {
             return Err(Error::Weights(
                 "the Phi and v files were trained for different arms".into(),
             ));
@@ -100,7 +106,11 @@ impl Networks {
     }
 
     /// The networks of two checked files, their kernels built in `precision`.
-    fn with_kernels(phi: Arc<WeightsFile>, v: Arc<WeightsFile>, precision: Precision) -> Self {
+    fn with_kernels(
+        phi: Arc<WeightsFile<A>>,
+        v: Arc<WeightsFile<A>>,
+        precision: Precision,
+    ) -> Self {
         let phi_kernels = phi
             .nets
             .iter()
@@ -142,30 +152,47 @@ impl Networks {
         }
     }
 
-    /// Networks from the JSON text of a `Phi` weights file and a `v` weights
-    /// file. Corrupt or mismatched files give [`Error::Weights`].
-    pub fn from_json(phi_json: &str, v_json: &str) -> Result<Self> {
-        let phi = WeightsFile::from_json(phi_json)
+    /// Networks of any arm from the JSON text of a `Phi` weights file and
+    /// a `v` weights file (the planar arm's [`Networks::from_json`] too).
+    /// Corrupt or mismatched files give [`Error::Weights`].
+    pub fn read(phi_json: &str, v_json: &str) -> Result<Self>
+    where
+        A: Readable,
+    {
+        let phi = WeightsFile::<A>::from_json(phi_json)
             .map_err(|e| Error::Weights(format!("Phi file: {}", inner(&e))))?;
-        let v = WeightsFile::from_json(v_json)
+        let v = WeightsFile::<A>::from_json(v_json)
             .map_err(|e| Error::Weights(format!("v file: {}", inner(&e))))?;
-        Self::new(phi, v)
+        Self::pair(phi, v)
     }
 
     /// The `Phi` weights file.
-    pub fn phi_file(&self) -> &WeightsFile {
+    pub fn phi_file(&self) -> &WeightsFile<A> {
         &self.phi
     }
 
     /// The `v` weights file.
-    pub fn v_file(&self) -> &WeightsFile {
+    pub fn v_file(&self) -> &WeightsFile<A> {
         &self.v
     }
 
     /// The arm the networks were trained for (the planner refuses them for
     /// another arm).
-    pub fn arm(&self) -> &Arm {
+    pub fn arm(&self) -> &A {
         &self.arm
+    }
+}
+
+impl Networks {
+    /// Pairs a `Phi` file and a `v` file of the planar arm ([`Networks::pair`]).
+    pub fn new(phi: WeightsFile, v: WeightsFile) -> Result<Self> {
+        Self::pair(phi, v)
+    }
+
+    /// The planar arm's networks from the JSON text of a `Phi` weights file
+    /// and a `v` weights file ([`Networks::read`]).
+    pub fn from_json(phi_json: &str, v_json: &str) -> Result<Self> {
+        Self::read(phi_json, v_json)
     }
 
     /// The trained range, for the page.

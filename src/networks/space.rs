@@ -16,17 +16,17 @@
 //! `(sin, cos)` of `theta_2..theta_n` (and `O'`); `docs/space.md` has how
 //! they were trained and how they do.
 
-use std::sync::Arc;
 #[cfg(feature = "embedded-weights")]
-use std::sync::OnceLock;
+use std::sync::{Arc, OnceLock};
 
 use serde::{Deserialize, Serialize};
 
 use super::file::{Encoding, InputRange, Learned, NetEntry, NetKind, Variant, WeightsFile, FORMAT};
+use super::Networks;
 use crate::error::{Error, Result};
 use crate::kinematics::sin_cos;
 use crate::nn::adam::AdamOptions;
-use crate::nn::{Kernel, Precision};
+
 use crate::space::pose::{cross, dot, sub};
 use crate::space::{Chain, Row, SpacePose, SpacePreset, Vec3, MAX_JOINTS};
 
@@ -48,6 +48,9 @@ impl Learned for Chain {
     type Training = SpaceTraining;
     fn joints(&self) -> usize {
         self.dof()
+    }
+    fn same_kinematics(&self, other: &Self) -> bool {
+        Chain::same_kinematics(self, other)
     }
     fn check_form(variant: Variant, encoding: Encoding) -> Result<()> {
         if variant == Variant::Equivariant && encoding == Encoding::Angles {
@@ -183,88 +186,17 @@ pub fn space_input_names(kind: NetKind, n: usize) -> Vec<String> {
 }
 
 /// A `Phi` network and a `v` network for one arm in space, in their
-/// run-time form.
-#[derive(Debug, Clone)]
-pub struct SpaceNetworks {
-    phi: SpaceWeightsFile,
-    v: SpaceWeightsFile,
-    phi_kernel: Kernel,
-    v_kernel: Kernel,
-}
+/// run-time form: the one [`Networks`] of every arm, of a chain.
+pub type SpaceNetworks = Networks<Chain>;
 
-impl SpaceNetworks {
-    /// Pairs a `Phi` file and a `v` file of the same arm.
-    pub fn new(phi: SpaceWeightsFile, v: SpaceWeightsFile) -> Result<Self> {
-        phi.validate()?;
-        v.validate()?;
-        if phi.net != NetKind::Phi || v.net != NetKind::V {
-            return Err(Error::Weights(
-                "expected a Phi file and then a v file".into(),
-            ));
-        }
-        if !phi.arm.same_kinematics(&v.arm) {
-            return Err(Error::Weights(
-                "the Phi and v files were trained for different arms".into(),
-            ));
-        }
-        let phi_kernel = Kernel::new(&phi.nets[0].mlp);
-        let v_kernel = Kernel::new(&v.nets[0].mlp);
-        Ok(Self {
-            phi,
-            v,
-            phi_kernel,
-            v_kernel,
-        })
-    }
-
-    /// The same networks computing in `precision` (their kernels built
-    /// again; `f64` is what [`SpaceNetworks::new`] builds).
-    pub fn with_precision(mut self, precision: Precision) -> Self {
-        self.phi_kernel = Kernel::with_precision(&self.phi.nets[0].mlp, precision);
-        self.v_kernel = Kernel::with_precision(&self.v.nets[0].mlp, precision);
-        self
-    }
-
-    /// The arithmetic of the networks' kernels.
-    pub fn precision(&self) -> Precision {
-        self.v_kernel.precision()
-    }
-
-    /// These networks computing in `precision`: the same ones where they
-    /// already do (a shipped set stays shared), else a copy with its
-    /// kernels built again.
-    pub fn in_precision(self: Arc<Self>, precision: Precision) -> Arc<Self> {
-        if self.precision() == precision {
-            self
-        } else {
-            Arc::new(SpaceNetworks::clone(&self).with_precision(precision))
-        }
-    }
-
-    /// Networks from the JSON text of a `Phi` file and a `v` file.
-    pub fn from_json(phi: &str, v: &str) -> Result<Self> {
-        let phi = SpaceWeightsFile::from_json(phi).map_err(|e| prefix("Phi file", e))?;
-        let v = SpaceWeightsFile::from_json(v).map_err(|e| prefix("v file", e))?;
-        Self::new(phi, v)
-    }
-
-    /// The `Phi` file.
-    pub fn phi_file(&self) -> &SpaceWeightsFile {
-        &self.phi
-    }
-
-    /// The `v` file.
-    pub fn v_file(&self) -> &SpaceWeightsFile {
-        &self.v
-    }
-
+impl Networks<Chain> {
     /// Refused unless the networks were trained for `chain`'s kinematics
     /// (its base, rows and flange; the capsules and limits may differ).
     pub fn check_chain(&self, chain: &Chain) -> Result<()> {
-        if chain.same_kinematics(&self.phi.arm) {
+        if chain.same_kinematics(&self.arm) {
             Ok(())
         } else {
-            Err(Error::NetworksUnavailable(match SpacePreset::of(&self.phi.arm) {
+            Err(Error::NetworksUnavailable(match SpacePreset::of(&self.arm) {
                 Some(p) => format!("the networks were trained for the arm '{}', not for this one", p.key),
                 None => "the networks were trained for another chain (the one their file records), not for this one".into(),
             }))
@@ -277,7 +209,7 @@ impl SpaceNetworks {
         self.check_dof(n, out.len(), 3 * n)?;
         let mut buf = [0.0; MAX_SPACE_INPUTS];
         let k = encode(pose.theta(), &mut buf);
-        self.phi_kernel.forward(&buf[..k], out);
+        self.phi_kernels[0].forward(&buf[..k], out);
         let (s, c) = sin_cos(pose.theta()[0]);
         let axis = pose.axis(0);
         for row in out.chunks_exact_mut(3) {
@@ -313,10 +245,10 @@ impl SpaceNetworks {
     }
 
     fn check_dof(&self, n: usize, len: usize, want: usize) -> Result<()> {
-        if n != self.phi.arm.dof() || len != want {
+        if n != self.arm.dof() || len != want {
             return Err(Error::DimensionMismatch {
                 what: "pose or output for the spatial networks".into(),
-                expected: self.phi.arm.dof(),
+                expected: self.arm.dof(),
                 found: n,
             });
         }
@@ -365,13 +297,6 @@ fn finite(out: &[f64], what: &str) -> Result<()> {
     }
 }
 
-fn prefix(what: &str, e: Error) -> Error {
-    match e {
-        Error::Weights(m) => Error::Weights(format!("{what}: {m}")),
-        other => other,
-    }
-}
-
 /// The shipped network sets for arms in space.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum SpaceNetworkSet {
@@ -416,7 +341,7 @@ impl SpaceNetworkSet {
         };
         cell.get_or_init(|| {
             let (phi, v) = self.files();
-            SpaceNetworks::from_json(phi, v)
+            SpaceNetworks::read(phi, v)
                 .map(Arc::new)
                 .map_err(|e| e.to_string())
         })

@@ -161,7 +161,7 @@ impl SpaceAtlasJob {
             (None, _) => None,
             // In the run's arithmetic, as on the page.
             (Some(_), Some(t)) => Some(
-                std::sync::Arc::new(SpaceNetworks::from_json(&t.phi, &t.v).map_err(js_err)?)
+                std::sync::Arc::new(SpaceNetworks::read(&t.phi, &t.v).map_err(js_err)?)
                     .in_precision(precision),
             ),
             (Some(m), None) => {

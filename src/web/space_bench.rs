@@ -57,7 +57,7 @@ pub fn bench_space_network_files(arm: &str) -> Vec<String> {
 fn networks(phi: Option<String>, v: Option<String>) -> Result<Option<Arc<SpaceNetworks>>, JsError> {
     match (phi, v) {
         (Some(phi), Some(v)) => Ok(Some(Arc::new(
-            SpaceNetworks::from_json(&phi, &v).map_err(js_err)?,
+            SpaceNetworks::read(&phi, &v).map_err(js_err)?,
         ))),
         _ => Ok(None),
     }

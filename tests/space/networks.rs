@@ -145,10 +145,10 @@ fn bad_files_and_the_wrong_arm_are_refused() {
     let (phi_text, v_text) = SpaceNetworkSet::PandaReach.files();
     // Swapped, truncated, another format, a non-finite range.
     assert!(matches!(
-        SpaceNetworks::from_json(v_text, phi_text),
+        SpaceNetworks::read(v_text, phi_text),
         Err(Error::Weights(_))
     ));
-    assert!(SpaceNetworks::from_json(&phi_text[..1000], v_text).is_err());
+    assert!(SpaceNetworks::read(&phi_text[..1000], v_text).is_err());
     let mut file = SpaceWeightsFile::from_json(phi_text).unwrap();
     file.format = "redundant-ik-weights/1".into();
     assert!(file.validate().unwrap_err().to_string().contains("format"));

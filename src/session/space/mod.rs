@@ -213,7 +213,7 @@ impl SpaceSession {
         v_json: &str,
         set: Option<SpaceNetworkSet>,
     ) -> Result<()> {
-        let nets = SpaceNetworks::from_json(phi_json, v_json)?;
+        let nets = SpaceNetworks::read(phi_json, v_json)?;
         nets.check_chain(&self.scene.arm)?;
         self.networks = Some(Arc::new(nets).in_precision(self.precision));
         self.network_choice = Some(match set {
