@@ -10,7 +10,7 @@
 
 import { join } from 'node:path';
 import assert from 'node:assert/strict';
-import { browser, test, open, clean, state, shots, BASE, pause, axe } from './harness.mjs';
+import { browser, test, open, clean, state, shots, BASE, pause, axe, saidSoFar, said } from './harness.mjs';
 
 const DESKTOP = { viewport: { width: 1366, height: 768 } };
 const PHONE = { viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true, deviceScaleFactor: 2 };
@@ -57,15 +57,8 @@ test('a11y: axe finds no serious or critical violation in any panel state, at 13
   assert.deepEqual(found, [], found.join('\n'));
 });
 
-/** Every text the live region took, with when (ms since the page started), from now on. */
-async function listen(page) {
-  await page.evaluate(() => {
-    window.__said = [];
-    const region = document.getElementById('announcer');
-    new MutationObserver(() => window.__said.push({ text: region.textContent, at: performance.now() })).observe(region, { childList: true, characterData: true, subtree: true });
-  });
-}
-const said = (page) => page.evaluate(() => window.__said);
+/** The texts the live region took from mark `from` on (harness.mjs, `listen`), with when (ms since the page started). */
+const saidAt = (page, from) => page.evaluate((k) => window.__said.slice(k), from);
 
 test('a11y: the live region says the first collision of a run, its end and result, a method switch, a task; the drawing has a text summary', async () => {
   const page = await open('?task=1', DESKTOP);
@@ -74,12 +67,12 @@ test('a11y: the live region says the first collision of a run, its end and resul
   const exact = list.find((m) => m.group === 'paper' && m.avoids && !m.networks.phi && !m.networks.v);
   await page.selectOption('#mode', bare.name);
   await page.selectOption('#speed', '4');
-  await listen(page);
+  const from = await saidSoFar(page);
   await page.click('#task1');
   await page.waitForFunction(() => window.demo.state().ended, null, { timeout: 20000 });
   await page.waitForFunction(() => window.__said.some((s) => s.text.includes('run ended')), null, { timeout: 5000 });
   // Said one after the other, or together where the end came within 1.5 s of the contact.
-  const texts = (await said(page)).flatMap((s) => s.text.split('; '));
+  const texts = await said(page, from);
   console.log(`measure: heard: ${texts.join(' | ')}`);
   const hits = texts.filter((t) => t.startsWith('collision'));
   assert.equal(hits.length, 1, `the first contact only: ${texts.join(' | ')}`);
@@ -110,10 +103,10 @@ test('a11y: the live region says at most one thing every 1.5 s, the latest', asy
   await page.evaluate(() => window.demo.controller.demo.setRunning(false));
   const list = (await page.evaluate(() => window.demo.methods())).filter((m) => !m.networks.phi && !m.networks.v);
   await page.waitForTimeout(1600);
-  await listen(page);
+  const mark = await saidSoFar(page);
   for (const m of list.slice(0, 3)) await page.selectOption('#mode', m.name);
   await page.waitForTimeout(2000);
-  const got = await said(page);
+  const got = await saidAt(page, mark);
   assert.deepEqual(got.map((s) => s.text), [`method: ${list[0].label}`, `method: ${list[2].label}`], 'the first at once, the last after the gap, the one between dropped');
   const gap = got[1].at - got[0].at;
   assert.ok(gap >= 1450 && gap < 1900, `${gap} ms between them`);

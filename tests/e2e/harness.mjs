@@ -31,7 +31,58 @@ export async function open(path = '', contextOptions = {}) {
   page.on('close', () => context.close().catch(() => {}));
   await page.goto(BASE + path);
   await page.waitForSelector('body[data-ready="true"]', { timeout: 15000 });
+  await listen(page);
   return page;
+}
+
+/**
+ * Records every text the page's live region (`#announcer`) takes, with
+ * when (ms since the page started), in `window.__said`: what a screen
+ * reader hears, each text in turn, where the region's text at one moment
+ * may already be the next announcement's (a run that ends just after a
+ * click says so). `open` listens from the start.
+ */
+export async function listen(page) {
+  await page.evaluate(() => {
+    const region = document.getElementById('announcer');
+    if (!region || window.__listening) return;
+    window.__listening = true;
+    window.__said = [];
+    new MutationObserver(() => window.__said.push({ text: region.textContent, at: performance.now() })).observe(region, {
+      childList: true,
+      characterData: true,
+      subtree: true,
+    });
+  });
+}
+
+/** How many texts the live region has taken so far: a mark for `heard` (listening from now on if a reload stopped it). */
+export async function saidSoFar(page) {
+  await listen(page);
+  return page.evaluate(() => window.__said?.length ?? 0);
+}
+
+/** The texts the live region took from mark `from` on, each part of a joint announcement (`; `) on its own. */
+export const said = (page, from = 0) => page.evaluate((k) => (window.__said ?? []).slice(k).flatMap((s) => s.text.split('; ')), from);
+
+/**
+ * Waits (up to 15 s) until the live region has said a text matching
+ * `pattern` since mark `from` (`saidSoFar` before the action); fails with
+ * what it said instead.
+ */
+export async function heard(page, pattern, from, timeout = 15000) {
+  await page
+    .waitForFunction(
+      ([k, source, flags]) => {
+        const re = new RegExp(source, flags);
+        return (window.__said ?? []).slice(k).some((s) => s.text.split('; ').some((part) => re.test(part)));
+      },
+      [from, pattern.source, pattern.flags],
+      { timeout },
+    )
+    .catch(() => {});
+  const texts = await said(page, from);
+  assert.ok(texts.some((t) => pattern.test(t)), `the live region said ${JSON.stringify(texts)}, nothing matching ${pattern}`);
 }
 
 export function clean(page) {

@@ -7,7 +7,7 @@
 
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
-import { test, open, clean, state, shots, nextFrames, axe } from './harness.mjs';
+import { test, open, clean, state, shots, nextFrames, axe, saidSoFar, heard } from './harness.mjs';
 import { cli, download, close } from './class-helpers.mjs';
 
 /** The angle (rad) between two rotations given by rows (nine numbers or three rows). */
@@ -22,12 +22,13 @@ const angle = (a, b) => {
 test("pose: the Hand menu makes the task the hand's full pose; the gizmo's rings by mouse, the keys and the fields turn the target as the core reports it; a qp run to its end replays on the command line", async () => {
   const page = await open('?arm=panda&method=qp&autoplay=0');
   assert.equal(await page.isVisible('#target-roll'), false, 'no orientation fields for the position task');
+  let said = await saidSoFar(page);
   await page.selectOption('#hand-task', 'pose');
   await nextFrames(page);
   let s = await state(page);
   assert.equal(s.task, 'pose');
   assert.ok(s.target_rpy.every((a, i) => Math.abs(a - s.hand_rpy[i]) < 1e-9), 'the target starts turned as the hand is');
-  assert.match(await page.textContent('#announcer'), /full pose/);
+  await heard(page, /full pose/, said);
   assert.equal(await page.isVisible('#target-roll'), true);
 
   // The gizmo turns the target: its z ring (about world z) dragged by mouse.
@@ -51,6 +52,7 @@ test("pose: the Hand menu makes the task the hand's full pose; the gizmo's rings
     }
   }
   assert.ok(at, "the gizmo's z ring is found around the target");
+  said = await saidSoFar(page);
   await page.mouse.down();
   // Along the ring, a quarter of the way round.
   for (let k = 1; k <= 8; k++) {
@@ -66,17 +68,18 @@ test("pose: the Hand menu makes the task the hand's full pose; the gizmo's rings
   assert.ok(angle(drawn, core) < 0.01, `the gizmo is turned as the core has the target: ${angle(drawn, core)} rad`);
   const where = await page.evaluate(() => window.demo.controller.view3d.three.gizmoAt());
   assert.ok(Math.hypot(...where.map((d, i) => d - s.target[i])) < 1e-3, 'and sits on it');
-  assert.match(await page.textContent('#announcer'), /turned to roll -?\d+, pitch -?\d+, yaw -?\d+ degrees/);
+  await heard(page, /turned to roll -?\d+, pitch -?\d+, yaw -?\d+ degrees/, said);
   await page.locator('#stage').screenshot({ path: join(shots, 'pose-gizmo.png') });
 
   // The keys: z turns the target by 15 degrees about world z.
   const keyed0 = await page.evaluate(() => window.demo.controller.demo.view().target_rotation);
   await page.focus('#stage');
+  said = await saidSoFar(page);
   await page.keyboard.press('z');
   await nextFrames(page);
   const keyed1 = await page.evaluate(() => window.demo.controller.demo.view().target_rotation);
   assert.ok(Math.abs(angle(keyed0, keyed1) - Math.PI / 12) < 1e-9, `z turned by 15 degrees: ${angle(keyed0, keyed1)}`);
-  assert.match(await page.textContent('#announcer'), /^target turned about z: roll/);
+  await heard(page, /^target turned about z: roll/, said);
 
   // The fields, in degrees: the target as typed, the gizmo following.
   await page.fill('#target-roll', '180');

@@ -10,7 +10,7 @@
 import assert from 'node:assert/strict';
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { test, open, clean, state, shots, textMatching } from './harness.mjs';
+import { test, open, clean, state, shots, textMatching, saidSoFar, heard } from './harness.mjs';
 import { serve } from './serve.mjs';
 import { cli, download, scratch } from './class-helpers.mjs';
 // fflate as make web installs it for the page's own unzip (tools/package.json).
@@ -217,10 +217,11 @@ test("your robot: its URDF's visuals drawn on the core's frames (three's matrice
   const volumes = () => page.evaluate(() => window.demo.controller.view3d.three.volumes());
   assert.equal(await volumes(), false);
   await page.locator('#stage').screenshot({ path: join(shots, 'robot-visuals.png') });
+  const said = await saidSoFar(page);
   await page.click('#show-volumes');
   assert.equal(await volumes(), true);
   assert.equal(await page.getAttribute('#show-volumes', 'aria-pressed'), 'true');
-  assert.match(await page.textContent('#announcer'), /collision volumes shown/);
+  await heard(page, /collision volumes shown/, said);
   await page.locator('#stage').screenshot({ path: join(shots, 'robot-volumes.png') });
   clean(page);
   await page.close();

@@ -7,7 +7,7 @@
 
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
-import { test, open, clean, state, textMatching, shots, nextFrames, here } from './harness.mjs';
+import { test, open, clean, state, textMatching, shots, nextFrames, here, saidSoFar, heard } from './harness.mjs';
 
 test('space controls: the tour is not shown, the keys hint is the drawing in space\'s, Task plays', async () => {
   const page = await open('?arm=panda&method=numerical&autoplay=0');
@@ -83,12 +83,13 @@ test('space controls: the slice atlas shows a cell\'s numbers under the pointer,
   assert.match(tip, /No avoidance: /);
   assert.match(tip, /Numerical: /);
   assert.equal(await page.getAttribute('#atlas-tip', 'data-cell'), String(cell.k));
+  const placed = await saidSoFar(page);
   await page.mouse.down();
   await page.mouse.up();
   const s = await state(page);
   a.cells[cell.k].centre.forEach((v, i) => assert.ok(Math.abs(s.spheres[0][i] - v) < 1e-9, `sphere ${s.spheres[0]} at the cell ${a.cells[cell.k].centre}`));
   assert.match(page.url(), /obstacles=/, 'the address has the placed sphere');
-  await textMatching(page, '#announcer', /placed on the atlas's cell/);
+  await heard(page, /placed on the atlas's cell/, placed);
   clean(page);
   await page.close();
 });
@@ -189,6 +190,7 @@ test('space controls: self-motion: the slider and an elbow dragged with the mous
     return null;
   });
   assert.ok(elbow, 'elbow 4 is on the drawing');
+  const said = await saidSoFar(page);
   await page.mouse.move(elbow.x, elbow.y);
   await page.mouse.down();
   for (let k = 1; k <= 10; k++) await page.mouse.move(elbow.x + 4 * k, elbow.y + 2 * k);
@@ -198,7 +200,7 @@ test('space controls: self-motion: the slider and an elbow dragged with the mous
   assert.ok(Math.hypot(...dragged.hand.map((v, i) => v - before.hand[i])) < 2e-3, `the hand held: ${dragged.hand}`);
   assert.equal(dragged.spheres.length, 1);
   assert.deepEqual(dragged.target, before.target, 'the target stayed');
-  await textMatching(page, '#announcer', /elbow 4 moved, the hand held still/);
+  await heard(page, /elbow 4 moved, the hand held still/, said);
   await page.screenshot({ path: `${shots}/space-self-motion.png` });
   // The new start is in the address: a reload starts from it.
   await page.waitForFunction(() => /theta0=/.test(location.search), null, { timeout: 10000 });

@@ -10,7 +10,7 @@
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
 import { readFileSync } from 'node:fs';
-import { test, open, clean, state, shots, axe } from './harness.mjs';
+import { test, open, clean, state, shots, axe, saidSoFar, heard } from './harness.mjs';
 import { cli, download, close } from './class-helpers.mjs';
 
 const client = (page, p) => page.evaluate(([x, y, z]) => window.demo.worldToClient(x, y, z), p);
@@ -91,6 +91,7 @@ test('space: a sphere dragged with the mouse stays under the pointer within 2 px
   await paused(page);
   const s0 = await state(page);
   const c = await client(page, s0.spheres[0]);
+  const said = await saidSoFar(page);
   await page.mouse.move(c.x, c.y);
   await page.mouse.down();
   for (const [dx, dy] of [
@@ -109,7 +110,7 @@ test('space: a sphere dragged with the mouse stays under the pointer within 2 px
   assert.notDeepEqual(s1.spheres[0], s0.spheres[0]);
   assert.ok(s1.run_revision > s0.run_revision, 'the run was computed again');
   assert.match(page.url(), /obstacles=/, 'the address has the moved sphere');
-  assert.match(await page.textContent('#announcer'), /moved: sphere 1 at x/);
+  await heard(page, /moved: sphere 1 at x/, said);
   clean(page);
   await page.close();
 });
@@ -132,16 +133,18 @@ test('space: the empty drawing orbits with the mouse, the wheel zooms, the keys 
   await page.focus('#stage');
   await page.keyboard.press('0');
   assert.deepEqual((await state(page)).view, [yaw0, pitch0, d0], '0 resets the view');
+  let said = await saidSoFar(page);
   await page.keyboard.press('o');
   close((await state(page)).view[0], yaw0 + Math.PI / 12, 1e-9, 'o orbits by 15 degrees');
-  assert.match(await page.textContent('#announcer'), /view from \d+ degrees round/);
+  await heard(page, /view from \d+ degrees round/, said);
   await page.keyboard.press('n');
   assert.equal((await state(page)).selected, 'sphere 1');
   const before = (await state(page)).spheres[0];
+  said = await saidSoFar(page);
   await page.keyboard.press('ArrowRight');
   const after = (await state(page)).spheres[0];
   close(Math.hypot(after[0] - before[0], after[1] - before[1], after[2] - before[2]), 0.05, 2e-4, 'an arrow moves it 5 cm');
-  assert.match(await page.textContent('#announcer'), /sphere 1 at x/);
+  await heard(page, /sphere 1 at x/, said);
   await page.keyboard.press('n');
   assert.equal((await state(page)).selected, 'target');
   const t0 = (await state(page)).target;

@@ -6,7 +6,7 @@
 
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
-import { test, open, clean, state, shots, nextFrames } from './harness.mjs';
+import { test, open, clean, state, shots, nextFrames, saidSoFar, heard } from './harness.mjs';
 
 test("3-D view: three's matrices put every link, joint and sphere where the core says, at a random pose of each arm in space", async () => {
   for (const arm of ['panda', 'iiwa14']) {
@@ -74,6 +74,7 @@ test('3-D view: the gizmo dragged along its x arrow by mouse moves the target al
     if ((await page.evaluate(() => window.demo.controller.view3d.gizmoAxis())) === 'X') at = [c0.x + u[0] * k, c0.y + u[1] * k];
   }
   assert.ok(at, "the gizmo's x arrow is found along the x axis's image");
+  const said = await saidSoFar(page);
   await page.mouse.down();
   await page.mouse.move(at[0] + u[0] * 50, at[1] + u[1] * 50, { steps: 8 });
   await page.mouse.up();
@@ -83,7 +84,7 @@ test('3-D view: the gizmo dragged along its x arrow by mouse moves the target al
   assert.ok(Math.abs(after[1] - before[1]) < 1e-9 && Math.abs(after[2] - before[2]) < 1e-9, `and along x only: ${before} -> ${after}`);
   const drawn = await page.evaluate(() => window.demo.controller.view3d.three.gizmoAt());
   assert.ok(Math.hypot(...drawn.map((d, i) => d - after[i])) < 1e-3, `the gizmo is where the core has the target: ${drawn} against ${after}`);
-  assert.match(await page.textContent('#announcer'), /^moved: target at x \d\.\d\d, y \d\.\d\d, z \d\.\d\d m$/);
+  await heard(page, /^moved: target at x \d\.\d\d, y \d\.\d\d, z \d\.\d\d m$/, said);
   assert.match(page.url(), /target=/, 'the address keeps the moved target');
   // The arrow keys still move the selected item, and the gizmo follows.
   await page.focus('#stage');
