@@ -26,7 +26,6 @@ use super::Networks;
 use crate::error::{Error, Result};
 use crate::kinematics::sin_cos;
 use crate::nn::adam::AdamOptions;
-
 use crate::space::pose::{cross, dot, sub};
 use crate::space::{Chain, Row, SpacePose, SpacePreset, Vec3, MAX_JOINTS};
 
