@@ -19,8 +19,12 @@ pub const SELF_MOTION_DT: f64 = 0.02;
 /// Gain `K` (1/s) of the loop that holds the hand.
 pub const HOLD_GAIN: f64 = 10.0;
 /// Stiffness `G` (1/(m s)) of the pull on a dragged elbow: the force is
-/// `f = G (to - P(k))`, so the elbow follows the pointer within about
-/// `1 / (G |J_k|^2)`, a quarter of a second for the paper's arm.
+/// `f = G (to - P(k))`. Only the null space's share of `J_k^T f` moves
+/// the arm, so the elbow approaches the pointer more slowly than
+/// `1 / (G |J_k|^2)` (a quarter of a second on the paper's arm) would
+/// say. A pointer move integrates a fixed number of steps
+/// ([`crate::session::self_motion::DRAG_STEPS`]), so the elbow trails a
+/// fast pointer and stops where the last move left it.
 pub const PULL_GAIN: f64 = 10.0;
 
 /// The self-motion's scratch space for an `n`-joint arm `A` whose hand has
