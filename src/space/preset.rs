@@ -83,7 +83,8 @@ impl SpacePreset {
 
 /// Every named arm, the planar presets ([`crate::arm::PRESETS`]) and the
 /// arms in space ([`PRESETS`]): one namespace, which the command line's
-/// `--arm`, the address's `arm=` and Python's `Robot.preset` read.
+/// `--arm` and Python's `Robot.preset` read (the page's address reads the
+/// two tables through its module).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Named {
     /// A planar arm.
@@ -99,14 +100,6 @@ impl Named {
         SpacePreset::by_key(key)
             .map(Named::Space)
             .or_else(|| Preset::by_key(key).map(Named::Planar))
-    }
-
-    /// Its name.
-    pub fn key(&self) -> &'static str {
-        match self {
-            Named::Planar(p) => p.key,
-            Named::Space(p) => p.key,
-        }
     }
 
     /// What a refusal of an unknown name lists: the planar names, then
