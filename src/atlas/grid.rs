@@ -31,6 +31,22 @@ impl Grid {
         Ok(g)
     }
 
+    /// Points per side as a script passes them (a number): a whole number
+    /// from 2 to [`MAX_GRID`].
+    pub fn points_per_side(n: f64) -> Result<usize> {
+        const WHAT: &str = "grid points per side";
+        crate::error::within(WHAT, n, 2.0, MAX_GRID as f64)?;
+        if n.fract() != 0.0 {
+            return Err(Error::OutOfRange {
+                what: format!("{WHAT} (a whole number)"),
+                value: n,
+                min: 2.0,
+                max: MAX_GRID as f64,
+            });
+        }
+        Ok(n as usize)
+    }
+
     /// The default region for an arm: the box around its reach, the disc of
     /// radius `L1 + ... + Ln` about the top of the post, cut at the floor
     /// the post stands on (`y >= 0`). Wherever else an obstacle sits, no

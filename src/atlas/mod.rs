@@ -7,12 +7,13 @@
 //! A run is never cut short at its first collision, so `min_distance` is the
 //! run's true minimum over its samples. Each method keeps one planner and
 //! moves the obstacle with [`Planner::move_obstacle`], so the runs allocate
-//! nothing. The work is done in chunks ([`Job::advance`]) so that a caller
+//! nothing. The work is done in chunks ([`Chunked::advance`]) so that a caller
 //! can report progress and cancel between them: a progress bar in the
 //! command-line tool, a Web Worker's messages in the page.
 
 mod geometry;
 mod grid;
+mod job;
 mod read;
 pub mod space;
 mod summary;
@@ -31,6 +32,7 @@ use crate::scene::Scene;
 pub use geometry::unavoidable;
 pub use geometry::PlaneGeometry;
 pub use grid::{Grid, DEFAULT_GRID, MAX_GRID};
+pub use job::{Chunked, Head};
 pub use summary::{Agreement, Clearance, MethodSummary, Rate};
 pub use sweep::{Mapped, Sweep};
 
@@ -302,13 +304,17 @@ impl Atlas {
 }
 
 /// A planar atlas being computed, a chunk of cells at a time: the one
-/// [`Sweep`] over the arm's plane, and what its summaries need.
+/// [`Sweep`] over the arm's plane ([`Chunked`]), and what its summaries
+/// need.
+pub type Job = Chunked<Arm, 2, 2, PlaneHead>;
+
+/// What a planar atlas records beside its cells: the request, the moved
+/// obstacle's radius and the networks (their trained region).
 #[derive(Debug, Clone)]
-pub struct Job {
+pub struct PlaneHead {
     spec: Spec,
     radius: f64,
     networks: Option<Arc<Networks>>,
-    sweep: Sweep<Arm, 2>,
 }
 
 impl Job {
@@ -332,44 +338,19 @@ impl Job {
             .radius;
         let surrogate = networks.clone().map(|n| n as Arc<dyn Surrogate>);
         let sweep = Sweep::new(&spec.scene, (), spec.grid, &spec.methods, surrogate, radius)?;
-        Ok(Self {
+        let head = PlaneHead {
             spec,
             radius,
             networks,
-            sweep,
-        })
+        };
+        Ok(Chunked::of_sweep(sweep, head))
     }
+}
 
-    /// Cells in the grid.
-    pub fn total(&self) -> usize {
-        self.sweep.total()
-    }
-
-    /// Cells computed so far.
-    pub fn done(&self) -> usize {
-        self.sweep.done()
-    }
-
-    /// Whether every cell is computed.
-    pub fn is_done(&self) -> bool {
-        self.sweep.is_done()
-    }
-
-    /// Computes up to `cells` more cells on this thread; returns how many
-    /// are done in all.
-    pub fn advance(&mut self, cells: usize) -> usize {
-        self.sweep.advance(cells)
-    }
-
-    /// [`Job::advance`] across the machine's cores (rayon).
-    #[cfg(all(feature = "parallel", not(target_family = "wasm")))]
-    pub fn advance_parallel(&mut self, cells: usize) -> usize {
-        self.sweep.advance_parallel(cells)
-    }
-
-    /// The atlas with its summaries; refused while cells are missing.
-    pub fn finish(self) -> Result<Atlas> {
-        let cells = self.sweep.cells("atlas cells computed")?;
+impl Head<2> for PlaneHead {
+    type Atlas = Atlas;
+    const CELLS: &'static str = "atlas cells computed";
+    fn finish(self, _grid: Grid, cells: Vec<Cell>) -> Result<Atlas> {
         let trained_region = self.networks.as_ref().map(|n| {
             let r = n.trained_range();
             [

@@ -20,7 +20,7 @@ use crate::networks::space::SpaceNetworks;
 use crate::planner::Method;
 use crate::scene::{PoseScene, SpaceScene};
 use crate::space::Vec3;
-pub use job::SliceJob;
+pub use job::{SliceHead, SliceJob};
 
 /// The side of the default region (m).
 pub const DEFAULT_SIDE: f64 = 0.8;
@@ -192,7 +192,7 @@ pub fn slice(
     methods: &[Method],
     networks: Option<&Arc<SpaceNetworks>>,
 ) -> Result<SliceAtlas> {
-    to_end(SliceJob::new(scene, plane, grid, methods, networks)?)
+    SliceJob::new(scene, plane, grid, methods, networks)?.to_end()
 }
 
 /// [`slice()`] for the hand's pose task (Case 2 with the networks' `v`;
@@ -204,19 +204,7 @@ pub fn pose_slice(
     methods: &[Method],
     networks: Option<&Arc<SpaceNetworks>>,
 ) -> Result<SliceAtlas> {
-    to_end(SliceJob::pose(scene, plane, grid, methods, networks)?)
-}
-
-/// Runs `job` to the end, across the machine's cores with the feature
-/// `parallel`.
-fn to_end<A: crate::atlas::Mapped<M, 3>, const M: usize>(
-    mut job: SliceJob<A, M>,
-) -> Result<SliceAtlas> {
-    #[cfg(all(feature = "parallel", not(target_family = "wasm")))]
-    job.advance_parallel(usize::MAX);
-    #[cfg(not(all(feature = "parallel", not(target_family = "wasm"))))]
-    job.advance(usize::MAX);
-    job.finish()
+    SliceJob::pose(scene, plane, grid, methods, networks)?.to_end()
 }
 
 impl SliceAtlas {

@@ -7,8 +7,9 @@
 //! Worker a row at a time. What differs by arm is [`Mapped`]: where the
 //! grid lies (the plane of a planar arm; an axis-aligned plane in space),
 //! what decides `start_overlap` and `path_blocked` before any run, and how
-//! the obstacle is moved. The planar atlas ([`super::Job`]) and the slice
-//! atlas in space ([`super::space::SliceJob`]) are its two front ends.
+//! the obstacle is moved. One job advances it ([`super::Chunked`]), which
+//! the planar atlas ([`super::Job`]) and the slice atlas in space
+//! ([`super::space::SliceJob`]) name.
 
 use super::{Cell, Class, Grid, Outcome};
 use crate::error::{Error, Result};

@@ -4,12 +4,11 @@
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
-use std::sync::Arc;
 use std::time::Instant;
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use redundant_ik::atlas::{Atlas, Class, Grid, Job, Spec, DEFAULT_GRID};
+use redundant_ik::atlas::{Atlas, Chunked, Class, Grid, Head, Job, Mapped, Spec, DEFAULT_GRID};
 use redundant_ik::Method;
 
 use super::simulate::SceneArgs;
@@ -94,15 +93,12 @@ pub fn run(args: &AtlasArgs) -> Result<(), String> {
         methods,
         task: Some(args.scene.task()?),
     };
-    let threads = match args.threads {
-        Some(0) => return Err("--threads must be at least 1".into()),
-        Some(t) => t,
-        None => std::thread::available_parallelism().map_or(1, |n| n.get()),
-    };
+    let threads = threads(args)?;
+    let job = Job::new(spec, networks).map_err(|e| e.to_string())?;
 
     #[allow(clippy::disallowed_methods)] // the native CLI has a clock
     let start = Instant::now();
-    let atlas = compute(spec, networks, threads)?;
+    let atlas = compute(job, threads)?;
     let seconds = start.elapsed().as_secs_f64();
 
     if let Some(path) = &args.out {
@@ -120,14 +116,28 @@ pub fn run(args: &AtlasArgs) -> Result<(), String> {
     emit(&report(&atlas, seconds, threads))
 }
 
-/// Computes the atlas a row at a time, with a progress bar on a terminal.
-fn compute(
-    spec: Spec,
-    networks: Option<Arc<redundant_ik::networks::Networks>>,
+/// The threads of an atlas: `--threads`, or one per core.
+pub(super) fn threads(args: &AtlasArgs) -> Result<usize, String> {
+    match args.threads {
+        Some(0) => Err("--threads must be at least 1".into()),
+        Some(t) => Ok(t),
+        None => Ok(std::thread::available_parallelism().map_or(1, |n| n.get())),
+    }
+}
+
+/// Runs `job` (the planar atlas or a slice in space) to the end a row, or
+/// a row per thread, at a time on `threads` threads, with a progress bar
+/// on a terminal; stopped between rows where the user asks
+/// ([`super::embed::interrupted`]).
+pub(super) fn compute<A, const M: usize, const D: usize, H>(
+    mut job: Chunked<A, M, D, H>,
     threads: usize,
-) -> Result<Atlas, String> {
-    let row = spec.grid.n;
-    let mut job = Job::new(spec, networks).map_err(|e| e.to_string())?;
+) -> Result<H::Atlas, String>
+where
+    A: Mapped<M, D>,
+    H: Head<D>,
+{
+    let row = job.row();
     let bar = ProgressBar::new(job.total() as u64).with_style(
         ProgressStyle::with_template("atlas {bar:40} {pos}/{len} cells, {eta} left")
             .map_err(|e| e.to_string())?,

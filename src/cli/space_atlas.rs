@@ -58,15 +58,7 @@ pub fn atlas(args: &super::atlas::AtlasArgs, job: Job) -> Result<(), String> {
         None => default_region(&scene, plane),
     };
     let grid = Grid::new(region, args.grid).map_err(|e| e.to_string())?;
-    let threads = match args.threads {
-        Some(0) => return Err("--threads must be at least 1".into()),
-        Some(t) => t,
-        None => std::thread::available_parallelism().map_or(1, |n| n.get()),
-    };
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| format!("cannot start {threads} threads: {e}"))?;
+    let threads = super::atlas::threads(args)?;
     #[allow(clippy::disallowed_methods)] // the native CLI has a clock
     let start = std::time::Instant::now();
     let is_pose = pose.is_some();
@@ -76,11 +68,11 @@ pub fn atlas(args: &super::atlas::AtlasArgs, job: Job) -> Result<(), String> {
             let scene =
                 PoseScene::from_space(scene.clone(), spec.orientation, spec.weight).map_err(e)?;
             let job = SliceJob::pose(&scene, plane, grid, &methods, nets.as_ref()).map_err(e)?;
-            to_end(job, &pool, threads)
+            super::atlas::compute(job, threads)
         }
         None => {
             let job = SliceJob::new(&scene, plane, grid, &methods, nets.as_ref()).map_err(e)?;
-            to_end(job, &pool, threads)
+            super::atlas::compute(job, threads)
         }
     }?;
     let seconds = start.elapsed().as_secs_f64();
@@ -155,29 +147,4 @@ pub fn atlas(args: &super::atlas::AtlasArgs, job: Job) -> Result<(), String> {
     }
     let _ = writeln!(out, "\nsuccess: no collision, no joint past a limit and within 5 mm of the target, over the cells where avoidance is possible");
     emit(&out)
-}
-
-/// Runs `job` to the end a row (or a row per thread) at a time, on
-/// `threads` threads of `pool`; stopped between rows where the user asks
-/// ([`super::embed::interrupted`]).
-fn to_end<A, const M: usize>(
-    mut job: redundant_ik::atlas::space::SliceJob<A, M>,
-    pool: &rayon::ThreadPool,
-    threads: usize,
-) -> Result<redundant_ik::atlas::space::SliceAtlas, String>
-where
-    A: redundant_ik::atlas::Mapped<M, 3>,
-{
-    let row = job.row();
-    while !job.is_done() {
-        if super::embed::interrupted() {
-            return Err(super::embed::INTERRUPTED.into());
-        }
-        if threads == 1 {
-            job.advance(row);
-        } else {
-            pool.install(|| job.advance_parallel(row * threads));
-        }
-    }
-    job.finish().map_err(|e| e.to_string())
 }

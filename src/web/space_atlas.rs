@@ -10,8 +10,7 @@ use wasm_bindgen::prelude::*;
 use super::js_err;
 use super::worker::{read_space_run, SpaceRun};
 use crate::atlas::space::{default_region, Plane, SliceJob, DEFAULT_SLICE_GRID};
-use crate::atlas::{Grid, MAX_GRID};
-use crate::error;
+use crate::atlas::Grid;
 use crate::networks::space::{SpaceNetworkSet, SpaceNetworks};
 use crate::planner::{methods, Method};
 use crate::run::NetworkChoice;
@@ -134,16 +133,7 @@ impl SpaceAtlasJob {
         };
         let n = match o.n {
             None => DEFAULT_SLICE_GRID,
-            Some(n) => {
-                let n = error::within("grid points per side", n, 2.0, MAX_GRID as f64)
-                    .map_err(js_err)?;
-                if n.fract() != 0.0 {
-                    return Err(JsError::new(&format!(
-                        "grid points per side must be a whole number (got {n})"
-                    )));
-                }
-                n as usize
-            }
+            Some(n) => Grid::points_per_side(n).map_err(js_err)?,
         };
         let region = match o.region.as_deref() {
             None => default_region(&scene, plane),

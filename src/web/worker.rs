@@ -10,7 +10,7 @@ use wasm_bindgen::prelude::*;
 use super::{js_err, now_ms};
 use crate::atlas::{Grid, Job, Spec, DEFAULT_GRID};
 use crate::bench;
-use crate::error::{self, Error};
+use crate::error::Error;
 use crate::networks;
 use crate::planner::{methods, Method};
 use crate::run::{NetworkChoice, Run};
@@ -178,21 +178,7 @@ impl AtlasJob {
         };
         let n = match options.n {
             None => DEFAULT_GRID,
-            Some(n) => {
-                let n = error::within(
-                    "grid points per side",
-                    n,
-                    2.0,
-                    crate::atlas::MAX_GRID as f64,
-                )
-                .map_err(js_err)?;
-                if n.fract() != 0.0 {
-                    return Err(JsError::new(&format!(
-                        "grid points per side must be a whole number (got {n})"
-                    )));
-                }
-                n as usize
-            }
+            Some(n) => Grid::points_per_side(n).map_err(js_err)?,
         };
         let grid = match options.region.as_deref() {
             None => Grid::around_reach(&run.scene.arm, n),

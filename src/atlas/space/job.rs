@@ -7,24 +7,43 @@
 use std::sync::Arc;
 
 use super::{Plane, SliceAtlas};
-use crate::atlas::{Class, Grid, Mapped, Sweep};
+use crate::atlas::{Cell, Chunked, Class, Grid, Head, Mapped, Sweep};
 use crate::error::{Error, Result};
 use crate::networks::space::SpaceNetworks;
 use crate::planner::{Method, Networks, Planner};
 use crate::scene::{PoseScene, SpacePath, SpaceScene};
 use crate::space::{clearance, Chain, PoseChain, SpacePose, Sphere, Vec3};
 
-/// A slice atlas being computed, a chunk of cells at a time: what
-/// [`super::slice`] runs, and what the page's worker runs a row at
+/// A slice atlas being computed, a chunk of cells at a time ([`Chunked`]):
+/// what [`super::slice`] runs, and what the page's worker runs a row at
 /// a time (`SpaceAtlasJob`, src/web/space_atlas.rs).
 /// For the hand's position (`SliceJob`) or its pose
 /// (`SliceJob<PoseChain, 6>`, [`SliceJob::pose`]).
+pub type SliceJob<A = Chain, const M: usize = 3> = Chunked<A, M, 3, SliceHead>;
+
+/// What a slice atlas records beside its cells: its plane, the moved
+/// sphere's radius and the methods.
 #[derive(Debug, Clone)]
-pub struct SliceJob<A: Mapped<M, 3> = Chain, const M: usize = 3> {
+pub struct SliceHead {
     plane: Plane,
     radius: f64,
     methods: Vec<Method>,
-    sweep: Sweep<A, M, 3>,
+}
+
+impl Head<3> for SliceHead {
+    type Atlas = SliceAtlas;
+    const CELLS: &'static str = "slice atlas cells computed";
+    /// `arm` is left `None` (the caller names its preset).
+    fn finish(self, grid: Grid, cells: Vec<Cell<3>>) -> Result<SliceAtlas> {
+        Ok(SliceAtlas {
+            arm: None,
+            plane: self.plane,
+            grid,
+            radius: self.radius,
+            methods: self.methods,
+            cells,
+        })
+    }
 }
 
 impl SliceJob {
@@ -121,60 +140,12 @@ where
                 reach,
             });
         }
-        Ok(Self {
+        let head = SliceHead {
             plane,
             radius,
             methods: methods.to_vec(),
-            sweep,
-        })
-    }
-}
-
-impl<A: Mapped<M, 3>, const M: usize> SliceJob<A, M> {
-    /// Cells in the grid.
-    pub fn total(&self) -> usize {
-        self.sweep.total()
-    }
-
-    /// Cells computed so far.
-    pub fn done(&self) -> usize {
-        self.sweep.done()
-    }
-
-    /// Whether every cell is computed.
-    pub fn is_done(&self) -> bool {
-        self.sweep.is_done()
-    }
-
-    /// Points per side: a row is a sensible chunk.
-    pub fn row(&self) -> usize {
-        self.sweep.row()
-    }
-
-    /// Computes up to `cells` more cells on this thread, in order; returns
-    /// how many are done in all.
-    pub fn advance(&mut self, cells: usize) -> usize {
-        self.sweep.advance(cells)
-    }
-
-    /// [`Self::advance`] across the machine's cores (rayon).
-    #[cfg(all(feature = "parallel", not(target_family = "wasm")))]
-    pub fn advance_parallel(&mut self, cells: usize) -> usize {
-        self.sweep.advance_parallel(cells)
-    }
-
-    /// The atlas; refused while cells are missing. `arm` is left `None`
-    /// (the caller names its preset).
-    pub fn finish(self) -> Result<SliceAtlas> {
-        let grid = *self.sweep.grid();
-        Ok(SliceAtlas {
-            arm: None,
-            plane: self.plane,
-            grid,
-            radius: self.radius,
-            methods: self.methods,
-            cells: self.sweep.cells("slice atlas cells computed")?,
-        })
+        };
+        Ok(Chunked::of_sweep(sweep, head))
     }
 }
 
