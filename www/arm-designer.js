@@ -6,6 +6,7 @@
 
 import { applied, follow } from './place-fields.js';
 import { coordinate } from './format.js';
+import { flatBalls } from './simulate-options.js';
 import { limits, formatArm, parseJointLimits, formatJointLimits, parseRateLimits, formatRateLimits } from './module.js';
 
 /**
@@ -14,16 +15,7 @@ import { limits, formatArm, parseJointLimits, formatJointLimits, parseRateLimits
  * array is taken as already flat (parseObstacles() returns one).
  */
 export function flatObstacles(list) {
-  if (ArrayBuffer.isView(list)) return list;
-  if (!Array.isArray(list)) throw new Error('obstacles: expected a list of [x, y, r]');
-  const radius = limits().default_radius;
-  return Float64Array.from(
-    list.flatMap((o) => {
-      const v = Array.isArray(o) ? o : [o?.x, o?.y, o?.r];
-      if (v.length < 2 || v.length > 3) throw new Error('an obstacle is [x, y] or [x, y, r]');
-      return [Number(v[0]), Number(v[1]), v[2] === undefined ? radius : Number(v[2])];
-    }),
-  );
+  return flatBalls(list, 2, limits().default_radius);
 }
 
 /** `x,y,r;x,y,r` of the obstacles in the state (what parseObstacles reads). */

@@ -15,6 +15,7 @@
 import { describe, methods, usesNetworks } from './module.js';
 import { storedWeights, storeWeights, forgetWeights } from './weights-store.js';
 import { mountArmDesigner, flatObstacles } from './arm-designer.js';
+import { simulateWith } from './simulate-options.js';
 import { mountTraining } from './training.js';
 
 export function mountPlayground(root, demo, { attempt, show, changed }) {
@@ -93,26 +94,9 @@ export function mountPlayground(root, demo, { attempt, show, changed }) {
    * (`mode`, the older name of `method`, is read too).
    */
   function simulate(options) {
-    const allowed = ['method', 'target', 'obstacles', 'tf', 'theta0', 'feedback', 'refine'];
-    if (!options || typeof options !== 'object') throw new Error('simulate expects { method, target?, obstacles?, tf?, theta0?, feedback?, refine? }');
-    for (const k of Object.keys(options)) {
-      if (!allowed.includes(k) && k !== 'mode') throw new Error(`simulate: unknown option '${k}', expected one of ${allowed.join(', ')}`);
-    }
-    const nums = (v, what) => {
-      if (v === undefined) return undefined;
-      if (!Array.isArray(v)) throw new Error(`simulate: ${what} must be a list of numbers`);
-      return Float64Array.from(v, Number);
-    };
-    return demo.simulate(
-      String(options.method ?? options.mode),
-      nums(options.target, 'target'),
-      options.obstacles === undefined ? undefined : flatObstacles(options.obstacles),
-      options.tf === undefined ? undefined : Number(options.tf),
-      nums(options.theta0, 'theta0'),
-      options.feedback === undefined ? undefined : Number(options.feedback),
-      options.refine === undefined ? undefined : Number(options.refine),
-    );
+    return simulateWith(demo, options, flatObstacles);
   }
+
 
   return {
     simulate,

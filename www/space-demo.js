@@ -15,6 +15,7 @@
 import { SpaceDemo, loadModule, describe, methodGroups, assetUrl, spacePresets, spaceNetworkSets, limits, precisions, legend } from './module.js';
 import { fillLegend } from './demo.js';
 import { fixed, metres } from './format.js';
+import { simulateWith, flatBalls } from './simulate-options.js';
 import { mountMethodParams } from './method-params.js';
 import { mountPrecision } from './network-set.js';
 import { wireSpaceStage } from './space-input.js';
@@ -438,22 +439,10 @@ export async function mountSpace(root, options) {
     /**
      * A whole run off screen (the plane's window.demo.simulate): options
      * { method, target: [x, y, z], obstacles: [[x, y, z, r], ...], tf,
-     * theta0, feedback, refine }, each absent one the scene's; its summary.
+     * theta0, feedback, refine }, each absent one the scene's (an
+     * obstacle's radius 0.05 m); its summary (simulate-options.js).
      */
-    simulate(options) {
-      const allowed = ['method', 'target', 'obstacles', 'tf', 'theta0', 'feedback', 'refine'];
-      if (!options || typeof options !== 'object') throw new Error(`simulate expects { ${allowed.join(', ')} }`);
-      for (const k of Object.keys(options)) {
-        if (!allowed.includes(k)) throw new Error(`simulate: unknown option '${k}', expected one of ${allowed.join(', ')}`);
-      }
-      const nums = (v, what) => {
-        if (v === undefined) return undefined;
-        if (!Array.isArray(v)) throw new Error(`simulate: ${what} must be a list of numbers`);
-        return Float64Array.from(v.flat(), Number);
-      };
-      const number = (v) => (v === undefined ? undefined : Number(v));
-      return demo.simulate(String(options.method ?? demo.state().method), nums(options.target, 'target'), nums(options.obstacles, 'obstacles'), number(options.tf), nums(options.theta0, 'theta0'), number(options.feedback), number(options.refine));
-    },
+    simulate: (options) => simulateWith(demo, options, (list) => flatBalls(list, 3, limits().default_radius)),
     runFile: () => demo.runFile(),
     /** The 3-D view with the overlay over it, one 2-D canvas (the PNG saved; the tests' pixels). */
     snapshot: () => view3d.snapshot(),

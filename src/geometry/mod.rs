@@ -7,7 +7,7 @@ mod ball;
 
 use nalgebra::Vector2;
 
-pub use ball::{Ball, Placement};
+pub use ball::{Ball, Placement, MAX_BALLS};
 
 /// The parameter `s` in `[0, 1]` of the point `a + s (b - a)` of the
 /// segment `a`-`b` closest to `p` (0 for a segment of zero length).

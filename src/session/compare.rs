@@ -30,8 +30,10 @@ pub struct MethodRun {
 
 impl Session {
     /// Runs `scene` from `t = 0` to its final time with `method`, off
-    /// screen, with the networks the session would use for it.
+    /// screen, with the networks the session would use for it; refused
+    /// with the scene's own reason where it is not valid.
     pub fn run_offscreen(&self, scene: Scene, method: Method) -> Result<Summary> {
+        scene.validate()?;
         let nets = networks::for_method(method, &scene.arm, self.installed(), self.precision())?;
         Planner::run_summary(scene, method, nets)
     }

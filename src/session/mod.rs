@@ -49,7 +49,7 @@ use history::Histories;
 use installed::Installed;
 
 /// Most obstacles a session holds.
-pub const MAX_OBSTACLES: usize = 8;
+pub const MAX_OBSTACLES: usize = crate::geometry::MAX_BALLS;
 /// Fewest links of a session's arm.
 pub const MIN_LINKS: usize = crate::arm::MIN_LINKS;
 /// Most links of a session's arm: what the page's designer offers and its
@@ -150,6 +150,11 @@ impl Session {
     /// The planner.
     pub fn planner(&self) -> &Planner {
         self.twin.main()
+    }
+
+    /// The scene in use (the planner's).
+    pub fn scene(&self) -> &Scene {
+        self.twin.main().scene()
     }
 
     /// The numerical ghost, while the method uses networks.

@@ -20,39 +20,13 @@ use crate::arm::number_list;
 use crate::error::{coordinate, positive, Error, Result};
 
 /// Most spheres a scene may hold.
-pub const MAX_SPHERES: usize = 8;
+pub const MAX_SPHERES: usize = crate::geometry::MAX_BALLS;
 
 /// A sphere obstacle, a ball in space: its centre `O` (the paper's
 /// obstacle point) and radius.
 pub type Sphere = Ball<3>;
 
 impl Ball<3> {
-    /// The spheres of a flat list `[x, y, z, r, ...]` (m; the page's
-    /// `setSpheres` and its scripted runs), refused with a reason when the
-    /// count is not four numbers a sphere or there are more than
-    /// [`MAX_SPHERES`]. Each sphere's own checks are the scene's.
-    pub fn from_flat(flat: &[f64]) -> Result<Vec<Sphere>> {
-        if !flat.len().is_multiple_of(4) {
-            return Err(Error::Syntax {
-                what: "spheres",
-                text: format!("{} numbers", flat.len()),
-                expected: "four numbers per sphere: x, y, z, r".into(),
-            });
-        }
-        if flat.len() / 4 > MAX_SPHERES {
-            return Err(Error::OutOfRange {
-                what: "number of spheres".into(),
-                value: (flat.len() / 4) as f64,
-                min: 0.0,
-                max: MAX_SPHERES as f64,
-            });
-        }
-        Ok(flat
-            .chunks(4)
-            .map(|c| Sphere::new([c[0], c[1], c[2]], c[3]))
-            .collect())
-    }
-
     /// A sphere at `centre` of `radius`.
     pub fn new(centre: Vec3, radius: f64) -> Self {
         Self { centre, radius }

@@ -45,6 +45,13 @@ pub struct Drawing {
     pub(super) magnify: f64,
 }
 
+impl Demo {
+    /// The session (the script's run off screen reads it).
+    pub(super) fn session(&self) -> &crate::session::Session {
+        &self.drawing.get().session
+    }
+}
+
 impl std::ops::Deref for Demo {
     type Target = Drawing;
     fn deref(&self) -> &Drawing {

@@ -13,14 +13,13 @@
 //! figures), so the page loads only what it draws with.
 //!
 //! One file per concern: [`demo`] (the `Demo` binding), [`scene`] (its
-//! bindings for the arm, several obstacles, trained networks and runs off
-//! screen), [`style`] (colours and the legend, the one source the page's
-//! CSS reads), [`surface`] (canvas, view transform, drawing helpers),
-//! [`stage`] (the arm's drawing), [`layer`] (an atlas drawn under it),
-//! [`plots`] (the time series) and [`input`] (pointer hit-testing and keys)
-//! make the page's module; [`worker`] is the workers'. This file holds what
-//! both export: the facts the page reads instead of writing them down
-//! itself (the methods, the limits, the arm and obstacle syntax).
+//! bindings for the arm, obstacles and networks), [`script`] (a run off
+//! screen, every binding's), [`style`] (colours and the legend, the one
+//! source the page's CSS reads), [`surface`] (canvas, view, helpers),
+//! [`stage`] (the arm's drawing), [`layer`] (an atlas), [`plots`] (the
+//! time series), [`input`] (hit-testing and keys) make the page's module;
+//! [`worker`] is the workers'. This file holds what both export: the facts
+//! the page reads (the methods, the limits, the arm and obstacle syntax).
 
 #[cfg(feature = "page")]
 mod demo;
@@ -38,6 +37,8 @@ mod plots;
 mod robot;
 #[cfg(feature = "page")]
 mod scene;
+#[cfg(feature = "page")]
+mod script;
 #[cfg(feature = "worker")]
 mod space_atlas;
 #[cfg(feature = "worker")]

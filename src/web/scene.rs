@@ -7,11 +7,9 @@
 use wasm_bindgen::prelude::*;
 
 use super::demo::Demo;
-use super::{finite, input, js_err, to_js, JsResult};
+use super::{finite, input, js_err, JsResult};
 use crate::arm::Arm;
-use crate::error::Error;
 use crate::obstacle::Obstacle;
-use crate::planner::Method;
 use crate::scene::PAPER_RADIUS;
 
 /// A point of `D` coordinates a script passed as `what` (`[x, y]` in the
@@ -25,30 +23,6 @@ pub(super) fn point<const D: usize>(what: &str, v: &[f64]) -> JsResult<[f64; D]>
             v.len()
         ))
     })
-}
-
-/// Obstacles from a flat list `[x0, y0, r0, x1, y1, r1, ...]` (plain
-/// numbers cross into the module without a deserialiser, which keeps the
-/// page's module small).
-fn obstacles_from(flat: &[f64]) -> JsResult<Vec<Obstacle>> {
-    if !flat.len().is_multiple_of(3) {
-        return Err(JsError::new(&format!(
-            "obstacles: expected x, y, r for each, got {} numbers",
-            flat.len()
-        )));
-    }
-    if flat.len() / 3 > crate::session::MAX_OBSTACLES {
-        return Err(js_err(Error::OutOfRange {
-            what: "number of obstacles".into(),
-            value: (flat.len() / 3) as f64,
-            min: 0.0,
-            max: crate::session::MAX_OBSTACLES as f64,
-        }));
-    }
-    Ok(flat
-        .chunks_exact(3)
-        .map(|o| Obstacle::new(o[0], o[1], o[2]))
-        .collect())
 }
 
 #[wasm_bindgen]
@@ -158,7 +132,7 @@ impl Demo {
     /// (at most 8); refused as a whole if one is bad.
     #[wasm_bindgen(js_name = setObstacles)]
     pub fn set_obstacles(&mut self, flat: Vec<f64>) -> JsResult {
-        let obs = obstacles_from(&flat)?;
+        let obs = Obstacle::from_flat(&flat).map_err(js_err)?;
         self.session.set_obstacles(obs).map_err(js_err)
     }
 
@@ -236,68 +210,6 @@ impl Demo {
     pub fn clear_networks(&mut self) -> JsResult {
         self.session.clear_networks().map_err(js_err)
     }
-
-    /// Runs a whole task off screen with the current arm, gains, switches
-    /// and networks, and returns its summary (the `summary` of `redundant-ik
-    /// simulate --json`). `target` (`[x, y]`), `obstacles` (flat, as in
-    /// `setObstacles`), `tf`, `theta0`, the closed-loop gain `feedback` and
-    /// the `refine` steps on a learned `Phi` default to the scene in use.
-    /// The scene on the stage does not change.
-    #[allow(clippy::too_many_arguments)] // one optional argument per override, as JavaScript passes them
-    pub fn simulate(
-        &self,
-        method: &str,
-        target: Option<Vec<f64>>,
-        obstacles: Option<Vec<f64>>,
-        tf: Option<f64>,
-        theta0: Option<Vec<f64>>,
-        feedback: Option<f64>,
-        refine: Option<f64>,
-    ) -> JsResult<JsValue> {
-        let method: Method = method.parse().map_err(js_err)?;
-        let mut scene = self.session.planner().scene().clone();
-        if let Some(flat) = obstacles {
-            scene.obstacles = obstacles_from(&flat)?;
-        }
-        overridden(&mut scene, target, tf, theta0, feedback, refine)?;
-        scene.validate().map_err(js_err)?;
-        let summary = self.session.run_offscreen(scene, method).map_err(js_err)?;
-        to_js(&summary)
-    }
-}
-
-/// The overrides of a run off screen that every arm's `simulate` takes
-/// (the target, `tf`, the start, the closed-loop gain, the refinement
-/// steps on a learned `Phi`), each checked as it is set; the obstacles are
-/// each kind's own (discs, spheres).
-pub(super) fn overridden<A, P, const M: usize, const D: usize>(
-    scene: &mut crate::scene::Scene<A, P, M, D>,
-    target: Option<Vec<f64>>,
-    tf: Option<f64>,
-    theta0: Option<Vec<f64>>,
-    feedback: Option<f64>,
-    refine: Option<f64>,
-) -> JsResult<()> {
-    if let Some(t) = target {
-        scene.target = point("target", &t)?;
-    }
-    if let Some(tf) = tf {
-        scene.tf = tf;
-    }
-    if let Some(t) = theta0 {
-        scene.theta0 = t;
-    }
-    if let Some(k) = feedback {
-        crate::scene::validate_gain(k, scene.dt).map_err(js_err)?;
-        scene.feedback_gain = k;
-    }
-    if let Some(k) = refine {
-        scene
-            .params
-            .set(&crate::planner::methods::REFINE, k)
-            .map_err(js_err)?;
-    }
-    Ok(())
 }
 
 /// An obstacle index from JavaScript: a whole number from 0.

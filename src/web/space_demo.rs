@@ -12,7 +12,6 @@ mod layer;
 mod networks;
 mod pose;
 mod robot;
-mod script;
 mod self_collision;
 mod view;
 use super::surface::Surface;
@@ -59,7 +58,7 @@ struct Drawn {
 }
 
 impl SpaceDemo {
-    fn session(&self) -> &SpaceSession {
+    pub(super) fn session(&self) -> &SpaceSession {
         &self.drawn.get().session
     }
 

@@ -220,3 +220,34 @@ fn clearance_is_the_distance_to_the_nearest_moving_link() {
     let d = obstacle::clearance(&joints, &Vector2::new(2.0, 2.5));
     assert!((d - 2f64.sqrt()).abs() < 1e-15);
 }
+
+#[test]
+fn a_flat_list_of_numbers_is_discs_in_the_plane_and_spheres_in_space() {
+    use redundant_ik::geometry::{Ball, MAX_BALLS};
+    let discs = Ball::<2>::from_flat(&[1.0, 2.0, 0.1, -1.0, 0.5, 0.2]).unwrap();
+    assert_eq!(
+        discs,
+        vec![Obstacle::new(1.0, 2.0, 0.1), Obstacle::new(-1.0, 0.5, 0.2)]
+    );
+    let spheres = Ball::<3>::from_flat(&[0.4, 0.1, 0.7, 0.05]).unwrap();
+    assert_eq!(spheres[0].centre, [0.4, 0.1, 0.7]);
+    assert_eq!(spheres[0].radius, 0.05);
+    assert!(Ball::<2>::from_flat(&[]).unwrap().is_empty());
+    // A count that is not a whole number of balls, and too many of them.
+    let part = Ball::<2>::from_flat(&[1.0, 2.0]).unwrap_err().to_string();
+    assert!(
+        part.contains("three numbers per obstacle: x, y, r"),
+        "{part}"
+    );
+    let part = Ball::<3>::from_flat(&[1.0, 2.0, 3.0])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        part.contains("four numbers per sphere: x, y, z, r"),
+        "{part}"
+    );
+    let many = Ball::<3>::from_flat(&[0.5; 4 * (MAX_BALLS + 1)])
+        .unwrap_err()
+        .to_string();
+    assert!(many.contains("number of spheres"), "{many}");
+}

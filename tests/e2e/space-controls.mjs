@@ -271,6 +271,11 @@ test('space controls: window.demo.simulate runs a scene off screen with override
   assert.deepEqual(plain, compared.summary, 'the scene in use, as the comparison runs it');
   const moved = await page.evaluate(() => window.demo.simulate({ method: 'qp', target: [0.45, 0.2, 0.5], obstacles: [[0.45, 0.1, 0.7, 0.05]], tf: 3 }));
   assert.equal(moved.steps, 60);
+  const objects = await page.evaluate(() => window.demo.simulate({ method: 'qp', target: [0.45, 0.2, 0.5], obstacles: [{ x: 0.45, y: 0.1, z: 0.7 }], tf: 3 }));
+  assert.deepEqual(objects, moved, 'a sphere written { x, y, z } has the default radius, 0.05 m');
+  const current = await page.evaluate(() => window.demo.simulate({}));
+  const numerical = (await page.evaluate(() => window.demo.compare())).find((r) => r.method === 'numerical');
+  assert.deepEqual(current, numerical.summary, 'without a method, the method in use');
   for (const bad of [{ method: 'qp', target: [1, 2] }, { method: 'nope' }, { method: 'qp', tf: -1 }, { colour: 'red' }]) {
     const why = await page.evaluate((o) => {
       try {
