@@ -6,14 +6,13 @@
 
 use std::fmt::Write as _;
 
-use redundant_ik::export::{is_pose_run, run_csv, PoseRunFile};
+use redundant_ik::export::is_pose_run;
 use redundant_ik::planner::{Networks, Planner, Trajectory};
 use redundant_ik::scene::PoseScene;
 use redundant_ik::space::rotation::{exp, matrix_rpy};
 use redundant_ik::space::PoseChain;
 use redundant_ik::Method;
 
-use super::emit;
 use super::job::Job;
 use super::robot::Robot;
 use super::simulate::{SceneArgs, SimulateArgs};
@@ -78,17 +77,14 @@ pub fn simulate(args: &SimulateArgs, job: Job) -> Result<(), String> {
     )
     .and_then(Planner::run_to_end)
     .map_err(|e| e.to_string())?;
-    if args.json {
-        let (networks, precision) = super::space_networks::recorded(used.as_deref());
-        let text = PoseRunFile::of(None, scene, traj, networks, precision)
-            .with_robot(source)
-            .to_json();
-        return emit(&format!("{text}\n"));
-    }
-    if args.csv {
-        return emit(&run_csv(&traj.steps));
-    }
-    emit(&summary(&robot, &scene, &traj))
+    super::summary::write_run::<PoseChain, 6>(
+        args,
+        scene,
+        traj,
+        used.as_deref(),
+        source,
+        |scene, traj| summary(&robot, scene, traj),
+    )
 }
 
 /// A pose `(p, r)` as its position and URDF's roll-pitch-yaw.
@@ -103,14 +99,6 @@ fn pose_text(x: [f64; 6]) -> String {
 fn summary(robot: &Robot, scene: &PoseScene, traj: &Trajectory<6, [f64; 3]>) -> String {
     let s = &traj.summary;
     let mut out = String::new();
-    let list = |v: &[f64]| {
-        v.iter()
-            .map(|x| format!("{x:.4}"))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    let first = &traj.steps[0];
-    let last = traj.steps.last().unwrap_or(first);
     let _ = writeln!(
         out,
         "{} | the hand's pose | method {} | dt {} s | tf {} s | Z = diag(1, 1, 1, {})",
@@ -119,12 +107,6 @@ fn summary(robot: &Robot, scene: &PoseScene, traj: &Trajectory<6, [f64; 3]>) -> 
         scene.dt,
         scene.tf,
         scene.arm.orientation_weight()
-    );
-    let _ = writeln!(
-        out,
-        "start  theta = [{}]  hand {}",
-        list(&first.theta),
-        pose_text(first.ee)
     );
     let goal = if scene.path == redundant_ik::scene::SpacePath::Line {
         format!("target {}", pose_text(scene.target))
@@ -135,12 +117,7 @@ fn summary(robot: &Robot, scene: &PoseScene, traj: &Trajectory<6, [f64; 3]>) -> 
             pose_text(traj.steps.last().map_or(scene.target, |x| x.reference))
         )
     };
-    let _ = writeln!(
-        out,
-        "end    theta = [{}]  hand {}  {goal}",
-        list(&last.theta),
-        pose_text(last.ee),
-    );
+    super::summary::ends(&mut out, &traj.steps, pose_text, &goal);
     super::summary::contact(&mut out, s, &scene.arm.chain, &scene.obstacles);
     let _ = writeln!(
         out,

@@ -9,7 +9,7 @@ use redundant_ik::export::{is_space_run, SpaceRunFile};
 use redundant_ik::ik::DampingSchedule;
 use redundant_ik::planner::{Networks, Planner, Trajectory};
 use redundant_ik::scene::{SpacePath, SpaceScene};
-use redundant_ik::space::{SpacePreset, Sphere};
+use redundant_ik::space::{Chain, SpacePreset, Sphere};
 use redundant_ik::Method;
 
 pub use super::job::Job;
@@ -18,7 +18,7 @@ pub use super::robot::Robot;
 use super::simulate::{SceneArgs, SimulateArgs};
 pub use super::space_networks::networks_for;
 use super::task::pose_spec;
-use super::{emit, parse_list, Numbers};
+use super::{parse_list, Numbers};
 use redundant_ik::urdf::RobotSource;
 
 /// The scene of `args` for the preset `p`: its task, with the options
@@ -253,53 +253,31 @@ fn output(args: &SimulateArgs, job: Job) -> Result<(), String> {
     let planner = Planner::new(scene.clone(), method, nets.map(|n| n as Networks<_, 3>))
         .map_err(|e| e.to_string())?;
     let traj = planner.run_to_end().map_err(|e| e.to_string())?;
-    if args.json {
-        let (networks, precision) = super::space_networks::recorded(used.as_deref());
-        let text = SpaceRunFile::of(None, scene, traj, networks, precision)
-            .with_robot(source)
-            .to_json();
-        return emit(&format!("{text}\n"));
-    }
-    if args.csv {
-        return emit(&redundant_ik::export::run_csv(&traj.steps));
-    }
-    emit(&summary(&robot, &scene, &traj))
+    super::summary::write_run::<Chain, 3>(
+        args,
+        scene,
+        traj,
+        used.as_deref(),
+        source,
+        |scene, traj| summary(&robot, scene, traj),
+    )
 }
 
 fn summary(robot: &Robot, scene: &SpaceScene, traj: &Trajectory<3>) -> String {
     let s = &traj.summary;
     let mut out = String::new();
-    let list = |v: &[f64]| {
-        v.iter()
-            .map(|x| format!("{x:.4}"))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
     let point = |v: [f64; 3]| format!("({:.4}, {:.4}, {:.4})", v[0], v[1], v[2]);
-    let first = &traj.steps[0];
-    let last = traj.steps.last().unwrap_or(first);
     let _ = writeln!(
         out,
         "{} | method {} | dt {} s | tf {} s",
         robot.label, traj.method, scene.dt, scene.tf
-    );
-    let _ = writeln!(
-        out,
-        "start  theta = [{}]  hand {}",
-        list(&first.theta),
-        point(first.ee)
     );
     let goal = if scene.path.is_line() {
         format!("target {}", point(scene.target))
     } else {
         format!("path {} ending at {}", scene.path, point(scene.path_end()))
     };
-    let _ = writeln!(
-        out,
-        "end    theta = [{}]  hand {}  {goal}",
-        list(&last.theta),
-        point(last.ee)
-    );
+    super::summary::ends(&mut out, &traj.steps, point, &goal);
     super::summary::contact(&mut out, s, &scene.arm, &scene.obstacles);
     let _ = writeln!(
         out,

@@ -1,12 +1,76 @@
-//! The lines a run's summary shares for every arm in space, whatever its
-//! task: the spheres, the smallest clearances (from the spheres and
-//! between the chain's own capsules), the steps past a limit and the
-//! relaxed programs.
+//! What a run of an arm in space writes, whatever its task: its run
+//! file, CSV or summary as asked ([`write_run`]), and the lines the
+//! summaries share: where it starts and ends, the spheres, the smallest
+//! clearances (from the spheres and between the chain's own capsules),
+//! the steps past a limit and the relaxed programs.
 
 use std::fmt::Write as _;
 
-use redundant_ik::planner::Summary;
+use redundant_ik::export::{Recorded, RunFile};
+use redundant_ik::networks::space::{SpaceNetworkSet, SpaceNetworks};
+use redundant_ik::planner::{Sample, Summary, Trajectory};
 use redundant_ik::space::{Chain, Sphere};
+use redundant_ik::urdf::RobotSource;
+
+use super::emit;
+use super::simulate::SimulateArgs;
+
+/// A chain's run (the hand's position or its pose) as `args` ask: its run
+/// file (`--json`: the networks it used and the robot's source in it, what
+/// `--from` replays), its CSV (`--csv`) or its summary for people
+/// (`readable`).
+pub(super) fn write_run<A, const M: usize>(
+    args: &SimulateArgs,
+    scene: A::Scene,
+    traj: Trajectory<M, A::Point>,
+    used: Option<&SpaceNetworks>,
+    source: Option<RobotSource>,
+    readable: impl FnOnce(&A::Scene, &Trajectory<M, A::Point>) -> String,
+) -> Result<(), String>
+where
+    A: Recorded<M, Set = SpaceNetworkSet>,
+    A::Scene: serde::Serialize + serde::de::DeserializeOwned,
+    [f64; M]: serde::Serialize + serde::de::DeserializeOwned,
+{
+    if args.json {
+        let (networks, precision) = super::space_networks::recorded(used);
+        let text = RunFile::<A, M>::of(None, scene, traj, networks, precision)
+            .with_robot(source)
+            .to_json();
+        return emit(&format!("{text}\n"));
+    }
+    if args.csv {
+        return emit(&redundant_ik::export::run_csv(&traj.steps));
+    }
+    emit(&readable(&scene, &traj))
+}
+
+/// The run's first and last samples, a line each: the joint angles and
+/// the hand (`hand` writes it: a point, or a pose), and after the last,
+/// `goal` (the target, or where the path ends).
+pub fn ends<const M: usize, P>(
+    out: &mut String,
+    steps: &[Sample<M, P>],
+    hand: impl Fn([f64; M]) -> String,
+    goal: &str,
+) {
+    let list = |v: &[f64]| {
+        v.iter()
+            .map(|x| format!("{x:.4}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let (Some(first), Some(last)) = (steps.first(), steps.last()) else {
+        return;
+    };
+    let (start, end) = (list(&first.theta), list(&last.theta));
+    let _ = writeln!(out, "start  theta = [{start}]  hand {}", hand(first.ee));
+    let _ = writeln!(
+        out,
+        "end    theta = [{end}]  hand {}  {goal}",
+        hand(last.ee)
+    );
+}
 
 /// The spheres and the smallest clearances of a run of `chain` past
 /// `spheres`, one line each.
