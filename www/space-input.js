@@ -8,38 +8,23 @@
 // move it in the view's plane (Shift: fine steps), o / Shift+o orbit by 15
 // degrees (u / Shift+u up and down), + and - zoom, 0 resets the view; in
 // the pose task x, y and z (Shift: backwards) turn the target by 15 degrees
-// about the world's axes. The
+// about the world's axes; the page-wide keys are page-keys.js's. The
 // module decides what a point grabs and how it moves (src/session/space);
 // this file only routes the events and says what changed (`say`).
 
 import { orientationWords } from './pose-fields.js';
+import { wirePageKeys, wireStageFocus } from './page-keys.js';
 
 /**
  * Wires `stage` of the SpaceDemo `demo`. Hooks: `attempt(fn)` runs a call
  * and shows its error; `changed()` after a user change; `say(text)` tells
  * the live region; `togglePlay()`, `reset()`; `keyboard`, the element that
- * receives the page-wide keys (space plays, r resets); `gizmoAxis()`, the
+ * receives the page-wide keys (page-keys.js); `gizmoAxis()`, the
  * 3-D view's gizmo part under the pointer (a press there is the gizmo's).
  */
 export function wireSpaceStage(stage, demo, { attempt, changed, say, togglePlay, reset, keyboard, gizmoAxis }) {
-  keyboard?.addEventListener('keydown', (e) => {
-    if (e.ctrlKey || e.metaKey || e.altKey) return;
-    const t = e.composedPath()[0];
-    if (t?.matches?.('input, textarea, select, [contenteditable]')) return;
-    const control = t !== keyboard && t?.matches?.('button, a[href], summary, [role=button], [tabindex]:not(canvas)');
-    if (e.key === ' ' || e.code === 'Space') {
-      if (control) return;
-      e.preventDefault();
-      togglePlay();
-    } else if (e.key === 'r' || e.key === 'R') {
-      e.preventDefault();
-      reset();
-    }
-  });
-
-  if (!stage.hasAttribute('tabindex')) stage.tabIndex = 0;
-  stage.addEventListener('focus', () => demo.setKeyboardFocus(stage.matches(':focus-visible')));
-  stage.addEventListener('blur', () => demo.setKeyboardFocus(false));
+  wirePageKeys(keyboard, { togglePlay, reset });
+  wireStageFocus(stage, demo);
   const where = () => {
     const s = demo.state();
     const [x, y, z] = s.selected === 'target' ? s.target : s.spheres[Number(s.selected.split(' ')[1]) - 1];

@@ -4,10 +4,12 @@
 // n selects an item and the arrow keys move it (Shift: fine steps), + - and 0 zoom and
 // fit, the wheel (a trackpad's pinch: ctrl+wheel) and two fingers zoom
 // about the pointer, a drag on the empty drawing pans, and the page-wide
-// keys (space plays or pauses where no control has the focus, r resets;
-// Enter ticks a focused checkbox). The module decides what a point or a
+// keys (page-keys.js: space plays or pauses where no control has the
+// focus, r resets; Enter ticks a focused checkbox). The module decides what a point or a
 // key grabs and keeps the view (src/web/input.rs, src/view.rs); this file
 // only routes the events.
+
+import { wirePageKeys, wireStageFocus } from './page-keys.js';
 
 const LONG_PRESS_MS = 600;
 
@@ -19,37 +21,10 @@ const LONG_PRESS_MS = 600;
  * receives the page-wide keys (none: no such keys).
  */
 export function wireStage(stage, demo, { attempt, changed, togglePlay, reset, atlas, playground, keyboard }) {
-  keyboard?.addEventListener('keydown', (e) => {
-    if (e.ctrlKey || e.metaKey || e.altKey) return;
-    const t = e.composedPath()[0];
-    // Enter ticks a checkbox as Space does (Damping, Correct drift, the
-    // atlas's methods: issue 27, they could not be changed without a mouse).
-    if (e.key === 'Enter' && t?.matches?.('input[type=checkbox]')) {
-      e.preventDefault();
-      t.click();
-      return;
-    }
-    const typing = t && t.matches && t.matches('input, textarea, select, [contenteditable]');
-    if (typing) return;
-    // Space and Enter do what a focused control does (a button, a link, a
-    // panel's heading); the page's keys act only on the drawing or on
-    // nothing in particular.
-    const control = t !== keyboard && t?.matches?.('button, a[href], summary, [role=button], [role=tab], [role=switch], [tabindex]:not(canvas)');
-    if (e.key === ' ' || e.code === 'Space') {
-      if (control) return;
-      e.preventDefault();
-      togglePlay();
-    } else if (e.key === 'r' || e.key === 'R') {
-      e.preventDefault();
-      reset();
-    }
-  });
+  wirePageKeys(keyboard, { togglePlay, reset });
 
   // ---- keyboard on the drawing: arrows move the target, Shift+arrows the obstacle, + - 0 the view
-  if (!stage.hasAttribute('tabindex')) stage.tabIndex = 0;
-  // The item the keys move is ringed while the drawing has the keyboard's focus.
-  stage.addEventListener('focus', () => demo.setKeyboardFocus(stage.matches(':focus-visible')));
-  stage.addEventListener('blur', () => demo.setKeyboardFocus(false));
+  wireStageFocus(stage, demo);
   const zoomKeys = { '+': 1.25, '=': 1.25, '-': 0.8, '_': 0.8 };
   stage.addEventListener('keydown', (e) => {
     if (e.ctrlKey || e.metaKey || e.altKey) return;

@@ -264,31 +264,34 @@ test('placing without dragging: the target and each obstacle have number fields,
   await page.close();
 });
 
-test('keys: Space on a focused button presses it, not play; Enter ticks a checkbox; Space on the drawing plays', async () => {
-  const page = await open('?task=1&method=numerical');
-  await pause(page);
-  // Space on Reset: the button acts (the clock back at 0), the run stays paused.
-  await page.evaluate(() => window.demo.runUntil(2));
-  await page.focus('#reset');
-  await page.keyboard.press('Space');
-  let s = await state(page);
-  assert.equal(s.running, false, 'Space on a button does not toggle the run');
-  assert.equal(s.t, 0, 'it pressed Reset');
-  // Enter on the Damping checkbox ticks it.
-  const before = s.damping;
-  await page.focus('#damping');
-  await page.keyboard.press('Enter');
-  s = await state(page);
-  assert.equal(s.damping, !before, 'Enter changed Damping');
-  // A panel's heading opens with Space, the run untouched.
-  await page.focus('#atlas-panel summary');
-  await page.keyboard.press('Space');
-  assert.equal(await page.evaluate(() => document.getElementById('atlas-panel').open), true);
-  assert.equal((await state(page)).running, false);
-  // On the drawing, Space plays.
-  await page.focus('#stage');
-  await page.keyboard.press('Space');
-  assert.equal((await state(page)).running, true, 'Space on the drawing plays');
-  clean(page);
-  await page.close();
-});
+for (const [arm, address] of [['the planar arm', '?task=1&method=numerical'], ['the Panda', '?arm=panda&method=numerical']]) {
+  test(`keys on ${arm}: Space on a focused button presses it, not play; Enter ticks a checkbox; Space on the drawing plays`, async () => {
+    const page = await open(address);
+    await pause(page);
+    // Space on Reset: the button acts (the clock back at 0), the run stays paused.
+    await page.evaluate(() => window.demo.runUntil(2));
+    await page.focus('#reset');
+    await page.keyboard.press('Space');
+    let s = await state(page);
+    assert.equal(s.running, false, 'Space on a button does not toggle the run');
+    assert.equal(s.t, 0, 'it pressed Reset');
+    // Enter on the Damping checkbox ticks it.
+    const before = s.damping;
+    await page.focus('#damping');
+    await page.keyboard.press('Enter');
+    s = await state(page);
+    assert.equal(s.damping, !before, 'Enter changed Damping');
+    // A panel's heading opens with Space, the run untouched.
+    await page.focus('#atlas-panel summary');
+    await page.keyboard.press('Space');
+    assert.equal(await page.evaluate(() => document.getElementById('atlas-panel').open), true);
+    assert.equal((await state(page)).running, false);
+    // On the drawing, Space plays.
+    await page.focus('#stage');
+    await page.keyboard.press('Space');
+    assert.equal((await state(page)).running, true, 'Space on the drawing plays');
+    clean(page);
+    await page.close();
+  });
+}
+
