@@ -22,6 +22,7 @@ import { flatObstacles } from './arm-designer.js';
 import { mountCompare } from './compare.js';
 import { mountWeightsUpload } from './weights-upload.js';
 import { wireStage } from './stage-input.js';
+import { followSize, redrawWhenRestored } from './sizing.js';
 import { mountMethodParams } from './method-params.js';
 import { mountSelfMotion } from './self-motion.js';
 import { mountNetworkSet } from './network-set.js';
@@ -304,19 +305,9 @@ export async function mount(root, options = {}) {
   stage.after(fitButton);
 
   // ---- size: sharp on high-DPI screens, follows the layout -------------
-  const fit = (canvas, resize) => {
-    const apply = () => {
-      const r = canvas.getBoundingClientRect();
-      if (r.width > 0 && r.height > 0) attempt(() => resize(r.width, r.height, window.devicePixelRatio || 1));
-    };
-    new ResizeObserver(apply).observe(canvas);
-    apply();
-  };
-  fit(stage, (w, h, d) => demo.resize(w, h, d));
-  if (plots) fit(plots, (w, h, d) => demo.resizePlots(w, h, d));
-  // The drawing is kept between frames (an idle page draws nothing), so a
-  // 2D context the browser discarded and gave back blank is drawn again.
-  for (const canvas of [stage, plots]) canvas?.addEventListener('contextrestored', () => attempt(() => demo.draw()));
+  followSize(stage, (w, h, d) => demo.resize(w, h, d), attempt);
+  if (plots) followSize(plots, (w, h, d) => demo.resizePlots(w, h, d), attempt);
+  redrawWhenRestored([stage, plots], () => demo.draw(), attempt);
 
   // ---- readouts and the loop -------------------------------------------
   const syncNotes = mountNotes(root);

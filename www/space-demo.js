@@ -14,6 +14,7 @@
 
 import { SpaceDemo, loadModule, describe, methodGroups, assetUrl, spacePresets, spaceNetworkSets, limits, precisions, legend } from './module.js';
 import { fillLegend } from './demo.js';
+import { followSize, redrawWhenRestored } from './sizing.js';
 import { fixed, metres } from './format.js';
 import { simulateWith, flatBalls } from './simulate-options.js';
 import { mountMethodParams } from './method-params.js';
@@ -331,22 +332,16 @@ export async function mountSpace(root, options) {
   const training = mountSpaceTraining(root, demo, { preset, show, say, installed: ownNetworks });
 
   // ---- size ------------------------------------------------------------------
-  const fit = (canvas, resize) => {
-    const apply = () => {
-      const r = canvas.getBoundingClientRect();
-      if (r.width > 0 && r.height > 0) attempt(() => resize(r.width, r.height, window.devicePixelRatio || 1));
-    };
-    new ResizeObserver(apply).observe(canvas);
-    apply();
-  };
-  fit(stage, (w, h, d) => {
-    demo.resize(w, h, d);
-    view3d.resize(w, h, d);
-  });
-  if (plots) fit(plots, (w, h, d) => demo.resizePlots(w, h, d));
-  // The drawing is kept between frames (an idle page draws nothing), so a
-  // 2D context the browser discarded and gave back blank is drawn again.
-  for (const canvas of [stage, plots]) canvas?.addEventListener('contextrestored', () => attempt(() => demo.draw()));
+  followSize(
+    stage,
+    (w, h, d) => {
+      demo.resize(w, h, d);
+      view3d.resize(w, h, d);
+    },
+    attempt,
+  );
+  if (plots) followSize(plots, (w, h, d) => demo.resizePlots(w, h, d), attempt);
+  redrawWhenRestored([stage, plots], () => demo.draw(), attempt);
   view3d.three?.renderer.domElement.addEventListener('webglcontextrestored', () => view3d.draw());
 
   // ---- readouts, the live region and the loop ----------------------------------
