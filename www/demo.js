@@ -26,7 +26,7 @@ import { followSize, redrawWhenRestored } from './sizing.js';
 import { mountMethodParams } from './method-params.js';
 import { mountSelfMotion } from './self-motion.js';
 import { mountNetworkSet } from './network-set.js';
-import { messenger } from './messages.js';
+import { messenger, oneByOne } from './messages.js';
 import { mountTakeaway } from './takeaway.js';
 import { mountNotes } from './notes.js';
 import { mountLab } from './lab.js';
@@ -170,14 +170,7 @@ export async function mount(root, options = {}) {
   // they are. The same code applies the element's changed attributes later
   // (controller.apply).
   function apply(settings) {
-    const refused = [];
-    const initial = (name, fn) => {
-      try {
-        fn();
-      } catch (e) {
-        refused.push(`${name}: ${describe(e)}`);
-      }
-    };
+    const { refused, one: initial } = oneByOne(describe);
     if (settings.task !== undefined && settings.task !== demo.state().task) initial('task', () => demo.loadTask(settings.task === 2 ? 2 : 1));
     if (settings.damping !== undefined && settings.damping !== demo.state().damping) initial('damping', () => demo.setDamping(settings.damping));
     if (settings.feedback !== undefined && settings.feedback !== demo.state().feedback) initial('feedback', () => demo.setFeedback(settings.feedback));

@@ -52,3 +52,21 @@ export function messenger(root) {
 
   return { show, clear, attempt };
 }
+
+/**
+ * Settings applied one at a time, each refused on its own so that no
+ * refusal hides another: `one(key, fn)` runs `fn` and keeps `key: why` of
+ * a refusal (`describe` words the error) in `refused`, which starts with
+ * `already` (the problems found before).
+ */
+export function oneByOne(describe, already = []) {
+  const refused = [...already];
+  const one = (key, fn) => {
+    try {
+      fn();
+    } catch (e) {
+      refused.push(`${key}: ${describe(e)}`);
+    }
+  };
+  return { refused, one };
+}

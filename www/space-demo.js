@@ -20,7 +20,7 @@ import { simulateWith, flatBalls } from './simulate-options.js';
 import { mountMethodParams } from './method-params.js';
 import { mountPrecision } from './network-set.js';
 import { wireSpaceStage } from './space-input.js';
-import { messenger } from './messages.js';
+import { messenger, oneByOne } from './messages.js';
 import { writeSpaceAddress } from './space-address.js';
 import { mountSpacePanels } from './space-panels.js';
 import { mountPath } from './path-input.js';
@@ -178,14 +178,7 @@ export async function mountSpace(root, options) {
   });
 
   // ---- settings from the address, each on its own -------------------------
-  const refused = [...(options.problems ?? [])];
-  const initial = (name, fn) => {
-    try {
-      fn();
-    } catch (e) {
-      refused.push(`${name}: ${describe(e)}`);
-    }
-  };
+  const { refused, one: initial } = oneByOne(describe, options.problems ?? []);
   if (options.theta0) initial('theta0', () => demo.setStart(Float64Array.from(options.theta0)));
   if (options.obstacles) initial('obstacles', () => demo.setSpheres(Float64Array.from(options.obstacles)));
   if (options.task || options.target?.length === 6) initial('task', () => demo.setTask(options.task ?? 'pose'));
@@ -453,14 +446,7 @@ export async function mountSpace(root, options) {
      * first, and says there if they cannot be had.
      */
     apply(changed) {
-      const refused = [];
-      const one = (key, fn) => {
-        try {
-          fn();
-        } catch (e) {
-          refused.push(`${key}: ${describe(e)}`);
-        }
-      };
+      const { refused, one } = oneByOne(describe);
       const own = preset.task;
       if ('obstacles' in changed) one('obstacles', () => demo.setSpheres(Float64Array.from(changed.obstacles ?? own.sphere ?? [])));
       if ('task' in changed || changed.target?.length === 6) one('task', () => demo.setTask(changed.task ?? (changed.target?.length === 6 ? 'pose' : 'position')));
