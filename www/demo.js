@@ -23,6 +23,7 @@ import { mountCompare } from './compare.js';
 import { mountWeightsUpload } from './weights-upload.js';
 import { wireStage } from './stage-input.js';
 import { followSize, redrawWhenRestored } from './sizing.js';
+import { runFrames } from './frame-loop.js';
 import { mountMethodParams } from './method-params.js';
 import { mountSelfMotion } from './self-motion.js';
 import { mountNetworkSet } from './network-set.js';
@@ -360,26 +361,6 @@ export async function mount(root, options = {}) {
     return s;
   }
 
-  let last = performance.now();
-  let stopped = false;
-  function tick(now) {
-    if (stopped) return;
-    const elapsed = now - last;
-    last = now;
-    // The state when anything changed (else undefined: nothing to follow,
-    // nothing repainted); after a failed step, the last good one.
-    let s;
-    let failed = false;
-    try {
-      s = demo.frame(elapsed);
-    } catch (e) {
-      failed = true;
-      show(describe(e), 'error', true);
-    }
-    if (s !== undefined || failed) update(s);
-    requestAnimationFrame(tick);
-  }
-
   const controller = {
     demo,
     state() {
@@ -407,17 +388,21 @@ export async function mount(root, options = {}) {
     playground,
     atlasResult: () => atlas.result(),
     atlasDescription: () => atlas.describe(),
-    stop() {
-      stopped = true;
-    },
+    stop: () => stop(),
   };
 
-  // First frame now, synchronously (it draws: nothing was drawn yet); then the animation loop.
+  // First frame now, synchronously (it draws: nothing was drawn yet); then
+  // the animation loop. After a failed step the page follows the last good
+  // state.
   update(demo.frame(0) ?? demo.state());
   if (el.loading) el.loading.hidden = true;
-  requestAnimationFrame((now) => {
-    last = now;
-    requestAnimationFrame(tick);
-  });
+  const stop = runFrames(
+    (elapsed) => demo.frame(elapsed),
+    (s) => update(s),
+    (e) => {
+      show(describe(e), 'error', true);
+      update();
+    },
+  );
   return controller;
 }

@@ -15,6 +15,7 @@
 import { SpaceDemo, loadModule, describe, methodGroups, assetUrl, spacePresets, spaceNetworkSets, limits, precisions, legend } from './module.js';
 import { fillLegend } from './demo.js';
 import { followSize, redrawWhenRestored } from './sizing.js';
+import { runFrames } from './frame-loop.js';
 import { fixed, metres } from './format.js';
 import { simulateWith, flatBalls } from './simulate-options.js';
 import { mountMethodParams } from './method-params.js';
@@ -385,28 +386,10 @@ export async function mountSpace(root, options) {
     return s;
   }
   if (options.autoplay ?? !(typeof matchMedia === 'function' && matchMedia('(prefers-reduced-motion: reduce)').matches)) demo.setRunning(true);
-  let last = performance.now();
-  let stopped = false;
-  function tick(now) {
-    if (stopped) return;
-    const elapsed = now - last;
-    last = now;
-    try {
-      // The state when anything changed; undefined when nothing did (nothing repainted).
-      const s = frame(elapsed);
-      if (s !== undefined) update(s);
-    } catch (e) {
-      show(describe(e), 'error', true);
-    }
-    requestAnimationFrame(tick);
-  }
   update(frame(0) ?? demo.state());
   const loading = $('loading');
   if (loading) loading.hidden = true;
-  requestAnimationFrame((now) => {
-    last = now;
-    requestAnimationFrame(tick);
-  });
+  const stop = runFrames(frame, update, (e) => show(describe(e), 'error', true));
 
   return {
     demo,
@@ -463,8 +446,6 @@ export async function mountSpace(root, options) {
       if (changed.method) choose(changed.method).catch((e) => show(`Not applied: method: ${describe(e)}`, 'warn', true));
       return refused;
     },
-    stop() {
-      stopped = true;
-    },
+    stop: () => stop(),
   };
 }

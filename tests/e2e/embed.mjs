@@ -185,6 +185,30 @@ test('embed: the element with every setting has the page\'s state for the same a
   await page.close();
 });
 
+test('embed: an element taken off the page stops its clock, a planar arm\'s and the Panda\'s', async () => {
+  const page = await blank();
+  await page.goto(BASE + 'embed.html');
+  for (const [id, attrs] of [['gone-plane', 'task="1" method="numerical" autoplay="0"'], ['gone-space', 'arm="panda" method="numerical" autoplay="0"']]) {
+    await page.evaluate(([id, a]) => document.body.insertAdjacentHTML('beforeend', `<redundant-ik-demo id="${id}" ${a}>fallback</redundant-ik-demo>`), [id, attrs]);
+    await ready(page, id);
+    await page.evaluate((id) => document.getElementById(id).controller.demo.setRunning(true), id);
+    const t = () => page.evaluate((id) => (window.__kept?.[id] ?? document.getElementById(id).controller).state().t, id);
+    const start = await t();
+    await page.waitForFunction(([id, t0]) => document.getElementById(id).controller.state().t > t0, [id, start], { timeout: 10000 });
+    // Off the page: its controller kept aside, the clock must not move.
+    await page.evaluate((id) => {
+      const e = document.getElementById(id);
+      window.__kept = { ...window.__kept, [id]: e.controller };
+      e.remove();
+    }, id);
+    const removed = await t();
+    await page.evaluate(() => new Promise((r) => setTimeout(r, 400)));
+    assert.equal(await t(), removed, `${id}: no frame ran after the element left the page`);
+  }
+  clean(page);
+  await page.close();
+});
+
 test('embed: the Embed button shows an iframe and an element of the scene, each reproduces it', async () => {
   const [q] = await scenes();
   const page = await open(`?${q}`);
