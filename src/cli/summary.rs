@@ -1,5 +1,5 @@
 //! What a run of an arm in space writes, whatever its task: its run
-//! file, CSV or summary as asked ([`write_run`]), and the lines the
+//! file, CSV or summary as asked (`write_run`), and the lines the
 //! summaries share: where it starts and ends, the spheres, the smallest
 //! clearances (from the spheres and between the chain's own capsules),
 //! the steps past a limit and the relaxed programs.
