@@ -10,9 +10,9 @@ use redundant_ik::{DampingSchedule, Method, Planner, Scene, Trajectory};
 use std::fmt::Write as _;
 
 use redundant_ik::arm::{JointLimits, RateLimits};
-use redundant_ik::obstacle::Placement;
+use redundant_ik::geometry::Placement;
 use redundant_ik::planner::methods::{DELTA, LAMBDA};
-use redundant_ik::scene::JointWeighting;
+use redundant_ik::scene::{JointWeighting, PAPER_RADIUS};
 
 use super::params::{Given, ParamArgs};
 use super::path_arg::{parse_path, PathArg};
@@ -224,12 +224,45 @@ impl SceneArgs {
                 )
                 .map_err(|e| e.to_string())?;
         }
-        let radius = self.radius.unwrap_or(s.obstacles[0].radius);
+        let radius = s.obstacles.first().map_or(PAPER_RADIUS, |o| o.radius);
+        self.settings_onto(&mut s, disc, radius)?;
+        if let Some(Numbers(v)) = &self.target {
+            s.target = match v[..] {
+                [x, y] => [x, y],
+                _ => {
+                    return Err(format!(
+                        "--target: a planar arm's target is X,Y, got {} numbers",
+                        v.len()
+                    ))
+                }
+            };
+        }
+        if let Some(v) = &self.path {
+            s.path = v.planar()?;
+        }
+        s.validate().map_err(|e| e.to_string())?;
+        Ok(s)
+    }
+
+    /// The options every arm's scene takes, on `s`: the obstacles (each
+    /// read by `place`, `radius` or `--radius` where it gives none; without
+    /// `--obstacle`, the scene's with `--radius`), damping, the joint
+    /// weighting, the floor, `dt`, `tf`, the start, the closed-loop gain and
+    /// the methods' parameters (set all at once, then checked together:
+    /// `d_s < d_i` whatever the order). The arm, its limits, the target and
+    /// the path are each kind's.
+    pub(super) fn settings_onto<A, P, const M: usize, const D: usize>(
+        &self,
+        s: &mut redundant_ik::scene::Scene<A, P, M, D>,
+        place: fn(&Numbers) -> Result<Placement<D>, String>,
+        radius: f64,
+    ) -> Result<(), String> {
+        let radius = self.radius.unwrap_or(radius);
         if !self.obstacle.is_empty() {
             s.obstacles = self
                 .obstacle
                 .iter()
-                .map(|o| disc(o).map(|p| p.ball(radius)))
+                .map(|o| place(o).map(|p| p.ball(radius)))
                 .collect::<Result<_, _>>()?;
         } else {
             for o in &mut s.obstacles {
@@ -247,32 +280,15 @@ impl SceneArgs {
         if let Some(v) = self.tf {
             s.tf = v;
         }
-        if let Some(Numbers(v)) = &self.target {
-            s.target = match v[..] {
-                [x, y] => [x, y],
-                _ => {
-                    return Err(format!(
-                        "--target: a planar arm's target is X,Y, got {} numbers",
-                        v.len()
-                    ))
-                }
-            };
-        }
-        if let Some(v) = &self.path {
-            s.path = v.planar()?;
-        }
         if let Some(v) = &self.theta0 {
             s.theta0 = parse_list(v).map_err(|e| format!("--theta0: {e}"))?;
         }
         if let Some(v) = self.feedback {
             s.feedback_gain = v;
         }
-        // All at once, then checked together (d_s < d_i whatever the order).
         s.params
             .set_all(&self.params.values)
-            .map_err(|e| e.to_string())?;
-        s.validate().map_err(|e| e.to_string())?;
-        Ok(s)
+            .map_err(|e| e.to_string())
     }
 
     /// Runs the scene with `method`: the run and what it did.
@@ -286,7 +302,7 @@ impl SceneArgs {
 
 /// An obstacle for a planar arm: `X,Y` or `X,Y,R`; a sphere's `X,Y,Z,R`
 /// is refused with a reason.
-fn disc(n: &Numbers) -> Result<Placement, String> {
+fn disc(n: &Numbers) -> Result<Placement<2>, String> {
     match n.0[..] {
         [x, y] => Ok(Placement { centre: [x, y], radius: None }),
         [x, y, r] => Ok(Placement { centre: [x, y], radius: Some(r) }),

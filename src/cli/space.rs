@@ -6,10 +6,10 @@
 use std::fmt::Write as _;
 
 use redundant_ik::export::{is_space_run, SpaceRunFile};
-use redundant_ik::ik::DampingSchedule;
+use redundant_ik::geometry::Placement;
 use redundant_ik::planner::{Networks, Planner, Trajectory};
 use redundant_ik::scene::{SpacePath, SpaceScene};
-use redundant_ik::space::{Chain, SpacePreset, Sphere};
+use redundant_ik::space::{Chain, SpacePreset};
 use redundant_ik::Method;
 
 pub use super::job::Job;
@@ -18,7 +18,7 @@ pub use super::robot::Robot;
 use super::simulate::{SceneArgs, SimulateArgs};
 pub use super::space_networks::networks_for;
 use super::task::pose_spec;
-use super::{parse_list, Numbers};
+use super::Numbers;
 use redundant_ik::urdf::RobotSource;
 
 /// The scene of `args` for the preset `p`: its task, with the options
@@ -44,18 +44,7 @@ fn apply(args: &SceneArgs, mut s: SpaceScene, radius: f64) -> Result<SpaceScene,
             )
             .map_err(|e| e.to_string())?;
     }
-    let radius = args.radius.unwrap_or(radius);
-    if !args.obstacle.is_empty() {
-        s.obstacles = args
-            .obstacle
-            .iter()
-            .map(|o| sphere(o, radius))
-            .collect::<Result<_, _>>()?;
-    } else {
-        for o in &mut s.obstacles {
-            o.radius = radius;
-        }
-    }
+    args.settings_onto(&mut s, sphere, radius)?;
     if let Some(Numbers(v)) = &args.target {
         // Six numbers are a pose: its orientation is the pose task's.
         s.target = match v[..] {
@@ -68,39 +57,19 @@ fn apply(args: &SceneArgs, mut s: SpaceScene, radius: f64) -> Result<SpaceScene,
             }
         };
     }
-    if args.damping {
-        s.damping = Some(DampingSchedule::default());
-    }
-    s.weighting = args.joint_weighting;
-    s.floor = args.floor;
-    if let Some(v) = args.dt {
-        s.dt = v;
-    }
-    if let Some(v) = args.tf {
-        s.tf = v;
-    }
-    if let Some(v) = &args.theta0 {
-        s.theta0 = parse_list(v).map_err(|e| format!("--theta0: {e}"))?;
-    }
-    if let Some(v) = args.feedback {
-        s.feedback_gain = v;
-    }
     if let Some(v) = &args.path {
         s.path = space_path(v)?;
     }
-    s.params
-        .set_all(&args.params.values)
-        .map_err(|e| e.to_string())?;
     s.validate().map_err(|e| e.to_string())?;
     Ok(s)
 }
 
 /// A sphere: `X,Y,Z` or `X,Y,Z,R`; a planar disc's `X,Y` is refused with
 /// a reason.
-fn sphere(n: &Numbers, radius: f64) -> Result<Sphere, String> {
+fn sphere(n: &Numbers) -> Result<Placement<3>, String> {
     match n.0[..] {
-        [x, y, z] => Ok(Sphere::new([x, y, z], radius)),
-        [x, y, z, r] => Ok(Sphere::new([x, y, z], r)),
+        [x, y, z] => Ok(Placement { centre: [x, y, z], radius: None }),
+        [x, y, z, r] => Ok(Placement { centre: [x, y, z], radius: Some(r) }),
         [_, _] => Err("--obstacle: X,Y places a disc, for a planar arm; an arm in space takes a sphere X,Y,Z or X,Y,Z,R".into()),
         _ => Err(format!(
             "--obstacle: a sphere is X,Y,Z or X,Y,Z,R, got {} numbers",
