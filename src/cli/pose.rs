@@ -25,30 +25,15 @@ pub fn run_file(args: &SceneArgs, method: Option<Method>) -> Result<Option<Job>,
     let Some(file) = args.run_file_of::<PoseChain, 6>(is_pose_run)? else {
         return Ok(None);
     };
-    super::robot::check_source(file.robot.as_ref(), &file.scene.arm.chain)?;
-    let method = method.unwrap_or(file.method);
-    let robot = Robot::of_chain(&file.scene.arm.chain, "robot");
-    let nets = super::space_networks::of_run_file(
-        &args.networks,
-        &args.given,
-        file.networks,
-        file.precision,
-        &robot,
-        &file.scene.arm.chain,
-        method,
-    )?;
-    let (scene, orientation, weight) = file.scene.position_scene();
-    Ok(Some(Job {
-        robot,
-        scene,
-        method,
-        nets,
-        pose: Some(PoseSpec {
+    Job::of_file(args, method, file, |scene| {
+        let (scene, orientation, weight) = scene.position_scene();
+        let pose = PoseSpec {
             orientation: Some(orientation),
             weight,
-        }),
-        source: file.robot,
-    }))
+        };
+        (scene, Some(pose))
+    })
+    .map(Some)
 }
 
 /// Runs the pose task of the job (its scene the position scene of the

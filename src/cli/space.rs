@@ -107,7 +107,7 @@ pub fn job(
         return Ok(Some(job));
     }
     if let Some(file) = run_file(args)? {
-        return from_file(args, method, file).map(Some);
+        return Job::of_file(args, method, file, |scene| (scene, None)).map(Some);
     }
     if args.from.is_none() {
         args.robot.chain.need_urdf(args.robot.urdf.as_deref())?;
@@ -169,31 +169,6 @@ fn urdf_job(args: &SceneArgs, method: Option<Method>) -> Result<Job, String> {
         nets,
         pose: pose_spec(args.task, args.target.as_ref(), args.orientation_weight)?,
         source: Some(source),
-    })
-}
-
-/// A spatial run file's job: its scene again, with its method unless
-/// `method` is given.
-fn from_file(args: &SceneArgs, method: Option<Method>, file: SpaceRunFile) -> Result<Job, String> {
-    let robot = Robot::of_chain(&file.scene.arm, "robot");
-    let method = method.unwrap_or(file.method);
-    let nets = super::space_networks::of_run_file(
-        &args.networks,
-        &args.given,
-        file.networks,
-        file.precision,
-        &robot,
-        &file.scene.arm,
-        method,
-    )?;
-    super::robot::check_source(file.robot.as_ref(), &file.scene.arm)?;
-    Ok(Job {
-        robot,
-        scene: file.scene,
-        method,
-        nets,
-        pose: None,
-        source: file.robot,
     })
 }
 
