@@ -7,7 +7,7 @@
 use std::fmt::Write as _;
 
 use redundant_ik::export::is_pose_run;
-use redundant_ik::planner::{Networks, Planner, Trajectory};
+use redundant_ik::planner::Trajectory;
 use redundant_ik::scene::PoseScene;
 use redundant_ik::space::rotation::{exp, matrix_rpy};
 use redundant_ik::space::PoseChain;
@@ -54,19 +54,11 @@ pub fn simulate(args: &SimulateArgs, job: Job) -> Result<(), String> {
     };
     let scene =
         PoseScene::from_space(scene, spec.orientation, spec.weight).map_err(|e| e.to_string())?;
-    let used = nets.clone();
-    let traj = Planner::new(
-        scene.clone(),
-        method,
-        nets.map(|n| n as Networks<PoseChain, 6>),
-    )
-    .and_then(Planner::run_to_end)
-    .map_err(|e| e.to_string())?;
-    super::summary::write_run::<PoseChain, 6>(
+    super::summary::run_and_write::<PoseChain, 6>(
         args,
         scene,
-        traj,
-        used.as_deref(),
+        method,
+        nets,
         source,
         |scene, traj| summary(&robot, scene, traj),
     )

@@ -7,7 +7,7 @@ use std::fmt::Write as _;
 
 use redundant_ik::export::{is_space_run, SpaceRunFile};
 use redundant_ik::geometry::Placement;
-use redundant_ik::planner::{Networks, Planner, Trajectory};
+use redundant_ik::planner::Trajectory;
 use redundant_ik::scene::{SpacePath, SpaceScene};
 use redundant_ik::space::{Chain, SpacePreset};
 use redundant_ik::Method;
@@ -193,18 +193,9 @@ fn output(args: &SimulateArgs, job: Job) -> Result<(), String> {
         source,
         ..
     } = job;
-    let used = nets.clone();
-    let planner = Planner::new(scene.clone(), method, nets.map(|n| n as Networks<_, 3>))
-        .map_err(|e| e.to_string())?;
-    let traj = planner.run_to_end().map_err(|e| e.to_string())?;
-    super::summary::write_run::<Chain, 3>(
-        args,
-        scene,
-        traj,
-        used.as_deref(),
-        source,
-        |scene, traj| summary(&robot, scene, traj),
-    )
+    super::summary::run_and_write::<Chain, 3>(args, scene, method, nets, source, |scene, traj| {
+        summary(&robot, scene, traj)
+    })
 }
 
 fn summary(robot: &Robot, scene: &SpaceScene, traj: &Trajectory<3>) -> String {

@@ -1,5 +1,5 @@
 //! What a run of an arm in space writes, whatever its task: its run
-//! file, CSV or summary as asked (`write_run`), and the lines the
+//! file, CSV or summary as asked (`run_and_write`), and the lines the
 //! summaries share: where it starts and ends, the spheres, the smallest
 //! clearances (from the spheres and between the chain's own capsules),
 //! the steps past a limit and the relaxed programs.
@@ -8,32 +8,42 @@ use std::fmt::Write as _;
 
 use redundant_ik::export::{Recorded, RunFile};
 use redundant_ik::networks::space::{SpaceNetworkSet, SpaceNetworks};
-use redundant_ik::planner::{Sample, Summary, Trajectory};
+use std::sync::Arc;
+
+use redundant_ik::planner::{Networks, Planner, Sample, SceneOf, Summary, Surrogate, Trajectory};
 use redundant_ik::space::{Chain, Sphere};
 use redundant_ik::urdf::RobotSource;
+use redundant_ik::Method;
 
 use super::emit;
 use super::simulate::SimulateArgs;
 
-/// A chain's run (the hand's position or its pose) as `args` ask: its run
-/// file (`--json`: the networks it used and the robot's source in it, what
-/// `--from` replays), its CSV (`--csv`) or its summary for people
+/// Runs a chain's task (the hand's position or its pose) with `method`
+/// (and `nets`, for a learned one) and writes the run as `args` ask: its
+/// run file (`--json`: the networks it used and the robot's source in it,
+/// what `--from` replays), its CSV (`--csv`) or its summary for people
 /// (`readable`).
-pub(super) fn write_run<A, const M: usize>(
+pub(super) fn run_and_write<A, const M: usize>(
     args: &SimulateArgs,
     scene: A::Scene,
-    traj: Trajectory<M, A::Point>,
-    used: Option<&SpaceNetworks>,
+    method: Method,
+    nets: Option<Arc<SpaceNetworks>>,
     source: Option<RobotSource>,
     readable: impl FnOnce(&A::Scene, &Trajectory<M, A::Point>) -> String,
 ) -> Result<(), String>
 where
     A: Recorded<M, Set = SpaceNetworkSet>,
+    A::Scene: SceneOf<A, M> + redundant_ik::model::Scene<A>,
     A::Scene: serde::Serialize + serde::de::DeserializeOwned,
     [f64; M]: serde::Serialize + serde::de::DeserializeOwned,
+    SpaceNetworks: Surrogate<A, M>,
 {
+    let used = nets.clone();
+    let traj = Planner::new(scene.clone(), method, nets.map(|n| n as Networks<A, M>))
+        .and_then(Planner::run_to_end)
+        .map_err(|e| e.to_string())?;
     if args.json {
-        let (networks, precision) = super::space_networks::recorded(used);
+        let (networks, precision) = super::space_networks::recorded(used.as_deref());
         let text = RunFile::<A, M>::of(None, scene, traj, networks, precision)
             .with_robot(source)
             .to_json();
