@@ -21,16 +21,15 @@ import subprocess
 import sys
 
 
-def flatten(report):
-    """`{"step_ns.case3": 1215.0, ...}` from one bench report."""
+def flatten(report, prefix=""):
+    """`{"step_ns.case3": 1215.0, ...}` from one bench report, at any depth
+    (`--arm`'s report nests its figures: `methods.case3.step_ns`)."""
     out = {}
     for key, value in report.items():
         if isinstance(value, dict):
-            for sub, x in value.items():
-                if isinstance(x, (int, float)):
-                    out[f"{key}.{sub}"] = x
+            out.update(flatten(value, f"{prefix}{key}."))
         elif isinstance(value, (int, float)) and not isinstance(value, bool):
-            out[key] = value
+            out[f"{prefix}{key}"] = value
     return out
 
 
@@ -49,7 +48,7 @@ def main() -> int:
             results[binary].append(flatten(json.loads(text)))
         print(f"bench-ab: round {i + 1}/{runs}", file=sys.stderr)
     keys = list(dict.fromkeys(k for r in results[a] + results[b] for k in r))
-    print(f"{'figure':<28} {'A':>12} {'B':>12} {'B/A':>7}")
+    print(f"{'figure':<36} {'A':>12} {'B':>12} {'B/A':>7}")
     for k in keys:
         med = []
         for binary in (a, b):
@@ -57,7 +56,7 @@ def main() -> int:
             med.append(statistics.median(xs) if xs else None)
         ratio = f"{med[1] / med[0]:.2f}" if med[0] and med[1] is not None else "-"
         cells = ["-" if m is None else f"{m:.1f}" for m in med]
-        print(f"{k:<28} {cells[0]:>12} {cells[1]:>12} {ratio:>7}")
+        print(f"{k:<36} {cells[0]:>12} {cells[1]:>12} {ratio:>7}")
     return 0
 
 

@@ -8,12 +8,13 @@
 
 use nalgebra::{Matrix6, SymmetricEigen, Vector6};
 
-use super::{Clearance, Model, PhiAlgebra};
+use super::space::{chain_obstacle_vector, chain_pairs};
+use super::{Model, PhiAlgebra};
 use crate::arm::{JointLimits, RateLimits};
 use crate::error::{Error, Result};
 use crate::scene::PoseScene;
 use crate::space::{
-    criterion, pose_distance, pose_error, pose_geodesic, HandPose, PoseChain, SpacePair, SpacePairs,
+    pose_distance, pose_error, pose_geodesic, HandPose, PoseChain, SpacePair, SpacePairs,
 };
 
 /// `J W^-1 J^T + delta Z^-1` of `pose` (`winv`: `W^-1`'s diagonal, `None`
@@ -145,14 +146,8 @@ impl Model<6> for PoseChain {
         _scratch: &mut [f64],
         v: &mut [f64],
     ) {
-        criterion::null_space_vector_into(
-            &scene.arm.chain,
-            pose.space(),
-            Self::obstacle_centres(scene),
-            lambda,
-            eps,
-            v,
-        );
+        let chain = &scene.arm.chain;
+        chain_obstacle_vector(chain, pose.space(), &scene.obstacles, [lambda, eps], v);
     }
     fn pairs(n: usize) -> SpacePairs {
         SpacePairs::with_capacity(Self::most_pairs(n))
@@ -162,11 +157,14 @@ impl Model<6> for PoseChain {
     }
     fn update_pairs(scene: &PoseScene, pose: &HandPose, within: f64, pairs: &mut SpacePairs) {
         let chain = &scene.arm.chain;
-        pairs.update(chain, pose.space(), &scene.obstacles, within);
-        if scene.floor {
-            pairs.add_floor(chain, pose.space(), within);
-        }
-        pairs.add_self(chain, pose.space(), within);
+        chain_pairs(
+            chain,
+            scene.floor,
+            &scene.obstacles,
+            pose.space(),
+            within,
+            pairs,
+        );
     }
     fn pair_list(pairs: &SpacePairs) -> &[SpacePair] {
         pairs.as_slice()
@@ -276,21 +274,6 @@ impl Model<6> for PoseChain {
         out: &mut [f64],
     ) -> Result<()> {
         resolve(pose, Some(winv), xdot, v, delta, out)
-    }
-}
-
-impl Clearance<HandPose> for SpacePair {
-    #[inline]
-    fn clearance(&self) -> f64 {
-        self.distance
-    }
-    #[inline]
-    fn is_self(&self) -> bool {
-        self.is_link()
-    }
-    #[inline]
-    fn row_into(&self, pose: &HandPose, row: &mut [f64]) {
-        self.gradient_into(pose.space(), row);
     }
 }
 

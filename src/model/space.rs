@@ -7,7 +7,9 @@ use crate::arm::{JointLimits, RateLimits};
 use crate::error::Result;
 use crate::scene::SpaceScene;
 use crate::space::linalg::{smallest_singular_value3, solve_spd3};
-use crate::space::{criterion, dot, manipulability, phi, Chain, SpacePair, SpacePairs, SpacePose};
+use crate::space::{
+    criterion, dot, manipulability, phi, Chain, SpacePair, SpacePairs, SpacePose, Sphere,
+};
 
 /// The damping (m^2) of the pull's inverse in space: the elbow's
 /// Jacobian `J_k` loses rank where its levers line up.
@@ -43,11 +45,14 @@ impl Model<3> for Chain {
         SpacePairs::most(n)
     }
     fn update_pairs(scene: &SpaceScene, pose: &SpacePose, within: f64, pairs: &mut SpacePairs) {
-        pairs.update(&scene.arm, pose, &scene.obstacles, within);
-        if scene.floor {
-            pairs.add_floor(&scene.arm, pose, within);
-        }
-        pairs.add_self(&scene.arm, pose, within);
+        chain_pairs(
+            &scene.arm,
+            scene.floor,
+            &scene.obstacles,
+            pose,
+            within,
+            pairs,
+        );
     }
     fn pair_list(pairs: &SpacePairs) -> &[SpacePair] {
         pairs.as_slice()
@@ -63,14 +68,7 @@ impl Model<3> for Chain {
         _scratch: &mut [f64],
         v: &mut [f64],
     ) {
-        criterion::null_space_vector_into(
-            &scene.arm,
-            pose,
-            Self::obstacle_centres(scene),
-            lambda,
-            eps,
-            v,
-        );
+        chain_obstacle_vector(&scene.arm, pose, &scene.obstacles, [lambda, eps], v);
     }
     #[inline]
     fn theta(pose: &SpacePose) -> &[f64] {
@@ -193,7 +191,9 @@ impl Model<3> for Chain {
     }
 }
 
-impl Clearance<SpacePose> for SpacePair {
+/// A chain's pairs, whatever its task reads of the pass (the hand's point
+/// or its pose: [`AsRef<SpacePose>`]).
+impl<P: AsRef<SpacePose>> Clearance<P> for SpacePair {
     #[inline]
     fn clearance(&self) -> f64 {
         self.distance
@@ -203,9 +203,40 @@ impl Clearance<SpacePose> for SpacePair {
         self.is_link()
     }
     #[inline]
-    fn row_into(&self, pose: &SpacePose, row: &mut [f64]) {
-        self.gradient_into(pose, row);
+    fn row_into(&self, pose: &P, row: &mut [f64]) {
+        self.gradient_into(pose.as_ref(), row);
     }
+}
+
+/// The pairs within `within` of each other that the chain's two models
+/// (the hand's point and its pose) read: each capsule's with each sphere,
+/// with the floor where it is an obstacle, and the chain's own.
+pub(super) fn chain_pairs(
+    chain: &Chain,
+    floor: bool,
+    spheres: &[Sphere],
+    pose: &SpacePose,
+    within: f64,
+    pairs: &mut SpacePairs,
+) {
+    pairs.update(chain, pose, spheres, within);
+    if floor {
+        pairs.add_floor(chain, pose, within);
+    }
+    pairs.add_self(chain, pose, within);
+}
+
+/// The paper's obstacle vector (eqs. 12-16) of a chain past `spheres`
+/// with gain and floor `[lambda, eps]`, whatever its task.
+pub(super) fn chain_obstacle_vector(
+    chain: &Chain,
+    pose: &SpacePose,
+    spheres: &[Sphere],
+    [lambda, eps]: [f64; 2],
+    v: &mut [f64],
+) {
+    let centres = spheres.iter().map(|s| s.centre);
+    criterion::null_space_vector_into(chain, pose, centres, lambda, eps, v);
 }
 
 impl PhiAlgebra<3> for Chain {
