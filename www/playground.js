@@ -90,13 +90,12 @@ export function mountPlayground(root, demo, { attempt, show, changed }) {
   }
 
   /**
-   * A whole run off screen: `{ method, target?, obstacles?, tf?, theta0?, feedback?, refine? }` -> summary
-   * (`mode`, the older name of `method`, is read too).
+   * A whole run off screen: `{ method?, target?, obstacles?, tf?, theta0?, feedback?, refine? }` -> summary
+   * (the method in use where none is given; `mode`, the older name of `method`, is read too).
    */
   function simulate(options) {
     return simulateWith(demo, options, flatObstacles);
   }
-
 
   return {
     simulate,

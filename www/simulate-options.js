@@ -41,14 +41,16 @@ export function simulateWith(demo, options, flatObstacles) {
  * The flat list of obstacles a binding takes (the centre's `dims`
  * coordinates and the radius of each) from a script's list: each `[x, y]`
  * or `[x, y, r]` in the plane (`[x, y, z]` or `[x, y, z, r]` in space), or
- * `{ x, y, z, r }`; `radius` where none is given. A typed array passes as
- * it is.
+ * `{ x, y, z, r }`; `radius` where none is given. A typed array or a list
+ * of numbers passes as it is, already flat.
  */
 export function flatBalls(list, dims, radius) {
   if (ArrayBuffer.isView(list)) return list;
   const names = ['x', 'y', 'z'].slice(0, dims);
   const shape = `[${names.join(', ')}, r]`;
   if (!Array.isArray(list)) throw new Error(`obstacles: expected a list of ${shape}`);
+  // Already flat (numbers only): the core checks the count.
+  if (list.every((o) => typeof o === 'number')) return Float64Array.from(list);
   return Float64Array.from(
     list.flatMap((o) => {
       const v = Array.isArray(o) ? [...o] : [...names.map((k) => o?.[k]), o?.r];

@@ -273,6 +273,8 @@ test('space controls: window.demo.simulate runs a scene off screen with override
   assert.equal(moved.steps, 60);
   const objects = await page.evaluate(() => window.demo.simulate({ method: 'qp', target: [0.45, 0.2, 0.5], obstacles: [{ x: 0.45, y: 0.1, z: 0.7 }], tf: 3 }));
   assert.deepEqual(objects, moved, 'a sphere written { x, y, z } has the default radius, 0.05 m');
+  const flat = await page.evaluate(() => window.demo.simulate({ method: 'qp', target: [0.45, 0.2, 0.5], obstacles: [0.45, 0.1, 0.7, 0.05], tf: 3 }));
+  assert.deepEqual(flat, moved, 'a flat list of numbers, as before');
   const current = await page.evaluate(() => window.demo.simulate({}));
   const numerical = (await page.evaluate(() => window.demo.compare())).find((r) => r.method === 'numerical');
   assert.deepEqual(current, numerical.summary, 'without a method, the method in use');
