@@ -47,9 +47,10 @@ test('older names still work: mode= in the address, { mode } and { modes } in wi
   const r = await both.evaluate(async () => {
     const d = window.demo;
     const atlas = await d.atlas({ n: 3, modes: ['none', 'numerical'] });
-    return { old: d.simulate({ mode: 'numerical' }), new: d.simulate({ method: 'numerical' }), methods: atlas.methods };
+    return { old: d.simulate({ mode: 'numerical' }), new: d.simulate({ method: 'numerical' }), methods: atlas.methods, inUse: d.simulate({}), case3: d.simulate({ method: 'case3' }) };
   });
   assert.deepEqual(r.old, r.new);
+  assert.deepEqual(r.inUse, r.case3, 'simulate without a method runs the one in use');
   assert.deepEqual(r.methods, ['none', 'numerical']);
   for (const p of [old, both]) {
     clean(p);
