@@ -52,11 +52,6 @@ impl<A: Mapped<M, D>, const M: usize, const D: usize, H: Head<D>> Chunked<A, M, 
         self.sweep.row()
     }
 
-    /// The centre of cell `index`.
-    pub fn centre(&self, index: usize) -> [f64; D] {
-        self.sweep.centre(index)
-    }
-
     /// Computes up to `cells` more cells on this thread, in order; returns
     /// how many are done in all.
     pub fn advance(&mut self, cells: usize) -> usize {

@@ -94,10 +94,10 @@ pub fn run(args: &AtlasArgs) -> Result<(), String> {
         task: Some(args.scene.task()?),
     };
     let threads = threads(args)?;
-    let job = Job::new(spec, networks).map_err(|e| e.to_string())?;
 
     #[allow(clippy::disallowed_methods)] // the native CLI has a clock
     let start = Instant::now();
+    let job = Job::new(spec, networks).map_err(|e| e.to_string())?;
     let atlas = compute(job, threads)?;
     let seconds = start.elapsed().as_secs_f64();
 

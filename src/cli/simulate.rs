@@ -482,7 +482,8 @@ pub fn run(args: &SimulateArgs) -> Result<(), String> {
     emit(&out)
 }
 
-fn fmt_list(v: &[f64]) -> String {
+/// Numbers to four places, joined by `, ` (joint angles in a summary).
+pub(super) fn fmt_list(v: &[f64]) -> String {
     v.iter()
         .map(|x| format!("{x:.4}"))
         .collect::<Vec<_>>()

@@ -5,18 +5,17 @@
 //! the steps past a limit and the relaxed programs.
 
 use std::fmt::Write as _;
+use std::sync::Arc;
 
 use redundant_ik::export::{Recorded, RunFile};
 use redundant_ik::networks::space::{SpaceNetworkSet, SpaceNetworks};
-use std::sync::Arc;
-
 use redundant_ik::planner::{Networks, Planner, Sample, SceneOf, Summary, Surrogate, Trajectory};
 use redundant_ik::space::{Chain, Sphere};
 use redundant_ik::urdf::RobotSource;
 use redundant_ik::Method;
 
 use super::emit;
-use super::simulate::SimulateArgs;
+use super::simulate::{fmt_list, SimulateArgs};
 
 /// Runs a chain's task (the hand's position or its pose) with `method`
 /// (and `nets`, for a learned one) and writes the run as `args` ask: its
@@ -64,16 +63,10 @@ pub fn ends<const M: usize, P>(
     hand: impl Fn([f64; M]) -> String,
     goal: &str,
 ) {
-    let list = |v: &[f64]| {
-        v.iter()
-            .map(|x| format!("{x:.4}"))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
     let (Some(first), Some(last)) = (steps.first(), steps.last()) else {
         return;
     };
-    let (start, end) = (list(&first.theta), list(&last.theta));
+    let (start, end) = (fmt_list(&first.theta), fmt_list(&last.theta));
     let _ = writeln!(out, "start  theta = [{start}]  hand {}", hand(first.ee));
     let _ = writeln!(
         out,

@@ -147,7 +147,7 @@ impl Model<6> for PoseChain {
         v: &mut [f64],
     ) {
         let chain = &scene.arm.chain;
-        chain_obstacle_vector(chain, pose.space(), &scene.obstacles, [lambda, eps], v);
+        chain_obstacle_vector(chain, pose.space(), &scene.obstacles, lambda, eps, v);
     }
     fn pairs(n: usize) -> SpacePairs {
         SpacePairs::with_capacity(Self::most_pairs(n))

@@ -68,7 +68,7 @@ impl Model<3> for Chain {
         _scratch: &mut [f64],
         v: &mut [f64],
     ) {
-        chain_obstacle_vector(&scene.arm, pose, &scene.obstacles, [lambda, eps], v);
+        chain_obstacle_vector(&scene.arm, pose, &scene.obstacles, lambda, eps, v);
     }
     #[inline]
     fn theta(pose: &SpacePose) -> &[f64] {
@@ -227,12 +227,13 @@ pub(super) fn chain_pairs(
 }
 
 /// The paper's obstacle vector (eqs. 12-16) of a chain past `spheres`
-/// with gain and floor `[lambda, eps]`, whatever its task.
+/// with gain `lambda` and floor `eps`, whatever its task.
 pub(super) fn chain_obstacle_vector(
     chain: &Chain,
     pose: &SpacePose,
     spheres: &[Sphere],
-    [lambda, eps]: [f64; 2],
+    lambda: f64,
+    eps: f64,
     v: &mut [f64],
 ) {
     let centres = spheres.iter().map(|s| s.centre);
