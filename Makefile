@@ -19,7 +19,7 @@ WORKER_OPT = CARGO_PROFILE_RELEASE_OPT_LEVEL=s
 # target/, emptied at each start, so a long-lived machine's /tmp does not fill.
 BROWSER_TMP = rm -rf target/browser-tmp && mkdir -p target/browser-tmp && TMPDIR=$(CURDIR)/target/browser-tmp
 
-.PHONY: setup web dist test-dist offline test-offline npm test-npm demo test lint test-native test-wasm test-e2e test-fuzz fuzz-start fuzz-wait test-soak fuzz soak bench bench-native bench-web figures atlas-figures weights clean-web python-env python-build python-start python-wait python-dev test-python wheel bench-python
+.PHONY: setup web dist test-dist offline test-offline npm test-npm demo test lint test-native test-wasm test-e2e test-fuzz fuzz-start fuzz-wait test-soak soak-start soak-wait fuzz soak bench bench-native bench-web figures atlas-figures weights clean-web python-env python-build python-start python-wait python-dev test-python wheel bench-python
 
 ## Make this machine able to build and test for wasm32 (idempotent).
 setup:
@@ -187,8 +187,9 @@ test-npm: npm
 ## fuzzing (its builds take the cores) runs beside the wasm tests and the
 ## page's build, whose browser runs mostly wait (fuzz-start, fuzz-wait);
 ## its report comes last. The Python package builds beside the bundles'
-## browser tests (python-start, python-wait).
-test: lint test-native fuzz-start test-wasm test-e2e python-start test-dist test-offline test-npm test-python test-soak fuzz-wait
+## browser tests (python-start, python-wait), and the short soak plays
+## beside them (soak-start, soak-wait).
+test: lint test-native fuzz-start test-wasm test-e2e python-start soak-start test-dist test-offline test-npm test-python soak-wait fuzz-wait
 
 FUZZ_LOG = target/test-fuzz.log
 fuzz-start:
@@ -247,6 +248,22 @@ soak: web
 ## CI's short soak: 60 seconds.
 test-soak: web
 	$(BROWSER_TMP) SOAK_SECONDS=60 E2E_SCRIPT=soak.mjs bash scripts/e2e.sh
+
+## `make test` runs the short soak beside the tests of dist/, the offline
+## file, the npm package and Python: a minute of the page playing whose
+## checks are the memory's growth, not its speed. Its browser keeps its
+## files in a folder of its own, since each browser test empties
+## target/browser-tmp when it starts.
+SOAK_LOG = target/test-soak.log
+soak-start: web
+	@mkdir -p target && rm -f $(SOAK_LOG) $(SOAK_LOG).status
+	@echo "test-soak: started beside the next tests, its report in $(SOAK_LOG)"
+	@( rm -rf target/browser-tmp-soak && mkdir -p target/browser-tmp-soak && \
+	  TMPDIR=$(CURDIR)/target/browser-tmp-soak SOAK_SECONDS=60 E2E_SCRIPT=soak.mjs bash scripts/e2e.sh > $(SOAK_LOG) 2>&1; echo $$? > $(SOAK_LOG).status ) &
+soak-wait:
+	@while [ ! -f $(SOAK_LOG).status ]; do sleep 2; done
+	@cat $(SOAK_LOG)
+	@exit $$(cat $(SOAK_LOG).status)
 
 ## Criterion benchmarks (for developers; the README quotes `redundant-ik bench`).
 bench:
