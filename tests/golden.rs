@@ -88,6 +88,8 @@ fn commands() -> Vec<Vec<String>> {
         "atlas --task 1 --grid 9 --json",
         "atlas --task 2 --grid 9 --methods all --csv",
         "atlas --arm panda --grid 5 --methods numerical,qp --json",
+        "atlas --task 2 --grid 7 --out {out}",
+        "atlas --arm panda --grid 5 --methods numerical,qp --out {out}",
         "figure --task 1 --method case3 --out {out}",
         "figure --task 2 --method numerical --ellipse --out {out}",
         "figure --task 1 --compare --out {out}",

@@ -4,11 +4,14 @@
 // cell run whole in every method ticked, in a Web Worker (jobs.js
 // spaceAtlas: progress and cancel), then its table of outcomes by method and
 // the map of one method drawn on its plane in the view (SpaceDemo's
-// setAtlasLayer), the same cells `redundant-ik atlas --arm A --json` gives.
+// setAtlasLayer), the same cells `redundant-ik atlas --arm A --json` gives;
+// its files to take away (the map shown as SVG or PNG, the cells as CSV,
+// the JSON), made in a worker as `atlas --arm A --out`, `--csv`, `--json`.
 
 import { atlasClasses, methods, describe, spaceNetworkSets, assetUrl } from './module.js';
-import { spaceAtlas } from './jobs.js';
+import { spaceAtlas, runWorker } from './jobs.js';
 import { metres } from './format.js';
+import { saveBlob, saveText, svgToPng } from './download.js';
 
 const pct = (x) => `${(100 * x).toFixed(1)}%`;
 
@@ -67,15 +70,25 @@ export function mountSpaceAtlas(root, demo, { show, say, preset, changed }) {
   const hide = Object.assign(document.createElement('button'), { type: 'button', id: 'space-atlas-hide', textContent: 'Hide the map' });
   const whichLabel = document.createElement('label');
   whichLabel.append('Map of ', which);
+  const saves = [
+    ['space-atlas-figure', 'Save map (SVG)'],
+    ['space-atlas-figure-png', 'PNG'],
+    ['space-atlas-csv', 'Cells (CSV)'],
+    ['space-atlas-json', 'JSON'],
+  ].map(([id, textContent]) => Object.assign(document.createElement('button'), { type: 'button', id, textContent }));
   showRow.append(whichLabel, hide);
   showRow.hidden = true;
+  const saveRow = Object.assign(document.createElement('p'), { className: 'row buttons', hidden: true });
+  saveRow.append(...saves);
   const table = document.createElement('table');
   table.className = 'compare';
   table.id = 'space-atlas-table';
-  panel.append(intro, form, boxes, buttons, status, showRow, table);
+  panel.append(intro, form, boxes, buttons, status, showRow, table, saveRow);
 
   const classes = atlasClasses();
   let last = null;
+  // The atlas's own JSON text and the run file it was computed on, for its files.
+  let made = null;
   let controller = null;
 
   // ---- the map on the drawing: numbers under the pointer, a click places the sphere
@@ -144,6 +157,29 @@ export function mountSpaceAtlas(root, demo, { show, say, preset, changed }) {
     demo.setAtlasLayer(axes, at, Float64Array.from(last.grid.region), last.grid.n, Uint8Array.from(cls));
   }
   which.addEventListener('change', () => draw(Number(which.value)));
+
+  // The files: the map of the method shown, the cells and the JSON of every method.
+  const stemOf = () => {
+    const [axes, at] = planeOf(last);
+    return `atlas-${String(demo.state().arm).replace(/[^A-Za-z0-9_-]+/g, '_')}-${axes}${Math.round(at * 1000)}mm-${last.grid.n}x${last.grid.n}-${last.methods[Number(which.value)]}`;
+  };
+  const saving = (button, save) =>
+    button.addEventListener('click', async () => {
+      if (!made) return;
+      button.disabled = true;
+      try {
+        const { result } = await runWorker({ kind: 'slice-atlas-files', atlas: made.json, run: made.run, methods: [last.methods[Number(which.value)]] });
+        await save(result);
+      } catch (e) {
+        status.textContent = `Could not save: ${describe(e)}`;
+      } finally {
+        button.disabled = false;
+      }
+    });
+  saving(saves[0], (f) => saveText(`${stemOf()}.svg`, f.figure, 'image/svg+xml'));
+  saving(saves[1], async (f) => saveBlob(`${stemOf()}.png`, await svgToPng(f.figure)));
+  saving(saves[2], (f) => saveText(`${stemOf()}.csv`, f.csv, 'text/csv'));
+  saving(saves[3], (f) => saveText(`${stemOf()}.json`, f.json + '\n', 'application/json'));
   hide.addEventListener('click', () => {
     demo.clearAtlasLayer();
     showRow.hidden = true;
@@ -161,7 +197,8 @@ export function mountSpaceAtlas(root, demo, { show, say, preset, changed }) {
       const tr = document.createElement('tr');
       tr.dataset.method = m;
       const counts = classes.map((c) => a.cells.filter((cell) => cell.outcomes[k].class === c.name).length);
-      const avoidable = a.cells.filter((cell) => cell.outcomes.some((o) => o.class === 'success')).length;
+      // Success over the cells where avoidance is possible, as `atlas --arm A` counts it.
+      const avoidable = a.cells.filter((cell) => classes.find((c) => c.name === cell.outcomes[0].class)?.avoidable).length;
       const rate = avoidable ? counts[0] / avoidable : NaN;
       for (const v of [methods().find((x) => x.name === m)?.label ?? m, ...counts.map(String), Number.isFinite(rate) ? pct(rate) : '—']) {
         const td = document.createElement('td');
@@ -205,9 +242,10 @@ export function mountSpaceAtlas(root, demo, { show, say, preset, changed }) {
     progress.value = 0;
     status.textContent = 'Computing…';
     const started = performance.now();
+    const runText = demo.runFile();
     try {
-      const { atlas: result, ms } = await spaceAtlas({
-        run: demo.runFile(),
+      const { atlas: result, json, ms } = await spaceAtlas({
+        run: runText,
         methods: chosen,
         plane: options.plane ?? (plane.value.trim() || undefined),
         n: options.n ?? Number(n.value),
@@ -216,6 +254,8 @@ export function mountSpaceAtlas(root, demo, { show, say, preset, changed }) {
         onProgress: (p) => (progress.value = p.total ? p.done / p.total : 0),
       });
       last = result;
+      made = { json, run: runText };
+      saveRow.hidden = false;
       revision = s.run_revision;
       delete status.dataset.stale;
       tabulate(last);

@@ -67,6 +67,7 @@ import init, {
   runFiles,
   readRobot,
   atlasFiles,
+  sliceAtlasFiles,
   spaceFigure,
   spacePlots,
   trainSpaceNetwork,
@@ -203,6 +204,7 @@ self.onmessage = async ({ data }) => {
     else if (data.kind === 'run-files') result = runFiles(data.run);
     else if (data.kind === 'robot') result = readRobot(data.urdf, data.base ?? undefined, data.tip ?? undefined, data.meshes ?? {});
     else if (data.kind === 'atlas-files') result = atlasFiles(data.atlas, data.scene, data.methods ?? []);
+    else if (data.kind === 'slice-atlas-files') result = sliceAtlasFiles(data.atlas, data.run, data.methods ?? []);
     else throw new Error(`unknown job '${data.kind}'`);
     self.postMessage({ type: 'done', result, ms: performance.now() - t0 });
   } catch (e) {

@@ -33,6 +33,8 @@ pub use geometry::unavoidable;
 pub use geometry::PlaneGeometry;
 pub use grid::{Grid, DEFAULT_GRID, MAX_GRID};
 pub use job::{Chunked, Head};
+#[cfg(feature = "figure")]
+pub(crate) use summary::summarise;
 pub use summary::{Agreement, Clearance, MethodSummary, Rate};
 pub use sweep::{Mapped, Sweep};
 

@@ -1,13 +1,16 @@
 //! An atlas read back from its JSON (what `redundant-ik atlas --json`
 //! writes and the page downloads): the cells as written, the summaries
 //! computed again from them, so a file cannot carry a summary its cells
-//! do not support.
+//! do not support. The slice atlas of an arm in space reads back too
+//! (its cells checked against its grid and plane), which the page's
+//! workers draw as its maps.
 
 use std::collections::BTreeMap;
 
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer};
 
+use super::space::{Plane, SliceAtlas};
 use super::{summary, Atlas, Cell, Grid, Outcome};
 use crate::planner::Method;
 
@@ -75,6 +78,83 @@ impl<'de> Deserialize<'de> for Atlas {
             cells,
             trained_region: a.trained_region,
             summary,
+        })
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SliceCellIn {
+    centre: [f64; 3],
+    outcomes: Vec<Outcome>,
+    #[serde(default)]
+    avoidance_needed: Option<bool>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SliceIn {
+    arm: Option<String>,
+    plane: Plane,
+    grid: Grid,
+    radius: f64,
+    methods: Vec<Method>,
+    cells: Vec<SliceCellIn>,
+}
+
+impl<'de> Deserialize<'de> for SliceAtlas {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let a = SliceIn::deserialize(d)?;
+        a.grid.validate().map_err(D::Error::custom)?;
+        let arm = match a.arm.as_deref() {
+            None => None,
+            Some(key) => Some(
+                crate::space::SpacePreset::by_key(key)
+                    .ok_or_else(|| D::Error::custom(format!("unknown arm in space '{key}'")))?
+                    .key,
+            ),
+        };
+        if a.cells.len() != a.grid.cells() {
+            return Err(D::Error::custom(format!(
+                "an atlas of {} x {} cells lists {}",
+                a.grid.n,
+                a.grid.n,
+                a.cells.len()
+            )));
+        }
+        if a.methods.is_empty() {
+            return Err(D::Error::custom("an atlas names no method"));
+        }
+        let mut cells = Vec::with_capacity(a.cells.len());
+        for (k, c) in a.cells.into_iter().enumerate() {
+            let (i, j) = (k % a.grid.n, k / a.grid.n);
+            let at = a.plane.point(a.grid.x(i), a.grid.y(j));
+            if (0..3).any(|q| (c.centre[q] - at[q]).abs() > 1e-9) {
+                return Err(D::Error::custom(format!(
+                    "cell {k} is not at its grid point on the slice {}",
+                    a.plane
+                )));
+            }
+            if c.outcomes.len() != a.methods.len() {
+                return Err(D::Error::custom(format!(
+                    "cell {k} has {} outcomes for {} methods",
+                    c.outcomes.len(),
+                    a.methods.len()
+                )));
+            }
+            cells.push(Cell {
+                centre: c.centre,
+                outcomes: c.outcomes,
+                avoidance_needed: c.avoidance_needed,
+            });
+        }
+        Ok(SliceAtlas {
+            arm,
+            plane: a.plane,
+            grid: a.grid,
+            radius: a.radius,
+            methods: a.methods,
+            cells,
         })
     }
 }

@@ -10,7 +10,7 @@ use std::fmt;
 use std::str::FromStr;
 use std::sync::Arc;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 mod job;
 
@@ -29,7 +29,7 @@ pub const DEFAULT_SIDE: f64 = 0.8;
 pub const DEFAULT_SLICE_GRID: usize = 21;
 
 /// An axis-aligned plane: the coordinate it fixes and its value (m).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub enum Plane {
     /// `z = value`: the grid's axes are `x` and `y`.
     Xy(f64),
@@ -134,7 +134,7 @@ impl fmt::Display for Plane {
     }
 }
 
-/// A finished slice atlas.
+/// A finished slice atlas; it reads back from its JSON (`atlas/read.rs`).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SliceAtlas {
     /// The arm's preset key, if it is one.

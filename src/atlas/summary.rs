@@ -106,13 +106,16 @@ impl MethodSummary {
     }
 }
 
-fn inside(region: [f64; 4], c: &Cell) -> bool {
+fn inside<const D: usize>(region: [f64; 4], c: &Cell<D>) -> bool {
     (region[0]..=region[1]).contains(&c.centre[0]) && (region[2]..=region[3]).contains(&c.centre[1])
 }
 
-pub(super) fn summarise(
+/// Each method's summary over `cells` (of obstacles with `D`
+/// coordinates), the success inside and outside the `v` network's trained
+/// `region` where one is given (its first two coordinates).
+pub(crate) fn summarise<const D: usize>(
     methods: &[Method],
-    cells: &[Cell],
+    cells: &[Cell<D>],
     region: Option<[f64; 4]>,
     radius: f64,
 ) -> Vec<MethodSummary> {

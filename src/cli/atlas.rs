@@ -102,9 +102,7 @@ pub fn run(args: &AtlasArgs) -> Result<(), String> {
     let seconds = start.elapsed().as_secs_f64();
 
     if let Some(path) = &args.out {
-        let svg = redundant_ik::figure::atlas_svg(&atlas, &scene).map_err(|e| e.to_string())?;
-        std::fs::write(path, svg).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        eprintln!("wrote {}", path.display());
+        write_maps(path, redundant_ik::figure::atlas_svg(&atlas, &scene))?;
     }
     if args.csv {
         return emit(&redundant_ik::export::atlas_csv(&atlas));
@@ -114,6 +112,17 @@ pub fn run(args: &AtlasArgs) -> Result<(), String> {
         return emit(&format!("{json}\n"));
     }
     emit(&report(&atlas, seconds, threads))
+}
+
+/// Writes an atlas's maps (`--out`), or says why not.
+pub(super) fn write_maps(
+    path: &std::path::Path,
+    svg: redundant_ik::Result<String>,
+) -> Result<(), String> {
+    let svg = svg.map_err(|e| e.to_string())?;
+    std::fs::write(path, svg).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    eprintln!("wrote {}", path.display());
+    Ok(())
 }
 
 /// The threads of an atlas: `--threads`, or one per core.

@@ -1,6 +1,6 @@
 //! `atlas` for an arm in space (`--arm A`, `--urdf FILE`, or `--from` a
 //! spatial run file): the slice atlas of its job ([`super::space::Job`]),
-//! as a table, JSON or CSV.
+//! as a table, JSON or CSV, and its maps (`--out`).
 
 use std::fmt::Write as _;
 
@@ -11,14 +11,12 @@ use super::{emit, parse_list};
 
 /// `atlas` for a spatial job (`--arm A`, or `--from` a spatial run file:
 /// its scene): the sphere over a grid on a slice, in every method that
-/// runs in space (or those asked for); a table, JSON or CSV.
+/// runs in space (or those asked for); a table, JSON or CSV, and the maps
+/// as SVG (`--out`).
 pub fn atlas(args: &super::atlas::AtlasArgs, job: Job) -> Result<(), String> {
     use redundant_ik::atlas::space::{default_region, Plane, SliceJob};
     use redundant_ik::atlas::{Class, Grid};
     use redundant_ik::scene::PoseScene;
-    if args.out.is_some() {
-        return Err("--out: the maps of an atlas in space are not drawn yet; --json and --csv give the cells".into());
-    }
     let (robot, scene, pose) = (job.robot, job.scene, job.pose);
     let plane = match &args.slice {
         Some(t) => t.parse::<Plane>().map_err(|e| format!("--slice: {e}"))?,
@@ -77,31 +75,18 @@ pub fn atlas(args: &super::atlas::AtlasArgs, job: Job) -> Result<(), String> {
     }?;
     let seconds = start.elapsed().as_secs_f64();
     a.arm = robot.preset.map(|p| p.key);
+    if let Some(path) = &args.out {
+        super::atlas::write_maps(
+            path,
+            redundant_ik::figure::slice_svg(&a, &scene, &robot.label),
+        )?;
+    }
     if args.json {
         let json = serde_json::to_string(&a).map_err(|e| e.to_string())?;
         return emit(&format!("{json}\n"));
     }
     if args.csv {
-        let mut out = String::from("x,y,z");
-        for m in &a.methods {
-            let _ = write!(out, ",{m},{m}_clearance,{m}_final_error");
-        }
-        out.push('\n');
-        for c in &a.cells {
-            let _ = write!(out, "{},{},{}", c.centre[0], c.centre[1], c.centre[2]);
-            for o in &c.outcomes {
-                let opt = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
-                let _ = write!(
-                    out,
-                    ",{},{},{}",
-                    o.class.name(),
-                    opt(o.min_clearance),
-                    opt(o.final_error)
-                );
-            }
-            out.push('\n');
-        }
-        return emit(&out);
+        return emit(&redundant_ik::export::slice_atlas_csv(&a));
     }
     let [u, v] = plane.axes();
     let [u0, u1, v0, v1] = a.grid.region;

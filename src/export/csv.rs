@@ -5,6 +5,7 @@
 
 use std::fmt::Write as _;
 
+use crate::atlas::space::SliceAtlas;
 use crate::atlas::Atlas;
 use crate::planner::Sample;
 
@@ -85,6 +86,33 @@ pub fn atlas_csv(atlas: &Atlas) -> String {
                 ",{},{},{}",
                 o.class.name(),
                 num(clearance),
+                num(o.final_error)
+            );
+        }
+        out.push('\n');
+    }
+    out
+}
+
+/// A slice atlas as CSV (`redundant-ik atlas --arm A --csv`): the sphere's
+/// centre `x, y, z`, then each method's class, smallest clearance (from a
+/// capsule to the sphere's surface) and final error; empty where nothing
+/// was measured.
+pub fn slice_atlas_csv(atlas: &SliceAtlas) -> String {
+    let mut out = String::from("x,y,z");
+    for m in &atlas.methods {
+        let _ = write!(out, ",{m},{m}_clearance,{m}_final_error");
+    }
+    out.push('\n');
+    let num = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
+    for c in &atlas.cells {
+        let _ = write!(out, "{},{},{}", c.centre[0], c.centre[1], c.centre[2]);
+        for o in &c.outcomes {
+            let _ = write!(
+                out,
+                ",{},{},{}",
+                o.class.name(),
+                num(o.min_clearance),
                 num(o.final_error)
             );
         }

@@ -10,7 +10,7 @@ mod csv;
 mod run;
 mod space_run;
 
-pub use csv::{atlas_csv, run_csv, RUN_CSV_FIXED};
+pub use csv::{atlas_csv, run_csv, slice_atlas_csv, RUN_CSV_FIXED};
 pub use run::{
     is_pose_run, is_space_run, PoseRunFile, Recorded, RunFile, RunKind, SpaceRunFile,
     MAX_RUN_FILE_BYTES, PLANAR_RUN_FORMAT_1, RUN_FORMAT, SPACE_RUN_FORMAT_1,

@@ -28,7 +28,7 @@ use crate::planner::Method;
 use crate::scene::{Params, Scene};
 
 pub use arm::{arm_svg, arm_svg_with, ellipse_outline, ELLIPSE_SCALE};
-pub use atlas::atlas_svg;
+pub use atlas::{atlas_svg, slice_svg};
 pub use series::{compare_svg, series_svg, space_compare_svg, space_series_svg};
 pub use space::{ellipsoid_rings, space_caption, space_svg, space_svg_with};
 

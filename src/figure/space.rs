@@ -54,7 +54,7 @@ impl View {
 }
 
 /// The chain's points at `theta` (base, each distinct origin, the flange).
-fn points(scene: &SpaceScene, theta: &[f64]) -> Result<Vec<Vec3>> {
+pub(super) fn points(scene: &SpaceScene, theta: &[f64]) -> Result<Vec<Vec3>> {
     let pose = SpacePose::new(&scene.arm, theta)?;
     let mut out = vec![pose.points()[0]];
     for s in scene.arm.segments() {

@@ -434,38 +434,6 @@ pub fn parse_obstacles(text: &str) -> Result<Vec<f64>, JsError> {
         .collect())
 }
 
-/// The classes of an atlas, in the order of `setAtlasLayer`'s indices:
-/// `[{ name, label, colour, swatch }]`: `colour` is `#rrggbb` (the command
-/// line's SVG draws it), `swatch` the translucent colour the layer is drawn
-/// with.
-#[cfg(feature = "page")]
-#[wasm_bindgen(js_name = atlasClasses)]
-pub fn atlas_classes() -> Result<JsValue, JsError> {
-    #[derive(Serialize)]
-    struct Entry {
-        name: &'static str,
-        label: &'static str,
-        colour: &'static str,
-        swatch: String,
-        /// Only an arm with joint limits has it (the class `limit`).
-        limits: bool,
-        /// Only a chain that checks self-collision has it.
-        self_collision: bool,
-    }
-    let all: Vec<Entry> = crate::atlas::Class::ALL
-        .iter()
-        .map(|c| Entry {
-            name: c.name(),
-            label: c.label(),
-            colour: c.colour(),
-            swatch: style::rgba(c.colour(), style::LAYER_ALPHA),
-            limits: *c == crate::atlas::Class::Limit,
-            self_collision: *c == crate::atlas::Class::SelfCollision,
-        })
-        .collect();
-    to_js(&all)
-}
-
 /// A serialisable value as a plain JavaScript object (`None` as `null`):
 /// its JSON text, parsed by the browser. serde-wasm-bindgen built the same
 /// objects but cost the page's module 2.4 KB gzipped (its serialiser, the

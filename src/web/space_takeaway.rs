@@ -5,11 +5,16 @@
 //! same file), and its plots as SVG, what `figure --from FILE --plots`
 //! draws ([`crate::figure::space_series_svg`]). The page's module makes the run file itself
 //! (`SpaceDemo.runFile`); this reads it back, as `simulate --from` does.
+//! And a slice atlas's files: its JSON, its cells as CSV and its maps
+//! (`redundant-ik atlas --arm A --json`, `--csv` and `--out`).
 
 use wasm_bindgen::prelude::*;
 
 use super::js_err;
-use crate::export::SpaceRunFile;
+use super::takeaway::{kept, AtlasFiles};
+use super::worker::{read_space_run, to_js};
+use crate::atlas::space::SliceAtlas;
+use crate::export::{self, SpaceRunFile};
 use crate::figure;
 use crate::planner::Trajectory;
 use crate::session::STROBE_EVERY;
@@ -45,4 +50,36 @@ fn read(run_json: &str) -> Result<(&'static str, SpaceRunFile, Trajectory<3>), J
         summary: file.summary.clone(),
     };
     Ok((label, file, traj))
+}
+
+/// A slice atlas's files, `{ json, csv, figure }`: `atlas_json` (what the
+/// page's slice atlas job finished with, `atlas --arm A --json`) as it is,
+/// its cells as CSV, and the maps of the methods named in `methods` (all of
+/// the atlas's when empty) drawn on the scene of `run`, the run file the
+/// atlas was computed on. Throws with a reason on an atlas or a run file
+/// that does not read.
+#[wasm_bindgen(js_name = sliceAtlasFiles)]
+pub fn slice_atlas_files(
+    atlas_json: &str,
+    run: &str,
+    methods: Vec<String>,
+) -> Result<JsValue, JsError> {
+    let mut atlas: SliceAtlas = serde_json::from_str(atlas_json)
+        .map_err(|e| JsError::new(&format!("not a slice atlas: {e}")))?;
+    let scene = read_space_run(run)?.scene;
+    let label = SpacePreset::of(&scene.arm).map_or("Arm in space", |p| p.label);
+    let csv = export::slice_atlas_csv(&atlas);
+    if !methods.is_empty() {
+        let keep = kept(&atlas.methods, &methods)?;
+        atlas.methods = keep.iter().map(|&k| atlas.methods[k]).collect();
+        for c in &mut atlas.cells {
+            c.outcomes = keep.iter().map(|&k| c.outcomes[k].clone()).collect();
+        }
+    }
+    let figure = figure::slice_svg(&atlas, &scene, label).map_err(js_err)?;
+    to_js(&AtlasFiles {
+        json: atlas_json.to_string(),
+        csv,
+        figure,
+    })
 }

@@ -308,3 +308,39 @@ pub fn legend_js(space: Option<bool>) -> Result<wasm_bindgen::JsValue, wasm_bind
         legend()
     })
 }
+
+/// The classes of an atlas, in the order of `setAtlasLayer`'s indices:
+/// `[{ name, label, colour, swatch, limits, self_collision, avoidable }]`:
+/// `colour` is `#rrggbb` (the command
+/// line's SVG draws it), `swatch` the translucent colour the layer is drawn
+/// with.
+#[wasm_bindgen::prelude::wasm_bindgen(js_name = atlasClasses)]
+pub fn atlas_classes() -> Result<wasm_bindgen::JsValue, wasm_bindgen::JsError> {
+    #[derive(Serialize)]
+    struct Entry {
+        name: &'static str,
+        label: &'static str,
+        colour: &'static str,
+        swatch: String,
+        /// Only an arm with joint limits has it (the class `limit`).
+        limits: bool,
+        /// Only a chain that checks self-collision has it.
+        self_collision: bool,
+        /// Avoidance is possible in a cell of this class (not on the
+        /// path, not on the arm at the start): the success rate's cells.
+        avoidable: bool,
+    }
+    let all: Vec<Entry> = crate::atlas::Class::ALL
+        .iter()
+        .map(|c| Entry {
+            name: c.name(),
+            label: c.label(),
+            colour: c.colour(),
+            swatch: rgba(c.colour(), LAYER_ALPHA),
+            limits: *c == crate::atlas::Class::Limit,
+            self_collision: *c == crate::atlas::Class::SelfCollision,
+            avoidable: c.avoidable(),
+        })
+        .collect();
+    super::to_js(&all)
+}

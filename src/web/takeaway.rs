@@ -13,7 +13,7 @@ use super::worker::{from_js, read_run, to_js};
 use crate::atlas::Atlas;
 use crate::export::{self, RunFile};
 use crate::figure;
-use crate::planner::Planner;
+use crate::planner::{Method, Planner};
 use crate::scene::Scene;
 use crate::session::STROBE_EVERY;
 
@@ -54,15 +54,16 @@ pub fn run_files(run: JsValue) -> Result<JsValue, JsError> {
     })
 }
 
-/// The files of an atlas.
+/// The files of an atlas (the planar atlas's, and a slice atlas's in
+/// space: [`super::space_takeaway`]).
 #[derive(Serialize)]
-struct AtlasFiles {
+pub(super) struct AtlasFiles {
     /// The JSON of `redundant-ik atlas --json`.
-    json: String,
+    pub(super) json: String,
     /// One line per cell (`redundant-ik atlas --csv`).
-    csv: String,
+    pub(super) csv: String,
     /// The maps (`redundant-ik atlas --out`), of the methods asked for.
-    figure: String,
+    pub(super) figure: String,
 }
 
 /// An atlas (the object a job finished with) computed on `scene`:
@@ -91,23 +92,29 @@ pub fn atlas_files(
 
 /// The atlas restricted to `methods` (in the atlas's order).
 fn only(mut atlas: Atlas, methods: &[String]) -> Result<Atlas, JsError> {
-    let keep: Vec<usize> = atlas
-        .methods
-        .iter()
-        .enumerate()
-        .filter(|(_, m)| methods.iter().any(|n| n == m.name()))
-        .map(|(k, _)| k)
-        .collect();
-    if keep.is_empty() {
-        return Err(JsError::new(&format!(
-            "the atlas has none of the methods {}",
-            methods.join(", ")
-        )));
-    }
+    let keep = kept(&atlas.methods, methods)?;
     atlas.methods = keep.iter().map(|&k| atlas.methods[k]).collect();
     atlas.summary = keep.iter().map(|&k| atlas.summary[k].clone()).collect();
     for c in &mut atlas.cells {
         c.outcomes = keep.iter().map(|&k| c.outcomes[k].clone()).collect();
     }
     Ok(atlas)
+}
+
+/// The indices of an atlas's `methods` named in `names` (in the atlas's
+/// order), or why none is.
+pub(super) fn kept(methods: &[Method], names: &[String]) -> Result<Vec<usize>, JsError> {
+    let keep: Vec<usize> = methods
+        .iter()
+        .enumerate()
+        .filter(|(_, m)| names.iter().any(|n| n == m.name()))
+        .map(|(k, _)| k)
+        .collect();
+    if keep.is_empty() {
+        return Err(JsError::new(&format!(
+            "the atlas has none of the methods {}",
+            names.join(", ")
+        )));
+    }
+    Ok(keep)
 }

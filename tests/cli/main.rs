@@ -68,6 +68,7 @@ mod refusals;
 mod robot;
 mod runs;
 mod simulate;
+mod slice_atlas;
 mod space;
 mod space_figures;
 mod space_networks;

@@ -196,52 +196,6 @@ fn bench_times_the_arms_in_space_and_no_step_allocates() {
 }
 
 #[test]
-fn atlas_maps_a_slice_of_each_arm_in_space() {
-    let json: Value = serde_json::from_str(&ok(&[
-        "atlas", "--arm", "panda", "--grid", "9", "--slice", "xz:0.1", "--json",
-    ]))
-    .unwrap();
-    assert_eq!(json["arm"], "panda");
-    assert_eq!(json["cells"].as_array().unwrap().len(), 81);
-    assert_eq!(
-        json["methods"].as_array().unwrap().len(),
-        json["cells"][0]["outcomes"].as_array().unwrap().len()
-    );
-    assert_eq!(
-        json["cells"][0]["centre"][1], 0.1,
-        "every centre on y = 0.1"
-    );
-    let table = ok(&["atlas", "--arm", "iiwa14", "--grid", "7"]);
-    assert!(
-        table.contains("slice yz:0.498"),
-        "the default plane through the line: {table}"
-    );
-    assert!(table.contains("Numerical"));
-    let csv = ok(&[
-        "atlas",
-        "--arm",
-        "iiwa14",
-        "--grid",
-        "5",
-        "--csv",
-        "--methods",
-        "numerical",
-    ]);
-    assert_eq!(
-        csv.lines().next().unwrap(),
-        "x,y,z,numerical,numerical_clearance,numerical_final_error"
-    );
-    assert_eq!(csv.lines().count(), 26);
-    refused(&["atlas", "--arm", "panda", "--slice", "yz:9"], "reach");
-    refused(&["atlas", "--arm", "panda", "--slice", "ab:0"], "slice");
-    refused(
-        &["atlas", "--arm", "iiwa14", "--methods", "case3"],
-        "no networks are shipped for iiwa14",
-    );
-    refused(&["atlas", "--slice", "xz:0"], "arm in space");
-}
-
-#[test]
 fn figure_draws_a_run_of_an_arm_in_space_in_two_views() {
     let out = super::scratch("panda.svg");
     ok(&[

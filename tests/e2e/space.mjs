@@ -11,7 +11,7 @@ import assert from 'node:assert/strict';
 import { join } from 'node:path';
 import { readFileSync } from 'node:fs';
 import { test, open, clean, state, shots, axe, saidSoFar, heard } from './harness.mjs';
-import { cli, download, close } from './class-helpers.mjs';
+import { cli, download, close, parseSvg, pngSize } from './class-helpers.mjs';
 
 const client = (page, p) => page.evaluate(([x, y, z]) => window.demo.worldToClient(x, y, z), p);
 const paused = async (page) => {
@@ -326,6 +326,28 @@ test("space: the slice atlas in a worker equals the page module's own runs of it
   assert.deepEqual(atlas.methods, ['numerical', 'qp']);
   assert.match(await page.textContent('#space-atlas-status'), /25 cells x 2 methods/);
   assert.equal(await page.locator('#space-atlas-table tbody tr').count(), 2);
+  // The success rate is over the cells where avoidance is possible, as `atlas --arm A` counts it.
+  const avoidable = atlas.cells.filter((c) => !['start_overlap', 'path_blocked'].includes(c.outcomes[0].class)).length;
+  const rates = await page.$$eval('#space-atlas-table tbody tr', (trs) => trs.map((tr) => tr.lastElementChild.textContent));
+  atlas.methods.forEach((m, k) => {
+    const won = atlas.cells.filter((c) => c.outcomes[k].class === 'success').length;
+    assert.equal(rates[k], `${((100 * won) / avoidable).toFixed(1)}%`, `${m}: ${won} of the ${avoidable} avoidable cells`);
+  });
+  // Its files, as `atlas --arm panda --json`, `--csv` and `--out` write them: the map of the method shown.
+  const json = await download(page, '#space-atlas-json');
+  assert.deepEqual(JSON.parse(json.text), atlas, "the atlas's own JSON");
+  const csv = (await download(page, '#space-atlas-csv')).text.trim().split('\n');
+  assert.equal(csv.length, 26);
+  assert.equal(csv[0], 'x,y,z,numerical,numerical_clearance,numerical_final_error,qp,qp_clearance,qp_final_error');
+  const svg = await download(page, '#space-atlas-figure');
+  assert.match(svg.name, /^atlas-panda-yz\d+mm-5x5-numerical\.svg$/);
+  const fig = await parseSvg(page, svg.text);
+  assert.equal(fig.error, null);
+  assert.ok(fig.texts.some((x) => /^Franka Panda \(7 joints, in space\): where the arm stays clear, sphere .* 5 x 5 cells of the slice yz:/.test(x)), fig.texts.join(' | '));
+  assert.ok(fig.texts.some((x) => /^Numerical: \d+% clear and reached/.test(x)), 'the map of the method shown');
+  assert.ok(!fig.texts.some((x) => /^QP with dampers:/.test(x)), 'only that map');
+  const png = await download(page, '#space-atlas-figure-png');
+  assert.deepEqual(pngSize(png.bytes), fig.size.map((v) => 2 * v));
   const radius = (await state(page)).spheres[0][3];
   for (const k of [0, 7, 12, 18, 24]) {
     const cell = atlas.cells[k];
@@ -344,6 +366,13 @@ test("space: the slice atlas in a worker equals the page module's own runs of it
   }
   // The map of the first method is drawn on the plane: pixels of the atlas colours appear.
   await page.locator('#stage').screenshot({ path: join(shots, 'space-atlas.png') });
+  // One method alone: the cells it fails in still count against it.
+  const one = await page.evaluate(() => window.demo.atlas({ n: 5, methods: ['numerical'] }));
+  const fair = one.cells.filter((c) => !['start_overlap', 'path_blocked'].includes(c.outcomes[0].class));
+  const won = fair.filter((c) => c.outcomes[0].class === 'success').length;
+  assert.ok(won < fair.length, 'the numerical route fails in a cell of this slice');
+  const rate = await page.textContent('#space-atlas-table tbody tr td:last-child');
+  assert.equal(rate, `${((100 * won) / fair.length).toFixed(1)}%`, `${won} of ${fair.length}`);
   clean(page);
   await page.close();
 });
