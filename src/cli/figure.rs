@@ -6,10 +6,14 @@
 
 use std::path::{Path, PathBuf};
 
+use std::sync::Arc;
+
 use clap::Args;
 use redundant_ik::figure;
-use redundant_ik::planner::methods;
-use redundant_ik::planner::Networks;
+use redundant_ik::networks::space::SpaceNetworks;
+use redundant_ik::planner::{methods, Method, Networks, Planned, SceneOf, Surrogate};
+use redundant_ik::scene::PoseScene;
+use redundant_ik::space::{Chain, PoseChain};
 use redundant_ik::{Planner, Scene, Trajectory};
 
 use super::simulate::{MethodArg, SceneArgs};
@@ -97,56 +101,84 @@ pub fn run(args: &FigureArgs) -> Result<(), String> {
     Ok(())
 }
 
-/// Runs `figure` for a spatial job (`--arm A`, or `--from` a spatial run
-/// file): the run's two views (the default; `--ellipse` adds the velocity
-/// ellipsoid at the final pose), its plots (`--plots`), every
-/// method over time (`--compare`), or with `--all` each method's two views
-/// and the comparison into a directory.
+/// `figure` for an arm in space: its run's two views (`--ellipse`: the
+/// ellipsoid at the end), its plots (`--plots`), or every method's runs
+/// (`--compare`, `--all`); of the hand's position, or of its pose where
+/// the job is of the pose (its orientation's error in the title and the
+/// plots).
 pub fn space(args: &FigureArgs, job: Job) -> Result<(), String> {
     if args.every == 0 {
         return Err("--every must be at least 1".into());
     }
     let e = |x: redundant_ik::Error| x.to_string();
     let label = job.robot.label.as_str();
-    if args.compare || args.all {
-        let runs = space_runs(&args.scene, &job)?;
-        let compare = figure::space_compare_svg(label, &job.scene, &runs).map_err(e)?;
-        if args.compare {
-            return write(&args.out, &compare);
-        }
-        std::fs::create_dir_all(&args.out)
-            .map_err(|e| format!("cannot create directory {}: {e}", args.out.display()))?;
-        let arm = &job.robot.key;
-        for traj in &runs {
-            let path = args.out.join(format!("{arm}_{}.svg", traj.method));
-            write(
-                &path,
-                &figure::space_svg_with(label, &job.scene, traj, args.every, args.ellipse)
-                    .map_err(e)?,
-            )?;
-        }
-        return write(&args.out.join(format!("{arm}_compare.svg")), &compare);
+    if let Some(spec) = &job.pose {
+        let scene =
+            PoseScene::from_space(job.scene.clone(), spec.orientation, spec.weight).map_err(e)?;
+        // Cases 1 and 3 need a Phi, which no network has for the pose.
+        let runs_here = |m: Method| !m.entry().info.networks.phi;
+        return figures::<PoseChain, 6>(args, &job, &scene, runs_here, |one| match one {
+            Drawn::Run(traj) if args.plots => figure::pose_series_svg(label, &scene, traj),
+            Drawn::Run(traj) => figure::pose_svg(label, &scene, traj, args.every, args.ellipse),
+            Drawn::Compare(runs) => figure::pose_compare_svg(label, &scene, runs),
+        });
     }
-    let nets = job.nets.clone().map(|n| n as Networks<_, 3>);
-    let traj = Planner::run(job.scene.clone(), job.method, nets).map_err(e)?;
-    let svg = if args.plots {
-        figure::space_series_svg(label, &job.scene, &traj)
-    } else {
-        figure::space_svg_with(label, &job.scene, &traj, args.every, args.ellipse)
-    };
-    write(&args.out, &svg.map_err(e)?)
+    let scene = job.scene.clone();
+    figures::<Chain, 3>(
+        args,
+        &job,
+        &scene,
+        |_| true,
+        |one| match one {
+            Drawn::Run(traj) if args.plots => figure::space_series_svg(label, &scene, traj),
+            Drawn::Run(traj) => {
+                figure::space_svg_with(label, &scene, traj, args.every, args.ellipse)
+            }
+            Drawn::Compare(runs) => figure::space_compare_svg(label, &scene, runs),
+        },
+    )
 }
 
-/// Runs a spatial job's scene with every method that runs in space and
-/// whose networks are available (the job's, else those the flags give;
-/// the others are skipped with a note on stderr).
-fn space_runs(sa: &SceneArgs, job: &Job) -> Result<Vec<Trajectory<3>>, String> {
+/// What a figure of an arm in space draws: one run, or every method's.
+enum Drawn<'a, T> {
+    Run(&'a T),
+    Compare(&'a [T]),
+}
+
+/// Runs `scene` (of an arm in space, with `M` task coordinates) as `args`
+/// ask and writes what `draw` makes of it: the job's method, or every
+/// method that runs in space and `runs_here` (`--compare`; `--all` writes
+/// each run's figure and the comparison into a directory).
+fn figures<A, const M: usize>(
+    args: &FigureArgs,
+    job: &Job,
+    scene: &A::Scene,
+    runs_here: impl Fn(Method) -> bool,
+    draw: impl Fn(Drawn<'_, Trajectory<M, A::Point>>) -> redundant_ik::Result<String>,
+) -> Result<(), String>
+where
+    A: Planned<M>,
+    A::Scene: SceneOf<A, M> + redundant_ik::model::Scene<A> + Clone,
+    SpaceNetworks: Surrogate<A, M>,
+{
+    let e = |x: redundant_ik::Error| x.to_string();
+    let run = |method: Method, nets: Option<Arc<SpaceNetworks>>| {
+        Planner::run(scene.clone(), method, nets.map(|n| n as Networks<A, M>))
+            .map_err(|e| format!("{method}: {e}"))
+    };
+    if !(args.compare || args.all) {
+        let traj = run(job.method, job.nets.clone())?;
+        return write(&args.out, &draw(Drawn::Run(&traj)).map_err(e)?);
+    }
     let mut runs = Vec::new();
-    for &method in methods::ALL.iter().filter(|m| m.in_space()) {
+    for &method in methods::ALL
+        .iter()
+        .filter(|m| m.in_space() && runs_here(**m))
+    {
         let nets = match &job.nets {
             Some(n) if method.uses_networks() => Some(n.clone()),
             _ => match super::space::networks_for(
-                &sa.networks,
+                &args.scene.networks,
                 &job.robot,
                 &job.scene.arm,
                 &[method],
@@ -158,11 +190,20 @@ fn space_runs(sa: &SceneArgs, job: &Job) -> Result<Vec<Trajectory<3>>, String> {
                 }
             },
         };
-        let run = Planner::run(job.scene.clone(), method, nets.map(|n| n as Networks<_, 3>))
-            .map_err(|e| format!("{method}: {e}"))?;
-        runs.push(run);
+        runs.push(run(method, nets)?);
     }
-    Ok(runs)
+    let compare = draw(Drawn::Compare(&runs)).map_err(e)?;
+    if args.compare {
+        return write(&args.out, &compare);
+    }
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| format!("cannot create directory {}: {e}", args.out.display()))?;
+    let arm = &job.robot.key;
+    for traj in &runs {
+        let path = args.out.join(format!("{arm}_{}.svg", traj.method));
+        write(&path, &draw(Drawn::Run(traj)).map_err(e)?)?;
+    }
+    write(&args.out.join(format!("{arm}_compare.svg")), &compare)
 }
 
 /// Runs `scene` with every method whose networks are available (the others

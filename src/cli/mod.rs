@@ -90,7 +90,6 @@ fn simulate_any(a: &simulate::SimulateArgs) -> Result<(), String> {
 /// `figure`: a spatial run file's or arm's figures, else a planar run's.
 fn figure_any(a: &figure::FigureArgs) -> Result<(), String> {
     match space::job(&a.scene, a.method.method, space_arm(&a.scene.arm))? {
-        Some(job) if job.pose.is_some() => Err("figure draws runs of the hand's position; the hand's pose task is not drawn yet (simulate --task pose --json or --csv gives its run)".into()),
         Some(job) => figure::space(a, job),
         None => figure::run(a),
     }

@@ -15,6 +15,7 @@
 
 mod arm;
 mod atlas;
+mod pose;
 mod series;
 mod space;
 
@@ -29,6 +30,7 @@ use crate::scene::{Params, Scene};
 
 pub use arm::{arm_svg, arm_svg_with, ellipse_outline, ELLIPSE_SCALE};
 pub use atlas::{atlas_svg, slice_svg};
+pub use pose::{pose_compare_svg, pose_series_svg, pose_svg, PoseRun};
 pub use series::{compare_svg, series_svg, space_compare_svg, space_series_svg};
 pub use space::{ellipsoid_rings, space_caption, space_svg, space_svg_with};
 

@@ -78,6 +78,8 @@ struct Step<'a> {
     t: f64,
     clearance: Option<f64>,
     error: f64,
+    /// The orientation's error (rad), for a run of the hand's pose.
+    orientation: Option<f64>,
     theta: &'a [f64],
 }
 
@@ -109,6 +111,7 @@ fn steps<const M: usize>(samples: &[Sample<M>]) -> Vec<Step<'_>> {
             t: s.t,
             clearance: s.clearance,
             error: s.tracking_error,
+            orientation: s.orientation_error,
             theta: &s.theta,
         })
         .collect()
@@ -144,6 +147,19 @@ pub fn space_series_svg(arm: &str, scene: &SpaceScene, run: &Trajectory<3>) -> R
     )
 }
 
+/// The plots of a run of the hand's pose (its samples' hand and reference
+/// as points, [`super::pose`]): an arm in space's, the orientation's error
+/// beside the position's; `line` the caption.
+pub(super) fn pose_plots_svg(
+    arm: &str,
+    run: &Trajectory<3>,
+    joints: usize,
+    line: &str,
+) -> Result<String> {
+    let head = format!("{arm}, {} over time (the hand's pose)", run.method.label());
+    plots_svg(&head, line, run.method, &steps(&run.steps), joints)
+}
+
 /// The three panels of [`series_svg`] for any arm: `head` the title,
 /// `line` the caption, `joints` the number of joint curves.
 fn plots_svg(
@@ -171,7 +187,23 @@ fn plots_svg(
     let joint_legend: Vec<(Swatch, String)> = (0..joints)
         .map(|i| (Swatch::Line(colour::joint(i), 2), format!("θ{}", i + 1)))
         .collect();
-    let column = legend_column(&[&clearance_legend, &joint_legend]);
+    // The hand's pose: its orientation's error beside its position's.
+    let turn: Vec<(f64, f64)> = steps
+        .iter()
+        .filter_map(|s| s.orientation.map(|r| (s.t, r)))
+        .collect();
+    let error_legend = if turn.is_empty() {
+        Vec::new()
+    } else {
+        vec![
+            (Swatch::Line(colour::ACCENT, 2), "position (m)".to_string()),
+            (
+                Swatch::Line(colour::ARM, 2),
+                "orientation (rad)".to_string(),
+            ),
+        ]
+    };
+    let column = legend_column(&[&clearance_legend, &joint_legend, &error_legend]);
     let size = (CHARTS_WIDTH + column, 760u32);
     let (lines, foot_height) = caption_lines(line, size.0);
     let size = (size.0, size.1 - 30 + foot_height);
@@ -203,11 +235,21 @@ fn plots_svg(
         }
 
         let error: Vec<(f64, f64)> = steps.iter().map(|s| (s.t, s.error)).collect();
-        let emax = error.iter().map(|p| p.1).fold(1e-3, f64::max) * 1.1;
-        let mut chart = panel(&areas[1], 0.0..t1, 0.0..emax, "tracking error (m)")?;
+        let emax = error.iter().chain(&turn).map(|p| p.1).fold(1e-3, f64::max) * 1.1;
+        let label = match turn.is_empty() {
+            true => "tracking error (m)",
+            false => "tracking error (m, rad)",
+        };
+        let mut chart = panel(&areas[1], 0.0..t1, 0.0..emax, label)?;
         chart
             .draw_series(LineSeries::new(error, colour::ACCENT.stroke_width(2)))
             .map_err(why)?;
+        if !turn.is_empty() {
+            chart
+                .draw_series(LineSeries::new(turn, colour::ARM.stroke_width(2)))
+                .map_err(why)?;
+            draw_legend(&keys[1], &error_legend, LEGEND_AT, false)?;
+        }
 
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
         for v in steps.iter().flat_map(|s| s.theta) {

@@ -159,8 +159,14 @@ pub fn space_svg_with(
     } else {
         String::new()
     };
+    // A run of the hand's pose ([`super::pose`]) says so, with the
+    // orientation's final error.
+    let (task, turn) = match s.final_orientation_error {
+        Some(r) => (", the hand's pose", format!(", {r:.1e} rad")),
+        None => ("", String::new()),
+    };
     let head = format!(
-        "{arm}, {}: {verdict}{limits}, final error {:.1e} m",
+        "{arm}, {}{task}: {verdict}{limits}, final error {:.1e} m{turn}",
         run.method.label(),
         s.final_error
     );

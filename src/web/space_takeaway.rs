@@ -14,36 +14,58 @@ use super::js_err;
 use super::takeaway::{kept, AtlasFiles};
 use super::worker::{read_space_run, to_js};
 use crate::atlas::space::SliceAtlas;
-use crate::export::{self, SpaceRunFile};
+use crate::export::{self, is_pose_run, Recorded, RunFile};
 use crate::figure;
+use crate::model::{Model, Scene as _};
 use crate::planner::Trajectory;
 use crate::session::STROBE_EVERY;
 use crate::space::SpacePreset;
+use crate::space::{Chain, PoseChain};
 
 /// The figure of the run in `run_json` (a run file of an arm in space,
-/// `SpaceDemo.runFile()`) as SVG, the chain drawn every
-/// [`STROBE_EVERY`]th step. Throws with the core's message on a file that
-/// does not read.
+/// `SpaceDemo.runFile()`, of the hand's position or its pose) as SVG, the
+/// chain drawn every [`STROBE_EVERY`]th step. Throws with the core's
+/// message on a file that does not read.
 #[wasm_bindgen(js_name = spaceFigure)]
 pub fn space_figure(run_json: &str) -> Result<String, JsError> {
-    let (label, file, traj) = read(run_json)?;
+    if is_pose_run(run_json) {
+        let (label, file, traj) = read::<PoseChain, 6>(run_json)?;
+        return figure::pose_svg(label, &file.scene, &traj, STROBE_EVERY, false).map_err(js_err);
+    }
+    let (label, file, traj) = read::<Chain, 3>(run_json)?;
     figure::space_svg(label, &file.scene, &traj, STROBE_EVERY).map_err(js_err)
 }
 
 /// The plots of the run in `run_json` (the clearance, the tracking error
-/// and the joint angles over time) as SVG. Throws with the core's message
-/// on a file that does not read.
+/// and the joint angles over time; of the hand's pose, its orientation's
+/// error too) as SVG. Throws with the core's message on a file that does
+/// not read.
 #[wasm_bindgen(js_name = spacePlots)]
 pub fn space_plots(run_json: &str) -> Result<String, JsError> {
-    let (label, file, traj) = read(run_json)?;
+    if is_pose_run(run_json) {
+        let (label, file, traj) = read::<PoseChain, 6>(run_json)?;
+        return figure::pose_series_svg(label, &file.scene, &traj).map_err(js_err);
+    }
+    let (label, file, traj) = read::<Chain, 3>(run_json)?;
     figure::space_series_svg(label, &file.scene, &traj).map_err(js_err)
 }
 
 /// A run file's arm (what a figure calls it: its preset's label), the
 /// file and its run.
-fn read(run_json: &str) -> Result<(&'static str, SpaceRunFile, Trajectory<3>), JsError> {
-    let mut file = SpaceRunFile::from_json(run_json).map_err(js_err)?;
-    let label = SpacePreset::of(&file.scene.arm).map_or("Arm in space", |p| p.label);
+type Read<A, const M: usize> = (
+    &'static str,
+    RunFile<A, M>,
+    Trajectory<M, <A as Model<M>>::Point>,
+);
+
+fn read<A, const M: usize>(run_json: &str) -> Result<Read<A, M>, JsError>
+where
+    A: Recorded<M> + AsRef<Chain>,
+    A::Scene: serde::Serialize + serde::de::DeserializeOwned,
+    [f64; M]: serde::Serialize + serde::de::DeserializeOwned,
+{
+    let mut file = RunFile::<A, M>::from_json(run_json).map_err(js_err)?;
+    let label = SpacePreset::of(file.scene.arm().as_ref()).map_or("Arm in space", |p| p.label);
     let traj = Trajectory {
         method: file.method,
         steps: std::mem::take(&mut file.steps),

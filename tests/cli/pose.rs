@@ -39,8 +39,47 @@ fn a_pose_target_runs_the_pose_task_and_its_file_replays() {
         "{text}"
     );
     refused(&["simulate", "--from", path, "--tf", "2"], "--tf");
-    // A file of the hand's pose is not a planar run nor a position run.
-    refused(&["figure", "--from", path, "--out", "/dev/null"], "pose");
+    // Its figure and plots: the orientation's error beside the position's.
+    let svg = scratch("pose-figure.svg");
+    ok(&["figure", "--from", path, "--out", svg.to_str().unwrap()]);
+    let drawn = std::fs::read_to_string(&svg).unwrap();
+    assert!(drawn.contains("the hand&apos;s pose: ") || drawn.contains("the hand's pose: "));
+    assert!(
+        drawn.contains(" rad\n"),
+        "the orientation's final error in the title"
+    );
+    ok(&[
+        "figure",
+        "--from",
+        path,
+        "--plots",
+        "--out",
+        svg.to_str().unwrap(),
+    ]);
+    let plots = std::fs::read_to_string(&svg).unwrap();
+    assert!(plots.contains("orientation (rad)") && plots.contains("Z = diag(1, 1, 1, "));
+}
+
+#[test]
+fn figure_compares_the_methods_that_run_the_pose() {
+    let svg = scratch("pose-compare.svg");
+    let out = ok(&[
+        "figure",
+        "--arm",
+        "iiwa14",
+        "--task",
+        "pose",
+        "--compare",
+        "--out",
+        svg.to_str().unwrap(),
+    ]);
+    let drawn = std::fs::read_to_string(&svg).unwrap();
+    assert!(
+        drawn.contains("QP with dampers") && drawn.contains("Numerical"),
+        "{out}"
+    );
+    // No Phi network is trained for the pose: Cases 1 and 3 are not runs of it.
+    assert!(!drawn.contains("Case 1") && !drawn.contains("Case 3"));
 }
 
 #[test]

@@ -6,6 +6,7 @@
 // address keeps the pose task. Registered by e2e.mjs.
 
 import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { test, open, clean, state, shots, nextFrames, axe, saidSoFar, heard } from './harness.mjs';
 import { cli, download, close } from './class-helpers.mjs';
@@ -115,6 +116,24 @@ test("pose: the Hand menu makes the task the hand's full pose; the gizmo's rings
   const back = JSON.parse(cli(['simulate', '--from', json.path, '--json']));
   assert.equal(back.steps.length, run.steps.length);
   back.steps.forEach((st, k) => st.theta.forEach((v, i) => close(v, run.steps[k].theta[i], 1e-9, `step ${k} theta${i + 1}`)));
+  // The pose run's figure and plots, drawn in a worker as `figure --from FILE` draws them.
+  const figure = await download(page, '#save-figure-svg');
+  const rad = run.summary.final_orientation_error.toExponential(1).replace(/e\+?/, 'e');
+  assert.ok(figure.text.includes(`QP with dampers, the hand&apos;s pose:`) || figure.text.includes("QP with dampers, the hand's pose:"), 'the figure says the task');
+  assert.ok(figure.text.includes(`, ${rad} rad`), `the orientation's final error ${rad} rad in the title`);
+  const drawnFigure = `${json.path}.figure.svg`;
+  cli(['figure', '--from', json.path, '--every', '5', '--out', drawnFigure]);
+  // The command line runs the file's scene again (to 1e-9 of the page's run): the same drawing.
+  const texts = (svg) => svg.match(/<text[^>]*>[^<]*</g).length;
+  const title = (svg) => /<text[^>]*>\s*([^<]*the hand[^<]*)</.exec(svg)?.[1].trim();
+  assert.equal(title(readFileSync(drawnFigure, 'utf8')), title(figure.text), "the command line's title");
+  assert.equal(texts(readFileSync(drawnFigure, 'utf8')), texts(figure.text), "the command line's labels");
+  const plots = await download(page, '#save-plots-svg');
+  assert.match(plots.text, /QP with dampers over time \(the hand(&apos;|')s pose\)/);
+  assert.match(plots.text, /orientation \(rad\)/);
+  const drawnPlots = `${json.path}.plots.svg`;
+  cli(['figure', '--from', json.path, '--plots', '--out', drawnPlots]);
+  assert.equal(texts(readFileSync(drawnPlots, 'utf8')), texts(plots.text), "the command line's labels");
 
   // Hostile calls: each throws the core's reason, and the scene is kept.
   const kept = await page.evaluate(() => window.demo.controller.demo.view().target_rotation);
