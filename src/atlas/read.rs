@@ -14,6 +14,22 @@ use super::space::{Plane, SliceAtlas};
 use super::{summary, Atlas, Cell, Grid, Outcome};
 use crate::planner::Method;
 
+/// Why an atlas's grid, cell count and methods do not make an atlas, if
+/// they do not.
+fn shape(grid: &Grid, cells: usize, methods: &[Method]) -> Result<(), String> {
+    grid.validate().map_err(|e| e.to_string())?;
+    if cells != grid.cells() {
+        return Err(format!(
+            "an atlas of {} x {} cells lists {cells}",
+            grid.n, grid.n
+        ));
+    }
+    if methods.is_empty() {
+        return Err("an atlas names no method".into());
+    }
+    Ok(())
+}
+
 #[derive(Deserialize)]
 struct CellIn {
     x: f64,
@@ -39,18 +55,7 @@ struct AtlasIn {
 impl<'de> Deserialize<'de> for Atlas {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         let a = AtlasIn::deserialize(d)?;
-        a.grid.validate().map_err(D::Error::custom)?;
-        if a.cells.len() != a.grid.cells() {
-            return Err(D::Error::custom(format!(
-                "an atlas of {} x {} cells lists {}",
-                a.grid.n,
-                a.grid.n,
-                a.cells.len()
-            )));
-        }
-        if a.methods.is_empty() {
-            return Err(D::Error::custom("an atlas names no method"));
-        }
+        shape(&a.grid, a.cells.len(), &a.methods).map_err(D::Error::custom)?;
         let mut cells = Vec::with_capacity(a.cells.len());
         for (k, mut c) in a.cells.into_iter().enumerate() {
             let outcomes = a
@@ -105,7 +110,7 @@ struct SliceIn {
 impl<'de> Deserialize<'de> for SliceAtlas {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         let a = SliceIn::deserialize(d)?;
-        a.grid.validate().map_err(D::Error::custom)?;
+        shape(&a.grid, a.cells.len(), &a.methods).map_err(D::Error::custom)?;
         let arm = match a.arm.as_deref() {
             None => None,
             Some(key) => Some(
@@ -114,17 +119,6 @@ impl<'de> Deserialize<'de> for SliceAtlas {
                     .key,
             ),
         };
-        if a.cells.len() != a.grid.cells() {
-            return Err(D::Error::custom(format!(
-                "an atlas of {} x {} cells lists {}",
-                a.grid.n,
-                a.grid.n,
-                a.cells.len()
-            )));
-        }
-        if a.methods.is_empty() {
-            return Err(D::Error::custom("an atlas names no method"));
-        }
         let mut cells = Vec::with_capacity(a.cells.len());
         for (k, c) in a.cells.into_iter().enumerate() {
             let (i, j) = (k % a.grid.n, k / a.grid.n);

@@ -15,36 +15,12 @@ use crate::scene::PoseScene;
 /// A run of the hand's pose, as its samples are kept.
 pub type PoseRun = Trajectory<6, [f64; 3]>;
 
-/// The run's samples with the hand and the reference as points: the
-/// position part of the pose (the orientation's error is kept).
+/// The run's samples as the hand's position's ([`Sample::position`]).
 fn positions(run: &PoseRun) -> Trajectory<3> {
-    let point = |x: [f64; 6]| [x[0], x[1], x[2]];
     Trajectory {
         method: run.method,
         summary: run.summary.clone(),
-        steps: run
-            .steps
-            .iter()
-            .map(|s| Sample {
-                t: s.t,
-                theta: s.theta.clone(),
-                joints: s.joints.clone(),
-                ee: point(s.ee),
-                reference: point(s.reference),
-                tracking_error: s.tracking_error,
-                orientation_error: s.orientation_error,
-                distance: s.distance,
-                clearance: s.clearance,
-                collision: s.collision,
-                self_clearance: s.self_clearance,
-                delta: s.delta,
-                manipulability: s.manipulability,
-                in_range: s.in_range,
-                phi_handover: s.phi_handover,
-                relaxed: s.relaxed,
-                past_limits: s.past_limits.clone(),
-            })
-            .collect(),
+        steps: run.steps.iter().map(Sample::position).collect(),
     }
 }
 

@@ -101,6 +101,35 @@ pub struct Sample<const M: usize = 2, P = [f64; M]> {
     pub past_limits: Vec<usize>,
 }
 
+impl Sample<6, [f64; 3]> {
+    /// A sample of the hand's pose as one of its position: the hand's and
+    /// the reference's points, the orientation's error kept in
+    /// `orientation_error` (what the page in space shows of a pose run, and
+    /// the figures draw).
+    pub fn position(&self) -> Sample<3> {
+        let point = |x: [f64; 6]| [x[0], x[1], x[2]];
+        Sample {
+            t: self.t,
+            theta: self.theta.clone(),
+            joints: self.joints.clone(),
+            ee: point(self.ee),
+            reference: point(self.reference),
+            tracking_error: self.tracking_error,
+            orientation_error: self.orientation_error,
+            distance: self.distance,
+            clearance: self.clearance,
+            collision: self.collision,
+            self_clearance: self.self_clearance,
+            delta: self.delta,
+            manipulability: self.manipulability,
+            in_range: self.in_range,
+            phi_handover: self.phi_handover,
+            relaxed: self.relaxed,
+            past_limits: self.past_limits.clone(),
+        }
+    }
+}
+
 fn is_false(b: &bool) -> bool {
     !*b
 }

@@ -62,7 +62,7 @@ pub(super) fn run(
     });
     let (pose_steps, summary, failure) = steps(planner, method);
     Played {
-        samples: pose_steps.iter().map(position).collect(),
+        samples: pose_steps.iter().map(Sample::position).collect(),
         pose_steps,
         summary,
         failure,
@@ -105,32 +105,6 @@ fn steps<A: Planned<M>, const M: usize>(
         }
     }
     (samples, p.summary(), None)
-}
-
-/// A pose sample as the view shows it: the hand's and the reference's
-/// positions; the orientation's error kept in `orientation_error`.
-fn position(s: &Sample<6, Vec3>) -> Sample<3> {
-    let [x, y, z, ..] = s.ee;
-    let [rx, ry, rz, ..] = s.reference;
-    Sample {
-        t: s.t,
-        theta: s.theta.clone(),
-        joints: s.joints.clone(),
-        ee: [x, y, z],
-        reference: [rx, ry, rz],
-        tracking_error: s.tracking_error,
-        orientation_error: s.orientation_error,
-        distance: s.distance,
-        clearance: s.clearance,
-        collision: s.collision,
-        self_clearance: s.self_clearance,
-        delta: s.delta,
-        manipulability: s.manipulability,
-        in_range: s.in_range,
-        phi_handover: s.phi_handover,
-        relaxed: s.relaxed,
-        past_limits: s.past_limits.clone(),
-    }
 }
 
 impl SpaceSession {
