@@ -35,7 +35,9 @@ pub mod task;
 pub mod train;
 
 /// Motion planning for redundant arms: planar ones (2 to 32 links; the
-/// paper's has 3) and, in space, the Franka Panda and the KUKA iiwa 14.
+/// paper's has 3) and, in space, the Franka Panda, the KUKA iiwa 14 or any
+/// serial arm from its URDF, the hand's position or its full pose as the
+/// task.
 /// Damped-least-squares inverse kinematics with a null-space
 /// obstacle-avoidance vector, the neural networks that replace them (Cases
 /// 1-3 of the paper, trained by Levenberg-Marquardt or Adam), and methods
