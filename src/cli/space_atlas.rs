@@ -78,7 +78,7 @@ pub fn atlas(args: &super::atlas::AtlasArgs, job: Job) -> Result<(), String> {
     if let Some(path) = &args.out {
         super::atlas::write_maps(
             path,
-            redundant_ik::figure::slice_svg(&a, &scene, &robot.label),
+            redundant_ik::figure::slice_svg(&a, &scene, &robot.label, is_pose),
         )?;
     }
     if args.json {

@@ -167,11 +167,12 @@ pub fn atlas_svg(atlas: &Atlas, scene: &Scene) -> Result<String> {
 }
 
 /// The maps of a slice atlas of the arm in space `arm` (its name), computed
-/// on `scene`, as SVG, one panel per method: the sphere centred on each
-/// cell of the slice; the arm at t = 0, the path and the task's own
+/// on `scene` (the hand's position, or `pose`: the scene of the position
+/// the pose task extends), as SVG, one panel per method: the sphere centred
+/// on each cell of the slice; the arm at t = 0, the path and the task's own
 /// sphere drawn as seen square to the slice (a sphere's outline is a
 /// circle of its radius there).
-pub fn slice_svg(atlas: &SliceAtlas, scene: &SpaceScene, arm: &str) -> Result<String> {
+pub fn slice_svg(atlas: &SliceAtlas, scene: &SpaceScene, arm: &str, pose: bool) -> Result<String> {
     let plane = atlas.plane;
     let on = |p: [f64; 3]| plane.coordinates(p);
     let joints = super::space::points(scene, &scene.theta0)?;
@@ -186,7 +187,8 @@ pub fn slice_svg(atlas: &SliceAtlas, scene: &SpaceScene, arm: &str) -> Result<St
     });
     draw(&Maps {
         title: format!(
-            "{arm}: where the arm stays clear, sphere (r = {} m) centred on each of {n} x {n} cells of the slice {plane}",
+            "{arm}{}: where the arm stays clear, sphere (r = {} m) centred on each of {n} x {n} cells of the slice {plane}",
+            if pose { ", the hand's pose" } else { "" },
             Short(atlas.radius)
         ),
         grid: &atlas.grid,

@@ -88,7 +88,8 @@ pub fn slice_atlas_files(
 ) -> Result<JsValue, JsError> {
     let mut atlas: SliceAtlas = serde_json::from_str(atlas_json)
         .map_err(|e| JsError::new(&format!("not a slice atlas: {e}")))?;
-    let scene = read_space_run(run)?.scene;
+    let run = read_space_run(run)?;
+    let (scene, pose) = (run.scene, run.pose.is_some());
     let label = SpacePreset::of(&scene.arm).map_or("Arm in space", |p| p.label);
     let csv = export::slice_atlas_csv(&atlas);
     if !methods.is_empty() {
@@ -98,7 +99,7 @@ pub fn slice_atlas_files(
             c.outcomes = keep.iter().map(|&k| c.outcomes[k].clone()).collect();
         }
     }
-    let figure = figure::slice_svg(&atlas, &scene, label).map_err(js_err)?;
+    let figure = figure::slice_svg(&atlas, &scene, label, pose).map_err(js_err)?;
     to_js(&AtlasFiles {
         json: atlas_json.to_string(),
         csv,

@@ -88,7 +88,7 @@ fn the_maps_of_a_slice_say_what_its_cells_hold() {
         "qp".parse().unwrap(),
     ];
     let a = slice(&scene, plane, grid, &methods, None).unwrap();
-    let svg = redundant_ik::figure::slice_svg(&a, &scene, "Franka Panda").unwrap();
+    let svg = redundant_ik::figure::slice_svg(&a, &scene, "Franka Panda", false).unwrap();
     assert!(svg.starts_with("<svg"), "{:.80}", svg);
     assert!(
         svg.contains("Franka Panda: where the arm stays clear, sphere (r = 0.06 m) centred on each of 5 x 5 cells of the slice xz:0.1"),
@@ -126,6 +126,10 @@ fn the_maps_of_a_slice_say_what_its_cells_hold() {
         }
     }
 
+    // An atlas of the hand's pose says so.
+    let svg = redundant_ik::figure::slice_svg(&a, &scene, "Franka Panda", true).unwrap();
+    assert!(svg.contains("Franka Panda, the hand&apos;s pose: where"));
+
     // With self-collision checked, the legend lists it.
     let mut checked = scene.clone();
     checked.arm = checked
@@ -134,7 +138,7 @@ fn the_maps_of_a_slice_say_what_its_cells_hold() {
         .with_self_collision(&[], &[&scene.theta0])
         .unwrap();
     let b = slice(&checked, plane, grid, &methods[..1], None).unwrap();
-    let svg = redundant_ik::figure::slice_svg(&b, &checked, "Franka Panda").unwrap();
+    let svg = redundant_ik::figure::slice_svg(&b, &checked, "Franka Panda", false).unwrap();
     assert!(svg.contains(Class::SelfCollision.label()));
 }
 
