@@ -83,11 +83,11 @@ pub use space_bench::*;
 #[cfg(feature = "page")]
 pub use space_demo::SpaceDemo;
 #[cfg(feature = "worker")]
-pub use space_takeaway::{space_figure, space_plots};
+pub use space_takeaway::{slice_atlas_files, space_figure, space_plots};
 #[cfg(feature = "worker")]
 pub use space_training::{train_space_network, MAX_SPACE_EPOCHS, MAX_SPACE_SAMPLES};
 #[cfg(feature = "page")]
-pub use style::{legend_js as legend, palette};
+pub use style::{atlas_classes, legend_js as legend, palette};
 #[cfg(feature = "worker")]
 pub use takeaway::*;
 #[cfg(feature = "worker")]

@@ -134,3 +134,45 @@ fn a_pose_run_file_maps_the_pose_task_as_the_native_pose_slice_does() {
     let e = message(with("case1").err().unwrap());
     assert!(e.contains("Phi"), "{e}");
 }
+
+/// A slice atlas's files from the workers' module: the JSON as the job
+/// finished it, the native CSV and maps of the method asked for; a broken
+/// atlas and a method it lacks are refused with the reason.
+#[wasm_bindgen_test]
+fn a_slice_atlas_gives_its_files_as_the_command_line_writes_them() {
+    use redundant_ik::web::slice_atlas_files;
+    let (scene, run) = panda_run();
+    let options = js_sys::JSON::parse(r#"{"methods": ["none", "qp"], "n": 3}"#).unwrap();
+    let mut job = SpaceAtlasJob::new(&run, options).unwrap();
+    job.advance(9);
+    let json = job.finish().unwrap();
+    let files = slice_atlas_files(&json, &run, vec!["qp".into()]).unwrap();
+    let get = |k: &str| {
+        js_sys::Reflect::get(&files, &k.into())
+            .unwrap()
+            .as_string()
+            .unwrap()
+    };
+    assert_eq!(get("json"), json);
+    let atlas: redundant_ik::atlas::space::SliceAtlas = serde_json::from_str(&json).unwrap();
+    assert_eq!(get("csv"), redundant_ik::export::slice_atlas_csv(&atlas));
+    let mut qp = atlas.clone();
+    qp.methods.remove(0);
+    for c in &mut qp.cells {
+        c.outcomes.remove(0);
+    }
+    let label = "Franka Panda (7 joints, in space)";
+    assert_eq!(
+        get("figure"),
+        redundant_ik::figure::slice_svg(&qp, &scene, label, false).unwrap()
+    );
+    assert!(
+        message(slice_atlas_files("{}", &run, vec![]).err().unwrap()).contains("not a slice atlas")
+    );
+    assert!(message(
+        slice_atlas_files(&json, &run, vec!["case3".into()])
+            .err()
+            .unwrap()
+    )
+    .contains("none of the methods case3"));
+}
