@@ -118,7 +118,7 @@ impl Robot {
             Some(p) => Self::preset(p),
             None => Self {
                 preset: None,
-                label: format!("{name} ({} joints, in space)", chain.dof()),
+                label: SpacePreset::label_of(chain, name),
                 key: name.into(),
             },
         }

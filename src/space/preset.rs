@@ -66,6 +66,16 @@ impl SpacePreset {
         PRESETS.iter().find(|p| p.chain().same_kinematics(chain))
     }
 
+    /// What the outputs (summaries, figures, maps) call the arm whose
+    /// chain is `chain`: its preset's label, else `name` (a URDF's robot
+    /// name, as a run file records it) with its joints.
+    pub fn label_of(chain: &Chain, name: &str) -> String {
+        match Self::of(chain) {
+            Some(p) => p.label.to_string(),
+            None => format!("{name} ({} joints, in space)", chain.dof()),
+        }
+    }
+
     /// The preset called `key`, if any.
     pub fn by_key(key: &str) -> Option<&'static SpacePreset> {
         PRESETS.iter().find(|p| p.key == key)

@@ -109,6 +109,7 @@ impl SpaceAtlasJob {
             scene,
             networks,
             precision,
+            ..
         } = read_space_run(run)?;
         let arm = SpacePreset::of(&scene.arm).map(|p| p.key);
         let o = read_options(options)?;

@@ -19,7 +19,6 @@ use crate::figure;
 use crate::model::{Model, Scene as _};
 use crate::planner::Trajectory;
 use crate::session::STROBE_EVERY;
-use crate::space::SpacePreset;
 use crate::space::{Chain, PoseChain};
 
 /// The figure of the run in `run_json` (a run file of an arm in space,
@@ -30,10 +29,10 @@ use crate::space::{Chain, PoseChain};
 pub fn space_figure(run_json: &str) -> Result<String, JsError> {
     if is_pose_run(run_json) {
         let (label, file, traj) = read::<PoseChain, 6>(run_json)?;
-        return figure::pose_svg(label, &file.scene, &traj, STROBE_EVERY, false).map_err(js_err);
+        return figure::pose_svg(&label, &file.scene, &traj, STROBE_EVERY, false).map_err(js_err);
     }
     let (label, file, traj) = read::<Chain, 3>(run_json)?;
-    figure::space_svg(label, &file.scene, &traj, STROBE_EVERY).map_err(js_err)
+    figure::space_svg(&label, &file.scene, &traj, STROBE_EVERY).map_err(js_err)
 }
 
 /// The plots of the run in `run_json` (the clearance, the tracking error
@@ -44,19 +43,15 @@ pub fn space_figure(run_json: &str) -> Result<String, JsError> {
 pub fn space_plots(run_json: &str) -> Result<String, JsError> {
     if is_pose_run(run_json) {
         let (label, file, traj) = read::<PoseChain, 6>(run_json)?;
-        return figure::pose_series_svg(label, &file.scene, &traj).map_err(js_err);
+        return figure::pose_series_svg(&label, &file.scene, &traj).map_err(js_err);
     }
     let (label, file, traj) = read::<Chain, 3>(run_json)?;
-    figure::space_series_svg(label, &file.scene, &traj).map_err(js_err)
+    figure::space_series_svg(&label, &file.scene, &traj).map_err(js_err)
 }
 
 /// A run file's arm (what a figure calls it: its preset's label), the
 /// file and its run.
-type Read<A, const M: usize> = (
-    &'static str,
-    RunFile<A, M>,
-    Trajectory<M, <A as Model<M>>::Point>,
-);
+type Read<A, const M: usize> = (String, RunFile<A, M>, Trajectory<M, <A as Model<M>>::Point>);
 
 fn read<A, const M: usize>(run_json: &str) -> Result<Read<A, M>, JsError>
 where
@@ -65,7 +60,7 @@ where
     [f64; M]: serde::Serialize + serde::de::DeserializeOwned,
 {
     let mut file = RunFile::<A, M>::from_json(run_json).map_err(js_err)?;
-    let label = SpacePreset::of(file.scene.arm().as_ref()).map_or("Arm in space", |p| p.label);
+    let label = super::worker::label_of(file.scene.arm().as_ref(), file.robot.as_ref());
     let traj = Trajectory {
         method: file.method,
         steps: std::mem::take(&mut file.steps),
@@ -89,8 +84,7 @@ pub fn slice_atlas_files(
     let mut atlas: SliceAtlas = serde_json::from_str(atlas_json)
         .map_err(|e| JsError::new(&format!("not a slice atlas: {e}")))?;
     let run = read_space_run(run)?;
-    let (scene, pose) = (run.scene, run.pose.is_some());
-    let label = SpacePreset::of(&scene.arm).map_or("Arm in space", |p| p.label);
+    let (scene, pose, label) = (run.scene, run.pose.is_some(), run.label);
     let csv = export::slice_atlas_csv(&atlas);
     if !methods.is_empty() {
         let keep = kept(&atlas.methods, &methods)?;
@@ -99,7 +93,7 @@ pub fn slice_atlas_files(
             c.outcomes = keep.iter().map(|&k| c.outcomes[k].clone()).collect();
         }
     }
-    let figure = figure::slice_svg(&atlas, &scene, label, pose).map_err(js_err)?;
+    let figure = figure::slice_svg(&atlas, &scene, &label, pose).map_err(js_err)?;
     to_js(&AtlasFiles {
         json: atlas_json.to_string(),
         csv,

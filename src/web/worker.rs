@@ -91,6 +91,17 @@ pub(super) struct SpaceRun {
     pub networks: Option<NetworkChoice<crate::networks::space::SpaceNetworkSet>>,
     /// The networks' arithmetic.
     pub precision: crate::nn::Precision,
+    /// What the outputs call its arm ([`crate::space::SpacePreset::label_of`]).
+    pub label: String,
+}
+
+/// What the outputs call a run file's arm: its preset's label, else the
+/// robot's name the file records with its joints.
+pub(super) fn label_of(
+    chain: &crate::space::Chain,
+    robot: Option<&crate::urdf::RobotSource>,
+) -> String {
+    crate::space::SpacePreset::label_of(chain, robot.map_or("robot", |r| r.name.as_str()))
 }
 
 /// Reads `text`, a run file of an arm in space of either task.
@@ -99,6 +110,7 @@ pub(super) fn read_space_run(text: &str) -> Result<SpaceRun, JsError> {
     if is_pose_run(text) {
         let file = PoseRunFile::from_json(text).map_err(js_err)?;
         return Ok(SpaceRun {
+            label: label_of(&file.scene.arm.chain, file.robot.as_ref()),
             scene: file.scene.position_scene().0,
             pose: Some(file.scene),
             networks: file.networks,
@@ -107,6 +119,7 @@ pub(super) fn read_space_run(text: &str) -> Result<SpaceRun, JsError> {
     }
     let file = SpaceRunFile::from_json(text).map_err(js_err)?;
     Ok(SpaceRun {
+        label: label_of(&file.scene.arm, file.robot.as_ref()),
         pose: None,
         scene: file.scene,
         networks: file.networks,

@@ -115,6 +115,14 @@ fn simulate_figure_and_atlas_run_a_robot_from_its_urdf() {
     ]
     .concat());
     let v: serde_json::Value = serde_json::from_str(&raw).unwrap();
+    // Replayed, the run file's robot keeps its name.
+    let file = super::scratch("ur5e-run.json");
+    std::fs::write(&file, &raw).unwrap();
+    let replay = ok(&["simulate", "--from", file.to_str().unwrap()]);
+    assert!(
+        replay.starts_with("ur5e (6 joints, in space) | method qp"),
+        "{replay}"
+    );
     let (first, last) = (&v["steps"][0]["ee"], &v["steps"][100]["ee"]);
     assert!(
         (last[1].as_f64().unwrap() - first[1].as_f64().unwrap() - 0.15).abs() < 1e-4,
