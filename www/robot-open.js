@@ -208,7 +208,8 @@ export async function openStored(hash) {
     rate_limits: null,
     task: null,
   };
-  return { hash, chain: read.chain, read, preset, visuals, meshes: record.meshes };
+  // The URDF and the links asked for travel in the robot's run files, as `simulate --urdf FILE --json` writes them.
+  return { hash, chain: read.chain, read, preset, visuals, meshes: record.meshes, urdf: record.urdf, base: record.base, tip: record.tip };
 }
 
 const numbers = (text, n, fallback) => {

@@ -161,7 +161,9 @@ export function mountSpaceAtlas(root, demo, { show, say, preset, changed }) {
   // The files: the map of the method shown, the cells and the JSON of every method.
   const stemOf = () => {
     const [axes, at] = planeOf(last);
-    return `atlas-${String(demo.state().arm).replace(/[^A-Za-z0-9_-]+/g, '_')}-${axes}${Math.round(at * 1000)}mm-${last.grid.n}x${last.grid.n}-${last.methods[Number(which.value)]}`;
+    // The atlas's arm (a preset's key), else the page's (a robot of your own).
+    const arm = String(last.arm ?? demo.state().arm).replace(/[^A-Za-z0-9_-]+/g, '_');
+    return `atlas-${arm}-${axes}${Math.round(at * 1000)}mm-${last.grid.n}x${last.grid.n}-${last.methods[Number(which.value)]}`;
   };
   const saving = (button, save) =>
     button.addEventListener('click', async () => {

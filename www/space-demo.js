@@ -84,7 +84,7 @@ export async function mountSpace(root, options) {
   const preset = robot ? robot.preset : spacePresets().find((p) => p.key === options.arm);
   const stage = $('stage');
   const plots = $('plots');
-  const demo = robot ? SpaceDemo.ofChain(stage, plots ?? undefined, preset.key, preset.label, robot.chain, undefined) : new SpaceDemo(stage, plots ?? undefined, preset.key, undefined);
+  const demo = robot ? SpaceDemo.ofChain(stage, plots ?? undefined, preset.key, preset.label, robot.chain, undefined, robot.urdf ?? undefined, robot.base ?? undefined, robot.tip ?? undefined) : new SpaceDemo(stage, plots ?? undefined, preset.key, undefined);
   if (robot) {
     const s = demo.state();
     preset.task = { target: s.target, sphere: null, theta0: s.theta0 };

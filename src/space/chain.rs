@@ -263,6 +263,36 @@ impl Chain {
         )
     }
 
+    /// Whether `other` has this chain's kinematics to within `tol` in
+    /// every number (a URDF read in the browser, whose sines and cosines
+    /// are the crate's own, against the same file read natively: they
+    /// differ in the last bits).
+    pub fn kinematics_within(&self, other: &Chain, tol: f64) -> bool {
+        let numbers = |c: &Chain| -> Vec<f64> {
+            let mut v: Vec<f64> = c
+                .base
+                .0
+                .iter()
+                .flatten()
+                .chain(&c.base.1)
+                .copied()
+                .collect();
+            for r in &c.rows {
+                v.extend([r.a, r.alpha, r.d, r.offset]);
+            }
+            for j in &c.joints {
+                v.extend(j.rotation.iter().flatten().chain(&j.translation));
+            }
+            v.extend(c.flange.iter().chain(c.flange_rotation.iter().flatten()));
+            v
+        };
+        let slides = |c: &Chain| c.joints.iter().map(|j| j.prismatic).collect::<Vec<_>>();
+        let (a, b) = (numbers(self), numbers(other));
+        (self.rows.len(), slides(self)) == (other.rows.len(), slides(other))
+            && a.len() == b.len()
+            && a.iter().zip(&b).all(|(x, y)| (x - y).abs() <= tol)
+    }
+
     /// Number of joints `n`.
     pub fn dof(&self) -> usize {
         self.rows.len() + self.joints.len()

@@ -414,13 +414,18 @@ impl SpaceDemo {
     /// `simulate --from` replays and the workers' jobs read): the one run
     /// file, with the networks a learned method ran with (the shipped
     /// set's name, or the weights files' text of networks of your own),
-    /// so that the command line replays it so.
+    /// so that the command line replays it so, and the robot it ran (a
+    /// shipped one's key; a URDF of the user's whole, without a SHA-256:
+    /// the page's module has none).
     #[wasm_bindgen(js_name = runFile)]
     pub fn run_file(&self) -> String {
         let s = self.session();
         let networks = s.network_choice().cloned();
+        let robot = Some(s.source().clone());
         if let (Some(scene), Some(run)) = (s.pose_scene(), s.pose_trajectory()) {
-            return PoseRunFile::of(None, scene, run, networks, s.precision()).to_json();
+            return PoseRunFile::of(None, scene, run, networks, s.precision())
+                .with_robot(robot)
+                .to_json();
         }
         SpaceRunFile::of(
             None,
@@ -429,6 +434,7 @@ impl SpaceDemo {
             networks,
             s.precision(),
         )
+        .with_robot(robot)
         .to_json()
     }
 

@@ -213,6 +213,19 @@ fn a_run_file_records_its_robot_and_refuses_a_changed_urdf() {
     changed["robot"]["urdf"] = text.replace("ur5e", "ur5f").into();
     std::fs::write(&file, serde_json::to_string(&changed).unwrap()).unwrap();
     refused(&["simulate", "--from", path], "sha-256");
+    // The scene's chain against its URDF: to within rounding (the page
+    // reads the file with the crate's own sines and cosines), not a
+    // millimetre off.
+    let nudged = |by: f64| {
+        let mut w = v.clone();
+        let x = w["scene"]["arm"]["joints"][2]["translation"][0].as_f64().unwrap();
+        w["scene"]["arm"]["joints"][2]["translation"][0] = (x + by).into();
+        std::fs::write(&file, serde_json::to_string(&w).unwrap()).unwrap();
+    };
+    nudged(1e-15);
+    ok(&["simulate", "--from", path]);
+    nudged(1e-3);
+    refused(&["simulate", "--from", path], "does not describe");
     // A URDF of another robot than the scene's chain is refused.
     let mut other = v;
     let slider = std::fs::read_to_string(SLIDER).unwrap();

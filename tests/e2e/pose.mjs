@@ -112,6 +112,7 @@ test("pose: the Hand menu makes the task the hand's full pose; the gizmo's rings
   const json = await download(page, '#save-run-json');
   const run = JSON.parse(json.text);
   assert.equal(run.scene.target.length, 6, 'the run file is the pose run');
+  assert.deepEqual(run.robot, { name: 'panda' }, 'of the shipped Panda, as simulate --arm panda --json records it');
   s.theta.forEach((v, i) => close(run.steps.at(-1).theta[i], v, 1e-12, `theta${i + 1}: the file's run is the drawing's`));
   const back = JSON.parse(cli(['simulate', '--from', json.path, '--json']));
   assert.equal(back.steps.length, run.steps.length);

@@ -58,11 +58,17 @@ test('your robot: the UR5e from its URDF through Open robot…, what the reader 
   const run = JSON.parse(json.text);
   assert.equal(run.method, 'qp');
   assert.equal(run.scene.arm.joints.length, 6, 'the file carries the chain read from the URDF');
+  assert.equal(run.robot.name, 'ur5e', 'and the robot it came from, as simulate --urdf FILE --json records it');
+  assert.match(run.robot.urdf, /<robot name="ur5e"/);
   const back = JSON.parse(cli(['simulate', '--from', json.path, '--json']));
   assert.equal(back.steps.length, run.steps.length);
   let worst = 0;
   back.steps.forEach((st, k) => st.theta.forEach((v, i) => (worst = Math.max(worst, Math.abs(v - run.steps[k].theta[i])))));
   assert.ok(worst < 1e-9, `simulate --from replays the page's run to ${worst} rad`);
+  // Its figure names the robot as the command line does.
+  const figure = await download(page, '#save-figure-svg');
+  assert.match(figure.text, /ur5e \(6 joints, in space\), QP with dampers/);
+  assert.match(cli(['simulate', '--from', json.path]), /^ur5e \(6 joints, in space\) \| method qp/);
   await page.locator('#stage').screenshot({ path: join(shots, 'robot-ur5e.png') });
   // From three sides, its volumes as the planner sees them.
   for (const [name, yaw, pitch] of [['front', 0, 0.2], ['side', Math.PI / 2, 0.25], ['above', 0.45, 1.2]]) {

@@ -85,13 +85,15 @@ pub struct SpaceSession {
     runs: u64,
 }
 
-/// The robot a session shows: its key and name as the page says them, and
-/// its own task (what Task loads).
+/// The robot a session shows: its key and name as the page says them, its
+/// own task (what Task loads) and where it came from, as its run files
+/// record it.
 #[derive(Debug, Clone)]
 struct SessionRobot {
     key: String,
     label: String,
     task: SpaceScene,
+    source: crate::urdf::RobotSource,
 }
 
 impl SpaceSession {
@@ -114,6 +116,7 @@ impl SpaceSession {
             key: key.into(),
             label: label.into(),
             task,
+            source: crate::urdf::RobotSource::shipped(key),
         };
         let pose = SpacePose::new(&scene.arm, &scene.theta0)?;
         let home = Camera::looking_at(home_focus(&scene), 1.8 * scene.arm.reach().max(0.3));
@@ -155,6 +158,18 @@ impl SpaceSession {
     /// The robot's name as the page says it (`Franka Panda`).
     pub fn robot_label(&self) -> &str {
         &self.robot.label
+    }
+
+    /// Where the robot came from, as its run files record it: a shipped
+    /// one by its key, or a URDF of the user's ([`Self::set_source`]).
+    pub fn source(&self) -> &crate::urdf::RobotSource {
+        &self.robot.source
+    }
+
+    /// Records where the robot came from (a URDF of the user's: its name,
+    /// text, base and tip), for its run files.
+    pub fn set_source(&mut self, source: crate::urdf::RobotSource) {
+        self.robot.source = source;
     }
 
     /// The scene.

@@ -18,9 +18,12 @@ impl SpaceDemo {
     /// its chain's JSON (what `readRobot` returns), `key` and `label` name
     /// it; its own task (the middle of its joints' ranges, a line 0.15 m
     /// along `y`, no sphere) in `method` (default `numerical`), paused at
-    /// `t = 0`. Throws with the reason where the chain does not read or its
-    /// task does not run.
+    /// `t = 0`. `urdf`, `base` and `tip` are the file it was read from and
+    /// the links its chain runs between, which its run files carry (as
+    /// `simulate --urdf FILE --json` writes them). Throws with the reason
+    /// where the chain does not read or its task does not run.
     #[wasm_bindgen(js_name = ofChain)]
+    #[allow(clippy::too_many_arguments)] // the JS constructor's own list
     pub fn of_chain(
         stage: HtmlCanvasElement,
         plots: Option<HtmlCanvasElement>,
@@ -28,6 +31,9 @@ impl SpaceDemo {
         label: &str,
         chain: &str,
         method: Option<String>,
+        urdf: Option<String>,
+        base: Option<String>,
+        tip: Option<String>,
     ) -> JsResult<SpaceDemo> {
         let method = match method {
             Some(m) => m.parse::<Method>().map_err(js_err)?,
@@ -35,7 +41,14 @@ impl SpaceDemo {
         };
         let chain = crate::networks::chain_from_json(chain).map_err(js_err)?;
         let task = SpaceScene::own(chain).map_err(js_err)?;
-        let session = SpaceSession::of_robot(key, label, task, method).map_err(js_err)?;
+        let mut session = SpaceSession::of_robot(key, label, task, method).map_err(js_err)?;
+        session.set_source(crate::urdf::RobotSource {
+            name: label.into(),
+            urdf,
+            sha256: None,
+            base,
+            tip,
+        });
         Self::with_session(stage, plots, session)
     }
 }
