@@ -218,7 +218,9 @@ fn a_run_file_records_its_robot_and_refuses_a_changed_urdf() {
     // millimetre off.
     let nudged = |by: f64| {
         let mut w = v.clone();
-        let x = w["scene"]["arm"]["joints"][2]["translation"][0].as_f64().unwrap();
+        let x = w["scene"]["arm"]["joints"][2]["translation"][0]
+            .as_f64()
+            .unwrap();
         w["scene"]["arm"]["joints"][2]["translation"][0] = (x + by).into();
         std::fs::write(&file, serde_json::to_string(&w).unwrap()).unwrap();
     };
