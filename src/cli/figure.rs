@@ -164,10 +164,9 @@ where
     let e = |x: redundant_ik::Error| x.to_string();
     let run = |method: Method, nets: Option<Arc<SpaceNetworks>>| {
         Planner::run(scene.clone(), method, nets.map(|n| n as Networks<A, M>))
-            .map_err(|e| format!("{method}: {e}"))
     };
     if !(args.compare || args.all) {
-        let traj = run(job.method, job.nets.clone())?;
+        let traj = run(job.method, job.nets.clone()).map_err(e)?;
         return write(&args.out, &draw(Drawn::Run(&traj)).map_err(e)?);
     }
     let mut runs = Vec::new();
@@ -190,7 +189,7 @@ where
                 }
             },
         };
-        runs.push(run(method, nets)?);
+        runs.push(run(method, nets).map_err(|e| format!("{method}: {e}"))?);
     }
     let compare = draw(Drawn::Compare(&runs)).map_err(e)?;
     if args.compare {
