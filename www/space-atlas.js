@@ -195,12 +195,12 @@ export function mountSpaceAtlas(root, demo, { show, say, preset, changed }) {
       th.textContent = h;
       head.append(th);
     }
+    // Success over the cells where avoidance is possible, as `atlas --arm A` counts it.
+    const avoidable = a.cells.filter((cell) => classes.find((c) => c.name === cell.outcomes[0].class)?.avoidable).length;
     const rows = a.methods.map((m, k) => {
       const tr = document.createElement('tr');
       tr.dataset.method = m;
       const counts = classes.map((c) => a.cells.filter((cell) => cell.outcomes[k].class === c.name).length);
-      // Success over the cells where avoidance is possible, as `atlas --arm A` counts it.
-      const avoidable = a.cells.filter((cell) => classes.find((c) => c.name === cell.outcomes[0].class)?.avoidable).length;
       const rate = avoidable ? counts[0] / avoidable : NaN;
       for (const v of [methods().find((x) => x.name === m)?.label ?? m, ...counts.map(String), Number.isFinite(rate) ? pct(rate) : '—']) {
         const td = document.createElement('td');

@@ -53,8 +53,7 @@ impl Job {
         use redundant_ik::model::Scene as _;
         let chain: &Chain = file.scene.arm().as_ref();
         super::robot::check_source(file.robot.as_ref(), chain)?;
-        let name = file.robot.as_ref().map_or("robot", |r| r.name.as_str());
-        let robot = Robot::of_chain(chain, name);
+        let robot = Robot::of_chain(chain, RobotSource::name_of(file.robot.as_ref()));
         let method = method.unwrap_or(file.method);
         let nets = super::space_networks::of_run_file(
             &args.networks,

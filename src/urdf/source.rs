@@ -34,6 +34,12 @@ pub struct RobotSource {
 }
 
 impl RobotSource {
+    /// The name a run file's robot goes by: its own, else `robot` (a file
+    /// that records none, as files written before robots were did).
+    pub fn name_of(source: Option<&Self>) -> &str {
+        source.map_or("robot", |r| r.name.as_str())
+    }
+
     /// A shipped robot, by name.
     pub fn shipped(name: &str) -> Self {
         Self {

@@ -11,7 +11,7 @@
 use wasm_bindgen::prelude::*;
 
 use super::js_err;
-use super::takeaway::{kept, AtlasFiles};
+use super::takeaway::{restrict, AtlasFiles};
 use super::worker::{read_space_run, to_js};
 use crate::atlas::space::SliceAtlas;
 use crate::export::{self, is_pose_run, Recorded, RunFile};
@@ -87,11 +87,7 @@ pub fn slice_atlas_files(
     let (scene, pose, label) = (run.scene, run.pose.is_some(), run.label);
     let csv = export::slice_atlas_csv(&atlas);
     if !methods.is_empty() {
-        let keep = kept(&atlas.methods, &methods)?;
-        atlas.methods = keep.iter().map(|&k| atlas.methods[k]).collect();
-        for c in &mut atlas.cells {
-            c.outcomes = keep.iter().map(|&k| c.outcomes[k].clone()).collect();
-        }
+        restrict(&mut atlas.methods, &mut atlas.cells, &methods)?;
     }
     let figure = figure::slice_svg(&atlas, &scene, &label, pose).map_err(js_err)?;
     to_js(&AtlasFiles {

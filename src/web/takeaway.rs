@@ -10,7 +10,7 @@ use wasm_bindgen::prelude::*;
 
 use super::js_err;
 use super::worker::{from_js, read_run, to_js};
-use crate::atlas::Atlas;
+use crate::atlas::{Atlas, Cell};
 use crate::export::{self, RunFile};
 use crate::figure;
 use crate::planner::{Method, Planner};
@@ -92,18 +92,19 @@ pub fn atlas_files(
 
 /// The atlas restricted to `methods` (in the atlas's order).
 fn only(mut atlas: Atlas, methods: &[String]) -> Result<Atlas, JsError> {
-    let keep = kept(&atlas.methods, methods)?;
-    atlas.methods = keep.iter().map(|&k| atlas.methods[k]).collect();
+    let keep = restrict(&mut atlas.methods, &mut atlas.cells, methods)?;
     atlas.summary = keep.iter().map(|&k| atlas.summary[k].clone()).collect();
-    for c in &mut atlas.cells {
-        c.outcomes = keep.iter().map(|&k| c.outcomes[k].clone()).collect();
-    }
     Ok(atlas)
 }
 
-/// The indices of an atlas's `methods` named in `names` (in the atlas's
-/// order), or why none is.
-pub(super) fn kept(methods: &[Method], names: &[String]) -> Result<Vec<usize>, JsError> {
+/// An atlas's `methods` and its `cells`' outcomes restricted to the
+/// methods named in `names` (in the atlas's order), for either atlas;
+/// returns the indices kept, or why none is.
+pub(super) fn restrict<const D: usize>(
+    methods: &mut Vec<Method>,
+    cells: &mut [Cell<D>],
+    names: &[String],
+) -> Result<Vec<usize>, JsError> {
     let keep: Vec<usize> = methods
         .iter()
         .enumerate()
@@ -115,6 +116,10 @@ pub(super) fn kept(methods: &[Method], names: &[String]) -> Result<Vec<usize>, J
             "the atlas has none of the methods {}",
             names.join(", ")
         )));
+    }
+    *methods = keep.iter().map(|&k| methods[k]).collect();
+    for c in cells {
+        c.outcomes = keep.iter().map(|&k| c.outcomes[k].clone()).collect();
     }
     Ok(keep)
 }

@@ -101,7 +101,7 @@ pub(super) fn label_of(
     chain: &crate::space::Chain,
     robot: Option<&crate::urdf::RobotSource>,
 ) -> String {
-    crate::space::SpacePreset::label_of(chain, robot.map_or("robot", |r| r.name.as_str()))
+    crate::space::SpacePreset::label_of(chain, crate::urdf::RobotSource::name_of(robot))
 }
 
 /// Reads `text`, a run file of an arm in space of either task.
